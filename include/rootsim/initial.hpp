@@ -1,0 +1,24 @@
+#pragma once
+// Initial state (MODEL.md section 3): straight, lying on the plane, pointing downhill.
+#include <cstdint>
+
+#include "rootsim/environment.hpp"
+
+namespace rootsim {
+
+struct InitialShape {
+  double length = 1.1e-3;         // L0 [m]
+  double elementLength = 5e-5;    // target element length h [m]; n = ceil(L0 / h), at least 2
+  double perturbation = 1e-6;     // lateral node displacement amplitude / R (seeded, MODEL.md section 6)
+  std::uint64_t seed = 1;         // seed of the perturbation
+};
+
+// base of the centreline at R n, axis along the downhill direction, d1 = x, d2 = n, d3 = downhill;
+// nodes 2.. are displaced laterally by perturbation * R * u, u uniform in [-1, 1] from a splitmix64
+// stream of the seed (bit-identical on every platform)
+RodState makeInitialRod(const RodParams& p, const Plane& plane, const InitialShape& shape);
+
+// deterministic uniform number in [-1, 1) from a 64-bit state (splitmix64)
+double splitmixUniform(std::uint64_t& state);
+
+}  // namespace rootsim

@@ -1,0 +1,68 @@
+#pragma once
+// Mechanical relaxation to equilibrium (MODEL.md section 7).
+#include "rootsim/environment.hpp"
+#include <stdexcept>
+#include <string>
+
+namespace rootsim {
+
+// how fictitious masses are chosen
+enum class MassModel {
+  Physical,  // the paper's: density 1000 kg/m^3, dt from the stiffest spring
+  Scaled     // dynamic relaxation: per-dof mass proportional to its stiffness, dt = 1 (Underwood 1983)
+};
+// how kinetic energy is removed
+enum class Damping {
+  Viscous,   // v *= exp(-nu dt), as PyElastica's analytical linear damper
+  Fire       // FIRE (Bitzek et al. 2006, with Guenole et al. 2020 tweaks), mass-weighted
+};
+
+struct SolverOptions {
+  MassModel mass = MassModel::Scaled;
+  Damping damping = Damping::Fire;
+  double viscousRate = 2e4;       // nu for Damping::Viscous [1/s]
+  double cfl = 0.9;               // fraction of the stability limit used for dt (physical masses)
+  double forceTol = 1e-5;         // residual force / (B1/Lref^2), residual torque / (B1/Lref)
+  double speedTol = 1e-6;         // max node displacement per sub-step / R, and rotation per sub-step [rad]
+  long maxSubsteps = 2000000;     // cap per relaxation; hitting it is an error
+  double lengthScale = 0.0;       // Lref [m]; 0 means the rod's rest length
+};
+
+struct RelaxResult {
+  long substeps = 0;
+  double residualForce = 0;       // max over free nodes [N]
+  double residualTorque = 0;      // max over free elements [N m]
+  double maxSpeed = 0;            // max node speed at exit [m/s]
+  double dt = 0;                  // last sub-step [s] (pseudo-time when mass is scaled)
+};
+
+// a relaxation that diverged or did not converge; what() names the sub-step, the node or element and
+// the quantity
+class RelaxError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// scratch memory for relax(); sized once per element count so the sub-step never allocates
+struct RelaxWorkspace {
+  RodStrains strains;
+  Eigen::Matrix3Xd force;      // (3 x n+1) lab [N]
+  Eigen::Matrix3Xd torque;     // (3 x n) material [N m]
+  Eigen::VectorXd mass;        // node masses (n+1) [kg]
+  Eigen::Matrix3Xd inertia;    // element inertia per material axis (3 x n) [kg m^2]
+  void resize(int n);
+};
+
+// relaxes the rod to equilibrium under env; throws RelaxError on divergence or on hitting the cap
+RelaxResult relax(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
+                  RelaxWorkspace& ws);
+
+// stable sub-step for physical masses: cfl * min over dofs of 2 sqrt(m / k) [s]
+double stableTimeStep(const RodParams& p, const Environment& env, const SolverOptions& opt,
+                      const RodState& s, RelaxWorkspace& ws);
+
+// evaluates all forces of state s into ws.force / ws.torque (used by relax and by tests)
+void computeForces(const RodParams& p, const Environment& env, const RodState& s, bool planeDamping,
+                   RelaxWorkspace& ws);
+
+}  // namespace rootsim

@@ -1,0 +1,87 @@
+#pragma once
+// Discrete Cosserat rod (MODEL.md section 4; Gazzola et al. 2018, "Forward and inverse problems in the
+// mechanics of soft filaments", the scheme PyElastica implements).
+//
+//   nodes 0..n           positions x, velocities v                      (3 x n+1)
+//   elements 0..n-1      directors Q (rows d1, d2, d3), angular velocity w (material frame), rest length l0
+//   Voronoi 0..n-2       interior node between element j and j+1: curvature kappa, intrinsic kappa0
+//
+// Nothing here knows about growth, scenes or pictures.
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+namespace rootsim {
+
+using Vec3 = Eigen::Vector3d;
+using Mat3 = Eigen::Matrix3d;
+
+// constant material description of the rod
+struct RodParams {
+  double radius = 1e-4;           // rest radius R [m]
+  double youngs = 50e6;           // Young's modulus E [Pa]
+  double density = 1000.0;        // density [kg/m^3] (physical-mass relaxation only)
+  Vec3 shearFactors{8.0 / 9.0, 8.0 / 9.0, 1.0};   // S = E pi R^2 diag(shearFactors)
+  Vec3 bendFactors{0.25, 0.25, 1.0 / 6.0};        // B = E pi R^4 diag(bendFactors)
+
+  Vec3 shearStiffness() const;    // diagonal of S [N]
+  Vec3 bendStiffness() const;     // diagonal of B [N m^2]
+};
+
+// changing state of the rod
+struct RodState {
+  Eigen::Matrix3Xd x;        // node positions [m]                             (3 x n+1)
+  Eigen::Matrix3Xd v;        // node velocities [m/s] (pseudo-velocities when mass is scaled) (3 x n+1)
+  std::vector<Mat3> Q;       // directors, rows d1 d2 d3 (lab components)       (n)
+  Eigen::Matrix3Xd w;        // angular velocity, material components [rad/s]   (3 x n)
+  Eigen::VectorXd l0;        // rest lengths, changed only by growth [m]        (n)
+  Eigen::VectorXd S;         // material coordinate of each node, rest arc length from the base [m] (n+1)
+  Eigen::Matrix3Xd kappa0;   // intrinsic curvature per unit rest length, material comps [1/m] (3 x n-1)
+  Eigen::Matrix3Xd anchor;   // adhesion anchor of each node [m]               (3 x n+1)
+  std::vector<std::uint8_t> anchored;  // 1 if the node is pinned to its anchor   (n+1)
+  double time = 0.0;         // growth time [s]
+
+  int elements() const { return static_cast<int>(l0.size()); }
+  int nodes() const { return elements() + 1; }
+  double restLength() const { return l0.sum(); }
+  // resize every field for n elements (fields are left unset)
+  void resize(int n);
+};
+
+// per-element and per-Voronoi strains and stresses, computed from a state
+struct RodStrains {
+  Eigen::VectorXd l;         // current element lengths [m]                   (n)
+  Eigen::VectorXd e;         // dilatation l / l0 (the paper's lambda_e)       (n)
+  Eigen::Matrix3Xd t;        // unit tangents (lab)                            (3 x n)
+  Eigen::Matrix3Xd sigma;    // shear/stretch strain Q (e t - d3), material    (3 x n)
+  Eigen::Matrix3Xd nMat;     // internal force S sigma / e, material [N]       (3 x n)
+  Eigen::Matrix3Xd nLab;     // internal force, lab [N]                        (3 x n)
+  Eigen::VectorXd D0;        // Voronoi rest lengths [m]                       (n-1)
+  Eigen::VectorXd ev;        // Voronoi dilatation                             (n-1)
+  Eigen::Matrix3Xd kappa;    // curvature log(Q_j Q_{j+1}^T) / D0, material [1/m] (3 x n-1)
+  Eigen::Matrix3Xd m;        // internal couple B (kappa/ev - kappa0)/ev^2, material [N m] (3 x n-1)
+
+  void resize(int n);
+};
+
+// strains and stresses of the rod (MODEL.md section 4; paper Eqs. 24-25 with the incompressibility
+// rescaling S -> S/e, B -> B/e^2, kappa -> kappa/e)
+void computeStrains(const RodParams& p, const RodState& s, RodStrains& k);
+
+// internal forces on nodes (lab) and couples on elements (material), from computed strains;
+// force (3 x n+1) and torque (3 x n) are overwritten
+void computeInternalForces(const RodState& s, const RodStrains& k, Eigen::Matrix3Xd& force,
+                           Eigen::Matrix3Xd& torque);
+
+// radius of element i, shrinking with dilatation as R / sqrt(e) [m]
+inline double elementRadius(const RodParams& p, double e) { return p.radius / std::sqrt(e); }
+
+// elastic energies (no factor 1/2, MODEL.md section 8) over Voronoi domains whose material coordinate
+// lies in [Sfrom, Sto]: bending and twisting [J]
+struct GrowthZoneEnergy { double bend = 0, twist = 0; };
+GrowthZoneEnergy zoneEnergy(const RodParams& p, const RodState& s, const RodStrains& k, double Sfrom,
+                            double Sto);
+
+}  // namespace rootsim

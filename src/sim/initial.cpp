@@ -1,0 +1,41 @@
+#include "rootsim/initial.hpp"
+
+#include <cmath>
+
+namespace rootsim {
+
+double splitmixUniform(std::uint64_t& state) {
+  std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) * 0x1.0p-52 - 1.0;
+}
+
+RodState makeInitialRod(const RodParams& p, const Plane& plane, const InitialShape& shape) {
+  const int n = std::max(2, static_cast<int>(std::ceil(shape.length / shape.elementLength - 1e-9)));
+  const double l = shape.length / n;
+  const Vec3 nh = plane.normal(), down = plane.downhill(), lat = plane.lateral();
+  RodState s;
+  s.resize(n);
+  std::uint64_t rng = shape.seed;
+  for (int i = 0; i <= n; ++i) {
+    s.x.col(i) = p.radius * nh + (i * l) * down;
+    if (i >= 2) s.x.col(i) += shape.perturbation * p.radius * splitmixUniform(rng) * lat;
+    s.S[i] = i * l;
+  }
+  Mat3 Q;
+  Q.row(0) = lat.transpose();
+  Q.row(1) = nh.transpose();
+  Q.row(2) = down.transpose();
+  for (int i = 0; i < n; ++i) s.Q[static_cast<size_t>(i)] = Q;
+  s.v.setZero();
+  s.w.setZero();
+  s.l0.setConstant(l);
+  s.kappa0.setZero();
+  s.anchor = s.x;
+  s.time = 0.0;
+  return s;
+}
+
+}  // namespace rootsim

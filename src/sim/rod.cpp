@@ -1,0 +1,141 @@
+#include "rootsim/rod.hpp"
+
+#include <cmath>
+#include <numbers>
+
+#include "rootsim/rotation.hpp"
+
+namespace rootsim {
+
+Vec3 RodParams::shearStiffness() const {
+  return youngs * std::numbers::pi * radius * radius * shearFactors;
+}
+Vec3 RodParams::bendStiffness() const {
+  const double r2 = radius * radius;
+  return youngs * std::numbers::pi * r2 * r2 * bendFactors;
+}
+
+void RodState::resize(int n) {
+  x.resize(3, n + 1);
+  v.resize(3, n + 1);
+  Q.resize(static_cast<size_t>(n));
+  w.resize(3, n);
+  l0.resize(n);
+  S.resize(n + 1);
+  kappa0.resize(3, std::max(n - 1, 0));
+  anchor.resize(3, n + 1);
+  anchored.assign(static_cast<size_t>(n + 1), 0);
+}
+
+void RodStrains::resize(int n) {
+  const int nv = std::max(n - 1, 0);
+  l.resize(n);
+  e.resize(n);
+  t.resize(3, n);
+  sigma.resize(3, n);
+  nMat.resize(3, n);
+  nLab.resize(3, n);
+  D0.resize(nv);
+  ev.resize(nv);
+  kappa.resize(3, nv);
+  m.resize(3, nv);
+}
+
+namespace {
+
+// rotation vector of R = A B^T, computed from the rows of A and B without forming R
+// (R(a,b) = row a of A . row b of B); see rotationToVector for the branches
+inline Vec3 relativeRotation(const Mat3& A, const Mat3& B) {
+  const double r00 = A.row(0).dot(B.row(0)), r11 = A.row(1).dot(B.row(1)), r22 = A.row(2).dot(B.row(2));
+  const double r21 = A.row(2).dot(B.row(1)), r12 = A.row(1).dot(B.row(2));
+  const double r02 = A.row(0).dot(B.row(2)), r20 = A.row(2).dot(B.row(0));
+  const double r10 = A.row(1).dot(B.row(0)), r01 = A.row(0).dot(B.row(1));
+  const Vec3 v(0.5 * (r21 - r12), 0.5 * (r02 - r20), 0.5 * (r10 - r01));
+  const double c = 0.5 * (r00 + r11 + r22 - 1.0);
+  const double s2 = v.squaredNorm();
+  if (c > 0.0 && s2 < 2.5e-3) {
+    const double f = 1.0 + s2 * (1.0 / 6.0 + s2 * (3.0 / 40.0 + s2 * (5.0 / 112.0 + s2 * (35.0 / 1152.0))));
+    return f * v;
+  }
+  return rotationToVector(A * B.transpose());
+}
+
+}  // namespace
+
+void computeStrains(const RodParams& p, const RodState& s, RodStrains& k) {
+  const int n = s.elements();
+  const Vec3 Sd = p.shearStiffness();
+  const Vec3 Bd = p.bendStiffness();
+  // elements: length, dilatation, tangent, shear strain, internal force (Eq. 24, S -> S/e)
+  for (int i = 0; i < n; ++i) {
+    const Vec3 dx = s.x.col(i + 1) - s.x.col(i);
+    const double l = dx.norm();
+    const double e = l / s.l0[i];
+    const Vec3 t = dx / l;
+    const Mat3& Q = s.Q[static_cast<size_t>(i)];
+    Vec3 sigma = e * (Q * t);
+    sigma.z() -= 1.0;
+    const Vec3 nm = Sd.cwiseProduct(sigma) / e;
+    k.l[i] = l;
+    k.e[i] = e;
+    k.t.col(i) = t;
+    k.sigma.col(i) = sigma;
+    k.nMat.col(i) = nm;
+    k.nLab.col(i) = Q.transpose() * nm;
+  }
+  // Voronoi domains: curvature from the relative rotation of neighbouring elements, kappa defined by
+  // d(d_j)/ds = kappa x d_j; with rows of Q the directors, Q_j Q_{j+1}^T = exp([kappa D0]x) in material
+  // components. Couple (Eq. 25) with the rescaling B -> B/e^2, kappa -> kappa/e.
+  for (int j = 0; j + 1 < n; ++j) {
+    const double D0 = 0.5 * (s.l0[j] + s.l0[j + 1]);
+    const double ev = 0.5 * (k.l[j] + k.l[j + 1]) / D0;
+    const Vec3 kap = relativeRotation(s.Q[static_cast<size_t>(j)], s.Q[static_cast<size_t>(j + 1)]) / D0;
+    k.D0[j] = D0;
+    k.ev[j] = ev;
+    k.kappa.col(j) = kap;
+    k.m.col(j) = Bd.cwiseProduct(kap / ev - s.kappa0.col(j)) / (ev * ev);
+  }
+}
+
+void computeInternalForces(const RodState& s, const RodStrains& k, Eigen::Matrix3Xd& force,
+                           Eigen::Matrix3Xd& torque) {
+  const int n = s.elements();
+  // nodes: difference of element internal forces (Eq. 22, discrete)
+  force.col(0) = k.nLab.col(0);
+  for (int i = 1; i < n; ++i) force.col(i) = k.nLab.col(i) - k.nLab.col(i - 1);
+  force.col(n) = -k.nLab.col(n - 1);
+  // elements (Eq. 23, discrete, material frame): difference of Voronoi couples, the averaged
+  // kappa x m term, and the shear couple (Q t) x n l
+  for (int i = 0; i < n; ++i) {
+    Vec3 tq = s.Q[static_cast<size_t>(i)] * k.t.col(i);
+    tq = tq.cross(Vec3(k.nMat.col(i))) * k.l[i];
+    if (i + 1 < n) {
+      const Vec3 mr = k.m.col(i);
+      tq += mr + 0.5 * k.D0[i] * Vec3(k.kappa.col(i)).cross(mr);
+    }
+    if (i > 0) {
+      const Vec3 ml = k.m.col(i - 1);
+      tq += -ml + 0.5 * k.D0[i - 1] * Vec3(k.kappa.col(i - 1)).cross(ml);
+    }
+    torque.col(i) = tq;
+  }
+}
+
+GrowthZoneEnergy zoneEnergy(const RodParams& p, const RodState& s, const RodStrains& k, double Sfrom,
+                            double Sto) {
+  const Vec3 Bd = p.bendStiffness();
+  GrowthZoneEnergy E;
+  for (int j = 0; j + 1 < s.elements(); ++j) {
+    const double Sj = s.S[j + 1];
+    if (Sj < Sfrom || Sj > Sto) continue;
+    const double ev = k.ev[j];
+    const Vec3 dk = Vec3(k.kappa.col(j)) / ev - Vec3(s.kappa0.col(j));
+    const Vec3 m = Bd.cwiseProduct(dk) / (ev * ev);
+    const double ds = k.D0[j] * ev;
+    E.bend += (m.x() * dk.x() + m.y() * dk.y()) * ds;
+    E.twist += m.z() * dk.z() * ds;
+  }
+  return E;
+}
+
+}  // namespace rootsim

@@ -1,0 +1,48 @@
+#include "rootsim/rotation.hpp"
+
+#include <cmath>
+
+namespace rootsim {
+
+Eigen::Matrix3d rotationFromVector(const Eigen::Vector3d& phi) {
+  // Rodrigues: R = I + a [phi]x + b [phi]x^2, a = sin t / t, b = (1 - cos t) / t^2
+  const double t2 = phi.squaredNorm();
+  double a, b;
+  if (t2 < 1e-4) {  // series to t^8, exact to round-off for t < 1e-2 (avoids sin/cos in the sub-step)
+    a = 1.0 - t2 * (1.0 / 6.0 - t2 * (1.0 / 120.0 - t2 * (1.0 / 5040.0 - t2 / 362880.0)));
+    b = 0.5 - t2 * (1.0 / 24.0 - t2 * (1.0 / 720.0 - t2 * (1.0 / 40320.0 - t2 / 3628800.0)));
+  } else {
+    const double t = std::sqrt(t2);
+    a = std::sin(t) / t;
+    b = (1.0 - std::cos(t)) / t2;
+  }
+  Eigen::Matrix3d K;
+  K << 0, -phi.z(), phi.y(), phi.z(), 0, -phi.x(), -phi.y(), phi.x(), 0;
+  return Eigen::Matrix3d::Identity() + a * K + b * (K * K);
+}
+
+Eigen::Vector3d rotationToVector(const Eigen::Matrix3d& R) {
+  // antisymmetric part (R - R^T)/2 = sin t [axis]x ; trace = 1 + 2 cos t
+  Eigen::Vector3d v(R(2, 1) - R(1, 2), R(0, 2) - R(2, 0), R(1, 0) - R(0, 1));
+  v *= 0.5;
+  const double c = 0.5 * (R.trace() - 1.0);
+  const double s2 = v.squaredNorm();
+  if (c > 0.0 && s2 < 2.5e-3) {
+    // t / sin t with t = asin(s): 1 + s^2/6 + 3 s^4/40 + 5 s^6/112 + 35 s^8/1152 (+ O(s^10) < 1e-15 here)
+    const double f = 1.0 + s2 * (1.0 / 6.0 + s2 * (3.0 / 40.0 + s2 * (5.0 / 112.0 + s2 * (35.0 / 1152.0))));
+    return f * v;
+  }
+  const double s = std::sqrt(s2);
+  const double t = std::atan2(s, c);
+  if (c > -0.9) return (t / s) * v;  // axis from the antisymmetric part is accurate away from pi
+  // near t = pi: axis from the symmetric part (R + R^T)/2 - c I = (1 - c) a a^T
+  Eigen::Matrix3d Bm = 0.5 * (R + R.transpose()) - c * Eigen::Matrix3d::Identity();
+  int k = 0;
+  Bm.diagonal().maxCoeff(&k);
+  Eigen::Vector3d a = Bm.col(k) / std::sqrt(std::max(Bm(k, k), 1e-300));
+  a.normalize();
+  if (a.dot(v) < 0) a = -a;
+  return t * a;
+}
+
+}  // namespace rootsim

@@ -1,0 +1,80 @@
+// unit tests of the discrete rod operators (src/sim/rod.cpp)
+#include <doctest/doctest.h>
+
+#include <Eigen/Geometry>
+
+#include "rod_fixture.hpp"
+#include "rootsim/rotation.hpp"
+
+using namespace rootsim;
+using rootsim::test::Cantilever;
+
+TEST_CASE("a straight rod at rest carries no force and no couple") {
+  Cantilever c(20);
+  computeForces(c.p, c.env, c.s, false, c.ws);
+  CHECK(c.ws.force.norm() < 1e-12 * c.p.shearStiffness().z());
+  CHECK(c.ws.torque.norm() < 1e-12 * c.p.bendStiffness().x() / c.s.l0[0]);
+}
+
+TEST_CASE("curvature sign: directors turning about d2 along s give kappa2 > 0 (d d_j/ds = kappa x d_j)") {
+  Cantilever c(10);
+  const double k = 50.0;  // [1/m]
+  const double l = c.s.l0[0];
+  // element i rotated about d2 (lab z) by k * s_mid, so dd_j/ds = (k z) x d_j
+  Cantilever ref(10);
+  for (int i = 0; i < c.s.elements(); ++i) {
+    const Mat3 R = Eigen::AngleAxisd(k * (i + 0.5) * l, Vec3::UnitZ()).toRotationMatrix();
+    c.s.Q[i] = (R * ref.s.Q[0].transpose()).transpose();
+  }
+  c.ws.resize(c.s.elements());
+  computeStrains(c.p, c.s, c.ws.strains);
+  for (int j = 0; j + 1 < c.s.elements(); ++j) {
+    CHECK(c.ws.strains.kappa(0, j) == doctest::Approx(0.0).epsilon(1e-12));
+    CHECK(c.ws.strains.kappa(1, j) == doctest::Approx(k).epsilon(1e-12));  // d2 = lab z
+    CHECK(std::abs(c.ws.strains.kappa(2, j)) < 1e-9);
+  }
+}
+
+TEST_CASE("frame invariance: a rigidly rotated, deformed rod gives rotated forces and equal couples") {
+  Cantilever a(16);
+  // deform: random-ish node displacements and director rotations
+  std::uint64_t rng = 7;
+  for (int i = 0; i < a.s.nodes(); ++i)
+    for (int d = 0; d < 3; ++d) a.s.x(d, i) += 2e-5 * splitmixUniform(rng);
+  for (int i = 0; i < a.s.elements(); ++i) {
+    Vec3 phi(splitmixUniform(rng), splitmixUniform(rng), splitmixUniform(rng));
+    a.s.Q[i] = rotationFromVector(0.2 * phi) * a.s.Q[i];
+  }
+  a.env.base = BaseCondition::Free;
+  a.env.tipForce = Vec3(1e-4, -2e-4, 3e-5);
+  Cantilever b = a;
+  const Mat3 R = Eigen::AngleAxisd(0.7, Vec3(1, 2, 3).normalized()).toRotationMatrix();
+  for (int i = 0; i < b.s.nodes(); ++i) b.s.x.col(i) = R * a.s.x.col(i);
+  for (int i = 0; i < b.s.elements(); ++i) b.s.Q[i] = a.s.Q[i] * R.transpose();
+  b.env.tipForce = R * a.env.tipForce;
+  computeForces(a.p, a.env, a.s, false, a.ws);
+  computeForces(b.p, b.env, b.s, false, b.ws);
+  const double fs = a.ws.force.cwiseAbs().maxCoeff(), ts = a.ws.torque.cwiseAbs().maxCoeff();
+  CHECK(fs > 1e-6);
+  CHECK((b.ws.force - R * a.ws.force).cwiseAbs().maxCoeff() < 1e-12 * fs);
+  CHECK((b.ws.torque - a.ws.torque).cwiseAbs().maxCoeff() < 1e-12 * ts);
+}
+
+TEST_CASE("internal forces balance: no net force or couple on a free rod") {
+  Cantilever a(12);
+  a.env.base = BaseCondition::Free;
+  std::uint64_t rng = 3;
+  for (int i = 0; i < a.s.nodes(); ++i)
+    for (int d = 0; d < 3; ++d) a.s.x(d, i) += 1e-5 * splitmixUniform(rng);
+  for (int i = 0; i < a.s.elements(); ++i)
+    a.s.Q[i] = rotationFromVector(0.1 * Vec3(splitmixUniform(rng), splitmixUniform(rng), 0)) * a.s.Q[i];
+  computeForces(a.p, a.env, a.s, false, a.ws);
+  // sum of forces vanishes; total moment about the origin: sum x_i x F_i + sum Q_i^T tau_i
+  Vec3 F = a.ws.force.rowwise().sum();
+  Vec3 M = Vec3::Zero();
+  for (int i = 0; i < a.s.nodes(); ++i) M += Vec3(a.s.x.col(i)).cross(Vec3(a.ws.force.col(i)));
+  for (int i = 0; i < a.s.elements(); ++i) M += a.s.Q[i].transpose() * a.ws.torque.col(i);
+  const double fs = a.ws.force.cwiseAbs().maxCoeff();
+  CHECK(F.norm() < 1e-12 * fs);
+  CHECK(M.norm() < 1e-8 * fs * a.L);  // round-off: stretch forces cancel
+}

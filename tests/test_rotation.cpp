@@ -1,0 +1,18 @@
+#include <doctest/doctest.h>
+
+#include <Eigen/Geometry>
+
+#include "rootsim/rotation.hpp"
+
+using namespace rootsim;
+
+TEST_CASE("rotation exp/log round trip at small, moderate and near-pi angles") {
+  for (double t : {1e-9, 3e-5, 1e-3, 0.04, 0.3, 1.0, 2.5, 3.14159}) {
+    const Eigen::Vector3d axis = Eigen::Vector3d(0.3, -0.5, 0.8).normalized();
+    const Eigen::Vector3d phi = t * axis;
+    const Eigen::Matrix3d R = rotationFromVector(phi);
+    const Eigen::Matrix3d Ref = Eigen::AngleAxisd(t, axis).toRotationMatrix();
+    CHECK((R - Ref).norm() < 1e-14);
+    CHECK((rotationToVector(R) - phi).norm() < 1e-12 * std::max(1.0, t));
+  }
+}

@@ -1,0 +1,32 @@
+#pragma once
+// What a picture needs of one moment of a run: the rod's shape and material frame, in the lab frame of
+// MODEL.md section 3. Saved in the run directory's trajectory and handed to the renderer; carries no
+// solver state.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace rootsim {
+
+struct Snapshot {
+  int step = 0;                // growth step
+  double timeH = 0.0;          // growth time [h]
+  Eigen::Matrix3Xd x;          // node positions [m]                         (3 x n+1)
+  Eigen::Matrix3Xd d1;         // director d1 of each element, lab, unit     (3 x n)
+  Eigen::Matrix3Xd d3;         // director d3 of each element, lab, unit     (3 x n); d2 = d3 x d1
+  Eigen::VectorXd radius;      // element radius R / sqrt(lambda_e) [m]      (n)
+  int elements() const { return static_cast<int>(radius.size()); }
+};
+
+// the constant facts a picture shows beside the rod: the plate and the parameters
+struct SceneInfo {
+  double alphaDeg = 40.0;      // plate tilt from the vertical [deg]
+  double beta = 0.1;           // gravitropic gain
+  double gamma = 0.1;          // proprioceptive gain
+  double rTau = 0.0;           // intrinsic twist R tau
+  double radius = 1e-4;        // rest radius R [m]
+  bool plate = true;           // draw the plate (false for a free organ)
+  std::string title;           // e.g. the scene name
+};
+
+}  // namespace rootsim

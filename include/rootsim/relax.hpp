@@ -53,6 +53,30 @@ struct RelaxWorkspace {
   void resize(int n);
 };
 
+// the relaxation loop, one sub-step at a time (relax() runs it to the end); holds references to its
+// arguments, which must outlive it
+class DynamicRelaxation {
+ public:
+  DynamicRelaxation(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
+                    RelaxWorkspace& ws);
+  // one sub-step; true when the state is in equilibrium (velocities are then zeroed); throws
+  // RelaxError when a force or couple is not finite. Allocates nothing.
+  bool step();
+  const RelaxResult& result() const { return res_; }
+  std::string describeFailure() const;
+
+ private:
+  const RodParams& p_;
+  const Environment& env_;
+  const SolverOptions& opt_;
+  RodState& s_;
+  RelaxWorkspace& ws_;
+  double ftol2_ = 0, mtol2_ = 0, xtol_ = 0, rtol_ = 0;
+  double dtMax_ = 0, dt_ = 0, pendingDrift_ = 0, alpha_ = 0, viscousFactor_ = 1;
+  int npos_ = 0, argF_ = 0, argM_ = 0;
+  RelaxResult res_;
+};
+
 // relaxes the rod to equilibrium under env; throws RelaxError on divergence or on hitting the cap
 RelaxResult relax(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
                   RelaxWorkspace& ws);

@@ -1,11 +1,12 @@
 // Explicit damped relaxation (MODEL.md section 7, first bullet).
 //
 // One sub-step, in this fixed order (position Verlet, as ref. 37 / PyElastica):
-//   1. half drift: x += h v, Q <- exp(-h [w]x) Q            (h = dt/2)
+//   1. half drift: x += h v, Q <- exp(-h [w]x) Q  (h = dt/2; merged with the previous sub-step's
+//      closing half drift, the leapfrog form of position Verlet)
 //   2. strains -> internal forces -> contact, adhesion, loads  (at the mid-step configuration)
 //   3. residuals and finiteness; stop if in equilibrium
 //   4. damping decision (FIRE power test) and kick: v += dt F/m, w += dt tau/J
-//   5. half drift
+//   5. half drift (deferred)
 //
 // Only the equilibrium matters, so the masses are fictitious by default ("scaled"): each degree of
 // freedom gets a mass proportional to a bound on its stiffness (row sum of the stiffness matrix with
@@ -115,7 +116,8 @@ void drift(const Environment& env, RodState& s, double h) {
   for (int i = first; i <= n; ++i) s.x.col(i) += h * s.v.col(i);
   for (int i = 0; i < n; ++i) {
     Mat3& Q = s.Q[static_cast<size_t>(i)];
-    Q = rotationFromVector(-h * Vec3(s.w.col(i))) * Q;
+    const Mat3 R = rotationFromVector(-h * Vec3(s.w.col(i)));
+    Q = (R * Q).eval();
   }
 }
 
@@ -153,118 +155,131 @@ double stableTimeStep(const RodParams& p, const Environment& env, const SolverOp
   return setMasses(p, env, opt, s, ws);
 }
 
-RelaxResult relax(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
-                  RelaxWorkspace& ws) {
+DynamicRelaxation::DynamicRelaxation(const RodParams& p, const Environment& env,
+                                     const SolverOptions& opt, RodState& s, RelaxWorkspace& ws)
+    : p_(p), env_(env), opt_(opt), s_(s), ws_(ws) {
   const int n = s.elements();
   if (n < 2) throw RelaxError("relaxation needs at least 2 elements");
   if (ws.force.cols() != n + 1) ws.resize(n);
   reorthonormalise(s);
   s.v.setZero();
   s.w.setZero();
-
   // tolerances from the rod's own scale: B1 / Lref^2 for forces, B1 / Lref for couples
   const double B1 = p.bendStiffness().x();
   const double Lref = opt.lengthScale > 0.0 ? opt.lengthScale : s.restLength();
-  const double ftol2 = std::pow(opt.forceTol * B1 / (Lref * Lref), 2);
-  const double mtol2 = std::pow(opt.forceTol * B1 / Lref, 2);
-  const double xtol = opt.speedTol * p.radius;  // displacement per sub-step [m]
-  const double rtol = opt.speedTol;             // rotation per sub-step [rad]
+  ftol2_ = std::pow(opt.forceTol * B1 / (Lref * Lref), 2);
+  mtol2_ = std::pow(opt.forceTol * B1 / Lref, 2);
+  xtol_ = opt.speedTol * p.radius;  // displacement per sub-step [m]
+  rtol_ = opt.speedTol;             // rotation per sub-step [rad]
+  dtMax_ = setMasses(p, env, opt, s, ws);
+  dt_ = dtMax_;
+  alpha_ = kFireAlpha0;
+  viscousFactor_ = std::exp(-opt.viscousRate * dtMax_);
+}
 
-  const double dtMax = setMasses(p, env, opt, s, ws);
-  const bool fire = opt.damping == Damping::Fire;
-  const bool planeDamping = opt.mass == MassModel::Physical;
-  const double viscousFactor = std::exp(-opt.viscousRate * dtMax);
-  double dt = dtMax, alpha = kFireAlpha0;
-  int npos = 0;
-
-  RelaxResult res;
-  int argF = 0, argM = 0;  // node and element with the largest residual
-  for (long step = 1; step <= opt.maxSubsteps; ++step) {
-    // 1. half drift
-    drift(env, s, 0.5 * dt);
-    // 2. forces at the mid-step configuration
-    computeForces(p, env, s, planeDamping, ws);
-    // 3. residuals, power, finiteness
-    double maxF2 = 0, maxM2 = 0, maxV2 = 0, maxW2 = 0, P = 0;
-    for (int i = 0; i <= n; ++i) {
-      const double f2 = ws.force.col(i).squaredNorm();
-      if (!std::isfinite(f2)) failNonFinite(step, "force on node", i, ws.force.col(i));
-      if (f2 > maxF2) { maxF2 = f2; argF = i; }
-      maxV2 = std::max(maxV2, s.v.col(i).squaredNorm());
-      P += ws.force.col(i).dot(s.v.col(i));
-    }
-    for (int i = 0; i < n; ++i) {
-      const double m2 = ws.torque.col(i).squaredNorm();
-      if (!std::isfinite(m2)) failNonFinite(step, "couple on element", i, ws.torque.col(i));
-      if (m2 > maxM2) { maxM2 = m2; argM = i; }
-      maxW2 = std::max(maxW2, s.w.col(i).squaredNorm());
-      P += ws.torque.col(i).dot(s.w.col(i));
-    }
-    res.substeps = step;
-    res.residualForce = std::sqrt(maxF2);
-    res.residualTorque = std::sqrt(maxM2);
-    res.maxSpeed = std::sqrt(maxV2);
-    res.dt = dt;
-    if (maxF2 < ftol2 && maxM2 < mtol2 && maxV2 * dtMax * dtMax < xtol * xtol &&
-        maxW2 * dtMax * dtMax < rtol * rtol) {
-      s.v.setZero();
-      s.w.setZero();
-      return res;
-    }
-    // 4. damping decision and kick
-    if (fire) {
-      if (P > 0.0) {
-        if (++npos > kFireNmin) {
-          dt = std::min(dt * kFireInc, dtMax);
-          alpha *= kFireAlphaDec;
-        }
-      } else {
-        npos = 0;
-        dt *= kFireDec;
-        alpha = kFireAlpha0;
-        s.v.setZero();
-        s.w.setZero();
-      }
-    }
-    double vm2 = 0, fm2 = 0;  // mass-weighted |v|^2 and |F|^2 (for the FIRE mixing)
-    for (int i = 0; i <= n; ++i) {
-      const double im = 1.0 / ws.mass[i];
-      s.v.col(i) += (dt * im) * ws.force.col(i);
-      vm2 += ws.mass[i] * s.v.col(i).squaredNorm();
-      fm2 += im * ws.force.col(i).squaredNorm();
-    }
-    for (int i = 0; i < n; ++i) {
-      for (int a = 0; a < 3; ++a) {
-        const double J = ws.inertia(a, i);
-        s.w(a, i) += dt * ws.torque(a, i) / J;
-        vm2 += J * s.w(a, i) * s.w(a, i);
-        fm2 += ws.torque(a, i) * ws.torque(a, i) / J;
-      }
-    }
-    if (fire) {
-      if (fm2 > 0.0) {
-        // v <- (1 - alpha) v + alpha |v| F^ in mass-weighted coordinates (u = sqrt(m) v, g = F / sqrt(m))
-        const double c = alpha * std::sqrt(vm2 / fm2);
-        for (int i = 0; i <= n; ++i) s.v.col(i) = (1.0 - alpha) * s.v.col(i) + (c / ws.mass[i]) * ws.force.col(i);
-        for (int i = 0; i < n; ++i)
-          s.w.col(i) = (1.0 - alpha) * s.w.col(i) + c * ws.torque.col(i).cwiseQuotient(ws.inertia.col(i));
+bool DynamicRelaxation::step() {
+  RodState& s = s_;
+  RelaxWorkspace& ws = ws_;
+  const int n = s.elements();
+  const bool fire = opt_.damping == Damping::Fire;
+  const long step = ++res_.substeps;
+  // 1. drift: the closing half drift of the previous sub-step and the opening half drift of this one,
+  //    merged (leapfrog form of position Verlet; halves the director rotations)
+  if (pendingDrift_ > 0.0) drift(env_, s, pendingDrift_ + 0.5 * dt_);
+  pendingDrift_ = 0.0;
+  // 2. forces at the mid-step configuration
+  computeForces(p_, env_, s, opt_.mass == MassModel::Physical, ws);
+  // 3. residuals, power, finiteness
+  double maxF2 = 0, maxM2 = 0, maxV2 = 0, maxW2 = 0, P = 0;
+  for (int i = 0; i <= n; ++i) {
+    const double f2 = ws.force.col(i).squaredNorm();
+    if (!std::isfinite(f2)) failNonFinite(step, "force on node", i, ws.force.col(i));
+    if (f2 > maxF2) { maxF2 = f2; argF_ = i; }
+    maxV2 = std::max(maxV2, s.v.col(i).squaredNorm());
+    P += ws.force.col(i).dot(s.v.col(i));
+  }
+  for (int i = 0; i < n; ++i) {
+    const double m2 = ws.torque.col(i).squaredNorm();
+    if (!std::isfinite(m2)) failNonFinite(step, "couple on element", i, ws.torque.col(i));
+    if (m2 > maxM2) { maxM2 = m2; argM_ = i; }
+    maxW2 = std::max(maxW2, s.w.col(i).squaredNorm());
+    P += ws.torque.col(i).dot(s.w.col(i));
+  }
+  res_.residualForce = std::sqrt(maxF2);
+  res_.residualTorque = std::sqrt(maxM2);
+  res_.maxSpeed = std::sqrt(maxV2);
+  res_.dt = dt_;
+  if (maxF2 < ftol2_ && maxM2 < mtol2_ && maxV2 * dtMax_ * dtMax_ < xtol_ * xtol_ &&
+      maxW2 * dtMax_ * dtMax_ < rtol_ * rtol_) {
+    s.v.setZero();
+    s.w.setZero();
+    return true;
+  }
+  // 4. damping decision and kick
+  if (fire) {
+    if (P > 0.0) {
+      if (++npos_ > kFireNmin) {
+        dt_ = std::min(dt_ * kFireInc, dtMax_);
+        alpha_ *= kFireAlphaDec;
       }
     } else {
-      s.v *= viscousFactor;
-      s.w *= viscousFactor;
+      npos_ = 0;
+      dt_ *= kFireDec;
+      alpha_ = kFireAlpha0;
+      s.v.setZero();
+      s.w.setZero();
     }
-    if (env.base == BaseCondition::Clamped) {
-      s.v.col(0).setZero();
-    }
-    // 5. half drift
-    drift(env, s, 0.5 * dt);
   }
+  const double dt = dt_;
+  double vm2 = 0, fm2 = 0;  // mass-weighted |v|^2 and |F|^2 (for the FIRE mixing)
+  for (int i = 0; i <= n; ++i) {
+    const double im = 1.0 / ws.mass[i];
+    s.v.col(i) += (dt * im) * ws.force.col(i);
+    vm2 += ws.mass[i] * s.v.col(i).squaredNorm();
+    fm2 += im * ws.force.col(i).squaredNorm();
+  }
+  for (int i = 0; i < n; ++i) {
+    for (int a = 0; a < 3; ++a) {
+      const double J = ws.inertia(a, i);
+      s.w(a, i) += dt * ws.torque(a, i) / J;
+      vm2 += J * s.w(a, i) * s.w(a, i);
+      fm2 += ws.torque(a, i) * ws.torque(a, i) / J;
+    }
+  }
+  if (fire) {
+    if (fm2 > 0.0) {
+      // v <- (1 - alpha) v + alpha |v| F^ in mass-weighted coordinates (u = sqrt(m) v, g = F / sqrt(m))
+      const double c = alpha_ * std::sqrt(vm2 / fm2);
+      const double keep = 1.0 - alpha_;
+      for (int i = 0; i <= n; ++i) s.v.col(i) = keep * s.v.col(i) + (c / ws.mass[i]) * ws.force.col(i);
+      for (int i = 0; i < n; ++i)
+        s.w.col(i) = keep * s.w.col(i) + c * ws.torque.col(i).cwiseQuotient(ws.inertia.col(i));
+    }
+  } else {
+    s.v *= viscousFactor_;
+    s.w *= viscousFactor_;
+  }
+  if (env_.base == BaseCondition::Clamped) s.v.col(0).setZero();
+  // 5. half drift, deferred to the next sub-step (a converged state is the one forces were checked at)
+  pendingDrift_ = 0.5 * dt;
+  return false;
+}
+
+std::string DynamicRelaxation::describeFailure() const {
   std::ostringstream os;
-  os << "relaxation did not reach equilibrium in " << opt.maxSubsteps << " sub-steps: residual force "
-     << res.residualForce << " N at node " << argF << " (tolerance " << std::sqrt(ftol2) << "), residual couple "
-     << res.residualTorque << " N m on element " << argM << " (tolerance " << std::sqrt(mtol2)
-     << "), max node speed " << res.maxSpeed << " m/s";
-  throw RelaxError(os.str());
+  os << "relaxation did not reach equilibrium in " << res_.substeps << " sub-steps: residual force "
+     << res_.residualForce << " N at node " << argF_ << " (tolerance " << std::sqrt(ftol2_)
+     << "), residual couple " << res_.residualTorque << " N m on element " << argM_ << " (tolerance "
+     << std::sqrt(mtol2_) << "), max node speed " << res_.maxSpeed << " m/s";
+  return os.str();
+}
+
+RelaxResult relax(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
+                  RelaxWorkspace& ws) {
+  DynamicRelaxation r(p, env, opt, s, ws);
+  while (r.result().substeps < opt.maxSubsteps)
+    if (r.step()) return r.result();
+  throw RelaxError(r.describeFailure());
 }
 
 }  // namespace rootsim

@@ -1,0 +1,94 @@
+// Relaxation benchmarks (issue #2): cost of one sub-step, and sub-steps + wall time to settle a rod.
+//   ./build/bench/bench_relax --benchmark_counters_tabular=true
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+#include <cmath>
+
+#include "rootsim/initial.hpp"
+#include "rootsim/relax.hpp"
+
+using namespace rootsim;
+
+namespace {
+
+// the issue's rod: 10 mm, R = 0.1 mm, E = 50 MPa, density 1000, horizontal cantilever, no plane
+struct Setup {
+  RodParams p;
+  Environment env;
+  SolverOptions opt;
+  RodState s;
+  RelaxWorkspace ws;
+  explicit Setup(int n, double L = 1e-2) {
+    env.plane.enabled = false;
+    env.plane.alpha = M_PI / 2;
+    env.adhesion = false;
+    InitialShape sh;
+    sh.length = L;
+    sh.elementLength = L / n;
+    sh.perturbation = 0.0;
+    s = makeInitialRod(p, env.plane, sh);
+    env.baseFrame = s.Q[0];
+  }
+  // bends the rod so that its tip is displaced by d [m] (static tip load), then removes the load
+  void displaceTip(double d) {
+    const double L = s.restLength();
+    const double B = p.bendStiffness().x();
+    env.tipForce = Vec3(-3 * B * d / (L * L * L), 0, 0);
+    SolverOptions o = opt;
+    o.forceTol = 1e-7;
+    relax(p, env, o, s, ws);
+    env.tipForce.setZero();
+  }
+};
+
+// one sub-step of a bent rod relaxing under a tip load (FIRE, scaled masses)
+void BM_Substep(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  Setup st(n);
+  st.env.tipForce = Vec3(-1e-3, 0, 1e-4);
+  st.opt.maxSubsteps = 1L << 60;
+  DynamicRelaxation r(st.p, st.env, st.opt, st.s, st.ws);
+  for (auto _ : state) benchmark::DoNotOptimize(r.step());
+  state.counters["element_substeps_per_s"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * n, benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_Substep)->Arg(50)->Arg(100)->Arg(200)->Arg(400)->Unit(benchmark::kMicrosecond);
+
+// settling of the 10 mm rod released from a 1 mm tip displacement; arg 0: element count,
+// arg 1: 0 = scaled masses + FIRE (default), 1 = physical masses + viscous damping (PyElastica-like,
+// nu = 2e4 1/s), 2 = physical masses + FIRE
+void BM_Settle(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  const int mode = static_cast<int>(state.range(1));
+  long substeps = 0;
+  double dt = 0;
+  for (auto _ : state) {
+    state.PauseTiming();
+    Setup st(n);
+    st.displaceTip(1e-3);
+    st.opt.forceTol = 1e-5;   // residual force < 1e-5 B1/L^2, couple < 1e-5 B1/L
+    st.opt.speedTol = 1e-6;
+    st.opt.maxSubsteps = 20000000;
+    if (mode >= 1) st.opt.mass = MassModel::Physical;
+    if (mode == 1) st.opt.damping = Damping::Viscous;
+    state.ResumeTiming();
+    const RelaxResult r = relax(st.p, st.env, st.opt, st.s, st.ws);
+    substeps = r.substeps;
+    dt = r.dt;
+    benchmark::DoNotOptimize(st.s.x.data());
+  }
+  state.counters["substeps"] = static_cast<double>(substeps);
+  state.counters["dt"] = dt;
+}
+BENCHMARK(BM_Settle)
+    ->Args({100, 0})
+    ->Args({200, 0})
+    ->Args({100, 1})
+    ->Args({100, 2})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(1);
+
+}  // namespace
+
+BENCHMARK_MAIN();

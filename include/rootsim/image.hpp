@@ -1,0 +1,34 @@
+#pragma once
+// An RGBA picture in memory: what the renderer produces and what the PNG and video writers consume.
+// Also home of RenderError, the one exception type of the rendering layer.
+#include <cstddef>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace rootsim {
+
+// a failure anywhere in rendering or encoding; the message names the failing call and its code
+// (e.g. "avcodec_open2(libx264): Invalid argument (-22)") or the rejected input
+class RenderError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+struct Image {
+  int width = 0;                  // [px]
+  int height = 0;                 // [px]
+  std::vector<std::uint8_t> rgba; // 8-bit sRGB RGBA, straight (not premultiplied) alpha,
+                                  // rows top first, no padding               (4 * width * height)
+
+  Image() = default;
+  Image(int w, int h) : width(w), height(h), rgba(static_cast<std::size_t>(4) * w * h, 0) {}
+
+  std::size_t index(int x, int y) const { return (static_cast<std::size_t>(y) * width + x) * 4; }
+  // pointer to the 4 bytes of pixel (x, y); (0, 0) is the top-left corner
+  std::uint8_t* at(int x, int y) { return rgba.data() + index(x, y); }
+  const std::uint8_t* at(int x, int y) const { return rgba.data() + index(x, y); }
+};
+
+}  // namespace rootsim

@@ -1,0 +1,52 @@
+#pragma once
+// High level: snapshots -> MP4 and/or numbered PNG frames. Drawing (this thread) and encoding (a second
+// thread) overlap through a one-slot frame queue, so both cores work.
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "rootsim/render_scene.hpp"
+#include "rootsim/snapshot.hpp"
+#include "rootsim/video.hpp"
+
+namespace rootsim {
+
+struct MovieJob {
+  std::string mp4;        // H.264 MP4 path; empty: none
+  std::string pngDir;     // directory for frame_00000.png ...; created if missing; empty: none
+  std::string finalPng;   // PNG of the last frame; empty: none
+  View view;              // size, camera, overlays (framing fields may be left unset)
+  VideoOptions video;     // fps, crf, x264 preset
+};
+
+// progress(done, total) after each frame
+using MovieProgress = std::function<void(int done, int total)>;
+
+// render every snapshot with one framing (frameFor over all of them). Throws RenderError; an MP4
+// interrupted by an error is left as "<mp4>.partial".
+void renderMovie(const std::vector<Snapshot>& snaps, const SceneInfo& info, const MovieJob& job,
+                 const MovieProgress& progress = {});
+
+// the same, one snapshot at a time, for rendering while a simulation runs: the framing is given
+// up front (e.g. frameFor over the expected extent, or View::centreMm / widthMm)
+class MovieRecorder {
+ public:
+  MovieRecorder(const SceneInfo& info, const MovieJob& job, const Framing& framing);
+  ~MovieRecorder();       // without finish(): stops the encoder, leaves "<mp4>.partial"
+  MovieRecorder(const MovieRecorder&) = delete;
+  MovieRecorder& operator=(const MovieRecorder&) = delete;
+
+  void add(const Snapshot& snap);  // draw now, encode on the second thread; rethrows its errors
+  void finish();                   // drain the queue, close the MP4, write finalPng
+  int frames() const;              // frames added
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// one picture straight to a PNG file (framing from this snapshot alone unless the view fixes it)
+void renderPng(const Snapshot& snap, const SceneInfo& info, const View& view, const std::string& path);
+
+}  // namespace rootsim

@@ -1,0 +1,137 @@
+#pragma once
+// State -> abstract render scene (no GL here; STYLE.md "Data flow"). The scene is what the GL renderer
+// draws and nothing more: triangle meshes, a plate with a grid, a camera, lights, overlay items.
+//
+// Plate coordinates [mm], used throughout the scene (MODEL.md section 3):
+//   u = x . p           lateral, to the right in the top view
+//   v = -g_par . p      uphill, so downhill points down the top view
+//   w = n . p           height above the plate, towards the viewer of the top view
+// with n = (0, -cos a, sin a), g_par = (0, -sin a, -cos a); (u, v, w) is right-handed.
+#include <Eigen/Core>
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rootsim/snapshot.hpp"
+
+namespace rootsim {
+
+// what to draw and how; plain data, every field has a usable default
+struct View {
+  enum class Kind { Top, Perspective };
+  Kind kind = Kind::Top;         // Top: orthographic along -n; Perspective: oblique 3-D preset
+  int width = 1280;              // [px] (even for MP4)
+  int height = 720;              // [px] (even for MP4)
+  bool whiskers = false;         // thin +d1 (pink) / -d1 (orange) spikes along the root
+  bool transparent = false;      // no plate, alpha 0 outside the root (PNG only; MP4 has no alpha)
+  double stripeHalfWidthDeg = 38.0;  // half the angular width of each stripe around +-d1 [deg]
+  // overlays (drawn in the top view; the scale bar only there)
+  bool overlays = true;          // master switch
+  bool showTime = true;          // "t = 12.0 h"
+  bool showScaleBar = true;      // a bar of 1, 2, 5, 10 ... mm with its label
+  bool showParams = true;        // alpha, beta, gamma, and R tau when nonzero
+  bool showTitle = false;        // SceneInfo::title
+  std::string fontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";  // fonts-dejavu-core
+  // framing; unset fields are computed from the snapshots' bounding box
+  std::optional<std::array<double, 2>> centreMm;  // picture centre, plate (u, v) [mm]
+  std::optional<double> widthMm;                  // visible plate width [mm]
+  double marginMm = 1.0;         // added around the bounding box on every side [mm]
+};
+
+// the visible part of the plate, fixed for a whole movie so the picture does not jump
+struct Framing {
+  double centreU = 0.0;          // picture centre, plate u [mm]
+  double centreV = 0.0;          // picture centre, plate v [mm]
+  double widthMm = 10.0;         // visible width [mm]
+  double heightMm = 5.625;       // visible height [mm] = widthMm * height / width
+  double topW = 0.5;             // highest point of the root above the plate [mm] (3-D camera)
+};
+
+// lab [m] -> plate coordinates [mm] for a plate tilted by alphaDeg
+struct PlateFrame {
+  Eigen::Vector3d lateral, uphill, normal;  // unit vectors in the lab frame
+  Eigen::Vector3d toPlateMm(const Eigen::Vector3d& labM) const {
+    return 1e3 * Eigen::Vector3d(lateral.dot(labM), uphill.dot(labM), normal.dot(labM));
+  }
+  Eigen::Vector3d dirToPlate(const Eigen::Vector3d& labDir) const {
+    return Eigen::Vector3d(lateral.dot(labDir), uphill.dot(labDir), normal.dot(labDir));
+  }
+};
+PlateFrame plateFrame(double alphaDeg);
+
+// one vertex of the lit meshes (root tube, caps, whiskers); positions in plate coordinates [mm]
+struct TubeVertex {
+  float pos[3];      // [mm]
+  float normal[3];   // unit
+  float side[2];     // (cos phi, sin phi): direction of the surface normal in the (d1, d2) plane
+  float colour[3];   // linear 0..1; used where striped == 0
+  float striped;     // 1: body colour with +-d1 stripes chosen from side; 0: plain colour
+};
+
+struct OverlayText {
+  enum class Anchor { TopLeft, TopRight, BottomLeft, BottomRight, BottomCentre };
+  std::string text;                     // UTF-8 (Greek letters are in DejaVu Sans)
+  float x = 0, y = 0;                   // anchor point [px], from the top-left corner
+  float sizePx = 20;                    // font pixel height
+  Anchor anchor = Anchor::TopLeft;
+  std::array<std::uint8_t, 4> colour{40, 40, 40, 255};
+};
+
+struct OverlayRect {
+  float x = 0, y = 0, w = 0, h = 0;     // [px], from the top-left corner
+  std::array<std::uint8_t, 4> colour{40, 40, 40, 255};
+};
+
+struct RenderScene {
+  int width = 0, height = 0;            // [px]
+  std::array<float, 16> viewMatrix{};   // plate [mm] -> eye, column-major
+  std::array<float, 16> projMatrix{};   // eye -> clip, column-major
+  std::array<float, 3> lightDir{};      // towards the key light, eye space, unit
+  std::array<float, 4> background{};    // clear colour RGBA 0..1 (alpha 0 when transparent)
+
+  // lit meshes: triangles (3 indices each) into vertices
+  std::vector<TubeVertex> vertices;
+  std::vector<std::uint32_t> indices;
+
+  struct Material {
+    std::array<float, 3> body{0.95f, 0.93f, 0.86f};    // neutral ivory
+    std::array<float, 3> plus{0.90f, 0.20f, 0.55f};    // +d1 stripe: pink
+    std::array<float, 3> minus{0.98f, 0.52f, 0.05f};   // -d1 stripe: orange
+    float stripeCos = 0.788f;  // cos of the stripe half width
+    float ambient = 0.42f, diffuse = 0.62f, specular = 0.22f, shininess = 48.0f;
+  } material;
+
+  struct Plate {
+    bool visible = true;
+    float u0 = 0, v0 = 0, u1 = 1, v1 = 1;              // extent in plate coordinates [mm]
+    float gridMm = 1.0f;                               // grid spacing [mm]
+    int majorEvery = 10;                               // every n-th line is darker
+    std::array<float, 3> colour{0.97f, 0.97f, 0.96f};
+    std::array<float, 3> line{0.80f, 0.82f, 0.86f};
+    std::array<float, 3> major{0.62f, 0.65f, 0.72f};
+    float lineWidthPx = 1.0f;                          // grid line width [px] (anti-aliased)
+  } plate;
+
+  std::vector<OverlayRect> rects;       // drawn first
+  std::vector<OverlayText> texts;       // drawn over the rects
+  std::string fontPath;                 // TrueType font for texts
+
+  double pxPerMm = 0.0;                 // top view scale [px/mm]; 0 in perspective
+};
+
+// framing for a whole movie: the bounding box of every node of every snapshot in plate (u, v),
+// plus the element radius and View::marginMm on each side, widened to the picture's aspect
+// (View::centreMm / widthMm override). Throws RenderError on an empty list or a bad view size.
+Framing frameFor(const std::vector<Snapshot>& snaps, const SceneInfo& info, const View& view);
+
+// the scene for one snapshot. Throws RenderError on inconsistent snapshot shapes or sizes <= 0.
+RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const View& view,
+                             const Framing& framing);
+
+// where plate point (u, v) [mm] appears in the top view [px, from the top-left corner, continuous:
+// pixel (i, j) covers [i, i+1) x [j, j+1)]
+Eigen::Vector2d topViewPixel(const Framing& framing, const View& view, double u, double v);
+
+}  // namespace rootsim

@@ -1,0 +1,54 @@
+#pragma once
+// The constant description of a simulation, built from a scene (MODEL.md section 2). SI units inside.
+#include <string>
+
+#include "rootsim/initial.hpp"
+#include "rootsim/relax.hpp"
+
+namespace rootsim {
+
+enum class Sensing { Local, Apical };
+
+struct GrowthParams {
+  bool enabled = true;
+  double zoneLength = 1e-3;        // Lgz [m]
+  double rate = 0.2 / 3600.0;      // relative growth rate in the zone, eps0 [1/s]
+  int steps = 3000;                // growth steps
+  double stepTime = 0.05 * 3600.0; // growth step [s]
+  double splitFactor = 2.0;        // an element longer than splitFactor * h is split in two
+};
+
+struct TropismParams {
+  double beta = 0.1;               // gravitropic gain
+  double gamma = 0.1;              // proprioceptive gain
+  Sensing sensing = Sensing::Local;
+  double rTau = 0.0;               // intrinsic twist R tau (dimensionless)
+  double cnGain = 0.0;             // circumnutation gain lambda_cn
+  double cnPeriod = 3600.0;        // circumnutation period [s]
+};
+
+struct AnalysisParams {
+  double skewThresholdDeg = 5.0;   // |<theta>| above this is "skewing" [deg]
+  double coilTurnDeg = 180.0;      // planar tangent turning through more than this is "coiling" [deg]
+  double waveMinAmplitude = 0.5;   // lateral peak-to-peak below this many R is "straight"
+};
+
+struct OutputParams {
+  int everySteps = 10;             // snapshot and time-series row every this many growth steps
+  bool trajectory = true;          // write trajectory.csv (needed by `rootsim render`)
+  bool vtk = true;                 // write ParaView .vtp snapshots and trajectory.pvd
+};
+
+struct Model {
+  std::string name;                // scene name (file stem)
+  RodParams rod;
+  Environment env;                 // plane, adhesion, base, loads
+  InitialShape initial;            // L0, target element length h, perturbation, seed
+  GrowthParams growth;
+  TropismParams tropism;
+  SolverOptions solver;
+  AnalysisParams analysis;
+  OutputParams output;
+};
+
+}  // namespace rootsim

@@ -1,0 +1,54 @@
+#pragma once
+// The run loop (STYLE.md "Data flow"): for each growth step grow -> relax -> observe. No I/O here.
+#include "rootsim/analysis.hpp"
+#include "rootsim/model.hpp"
+#include "rootsim/snapshot.hpp"
+
+namespace rootsim {
+
+// one row of the time series
+struct StepRecord {
+  int step = 0;
+  double timeH = 0;           // growth time [h]
+  double length = 0;          // rest length [m]
+  int elements = 0;
+  double thetaTip = 0;        // planar tip angle, unwrapped over time [rad]
+  ZoneObservables zone;
+  long substeps = 0;          // relaxation sub-steps of this step
+  double residualForce = 0;   // at exit [N]
+  int splits = 0;             // elements split in this step
+  Vec3 tip = Vec3::Zero();    // tip position, lab [m]
+};
+
+class Simulation {
+ public:
+  // builds the initial rod (MODEL.md section 3) and relaxes it once (no growth yet)
+  explicit Simulation(const Model& m);
+
+  // one growth step: anchor mature nodes, grow rest lengths, update kappa0 (Eq. 17) and the twist
+  // profile, split long elements, relax; throws RelaxError naming the growth step
+  const StepRecord& growthStep();
+
+  const Model& model() const { return m_; }
+  const RodState& state() const { return s_; }
+  const RodStrains& strains() const { return ws_.strains; }
+  const StepRecord& last() const { return rec_; }
+  int step() const { return step_; }
+  long totalSubsteps() const { return totalSubsteps_; }
+  Snapshot snapshot() const;
+
+ private:
+  void observe(long substeps, double residual, int splits);
+  Model m_;
+  RodState s_;
+  RelaxWorkspace ws_;
+  int step_ = 0;
+  long totalSubsteps_ = 0;
+  double thetaUnwrapped_ = 0;
+  StepRecord rec_;
+};
+
+// the snapshot of a state: shape, directors, radius R / sqrt(e)
+Snapshot makeSnapshot(const RodParams& p, const RodState& s, const RodStrains& k, int step);
+
+}  // namespace rootsim

@@ -1,0 +1,39 @@
+#version 450 core
+// Phong-style shading; stripes chosen per pixel from the interpolated (d1, d2) direction so their
+// edges stay sharp and straight at any tube resolution
+in vec3 vPosEye;
+in vec3 vNormalEye;
+in vec2 vSide;
+in vec3 vColour;
+in float vStriped;
+
+uniform vec3 uLight;        // towards the key light, eye space, unit
+uniform bool uOrtho;
+uniform vec3 uBody;
+uniform vec3 uPlus;         // +d1 stripe
+uniform vec3 uMinus;        // -d1 stripe
+uniform float uStripeCos;   // cos of the stripe half width
+uniform vec4 uLighting;     // ambient, diffuse, specular, shininess
+
+out vec4 fragColour;
+
+void main() {
+  vec3 base = vColour;
+  if (vStriped > 0.5) {
+    float c = vSide.x / max(length(vSide), 1e-6);
+    float aa = max(fwidth(c), 1e-4);
+    float plus = smoothstep(uStripeCos - aa, uStripeCos + aa, c);
+    float minus = smoothstep(uStripeCos - aa, uStripeCos + aa, -c);
+    base = mix(mix(uBody, uPlus, plus), uMinus, minus);
+  }
+  vec3 N = normalize(vNormalEye);
+  if (!gl_FrontFacing) N = -N;
+  vec3 V = uOrtho ? vec3(0.0, 0.0, 1.0) : normalize(-vPosEye);
+  vec3 L = normalize(uLight);
+  vec3 H = normalize(L + V);
+  float diff = max(dot(N, L), 0.0);
+  float fill = 0.18 * max(dot(N, normalize(vec3(0.6, -0.3, 0.6))), 0.0);
+  float spec = diff > 0.0 ? pow(max(dot(N, H), 0.0), uLighting.w) : 0.0;
+  vec3 col = base * (uLighting.x + uLighting.y * diff + fill) + uLighting.z * spec;
+  fragColour = vec4(min(col, vec3(1.0)), 1.0);
+}

@@ -1,0 +1,51 @@
+#pragma once
+// The subcommands, free of CLI11 (main.cpp parses; these run). Each returns the process exit code or
+// throws SceneError (exit 2) / RunError or RelaxError (exit 1).
+#include <string>
+#include <vector>
+
+namespace rootsim::cli {
+
+struct RunOptions {
+  std::string scene;
+  std::vector<std::string> sets;
+  std::string out;        // run directory; default runs/<scene name>
+  bool movie = false;
+  bool quiet = false;
+};
+int runCommand(const RunOptions& o);
+
+struct CheckOptions {
+  std::string scene;
+  std::vector<std::string> sets;
+};
+int checkCommand(const CheckOptions& o);
+
+struct RenderOptions {
+  std::string runDir;
+  std::string mp4;        // default RUN_DIR/movie.mp4
+  std::string pngDir;     // also write every frame as PNG
+  std::string view = "top";
+  std::string size = "1280x720";
+  int fps = 30;
+  int crf = 18;
+  bool quiet = false;
+};
+int renderCommand(const RenderOptions& o);
+
+// progress on stderr: a redrawn bar on a terminal, one line per percent otherwise
+class Progress {
+ public:
+  Progress(int total, bool quiet, std::string what);
+  void update(int done, const std::string& detail);
+  void finish(const std::string& detail);
+
+ private:
+  int total_;
+  bool quiet_, tty_;
+  int lastPercent_ = -1;
+  std::string what_;
+  double start_;
+};
+
+}  // namespace rootsim::cli

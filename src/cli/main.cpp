@@ -1,0 +1,66 @@
+// rootsim command line (CLI11 only here): parse, call the library, turn exceptions into exit codes
+// 0 success, 1 run failed, 2 bad usage or bad scene (SPEC.md).
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <exception>
+
+#include "commands.hpp"
+#include "rootsim/errors.hpp"
+#include "rootsim/relax.hpp"
+#include "rootsim/version.hpp"
+
+using namespace rootsim;
+
+int main(int argc, char** argv) {
+  CLI::App app{"rootsim: growing Cosserat-rod roots on tilted plates (Cosserat mechanics, growth, movies)"};
+  app.fallthrough();
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("rootsim ") + kVersion);
+
+  cli::RunOptions run;
+  CLI::App* cRun = app.add_subcommand("run", "simulate a scene and write a run directory");
+  cRun->add_option("scene", run.scene, "scene file (TOML)")->required();
+  cRun->add_option("--set", run.sets, "override a scene key: section.key=value (repeatable)");
+  cRun->add_option("--out", run.out, "run directory (default: runs/<scene name>)");
+  cRun->add_flag("--movie", run.movie, "also render movie.mp4 and final_top.png into the run directory");
+  cRun->add_flag("--quiet", run.quiet, "no progress output");
+
+  cli::CheckOptions check;
+  CLI::App* cCheck = app.add_subcommand("check", "validate a scene; print resolved keys and theory");
+  cCheck->add_option("scene", check.scene, "scene file (TOML)")->required();
+  cCheck->add_option("--set", check.sets, "override a scene key: section.key=value (repeatable)");
+
+  cli::RenderOptions render;
+  CLI::App* cRender = app.add_subcommand("render", "render a saved run (trajectory.csv) to MP4 / PNG frames");
+  cRender->add_option("run_dir", render.runDir, "run directory")->required();
+  cRender->add_option("--mp4", render.mp4, "movie file (default: RUN_DIR/movie.mp4)");
+  cRender->add_option("--png-dir", render.pngDir, "also write every frame as PNG into this folder");
+  cRender->add_option("--view", render.view, "top or 3d")->check(CLI::IsMember({"top", "3d"}));
+  cRender->add_option("--size", render.size, "frame size WxH, even numbers (default 1280x720)");
+  cRender->add_option("--fps", render.fps, "frames per second")->check(CLI::Range(1, 240));
+  cRender->add_option("--crf", render.crf, "H.264 quality, 0 (lossless) .. 51")->check(CLI::Range(0, 51));
+  cRender->add_flag("--quiet", render.quiet, "no progress output");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : 2;
+  }
+  try {
+    if (cRun->parsed()) return cli::runCommand(run);
+    if (cCheck->parsed()) return cli::checkCommand(check);
+    if (cRender->parsed()) return cli::renderCommand(render);
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "rootsim: error: %s\n", e.what());
+    return 2;
+  } catch (const RelaxError& e) {
+    std::fprintf(stderr, "rootsim: run failed: %s\n", e.what());
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rootsim: run failed: %s\n", e.what());
+    return 1;
+  }
+  return 2;
+}

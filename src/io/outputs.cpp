@@ -1,0 +1,258 @@
+#include "rootsim/outputs.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+#include "rootsim/errors.hpp"
+
+namespace fs = std::filesystem;
+
+namespace rootsim {
+
+namespace {
+// shortest round-trip text of a double (locale-independent, deterministic)
+std::string fmt(double x) {
+  char buf[64];
+  auto r = std::to_chars(buf, buf + sizeof buf, x);
+  return std::string(buf, r.ptr);
+}
+std::string jsonEscape(const std::string& s) {
+  std::string o = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') { o += '\\'; o += c; }
+    else if (c == '\n') o += "\\n";
+    else if (static_cast<unsigned char>(c) < 0x20) { char b[8]; std::snprintf(b, sizeof b, "\\u%04x", c); o += b; }
+    else o += c;
+  }
+  return o + "\"";
+}
+constexpr double mm = 1e3;  // metres -> millimetres
+}  // namespace
+
+std::string shapeCsv(const Model& m, const RodState& s, const RodStrains& k) {
+  std::ostringstream os;
+  os << "s_mm,x_mm,y_mm,z_mm,d1x,d1y,d1z,d2x,d2y,d2z,d3x,d3y,d3z,kappa1_per_mm,kappa2_per_mm,kappa3_per_mm,"
+        "stretch,radius_mm\n";
+  const int n = s.elements();
+  for (int i = 0; i <= n; ++i) {
+    const int a = std::max(i - 1, 0), b = std::min(i, n - 1);
+    const Mat3 A = s.Q[static_cast<size_t>(a)] + s.Q[static_cast<size_t>(b)];
+    Vec3 d3 = A.row(2).transpose().normalized();
+    Vec3 d1 = A.row(0).transpose();
+    d1 = (d1 - d1.dot(d3) * d3).normalized();
+    const Vec3 d2 = d3.cross(d1);
+    Vec3 kap = Vec3::Zero();
+    if (i >= 1 && i <= n - 1) kap = k.kappa.col(i - 1) / k.ev[i - 1] / mm;
+    const double e = 0.5 * (k.e[a] + k.e[b]);
+    os << fmt(s.S[i] * mm);
+    for (int d = 0; d < 3; ++d) os << ',' << fmt(s.x(d, i) * mm);
+    const Vec3* frame[3] = {&d1, &d2, &d3};
+    for (const Vec3* v : frame)
+      for (int d = 0; d < 3; ++d) os << ',' << fmt((*v)[d]);
+    for (int d = 0; d < 3; ++d) os << ',' << fmt(kap[d]);
+    os << ',' << fmt(e) << ',' << fmt(elementRadius(m.rod, e) * mm) << '\n';
+  }
+  return os.str();
+}
+
+TimeseriesWriter::TimeseriesWriter(const fs::path& path) : f_(path) {
+  f_.stream() << "step,time_h,length_mm,elements,theta_tip_deg,Eb,Et,Wr,Tw,substeps,residual_force_n,splits,"
+                 "tip_x_mm,tip_y_mm,tip_z_mm\n";
+}
+
+void TimeseriesWriter::add(const StepRecord& r) {
+  auto& o = f_.stream();
+  o << r.step << ',' << fmt(r.timeH) << ',' << fmt(r.length * mm) << ',' << r.elements << ','
+    << fmt(r.thetaTip * 180.0 / M_PI) << ',' << fmt(r.zone.Eb) << ',' << fmt(r.zone.Et) << ','
+    << fmt(r.zone.Wr) << ',' << fmt(r.zone.Tw) << ',' << r.substeps << ',' << fmt(r.residualForce) << ','
+    << r.splits << ',' << fmt(r.tip.x() * mm) << ',' << fmt(r.tip.y() * mm) << ',' << fmt(r.tip.z() * mm)
+    << '\n';
+}
+
+void TimeseriesWriter::close() { f_.close(); }
+
+TrajectoryWriter::TrajectoryWriter(const fs::path& path) : f_(path) {
+  f_.stream() << "frame,step,time_h,node,x_mm,y_mm,z_mm,d1x,d1y,d1z,d3x,d3y,d3z,radius_mm\n";
+}
+
+void TrajectoryWriter::add(const Snapshot& s) {
+  auto& o = f_.stream();
+  const int n = s.elements();
+  for (int i = 0; i <= n; ++i) {
+    o << frames_ << ',' << s.step << ',' << fmt(s.timeH) << ',' << i;
+    for (int d = 0; d < 3; ++d) o << ',' << fmt(s.x(d, i) * mm);
+    if (i < n) {
+      for (int d = 0; d < 3; ++d) o << ',' << fmt(s.d1(d, i));
+      for (int d = 0; d < 3; ++d) o << ',' << fmt(s.d3(d, i));
+      o << ',' << fmt(s.radius[i] * mm) << '\n';
+    } else {
+      o << ",,,,,,,\n";
+    }
+  }
+  ++frames_;
+}
+
+void TrajectoryWriter::close() { f_.close(); }
+
+std::vector<Snapshot> readTrajectory(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw SceneError(path.string() + ": cannot open trajectory (is this a run directory written with "
+                                            "output.trajectory = true?)");
+  std::string line;
+  int lineNo = 1;
+  if (!std::getline(in, line) || line.rfind("frame,step,time_h,node,x_mm", 0) != 0)
+    throw SceneError(path.string() + ":1: not a rootsim trajectory (unexpected header)");
+  struct Row { int frame, step, node; double t; double v[10]; bool hasElem; };
+  std::vector<Snapshot> out;
+  std::vector<Row> rows;
+  auto flush = [&]() {
+    if (rows.empty()) return;
+    Snapshot s;
+    const int nn = static_cast<int>(rows.size()), n = nn - 1;
+    if (n < 1) throw SceneError(path.string() + ": frame " + std::to_string(rows[0].frame) + " has one node");
+    s.step = rows[0].step;
+    s.timeH = rows[0].t;
+    s.x.resize(3, nn);
+    s.d1.resize(3, n);
+    s.d3.resize(3, n);
+    s.radius.resize(n);
+    for (int i = 0; i < nn; ++i) {
+      for (int d = 0; d < 3; ++d) s.x(d, i) = rows[static_cast<size_t>(i)].v[d] / mm;
+      if (i < n) {
+        for (int d = 0; d < 3; ++d) s.d1(d, i) = rows[static_cast<size_t>(i)].v[3 + d];
+        for (int d = 0; d < 3; ++d) s.d3(d, i) = rows[static_cast<size_t>(i)].v[6 + d];
+        s.radius[i] = rows[static_cast<size_t>(i)].v[9] / mm;
+      }
+    }
+    out.push_back(std::move(s));
+    rows.clear();
+  };
+  while (std::getline(in, line)) {
+    ++lineNo;
+    if (line.empty()) continue;
+    std::vector<std::string> f;
+    std::stringstream ss(line);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) f.push_back(cell);
+    if (line.back() == ',') f.push_back("");
+    auto bad = [&](const std::string& why) {
+      throw SceneError(path.string() + ":" + std::to_string(lineNo) + ": " + why);
+    };
+    if (f.size() != 14) bad("expected 14 columns, found " + std::to_string(f.size()));
+    Row r{};
+    try {
+      r.frame = std::stoi(f[0]);
+      r.step = std::stoi(f[1]);
+      r.t = std::stod(f[2]);
+      r.node = std::stoi(f[3]);
+      for (int d = 0; d < 3; ++d) r.v[d] = std::stod(f[static_cast<size_t>(4 + d)]);
+      r.hasElem = !f[7].empty();
+      if (r.hasElem)
+        for (int d = 0; d < 7; ++d) r.v[3 + d] = std::stod(f[static_cast<size_t>(7 + d)]);
+    } catch (const std::exception&) {
+      bad("malformed number");
+    }
+    if (!rows.empty() && r.frame != rows[0].frame) {
+      if (rows.back().hasElem) bad("frame " + std::to_string(rows[0].frame) + " ends without its last node");
+      flush();
+    }
+    if (r.node != static_cast<int>(rows.size())) bad("node " + std::to_string(r.node) + " out of order");
+    rows.push_back(r);
+  }
+  if (!rows.empty() && rows.back().hasElem) throw SceneError(path.string() + ": truncated (last frame incomplete)");
+  flush();
+  if (out.empty()) throw SceneError(path.string() + ": no frames");
+  return out;
+}
+
+VtkSeriesWriter::VtkSeriesWriter(const fs::path& runDir) : dir_(runDir) {
+  std::error_code ec;
+  fs::create_directories(dir_ / "vtk", ec);
+  if (ec) throw RunError("cannot create " + (dir_ / "vtk").string() + ": " + ec.message());
+}
+
+void VtkSeriesWriter::add(const Snapshot& s) {
+  char name[64];
+  std::snprintf(name, sizeof name, "vtk/step_%06d.vtp", s.step);
+  const int nn = static_cast<int>(s.x.cols()), n = s.elements();
+  std::ostringstream o;
+  o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+    << "<PolyData>\n<Piece NumberOfPoints=\"" << nn << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << n
+    << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n<Points>\n"
+    << "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (int i = 0; i < nn; ++i) o << fmt(s.x(0, i) * mm) << ' ' << fmt(s.x(1, i) * mm) << ' ' << fmt(s.x(2, i) * mm) << '\n';
+  o << "</DataArray>\n</Points>\n<Lines>\n<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n";
+  for (int i = 0; i < n; ++i) o << i << ' ' << i + 1 << '\n';
+  o << "</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n";
+  for (int i = 0; i < n; ++i) o << 2 * (i + 1) << '\n';
+  o << "</DataArray>\n</Lines>\n<CellData Scalars=\"radius_mm\">\n"
+    << "<DataArray type=\"Float64\" Name=\"radius_mm\" format=\"ascii\">\n";
+  for (int i = 0; i < n; ++i) o << fmt(s.radius[i] * mm) << '\n';
+  for (const auto* arr : {&s.d1, &s.d3}) {
+    o << "</DataArray>\n<DataArray type=\"Float64\" Name=\"" << (arr == &s.d1 ? "d1" : "d3")
+      << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (int i = 0; i < n; ++i) o << fmt((*arr)(0, i)) << ' ' << fmt((*arr)(1, i)) << ' ' << fmt((*arr)(2, i)) << '\n';
+  }
+  o << "</DataArray>\n</CellData>\n</Piece>\n</PolyData>\n</VTKFile>\n";
+  writeFileAtomic(dir_ / name, o.str());
+  entries_.emplace_back(s.timeH, name);
+}
+
+void VtkSeriesWriter::close() {
+  std::ostringstream o;
+  o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+  for (const auto& [t, f] : entries_) o << "<DataSet timestep=\"" << fmt(t) << "\" file=\"" << f << "\"/>\n";
+  o << "</Collection>\n</VTKFile>\n";
+  writeFileAtomic(dir_ / "trajectory.pvd", o.str());
+}
+
+Json& Json::num(const std::string& key, double v) {
+  items_.push_back({key, std::isfinite(v) ? fmt(v) : "null", nullptr});
+  return *this;
+}
+Json& Json::integer(const std::string& key, long long v) {
+  items_.push_back({key, std::to_string(v), nullptr});
+  return *this;
+}
+Json& Json::str(const std::string& key, const std::string& v) {
+  items_.push_back({key, jsonEscape(v), nullptr});
+  return *this;
+}
+Json& Json::boolean(const std::string& key, bool v) {
+  items_.push_back({key, v ? "true" : "false", nullptr});
+  return *this;
+}
+Json& Json::object(const std::string& key, const Json& v) {
+  items_.push_back({key, "", std::make_shared<Json>(v)});
+  return *this;
+}
+std::string Json::dump(int indent) const {
+  const std::string pad(static_cast<size_t>(indent + 2), ' ');
+  std::string o = "{\n";
+  for (size_t i = 0; i < items_.size(); ++i) {
+    o += pad + jsonEscape(items_[i].key) + ": " + (items_[i].child ? items_[i].child->dump(indent + 2) : items_[i].raw);
+    o += i + 1 < items_.size() ? ",\n" : "\n";
+  }
+  return o + std::string(static_cast<size_t>(indent), ' ') + "}";
+}
+
+Json theoryJson(const Theory& t) {
+  const double deg = 180.0 / M_PI;
+  Json j;
+  j.num("effective_gain_beta_Lgz_over_R", t.effectiveGain)
+      .num("T0_h", t.T0 / 3600.0)
+      .num("max_kappa_per_mm_eq8", t.maxKappa / mm)
+      .num("wavelength_mm_eq9", t.wavelength * mm)
+      .num("amplitude_mm_eq10", t.amplitude * mm)
+      .num("alpha_straight_to_waving_deg_eq12", t.alphaStraightToWave * deg)
+      .num("alpha_waving_to_coiling_deg_eq13", t.alphaWaveToCoil * deg)
+      .num("omega_per_h_eq5", t.omega * 3600.0)
+      .num("omega_T0", t.omegaT0)
+      .num("skew_deg_eq14_small_omegaT0", t.skewSmall * deg)
+      .num("skew_deg_eq15_large_omegaT0", t.skewLarge * deg);
+  return j;
+}
+
+}  // namespace rootsim

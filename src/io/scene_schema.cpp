@@ -1,0 +1,301 @@
+#include "scene_schema.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "rootsim/errors.hpp"
+
+namespace rootsim::detail {
+
+const char* typeName(KeyType t) {
+  switch (t) {
+    case KeyType::Real: return "a number";
+    case KeyType::Integer: return "an integer";
+    case KeyType::Boolean: return "true or false";
+    case KeyType::String: return "a string";
+    case KeyType::Vector3: return "an array of 3 numbers";
+  }
+  return "?";
+}
+
+namespace {
+constexpr double kInf = 1e300;
+KeySpec real(const char* sec, const char* key, double def, double lo, bool loOpen, double hi, bool hiOpen,
+             const char* doc) {
+  KeySpec k{sec, key, KeyType::Real};
+  k.defNum = def; k.lo = lo; k.loOpen = loOpen; k.hi = hi; k.hiOpen = hiOpen; k.doc = doc;
+  return k;
+}
+KeySpec integer(const char* sec, const char* key, double def, double lo, double hi, const char* doc) {
+  KeySpec k{sec, key, KeyType::Integer};
+  k.defNum = def; k.lo = lo; k.hi = hi; k.doc = doc;
+  return k;
+}
+KeySpec boolean(const char* sec, const char* key, bool def, const char* doc) {
+  KeySpec k{sec, key, KeyType::Boolean};
+  k.defBool = def; k.doc = doc;
+  return k;
+}
+KeySpec choice(const char* sec, const char* key, std::vector<std::string> choices, const char* doc) {
+  KeySpec k{sec, key, KeyType::String};
+  k.defStr = choices.front(); k.choices = std::move(choices); k.doc = doc;
+  return k;
+}
+KeySpec vec3(const char* sec, const char* key, const char* doc) {
+  KeySpec k{sec, key, KeyType::Vector3};
+  k.doc = doc;
+  return k;
+}
+}  // namespace
+
+const std::vector<std::string>& sections() {
+  static const std::vector<std::string> s = {"root", "growth", "tropism", "plane", "adhesion",
+                                             "solver", "load", "analysis", "output"};
+  return s;
+}
+
+const std::vector<KeySpec>& schema() {
+  static const std::vector<KeySpec> keys = {
+      real("root", "radius_mm", 0.1, 0, true, kInf, false, "root radius R [mm]"),
+      real("root", "initial_length_mm", 1.1, 0, true, kInf, false, "initial length L0 [mm]"),
+      real("root", "youngs_modulus_mpa", 50, 0, true, kInf, false, "Young's modulus E [MPa]"),
+      real("root", "element_length_mm", 0.05, 0, true, kInf, false,
+           "target element length h [mm]; elements longer than growth.split_factor * h are split"),
+      real("root", "density_kg_per_m3", 1000, 0, true, kInf, false,
+           "density [kg/m^3] (physical-mass relaxation and weight only)"),
+      boolean("growth", "enabled", true, "grow (false: mechanics only, one relaxation under [load])"),
+      real("growth", "growth_zone_mm", 1.0, 0, true, kInf, false, "growth-zone length Lgz [mm]"),
+      real("growth", "rate_per_h", 0.2, 0, true, kInf, false, "relative growth rate in the zone [1/h]"),
+      integer("growth", "steps", 3000, 0, 1e7, "number of growth steps"),
+      real("growth", "step_h", 0.05, 0, true, kInf, false, "growth step [h]"),
+      real("growth", "split_factor", 2.0, 1.2, false, 10, false,
+           "split an element when it grows past this many target lengths h"),
+      real("tropism", "beta", 0.1, 0, false, kInf, false, "gravitropic gain beta"),
+      real("tropism", "gamma", 0.1, 0, false, kInf, false, "proprioceptive gain gamma"),
+      choice("tropism", "sensing", {"local", "apical"}, "where gravity is sensed"),
+      real("tropism", "twist_r_tau", 0.0, -kInf, false, kInf, false, "intrinsic twist R*tau (dimensionless)"),
+      real("tropism", "circumnutation_gain", 0.0, 0, false, kInf, false, "circumnutation gain lambda_cn"),
+      real("tropism", "circumnutation_period_h", 1.0, 0, true, kInf, false, "circumnutation period [h]"),
+      boolean("plane", "enabled", true, "the tilted plate is present"),
+      real("plane", "alpha_deg", 40, 0, false, 90, false,
+           "plate tilt from the vertical [deg]; also sets the start direction when the plate is off"),
+      real("plane", "k_n_per_m", 100, 0, false, kInf, false, "contact penalty spring per element [N/m]"),
+      real("plane", "damping_kg_per_s", 0.01, 0, false, kInf, false,
+           "contact normal damping per element [kg/s] (physical-mass relaxation only)"),
+      boolean("adhesion", "enabled", true, "pin material that leaves the growth zone"),
+      real("adhesion", "k_n_per_m", 1000, 0, false, kInf, false, "adhesion spring [N/m]"),
+      choice("solver", "kind", {"dynamic"}, "relaxation method"),
+      choice("solver", "mass", {"scaled", "physical"},
+             "scaled: per-dof fictitious masses (fast); physical: density and dt from the stiffest spring"),
+      choice("solver", "damping", {"fire", "viscous"}, "FIRE or viscous damping of the pseudo-dynamics"),
+      real("solver", "damping_per_s", 2e4, 0, true, kInf, false, "viscous damping rate [1/s] (damping = \"viscous\")"),
+      real("solver", "force_tol", 1e-4, 0, true, 1, false,
+           "equilibrium: residual force < force_tol * B1/Lref^2 and couple < force_tol * B1/Lref "
+           "(Lref = growth zone, or the rod when not growing)"),
+      real("solver", "speed_tol", 1e-5, 0, true, 1, false,
+           "equilibrium: node displacement per sub-step < speed_tol * R, rotation < speed_tol rad"),
+      integer("solver", "max_substeps", 2000000, 1, 1e12, "sub-step cap per relaxation; hitting it is an error"),
+      integer("solver", "seed", 1, 0, 9.007199254740992e15, "seed of the initial lateral perturbation"),
+      real("solver", "perturbation", 1e-6, 0, false, 1, false, "initial lateral perturbation amplitude / R"),
+      vec3("load", "tip_force_n", "dead load on the tip node, lab frame [N]"),
+      vec3("load", "tip_torque_nm", "couple on the tip element, lab frame [N m]"),
+      choice("load", "base", {"clamped", "free"}, "base boundary condition"),
+      boolean("load", "gravity", false, "weight of the root (negligible for real roots)"),
+      real("analysis", "skew_threshold_deg", 5, 0, false, 90, false, "|<theta>| above this is skewing [deg]"),
+      real("analysis", "coil_turn_deg", 180, 0, true, 3600, false,
+           "planar tangent turning through more than this is coiling [deg]"),
+      real("analysis", "wave_min_amplitude_r", 0.5, 0, false, kInf, false,
+           "lateral peak-to-peak below this many R counts as straight"),
+      integer("output", "every_steps", 10, 1, 1e9, "snapshot and time-series row every N growth steps"),
+      boolean("output", "trajectory", true, "write trajectory.csv (what `rootsim render` reads)"),
+      boolean("output", "vtk", true, "write ParaView snapshots (vtk/*.vtp + trajectory.pvd)"),
+  };
+  return keys;
+}
+
+Value defaultValue(const KeySpec& k) {
+  Value v;
+  v.type = k.type;
+  v.num = k.defNum;
+  v.b = k.defBool;
+  v.str = k.defStr;
+  v.vec = k.defVec;
+  v.origin = "default";
+  return v;
+}
+
+std::string formatNumber(double x, bool integer) {
+  if (integer) return std::to_string(static_cast<long long>(x));
+  char buf[64];
+  auto r = std::to_chars(buf, buf + sizeof buf, x);
+  std::string s(buf, r.ptr);
+  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+  return s;
+}
+
+std::string checkValue(const KeySpec& k, const Value& v) {
+  std::ostringstream os;
+  auto range = [&](double x) -> std::string {
+    if (!std::isfinite(x)) return "must be finite (got " + formatNumber(x, false) + ")";
+    const bool low = k.loOpen ? x <= k.lo : x < k.lo;
+    const bool high = k.hiOpen ? x >= k.hi : x > k.hi;
+    if (low || high) {
+      std::ostringstream e;
+      const bool isInt = k.type == KeyType::Integer;
+      if (k.lo > -kInf && k.hi < kInf)
+        e << "must be in " << (k.loOpen ? "(" : "[") << formatNumber(k.lo, isInt) << ", "
+          << formatNumber(k.hi, isInt) << (k.hiOpen ? ")" : "]");
+      else if (k.lo > -kInf)
+        e << "must be " << (k.loOpen ? "> " : ">= ") << formatNumber(k.lo, isInt);
+      else
+        e << "must be " << (k.hiOpen ? "< " : "<= ") << formatNumber(k.hi, isInt);
+      e << " (got " << formatNumber(x, isInt) << ")";
+      return e.str();
+    }
+    return "";
+  };
+  switch (k.type) {
+    case KeyType::Real:
+    case KeyType::Integer:
+      return range(v.num);
+    case KeyType::Vector3:
+      for (double x : v.vec)
+        if (!std::isfinite(x)) return "must have finite components";
+      return "";
+    case KeyType::String: {
+      for (const auto& c : k.choices)
+        if (c == v.str) return "";
+      os << "must be one of";
+      for (size_t i = 0; i < k.choices.size(); ++i) os << (i ? ", " : " ") << '"' << k.choices[i] << '"';
+      os << " (got \"" << v.str << "\")";
+      return os.str();
+    }
+    case KeyType::Boolean:
+      return "";
+  }
+  return "";
+}
+
+int editDistance(const std::string& a, const std::string& b) {
+  std::vector<int> prev(b.size() + 1), cur(b.size() + 1);
+  for (size_t j = 0; j <= b.size(); ++j) prev[j] = static_cast<int>(j);
+  for (size_t i = 1; i <= a.size(); ++i) {
+    cur[0] = static_cast<int>(i);
+    for (size_t j = 1; j <= b.size(); ++j)
+      cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1)});
+    std::swap(prev, cur);
+  }
+  return prev[b.size()];
+}
+
+namespace {
+[[noreturn]] void relationError(const Values& v, const std::string& key, const std::string& what) {
+  throw SceneError(v.at(key).origin + ": " + key + " " + what);
+}
+}  // namespace
+
+Model buildModel(const Values& v, const std::string& name) {
+  auto num = [&](const char* k) { return v.at(k).num; };
+  auto flag = [&](const char* k) { return v.at(k).b; };
+  auto str = [&](const char* k) { return v.at(k).str; };
+  auto vec = [&](const char* k) { const auto& a = v.at(k).vec; return Vec3(a[0], a[1], a[2]); };
+  constexpr double mm = 1e-3, hour = 3600.0;
+  Model m;
+  m.name = name;
+  m.rod.radius = num("root.radius_mm") * mm;
+  m.rod.youngs = num("root.youngs_modulus_mpa") * 1e6;
+  m.rod.density = num("root.density_kg_per_m3");
+  m.initial.length = num("root.initial_length_mm") * mm;
+  m.initial.elementLength = num("root.element_length_mm") * mm;
+  m.initial.perturbation = num("solver.perturbation");
+  m.initial.seed = static_cast<std::uint64_t>(num("solver.seed"));
+  m.growth.enabled = flag("growth.enabled");
+  m.growth.zoneLength = num("growth.growth_zone_mm") * mm;
+  m.growth.rate = num("growth.rate_per_h") / hour;
+  m.growth.steps = static_cast<int>(num("growth.steps"));
+  m.growth.stepTime = num("growth.step_h") * hour;
+  m.growth.splitFactor = num("growth.split_factor");
+  m.tropism.beta = num("tropism.beta");
+  m.tropism.gamma = num("tropism.gamma");
+  m.tropism.sensing = str("tropism.sensing") == "apical" ? Sensing::Apical : Sensing::Local;
+  m.tropism.rTau = num("tropism.twist_r_tau");
+  m.tropism.cnGain = num("tropism.circumnutation_gain");
+  m.tropism.cnPeriod = num("tropism.circumnutation_period_h") * hour;
+  m.env.plane.enabled = flag("plane.enabled");
+  m.env.plane.alpha = num("plane.alpha_deg") * std::numbers::pi / 180.0;
+  m.env.plane.k = num("plane.k_n_per_m");
+  m.env.plane.c = num("plane.damping_kg_per_s");
+  m.env.adhesion = flag("adhesion.enabled");
+  m.env.kAdhesion = num("adhesion.k_n_per_m");
+  m.env.tipForce = vec("load.tip_force_n");
+  m.env.tipTorque = vec("load.tip_torque_nm");
+  m.env.base = str("load.base") == "free" ? BaseCondition::Free : BaseCondition::Clamped;
+  m.env.gravity = flag("load.gravity") ? Vec3(0, 0, -9.81) : Vec3::Zero();
+  m.solver.mass = str("solver.mass") == "physical" ? MassModel::Physical : MassModel::Scaled;
+  m.solver.damping = str("solver.damping") == "viscous" ? Damping::Viscous : Damping::Fire;
+  m.solver.viscousRate = num("solver.damping_per_s");
+  m.solver.forceTol = num("solver.force_tol");
+  m.solver.speedTol = num("solver.speed_tol");
+  m.solver.maxSubsteps = static_cast<long>(num("solver.max_substeps"));
+  m.solver.lengthScale = m.growth.enabled ? m.growth.zoneLength : 0.0;
+  m.analysis.skewThresholdDeg = num("analysis.skew_threshold_deg");
+  m.analysis.coilTurnDeg = num("analysis.coil_turn_deg");
+  m.analysis.waveMinAmplitude = num("analysis.wave_min_amplitude_r");
+  m.output.everySteps = static_cast<int>(num("output.every_steps"));
+  m.output.trajectory = flag("output.trajectory");
+  m.output.vtk = flag("output.vtk");
+
+  // relations between keys
+  if (m.initial.elementLength * 2 > m.initial.length * (1 + 1e-12))
+    relationError(v, "root.element_length_mm",
+                  "must be at most half of root.initial_length_mm (got " +
+                      formatNumber(num("root.element_length_mm"), false) + " mm for a " +
+                      formatNumber(num("root.initial_length_mm"), false) + " mm root)");
+  if (m.growth.enabled) {
+    const double perZone = m.growth.zoneLength / m.initial.elementLength;
+    if (perZone < 10.0 - 1e-9)
+      relationError(v, "root.element_length_mm",
+                    "must give at least 10 elements in the growth zone (got " + formatNumber(perZone, false) +
+                        " = growth.growth_zone_mm / root.element_length_mm)");
+    if (m.env.tipForce.norm() > 0 || m.env.tipTorque.norm() > 0)
+      relationError(v, "load.tip_force_n", "and load.tip_torque_nm apply to mechanics-only scenes "
+                                           "(growth.enabled = false)");
+    if (m.env.base == BaseCondition::Free)
+      relationError(v, "load.base", "= \"free\" applies to mechanics-only scenes (a growing root is clamped)");
+  }
+  if (!m.env.plane.enabled && m.env.base == BaseCondition::Free && !m.growth.enabled &&
+      (m.env.tipForce.norm() > 0 || m.env.gravity.norm() > 0))
+    relationError(v, "load.base", "= \"free\" with a net load has no equilibrium; clamp the base");
+  return m;
+}
+
+std::string resolvedToml(const Values& v, const std::string& name) {
+  std::ostringstream os;
+  os << "# rootsim resolved scene: " << name << "\n# every key with its value; defaults filled in\n";
+  for (const auto& sec : sections()) {
+    os << "\n[" << sec << "]\n";
+    for (const auto& k : schema()) {
+      if (k.section != sec) continue;
+      const Value& x = v.at(k.full());
+      std::string val;
+      switch (k.type) {
+        case KeyType::Real: val = formatNumber(x.num, false); break;
+        case KeyType::Integer: val = formatNumber(x.num, true); break;
+        case KeyType::Boolean: val = x.b ? "true" : "false"; break;
+        case KeyType::String: val = "\"" + x.str + "\""; break;
+        case KeyType::Vector3:
+          val = "[" + formatNumber(x.vec[0], false) + ", " + formatNumber(x.vec[1], false) + ", " +
+                formatNumber(x.vec[2], false) + "]";
+          break;
+      }
+      os << k.key << " = " << val;
+      const size_t pad = k.key.size() + 3 + val.size();
+      os << std::string(pad < 40 ? 40 - pad : 1, ' ') << "# " << k.doc << "\n";
+    }
+  }
+  return os.str();
+}
+
+}  // namespace rootsim::detail

@@ -1,0 +1,53 @@
+#pragma once
+// internal: the table of every scene key, and the values a scene resolves to
+#include <array>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "rootsim/model.hpp"
+
+namespace rootsim::detail {
+
+enum class KeyType { Real, Integer, Boolean, String, Vector3 };
+const char* typeName(KeyType t);
+
+struct KeySpec {
+  std::string section, key;
+  KeyType type;
+  double defNum = 0;                     // Real / Integer default
+  bool defBool = false;
+  std::string defStr;
+  std::array<double, 3> defVec{0, 0, 0};
+  double lo = -1e300, hi = 1e300;        // allowed range (numbers)
+  bool loOpen = false, hiOpen = false;   // exclusive bounds
+  std::vector<std::string> choices;      // allowed strings
+  std::string doc;                       // meaning and unit
+  std::string full() const { return section + "." + key; }
+};
+
+const std::vector<KeySpec>& schema();
+const std::vector<std::string>& sections();
+
+struct Value {
+  KeyType type = KeyType::Real;
+  double num = 0;
+  bool b = false;
+  std::string str;
+  std::array<double, 3> vec{0, 0, 0};
+  std::string origin;  // "file:line" or "--set" or "default"
+};
+
+using Values = std::map<std::string, Value>;  // by "section.key"
+
+Value defaultValue(const KeySpec& k);
+// checks range / choices; returns "" or the reason ("must be > 0 (got -1)")
+std::string checkValue(const KeySpec& k, const Value& v);
+// builds the model and checks relations between keys; throws SceneError with the origin of a key
+Model buildModel(const Values& v, const std::string& name);
+std::string resolvedToml(const Values& v, const std::string& name);
+std::string formatNumber(double x, bool integer);
+// Levenshtein distance, for "did you mean"
+int editDistance(const std::string& a, const std::string& b);
+
+}  // namespace rootsim::detail

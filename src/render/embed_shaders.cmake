@@ -1,0 +1,18 @@
+# cmake -DOUT=<file.cpp> -DSHADERS="a.vert;b.frag" -P embed_shaders.cmake
+# writes the shader sources into a C++ file as raw string literals, so the binary never reads them
+set(body "// generated from shaders/ by src/render/embed_shaders.cmake; do not edit\n")
+string(APPEND body "#include \"shaders.hpp\"\n\n#include <cstring>\n\nnamespace rootsim::detail {\n\n")
+string(APPEND body "const char* builtinShader(const char* name) {\n")
+foreach(path IN LISTS SHADERS)
+  get_filename_component(name "${path}" NAME)
+  file(READ "${path}" src)
+  string(FIND "${src}" ")glsl\"" bad)
+  if(NOT bad EQUAL -1)
+    message(FATAL_ERROR "${path} contains the raw string delimiter )glsl\"")
+  endif()
+  string(APPEND body "  if (std::strcmp(name, \"${name}\") == 0) return R\"glsl(${src})glsl\";\n")
+endforeach()
+string(APPEND body "  return nullptr;\n}\n\n}  // namespace rootsim::detail\n")
+file(WRITE "${OUT}.tmp" "${body}")
+file(COPY_FILE "${OUT}.tmp" "${OUT}" ONLY_IF_DIFFERENT)
+file(REMOVE "${OUT}.tmp")

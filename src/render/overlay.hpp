@@ -1,0 +1,30 @@
+#pragma once
+// overlay texts and rectangles drawn onto a finished picture on the CPU (stb_truetype)
+#include <memory>
+#include <string>
+
+#include "rootsim/image.hpp"
+#include "rootsim/render_scene.hpp"
+
+namespace rootsim::detail {
+
+// a TrueType font with a cache of rasterised glyphs; throws RenderError if the file is missing or
+// not a font
+class OverlayPainter {
+ public:
+  OverlayPainter();
+  ~OverlayPainter();
+  OverlayPainter(const OverlayPainter&) = delete;
+  OverlayPainter& operator=(const OverlayPainter&) = delete;
+
+  // draw scene.rects then scene.texts over img (straight alpha "over")
+  void draw(const RenderScene& scene, Image& img);
+  // width of text in pixels at sizePx with the font at fontPath
+  float textWidth(const std::string& fontPath, const std::string& text, float sizePx);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace rootsim::detail

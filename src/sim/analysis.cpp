@@ -1,0 +1,160 @@
+#include "rootsim/analysis.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "rootsim/growth.hpp"
+#include "rootsim/rod.hpp"
+
+namespace rootsim {
+
+namespace {
+
+// solid-angle contribution of segments (p1,p2) and (p3,p4) to the Gauss integral, divided by 4 pi
+double gaussPair(const Vec3& p1, const Vec3& p2, const Vec3& p3, const Vec3& p4) {
+  const Vec3 r13 = p3 - p1, r14 = p4 - p1, r23 = p3 - p2, r24 = p4 - p2;
+  Vec3 n[4] = {r13.cross(r14), r14.cross(r24), r24.cross(r23), r23.cross(r13)};
+  for (auto& v : n) {
+    const double l = v.norm();
+    if (l < 1e-300) return 0.0;
+    v /= l;
+  }
+  auto as = [](double x) { return std::asin(std::clamp(x, -1.0, 1.0)); };
+  const double om = as(n[0].dot(n[1])) + as(n[1].dot(n[2])) + as(n[2].dot(n[3])) + as(n[3].dot(n[0]));
+  const double sg = (p4 - p3).cross(p2 - p1).dot(r13);
+  if (sg == 0.0) return 0.0;
+  return (sg > 0 ? om : -om) / (4.0 * std::numbers::pi);
+}
+
+}  // namespace
+
+double writheOpen(const Eigen::Matrix3Xd& p, int first, int last) {
+  double wr = 0.0;
+  for (int i = first; i < last; ++i)
+    for (int j = i + 2; j < last; ++j)
+      wr += 2.0 * gaussPair(p.col(i), p.col(i + 1), p.col(j), p.col(j + 1));
+  return wr;
+}
+
+double writheClosed(const Eigen::Matrix3Xd& p) {
+  const int n = static_cast<int>(p.cols());
+  double wr = 0.0;
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 2; j < n; ++j) {
+      if (i == 0 && j == n - 1) continue;  // adjacent through the closing segment
+      wr += 2.0 * gaussPair(p.col(i), p.col((i + 1) % n), p.col(j), p.col((j + 1) % n));
+    }
+  return wr;
+}
+
+double linkingNumber(const Eigen::Matrix3Xd& a, const Eigen::Matrix3Xd& b) {
+  const int na = static_cast<int>(a.cols()), nb = static_cast<int>(b.cols());
+  double lk = 0.0;
+  for (int i = 0; i < na; ++i)
+    for (int j = 0; j < nb; ++j) lk += gaussPair(a.col(i), a.col((i + 1) % na), b.col(j), b.col((j + 1) % nb));
+  return lk;
+}
+
+ZoneObservables observeZone(const Model& m, const RodState& s, const RodStrains& k) {
+  ZoneObservables o;
+  const double S0 = growthZoneStart(m, s), L = s.restLength();
+  const GrowthZoneEnergy E = zoneEnergy(m.rod, s, k, S0, L);
+  o.Eb = E.bend;
+  o.Et = E.twist;
+  // twist: (1/2pi) int kappa3 ds with kappa3 per current length and ds = D0 ev
+  double tw = 0.0;
+  for (int j = 0; j + 1 < s.elements(); ++j)
+    if (s.S[j + 1] >= S0) tw += k.kappa(2, j) * k.D0[j];
+  o.Tw = tw / (2.0 * std::numbers::pi);
+  int first = 0;
+  while (first < s.nodes() - 1 && s.S[first + 1] <= S0) ++first;
+  o.Wr = writheOpen(s.x, first, s.nodes() - 1);
+  return o;
+}
+
+ShapeAnalysis analyseShape(const Model& m, const RodState& s) {
+  ShapeAnalysis a;
+  const Plane& pl = m.env.plane;
+  const Vec3 down = pl.downhill(), lat = pl.lateral();
+  const int n = s.elements();
+  // unwrapped planar tangent angle per element
+  std::vector<double> th(static_cast<size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    double t = planarAngle(pl, s.x.col(i + 1) - s.x.col(i));
+    if (i > 0) {
+      const double prev = th[static_cast<size_t>(i - 1)];
+      t += 2.0 * std::numbers::pi * std::round((prev - t) / (2.0 * std::numbers::pi));
+    }
+    th[static_cast<size_t>(i)] = t;
+  }
+  a.thetaMin = *std::min_element(th.begin(), th.end());
+  a.thetaMax = *std::max_element(th.begin(), th.end());
+  // projected curvature d theta / ds between neighbouring elements
+  for (int j = 0; j + 1 < n; ++j) {
+    const double ds = 0.5 * ((s.x.col(j + 1) - s.x.col(j)).norm() + (s.x.col(j + 2) - s.x.col(j + 1)).norm());
+    a.maxKappa = std::max(a.maxKappa, std::abs(th[static_cast<size_t>(j + 1)] - th[static_cast<size_t>(j)]) / ds);
+  }
+  // mature part: nodes with S below the growth zone (the whole rod when not growing)
+  const double S0 = m.growth.enabled ? growthZoneStart(m, s) : s.restLength();
+  int last = 0;
+  while (last < n && s.S[last + 1] <= S0 + 1e-15) ++last;
+  // skew: direction of the mature part as a whole
+  if (last >= 1) a.skew = planarAngle(pl, s.x.col(last) - s.x.col(0));
+  // lateral peaks of the mature shape, as a function of the node index
+  std::vector<double> u, w;  // lateral, downhill coordinates
+  for (int i = 0; i <= last; ++i) {
+    u.push_back(s.x.col(i).dot(lat));
+    w.push_back(s.x.col(i).dot(down));
+  }
+  const double minSwing = m.analysis.waveMinAmplitude * m.rod.radius;
+  // extrema with hysteresis minSwing (so numerical ripples are not peaks)
+  std::vector<int> ext;
+  {
+    int cand = 0, dir = 0;
+    auto U = [&](int i) { return u[static_cast<size_t>(i)]; };
+    for (int i = 1; i < static_cast<int>(u.size()); ++i) {
+      if (dir == 0) {
+        if (std::abs(U(i) - U(0)) > minSwing) { dir = U(i) > U(0) ? 1 : -1; cand = i; }
+      } else if (dir * (U(i) - U(cand)) > 0) {
+        cand = i;  // the running extreme moves on
+      } else if (dir * (U(cand) - U(i)) > minSwing) {
+        ext.push_back(cand);  // turned back by more than minSwing: cand was a peak
+        dir = -dir;
+        cand = i;
+      }
+    }
+  }
+  a.peaks = static_cast<int>(ext.size());
+  // a waving shape: measure the skew over whole wavelengths (first to last peak of the same sign), so
+  // the first sideways excursion does not bias it
+  if (ext.size() >= 3) {
+    const size_t lastSame = ext.size() - 1 - ((ext.size() - 1) % 2);
+    a.skew = planarAngle(pl, s.x.col(ext[lastSame]) - s.x.col(ext[0]));
+  }
+  if (ext.size() >= 2) {
+    double p2p = 0;
+    for (size_t i = 1; i < ext.size(); ++i)
+      p2p += std::abs(u[static_cast<size_t>(ext[i])] - u[static_cast<size_t>(ext[i - 1])]);
+    a.amplitude = 0.5 * p2p / static_cast<double>(ext.size() - 1);
+  }
+  if (ext.size() >= 3) {
+    // neighbouring peaks of the same sign are one wavelength apart along downhill
+    double sum = 0;
+    int cnt = 0;
+    for (size_t i = 2; i < ext.size(); ++i) {
+      sum += std::abs(w[static_cast<size_t>(ext[i])] - w[static_cast<size_t>(ext[i - 2])]);
+      ++cnt;
+    }
+    a.wavelength = sum / cnt;
+  }
+  const double turn = a.thetaMax - a.thetaMin;
+  if (turn > m.analysis.coilTurnDeg * std::numbers::pi / 180.0) a.pattern = "coiling";
+  else if (std::abs(a.skew) > m.analysis.skewThresholdDeg * std::numbers::pi / 180.0) a.pattern = "skewing";
+  else if (ext.size() >= 2) a.pattern = "waving";
+  else a.pattern = "straight";
+  return a;
+}
+
+}  // namespace rootsim

@@ -1,0 +1,180 @@
+#include "rootsim/growth.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "rootsim/rotation.hpp"
+
+namespace rootsim {
+
+namespace {
+void recomputeMaterialCoordinates(RodState& s) {
+  s.S[0] = 0.0;
+  for (int i = 0; i < s.elements(); ++i) s.S[i + 1] = s.S[i] + s.l0[i];
+}
+// frame of Voronoi node j (between elements j and j+1): the mean of the two elements' directors,
+// re-orthonormalised (neighbouring frames differ by a small rotation)
+Mat3 voronoiFrame(const RodState& s, int j) {
+  const Mat3 A = s.Q[static_cast<size_t>(j)] + s.Q[static_cast<size_t>(j + 1)];
+  Vec3 d3 = A.row(2).transpose().normalized();
+  Vec3 d1 = A.row(0).transpose();
+  d1 = (d1 - d1.dot(d3) * d3).normalized();
+  Mat3 F;
+  F.row(0) = d1.transpose();
+  F.row(1) = d3.cross(d1).transpose();
+  F.row(2) = d3.transpose();
+  return F;
+}
+}  // namespace
+
+double growthZoneStart(const Model& m, const RodState& s) {
+  return std::max(0.0, s.restLength() - m.growth.zoneLength);
+}
+
+void anchorMatureNodes(const Model& m, RodState& s) {
+  if (!m.env.adhesion) return;
+  const double S0 = growthZoneStart(m, s);
+  for (int i = 1; i < s.nodes(); ++i) {
+    if (s.anchored[static_cast<size_t>(i)] || s.S[i] >= S0) continue;
+    s.anchored[static_cast<size_t>(i)] = 1;
+    s.anchor.col(i) = s.x.col(i);
+  }
+}
+
+double growRestLengths(const Model& m, RodState& s, double dt) {
+  const double S0 = growthZoneStart(m, s);
+  const double g = m.growth.rate * dt;  // relative elongation of zone material in this step
+  const int n = s.elements();
+  // grow each element by the part of it inside the zone, and carry the shape along: every node
+  // beyond a grown element moves with the element's stretched chord, so the configuration stays
+  // close to equilibrium and the relaxation only has to correct it
+  Vec3 shift = Vec3::Zero();
+  double added = 0.0;
+  for (int i = 0; i < n; ++i) {
+    const double a = s.S[i], b = s.S[i + 1];
+    const double inside = std::max(0.0, b - std::max(a, S0));
+    if (inside > 0.0) {
+      const double dl = g * inside;
+      // the element's chord as it was before this loop (node i has already moved by shift) stretched
+      // in proportion to its rest length
+      const Vec3 seg = s.x.col(i + 1) - s.x.col(i) + shift;
+      shift += (dl / s.l0[i]) * seg;
+      s.l0[i] += dl;
+      added += dl;
+    }
+    s.x.col(i + 1) += shift;
+  }
+  recomputeMaterialCoordinates(s);
+  return added;
+}
+
+void updateIntrinsicCurvature(const Model& m, RodState& s, const RodStrains& k, double dt) {
+  const int n = s.elements();
+  if (n < 2) return;
+  const double S0 = growthZoneStart(m, s);
+  const double R = m.rod.radius;
+  const double rate = m.growth.rate;  // eps_g in the zone
+  const TropismParams& tp = m.tropism;
+  const Vec3 g(0.0, 0.0, -1.0);
+  // apical sensing: gravity's components in the apex frame, reused as components in the local frame
+  const Vec3 gApex = s.Q[static_cast<size_t>(n - 1)] * g;
+  // circumnutation: a twist-free (Bishop) frame parallel-transported from the base
+  const bool cn = tp.cnGain > 0.0;
+  Vec3 m1 = s.Q[0].row(0).transpose();
+  Vec3 tPrev = s.Q[0].row(2).transpose();
+  const double phase = cn ? 2.0 * M_PI * s.time / tp.cnPeriod : 0.0;
+  for (int j = 0; j + 1 < n; ++j) {
+    const Mat3 F = voronoiFrame(s, j);
+    Vec3 dcn = Vec3::Zero();
+    if (cn) {
+      // transport m1 from element j's tangent to the Voronoi tangent by the minimal rotation
+      const Vec3 t = F.row(2).transpose();
+      const Vec3 axis = tPrev.cross(t);
+      const double sn = axis.norm(), cs = tPrev.dot(t);
+      if (sn > 1e-15) m1 = rotationFromVector(axis / sn * std::atan2(sn, cs)) * m1;
+      m1 = (m1 - m1.dot(t) * t).normalized();
+      tPrev = t;
+      const Vec3 m2 = t.cross(m1);
+      dcn = tp.cnGain * (std::cos(phase) * m1 + std::sin(phase) * m2);
+    }
+    const double Sj = s.S[j + 1];
+    if (Sj < S0) continue;  // mature: kappa0 frozen
+    const Vec3 d1 = F.row(0).transpose(), d2 = F.row(1).transpose(), d3 = F.row(2).transpose();
+    const Vec3 gs = tp.sensing == Sensing::Apical ? Vec3(F.transpose() * gApex) : g;
+    // current curvature per current length, material components; curvature vector kappa N = k2 d1 - k1 d2
+    const Vec3 kap = k.kappa.col(j) / k.ev[j];
+    const Vec3 kN = kap.y() * d1 - kap.x() * d2;
+    const Vec3 delta = tp.beta * gs - tp.gamma * R * kN + dcn;
+    const Vec3 rhs = d3.cross(delta) * (rate / R);
+    s.kappa0(0, j) += dt * rhs.dot(d1);
+    s.kappa0(1, j) += dt * rhs.dot(d2);
+  }
+}
+
+void applyTwistProfile(const Model& m, RodState& s) {
+  const double tau = m.tropism.rTau / m.rod.radius;
+  const double L = s.restLength();
+  for (int j = 0; j + 1 < s.elements(); ++j) {
+    const double u = std::clamp((L - s.S[j + 1]) / m.growth.zoneLength, 0.0, 1.0);
+    s.kappa0(2, j) = tau * u;
+  }
+}
+
+int splitLongElements(const Model& m, RodState& s) {
+  const double limit = m.growth.splitFactor * m.initial.elementLength;
+  int count = 0;
+  for (int i = 0; i < s.elements(); ++i)
+    if (s.l0[i] > limit) ++count;
+  if (count == 0) return 0;
+  const int n = s.elements(), nn = n + count;
+  RodState t;
+  t.resize(nn);
+  t.time = s.time;
+  int o = 0;  // output element index
+  t.x.col(0) = s.x.col(0);
+  t.anchor.col(0) = s.anchor.col(0);
+  t.anchored[0] = s.anchored[0];
+  for (int i = 0; i < n; ++i) {
+    const bool split = s.l0[i] > limit;
+    // Voronoi value on the left of output element o (between o-1 and o) comes from the input
+    if (i > 0) t.kappa0.col(o - 1) = s.kappa0.col(i - 1);
+    if (split) {
+      t.l0[o] = t.l0[o + 1] = 0.5 * s.l0[i];
+      t.Q[static_cast<size_t>(o)] = t.Q[static_cast<size_t>(o + 1)] = s.Q[static_cast<size_t>(i)];
+      t.x.col(o + 1) = 0.5 * (s.x.col(i) + s.x.col(i + 1));
+      const bool both = s.anchored[static_cast<size_t>(i)] && s.anchored[static_cast<size_t>(i + 1)];
+      t.anchored[static_cast<size_t>(o + 1)] = both ? 1 : 0;
+      t.anchor.col(o + 1) = 0.5 * (s.anchor.col(i) + s.anchor.col(i + 1));
+      // the new Voronoi node inside the split element takes the mean of its neighbours' kappa0
+      Vec3 left = i > 0 ? Vec3(s.kappa0.col(i - 1)) : Vec3(s.kappa0.col(i));
+      Vec3 right = i + 1 < n ? Vec3(s.kappa0.col(i)) : left;
+      if (i == 0) left = right;
+      t.kappa0.col(o) = 0.5 * (left + right);
+      o += 2;
+    } else {
+      t.l0[o] = s.l0[i];
+      t.Q[static_cast<size_t>(o)] = s.Q[static_cast<size_t>(i)];
+      o += 1;
+    }
+    t.x.col(o) = s.x.col(i + 1);
+    t.anchor.col(o) = s.anchor.col(i + 1);
+    t.anchored[static_cast<size_t>(o)] = s.anchored[static_cast<size_t>(i + 1)];
+  }
+  t.v.setZero();
+  t.w.setZero();
+  recomputeMaterialCoordinates(t);
+  s = std::move(t);
+  return count;
+}
+
+double planarAngle(const Plane& plane, const Vec3& t) {
+  const Vec3 nh = plane.normal(), down = plane.downhill();
+  return std::atan2(down.cross(t).dot(nh), t.dot(down));
+}
+
+double tipAngle(const Model& m, const RodState& s) {
+  const int n = s.elements();
+  return planarAngle(m.env.plane, s.x.col(n) - s.x.col(n - 1));
+}
+
+}  // namespace rootsim

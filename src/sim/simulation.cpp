@@ -1,0 +1,96 @@
+#include "rootsim/simulation.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "rootsim/growth.hpp"
+
+namespace rootsim {
+
+namespace {
+RelaxResult relaxOrExplain(const Model& m, RodState& s, RelaxWorkspace& ws, int step) {
+  try {
+    return relax(m.rod, m.env, m.solver, s, ws);
+  } catch (const RelaxError& e) {
+    std::ostringstream os;
+    os << "growth step " << step << " (t = " << s.time / 3600.0 << " h, " << s.elements()
+       << " elements): " << e.what();
+    throw RelaxError(os.str());
+  }
+}
+}  // namespace
+
+Simulation::Simulation(const Model& m) : m_(m) {
+  s_ = makeInitialRod(m_.rod, m_.env.plane, m_.initial);
+  m_.env.baseFrame = s_.Q[0];
+  if (m_.growth.enabled) {
+    applyTwistProfile(m_, s_);
+    anchorMatureNodes(m_, s_);
+  }
+  const RelaxResult r = relaxOrExplain(m_, s_, ws_, 0);
+  totalSubsteps_ = r.substeps;
+  observe(r.substeps, r.residualForce, 0);
+}
+
+const StepRecord& Simulation::growthStep() {
+  ++step_;
+  const double dt = m_.growth.stepTime;
+  // the kappa0 law reads the relaxed state of the previous step
+  const RodStrains& k = ws_.strains;
+  anchorMatureNodes(m_, s_);
+  updateIntrinsicCurvature(m_, s_, k, dt);
+  growRestLengths(m_, s_, dt);
+  s_.time += dt;
+  applyTwistProfile(m_, s_);
+  const int splits = splitLongElements(m_, s_);
+  const RelaxResult r = relaxOrExplain(m_, s_, ws_, step_);
+  totalSubsteps_ += r.substeps;
+  observe(r.substeps, r.residualForce, splits);
+  return rec_;
+}
+
+void Simulation::observe(long substeps, double residual, int splits) {
+  // ws_.strains holds the strains of the relaxed state (computed at the last sub-step)
+  computeStrains(m_.rod, s_, ws_.strains);
+  StepRecord r;
+  r.step = step_;
+  r.timeH = s_.time / 3600.0;
+  r.length = s_.restLength();
+  r.elements = s_.elements();
+  const double th = tipAngle(m_, s_);
+  if (step_ == 0) thetaUnwrapped_ = th;
+  else thetaUnwrapped_ += std::remainder(th - thetaUnwrapped_, 2.0 * std::numbers::pi);
+  r.thetaTip = thetaUnwrapped_;
+  if (m_.growth.enabled) r.zone = observeZone(m_, s_, ws_.strains);
+  r.substeps = substeps;
+  r.residualForce = residual;
+  r.splits = splits;
+  r.tip = s_.x.col(s_.nodes() - 1);
+  rec_ = r;
+}
+
+Snapshot Simulation::snapshot() const {
+  Snapshot sn = makeSnapshot(m_.rod, s_, ws_.strains, step_);
+  sn.timeH = s_.time / 3600.0;
+  return sn;
+}
+
+Snapshot makeSnapshot(const RodParams& p, const RodState& s, const RodStrains& k, int step) {
+  Snapshot sn;
+  const int n = s.elements();
+  sn.step = step;
+  sn.timeH = s.time / 3600.0;
+  sn.x = s.x;
+  sn.d1.resize(3, n);
+  sn.d3.resize(3, n);
+  sn.radius.resize(n);
+  for (int i = 0; i < n; ++i) {
+    sn.d1.col(i) = s.Q[static_cast<size_t>(i)].row(0).transpose();
+    sn.d3.col(i) = s.Q[static_cast<size_t>(i)].row(2).transpose();
+    sn.radius[i] = elementRadius(p, k.e.size() == n ? k.e[i] : 1.0);
+  }
+  return sn;
+}
+
+}  // namespace rootsim

@@ -9,7 +9,7 @@ namespace rootsim {
 struct Plane {
   bool enabled = true;
   double alpha = 0.0;          // tilt from the vertical [rad]
-  double k = 100.0;            // normal penalty spring, per element [N/m]
+  double k = 1000.0;           // normal penalty spring, per element [N/m] (paper: 100; scene_schema.cpp)
   double c = 0.01;             // normal damping, per element [kg/s]
   Vec3 normal() const;         // unit normal, pointing to the side the root lies on
   Vec3 downhill() const;       // in-plane downhill unit vector (0, -sin a, -cos a)

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Installs rootsim's build and run dependencies from Debian's packages (needs root). Idempotent: only
+# missing packages are installed.
+set -euo pipefail
+pkgs=(cmake ninja-build g++ pkg-config
+      libeigen3-dev libcli11-dev doctest-dev libtomlplusplus-dev libbenchmark-dev
+      libosmesa6-dev libglm-dev libstb-dev libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
+      fonts-dejavu-core)
+missing=()
+for p in "${pkgs[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "installing: ${missing[*]}"
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  export DEBIAN_FRONTEND=noninteractive
+  $SUDO apt-get update -qq
+  $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+else
+  echo "all dependencies present"
+fi

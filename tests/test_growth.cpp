@@ -1,0 +1,149 @@
+// growth (src/sim/growth.cpp) and coarse versions of the paper's patterns
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "rootsim/growth.hpp"
+#include "rootsim/simulation.hpp"
+#include "rootsim/theory.hpp"
+
+using namespace rootsim;
+
+namespace {
+constexpr double pi = std::numbers::pi;
+constexpr double deg = pi / 180.0;
+
+// a coarse growth model: 0.1 mm elements (10 in the zone), 0.1 h steps
+Model coarse(double alphaDeg, double beta, int steps) {
+  Model m;
+  m.env.plane.alpha = alphaDeg * deg;
+  m.tropism.beta = beta;
+  m.initial.elementLength = 1e-4;
+  m.growth.stepTime = 0.1 * 3600;
+  m.growth.steps = steps;
+  m.solver.lengthScale = m.growth.zoneLength;
+  return m;
+}
+
+ShapeAnalysis grow(const Model& m, Simulation** out = nullptr) {
+  static Simulation* keep = nullptr;
+  delete keep;
+  keep = new Simulation(m);
+  for (int i = 0; i < m.growth.steps; ++i) keep->growthStep();
+  if (out) *out = keep;
+  return analyseShape(m, keep->state());
+}
+}  // namespace
+
+TEST_CASE("sign of Eq. 17: a free horizontal root under gravitropism alone bends its tip down") {
+  Model m = coarse(90, 0.2, 20);
+  m.env.plane.enabled = false;
+  m.env.adhesion = false;
+  m.tropism.gamma = 0.0;
+  Simulation sim(m);
+  for (int i = 0; i < 20; ++i) sim.growthStep();
+  const RodState& s = sim.state();
+  const int n = s.elements();
+  const Vec3 t = (s.x.col(n) - s.x.col(n - 1)).normalized();
+  INFO("tip tangent " << t.transpose());
+  CHECK(t.z() < -0.1);                   // pointing down, toward gravity
+  CHECK(std::abs(t.x()) < 1e-6);         // and not sideways
+  CHECK(s.kappa0.row(0).maxCoeff() > 0);  // kappa1 > 0 about d1 = x bends d3 toward -z
+}
+
+TEST_CASE("kinematics: the rest length grows at v_tip = eps0 Lgz and elements split at 2h") {
+  Model m = coarse(40, 0.1, 50);
+  Simulation sim(m);
+  const double L0 = sim.state().restLength();
+  for (int i = 0; i < 50; ++i) sim.growthStep();
+  const double vtip = m.growth.rate * m.growth.zoneLength;
+  CHECK(sim.state().restLength() == doctest::Approx(L0 + vtip * 50 * m.growth.stepTime).epsilon(1e-12));
+  CHECK(sim.state().l0.maxCoeff() <= m.growth.splitFactor * m.initial.elementLength * (1 + 1e-12));
+  // material outside the zone never grows: the first element keeps its length
+  CHECK(sim.state().l0[0] == doctest::Approx(L0 / 11).epsilon(1e-12));
+}
+
+TEST_CASE("splitting keeps the centreline, directors, kappa0 and the total rest length") {
+  Model m = coarse(40, 0.1, 0);
+  Simulation sim(m);
+  RodState s = sim.state();
+  const int n = s.elements();
+  for (int j = 0; j + 1 < n; ++j) s.kappa0.col(j) = Vec3(0.1 * j, -0.2 * j, 0.05);
+  s.l0[5] *= 2.5;  // make element 5 long
+  s.S[0] = 0;
+  for (int i = 0; i < n; ++i) s.S[i + 1] = s.S[i] + s.l0[i];
+  const RodState before = s;
+  CHECK(splitLongElements(m, s) == 1);
+  CHECK(s.elements() == n + 1);
+  CHECK(s.restLength() == doctest::Approx(before.restLength()).epsilon(1e-15));
+  CHECK((s.x.col(5) - before.x.col(5)).norm() == 0.0);
+  CHECK((s.x.col(7) - before.x.col(6)).norm() == 0.0);
+  CHECK((s.x.col(6) - 0.5 * (before.x.col(5) + before.x.col(6))).norm() < 1e-18);
+  CHECK((s.Q[5] - before.Q[5]).norm() == 0.0);
+  CHECK((s.Q[6] - before.Q[5]).norm() == 0.0);
+  CHECK((s.kappa0.col(4) - before.kappa0.col(4)).norm() == 0.0);   // node left of the split element
+  CHECK((s.kappa0.col(6) - before.kappa0.col(5)).norm() == 0.0);   // node right of it
+  CHECK((s.kappa0.col(5) - 0.5 * (before.kappa0.col(4) + before.kappa0.col(5))).norm() < 1e-15);
+}
+
+TEST_CASE("twist profile (Eqs. 20-21): zero at the apex, tau at the zone start and beyond") {
+  Model m = coarse(30, 0.2, 0);
+  m.tropism.rTau = 0.4;
+  Simulation sim(m);
+  RodState s = sim.state();
+  applyTwistProfile(m, s);
+  const double tau = 0.4 / m.rod.radius, L = s.restLength();
+  for (int j = 0; j + 1 < s.elements(); ++j) {
+    const double u = std::clamp((L - s.S[j + 1]) / m.growth.zoneLength, 0.0, 1.0);
+    CHECK(s.kappa0(2, j) == doctest::Approx(tau * u));
+  }
+  CHECK(s.kappa0(2, 0) == doctest::Approx(tau));  // node at 0.1 mm: mature
+}
+
+TEST_CASE("coarse Fig. 2A: alpha = 0 grows straight, 40 waves, 80 coils; contact depth stays < R/10") {
+  SUBCASE("alpha 0: straight") {
+    const ShapeAnalysis a = grow(coarse(0, 0.1, 150));
+    CHECK(a.pattern == "straight");
+  }
+  SUBCASE("alpha 40, beta 0.2: waving with theta_tip swinging both ways") {
+    Simulation* sim = nullptr;
+    Model m = coarse(40, 0.2, 350);
+    const ShapeAnalysis a = grow(m, &sim);
+    INFO("pattern " << a.pattern << " peaks " << a.peaks << " lambda " << a.wavelength << " theta ["
+                    << a.thetaMin / deg << ", " << a.thetaMax / deg << "]");
+    CHECK(a.pattern == "waving");
+    CHECK(a.thetaMin < -20 * deg);
+    CHECK(a.thetaMax > 20 * deg);
+    // wavelength within a factor 2 of Eq. 9 (the coarse mesh and the short run are not the paper's)
+    const Theory t = theoryFor(m);
+    CHECK(a.wavelength > 0.5 * t.wavelength);
+    CHECK(a.wavelength < 2.0 * t.wavelength);
+    // contact: the plane penalty keeps the surface within R/10 of the plate
+    const RodState& s = sim->state();
+    double depth = 0;
+    for (int i = 0; i < s.elements(); ++i) {
+      const Vec3 mid = 0.5 * (s.x.col(i) + s.x.col(i + 1));
+      depth = std::max(depth, m.rod.radius - mid.dot(m.env.plane.normal()));
+    }
+    CHECK(depth < 0.1 * m.rod.radius);
+  }
+  SUBCASE("alpha 80: coiling") {
+    const ShapeAnalysis a = grow(coarse(80, 0.1, 350));
+    INFO("theta [" << a.thetaMin / deg << ", " << a.thetaMax / deg << "]");
+    CHECK(a.pattern == "coiling");
+  }
+}
+
+TEST_CASE("intrinsic twist skews the root; -tau mirrors it (Fig. 4A)") {
+  Model m = coarse(30, 0.2, 250);
+  m.tropism.rTau = 0.4;
+  const double skewPlus = grow(m).skew;
+  m.tropism.rTau = -0.4;
+  const double skewMinus = grow(m).skew;
+  INFO("skew +tau " << skewPlus / deg << " deg, -tau " << skewMinus / deg << " deg");
+  CHECK(skewPlus > 10 * deg);
+  CHECK(skewMinus == doctest::Approx(-skewPlus).epsilon(1e-3));
+  // large omega T0: sin<theta> -> tan(alpha) (Eq. 15) within 25 %
+  CHECK(std::sin(skewPlus) == doctest::Approx(std::tan(30 * deg)).epsilon(0.25));
+}

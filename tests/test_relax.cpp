@@ -1,0 +1,79 @@
+// the relaxation loop: no heap allocation in a sub-step, errors that name step, node and quantity
+#include <doctest/doctest.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <limits>
+#include <new>
+#include <string>
+
+#include "rod_fixture.hpp"
+
+namespace {
+std::atomic<long> gAllocs{0};
+}
+// counting global allocator (this test binary only)
+void* operator new(std::size_t n) {
+  ++gAllocs;
+  if (void* p = std::malloc(n ? n : 1)) return p;
+  throw std::bad_alloc();
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+
+using namespace rootsim;
+using rootsim::test::Cantilever;
+
+TEST_CASE("a relaxation sub-step allocates nothing") {
+  Cantilever c(100);
+  c.env.plane.enabled = true;  // contact, adhesion and loads all in play
+  c.env.plane.alpha = 0.7;
+  c.env.adhesion = true;
+  c.s.anchored[5] = 1;
+  c.env.tipForce = Vec3(1e-4, 0, 0);
+  c.opt.maxSubsteps = std::numeric_limits<long>::max();
+  DynamicRelaxation r(c.p, c.env, c.opt, c.s, c.ws);
+  r.step();  // first step may size the workspace
+  const long before = gAllocs.load();
+  for (int i = 0; i < 1000; ++i) r.step();
+  CHECK(gAllocs.load() - before == 0);
+}
+
+TEST_CASE("hitting the sub-step cap is an error naming node and residual") {
+  Cantilever c(20);
+  c.env.tipForce = Vec3(-1e-3, 0, 0);
+  c.opt.maxSubsteps = 50;
+  try {
+    c.relax();
+    FAIL("no error");
+  } catch (const RelaxError& e) {
+    const std::string w = e.what();
+    CHECK(w.find("did not reach equilibrium in 50 sub-steps") != std::string::npos);
+    CHECK(w.find("at node") != std::string::npos);
+    CHECK(w.find("residual couple") != std::string::npos);
+  }
+}
+
+TEST_CASE("a non-finite force stops the run with sub-step, node and quantity") {
+  Cantilever c(20);
+  c.env.tipForce = Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0);
+  try {
+    c.relax();
+    FAIL("no error");
+  } catch (const RelaxError& e) {
+    CHECK(std::string(e.what()).find("diverged at sub-step 1: force on node 20 is not finite") != std::string::npos);
+  }
+}
+
+TEST_CASE("physical masses with viscous damping reach the same equilibrium as scaled masses with FIRE") {
+  Cantilever a(20), b(20);
+  for (Cantilever* c : {&a, &b}) {
+    c->env.tipForce = Vec3(-0.5 * c->B1() / (c->L * c->L), 0, 0);
+    c->opt.forceTol = 1e-7;
+  }
+  b.opt.mass = MassModel::Physical;
+  a.relax();
+  const RelaxResult rb = b.relax();
+  CHECK(rb.dt < 1e-6);  // the physical stability limit (~1e-7 s here)
+  CHECK((a.tip() - b.tip()).norm() < 1e-6 * a.L);
+}

@@ -1,0 +1,97 @@
+// scene files: every bad input is an error naming the file, line and key (src/io/scene_load.cpp)
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "rootsim/scene.hpp"
+#include "rootsim/theory.hpp"
+
+using namespace rootsim;
+
+namespace {
+std::string errorOf(const std::string& text, const std::vector<std::string>& sets = {}) {
+  try {
+    parseScene(text, "scenes/t.toml", sets);
+  } catch (const SceneError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+}  // namespace
+
+TEST_CASE("defaults are the paper's values (MODEL.md section 2)") {
+  const Scene s = parseScene("", "scenes/empty.toml");
+  CHECK(s.model.rod.radius == doctest::Approx(1e-4));
+  CHECK(s.model.initial.length == doctest::Approx(1.1e-3));
+  CHECK(s.model.rod.youngs == doctest::Approx(50e6));
+  CHECK(s.model.growth.rate == doctest::Approx(0.2 / 3600));
+  CHECK(s.model.growth.zoneLength == doctest::Approx(1e-3));
+  CHECK(s.model.tropism.beta == doctest::Approx(0.1));
+  CHECK(s.model.env.plane.k == doctest::Approx(1000));  // deliberate deviation, see scene_schema.cpp
+  CHECK(s.model.env.plane.c == doctest::Approx(0.01));
+  CHECK(s.model.env.kAdhesion == doctest::Approx(1000));
+  CHECK(s.model.name == "empty");
+}
+
+TEST_CASE("the resolved scene round-trips to the same model") {
+  const Scene a = parseScene("[tropism]\nbeta = 0.3\nsensing = \"apical\"\n[plane]\nalpha_deg = 12.5\n", "a.toml");
+  const Scene b = parseScene(a.resolvedToml, "a.toml");
+  CHECK(b.resolvedToml == a.resolvedToml);
+  CHECK(b.model.tropism.sensing == Sensing::Apical);
+  CHECK(b.model.env.plane.alpha == doctest::Approx(12.5 * std::numbers::pi / 180));
+}
+
+TEST_CASE("scene errors name file, line and key") {
+  CHECK(errorOf("[tropism]\nbeta = 0.1\nbta = 0.2\n").find("scenes/t.toml:3: unknown key tropism.bta (did you mean tropism.beta?)") != std::string::npos);
+  CHECK(errorOf("[tropsim]\nbeta = 0.1\n").find("scenes/t.toml:1: unknown section [tropsim] (did you mean [tropism]?)") != std::string::npos);
+  CHECK(errorOf("beta = 0.2\n").find("did you mean tropism.beta?") != std::string::npos);
+  CHECK(errorOf("[root]\nradius_mm = \"thin\"\n").find("scenes/t.toml:2: root.radius_mm must be a number (got the string \"thin\")") != std::string::npos);
+  CHECK(errorOf("[root]\nradius_mm = -0.1\n").find("scenes/t.toml:2: root.radius_mm must be > 0 (got -0.1)") != std::string::npos);
+  CHECK(errorOf("[plane]\n\nalpha_deg = nan\n").find("scenes/t.toml:3: plane.alpha_deg must be finite") != std::string::npos);
+  CHECK(errorOf("[plane]\nalpha_deg = 95\n").find("plane.alpha_deg must be in [0, 90] (got 95)") != std::string::npos);
+  CHECK(errorOf("[growth]\nsteps = 1.5\n").find("scenes/t.toml:2: growth.steps must be an integer (got the number 1.5)") != std::string::npos);
+  CHECK(errorOf("[tropism]\nsensing = \"global\"\n").find("tropism.sensing must be one of \"local\", \"apical\" (got \"global\")") != std::string::npos);
+  CHECK(errorOf("[load]\ntip_force_n = [1, 2]\n").find("load.tip_force_n must be an array of 3 numbers") != std::string::npos);
+  CHECK(errorOf("[load]\ntip_force_n = [1, 2, inf]\n").find("load.tip_force_n must have finite components") != std::string::npos);
+  CHECK(errorOf("[root\nradius_mm = 1\n").find("scenes/t.toml:1: TOML syntax error") != std::string::npos);
+  CHECK(errorOf("[root]\nelement_length_mm = 0.2\n").find("scenes/t.toml:2: root.element_length_mm must give at least 10 elements in the growth zone") != std::string::npos);
+  CHECK(errorOf("[load]\ntip_force_n = [0, 0, 1e-5]\n").find("load.tip_force_n and load.tip_torque_nm apply to mechanics-only scenes") != std::string::npos);
+}
+
+TEST_CASE("--set overrides, and their errors name the flag") {
+  const Scene s = parseScene("", "t.toml", {"tropism.beta=0.5", "tropism.sensing=apical", "load.tip_force_n=[0,0,1]", "growth.enabled=false"});
+  CHECK(s.model.tropism.beta == doctest::Approx(0.5));
+  CHECK(s.model.tropism.sensing == Sensing::Apical);
+  CHECK(s.model.env.tipForce.z() == doctest::Approx(1.0));
+  CHECK(errorOf("", {"tropism.bta=0.5"}).find("--set tropism.bta=0.5: unknown key tropism.bta (did you mean tropism.beta?)") != std::string::npos);
+  CHECK(errorOf("", {"tropism.beta=abc"}).find("--set tropism.beta=abc: tropism.beta must be a number (got \"abc\")") != std::string::npos);
+  CHECK(errorOf("", {"tropism.beta=-1"}).find("--set tropism.beta=-1: tropism.beta must be >= 0 (got -1)") != std::string::npos);
+  CHECK(errorOf("", {"beta=1"}).find("expected section.key=value") != std::string::npos);
+}
+
+TEST_CASE("missing and unreadable files") {
+  try {
+    loadScene("/nonexistent/scene.toml");
+    FAIL("no error");
+  } catch (const SceneError& e) {
+    CHECK(std::string(e.what()).find("/nonexistent/scene.toml: no such scene file") != std::string::npos);
+  }
+}
+
+TEST_CASE("theory: worked values of MODEL.md section 9") {
+  auto at = [](double gain) {
+    Model m;
+    m.tropism.beta = gain * m.rod.radius / m.growth.zoneLength;
+    return theoryFor(m);
+  };
+  const double deg = 180 / std::numbers::pi;
+  const Theory a = at(0.5), b = at(1.0);
+  CHECK(a.alphaStraightToWave * deg == doctest::Approx(15.6).epsilon(0.005));
+  CHECK(a.alphaWaveToCoil * deg == doctest::Approx(45.0).epsilon(0.005));
+  CHECK(a.T0 / 3600 == doctest::Approx(11.9).epsilon(0.005));
+  CHECK(b.alphaStraightToWave * deg == doctest::Approx(11.8).epsilon(0.005));
+  CHECK(b.alphaWaveToCoil * deg == doctest::Approx(47.6).epsilon(0.005));
+  CHECK(b.T0 / 3600 == doctest::Approx(7.85).epsilon(0.005));
+}

@@ -147,3 +147,34 @@ TEST_CASE("intrinsic twist skews the root; -tau mirrors it (Fig. 4A)") {
   // large omega T0: sin<theta> -> tan(alpha) (Eq. 15) within 25 %
   CHECK(std::sin(skewPlus) == doctest::Approx(std::tan(30 * deg)).epsilon(0.25));
 }
+
+TEST_CASE("free organ (Fig. 2C): the tip overshoots vertical and its oscillation decays") {
+  Model m = coarse(40, 0.2, 300);
+  m.env.plane.enabled = false;
+  m.env.adhesion = false;
+  Simulation sim(m);
+  std::vector<double> th{sim.last().thetaTip};
+  for (int i = 0; i < m.growth.steps; ++i) th.push_back(sim.growthStep().thetaTip);
+  CHECK(th.front() == doctest::Approx(-40 * deg).epsilon(1e-6));
+  // successive extrema (the largest |theta| between crossings of the vertical) shrink
+  std::vector<double> ext;
+  for (size_t i = 1; i < th.size(); ++i) {
+    if (th[i] * th[i - 1] < 0) ext.push_back(th[i]);  // a crossing starts a new lobe
+    else if (!ext.empty() && std::abs(th[i]) > std::abs(ext.back())) ext.back() = th[i];
+  }
+  if (!ext.empty()) ext.pop_back();  // the last lobe may still be growing
+  INFO("extrema (deg): " << (ext.size() > 0 ? ext[0] / deg : 0) << ", " << (ext.size() > 1 ? ext[1] / deg : 0)
+                         << ", " << (ext.size() > 2 ? ext[2] / deg : 0));
+  REQUIRE(ext.size() >= 3);
+  CHECK(ext[0] > 0);
+  CHECK(ext[1] < 0);
+  CHECK(std::abs(ext[1]) < std::abs(ext[0]));
+  CHECK(std::abs(ext[2]) < std::abs(ext[1]));
+  // first crossing of the vertical within a factor 2 of the turning time T0 (Eq. 7)
+  size_t k = 0;
+  while (k < th.size() && th[k] < 0) ++k;
+  const double tCross = k * m.growth.stepTime;
+  const double T0 = theoryFor(m).T0;
+  CHECK(tCross > 0.5 * T0);
+  CHECK(tCross < 2.0 * T0);
+}

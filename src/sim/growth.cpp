@@ -174,7 +174,13 @@ double planarAngle(const Plane& plane, const Vec3& t) {
 
 double tipAngle(const Model& m, const RodState& s) {
   const int n = s.elements();
-  return planarAngle(m.env.plane, s.x.col(n) - s.x.col(n - 1));
+  const Vec3 t = (s.x.col(n) - s.x.col(n - 1)).normalized();
+  if (!m.env.plane.enabled) {
+    // free organ (Fig. 2C): angle from gravity in the vertical plane of motion, about +x
+    const Vec3 g(0.0, 0.0, -1.0);
+    return std::atan2(g.cross(t).x(), t.dot(g));
+  }
+  return planarAngle(m.env.plane, t);
 }
 
 }  // namespace rootsim

@@ -8,12 +8,14 @@
 #include <filesystem>
 #include <iostream>
 #include <numbers>
+#include <tuple>
 
 #include "rootsim/errors.hpp"
 #include "rootsim/outputs.hpp"
 #include "rootsim/run_dir.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/simulation.hpp"
+#include "rootsim/sweep.hpp"
 #include "rootsim/theory.hpp"
 #include "rootsim/version.hpp"
 
@@ -31,7 +33,7 @@ double now() {
 }
 constexpr double kDeg = 180.0 / std::numbers::pi;
 
-SceneInfo sceneInfo(const Model& m) {
+[[maybe_unused]] SceneInfo sceneInfo(const Model& m) {
   SceneInfo si;
   si.alphaDeg = m.env.plane.alpha * kDeg;
   si.beta = m.tropism.beta;
@@ -43,36 +45,6 @@ SceneInfo sceneInfo(const Model& m) {
   return si;
 }
 
-Json summaryJson(const Scene& sc, const Simulation& sim, double wall, long maxSub) {
-  const Model& m = sc.model;
-  const StepRecord& r = sim.last();
-  Json j;
-  j.str("rootsim_version", kVersion).str("scene", m.name).str("status", "complete");
-  j.integer("steps", sim.step()).num("time_h", r.timeH).num("length_mm", r.length * 1e3);
-  j.integer("elements", r.elements).integer("total_substeps", sim.totalSubsteps());
-  j.integer("max_substeps_per_step", maxSub);
-  j.num("theta_tip_deg", r.thetaTip * kDeg);
-  Json tip;
-  tip.num("x_mm", r.tip.x() * 1e3).num("y_mm", r.tip.y() * 1e3).num("z_mm", r.tip.z() * 1e3);
-  j.object("tip", tip);
-  if (m.growth.enabled) {
-    const ShapeAnalysis a = analyseShape(m, sim.state());
-    j.str("pattern", a.pattern)
-        .num("wavelength_mm", a.peaks >= 3 ? a.wavelength * 1e3 : NAN)
-        .num("amplitude_mm", a.peaks >= 2 ? a.amplitude * 1e3 : NAN)
-        .integer("lateral_peaks", a.peaks)
-        .num("skew_deg", a.skew * kDeg)
-        .num("max_kappa_per_mm", a.maxKappa / 1e3)
-        .num("theta_min_deg", a.thetaMin * kDeg)
-        .num("theta_max_deg", a.thetaMax * kDeg);
-    j.object("theory", theoryJson(theoryFor(m)));
-  } else {
-    const StepRecord& s = sim.last();
-    j.num("residual_force_n", s.residualForce);
-  }
-  j.num("wall_time_s", wall);
-  return j;
-}
 }  // namespace
 
 Progress::Progress(int total, bool quiet, std::string what)
@@ -102,65 +74,45 @@ void Progress::finish(const std::string& detail) {
 }
 
 int runCommand(const RunOptions& o) {
+  // validate first so a bad scene exits 2 before anything is written
   const Scene sc = loadScene(o.scene, o.sets);
-  const Model& m = sc.model;
-  const fs::path out = o.out.empty() ? fs::path("runs") / m.name : fs::path(o.out);
+  const fs::path out = o.out.empty() ? fs::path("runs") / sc.model.name : fs::path(o.out);
 #ifndef ROOTSIM_HAVE_RENDER
   if (o.movie) throw SceneError("--movie: this rootsim was built without the renderer (ROOTSIM_BUILD_RENDER=OFF)");
 #endif
-  RunDir rd(out);
-  try {
-    rd.write("scene.toml", sc.resolvedToml);
-    const double t0 = now();
-    Simulation sim(m);
-    const fs::path w = rd.work();
-    TimeseriesWriter ts(w / "timeseries.csv");
-    std::unique_ptr<TrajectoryWriter> tr;
-    std::unique_ptr<VtkSeriesWriter> vtk;
-    if (m.output.trajectory) tr = std::make_unique<TrajectoryWriter>(w / "trajectory.csv");
-    if (m.output.vtk) vtk = std::make_unique<VtkSeriesWriter>(w);
-    auto record = [&]() {
-      ts.add(sim.last());
-      if (tr || vtk) {
-        const Snapshot sn = sim.snapshot();
-        if (tr) tr->add(sn);
-        if (vtk) vtk->add(sn);
-      }
-    };
-    record();
-    long maxSub = sim.last().substeps;
-    const int steps = m.growth.enabled ? m.growth.steps : 0;
-    Progress pr(steps, o.quiet || steps == 0, m.name);
-    for (int k = 1; k <= steps; ++k) {
-      const StepRecord& r = sim.growthStep();
-      maxSub = std::max(maxSub, r.substeps);
-      if (k % m.output.everySteps == 0 || k == steps) record();
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "step %d/%d  t=%.1f h  L=%.2f mm  theta_tip=%.0f deg  %ld sub-steps", k, steps,
-                    r.timeH, r.length * 1e3, r.thetaTip * kDeg, r.substeps);
-      pr.update(k, buf);
-    }
-    ts.close();
-    if (tr) tr->close();
-    if (vtk) vtk->close();
-    rd.write("shape.csv", shapeCsv(m, sim.state(), sim.strains()));
-    const double wall = now() - t0;
-    rd.write("summary.json", summaryJson(sc, sim, wall, maxSub).dump() + "\n");
-    if (steps > 0) {
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "%d steps, %ld sub-steps", steps, sim.totalSubsteps());
-      pr.finish(buf);
-    }
+  const int steps = sc.model.growth.enabled ? sc.model.growth.steps : 0;
+  Progress pr(steps, o.quiet || steps == 0, sc.model.name);
+  runSceneToDir(o.scene, o.sets, out.string(), [&](const StepRecord& r, int n) {
+    char buf[160];
+    std::snprintf(buf, sizeof buf, "step %d/%d  t=%.1f h  L=%.2f mm  theta_tip=%.0f deg  %ld sub-steps", r.step, n,
+                  r.timeH, r.length * 1e3, r.thetaTip * kDeg, r.substeps);
+    pr.update(r.step, buf);
+  });
+  if (steps > 0) pr.finish(std::to_string(steps) + " steps");
 #ifdef ROOTSIM_HAVE_RENDER
-    if (o.movie) renderRunMovie(w, sceneInfo(m), o.quiet);
+  if (o.movie) renderRunMovie(out, sceneInfo(sc.model), o.quiet);
 #endif
-    rd.commit();
-  } catch (const std::exception& e) {
-    rd.fail(e.what());
-    throw;
-  }
   if (!o.quiet) std::fprintf(stderr, "wrote %s\n", out.string().c_str());
   return 0;
+}
+
+int sweepCommand(const SweepCliOptions& o) {
+  const SweepPlan plan = loadSweep(o.sweep);
+  SweepOptions so;
+  so.jobs = o.jobs;
+  if (!o.shard.empty()) std::tie(so.shard, so.shards) = parseShard(o.shard);
+  so.out = o.out.empty() ? (fs::path("runs") / fs::path(o.sweep).stem()).string() : o.out;
+  so.quiet = o.quiet;
+  if (!o.quiet)
+    std::fprintf(stderr, "sweep %s: %zu points, shard %d/%d, %d jobs -> %s\n", o.sweep.c_str(), plan.points.size(),
+                 so.shard, so.shards, so.jobs, so.out.c_str());
+  const SweepResult r = runSweep(plan, so, [&](const std::string& line) {
+    if (!o.quiet) std::fprintf(stderr, "%s\n", line.c_str());
+  });
+  if (!o.quiet)
+    std::fprintf(stderr, "sweep done: %d ran, %d already complete, %d failed; table: %s/table.csv\n", r.ran,
+                 r.skipped, r.failed, so.out.c_str());
+  return r.failed > 0 ? 1 : 0;
 }
 
 int checkCommand(const CheckOptions& o) {

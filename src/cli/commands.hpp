@@ -33,6 +33,15 @@ struct RenderOptions {
 };
 int renderCommand(const RenderOptions& o);
 
+struct SweepCliOptions {
+  std::string sweep;
+  int jobs = 1;
+  std::string shard;      // "K/N"
+  std::string out;        // default runs/<sweep name>
+  bool quiet = false;
+};
+int sweepCommand(const SweepCliOptions& o);
+
 // progress on stderr: a redrawn bar on a terminal, one line per percent otherwise
 class Progress {
  public:

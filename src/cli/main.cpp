@@ -42,6 +42,14 @@ int main(int argc, char** argv) {
   cRender->add_option("--crf", render.crf, "H.264 quality, 0 (lossless) .. 51")->check(CLI::Range(0, 51));
   cRender->add_flag("--quiet", render.quiet, "no progress output");
 
+  cli::SweepCliOptions sweep;
+  CLI::App* cSweep = app.add_subcommand("sweep", "run a grid of scenes (resumable, shardable); writes table.csv");
+  cSweep->add_option("sweep", sweep.sweep, "sweep file (TOML: [sweep] scene, [grid], [set])")->required();
+  cSweep->add_option("-j,--jobs", sweep.jobs, "parallel runs")->check(CLI::Range(1, 1024));
+  cSweep->add_option("--shard", sweep.shard, "K/N: run only points with index % N == K-1 (for clusters)");
+  cSweep->add_option("--out", sweep.out, "sweep folder (default: runs/<sweep name>)");
+  cSweep->add_flag("--quiet", sweep.quiet, "no progress output");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -52,6 +60,7 @@ int main(int argc, char** argv) {
     if (cRun->parsed()) return cli::runCommand(run);
     if (cCheck->parsed()) return cli::checkCommand(check);
     if (cRender->parsed()) return cli::renderCommand(render);
+    if (cSweep->parsed()) return cli::sweepCommand(sweep);
   } catch (const SceneError& e) {
     std::fprintf(stderr, "rootsim: error: %s\n", e.what());
     return 2;

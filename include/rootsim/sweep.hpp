@@ -1,0 +1,64 @@
+#pragma once
+// Parameter sweeps (SPEC.md `rootsim sweep`): a base scene, a grid of overrides, one run directory per
+// grid point, resumable (completed runs are skipped), shardable (--shard K/N runs every N-th point),
+// and a table of results (table.csv) built from every completed run.
+//
+// Sweep file:
+//   [sweep]
+//   scene = "fig2a_alpha40.toml"      # base scene, relative to the sweep file
+//   [grid]                             # every combination of these (row-major, first key slowest)
+//   "plane.alpha_deg" = [0, 20, 40]
+//   "tropism.beta" = [0.1, 0.2]
+//   [set]                              # fixed overrides for every point
+//   "growth.steps" = 600
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "rootsim/simulation.hpp"
+
+namespace rootsim {
+
+struct SweepPoint {
+  int index = 0;
+  std::vector<std::string> overrides;          // "section.key=value", grid then fixed
+  std::vector<std::pair<std::string, std::string>> grid;  // grid key, value text
+  std::string dirName;                          // run directory name inside the sweep folder
+};
+
+struct SweepPlan {
+  std::string scenePath;                        // base scene
+  std::vector<std::string> gridKeys;
+  std::vector<SweepPoint> points;
+};
+
+// parses and validates the sweep file (each point's scene is validated too); throws SceneError
+SweepPlan loadSweep(const std::string& path);
+
+struct SweepOptions {
+  int jobs = 1;                 // worker threads
+  int shard = 1, shards = 1;    // run points with index % shards == shard - 1
+  std::string out;              // sweep folder
+  bool quiet = false;
+};
+
+struct SweepResult {
+  int ran = 0, skipped = 0, failed = 0;
+};
+
+// runs the plan; progress and failures are reported through log (one line each); writes table.csv
+SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
+                     const std::function<void(const std::string&)>& log);
+
+// "K/N" -> (K, N); throws SceneError
+std::pair<int, int> parseShard(const std::string& text);
+
+// runs one scene into a run directory (what `rootsim run` does, without a movie); returns wall time
+double runSceneToDir(const std::string& scenePath, const std::vector<std::string>& overrides,
+                     const std::string& outDir,
+                     const std::function<void(const StepRecord&, int total)>& progress);
+
+// rebuilds table.csv of a sweep folder from the summary.json of every completed run
+void writeSweepTable(const SweepPlan& plan, const std::string& out);
+
+}  // namespace rootsim

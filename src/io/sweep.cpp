@@ -1,0 +1,202 @@
+#include "rootsim/sweep.hpp"
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include <toml++/toml.h>
+
+#include "rootsim/errors.hpp"
+#include "rootsim/run_dir.hpp"
+#include "rootsim/scene.hpp"
+
+namespace fs = std::filesystem;
+
+namespace rootsim {
+
+namespace {
+std::string where(const std::string& path, const toml::source_region& r) {
+  return path + ":" + std::to_string(r.begin.line);
+}
+// TOML text of a scalar value, as --set takes it
+std::string valueText(const toml::node& n, const std::string& loc) {
+  if (n.is_string()) return *n.value<std::string>();
+  if (n.is_integer()) return std::to_string(*n.value<int64_t>());
+  if (n.is_boolean()) return *n.value<bool>() ? "true" : "false";
+  if (n.is_floating_point()) {
+    std::ostringstream os;
+    os.precision(17);
+    os << *n.value<double>();
+    std::string s = os.str();
+    if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
+    return s;
+  }
+  if (n.is_array()) {
+    std::string s = "[";
+    const auto& a = *n.as_array();
+    for (size_t i = 0; i < a.size(); ++i) s += (i ? "," : "") + valueText(*a.get(i), loc);
+    return s + "]";
+  }
+  throw SceneError(loc + ": expected a number, string, boolean or array");
+}
+// a file-name-safe rendering of "key=value"
+std::string slug(const std::string& key, const std::string& val) {
+  std::string k = key.substr(key.find('.') + 1), s;
+  for (char c : k + "=" + val) s += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '=') ? c : '_';
+  return s;
+}
+}  // namespace
+
+std::pair<int, int> parseShard(const std::string& text) {
+  int k = 0, n = 0;
+  char slash = 0;
+  std::istringstream is(text);
+  if (!(is >> k >> slash >> n) || slash != '/' || !is.eof() || n < 1 || k < 1 || k > n)
+    throw SceneError("--shard " + text + ": expected K/N with 1 <= K <= N (e.g. 2/8)");
+  return {k, n};
+}
+
+SweepPlan loadSweep(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) throw SceneError(path + ": no such sweep file");
+  toml::table root;
+  try {
+    root = toml::parse_file(path);
+  } catch (const toml::parse_error& e) {
+    throw SceneError(path + ":" + std::to_string(e.source().begin.line) + ": TOML syntax error: " +
+                     std::string(e.description()));
+  }
+  for (auto&& [k, node] : root) {
+    const std::string key(k.str());
+    if (key != "sweep" && key != "grid" && key != "set")
+      throw SceneError(where(path, k.source()) + ": unknown section [" + key + "] (expected [sweep], [grid], [set])");
+  }
+  SweepPlan plan;
+  const toml::table* sw = root["sweep"].as_table();
+  if (!sw || !sw->get("scene") || !sw->get("scene")->is_string())
+    throw SceneError(path + ": [sweep] needs scene = \"base scene file\"");
+  for (auto&& [k, node] : *sw)
+    if (k.str() != "scene") throw SceneError(where(path, k.source()) + ": unknown key sweep." + std::string(k.str()));
+  const fs::path base = fs::path(path).parent_path() / *sw->get("scene")->value<std::string>();
+  plan.scenePath = base.string();
+  std::vector<std::string> fixed;
+  if (const toml::table* st = root["set"].as_table())
+    for (auto&& [k, node] : *st) fixed.push_back(std::string(k.str()) + "=" + valueText(node, where(path, k.source())));
+  std::vector<std::vector<std::string>> values;
+  std::vector<std::string> locs;
+  if (const toml::table* gt = root["grid"].as_table())
+    for (auto&& [k, node] : *gt) {
+      const std::string loc = where(path, k.source());
+      const toml::array* a = node.as_array();
+      if (!a || a->empty()) throw SceneError(loc + ": grid." + std::string(k.str()) + " must be a non-empty array");
+      plan.gridKeys.emplace_back(k.str());
+      locs.push_back(loc);
+      values.emplace_back();
+      for (const auto& v : *a) values.back().push_back(valueText(v, loc));
+    }
+  // every combination, first key slowest
+  size_t total = 1;
+  for (const auto& v : values) total *= v.size();
+  for (size_t i = 0; i < total; ++i) {
+    SweepPoint p;
+    p.index = static_cast<int>(i);
+    size_t rem = i;
+    std::vector<size_t> idx(values.size());
+    for (size_t d = values.size(); d-- > 0;) {
+      idx[d] = rem % values[d].size();
+      rem /= values[d].size();
+    }
+    char num[32];
+    std::snprintf(num, sizeof num, "%04zu", i);
+    p.dirName = std::string("run_") + num;
+    for (size_t d = 0; d < values.size(); ++d) {
+      p.grid.emplace_back(plan.gridKeys[d], values[d][idx[d]]);
+      p.overrides.push_back(plan.gridKeys[d] + "=" + values[d][idx[d]]);
+      p.dirName += "_" + slug(plan.gridKeys[d], values[d][idx[d]]);
+    }
+    p.overrides.insert(p.overrides.end(), fixed.begin(), fixed.end());
+    // validate now: a typo in the grid fails before any run starts
+    try {
+      loadScene(plan.scenePath, p.overrides);
+    } catch (const SceneError& e) {
+      throw SceneError(path + ": point " + std::to_string(i) + ": " + e.what());
+    }
+    plan.points.push_back(std::move(p));
+  }
+  return plan;
+}
+
+void writeSweepTable(const SweepPlan& plan, const std::string& out) {
+  std::string header, body;
+  for (const auto& p : plan.points) {
+    std::ifstream in(fs::path(out) / p.dirName / "result.csv");
+    std::string h, r;
+    if (!in || !std::getline(in, h) || !std::getline(in, r)) continue;
+    std::string prefix = std::to_string(p.index) + "," + p.dirName;
+    for (const auto& [k, v] : p.grid) prefix += ",\"" + v + "\"";
+    if (header.empty()) {
+      header = "index,run";
+      for (const auto& k : plan.gridKeys) header += ",grid:" + k;
+      header += "," + h;
+    }
+    body += prefix + "," + r + "\n";
+  }
+  if (!header.empty()) writeFileAtomic(fs::path(out) / "table.csv", header + "\n" + body);
+}
+
+SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
+                     const std::function<void(const std::string&)>& log) {
+  std::error_code ec;
+  fs::create_directories(opt.out, ec);
+  if (ec) throw SceneError("--out " + opt.out + ": cannot create: " + ec.message());
+  std::vector<const SweepPoint*> todo;
+  SweepResult res;
+  for (const auto& p : plan.points) {
+    if (p.index % opt.shards != opt.shard - 1) continue;
+    if (fs::exists(fs::path(opt.out) / p.dirName / "result.csv")) {
+      ++res.skipped;  // resumable: completed earlier
+      continue;
+    }
+    todo.push_back(&p);
+  }
+  std::mutex mu;
+  std::atomic<size_t> next{0};
+  auto worker = [&]() {
+    for (;;) {
+      const size_t i = next++;
+      if (i >= todo.size()) return;
+      const SweepPoint& p = *todo[i];
+      std::string msg;
+      bool ok = true;
+      double wall = 0;
+      try {
+        wall = runSceneToDir(plan.scenePath, p.overrides, (fs::path(opt.out) / p.dirName).string(), nullptr);
+      } catch (const std::exception& e) {
+        ok = false;
+        msg = e.what();
+      }
+      std::lock_guard<std::mutex> lock(mu);
+      if (ok) {
+        ++res.ran;
+        char b[64];
+        std::snprintf(b, sizeof b, " (%.1f s)", wall);
+        msg = p.dirName + ": done" + b;
+      } else {
+        ++res.failed;
+        msg = p.dirName + ": FAILED: " + msg;
+      }
+      if (log) log("[" + std::to_string(res.ran + res.failed) + "/" + std::to_string(todo.size()) + "] " + msg);
+    }
+  };
+  std::vector<std::thread> pool;
+  const int jobs = std::max(1, std::min<int>(opt.jobs, static_cast<int>(todo.size())));
+  for (int j = 0; j < jobs; ++j) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
+  writeSweepTable(plan, opt.out);
+  return res;
+}
+
+}  // namespace rootsim

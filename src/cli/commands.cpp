@@ -11,6 +11,7 @@
 #include <tuple>
 
 #include "rootsim/errors.hpp"
+#include "rootsim/figure.hpp"
 #include "rootsim/outputs.hpp"
 #include "rootsim/run_dir.hpp"
 #include "rootsim/scene.hpp"
@@ -113,6 +114,18 @@ int sweepCommand(const SweepCliOptions& o) {
     std::fprintf(stderr, "sweep done: %d ran, %d already complete, %d failed; table: %s/table.csv\n", r.ran,
                  r.skipped, r.failed, so.out.c_str());
   return r.failed > 0 ? 1 : 0;
+}
+
+int figureCommand(const FigureCliOptions& o) {
+  FigureOptions fo;
+  fo.quick = o.quick;
+  fo.out = o.out;
+  fo.jobs = o.jobs;
+  fo.quiet = o.quiet;
+  const double t0 = now();
+  makeFigure(o.name, fo, [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
+  if (!o.quiet) std::fprintf(stderr, "figure %s: done in %.1f s -> %s\n", o.name.c_str(), now() - t0, o.out.c_str());
+  return 0;
 }
 
 int checkCommand(const CheckOptions& o) {

@@ -42,6 +42,15 @@ struct SweepCliOptions {
 };
 int sweepCommand(const SweepCliOptions& o);
 
+struct FigureCliOptions {
+  std::string name;
+  bool quick = false;
+  std::string out = "figures";
+  int jobs = 2;
+  bool quiet = false;
+};
+int figureCommand(const FigureCliOptions& o);
+
 // progress on stderr: a redrawn bar on a terminal, one line per percent otherwise
 class Progress {
  public:

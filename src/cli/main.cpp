@@ -50,6 +50,14 @@ int main(int argc, char** argv) {
   cSweep->add_option("--out", sweep.out, "sweep folder (default: runs/<sweep name>)");
   cSweep->add_flag("--quiet", sweep.quiet, "no progress output");
 
+  cli::FigureCliOptions figure;
+  CLI::App* cFigure = app.add_subcommand("figure", "make the paper's figure panels (PNG + SVG) and report.md");
+  cFigure->add_option("name", figure.name, "fig2a fig2b fig2cde fig3a fig3b fig3d fig4a fig4g, or all")->required();
+  cFigure->add_flag("--quick", figure.quick, "coarsened runs (for CI)");
+  cFigure->add_option("--out", figure.out, "output folder (default: figures)");
+  cFigure->add_option("-j,--jobs", figure.jobs, "parallel simulations")->check(CLI::Range(1, 1024));
+  cFigure->add_flag("--quiet", figure.quiet, "no progress output");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -61,6 +69,7 @@ int main(int argc, char** argv) {
     if (cCheck->parsed()) return cli::checkCommand(check);
     if (cRender->parsed()) return cli::renderCommand(render);
     if (cSweep->parsed()) return cli::sweepCommand(sweep);
+    if (cFigure->parsed()) return cli::figureCommand(figure);
   } catch (const SceneError& e) {
     std::fprintf(stderr, "rootsim: error: %s\n", e.what());
     return 2;

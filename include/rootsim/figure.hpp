@@ -1,0 +1,26 @@
+#pragma once
+// The paper's figure panels (`rootsim figure NAME|all [--quick] [--out DIR]`): each panel runs the
+// simulations it needs (resumably, into DIR/runs/), then writes DIR/NAME.png and DIR/NAME.svg, and
+// `all` writes DIR/report.md with every panel and the measured-vs-theory tables.
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace rootsim {
+
+struct FigureOptions {
+  bool quick = false;   // coarsened runs (0.1 mm elements, 0.1 h steps, shorter growth): for CI
+  std::string out = "figures";
+  int jobs = 2;         // parallel simulations
+  bool quiet = false;
+};
+
+// fig2a, fig2b, fig2cde, fig3a, fig3b, fig3d, fig4a, fig4g
+const std::vector<std::string>& figureNames();
+
+// makes one panel (or "all" plus report.md); returns a markdown section describing it;
+// throws SceneError for an unknown name
+std::string makeFigure(const std::string& name, const FigureOptions& opt,
+                       const std::function<void(const std::string&)>& log);
+
+}  // namespace rootsim

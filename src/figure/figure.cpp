@@ -191,8 +191,8 @@ std::string fig2a(const Ctx& c) {
     ax.xlabel = r.at("pattern");
     ax.equalAspect = true;
     ax.autoX = false;
-    ax.xmin = -2.5;
-    ax.xmax = 2.5;
+    ax.xmin = -3.5;
+    ax.xmax = 3.5;
     ax.shapes.push_back(plateShape(c, cases[i], {0.3, 0.3, 0.32}));
     f.axes.push_back(ax);
     table += "| " + num(cases[i].alpha) + " | " + r.at("pattern") + " | " + r.at("wavelength_mm") + " | " +

@@ -22,29 +22,36 @@ const char* typeName(KeyType t) {
 
 namespace {
 constexpr double kInf = 1e300;
+KeySpec make(const char* sec, const char* key, KeyType type) {
+  KeySpec k;
+  k.section = sec;
+  k.key = key;
+  k.type = type;
+  return k;
+}
 KeySpec real(const char* sec, const char* key, double def, double lo, bool loOpen, double hi, bool hiOpen,
              const char* doc) {
-  KeySpec k{sec, key, KeyType::Real};
+  KeySpec k = make(sec, key, KeyType::Real);
   k.defNum = def; k.lo = lo; k.loOpen = loOpen; k.hi = hi; k.hiOpen = hiOpen; k.doc = doc;
   return k;
 }
 KeySpec integer(const char* sec, const char* key, double def, double lo, double hi, const char* doc) {
-  KeySpec k{sec, key, KeyType::Integer};
+  KeySpec k = make(sec, key, KeyType::Integer);
   k.defNum = def; k.lo = lo; k.hi = hi; k.doc = doc;
   return k;
 }
 KeySpec boolean(const char* sec, const char* key, bool def, const char* doc) {
-  KeySpec k{sec, key, KeyType::Boolean};
+  KeySpec k = make(sec, key, KeyType::Boolean);
   k.defBool = def; k.doc = doc;
   return k;
 }
 KeySpec choice(const char* sec, const char* key, std::vector<std::string> choices, const char* doc) {
-  KeySpec k{sec, key, KeyType::String};
+  KeySpec k = make(sec, key, KeyType::String);
   k.defStr = choices.front(); k.choices = std::move(choices); k.doc = doc;
   return k;
 }
 KeySpec vec3(const char* sec, const char* key, const char* doc) {
-  KeySpec k{sec, key, KeyType::Vector3};
+  KeySpec k = make(sec, key, KeyType::Vector3);
   k.doc = doc;
   return k;
 }

@@ -14,7 +14,7 @@ const char* typeName(KeyType t);
 
 struct KeySpec {
   std::string section, key;
-  KeyType type;
+  KeyType type = KeyType::Real;
   double defNum = 0;                     // Real / Integer default
   bool defBool = false;
   std::string defStr;

@@ -24,12 +24,12 @@ std::pair<double, double> cosSin(double a) {
 }  // namespace
 
 Vec3 Plane::normal() const {
-  const auto [c, s] = cosSin(alpha);
-  return Vec3(0.0, -c, s);
+  const auto [ca, sa] = cosSin(alpha);
+  return Vec3(0.0, -ca, sa);
 }
 Vec3 Plane::downhill() const {
-  const auto [c, s] = cosSin(alpha);
-  return Vec3(0.0, -s, -c);
+  const auto [ca, sa] = cosSin(alpha);
+  return Vec3(0.0, -sa, -ca);
 }
 
 ClampCouple clampCouple(const RodParams& p, const Environment& env, const RodState& s, double e0) {

@@ -67,15 +67,17 @@ void computeStrains(const RodParams& p, const RodState& s, RodStrains& k) {
   const Vec3 Sd = p.shearStiffness();
   const Vec3 Bd = p.bendStiffness();
   // elements: length, dilatation, tangent, shear strain, internal force (Eq. 24, S -> S/e)
+  // (reciprocals instead of repeated divisions: this loop is most of a relaxation sub-step)
   for (int i = 0; i < n; ++i) {
     const Vec3 dx = s.x.col(i + 1) - s.x.col(i);
     const double l = dx.norm();
+    const double il = 1.0 / l;
     const double e = l / s.l0[i];
-    const Vec3 t = dx / l;
+    const Vec3 t = dx * il;
     const Mat3& Q = s.Q[static_cast<size_t>(i)];
     Vec3 sigma = e * (Q * t);
     sigma.z() -= 1.0;
-    const Vec3 nm = Sd.cwiseProduct(sigma) / e;
+    const Vec3 nm = Sd.cwiseProduct(sigma) * (s.l0[i] * il);  // S sigma / e
     k.l[i] = l;
     k.e[i] = e;
     k.t.col(i) = t;
@@ -88,12 +90,14 @@ void computeStrains(const RodParams& p, const RodState& s, RodStrains& k) {
   // components. Couple (Eq. 25) with the rescaling B -> B/e^2, kappa -> kappa/e.
   for (int j = 0; j + 1 < n; ++j) {
     const double D0 = 0.5 * (s.l0[j] + s.l0[j + 1]);
-    const double ev = 0.5 * (k.l[j] + k.l[j + 1]) / D0;
-    const Vec3 kap = relativeRotation(s.Q[static_cast<size_t>(j)], s.Q[static_cast<size_t>(j + 1)]) / D0;
+    const double iD0 = 1.0 / D0;
+    const double ev = 0.5 * (k.l[j] + k.l[j + 1]) * iD0;
+    const double iev = 1.0 / ev;
+    const Vec3 kap = relativeRotation(s.Q[static_cast<size_t>(j)], s.Q[static_cast<size_t>(j + 1)]) * iD0;
     k.D0[j] = D0;
     k.ev[j] = ev;
     k.kappa.col(j) = kap;
-    k.m.col(j) = Bd.cwiseProduct(kap / ev - s.kappa0.col(j)) / (ev * ev);
+    k.m.col(j) = Bd.cwiseProduct(kap * iev - s.kappa0.col(j)) * (iev * iev);
   }
 }
 

@@ -127,3 +127,32 @@ TEST_CASE("check prints the resolved scene and the theory") {
   CHECK(r.out.find("beta = 0.2") != std::string::npos);
   CHECK(r.out.find("\"T0_h\": 5.18") != std::string::npos);
 }
+
+TEST_CASE("every shipped scene and sweep validates, and every scene runs coarsened") {
+  const fs::path src = ROOTSIM_SOURCE_DIR;
+  const fs::path d = scratch("scenes");
+  int n = 0;
+  for (const auto& e : fs::directory_iterator(src / "scenes")) {
+    if (e.path().extension() != ".toml") continue;
+    INFO(e.path().string());
+    CHECK(run("check " + e.path().string()).code == 0);
+    // coarsened: 20 growth steps of 0.1 h with 0.1 mm elements (mechanics scenes: as they are)
+    const std::string scene = slurp(e.path());
+    const bool grows = scene.find("[growth]\nenabled = false") == std::string::npos;
+    const std::string sets = grows ? " --set growth.steps=20 --set growth.step_h=0.1 --set root.element_length_mm=0.1"
+                                   : "";
+    const Result r = run("run " + e.path().string() + sets + " --quiet --set output.vtk=false --out " +
+                         (d / e.path().stem()).string());
+    CHECK(r.code == 0);
+    CHECK(fs::exists(d / e.path().stem() / "summary.json"));
+    ++n;
+  }
+  CHECK(n >= 10);
+  for (const auto& e : fs::directory_iterator(src / "sweeps")) {
+    INFO(e.path().string());
+    // --shard 1/1000 keeps at most one point: validates the whole grid, runs almost nothing
+    const Result r = run("sweep " + e.path().string() + " --shard 1000/1000 --quiet --out " +
+                         (d / ("sweep_" + e.path().stem().string())).string());
+    CHECK(r.code == 0);
+  }
+}

@@ -178,3 +178,40 @@ TEST_CASE("free organ (Fig. 2C): the tip overshoots vertical and its oscillation
   CHECK(tCross > 0.5 * T0);
   CHECK(tCross < 2.0 * T0);
 }
+
+TEST_CASE("apical sensing: a free horizontal root also bends its tip down") {
+  Model m = coarse(90, 0.2, 20);
+  m.env.plane.enabled = false;
+  m.env.adhesion = false;
+  m.tropism.gamma = 0.0;
+  m.tropism.sensing = Sensing::Apical;
+  Simulation sim(m);
+  for (int i = 0; i < 20; ++i) sim.growthStep();
+  const RodState& s = sim.state();
+  const Vec3 t = (s.x.col(s.elements()) - s.x.col(s.elements() - 1)).normalized();
+  CHECK(t.z() < -0.1);
+}
+
+TEST_CASE("circumnutation (Eq. 19) swings the free tip sideways with the nutation period") {
+  Model m = coarse(90, 0.0, 60);
+  m.env.plane.enabled = false;
+  m.env.adhesion = false;
+  m.tropism.cnGain = 0.05;
+  m.tropism.cnPeriod = 2.0 * 3600;  // 20 growth steps of 0.1 h
+  Simulation sim(m);
+  std::vector<double> lateral;
+  for (int i = 0; i < 60; ++i) {
+    sim.growthStep();
+    const RodState& s = sim.state();
+    lateral.push_back((s.x.col(s.elements()) - s.x.col(s.elements() - 1)).normalized().x());
+  }
+  int signChanges = 0;
+  for (size_t i = 1; i < lateral.size(); ++i) signChanges += lateral[i] * lateral[i - 1] < 0;
+  double amp = 0;
+  for (double v : lateral) amp = std::max(amp, std::abs(v));
+  INFO("sign changes " << signChanges << ", max lateral tangent component " << amp);
+  CHECK(amp > 0.01);
+  // 6 h of growth = 3 periods: about 6 sign changes of the lateral tip direction
+  CHECK(signChanges >= 4);
+  CHECK(signChanges <= 8);
+}

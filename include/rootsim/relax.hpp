@@ -26,6 +26,7 @@ struct SolverOptions {
   double speedTol = 1e-6;         // max node displacement per sub-step / R, and rotation per sub-step [rad]
   long maxSubsteps = 2000000;     // cap per relaxation; hitting it is an error
   double lengthScale = 0.0;       // Lref [m]; 0 means the rod's rest length
+  bool stabilityCheck = true;     // growth runs: check each equilibrium's stability, follow unstable modes
 };
 
 struct RelaxResult {

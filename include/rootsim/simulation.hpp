@@ -17,6 +17,7 @@ struct StepRecord {
   long substeps = 0;          // relaxation sub-steps of this step
   double residualForce = 0;   // at exit [N]
   int splits = 0;             // elements split in this step
+  int unstable = 0;           // unstable equilibria found (and left along their unstable mode) in this step
   Vec3 tip = Vec3::Zero();    // tip position, lab [m]
 };
 
@@ -38,7 +39,9 @@ class Simulation {
   Snapshot snapshot() const;
 
  private:
-  void observe(long substeps, double residual, int splits);
+  void observe(long substeps, double residual, int splits, int unstable);
+  // relaxes; with solver.stabilityCheck, leaves saddle points along their unstable mode
+  RelaxResult relaxStable(int step, int& unstable);
   Model m_;
   RodState s_;
   RelaxWorkspace ws_;

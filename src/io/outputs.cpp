@@ -58,7 +58,7 @@ std::string shapeCsv(const Model& m, const RodState& s, const RodStrains& k) {
 }
 
 TimeseriesWriter::TimeseriesWriter(const fs::path& path) : f_(path) {
-  f_.stream() << "step,time_h,length_mm,elements,theta_tip_deg,Eb,Et,Wr,Tw,substeps,residual_force_n,splits,"
+  f_.stream() << "step,time_h,length_mm,elements,theta_tip_deg,Eb,Et,Wr,Tw,substeps,residual_force_n,splits,unstable,"
                  "tip_x_mm,tip_y_mm,tip_z_mm\n";
 }
 
@@ -67,7 +67,7 @@ void TimeseriesWriter::add(const StepRecord& r) {
   o << r.step << ',' << fmt(r.timeH) << ',' << fmt(r.length * mm) << ',' << r.elements << ','
     << fmt(r.thetaTip * 180.0 / M_PI) << ',' << fmt(r.zone.Eb) << ',' << fmt(r.zone.Et) << ','
     << fmt(r.zone.Wr) << ',' << fmt(r.zone.Tw) << ',' << r.substeps << ',' << fmt(r.residualForce) << ','
-    << r.splits << ',' << fmt(r.tip.x() * mm) << ',' << fmt(r.tip.y() * mm) << ',' << fmt(r.tip.z() * mm)
+    << r.splits << ',' << r.unstable << ',' << fmt(r.tip.x() * mm) << ',' << fmt(r.tip.y() * mm) << ',' << fmt(r.tip.z() * mm)
     << '\n';
 }
 

@@ -107,6 +107,9 @@ const std::vector<KeySpec>& schema() {
            "(Lref = growth zone, or the rod when not growing)"),
       real("solver", "speed_tol", 1e-5, 0, true, 1, false,
            "equilibrium: node displacement per sub-step < speed_tol * R, rotation < speed_tol rad"),
+      boolean("solver", "stability_check", true,
+              "check each growth step's equilibrium (inertia of the stiffness matrix) and leave saddle "
+              "points along their unstable mode"),
       integer("solver", "max_substeps", 2000000, 1, 1e12, "sub-step cap per relaxation; hitting it is an error"),
       integer("solver", "seed", 1, 0, 9.007199254740992e15, "seed of the initial lateral perturbation"),
       real("solver", "perturbation", 1e-6, 0, false, 1, false, "initial lateral perturbation amplitude / R"),
@@ -258,6 +261,7 @@ Model buildModel(const Values& v, const std::string& name) {
   m.solver.forceTol = num("solver.force_tol");
   m.solver.speedTol = num("solver.speed_tol");
   m.solver.maxSubsteps = static_cast<long>(num("solver.max_substeps"));
+  m.solver.stabilityCheck = flag("solver.stability_check");
   m.solver.lengthScale = m.growth.enabled ? m.growth.zoneLength : 0.0;
   m.analysis.skewThresholdDeg = num("analysis.skew_threshold_deg");
   m.analysis.coilTurnDeg = num("analysis.coil_turn_deg");

@@ -53,13 +53,15 @@ void addExternalForces(const RodParams& p, const Environment& env, const RodStat
                        const RodStrains& k, bool planeDamping, Eigen::Matrix3Xd& force,
                        Eigen::Matrix3Xd& torque) {
   const int n = s.elements();
-  // plane contact, per element (MODEL.md section 6): one-sided penalty on the surface gap plus normal
-  // damping, shared equally by the element's two nodes; the radius shrinks as R / sqrt(e)
+  // plane contact, per element (MODEL.md section 6): one-sided penalty on the surface gap
+  // (r_mid . n - R, with the rest radius as MODEL.md writes it: a gap using R / sqrt(e) would make the
+  // contact force depend on stretching without an energy behind it, which shows up as a spurious
+  // unstable direction of the stiffness matrix) plus normal damping, shared by the two nodes
   if (env.plane.enabled) {
     const Vec3 nh = env.plane.normal();
     for (int i = 0; i < n; ++i) {
       const Vec3 mid = 0.5 * (s.x.col(i) + s.x.col(i + 1));
-      const double gap = mid.dot(nh) - p.radius / std::sqrt(k.e[i]);
+      const double gap = mid.dot(nh) - p.radius;
       if (gap >= 0.0) continue;
       double fn = -env.plane.k * gap;
       if (planeDamping) fn -= env.plane.c * 0.5 * (s.v.col(i) + s.v.col(i + 1)).dot(nh);

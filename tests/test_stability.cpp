@@ -1,0 +1,51 @@
+// stability of equilibria (src/sim/stability.cpp): the inertia of K finds Euler buckling
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <numbers>
+
+#include "rod_fixture.hpp"
+#include "rootsim/stability.hpp"
+
+using namespace rootsim;
+using rootsim::test::Cantilever;
+
+TEST_CASE("a straight clamped-free column is stable below Pcr and has one unstable pair above it") {
+  for (int n : {20, 40}) {
+    for (double ratio : {0.9, 1.1}) {
+      Cantilever c(n);
+      const double Pcr = std::numbers::pi * std::numbers::pi * c.B1() / (4 * c.L * c.L);
+      c.env.tipForce = Vec3(0, ratio * Pcr, 0);  // compression along -d3 = +y, no imperfection
+      c.relax();                                 // stays straight: the straight state is an equilibrium
+      CHECK(std::abs(c.tip().x()) < 1e-12);
+      const StabilityReport r = checkStability(c.p, c.env, c.s, c.ws);
+      INFO("n " << n << " P/Pcr " << ratio << " negative pivots " << r.negative);
+      if (ratio < 1) {
+        CHECK(r.negative == 0);
+      } else {
+        // buckling in x and in z (the section is round): two unstable directions
+        CHECK(r.negative == 2);
+        REQUIRE(r.mode.size() > 0);
+        CHECK(r.lowest < 0);
+        // the mode is a lateral deflection growing toward the tip
+        const Vec3 tipMode = r.mode.segment<3>(6 * n);
+        CHECK(std::abs(tipMode.y()) < 1e-3 * tipMode.norm());
+        CHECK(tipMode.norm() == doctest::Approx(1.0).epsilon(1e-6));
+      }
+    }
+  }
+}
+
+TEST_CASE("following the unstable mode leads to the buckled equilibrium") {
+  Cantilever c(20);
+  const double Pcr = std::numbers::pi * std::numbers::pi * c.B1() / (4 * c.L * c.L);
+  c.env.tipForce = Vec3(0, 1.1 * Pcr, 0);
+  c.relax();
+  const StabilityReport r = checkStability(c.p, c.env, c.s, c.ws);
+  REQUIRE(r.negative > 0);
+  perturbAlong(c.s, r.mode, 1e-2 * c.p.radius);
+  c.relax();
+  const double defl = std::hypot(c.tip().x(), c.tip().z()) / c.L;
+  CHECK(defl > 0.3);  // post-buckling at 1.1 Pcr: tip angle^2 ~ 8 (P/Pcr - 1)
+  CHECK(checkStability(c.p, c.env, c.s, c.ws).negative == 0);
+}

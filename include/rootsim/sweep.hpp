@@ -58,6 +58,9 @@ double runSceneToDir(const std::string& scenePath, const std::vector<std::string
                      const std::string& outDir,
                      const std::function<void(const StepRecord&, int total)>& progress);
 
+// header of result.csv for growth runs (a sweep treats a run with another header as not done)
+const std::string& growthResultHeader();
+
 // rebuilds table.csv of a sweep folder from the summary.json of every completed run
 void writeSweepTable(const SweepPlan& plan, const std::string& out);
 

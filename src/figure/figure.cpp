@@ -231,9 +231,10 @@ std::string fig2b(const Ctx& c) {
   ax.legendPos = "se";
   f.axes.push_back(ax);
   saveFigure(f, (fs::path(c.opt.out) / "fig2b").string());
-  const Row r = result(c, w);
+  const Row r = result(c, w), rf = result(c, fr);
   return md(c, "fig2b", "The waving root's tip keeps swinging; the free organ's oscillation decays. First sideways snap at " +
-                            r.at("first_snap_h") + " h; T0 (Eq. 7) = " + num(t.T0 / 3600) + " h.");
+                            r.at("first_snap_or_turning_h") + " h; the free organ first reaches the vertical at " +
+                            rf.at("first_snap_or_turning_h") + " h; T0 (Eq. 7) = " + num(t.T0 / 3600) + " h.");
 }
 
 std::string fig2cde(const Ctx& c) {

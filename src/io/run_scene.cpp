@@ -22,10 +22,13 @@ double now() {
 }
 
 // first time the tip leaves the downhill direction by more than 30 degrees (the first sideways snap) [h]
+// and, for a free organ (theta_tip measured from gravity, starting at -alpha), the first time the tip
+// reaches the vertical: the measured turning time T0 of Eq. 7 [h]
 struct SnapWatch {
-  double first = NAN;
+  double first = NAN, vertical = NAN;
   void see(const StepRecord& r) {
     if (std::isnan(first) && std::abs(r.thetaTip) > 30.0 / kDeg && r.step > 0) first = r.timeH;
+    if (std::isnan(vertical) && r.thetaTip >= 0.0 && r.step > 0) vertical = r.timeH;
   }
 };
 
@@ -36,6 +39,15 @@ std::string csvNum(double x) {
   return b;
 }
 }  // namespace
+
+const std::string& growthResultHeader() {
+  static const std::string h =
+      "scene,status,steps,time_h,length_mm,elements,theta_tip_deg,total_substeps,pattern,wavelength_mm,"
+      "amplitude_mm,lateral_peaks,skew_deg,max_kappa_per_mm,theta_min_deg,theta_max_deg,first_snap_or_turning_h,"
+      "alpha_deg,beta,gamma,r_tau,sensing,effective_gain,T0_h,max_kappa_eq8_per_mm,wavelength_eq9_mm,"
+      "amplitude_eq10_mm,alpha_s_to_w_eq12_deg,alpha_w_to_c_eq13_deg,omega_T0";
+  return h;
+}
 
 double runSceneToDir(const std::string& scenePath, const std::vector<std::string>& overrides,
                      const std::string& outDir,
@@ -106,15 +118,12 @@ double runSceneToDir(const std::string& scenePath, const std::vector<std::string
           .num("max_kappa_per_mm", a.maxKappa / 1e3)
           .num("theta_min_deg", a.thetaMin * kDeg)
           .num("theta_max_deg", a.thetaMax * kDeg)
-          .num("first_snap_h", snap.first);
+          .num(m.env.plane.enabled ? "first_snap_h" : "turning_time_h", m.env.plane.enabled ? snap.first : snap.vertical);
       j.object("theory", theoryJson(t));
-      header += ",pattern,wavelength_mm,amplitude_mm,lateral_peaks,skew_deg,max_kappa_per_mm,theta_min_deg,"
-                "theta_max_deg,first_snap_h,alpha_deg,beta,gamma,r_tau,sensing,effective_gain,T0_h,"
-                "max_kappa_eq8_per_mm,wavelength_eq9_mm,amplitude_eq10_mm,alpha_s_to_w_eq12_deg,"
-                "alpha_w_to_c_eq13_deg,omega_T0";
+      header = growthResultHeader();
       row += "," + a.pattern + "," + csvNum(lambda) + "," + csvNum(amp) + "," + std::to_string(a.peaks) + "," +
              csvNum(a.skew * kDeg) + "," + csvNum(a.maxKappa / 1e3) + "," + csvNum(a.thetaMin * kDeg) + "," +
-             csvNum(a.thetaMax * kDeg) + "," + csvNum(snap.first) + "," + csvNum(m.env.plane.alpha * kDeg) + "," +
+             csvNum(a.thetaMax * kDeg) + "," + csvNum(m.env.plane.enabled ? snap.first : snap.vertical) + "," + csvNum(m.env.plane.alpha * kDeg) + "," +
              csvNum(m.tropism.beta) + "," + csvNum(m.tropism.gamma) + "," + csvNum(m.tropism.rTau) + "," +
              (m.tropism.sensing == Sensing::Apical ? "apical" : "local") + "," + csvNum(t.effectiveGain) + "," +
              csvNum(t.T0 / 3600) + "," + csvNum(t.maxKappa / 1e3) + "," + csvNum(t.wavelength * 1e3) + "," +

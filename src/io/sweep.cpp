@@ -156,8 +156,12 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
   SweepResult res;
   for (const auto& p : plan.points) {
     if (p.index % opt.shards != opt.shard - 1) continue;
-    if (fs::exists(fs::path(opt.out) / p.dirName / "result.csv")) {
-      ++res.skipped;  // resumable: completed earlier
+    // resumable: a point is done when its result.csv exists with the current header (a run written by
+    // an older rootsim with other columns is redone)
+    std::ifstream prev(fs::path(opt.out) / p.dirName / "result.csv");
+    std::string head;
+    if (prev && std::getline(prev, head) && head == growthResultHeader()) {
+      ++res.skipped;
       continue;
     }
     todo.push_back(&p);

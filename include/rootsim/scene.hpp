@@ -21,7 +21,4 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
 Scene parseScene(const std::string& text, const std::string& sourceName,
                  const std::vector<std::string>& overrides = {});
 
-// one line per key: "section.key  value  unit/doc", for `rootsim check` and the README
-std::string describeSchema();
-
 }  // namespace rootsim

@@ -190,21 +190,4 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   return parseScene(ss.str(), path, overrides);
 }
 
-std::string describeSchema() {
-  std::ostringstream os;
-  for (const auto& k : schema()) {
-    const Value d = defaultValue(k);
-    std::string val;
-    switch (k.type) {
-      case KeyType::Real: val = formatNumber(d.num, false); break;
-      case KeyType::Integer: val = formatNumber(d.num, true); break;
-      case KeyType::Boolean: val = d.b ? "true" : "false"; break;
-      case KeyType::String: val = "\"" + d.str + "\""; break;
-      case KeyType::Vector3: val = "[0, 0, 0]"; break;
-    }
-    os << k.full() << " = " << val << "    # " << k.doc << "\n";
-  }
-  return os.str();
-}
-
 }  // namespace rootsim

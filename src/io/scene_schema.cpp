@@ -294,6 +294,19 @@ Model buildModel(const Values& v, const std::string& name) {
   return m;
 }
 
+std::string tomlText(const KeySpec& k, const Value& x) {
+  switch (k.type) {
+    case KeyType::Real: return formatNumber(x.num, false);
+    case KeyType::Integer: return formatNumber(x.num, true);
+    case KeyType::Boolean: return x.b ? "true" : "false";
+    case KeyType::String: return "\"" + x.str + "\"";
+    case KeyType::Vector3:
+      return "[" + formatNumber(x.vec[0], false) + ", " + formatNumber(x.vec[1], false) + ", " +
+             formatNumber(x.vec[2], false) + "]";
+  }
+  return "";
+}
+
 std::string resolvedToml(const Values& v, const std::string& name) {
   std::ostringstream os;
   os << "# rootsim resolved scene: " << name << "\n# every key with its value; defaults filled in\n";
@@ -301,18 +314,7 @@ std::string resolvedToml(const Values& v, const std::string& name) {
     os << "\n[" << sec << "]\n";
     for (const auto& k : schema()) {
       if (k.section != sec) continue;
-      const Value& x = v.at(k.full());
-      std::string val;
-      switch (k.type) {
-        case KeyType::Real: val = formatNumber(x.num, false); break;
-        case KeyType::Integer: val = formatNumber(x.num, true); break;
-        case KeyType::Boolean: val = x.b ? "true" : "false"; break;
-        case KeyType::String: val = "\"" + x.str + "\""; break;
-        case KeyType::Vector3:
-          val = "[" + formatNumber(x.vec[0], false) + ", " + formatNumber(x.vec[1], false) + ", " +
-                formatNumber(x.vec[2], false) + "]";
-          break;
-      }
+      const std::string val = tomlText(k, v.at(k.full()));
       os << k.key << " = " << val;
       const size_t pad = k.key.size() + 3 + val.size();
       os << std::string(pad < 40 ? 40 - pad : 1, ' ') << "# " << k.doc << "\n";

@@ -45,6 +45,8 @@ Value defaultValue(const KeySpec& k);
 std::string checkValue(const KeySpec& k, const Value& v);
 // builds the model and checks relations between keys; throws SceneError with the origin of a key
 Model buildModel(const Values& v, const std::string& name);
+// a value in TOML syntax
+std::string tomlText(const KeySpec& k, const Value& v);
 std::string resolvedToml(const Values& v, const std::string& name);
 std::string formatNumber(double x, bool integer);
 // Levenshtein distance, for "did you mean"

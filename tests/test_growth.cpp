@@ -215,3 +215,53 @@ TEST_CASE("circumnutation (Eq. 19) swings the free tip sideways with the nutatio
   CHECK(signChanges >= 4);
   CHECK(signChanges <= 8);
 }
+
+TEST_CASE("proprioception alone drives kappa0 toward zero") {
+  Model m = coarse(40, 0.0, 30);
+  m.tropism.gamma = 1.0;
+  m.env.plane.enabled = false;
+  m.env.adhesion = false;
+  Simulation sim(m);
+  // give the zone an intrinsic curvature, then let it grow with proprioception only
+  RodState& s = const_cast<RodState&>(sim.state());
+  for (int j = 0; j + 1 < s.elements(); ++j) s.kappa0.col(j) = Vec3(200.0, -100.0, 0.0);
+  double before = 0;
+  for (int j = 0; j + 1 < s.elements(); ++j) before += s.kappa0.col(j).head<2>().norm();
+  for (int i = 0; i < 30; ++i) sim.growthStep();
+  const RodState& t = sim.state();
+  const double S0 = growthZoneStart(m, t);
+  double after = 0, maxZone = 0;
+  for (int j = 0; j + 1 < t.elements(); ++j) {
+    after += t.kappa0.col(j).head<2>().norm();
+    if (t.S[j + 1] >= S0) maxZone = std::max(maxZone, t.kappa0.col(j).head<2>().norm());
+  }
+  INFO("sum |kappa0| before " << before << " after " << after << "; max in zone " << maxZone);
+  // free organ, kappa = kappa0: d kappa0/dt = -eps0 gamma kappa0, so after 3 h a factor exp(-0.6)
+  CHECK(maxZone == doctest::Approx(std::hypot(200.0, 100.0) * std::exp(-0.2 * 1.0 * 3.0)).epsilon(0.1));
+}
+
+TEST_CASE("a straight rod twisted once has Tw = 1 and Wr = 0") {
+  Model m = coarse(90, 0.0, 0);
+  m.growth.zoneLength = 2e-3;  // the whole 1.1 mm rod is in the zone
+  m.env.plane.enabled = false;
+  Simulation sim(m);
+  RodState s = sim.state();
+  const int n = s.elements();
+  const double L = s.restLength();
+  // directors turned about d3 by 2 pi s / L (element centres)
+  for (int i = 0; i < n; ++i) {
+    const double phi = 2 * pi * (s.S[i] + 0.5 * s.l0[i]) / L;
+    Mat3 Q = s.Q[i];
+    const Vec3 d1 = std::cos(phi) * Vec3(Q.row(0)) + std::sin(phi) * Vec3(Q.row(1));
+    const Vec3 d2 = -std::sin(phi) * Vec3(Q.row(0)) + std::cos(phi) * Vec3(Q.row(1));
+    s.Q[i].row(0) = d1.transpose();
+    s.Q[i].row(1) = d2.transpose();
+  }
+  RodStrains k;
+  k.resize(n);
+  computeStrains(m.rod, s, k);
+  const ZoneObservables z = observeZone(m, s, k);
+  // the Voronoi domains cover [l/2, L - l/2]: Tw = (n - 1) / n of a turn, exactly 1 as n grows
+  CHECK(z.Tw == doctest::Approx(static_cast<double>(n - 1) / n).epsilon(1e-9));
+  CHECK(std::abs(z.Wr) < 1e-9);
+}

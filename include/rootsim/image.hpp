@@ -3,17 +3,19 @@
 // Also home of RenderError, the one exception type of the rendering layer.
 #include <cstddef>
 #include <cstdint>
-#include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "rootsim/errors.hpp"
 
 namespace rootsim {
 
 // a failure anywhere in rendering or encoding; the message names the failing call and its code
-// (e.g. "avcodec_open2(libx264): Invalid argument (-22)") or the rejected input
-class RenderError : public std::runtime_error {
+// (e.g. "avcodec_open2(libx264): Invalid argument (-22)") or the rejected input. A kind of RunError:
+// the CLI exits 1 on it; its own input checks (flags, run directory) throw SceneError instead.
+class RenderError : public RunError {
  public:
-  using std::runtime_error::runtime_error;
+  using RunError::RunError;
 };
 
 struct Image {

@@ -2,6 +2,7 @@
 // and the overlay items. No GL here; glm only for the camera matrices.
 #include "rootsim/render_scene.hpp"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>

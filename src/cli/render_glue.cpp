@@ -1,0 +1,139 @@
+// `rootsim render` and `rootsim run --movie`: validate the flags and the run directory (SceneError,
+// exit 2), then hand the snapshots to the renderer library (RenderError, exit 1)
+#include "render_glue.hpp"
+
+#include <cstdio>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "rootsim/errors.hpp"
+#include "rootsim/movie.hpp"
+#include "rootsim/outputs.hpp"
+#include "rootsim/png.hpp"
+#include "rootsim/render_scene.hpp"
+#include "rootsim/renderer.hpp"
+#include "rootsim/scene.hpp"
+
+namespace fs = std::filesystem;
+
+namespace rootsim::cli {
+
+namespace {
+
+constexpr int kMinSide = 64;     // [px] room for the overlays
+constexpr int kMaxSide = 7680;   // [px] 8K; the 4x multisampled buffers then take ~0.5 GB
+
+// "WxH" -> (W, H), both even and within [kMinSide, kMaxSide]
+std::pair<int, int> parseSize(const std::string& s) {
+  const std::size_t x = s.find('x');
+  auto number = [&](const std::string& part) {
+    if (part.empty() || part.size() > 5 || part.find_first_not_of("0123456789") != std::string::npos)
+      throw SceneError("--size " + s + ": expected WIDTHxHEIGHT in pixels, e.g. 1280x720");
+    return std::stoi(part);
+  };
+  if (x == std::string::npos) throw SceneError("--size " + s + ": expected WIDTHxHEIGHT in pixels, e.g. 1280x720");
+  const int w = number(s.substr(0, x)), h = number(s.substr(x + 1));
+  if (w < kMinSide || h < kMinSide || w > kMaxSide || h > kMaxSide)
+    throw SceneError("--size " + s + ": width and height must be in " + std::to_string(kMinSide) + ".." +
+                     std::to_string(kMaxSide) + " px");
+  if (w % 2 != 0 || h % 2 != 0)
+    throw SceneError("--size " + s + ": width and height must be even (H.264 yuv420p), e.g. " +
+                     std::to_string(w + w % 2) + "x" + std::to_string(h + h % 2));
+  return {w, h};
+}
+
+SceneInfo sceneInfoOf(const Model& m) {
+  SceneInfo si;
+  si.alphaDeg = m.env.plane.alpha * 180.0 / std::numbers::pi;
+  si.beta = m.tropism.beta;
+  si.gamma = m.tropism.gamma;
+  si.rTau = m.tropism.rTau;
+  si.radius = m.rod.radius;
+  si.plate = m.env.plane.enabled;
+  si.title = m.name;
+  return si;
+}
+
+std::vector<Snapshot> loadSnapshots(const fs::path& runDir) {
+  const fs::path traj = runDir / "trajectory.csv";
+  if (!fs::is_regular_file(traj))
+    throw SceneError(traj.string() + ": not found (a run directory written with output.trajectory = true)");
+  std::vector<Snapshot> snaps = readTrajectory(traj);
+  if (snaps.empty()) throw SceneError(traj.string() + ": no snapshots to render");
+  return snaps;
+}
+
+// stderr progress: one line per ~10 % of the frames
+MovieProgress progressLines(bool quiet, const std::string& what) {
+  if (quiet) return {};
+  return [what, next = 0](int done, int total) mutable {
+    const int percent = 100 * done / total;
+    if (percent < next && done != total) return;
+    std::fprintf(stderr, "%s: frame %d/%d (%d %%)\n", what.c_str(), done, total, percent);
+    next = percent / 10 * 10 + 10;
+  };
+}
+
+// the last snapshot seen from the top, framed like a top-view movie of the whole run
+void writeFinalTop(const std::vector<Snapshot>& snaps, const SceneInfo& info, const View& like,
+                   const fs::path& path) {
+  View top = like;
+  top.kind = View::Kind::Top;
+  const Framing framing = frameFor(snaps, info, top);
+  GlRenderer renderer(top.width, top.height);
+  writePng(path.string(), renderer.render(buildRenderScene(snaps.back(), info, top, framing)));
+}
+
+void renderRun(const fs::path& runDir, const std::vector<Snapshot>& snaps, const SceneInfo& info,
+               MovieJob job, bool quiet) {
+  const bool top = job.view.kind == View::Kind::Top;
+  const fs::path finalTop = runDir / "final_top.png";
+  if (top) job.finalPng = finalTop.string();
+  renderMovie(snaps, info, job, progressLines(quiet, "render " + info.title));
+  if (!top) writeFinalTop(snaps, info, job.view, finalTop);
+  if (!quiet) {
+    if (!job.mp4.empty()) std::fprintf(stderr, "wrote %s\n", job.mp4.c_str());
+    if (!job.pngDir.empty()) std::fprintf(stderr, "wrote %zu frames to %s\n", snaps.size(), job.pngDir.c_str());
+    std::fprintf(stderr, "wrote %s\n", finalTop.string().c_str());
+  }
+}
+
+}  // namespace
+
+int renderRunCommand(const RenderOptions& o) {
+  // every input check first, so a bad flag exits 2 before anything is drawn
+  const fs::path runDir(o.runDir);
+  if (!fs::is_directory(runDir)) throw SceneError(o.runDir + ": run directory not found");
+  MovieJob job;
+  if (o.view == "top")
+    job.view.kind = View::Kind::Top;
+  else if (o.view == "3d")
+    job.view.kind = View::Kind::Perspective;
+  else
+    throw SceneError("--view " + o.view + ": expected top or 3d");
+  std::tie(job.view.width, job.view.height) = parseSize(o.size);
+  if (o.fps < 1 || o.fps > 240) throw SceneError("--fps " + std::to_string(o.fps) + ": expected 1..240");
+  if (o.crf < 0 || o.crf > 51) throw SceneError("--crf " + std::to_string(o.crf) + ": expected 0..51");
+  job.video.fps = o.fps;
+  job.video.crf = o.crf;
+  job.mp4 = o.mp4.empty() ? (runDir / "movie.mp4").string() : o.mp4;
+  const fs::path mp4Dir = fs::absolute(fs::path(job.mp4)).parent_path();
+  if (!fs::is_directory(mp4Dir)) throw SceneError("--mp4 " + job.mp4 + ": folder " + mp4Dir.string() + " not found");
+  job.pngDir = o.pngDir;
+  const fs::path sceneFile = runDir / "scene.toml";
+  if (!fs::is_regular_file(sceneFile)) throw SceneError(sceneFile.string() + ": not found (not a run directory?)");
+  const SceneInfo info = sceneInfoOf(loadScene(sceneFile.string()).model);
+  const std::vector<Snapshot> snaps = loadSnapshots(runDir);
+
+  renderRun(runDir, snaps, info, job, o.quiet);
+  return 0;
+}
+
+void renderRunMovie(const fs::path& runDir, const SceneInfo& info, bool quiet) {
+  MovieJob job;
+  job.mp4 = (runDir / "movie.mp4").string();
+  renderRun(runDir, loadSnapshots(runDir), info, job, quiet);
+}
+
+}  // namespace rootsim::cli

@@ -1,0 +1,264 @@
+// PNG and MP4 files (src/render/png.cpp, video_writer.cpp, movie.cpp) and `rootsim render`
+// (src/cli/render_glue.cpp): read back independently, frame counts, sizes, durations, errors
+#include <doctest/doctest.h>
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+#include "render_test_util.hpp"
+#include "rootsim/movie.hpp"
+#include "rootsim/png.hpp"
+#include "rootsim/video.hpp"
+
+namespace fs = std::filesystem;
+using namespace rootsim;
+
+namespace {
+
+// left half red, right half blue, a white square in the middle; alpha 255
+Image testCard(int w, int h) {
+  Image img(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      std::uint8_t* p = img.at(x, y);
+      const bool centre = std::abs(x - w / 2) < w / 8 && std::abs(y - h / 2) < h / 8;
+      p[0] = centre || x < w / 2 ? 255 : 0;
+      p[1] = centre ? 255 : 0;
+      p[2] = centre || x >= w / 2 ? 255 : 0;
+      p[3] = 255;
+    }
+  return img;
+}
+
+// growing, twisting rods: one snapshot per frame
+std::vector<Snapshot> growingRod(int frames) {
+  std::vector<Snapshot> v;
+  for (int k = 0; k < frames; ++k) {
+    Snapshot s = rtest::straightRod(40, 20, 1.0 + 0.1 * k, 0.1, [k](double sMm) { return 0.3 * k * sMm; });
+    s.step = 10 * k;
+    s.timeH = 0.5 * k;
+    v.push_back(std::move(s));
+  }
+  return v;
+}
+
+struct Result {
+  int code;
+  std::string out;  // stdout + stderr
+};
+
+Result run(const std::string& args) {
+  const std::string cmd = std::string(ROOTSIM_BINARY) + " " + args + " 2>&1";
+  FILE* p = popen(cmd.c_str(), "r");
+  REQUIRE(p != nullptr);
+  std::string out;
+  std::array<char, 4096> buf;
+  while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
+  const int st = pclose(p);
+  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
+}
+
+}  // namespace
+
+TEST_CASE("PNG round trip is lossless, the write atomic, errors name the path") {
+  const fs::path d = rtest::scratch("png");
+  Image img = testCard(97, 41);  // odd sizes are fine for PNG
+  img.at(3, 3)[3] = 17;          // and alpha survives
+  const std::string path = (d / "card.png").string();
+  writePng(path, img);
+  const Image back = readPng(path);
+  CHECK(back.width == 97);
+  CHECK(back.height == 41);
+  CHECK(back.rgba == img.rgba);
+  // nothing else left beside it
+  int files = 0;
+  for ([[maybe_unused]] const auto& e : fs::directory_iterator(d)) ++files;
+  CHECK(files == 1);
+  CHECK_THROWS_WITH_AS(writePng((d / "no" / "such" / "dir.png").string(), img), doctest::Contains("no/such/dir.png"),
+                       RenderError);
+  CHECK_THROWS_WITH_AS(readPng((d / "missing.png").string()), doctest::Contains("missing.png"), RenderError);
+  CHECK_THROWS_AS(writePng(path, Image()), RenderError);
+}
+
+TEST_CASE("MP4: frame count, size, duration, yuv420p BT.709, colours survive") {
+  const fs::path d = rtest::scratch("mp4");
+  const std::string path = (d / "card.mp4").string();
+  VideoOptions o;
+  o.fps = 24;
+  o.crf = 18;
+  {
+    VideoWriter w(path, 320, 240, o);
+    const Image card = testCard(320, 240);
+    for (int i = 0; i < 36; ++i) w.add(card);
+    CHECK(w.frames() == 36);
+    CHECK(fs::exists(path + ".partial"));
+    CHECK_FALSE(fs::exists(path));
+    w.finish();
+    w.finish();  // idempotent
+  }
+  CHECK(fs::exists(path));
+  CHECK_FALSE(fs::exists(path + ".partial"));
+  const rtest::Decoded m = rtest::decodeMp4(path);
+  CHECK(m.codec == "h264");
+  CHECK(m.pixFmt == "yuv420p");
+  CHECK(m.width == 320);
+  CHECK(m.height == 240);
+  CHECK(m.frames == 36);
+  CHECK(m.durationS == doctest::Approx(1.5).epsilon(0.001));  // 36 frames / 24 fps, not one frame short
+  CHECK(m.colorspace == 1);                                    // AVCOL_SPC_BT709
+  // decoded with the tagged matrix, the colours come back
+  auto near = [](const std::uint8_t* p, int r, int g, int b) {
+    return std::abs(p[0] - r) <= 12 && std::abs(p[1] - g) <= 12 && std::abs(p[2] - b) <= 12;
+  };
+  CHECK(near(m.first.at(40, 40), 255, 0, 0));
+  CHECK(near(m.first.at(280, 200), 0, 0, 255));
+  CHECK(near(m.first.at(160, 120), 255, 255, 255));
+}
+
+TEST_CASE("MP4: odd or zero sizes, wrong frame sizes and unwritable paths are clear errors") {
+  const fs::path d = rtest::scratch("mp4err");
+  const std::string path = (d / "x.mp4").string();
+  CHECK_THROWS_WITH_AS(VideoWriter(path, 321, 240), doctest::Contains("must be positive and even"), RenderError);
+  CHECK_THROWS_WITH_AS(VideoWriter(path, 320, 241), doctest::Contains("320x241"), RenderError);
+  CHECK_THROWS_WITH_AS(VideoWriter(path, 0, 0), doctest::Contains("even"), RenderError);
+  CHECK_FALSE(fs::exists(path + ".partial"));
+  CHECK_THROWS_WITH_AS(VideoWriter((d / "no" / "x.mp4").string(), 320, 240), doctest::Contains("no/x.mp4"), RenderError);
+  VideoWriter w(path, 320, 240);
+  CHECK_THROWS_WITH_AS(w.add(testCard(160, 120)), doctest::Contains("160x120"), RenderError);
+}
+
+TEST_CASE("a writer dropped without finish() leaves a playable .partial") {
+  const fs::path d = rtest::scratch("partial");
+  const std::string path = (d / "cut.mp4").string();
+  {
+    VideoWriter w(path, 160, 120);
+    for (int i = 0; i < 5; ++i) w.add(testCard(160, 120));
+  }
+  CHECK_FALSE(fs::exists(path));
+  REQUIRE(fs::exists(path + ".partial"));
+  CHECK(rtest::decodeMp4(path + ".partial").frames == 5);
+}
+
+TEST_CASE("movie: every snapshot one frame, PNG frames, final picture, one framing") {
+  const fs::path d = rtest::scratch("movie");
+  const std::vector<Snapshot> snaps = growingRod(12);
+  MovieJob job;
+  job.mp4 = (d / "m.mp4").string();
+  job.pngDir = (d / "frames").string();
+  job.finalPng = (d / "final.png").string();
+  job.view.width = 320;
+  job.view.height = 180;
+  job.video.fps = 12;
+  int calls = 0, lastDone = 0;
+  renderMovie(snaps, rtest::info(40), job, [&](int done, int total) {
+    ++calls;
+    lastDone = done;
+    CHECK(total == 12);
+  });
+  CHECK(calls == 12);
+  CHECK(lastDone == 12);
+  const rtest::Decoded m = rtest::decodeMp4(job.mp4);
+  CHECK(m.frames == 12);
+  CHECK(m.width == 320);
+  CHECK(m.height == 180);
+  CHECK(m.durationS == doctest::Approx(1.0).epsilon(0.001));
+  for (int k = 0; k < 12; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "frame_%05d.png", k);
+    CHECK(fs::exists(d / "frames" / name));
+  }
+  // the final picture is the last frame
+  CHECK(readPng(job.finalPng).rgba == readPng((d / "frames" / "frame_00011.png").string()).rgba);
+  // one framing for the whole movie: the base of the root stays on the same pixel row
+  auto topRow = [](const Image& img) {
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        const std::uint8_t* p = img.at(x, y);
+        if (std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]}) > 60) return y;  // a stripe
+      }
+    return -1;
+  };
+  const int first = topRow(readPng((d / "frames" / "frame_00000.png").string()));
+  CHECK(first > 0);
+  CHECK(first == topRow(readPng(job.finalPng)));
+}
+
+TEST_CASE("movie errors: transparent MP4, PNG folder that is a file, encoder errors surface") {
+  const fs::path d = rtest::scratch("movieerr");
+  const std::vector<Snapshot> snaps = growingRod(2);
+  MovieJob job;
+  job.view.width = 160;
+  job.view.height = 90;
+  job.mp4 = (d / "t.mp4").string();
+  job.view.transparent = true;
+  CHECK_THROWS_WITH_AS(renderMovie(snaps, rtest::info(40), job), doctest::Contains("PNG only"), RenderError);
+  job.view.transparent = false;
+  job.mp4.clear();
+  std::ofstream((d / "file").string()) << "x";
+  job.pngDir = (d / "file").string();
+  CHECK_THROWS_WITH_AS(renderMovie(snaps, rtest::info(40), job), doctest::Contains("PNG folder"), RenderError);
+  job.pngDir.clear();
+  job.view.width = 161;  // odd: refused by the video writer before any drawing
+  job.mp4 = (d / "odd.mp4").string();
+  CHECK_THROWS_WITH_AS(renderMovie(snaps, rtest::info(40), job), doctest::Contains("even"), RenderError);
+}
+
+TEST_CASE("rootsim render on a tiny run: movie.mp4 with one frame per snapshot, final_top.png") {
+  const fs::path d = rtest::scratch("cli");
+  const std::string runDir = (d / "run").string();
+  const Result ran = run("run " + std::string(ROOTSIM_SOURCE_DIR) +
+                         "/scenes/fig2b_waving.toml --set growth.steps=40 --set output.every_steps=4 --quiet --out " +
+                         runDir);
+  REQUIRE_MESSAGE(ran.code == 0, ran.out);
+  const Result rendered = run("render " + runDir + " --size 320x180 --fps 10 --png-dir " + (d / "frames").string());
+  REQUIRE_MESSAGE(rendered.code == 0, rendered.out);
+  CHECK(rendered.out.find("(100 %)") != std::string::npos);  // progress lines
+  const rtest::Decoded m = rtest::decodeMp4(runDir + "/movie.mp4");
+  CHECK(m.frames == 11);  // steps 0, 4, ..., 40
+  CHECK(m.width == 320);
+  CHECK(m.height == 180);
+  CHECK(m.durationS == doctest::Approx(1.1).epsilon(0.001));
+  const Image top = readPng(runDir + "/final_top.png");
+  CHECK(top.width == 320);
+  CHECK(top.height == 180);
+  CHECK(fs::exists(d / "frames" / "frame_00010.png"));
+
+  SUBCASE("--view 3d still writes a top-view final picture; --quiet prints nothing") {
+    const Result r3 = run("render " + runDir + " --view 3d --size 320x180 --quiet --mp4 " + (d / "3d.mp4").string());
+    REQUIRE_MESSAGE(r3.code == 0, r3.out);
+    CHECK(r3.out.empty());
+    CHECK(rtest::decodeMp4((d / "3d.mp4").string()).frames == 11);
+  }
+  SUBCASE("bad input exits 2 naming the flag or the file") {
+    const Result odd = run("render " + runDir + " --size 321x180");
+    CHECK(odd.code == 2);
+    CHECK(odd.out.find("--size 321x180") != std::string::npos);
+    CHECK(odd.out.find("even") != std::string::npos);
+    const Result junk = run("render " + runDir + " --size big");
+    CHECK(junk.code == 2);
+    CHECK(junk.out.find("--size big") != std::string::npos);
+    const Result tiny = run("render " + runDir + " --size 16x16");
+    CHECK(tiny.code == 2);
+    const Result missing = run("render " + (d / "nothing").string());
+    CHECK(missing.code == 2);
+    CHECK(missing.out.find("run directory not found") != std::string::npos);
+    // a malformed trajectory: the error names the file and the line
+    fs::copy(runDir, d / "broken", fs::copy_options::recursive);
+    {
+      std::ifstream in(d / "broken" / "trajectory.csv");
+      std::stringstream ss;
+      ss << in.rdbuf();
+      std::string text = ss.str();
+      const std::size_t line3 = text.find('\n', text.find('\n') + 1);
+      text.insert(line3 + 1, "1,2,oops\n");
+      std::ofstream(d / "broken" / "trajectory.csv") << text;
+    }
+    const Result broken = run("render " + (d / "broken").string() + " --quiet");
+    CHECK(broken.code == 2);
+    CHECK(broken.out.find("trajectory.csv:") != std::string::npos);
+  }
+}

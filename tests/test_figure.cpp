@@ -21,11 +21,13 @@ std::string slurp(const fs::path& p) {
   s << in.rdbuf();
   return s.str();
 }
-// fraction of pixels that are not (near) white
-double inkFraction(const fs::path& png) {
+// fraction of pixels that are not (near) white; also returns the size
+double inkFraction(const fs::path& png, int* width = nullptr, int* height = nullptr) {
   cairo_surface_t* s = cairo_image_surface_create_from_png(png.c_str());
   REQUIRE(cairo_surface_status(s) == CAIRO_STATUS_SUCCESS);
   const int w = cairo_image_surface_get_width(s), h = cairo_image_surface_get_height(s);
+  if (width) *width = w;
+  if (height) *height = h;
   const int stride = cairo_image_surface_get_stride(s);
   const unsigned char* d = cairo_image_surface_get_data(s);
   long ink = 0;
@@ -46,17 +48,29 @@ TEST_CASE("every panel exists as PNG and SVG with drawn content") {
     REQUIRE(fs::exists(kOut / (n + ".png")));
     REQUIRE(fs::exists(kOut / (n + ".svg")));
     CHECK(slurp(kOut / (n + ".svg")).find("<svg") != std::string::npos);
-    const double ink = inkFraction(kOut / (n + ".png"));
-    CHECK(ink > 0.005);
-    CHECK(ink < 0.6);
+    int w = 0, h = 0;
+    const double ink = inkFraction(kOut / (n + ".png"), &w, &h);
+    CHECK(ink > 0.005);  // not blank
+    CHECK(ink < 0.95);   // fig3d is mostly coloured background
+    CHECK(w >= 600);     // the panel sizes set in src/figure/figure.cpp
+    CHECK(w <= 2200);
+    CHECK(h >= 500);
+    CHECK(h <= 1100);
   }
   CHECK(slurp(kOut / "report.md").find("## fig4g") != std::string::npos);
 }
 
-TEST_CASE("quick Fig. 2A reproduces straight at 0 deg and coiling at 80 deg") {
+TEST_CASE("quick report: straight at 0 deg, waving in the middle, coiling at high alpha; skew grows with omega T0") {
   const std::string r = slurp(kOut / "report.md");
   CHECK(r.find("| 0 | straight |") != std::string::npos);
+  CHECK(r.find("| 40 | waving |") != std::string::npos);
   CHECK(r.find("| 80 | coiling |") != std::string::npos);
+  const auto p = r.find("| Fig. 4A: intrinsic twist makes the root skew; skew grows with ω T0 |");
+  REQUIRE(p != std::string::npos);
+  const std::string row = r.substr(p, r.find('\n', p) - p);
+  INFO(row);
+  CHECK(row.size() > 8);
+  CHECK(row.substr(row.size() - 7) == "| yes |");
 }
 
 TEST_CASE("a plot draws a line where its data are") {

@@ -6,13 +6,26 @@
 #include <string>
 #include <vector>
 
+#include "rootsim/plot.hpp"
+#include "rootsim/snapshot.hpp"
+
 namespace rootsim {
+
+// a window of the plate in plate coordinates [mm]: lateral (x) and downhill (along g_par); the picture
+// shows downhill pointing down
+struct PlateWindow {
+  double lateralMin = -2, lateralMax = 2, downhillMin = 0, downhillMax = 10;
+  int width = 300, height = 600;  // pixels
+};
+// renders one root on the plate as seen from above (the OSMesa renderer when the CLI has it)
+using TileRenderer = std::function<Raster(const Snapshot&, const SceneInfo&, const PlateWindow&)>;
 
 struct FigureOptions {
   bool quick = false;   // coarsened runs (0.1 mm elements, 0.1 h steps, shorter growth): for CI
   std::string out = "figures";
   int jobs = 2;         // parallel simulations
   bool quiet = false;
+  TileRenderer renderTile;  // if empty, roots are drawn as centreline strokes of width 2R
 };
 
 // fig2a, fig2b, fig2cde, fig3a, fig3b, fig3d, fig4a, fig4g

@@ -25,8 +25,25 @@ struct Shape2D {                // a root drawn on the plate: a polyline with a 
   Rgb color{0.25, 0.25, 0.25};
 };
 
+struct Fill {                   // a filled polygon in data coordinates (background regions)
+  std::vector<double> x, y;
+  Rgb color{0.9, 0.9, 0.9};
+  double alpha = 1.0;
+  std::string label;            // legend entry ("" = none)
+};
+
+struct Raster {                 // an RGBA picture placed at a data-coordinate rectangle
+  int width = 0, height = 0;
+  std::vector<unsigned char> rgba;  // top row first, straight alpha
+  double x0 = 0, x1 = 1, y0 = 0, y1 = 1;  // extent: left, right, bottom, top
+};
+
 struct Axes {
   std::string title, xlabel, ylabel;
+  std::string panelLabel;       // bold letter at the top left ("A", "B", ...)
+  bool frameOnly = false;       // no ticks or grid: for pictures
+  std::vector<Fill> fills;
+  std::vector<Raster> rasters;
   bool autoX = true, autoY = true;
   double xmin = 0, xmax = 1, ymin = 0, ymax = 1;
   bool equalAspect = false;     // for shapes on the plate

@@ -84,6 +84,7 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
     };
     for (const auto& s : a.series) for (size_t i = 0; i < s.x.size(); ++i) see(s.x[i], s.y[i]);
     for (const auto& s : a.shapes) for (size_t i = 0; i < s.x.size(); ++i) see(s.x[i], s.y[i]);
+    for (const auto& r : a.rasters) { see(r.x0, r.y0); see(r.x1, r.y1); }
     if (!std::isfinite(lx)) { lx = 0; hx = 1; ly = 0; hy = 1; }
     if (hx - lx < 1e-12) { lx -= 0.5; hx += 0.5; }
     if (hy - ly < 1e-12) { ly -= 0.5; hy += 0.5; }
@@ -107,7 +108,8 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_rectangle(cr, L, T, pw, ph);
   cairo_fill(cr);
-  const auto xt = ticks(x0, x1), yt = ticks(y0, y1, 5);
+  const auto xt = a.frameOnly ? std::vector<double>{} : ticks(x0, x1);
+  const auto yt = a.frameOnly ? std::vector<double>{} : ticks(y0, y1, 5);
   cairo_set_line_width(cr, 0.8);
   for (double v : xt) {
     if (a.grid) { cairo_set_source_rgb(cr, 0.9, 0.9, 0.9); cairo_move_to(cr, X(v), T); cairo_line_to(cr, X(v), B); cairo_stroke(cr); }
@@ -126,6 +128,7 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
   cairo_rectangle(cr, L, T, pw, ph);
   cairo_stroke(cr);
   if (!a.title.empty()) text(cr, 0.5 * (L + R), box.y + 8, a.title, 15, 0.5, 0.0, true);
+  if (!a.panelLabel.empty()) text(cr, box.x + 8, box.y + 6, a.panelLabel, 20, 0.0, 0.0, true);
   text(cr, 0.5 * (L + R), B + 26, a.xlabel, 13, 0.5, 0.0);
   text(cr, box.x + 14, 0.5 * (T + B), a.ylabel, 13, 0.5, 0.5, false, -M_PI / 2);
 
@@ -133,6 +136,39 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
   cairo_save(cr);
   cairo_rectangle(cr, L, T, pw, ph);
   cairo_clip(cr);
+  for (const auto& fl : a.fills) {
+    cairo_set_source_rgba(cr, fl.color[0], fl.color[1], fl.color[2], fl.alpha);
+    for (size_t i = 0; i < fl.x.size(); ++i) (i ? cairo_line_to : cairo_move_to)(cr, X(fl.x[i]), Y(fl.y[i]));
+    cairo_close_path(cr);
+    cairo_fill(cr);
+  }
+  for (const auto& r : a.rasters) {
+    if (r.width <= 0 || r.height <= 0 || r.rgba.size() != static_cast<size_t>(4 * r.width * r.height)) continue;
+    // cairo wants premultiplied BGRA (native-endian ARGB32)
+    cairo_surface_t* img = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, r.width, r.height);
+    unsigned char* d = cairo_image_surface_get_data(img);
+    const int stride = cairo_image_surface_get_stride(img);
+    cairo_surface_flush(img);
+    for (int yy = 0; yy < r.height; ++yy)
+      for (int xx = 0; xx < r.width; ++xx) {
+        const unsigned char* p = &r.rgba[static_cast<size_t>(4 * (yy * r.width + xx))];
+        unsigned char* q = d + yy * stride + 4 * xx;
+        const unsigned a8 = p[3];
+        q[0] = static_cast<unsigned char>(p[2] * a8 / 255);
+        q[1] = static_cast<unsigned char>(p[1] * a8 / 255);
+        q[2] = static_cast<unsigned char>(p[0] * a8 / 255);
+        q[3] = static_cast<unsigned char>(a8);
+      }
+    cairo_surface_mark_dirty(img);
+    cairo_save(cr);
+    cairo_translate(cr, X(r.x0), Y(r.y1));
+    cairo_scale(cr, (X(r.x1) - X(r.x0)) / r.width, (Y(r.y0) - Y(r.y1)) / r.height);
+    cairo_set_source_surface(cr, img, 0, 0);
+    cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_GOOD);
+    cairo_paint(cr);
+    cairo_restore(cr);
+    cairo_surface_destroy(img);
+  }
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   for (const auto& s : a.shapes) {
@@ -168,6 +204,7 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
   // legend
   int n = 0;
   for (const auto& s : a.series) n += !s.label.empty();
+  for (const auto& fl : a.fills) n += !fl.label.empty();
   if (n > 0 && a.legendPos != "none") {
     double w = 0;
     cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
@@ -176,6 +213,12 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
       if (s.label.empty()) continue;
       cairo_text_extents_t e;
       cairo_text_extents(cr, s.label.c_str(), &e);
+      w = std::max(w, e.x_advance);
+    }
+    for (const auto& fl : a.fills) {
+      if (fl.label.empty()) continue;
+      cairo_text_extents_t e;
+      cairo_text_extents(cr, fl.label.c_str(), &e);
       w = std::max(w, e.x_advance);
     }
     const double bw = w + 44, bh = 18.0 * n + 8;
@@ -201,6 +244,15 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
       if (s.kind != Series::Kind::Line) marker(cr, s.marker, lx + 19, yy, 4.5);
       cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
       text(cr, lx + 38, yy, s.label, 12, 0.0, 0.5);
+    }
+    for (const auto& fl : a.fills) {
+      if (fl.label.empty()) continue;
+      const double yy = ly + 13 + 18.0 * k++;
+      cairo_set_source_rgba(cr, fl.color[0], fl.color[1], fl.color[2], std::max(fl.alpha, 0.6));
+      cairo_rectangle(cr, lx + 8, yy - 6, 22, 12);
+      cairo_fill(cr);
+      cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+      text(cr, lx + 38, yy, fl.label, 12, 0.0, 0.5);
     }
   }
 }

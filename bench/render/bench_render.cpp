@@ -1,0 +1,150 @@
+// rendering costs of a 300-element waving, twisted root at 1280x720 and 1920x1080 (4x MSAA):
+// scene build, draw + readback, PNG, H.264 encode, and the end-to-end movie rate with drawing and
+// encoding overlapped (renderMovie). Run: bench_render --benchmark_min_time=2
+#include <benchmark/benchmark.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "rootsim/movie.hpp"
+#include "rootsim/png.hpp"
+#include "rootsim/render_scene.hpp"
+#include "rootsim/renderer.hpp"
+#include "rootsim/video.hpp"
+
+using namespace rootsim;
+
+namespace {
+
+constexpr int kElements = 300;
+
+// a root lying on a 40 deg plate, waving sideways (amplitude 1 mm, wavelength 8 mm), 30 mm long,
+// its d1 turning by a quarter turn per wavelength; k shifts the wave (a different frame each k)
+Snapshot wavingRoot(int k) {
+  const double a = 40.0 * std::numbers::pi / 180.0, R = 1e-4, L = 30e-3;
+  const Eigen::Vector3d n(0, -std::cos(a), std::sin(a)), down(0, -std::sin(a), -std::cos(a)), lat(1, 0, 0);
+  Snapshot s;
+  s.step = k;
+  s.timeH = 0.05 * k;
+  s.x.resize(3, kElements + 1);
+  s.d1.resize(3, kElements);
+  s.d3.resize(3, kElements);
+  s.radius = Eigen::VectorXd::Constant(kElements, R);
+  const double phase = 0.2 * k;
+  for (int i = 0; i <= kElements; ++i) {
+    const double t = L * i / kElements;
+    s.x.col(i) = t * down + 1e-3 * std::sin(2 * std::numbers::pi * t / 8e-3 + phase) * lat + R * n;
+  }
+  for (int e = 0; e < kElements; ++e) {
+    const Eigen::Vector3d d3 = (s.x.col(e + 1) - s.x.col(e)).normalized();
+    const double th = 0.5 * std::numbers::pi * (L * (e + 0.5) / kElements) / 8e-3;
+    Eigen::Vector3d d1 = std::cos(th) * lat + std::sin(th) * n;
+    d1 = (d1 - d1.dot(d3) * d3).normalized();
+    s.d3.col(e) = d3;
+    s.d1.col(e) = d1;
+  }
+  return s;
+}
+
+View view(int w, int h) {
+  View v;
+  v.width = w;
+  v.height = h;
+  return v;
+}
+
+SceneInfo info() {
+  SceneInfo si;
+  si.alphaDeg = 40;
+  si.beta = 0.2;
+  si.gamma = 0.1;
+  return si;
+}
+
+std::filesystem::path scratch() {
+  const auto d = std::filesystem::temp_directory_path() / ("rootsim_bench_render_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+void BM_BuildScene(benchmark::State& st) {
+  const Snapshot s = wavingRoot(0);
+  const View v = view(1920, 1080);
+  const Framing f = frameFor({s}, info(), v);
+  for (auto _ : st) benchmark::DoNotOptimize(buildRenderScene(s, info(), v, f));
+}
+BENCHMARK(BM_BuildScene)->Unit(benchmark::kMillisecond);
+
+// draw + MSAA resolve + glReadPixels + overlays, one thread feeding llvmpipe
+void BM_DrawReadback(benchmark::State& st) {
+  const int w = static_cast<int>(st.range(0)), h = static_cast<int>(st.range(1));
+  const Snapshot s = wavingRoot(0);
+  const View v = view(w, h);
+  const RenderScene rs = buildRenderScene(s, info(), v, frameFor({s}, info(), v));
+  GlRenderer r(w, h);
+  Image img;
+  for (auto _ : st) r.render(rs, img);
+  st.counters["samples"] = r.samples();
+  st.SetItemsProcessed(st.iterations());
+}
+BENCHMARK(BM_DrawReadback)->Args({1280, 720})->Args({1920, 1080})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+void BM_Png(benchmark::State& st) {
+  const int w = static_cast<int>(st.range(0)), h = static_cast<int>(st.range(1));
+  const Snapshot s = wavingRoot(0);
+  const View v = view(w, h);
+  GlRenderer r(w, h);
+  const Image img = r.render(buildRenderScene(s, info(), v, frameFor({s}, info(), v)));
+  const std::string path = (scratch() / "bench.png").string();
+  for (auto _ : st) writePng(path, img);
+  st.counters["bytes"] = static_cast<double>(std::filesystem::file_size(path));
+  std::filesystem::remove(path);
+}
+BENCHMARK(BM_Png)->Args({1920, 1080})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// swscale + x264 (crf 18, preset veryfast) per frame, on frames that change like a movie's
+void BM_Encode(benchmark::State& st) {
+  const int w = static_cast<int>(st.range(0)), h = static_cast<int>(st.range(1));
+  const View v = view(w, h);
+  std::vector<Snapshot> snaps;
+  for (int k = 0; k < 8; ++k) snaps.push_back(wavingRoot(k));
+  const Framing f = frameFor(snaps, info(), v);
+  GlRenderer r(w, h);
+  std::vector<Image> frames;
+  for (const Snapshot& s : snaps) frames.push_back(r.render(buildRenderScene(s, info(), v, f)));
+  const std::string path = (scratch() / "bench.mp4").string();
+  VideoWriter out(path, w, h);
+  std::size_t i = 0;
+  for (auto _ : st) out.add(frames[i++ % frames.size()]);
+  out.finish();
+  std::filesystem::remove(path);
+  st.SetItemsProcessed(st.iterations());
+}
+BENCHMARK(BM_Encode)->Args({1280, 720})->Args({1920, 1080})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// end to end: 60 snapshots -> MP4 (build, draw, readback, overlays | swscale, x264) per iteration;
+// items/s is the movie's frame rate
+void BM_Movie(benchmark::State& st) {
+  const int w = static_cast<int>(st.range(0)), h = static_cast<int>(st.range(1));
+  constexpr int kFrames = 60;
+  std::vector<Snapshot> snaps;
+  for (int k = 0; k < kFrames; ++k) snaps.push_back(wavingRoot(k));
+  MovieJob job;
+  job.view = view(w, h);
+  job.mp4 = (scratch() / "movie.mp4").string();
+  for (auto _ : st) renderMovie(snaps, info(), job);
+  std::filesystem::remove(job.mp4);
+  st.SetItemsProcessed(st.iterations() * kFrames);
+  st.counters["fps"] = benchmark::Counter(static_cast<double>(st.iterations() * kFrames), benchmark::Counter::kIsRate);
+}
+BENCHMARK(BM_Movie)->Args({1280, 720})->Args({1920, 1080})->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
+
+}  // namespace
+
+BENCHMARK_MAIN();

@@ -233,6 +233,18 @@ TEST_CASE("rootsim render on a tiny run: movie.mp4 with one frame per snapshot, 
     CHECK(r3.out.empty());
     CHECK(rtest::decodeMp4((d / "3d.mp4").string()).frames == 11);
   }
+  SUBCASE("rootsim run --movie renders after the run") {
+    const std::string dir2 = (d / "run2").string();
+    const Result rm = run("run " + std::string(ROOTSIM_SOURCE_DIR) +
+                          "/scenes/fig2b_waving.toml --set growth.steps=20 --set output.every_steps=4 --quiet --movie --out " +
+                          dir2);
+    REQUIRE_MESSAGE(rm.code == 0, rm.out);
+    const rtest::Decoded mm = rtest::decodeMp4(dir2 + "/movie.mp4");
+    CHECK(mm.frames == 6);
+    CHECK(mm.width == 1280);
+    CHECK(mm.height == 720);
+    CHECK(readPng(dir2 + "/final_top.png").width == 1280);
+  }
   SUBCASE("bad input exits 2 naming the flag or the file") {
     const Result odd = run("render " + runDir + " --size 321x180");
     CHECK(odd.code == 2);

@@ -360,3 +360,21 @@ TEST_CASE("errors name the problem") {
   // a RenderError is a RunError: the CLI exits 1 on it
   CHECK_THROWS_AS(GlRenderer(-1, -1), RunError);
 }
+
+TEST_CASE("shaders from disk (development option) draw what the built-in copies draw") {
+  const SceneInfo si = rtest::info(40);
+  const Snapshot s = rtest::straightRod(40, 20, 1.0, 0.1, [](double sMm) { return 2.0 * sMm; });
+  View v;
+  v.width = 320;
+  v.height = 180;
+  GlRenderer builtIn(320, 180);
+  RendererOptions disk;
+  disk.shaderDir = std::string(ROOTSIM_SOURCE_DIR) + "/shaders";
+  GlRenderer fromDisk(320, 180, disk);
+  CHECK(builtIn.samples() == fromDisk.samples());
+  CHECK(builtIn.glVersion().find("4.5") != std::string::npos);
+  CHECK(draw(builtIn, s, si, v).rgba == draw(fromDisk, s, si, v).rgba);
+  RendererOptions missing;
+  missing.shaderDir = "/nonexistent/shaders";
+  CHECK_THROWS_WITH_AS(GlRenderer(64, 64, missing), doctest::Contains("/nonexistent/shaders/tube.vert"), RenderError);
+}

@@ -81,11 +81,13 @@ void BM_BuildScene(benchmark::State& st) {
 }
 BENCHMARK(BM_BuildScene)->Unit(benchmark::kMillisecond);
 
-// draw + MSAA resolve + glReadPixels + overlays, one thread feeding llvmpipe
+// draw + MSAA resolve + glReadPixels + overlays, one thread feeding llvmpipe; third argument 0:
+// transparent background (no plate), to show what the plate costs
 void BM_DrawReadback(benchmark::State& st) {
   const int w = static_cast<int>(st.range(0)), h = static_cast<int>(st.range(1));
   const Snapshot s = wavingRoot(0);
-  const View v = view(w, h);
+  View v = view(w, h);
+  v.transparent = st.range(2) == 0;
   const RenderScene rs = buildRenderScene(s, info(), v, frameFor({s}, info(), v));
   GlRenderer r(w, h);
   Image img;
@@ -93,7 +95,7 @@ void BM_DrawReadback(benchmark::State& st) {
   st.counters["samples"] = r.samples();
   st.SetItemsProcessed(st.iterations());
 }
-BENCHMARK(BM_DrawReadback)->Args({1280, 720})->Args({1920, 1080})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_DrawReadback)->Args({1280, 720, 1})->Args({1920, 1080, 1})->Args({1920, 1080, 0})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_Png(benchmark::State& st) {
   const int w = static_cast<int>(st.range(0)), h = static_cast<int>(st.range(1));

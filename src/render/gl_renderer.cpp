@@ -8,6 +8,7 @@
 #include <GL/glext.h>
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdio>
 #include <cstring>
 #include <fstream>
@@ -120,6 +121,8 @@ struct GlRenderer::Impl {
   RendererOptions opt;
   int width = 0, height = 0, samples = 1;
   GLuint msFbo = 0, msColour = 0, msDepth = 0, resFbo = 0, resColour = 0;
+  GLuint plateFbo = 0, plateColour = 0, plateDepth = 0;  // the plate of the last frame (fixed camera)
+  std::vector<float> plateKey;                           // what it was drawn with; empty: none
   GLuint tubeProg = 0, planeProg = 0;
   GLuint tubeVao = 0, tubeVbo = 0, tubeIbo = 0, planeVao = 0, planeVbo = 0;
   std::vector<std::uint8_t> readback;
@@ -184,9 +187,51 @@ struct GlRenderer::Impl {
   void freeTargets() {
     if (msFbo) glDeleteFramebuffers(1, &msFbo);
     if (resFbo) glDeleteFramebuffers(1, &resFbo);
-    GLuint rbs[] = {msColour, msDepth, resColour};
-    glDeleteRenderbuffers(3, rbs);
-    msFbo = resFbo = msColour = msDepth = resColour = 0;
+    if (plateFbo) glDeleteFramebuffers(1, &plateFbo);
+    GLuint rbs[] = {msColour, msDepth, resColour, plateColour, plateDepth};
+    glDeleteRenderbuffers(5, rbs);
+    msFbo = resFbo = msColour = msDepth = resColour = plateFbo = plateColour = plateDepth = 0;
+    plateKey.clear();
+  }
+
+  // everything the plate's pixels depend on: same key, same pixels
+  static std::vector<float> keyOf(const RenderScene& s) {
+    const auto& p = s.plate;
+    std::vector<float> k{static_cast<float>(s.width), static_cast<float>(s.height), p.u0, p.v0, p.u1, p.v1,
+                         p.gridMm, static_cast<float>(p.majorEvery), p.lineWidthPx};
+    k.insert(k.end(), s.viewMatrix.begin(), s.viewMatrix.end());
+    k.insert(k.end(), s.projMatrix.begin(), s.projMatrix.end());
+    k.insert(k.end(), s.background.begin(), s.background.end());
+    for (const auto* c : {&p.colour, &p.line, &p.major}) k.insert(k.end(), c->begin(), c->end());
+    return k;
+  }
+
+  // a multisampled copy of the cleared buffers with the plate drawn, for the frames that follow
+  void storePlate(const std::vector<float>& key) {
+    if (!plateFbo) {
+      glGenFramebuffers(1, &plateFbo);
+      glGenRenderbuffers(1, &plateColour);
+      glGenRenderbuffers(1, &plateDepth);
+      glBindRenderbuffer(GL_RENDERBUFFER, plateColour);
+      glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_RGBA8, width, height);
+      glBindRenderbuffer(GL_RENDERBUFFER, plateDepth);
+      glRenderbufferStorageMultisample(GL_RENDERBUFFER, samples, GL_DEPTH_COMPONENT24, width, height);
+      glBindFramebuffer(GL_FRAMEBUFFER, plateFbo);
+      glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, plateColour);
+      glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, plateDepth);
+      const GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+      if (st != GL_FRAMEBUFFER_COMPLETE) throw RenderError("GL: glCheckFramebufferStatus(plate cache) = " + hex(st));
+    }
+    copyBuffers(msFbo, plateFbo);
+    checkGl("store the plate (glBlitFramebuffer)");
+    plateKey = key;
+  }
+
+  void copyBuffers(GLuint from, GLuint to) {
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, from);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, to);
+    glBlitFramebuffer(0, 0, width, height, 0, 0, width, height, GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT,
+                      GL_NEAREST);
   }
 
   // (re)create the multisampled and the resolve framebuffers at w x h
@@ -230,19 +275,29 @@ struct GlRenderer::Impl {
   }
 
   void draw(const RenderScene& s) {
-    glBindFramebuffer(GL_FRAMEBUFFER, msFbo);
     glViewport(0, 0, width, height);
-    glClearColor(s.background[0], s.background[1], s.background[2], s.background[3]);
-    glClearDepth(1.0);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
     glDisable(GL_CULL_FACE);
     glDisable(GL_BLEND);
     glEnable(GL_MULTISAMPLE);
 
+    // a movie keeps its camera, so its plate is the same on every frame: copy the stored one (a
+    // third of the drawing time at 1080p) instead of clearing and drawing it again
+    const std::vector<float> key = s.plate.visible ? keyOf(s) : std::vector<float>{};
+    const bool cached = s.plate.visible && key == plateKey;
+    if (cached) {
+      copyBuffers(plateFbo, msFbo);
+      checkGl("restore the plate (glBlitFramebuffer)");
+    } else {
+      glBindFramebuffer(GL_FRAMEBUFFER, msFbo);
+      glClearColor(s.background[0], s.background[1], s.background[2], s.background[3]);
+      glClearDepth(1.0);
+      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    }
+
     // the plate first, pushed back a little so the root's contact line wins the depth test
-    if (s.plate.visible) {
+    if (s.plate.visible && !cached) {
       const auto& p = s.plate;
       const float quad[8] = {p.u0, p.v0, p.u1, p.v0, p.u0, p.v1, p.u1, p.v1};
       glUseProgram(planeProg);
@@ -262,7 +317,9 @@ struct GlRenderer::Impl {
       glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
       glDisable(GL_POLYGON_OFFSET_FILL);
       checkGl("draw plate");
+      storePlate(key);
     }
+    glBindFramebuffer(GL_FRAMEBUFFER, msFbo);
 
     if (!s.indices.empty()) {
       const auto& m = s.material;

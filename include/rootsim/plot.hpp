@@ -62,6 +62,9 @@ struct Figure {
   std::vector<Axes> axes;
 };
 
+// height / width of the plot area of axes a in figure f, in pixels (the layout saveFigure uses)
+double plotAspect(const Figure& f, const Axes& a);
+
 // writes path.png and path.svg (atomically); throws RunError
 void saveFigure(const Figure& f, const std::string& pathWithoutExtension);
 

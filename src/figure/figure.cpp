@@ -179,7 +179,19 @@ PlateWindow windowOf(const std::vector<const Snapshot*>& sns, double alphaDeg, d
 
 // one root on the plate in an axes: a rendered tile (tube with +-d1 stripes) when a renderer is
 // available, otherwise the centreline drawn with the root's width
-void addRoot(const Ctx& c, Axes& ax, const Snapshot& sn, const Case& k, const PlateWindow& win, Rgb color) {
+void addRoot(const Ctx& c, const Figure& f, Axes& ax, const Snapshot& sn, const Case& k, PlateWindow win, Rgb color) {
+  // widen the window to the plot area's aspect, so a rendered tile fills the axes at one scale
+  const double aspect = plotAspect(f, ax);
+  const double lw = win.lateralMax - win.lateralMin, dh = win.downhillMax - win.downhillMin;
+  if (dh / lw > aspect) {
+    const double cx = 0.5 * (win.lateralMin + win.lateralMax), half = 0.5 * dh / aspect;
+    win.lateralMin = cx - half;
+    win.lateralMax = cx + half;
+  } else {
+    const double cy = 0.5 * (win.downhillMin + win.downhillMax), half = 0.5 * lw * aspect;
+    win.downhillMin = cy - half;
+    win.downhillMax = cy + half;
+  }
   ax.equalAspect = true;
   ax.autoX = ax.autoY = false;
   ax.xmin = win.lateralMin;
@@ -290,7 +302,7 @@ std::string fig2a(const Ctx& c) {
     const double cx = 0.5 * (own.lateralMin + own.lateralMax);
     w.lateralMin += cx;
     w.lateralMax += cx;
-    addRoot(c, ax, *finals[i], cases[i], w, {0.3, 0.3, 0.32});
+    addRoot(c, f, ax, *finals[i], cases[i], w, {0.3, 0.3, 0.32});
     f.axes.push_back(ax);
     const std::string pat = r.at("pattern");
     if (cases[i].alpha == 0) straight0 = pat == "straight";
@@ -347,7 +359,7 @@ std::string fig2b(const Ctx& c) {
     ax.title = "t = " + num(std::round(snaps[static_cast<size_t>(k)]->timeH)) + " h";
     ax.xlabel = "lateral (mm)";
     if (k == 0) ax.ylabel = "downhill (mm)";
-    addRoot(c, ax, *snaps[static_cast<size_t>(k)], w, win, paletteColor(0));
+    addRoot(c, f, ax, *snaps[static_cast<size_t>(k)], w, win, paletteColor(0));
     f.axes.push_back(ax);
   }
   saveFigure(f, (fs::path(c.opt.out) / "fig2b").string());
@@ -618,7 +630,7 @@ std::string fig4a(const Ctx& c) {
     ax.panelLabel = std::string(1, static_cast<char>('a' + i));
     ax.title = "R τ = " + num(cs[i].rTau);
     ax.xlabel = "ω T0 = " + fmt3(val(r, "omega_T0"));
-    addRoot(c, ax, *finals[i], cs[i], win, paletteColor(static_cast<int>(i)));
+    addRoot(c, f, ax, *finals[i], cs[i], win, paletteColor(static_cast<int>(i)));
     f.axes.push_back(ax);
     skews.push_back(std::abs(val(r, "skew_deg")));
     table += "| " + num(cs[i].rTau) + " | " + fmt3(val(r, "omega_T0")) + " | " + fmt3(val(r, "skew_deg")) + " | " +

@@ -46,6 +46,9 @@ std::string tickLabel(double v) {
 
 struct Box { double x, y, w, h; };
 
+// layout of one axes inside its cell [px]
+constexpr double kLeft = 64, kRight = 14, kTop = 12, kTopTitle = 32, kBottom = 46, kFigureTitle = 34;
+
 void text(cairo_t* cr, double x, double y, const std::string& s, double size, double ax, double ay,
           bool bold = false, double angle = 0) {
   cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
@@ -92,7 +95,8 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
     if (a.autoX) { x0 = lx - px; x1 = hx + px; }
     if (a.autoY) { y0 = ly - py; y1 = hy + py; }
   }
-  const double L = box.x + 64, R = box.x + box.w - 14, T = box.y + (a.title.empty() ? 12 : 32), B = box.y + box.h - 46;
+  const double L = box.x + kLeft, R = box.x + box.w - kRight, T = box.y + (a.title.empty() ? kTop : kTopTitle),
+               B = box.y + box.h - kBottom;
   double pw = R - L, ph = B - T;
   if (a.equalAspect) {
     // widen the smaller range so one data unit has the same length on both axes
@@ -260,7 +264,7 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
 void drawFigure(cairo_t* cr, const Figure& f) {
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
-  const double top = f.title.empty() ? 0 : 34;
+  const double top = f.title.empty() ? 0 : kFigureTitle;
   if (!f.title.empty()) {
     cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
     text(cr, 0.5 * f.width, 10, f.title, 17, 0.5, 0.0, true);
@@ -277,6 +281,13 @@ void check(cairo_status_t st, const std::string& what) {
 }
 
 }  // namespace
+
+double plotAspect(const Figure& f, const Axes& a) {
+  const double top = f.title.empty() ? 0 : kFigureTitle;
+  const double cw = static_cast<double>(f.width) / f.cols, ch = (f.height - top) / static_cast<double>(f.rows);
+  const double pw = cw - kLeft - kRight, ph = ch - (a.title.empty() ? kTop : kTopTitle) - kBottom;
+  return ph / pw;
+}
 
 void saveFigure(const Figure& f, const std::string& base) {
   const fs::path png = base + ".png", svg = base + ".svg";

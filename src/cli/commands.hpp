@@ -29,6 +29,9 @@ struct RenderOptions {
   std::string size = "1280x720";
   int fps = 30;
   int crf = 18;
+  bool whiskers = false;     // thin +-d1 spikes
+  bool transparent = false;  // PNG frames without the plate (alpha 0 outside the root)
+  bool noOverlays = false;   // no time, scale bar or parameters
   bool quiet = false;
 };
 int renderCommand(const RenderOptions& o);

@@ -40,6 +40,9 @@ int main(int argc, char** argv) {
   cRender->add_option("--size", render.size, "frame size WxH, even numbers (default 1280x720)");
   cRender->add_option("--fps", render.fps, "frames per second")->check(CLI::Range(1, 240));
   cRender->add_option("--crf", render.crf, "H.264 quality, 0 (lossless) .. 51")->check(CLI::Range(0, 51));
+  cRender->add_flag("--whiskers", render.whiskers, "draw thin +d1 (pink) / -d1 (orange) whiskers");
+  cRender->add_flag("--transparent", render.transparent, "PNG frames without the plate (needs --png-dir)");
+  cRender->add_flag("--no-overlays", render.noOverlays, "no time, scale bar or parameters");
   cRender->add_flag("--quiet", render.quiet, "no progress output");
 
   cli::SweepCliOptions sweep;

@@ -121,6 +121,15 @@ int renderRunCommand(const RenderOptions& o) {
   const fs::path mp4Dir = fs::absolute(fs::path(job.mp4)).parent_path();
   if (!fs::is_directory(mp4Dir)) throw SceneError("--mp4 " + job.mp4 + ": folder " + mp4Dir.string() + " not found");
   job.pngDir = o.pngDir;
+  job.view.whiskers = o.whiskers;
+  if (o.transparent) {
+    // PNG frames only: MP4 has no alpha channel
+    if (o.pngDir.empty()) throw SceneError("--transparent: applies to PNG frames; add --png-dir DIR");
+    if (!o.mp4.empty()) throw SceneError("--transparent: MP4 has no alpha channel; drop --mp4 " + o.mp4);
+    job.view.transparent = true;
+    job.mp4.clear();
+  }
+  if (o.noOverlays) job.view.overlays = false;
   const fs::path sceneFile = runDir / "scene.toml";
   if (!fs::is_regular_file(sceneFile)) throw SceneError(sceneFile.string() + ": not found (not a run directory?)");
   const SceneInfo info = sceneInfoOf(loadScene(sceneFile.string()).model);

@@ -245,6 +245,19 @@ TEST_CASE("rootsim render on a tiny run: movie.mp4 with one frame per snapshot, 
     CHECK(mm.height == 720);
     CHECK(readPng(dir2 + "/final_top.png").width == 1280);
   }
+  SUBCASE("--transparent writes PNG frames with alpha and no movie; --whiskers and --no-overlays render") {
+    const Result rt = run("render " + runDir + " --transparent --size 320x180 --quiet --png-dir " + (d / "tframes").string());
+    REQUIRE_MESSAGE(rt.code == 0, rt.out);
+    const Image t = readPng((d / "tframes" / "frame_00010.png").string());
+    CHECK(t.at(2, 2)[3] == 0);  // a corner: no plate, transparent
+    const Result bad = run("render " + runDir + " --transparent --quiet");
+    CHECK(bad.code == 2);
+    CHECK(bad.out.find("--transparent") != std::string::npos);
+    const Result rw = run("render " + runDir + " --whiskers --no-overlays --size 320x180 --quiet --mp4 " +
+                          (d / "w.mp4").string());
+    REQUIRE_MESSAGE(rw.code == 0, rw.out);
+    CHECK(rtest::decodeMp4((d / "w.mp4").string()).frames == 11);
+  }
   SUBCASE("bad input exits 2 naming the flag or the file") {
     const Result odd = run("render " + runDir + " --size 321x180");
     CHECK(odd.code == 2);

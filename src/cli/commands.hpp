@@ -26,7 +26,7 @@ struct RenderOptions {
   std::string mp4;        // default RUN_DIR/movie.mp4
   std::string pngDir;     // also write every frame as PNG
   std::string view = "top";
-  std::string size = "1280x720";
+  std::string size = "auto";  // WxH, or auto: 1280x720 or 720x1280 from the root's shape
   int fps = 30;
   int crf = 18;
   bool whiskers = false;     // thin +-d1 spikes

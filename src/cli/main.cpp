@@ -37,7 +37,7 @@ int main(int argc, char** argv) {
   cRender->add_option("--mp4", render.mp4, "movie file (default: RUN_DIR/movie.mp4)");
   cRender->add_option("--png-dir", render.pngDir, "also write every frame as PNG into this folder");
   cRender->add_option("--view", render.view, "top or 3d")->check(CLI::IsMember({"top", "3d"}));
-  cRender->add_option("--size", render.size, "frame size WxH, even numbers (default 1280x720)");
+  cRender->add_option("--size", render.size, "frame size WxH (even numbers), or auto (default): 1280x720, or 720x1280 for a root growing mostly downhill");
   cRender->add_option("--fps", render.fps, "frames per second")->check(CLI::Range(1, 240));
   cRender->add_option("--crf", render.crf, "H.264 quality, 0 (lossless) .. 51")->check(CLI::Range(0, 51));
   cRender->add_flag("--whiskers", render.whiskers, "draw thin +d1 (pink) / -d1 (orange) whiskers");

@@ -43,6 +43,24 @@ std::pair<int, int> parseSize(const std::string& s) {
   return {w, h};
 }
 
+// "auto": 1280x720 for a root that spreads sideways, 720x1280 for one that grows mostly downhill
+// (a long waving root in a landscape frame is a thin line); the top view's bounding box decides
+std::pair<int, int> autoSize(const std::vector<Snapshot>& snaps, const SceneInfo& info) {
+  const PlateFrame pf = plateFrame(info.alphaDeg);
+  double umin = 1e300, umax = -1e300, vmin = 1e300, vmax = -1e300;
+  for (const auto& sn : snaps)
+    for (int i = 0; i < sn.x.cols(); ++i) {
+      const Eigen::Vector3d p = pf.toPlateMm(sn.x.col(i));
+      umin = std::min(umin, p.x());
+      umax = std::max(umax, p.x());
+      vmin = std::min(vmin, p.y());
+      vmax = std::max(vmax, p.y());
+    }
+  const double w = umax - umin + 2.0, h = vmax - vmin + 2.0;  // with the 1 mm margins
+  if (h > 1.2 * w) return {720, 1280};
+  return {1280, 720};
+}
+
 SceneInfo sceneInfoOf(const Model& m) {
   SceneInfo si;
   si.alphaDeg = m.env.plane.alpha * 180.0 / std::numbers::pi;
@@ -112,7 +130,8 @@ int renderRunCommand(const RenderOptions& o) {
     job.view.kind = View::Kind::Perspective;
   else
     throw SceneError("--view " + o.view + ": expected top or 3d");
-  std::tie(job.view.width, job.view.height) = parseSize(o.size);
+  const bool autoSized = o.size == "auto";
+  if (!autoSized) std::tie(job.view.width, job.view.height) = parseSize(o.size);
   if (o.fps < 1 || o.fps > 240) throw SceneError("--fps " + std::to_string(o.fps) + ": expected 1..240");
   if (o.crf < 0 || o.crf > 51) throw SceneError("--crf " + std::to_string(o.crf) + ": expected 0..51");
   job.video.fps = o.fps;
@@ -134,6 +153,7 @@ int renderRunCommand(const RenderOptions& o) {
   if (!fs::is_regular_file(sceneFile)) throw SceneError(sceneFile.string() + ": not found (not a run directory?)");
   const SceneInfo info = sceneInfoOf(loadScene(sceneFile.string()).model);
   const std::vector<Snapshot> snaps = loadSnapshots(runDir);
+  if (autoSized) std::tie(job.view.width, job.view.height) = autoSize(snaps, info);
 
   renderRun(runDir, snaps, info, job, o.quiet);
   return 0;
@@ -142,7 +162,9 @@ int renderRunCommand(const RenderOptions& o) {
 void renderRunMovie(const fs::path& runDir, const SceneInfo& info, bool quiet) {
   MovieJob job;
   job.mp4 = (runDir / "movie.mp4").string();
-  renderRun(runDir, loadSnapshots(runDir), info, job, quiet);
+  const std::vector<Snapshot> snaps = loadSnapshots(runDir);
+  std::tie(job.view.width, job.view.height) = autoSize(snaps, info);
+  renderRun(runDir, snaps, info, job, quiet);
 }
 
 }  // namespace rootsim::cli

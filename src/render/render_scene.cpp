@@ -195,7 +195,9 @@ std::string fmt(const char* f, double v) {
 
 void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, const View& view) {
   if (!view.overlays) return;
-  const float font = std::max(12.0f, static_cast<float>(view.height) / 26.0f);
+  // text scales with the shorter side, so portrait frames get the same text as landscape ones
+  const float font = std::max(12.0f, static_cast<float>(std::min(view.width, view.height)) / 26.0f);
+  const bool portrait = view.height > view.width;
   const float m = 0.7f * font;
   if (view.showTime)
     rs.texts.push_back({"t = " + fmt("%.1f", s.timeH) + " h", m, m, font, OverlayText::Anchor::TopLeft});
@@ -203,7 +205,11 @@ void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, cons
     std::string p = "\xCE\xB1 = " + fmt("%.0f", info.alphaDeg) + "\xC2\xB0    \xCE\xB2 = " + fmt("%.3g", info.beta) +
                     "    \xCE\xB3 = " + fmt("%.3g", info.gamma);
     if (info.rTau != 0.0) p += "    R\xCF\x84 = " + fmt("%.3g", info.rTau);
-    rs.texts.push_back({p, static_cast<float>(view.width) - m, m, font, OverlayText::Anchor::TopRight});
+    // landscape: top right, beside the time; portrait: a second line under the time
+    if (portrait)
+      rs.texts.push_back({p, m, m + (view.showTime ? 1.5f * font : 0.0f), font, OverlayText::Anchor::TopLeft});
+    else
+      rs.texts.push_back({p, static_cast<float>(view.width) - m, m, font, OverlayText::Anchor::TopRight});
   }
   if (view.showTitle && !info.title.empty())
     rs.texts.push_back({info.title, m, static_cast<float>(view.height) - m, font,

@@ -1,6 +1,7 @@
 #include "rootsim/sweep.hpp"
 
 #include <atomic>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
@@ -168,6 +169,7 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
   }
   std::mutex mu;
   std::atomic<size_t> next{0};
+  const auto start = std::chrono::steady_clock::now();
   auto worker = [&]() {
     for (;;) {
       const size_t i = next++;
@@ -192,7 +194,15 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
         ++res.failed;
         msg = p.dirName + ": FAILED: " + msg;
       }
-      if (log) log("[" + std::to_string(res.ran + res.failed) + "/" + std::to_string(todo.size()) + "] " + msg);
+      if (log) {
+        // progress over the whole sweep: done / to do, elapsed and an estimate of what is left
+        const int done = res.ran + res.failed;
+        const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        char eta[96];
+        std::snprintf(eta, sizeof eta, " [%3.0f %%, %.0f s elapsed, ~%.0f s left]", 100.0 * done / todo.size(), el,
+                      el / done * (static_cast<double>(todo.size()) - done));
+        log("[" + std::to_string(done) + "/" + std::to_string(todo.size()) + "] " + msg + eta);
+      }
     }
   };
   std::vector<std::thread> pool;

@@ -51,6 +51,8 @@ struct RelaxWorkspace {
   Eigen::Matrix3Xd torque;     // (3 x n) material [N m]
   Eigen::VectorXd mass;        // node masses (n+1) [kg]
   Eigen::Matrix3Xd inertia;    // element inertia per material axis (3 x n) [kg m^2]
+  Eigen::VectorXd invMass;     // 1 / mass (n+1)
+  Eigen::Matrix3Xd invInertia; // 1 / inertia (3 x n)
   void resize(int n);
 };
 

@@ -136,6 +136,8 @@ void RelaxWorkspace::resize(int n) {
   torque.resize(3, n);
   mass.resize(n + 1);
   inertia.resize(3, n);
+  invMass.resize(n + 1);
+  invInertia.resize(3, n);
 }
 
 void computeForces(const RodParams& p, const Environment& env, const RodState& s, bool planeDamping,
@@ -172,6 +174,8 @@ DynamicRelaxation::DynamicRelaxation(const RodParams& p, const Environment& env,
   xtol_ = opt.speedTol * p.radius;  // displacement per sub-step [m]
   rtol_ = opt.speedTol;             // rotation per sub-step [rad]
   dtMax_ = setMasses(p, env, opt, s, ws);
+  ws.invMass = ws.mass.cwiseInverse();
+  ws.invInertia = ws.inertia.cwiseInverse();
   dt_ = dtMax_;
   alpha_ = kFireAlpha0;
   viscousFactor_ = std::exp(-opt.viscousRate * dtMax_);
@@ -189,14 +193,17 @@ bool DynamicRelaxation::step() {
   pendingDrift_ = 0.0;
   // 2. forces at the mid-step configuration
   computeForces(p_, env_, s, opt_.mass == MassModel::Physical, ws);
-  // 3. residuals, power, finiteness
-  double maxF2 = 0, maxM2 = 0, maxV2 = 0, maxW2 = 0, P = 0;
+  // 3. residuals, power, finiteness; also the mass-weighted |v|^2 and |F|^2 that FIRE mixes with
+  double maxF2 = 0, maxM2 = 0, maxV2 = 0, maxW2 = 0, P = 0, vm2 = 0, fm2 = 0;
   for (int i = 0; i <= n; ++i) {
     const double f2 = ws.force.col(i).squaredNorm();
     if (!std::isfinite(f2)) failNonFinite(step, "force on node", i, ws.force.col(i));
     if (f2 > maxF2) { maxF2 = f2; argF_ = i; }
-    maxV2 = std::max(maxV2, s.v.col(i).squaredNorm());
+    const double v2 = s.v.col(i).squaredNorm();
+    maxV2 = std::max(maxV2, v2);
     P += ws.force.col(i).dot(s.v.col(i));
+    vm2 += ws.mass[i] * v2;
+    fm2 += ws.invMass[i] * f2;
   }
   for (int i = 0; i < n; ++i) {
     const double m2 = ws.torque.col(i).squaredNorm();
@@ -204,6 +211,8 @@ bool DynamicRelaxation::step() {
     if (m2 > maxM2) { maxM2 = m2; argM_ = i; }
     maxW2 = std::max(maxW2, s.w.col(i).squaredNorm());
     P += ws.torque.col(i).dot(s.w.col(i));
+    vm2 += ws.inertia.col(i).dot(s.w.col(i).cwiseAbs2());
+    fm2 += ws.invInertia.col(i).dot(ws.torque.col(i).cwiseAbs2());
   }
   res_.residualForce = std::sqrt(maxF2);
   res_.residualTorque = std::sqrt(maxM2);
@@ -215,7 +224,7 @@ bool DynamicRelaxation::step() {
     s.w.setZero();
     return true;
   }
-  // 4. damping decision and kick
+  // 4. damping decision and kick, in one pass
   if (fire) {
     if (P > 0.0) {
       if (++npos_ > kFireNmin) {
@@ -228,36 +237,26 @@ bool DynamicRelaxation::step() {
       alpha_ = kFireAlpha0;
       s.v.setZero();
       s.w.setZero();
+      vm2 = 0.0;
+      P = 0.0;
     }
   }
   const double dt = dt_;
-  double vm2 = 0, fm2 = 0;  // mass-weighted |v|^2 and |F|^2 (for the FIRE mixing)
-  for (int i = 0; i <= n; ++i) {
-    const double im = 1.0 / ws.mass[i];
-    s.v.col(i) += (dt * im) * ws.force.col(i);
-    vm2 += ws.mass[i] * s.v.col(i).squaredNorm();
-    fm2 += im * ws.force.col(i).squaredNorm();
-  }
-  for (int i = 0; i < n; ++i) {
-    for (int a = 0; a < 3; ++a) {
-      const double J = ws.inertia(a, i);
-      s.w(a, i) += dt * ws.torque(a, i) / J;
-      vm2 += J * s.w(a, i) * s.w(a, i);
-      fm2 += ws.torque(a, i) * ws.torque(a, i) / J;
-    }
-  }
   if (fire) {
-    if (fm2 > 0.0) {
-      // v <- (1 - alpha) v + alpha |v| F^ in mass-weighted coordinates (u = sqrt(m) v, g = F / sqrt(m))
-      const double c = alpha_ * std::sqrt(vm2 / fm2);
-      const double keep = 1.0 - alpha_;
-      for (int i = 0; i <= n; ++i) s.v.col(i) = keep * s.v.col(i) + (c / ws.mass[i]) * ws.force.col(i);
-      for (int i = 0; i < n; ++i)
-        s.w.col(i) = keep * s.w.col(i) + c * ws.torque.col(i).cwiseQuotient(ws.inertia.col(i));
-    }
+    // kick v' = v + dt F/m, then mix v'' = (1 - alpha) v' + alpha |v'| F^ in mass-weighted coordinates
+    // (u = sqrt(m) v, g = F / sqrt(m)); |v'|^2 = |v|^2 + 2 dt F.v + dt^2 |F|^2 exactly, so both fold
+    // into v'' = (1 - alpha) v + ((1 - alpha) dt + c) F/m with c = alpha |v'| / |g|
+    const double vm2Kicked = std::max(0.0, vm2 + 2.0 * dt * P + dt * dt * fm2);
+    const double c = fm2 > 0.0 ? alpha_ * std::sqrt(vm2Kicked / fm2) : 0.0;
+    const double keep = 1.0 - alpha_, gain = keep * dt + c;
+    for (int i = 0; i <= n; ++i) s.v.col(i) = keep * s.v.col(i) + (gain * ws.invMass[i]) * ws.force.col(i);
+    for (int i = 0; i < n; ++i)
+      s.w.col(i) = keep * s.w.col(i) + gain * ws.torque.col(i).cwiseProduct(ws.invInertia.col(i));
   } else {
-    s.v *= viscousFactor_;
-    s.w *= viscousFactor_;
+    for (int i = 0; i <= n; ++i)
+      s.v.col(i) = viscousFactor_ * (s.v.col(i) + (dt * ws.invMass[i]) * ws.force.col(i));
+    for (int i = 0; i < n; ++i)
+      s.w.col(i) = viscousFactor_ * (s.w.col(i) + dt * ws.torque.col(i).cwiseProduct(ws.invInertia.col(i)));
   }
   if (env_.base == BaseCondition::Clamped) s.v.col(0).setZero();
   // 5. half drift, deferred to the next sub-step (a converged state is the one forces were checked at)

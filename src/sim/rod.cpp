@@ -57,6 +57,10 @@ inline Vec3 relativeRotation(const Mat3& A, const Mat3& B) {
     const double f = 1.0 + s2 * (1.0 / 6.0 + s2 * (3.0 / 40.0 + s2 * (5.0 / 112.0 + s2 * (35.0 / 1152.0))));
     return f * v;
   }
+  if (c > -0.9) {  // the antisymmetric part gives the axis accurately away from pi
+    const double sn = std::sqrt(s2);
+    return (std::atan2(sn, c) / sn) * v;
+  }
   return rotationToVector(A * B.transpose());
 }
 

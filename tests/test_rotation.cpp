@@ -16,3 +16,13 @@ TEST_CASE("rotation exp/log round trip at small, moderate and near-pi angles") {
     CHECK((rotationToVector(R) - phi).norm() < 1e-12 * std::max(1.0, t));
   }
 }
+
+TEST_CASE("rotateInPlace equals exp([phi]x) Q") {
+  Eigen::Matrix3d Q = Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, -2, 0.5).normalized()).toRotationMatrix();
+  for (double t : {1e-7, 5e-3, 0.2, 2.0}) {
+    const Eigen::Vector3d phi = t * Eigen::Vector3d(-0.3, 0.9, 0.2).normalized();
+    Eigen::Matrix3d A = Q;
+    rotateInPlace(phi, A);
+    CHECK((A - rotationFromVector(phi) * Q).norm() < 1e-15);
+  }
+}

@@ -115,9 +115,7 @@ void drift(const Environment& env, RodState& s, double h) {
   const int first = env.base == BaseCondition::Clamped ? 1 : 0;
   for (int i = first; i <= n; ++i) s.x.col(i) += h * s.v.col(i);
   for (int i = 0; i < n; ++i) {
-    Mat3& Q = s.Q[static_cast<size_t>(i)];
-    const Mat3 R = rotationFromVector(-h * Vec3(s.w.col(i)));
-    Q = (R * Q).eval();
+    rotateInPlace(-h * Vec3(s.w.col(i)), s.Q[static_cast<size_t>(i)]);
   }
 }
 

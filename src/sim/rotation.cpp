@@ -21,6 +21,25 @@ Eigen::Matrix3d rotationFromVector(const Eigen::Vector3d& phi) {
   return Eigen::Matrix3d::Identity() + a * K + b * (K * K);
 }
 
+void rotateInPlace(const Eigen::Vector3d& phi, Eigen::Matrix3d& Q) {
+  const double t2 = phi.squaredNorm();
+  double a, b;
+  if (t2 < 1e-4) {
+    a = 1.0 - t2 * (1.0 / 6.0 - t2 * (1.0 / 120.0 - t2 * (1.0 / 5040.0 - t2 / 362880.0)));
+    b = 0.5 - t2 * (1.0 / 24.0 - t2 * (1.0 / 720.0 - t2 * (1.0 / 40320.0 - t2 / 3628800.0)));
+  } else {
+    const double t = std::sqrt(t2);
+    a = std::sin(t) / t;
+    b = (1.0 - std::cos(t)) / t2;
+  }
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::Vector3d q = Q.col(c);
+    const Eigen::Vector3d u = phi.cross(q);
+    const Eigen::Vector3d w = phi.cross(u);
+    Q.col(c) = q + a * u + b * w;
+  }
+}
+
 Eigen::Vector3d rotationToVector(const Eigen::Matrix3d& R) {
   // antisymmetric part (R - R^T)/2 = sin t [axis]x ; trace = 1 + 2 cos t
   Eigen::Vector3d v(R(2, 1) - R(1, 2), R(0, 2) - R(2, 0), R(1, 0) - R(0, 1));

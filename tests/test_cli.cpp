@@ -1,6 +1,8 @@
 // the rootsim binary: exit codes, messages, run directories, determinism (src/cli, src/io/run_dir.cpp)
 #include <doctest/doctest.h>
 
+#include "run_rootsim.hpp"
+
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -12,21 +14,8 @@
 namespace fs = std::filesystem;
 
 namespace {
-struct Result {
-  int code;
-  std::string out;  // stdout + stderr
-};
-
-Result run(const std::string& args) {
-  const std::string cmd = std::string(ROOTSIM_BINARY) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  REQUIRE(p != nullptr);
-  std::string out;
-  std::array<char, 4096> buf;
-  while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-  const int st = pclose(p);
-  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
-}
+using rootsim::test::Result;
+using rootsim::test::run;
 
 std::string slurp(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);

@@ -36,17 +36,6 @@ double now() {
 }
 constexpr double kDeg = 180.0 / std::numbers::pi;
 
-[[maybe_unused]] SceneInfo sceneInfo(const Model& m) {
-  SceneInfo si;
-  si.alphaDeg = m.env.plane.alpha * kDeg;
-  si.beta = m.tropism.beta;
-  si.gamma = m.tropism.gamma;
-  si.rTau = m.tropism.rTau;
-  si.radius = m.rod.radius;
-  si.plate = m.env.plane.enabled;
-  si.title = m.name;
-  return si;
-}
 
 }  // namespace
 
@@ -93,7 +82,7 @@ int runCommand(const RunOptions& o) {
   });
   if (steps > 0) pr.finish(std::to_string(steps) + " steps");
 #ifdef ROOTSIM_HAVE_RENDER
-  if (o.movie) renderRunMovie(out, sceneInfo(sc.model), o.quiet);
+  if (o.movie) renderRunMovie(out, o.quiet);
 #endif
   if (!o.quiet) std::fprintf(stderr, "wrote %s\n", out.string().c_str());
   return 0;

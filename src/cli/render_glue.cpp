@@ -159,7 +159,8 @@ int renderRunCommand(const RenderOptions& o) {
   return 0;
 }
 
-void renderRunMovie(const fs::path& runDir, const SceneInfo& info, bool quiet) {
+void renderRunMovie(const fs::path& runDir, bool quiet) {
+  const SceneInfo info = sceneInfoOf(loadScene((runDir / "scene.toml").string()).model);
   MovieJob job;
   job.mp4 = (runDir / "movie.mp4").string();
   const std::vector<Snapshot> snaps = loadSnapshots(runDir);

@@ -14,6 +14,6 @@ int renderRunCommand(const RenderOptions& o);
 
 // `rootsim run --movie`: after the run, RUN_DIR/movie.mp4 (top view, 1280x720, 30 fps, crf 18) and
 // RUN_DIR/final_top.png from RUN_DIR/trajectory.csv
-void renderRunMovie(const std::filesystem::path& runDir, const SceneInfo& info, bool quiet);
+void renderRunMovie(const std::filesystem::path& runDir, bool quiet);
 
 }  // namespace rootsim::cli

@@ -153,7 +153,7 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
   std::error_code ec;
   fs::create_directories(opt.out, ec);
   if (ec) throw SceneError("--out " + opt.out + ": cannot create: " + ec.message());
-  std::vector<const SweepPoint*> todo;
+  std::vector<const SweepPoint*> pending;
   SweepResult res;
   for (const auto& p : plan.points) {
     if (p.index % opt.shards != opt.shard - 1) continue;
@@ -165,7 +165,7 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
       ++res.skipped;
       continue;
     }
-    todo.push_back(&p);
+    pending.push_back(&p);
   }
   std::mutex mu;
   std::atomic<size_t> next{0};
@@ -173,8 +173,8 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
   auto worker = [&]() {
     for (;;) {
       const size_t i = next++;
-      if (i >= todo.size()) return;
-      const SweepPoint& p = *todo[i];
+      if (i >= pending.size()) return;
+      const SweepPoint& p = *pending[i];
       std::string msg;
       bool ok = true;
       double wall = 0;
@@ -199,14 +199,14 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
         const int done = res.ran + res.failed;
         const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         char eta[96];
-        std::snprintf(eta, sizeof eta, " [%3.0f %%, %.0f s elapsed, ~%.0f s left]", 100.0 * done / todo.size(), el,
-                      el / done * (static_cast<double>(todo.size()) - done));
-        log("[" + std::to_string(done) + "/" + std::to_string(todo.size()) + "] " + msg + eta);
+        std::snprintf(eta, sizeof eta, " [%3.0f %%, %.0f s elapsed, ~%.0f s left]", 100.0 * done / pending.size(), el,
+                      el / done * (static_cast<double>(pending.size()) - done));
+        log("[" + std::to_string(done) + "/" + std::to_string(pending.size()) + "] " + msg + eta);
       }
     }
   };
   std::vector<std::thread> pool;
-  const int jobs = std::max(1, std::min<int>(opt.jobs, static_cast<int>(todo.size())));
+  const int jobs = std::max(1, std::min<int>(opt.jobs, static_cast<int>(pending.size())));
   for (int j = 0; j < jobs; ++j) pool.emplace_back(worker);
   for (auto& t : pool) t.join();
   writeSweepTable(plan, opt.out);

@@ -105,13 +105,13 @@ class Context {
   Context& operator=(const Context&) = delete;
   void makeCurrent() {
     // the OSMesa buffer is only a binding target: every frame goes to our own framebuffers
-    if (!OSMesaMakeCurrent(ctx_, dummy_, GL_UNSIGNED_BYTE, 4, 4))
+    if (!OSMesaMakeCurrent(ctx_, osmesaBuffer_, GL_UNSIGNED_BYTE, 4, 4))
       throw RenderError("OSMesa: OSMesaMakeCurrent failed");
   }
 
  private:
   OSMesaContext ctx_ = nullptr;
-  unsigned char dummy_[4 * 4 * 4] = {};
+  unsigned char osmesaBuffer_[4 * 4 * 4] = {};
 };
 
 }  // namespace

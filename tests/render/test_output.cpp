@@ -2,6 +2,8 @@
 // (src/cli/render_glue.cpp): read back independently, frame counts, sizes, durations, errors
 #include <doctest/doctest.h>
 
+#include "../run_rootsim.hpp"
+
 #include <array>
 #include <cstdio>
 #include <fstream>
@@ -46,21 +48,8 @@ std::vector<Snapshot> growingRod(int frames) {
   return v;
 }
 
-struct Result {
-  int code;
-  std::string out;  // stdout + stderr
-};
-
-Result run(const std::string& args) {
-  const std::string cmd = std::string(ROOTSIM_BINARY) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  REQUIRE(p != nullptr);
-  std::string out;
-  std::array<char, 4096> buf;
-  while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-  const int st = pclose(p);
-  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
-}
+using rootsim::test::Result;
+using rootsim::test::run;
 
 }  // namespace
 

@@ -8,6 +8,7 @@
 
 #include "rootsim/render_scene.hpp"
 #include "rootsim/snapshot.hpp"
+#include "rootsim/renderer.hpp"
 #include "rootsim/video.hpp"
 
 namespace rootsim {
@@ -18,6 +19,7 @@ struct MovieJob {
   std::string finalPng;   // PNG of the last frame; empty: none
   View view;              // size, camera, overlays (framing fields may be left unset)
   VideoOptions video;     // fps, crf, x264 preset
+  RendererOptions renderer;  // MSAA samples; shaders from disk (development)
 };
 
 // progress(done, total) after each frame

@@ -32,6 +32,7 @@ struct RenderOptions {
   bool whiskers = false;     // thin +-d1 spikes
   bool transparent = false;  // PNG frames without the plate (alpha 0 outside the root)
   bool noOverlays = false;   // no time, scale bar or parameters
+  std::string shaderDir;     // development: load tube/plane shaders from here instead of the built-in copies
   bool quiet = false;
 };
 int renderCommand(const RenderOptions& o);

@@ -43,6 +43,8 @@ int main(int argc, char** argv) {
   cRender->add_flag("--whiskers", render.whiskers, "draw thin +d1 (pink) / -d1 (orange) whiskers");
   cRender->add_flag("--transparent", render.transparent, "PNG frames without the plate (needs --png-dir)");
   cRender->add_flag("--no-overlays", render.noOverlays, "no time, scale bar or parameters");
+  cRender->add_option("--shader-dir", render.shaderDir,
+                      "development: load tube/plane .vert/.frag from DIR instead of the built-in shaders");
   cRender->add_flag("--quiet", render.quiet, "no progress output");
 
   cli::SweepCliOptions sweep;

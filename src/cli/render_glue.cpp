@@ -149,6 +149,12 @@ int renderRunCommand(const RenderOptions& o) {
     job.mp4.clear();
   }
   if (o.noOverlays) job.view.overlays = false;
+  if (!o.shaderDir.empty()) {
+    for (const char* f : {"tube.vert", "tube.frag", "plane.vert", "plane.frag"})
+      if (!fs::is_regular_file(fs::path(o.shaderDir) / f))
+        throw SceneError("--shader-dir " + o.shaderDir + ": " + f + " not found");
+    job.renderer.shaderDir = o.shaderDir;
+  }
   const fs::path sceneFile = runDir / "scene.toml";
   if (!fs::is_regular_file(sceneFile)) throw SceneError(sceneFile.string() + ": not found (not a run directory?)");
   const SceneInfo info = sceneInfoOf(loadScene(sceneFile.string()).model);

@@ -57,7 +57,7 @@ struct MovieRecorder::Impl {
   std::thread encoder;
 
   Impl(const SceneInfo& i, const MovieJob& j, const Framing& f)
-      : info(i), job(j), framing(f), renderer(j.view.width, j.view.height) {
+      : info(i), job(j), framing(f), renderer(j.view.width, j.view.height, j.renderer) {
     checkJob(job);
     if (!job.mp4.empty()) video = std::make_unique<VideoWriter>(job.mp4, job.view.width, job.view.height, job.video);
     encoder = std::thread([this] { encodeLoop(); });

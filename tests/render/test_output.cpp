@@ -247,6 +247,12 @@ TEST_CASE("rootsim render on a tiny run: movie.mp4 with one frame per snapshot, 
                           (d / "w.mp4").string());
     REQUIRE_MESSAGE(rw.code == 0, rw.out);
     CHECK(rtest::decodeMp4((d / "w.mp4").string()).frames == 11);
+    const Result rs = run("render " + runDir + " --size 320x180 --quiet --shader-dir " + std::string(ROOTSIM_SOURCE_DIR) +
+                          "/shaders --mp4 " + (d / "s.mp4").string());
+    REQUIRE_MESSAGE(rs.code == 0, rs.out);
+    const Result rbad = run("render " + runDir + " --quiet --shader-dir " + (d / "nowhere").string());
+    CHECK(rbad.code == 2);
+    CHECK(rbad.out.find("--shader-dir") != std::string::npos);
   }
   SUBCASE("bad input exits 2 naming the flag or the file") {
     const Result odd = run("render " + runDir + " --size 321x180");

@@ -5,39 +5,23 @@
 #include <chrono>
 #include <cmath>
 
-#include "rootsim/initial.hpp"
-#include "rootsim/relax.hpp"
+#include "../tests/rod_fixture.hpp"
 
 using namespace rootsim;
 
 namespace {
 
-// the rod: 10 mm, R = 0.1 mm, E = 50 MPa, density 1000, horizontal cantilever, no plane
-struct Setup {
-  RodParams p;
-  Environment env;
-  SolverOptions opt;
-  RodState s;
-  RelaxWorkspace ws;
-  explicit Setup(int n, double L = 1e-2) {
-    env.plane.enabled = false;
-    env.plane.alpha = M_PI / 2;
-    env.adhesion = false;
-    InitialShape sh;
-    sh.length = L;
-    sh.elementLength = L / n;
-    sh.perturbation = 0.0;
-    s = makeInitialRod(p, env.plane, sh);
-    env.baseFrame = s.Q[0];
-  }
+// the rod: 10 mm, R = 0.1 mm, E = 50 MPa, density 1000, horizontal cantilever, no plane (the
+// tests' cantilever, with the solver's default options)
+struct Setup : rootsim::test::Cantilever {
+  explicit Setup(int n) : Cantilever(n) { opt = SolverOptions{}; }
   // bends the rod so that its tip is displaced by d [m] (static tip load), then removes the load
   void displaceTip(double d) {
-    const double L = s.restLength();
     const double B = p.bendStiffness().x();
     env.tipForce = Vec3(-3 * B * d / (L * L * L), 0, 0);
-    SolverOptions o = opt;
+    SolverOptions o;
     o.forceTol = 1e-7;
-    relax(p, env, o, s, ws);
+    rootsim::relax(p, env, o, s, ws);
     env.tipForce.setZero();
   }
 };

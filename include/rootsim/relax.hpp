@@ -84,10 +84,6 @@ class DynamicRelaxation {
 RelaxResult relax(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
                   RelaxWorkspace& ws);
 
-// stable sub-step for physical masses: cfl * min over dofs of 2 sqrt(m / k) [s]
-double stableTimeStep(const RodParams& p, const Environment& env, const SolverOptions& opt,
-                      const RodState& s, RelaxWorkspace& ws);
-
 // evaluates all forces of state s into ws.force / ws.torque (used by relax and by tests)
 void computeForces(const RodParams& p, const Environment& env, const RodState& s, bool planeDamping,
                    RelaxWorkspace& ws);

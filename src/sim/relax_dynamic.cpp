@@ -149,12 +149,6 @@ void computeForces(const RodParams& p, const Environment& env, const RodState& s
   }
 }
 
-double stableTimeStep(const RodParams& p, const Environment& env, const SolverOptions& opt,
-                      const RodState& s, RelaxWorkspace& ws) {
-  ws.resize(s.elements());
-  return setMasses(p, env, opt, s, ws);
-}
-
 DynamicRelaxation::DynamicRelaxation(const RodParams& p, const Environment& env,
                                      const SolverOptions& opt, RodState& s, RelaxWorkspace& ws)
     : p_(p), env_(env), opt_(opt), s_(s), ws_(ws) {

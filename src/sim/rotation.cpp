@@ -1,37 +1,32 @@
 #include "rootsim/rotation.hpp"
 
 #include <cmath>
+#include <utility>
 
 namespace rootsim {
 
+namespace {
+// Rodrigues coefficients a = sin t / t, b = (1 - cos t) / t^2 for t^2 = t2; a series to t^8 below
+// t = 1e-2 is exact to round-off and avoids sin/cos in the sub-step
+std::pair<double, double> rodrigues(double t2) {
+  if (t2 < 1e-4)
+    return {1.0 - t2 * (1.0 / 6.0 - t2 * (1.0 / 120.0 - t2 * (1.0 / 5040.0 - t2 / 362880.0))),
+            0.5 - t2 * (1.0 / 24.0 - t2 * (1.0 / 720.0 - t2 * (1.0 / 40320.0 - t2 / 3628800.0)))};
+  const double t = std::sqrt(t2);
+  return {std::sin(t) / t, (1.0 - std::cos(t)) / t2};
+}
+}  // namespace
+
 Eigen::Matrix3d rotationFromVector(const Eigen::Vector3d& phi) {
   // Rodrigues: R = I + a [phi]x + b [phi]x^2, a = sin t / t, b = (1 - cos t) / t^2
-  const double t2 = phi.squaredNorm();
-  double a, b;
-  if (t2 < 1e-4) {  // series to t^8, exact to round-off for t < 1e-2 (avoids sin/cos in the sub-step)
-    a = 1.0 - t2 * (1.0 / 6.0 - t2 * (1.0 / 120.0 - t2 * (1.0 / 5040.0 - t2 / 362880.0)));
-    b = 0.5 - t2 * (1.0 / 24.0 - t2 * (1.0 / 720.0 - t2 * (1.0 / 40320.0 - t2 / 3628800.0)));
-  } else {
-    const double t = std::sqrt(t2);
-    a = std::sin(t) / t;
-    b = (1.0 - std::cos(t)) / t2;
-  }
+  const auto [a, b] = rodrigues(phi.squaredNorm());
   Eigen::Matrix3d K;
   K << 0, -phi.z(), phi.y(), phi.z(), 0, -phi.x(), -phi.y(), phi.x(), 0;
   return Eigen::Matrix3d::Identity() + a * K + b * (K * K);
 }
 
 void rotateInPlace(const Eigen::Vector3d& phi, Eigen::Matrix3d& Q) {
-  const double t2 = phi.squaredNorm();
-  double a, b;
-  if (t2 < 1e-4) {
-    a = 1.0 - t2 * (1.0 / 6.0 - t2 * (1.0 / 120.0 - t2 * (1.0 / 5040.0 - t2 / 362880.0)));
-    b = 0.5 - t2 * (1.0 / 24.0 - t2 * (1.0 / 720.0 - t2 * (1.0 / 40320.0 - t2 / 3628800.0)));
-  } else {
-    const double t = std::sqrt(t2);
-    a = std::sin(t) / t;
-    b = (1.0 - std::cos(t)) / t2;
-  }
+  const auto [a, b] = rodrigues(phi.squaredNorm());
   for (int c = 0; c < 3; ++c) {
     const Eigen::Vector3d q = Q.col(c);
     const Eigen::Vector3d u = phi.cross(q);

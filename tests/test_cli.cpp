@@ -7,8 +7,10 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
+#include <sys/stat.h>
 #include <sys/wait.h>
 
 namespace fs = std::filesystem;
@@ -30,6 +32,19 @@ fs::path scratch(const std::string& name) {
   fs::remove_all(d);
   fs::create_directories(d);
   return d;
+}
+
+// runs rootsim with dir as the working directory
+Result runIn(const fs::path& dir, const std::string& args) {
+  return run("--version >/dev/null && cd '" + dir.string() + "' && " + std::string(ROOTSIM_BINARY) + " " + args);
+}
+
+// every file below d with its bytes, to compare a folder before and after
+std::map<std::string, std::string> tree(const fs::path& d) {
+  std::map<std::string, std::string> t;
+  for (const auto& e : fs::recursive_directory_iterator(d))
+    t[fs::relative(e.path(), d).string()] = e.is_regular_file() ? slurp(e.path()) : std::string("<dir>");
+  return t;
 }
 
 const std::string kSmall = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2b_waving.toml --set growth.steps=30 "
@@ -144,4 +159,145 @@ TEST_CASE("every shipped scene and sweep validates, and every scene runs coarsen
                          (d / ("sweep_" + e.path().stem().string())).string());
     CHECK(r.code == 0);
   }
+}
+
+// --- rootsim never deletes or overwrites what it did not write (the run-directory marker) ---
+
+TEST_CASE("--out at a user's folder holding the scene: refused, the folder untouched") {
+  const fs::path d = scratch("ownscene");
+  fs::create_directories(d / "e");
+  fs::copy_file(fs::path(ROOTSIM_SOURCE_DIR) / "scenes/fig2b_waving.toml", d / "e" / "scene.toml",
+                fs::copy_options::overwrite_existing);
+  { std::ofstream(d / "e" / "notes.txt") << "x\n"; }
+  const auto before = tree(d);
+  const Result r = run("run " + (d / "e" / "scene.toml").string() + " --set growth.steps=5 --quiet --out " +
+                       (d / "e").string());
+  CHECK(r.code == 2);
+  CHECK(r.out.find("contains") != std::string::npos);
+  CHECK(tree(d) == before);
+  // the same with --force: still refused, still untouched
+  CHECK(run("run " + (d / "e" / "scene.toml").string() + " --set growth.steps=5 --quiet --force --out " +
+            (d / "e").string()).code == 2);
+  CHECK(tree(d) == before);
+  // a folder holding a scene.toml that is not the one run: not a run directory (no marker)
+  const Result f = run("run " + kSmall + " --force --out " + (d / "e").string());
+  CHECK(f.code == 2);
+  CHECK(f.out.find("is not a rootsim run directory") != std::string::npos);
+  CHECK(tree(d) == before);
+}
+
+TEST_CASE("--out . and ancestors of the working folder are refused, and nothing is lost") {
+  const fs::path d = scratch("dot");
+  fs::copy_file(fs::path(ROOTSIM_SOURCE_DIR) / "scenes/fig2b_waving.toml", d / "s.toml");
+  fs::copy_file(d / "s.toml", d / "scene.toml");
+  { std::ofstream(d / "precious.txt") << "keep\n"; }
+  const auto before = tree(d);
+  for (const char* out : {".", "./", "..", "../", "/", "./sub/.."}) {
+    INFO(out);
+    const Result r = runIn(d, std::string("run s.toml --set growth.steps=5 --quiet --force --out ") + out);
+    CHECK(r.code == 2);
+    CHECK(tree(d) == before);
+  }
+  const Result a = runIn(d, "run s.toml --set growth.steps=5 --quiet --out " + d.parent_path().string());
+  CHECK(a.code == 2);
+  CHECK(a.out.find("contains") != std::string::npos);
+  CHECK(tree(d) == before);
+}
+
+TEST_CASE("--out with a trailing slash or ./ prefix writes the run where the user meant") {
+  const fs::path d = scratch("slash");
+  REQUIRE(runIn(d, "run " + kSmall + " --out out/").code == 0);
+  CHECK(fs::exists(d / "out" / "summary.json"));
+  CHECK(fs::exists(d / "out" / ".rootsim-run"));
+  CHECK(!fs::exists(d / "out.partial"));
+  REQUIRE(runIn(d, "run " + kSmall + " --out ./a/b/").code == 0);
+  CHECK(fs::exists(d / "a" / "b" / "summary.json"));
+  CHECK(!fs::exists(d / "a" / "b.partial"));
+}
+
+TEST_CASE("an earlier run is replaced only with --force, and never when it holds a user's file") {
+  const fs::path d = scratch("force");
+  const std::string out = (d / "out").string();
+  REQUIRE(run("run " + kSmall + " --out " + out).code == 0);
+  const auto first = tree(d);
+  const Result again = run("run " + kSmall + " --set tropism.beta=0.3 --out " + out);
+  CHECK(again.code == 2);
+  CHECK(again.out.find("pass --force") != std::string::npos);
+  CHECK(tree(d) == first);
+  REQUIRE(run("run " + kSmall + " --set tropism.beta=0.3 --force --out " + out).code == 0);
+  CHECK(slurp(d / "out" / "scene.toml").find("beta = 0.3") != std::string::npos);
+  CHECK(!fs::exists(d / "out.replaced"));
+  // a user's file inside the run directory: --force refuses, the file stays
+  { std::ofstream(d / "out" / "my_analysis.py") << "print(1)\n"; }
+  const auto withUser = tree(d);
+  const Result f = run("run " + kSmall + " --force --out " + out);
+  CHECK(f.code == 2);
+  CHECK(f.out.find("my_analysis.py") != std::string::npos);
+  CHECK(tree(d) == withUser);
+}
+
+TEST_CASE("an interrupted DIR.partial is kept unless --force, and a foreign DIR.partial is never removed") {
+  const fs::path d = scratch("partial");
+  fs::create_directories(d / "out.partial");
+  { std::ofstream(d / "out.partial" / ".rootsim-run") << "rootsim run directory\n"; }
+  { std::ofstream(d / "out.partial" / "timeseries.csv") << "step\n"; }
+  const Result r = run("run " + kSmall + " --out " + (d / "out").string());
+  CHECK(r.code == 2);
+  CHECK(r.out.find("interrupted run") != std::string::npos);
+  CHECK(fs::exists(d / "out.partial" / "timeseries.csv"));
+  REQUIRE(run("run " + kSmall + " --force --out " + (d / "out").string()).code == 0);
+  CHECK(fs::exists(d / "out" / "summary.json"));
+  CHECK(!fs::exists(d / "out.partial"));
+  fs::create_directories(d / "x.partial");
+  { std::ofstream(d / "x.partial" / "mine.txt") << "mine\n"; }
+  CHECK(run("run " + kSmall + " --force --out " + (d / "x").string()).code == 2);
+  CHECK(fs::exists(d / "x.partial" / "mine.txt"));
+}
+
+TEST_CASE("contradictory or smuggled options are refused before the run") {
+  const fs::path d = scratch("contra");
+  const Result m = run("run " + kSmall + " --movie --set output.trajectory=false --out " + (d / "out").string());
+  CHECK(m.code == 2);
+  CHECK(m.out.find("--movie needs the trajectory") != std::string::npos);
+  CHECK(!fs::exists(d / "out"));
+  CHECK(!fs::exists(d / "out.partial"));
+  // a newline inside --set would carry a second assignment that was silently dropped
+  const Result n = run("run " + kSmall + " --set \"$(printf 'tropism.beta=0.3\\nplane.alpha_deg=80')\" --out " + (d / "n").string());
+  CHECK(n.code == 2);
+  CHECK(n.out.find("control characters") != std::string::npos);
+  CHECK(n.out.find("\\n") != std::string::npos);
+  CHECK(!fs::exists(d / "n.partial"));
+  // a bad figure name creates no folder
+  const Result f = runIn(d, "figure nope --out a/b/c");
+  CHECK(f.code == 2);
+  CHECK(!fs::exists(d / "a"));
+}
+
+TEST_CASE("a scene path that is not a regular file, or is huge, exits 2 at once") {
+  CHECK(run("check /dev/zero").code == 2);
+  CHECK(run("check /dev/zero").out.find("not a regular file") != std::string::npos);
+  const fs::path d = scratch("fifo");
+  REQUIRE(::mkfifo((d / "f.toml").c_str(), 0600) == 0);
+  const Result f = run("check " + (d / "f.toml").string());
+  CHECK(f.code == 2);
+  { std::ofstream(d / "big.toml") << std::string(2 << 20, '#'); }
+  const Result b = run("check " + (d / "big.toml").string());
+  CHECK(b.code == 2);
+  CHECK(b.out.find("larger than 1 MiB") != std::string::npos);
+}
+
+TEST_CASE("a sweep over a mechanics-only scene resumes (its points count as complete)") {
+  const fs::path d = scratch("mechsweep");
+  {
+    std::ofstream(d / "s.toml") << "[sweep]\nscene = \"" << ROOTSIM_SOURCE_DIR
+                                << "/scenes/cantilever_tip_load.toml\"\n[grid]\n\"root.youngs_modulus_mpa\" = [40, 50]\n"
+                                   "[set]\n\"root.element_length_mm\" = 0.5\n\"output.vtk\" = false\n";
+  }
+  const std::string cmd = "sweep " + (d / "s.toml").string() + " --out " + (d / "out").string();
+  const Result a = run(cmd);
+  REQUIRE(a.code == 0);
+  CHECK(a.out.find("2 ran, 0 already complete") != std::string::npos);
+  const Result b = run(cmd);
+  CHECK(b.code == 0);
+  CHECK(b.out.find("0 ran, 2 already complete") != std::string::npos);
 }

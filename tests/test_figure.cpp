@@ -60,7 +60,7 @@ TEST_CASE("every panel exists as PNG and SVG with drawn content") {
   CHECK(slurp(kOut / "report.md").find("## fig4g") != std::string::npos);
 }
 
-TEST_CASE("quick report: straight at 0 deg, waving in the middle, coiling at high alpha; skew grows with omega T0") {
+TEST_CASE("quick report: straight at 0 deg, waving in the middle, coiling at high alpha, and skew grows with omega T0") {
   const std::string r = slurp(kOut / "report.md");
   CHECK(r.find("| 0 | straight |") != std::string::npos);
   CHECK(r.find("| 40 | waving |") != std::string::npos);

@@ -101,7 +101,7 @@ TEST_CASE("twist profile (Eqs. 20-21): zero at the apex, tau at the zone start a
   CHECK(s.kappa0(2, 0) == doctest::Approx(tau));  // node at 0.1 mm: mature
 }
 
-TEST_CASE("coarse Fig. 2A: alpha = 0 grows straight, 40 waves, 80 coils; contact depth stays < R/10") {
+TEST_CASE("coarse Fig. 2A: alpha = 0 grows straight, 40 waves, 80 coils, and contact depth stays < R/10") {
   SUBCASE("alpha 0: straight") {
     const ShapeAnalysis a = grow(coarse(0, 0.1, 150));
     CHECK(a.pattern == "straight");
@@ -135,7 +135,7 @@ TEST_CASE("coarse Fig. 2A: alpha = 0 grows straight, 40 waves, 80 coils; contact
   }
 }
 
-TEST_CASE("intrinsic twist skews the root; -tau mirrors it (Fig. 4A)") {
+TEST_CASE("intrinsic twist skews the root, and -tau mirrors it (Fig. 4A)") {
   Model m = coarse(30, 0.2, 250);
   m.tropism.rTau = 0.4;
   const double skewPlus = grow(m).skew;

@@ -1,17 +1,43 @@
 #pragma once
 // A run directory written atomically (SPEC.md): files go into DIR.partial/, each through a temporary
-// file and a rename; commit() renames DIR.partial to DIR (replacing an older run there), fail() keeps
-// what was written as DIR.incomplete/ with ERROR.txt. A killed run leaves only DIR.partial/.
+// file and a rename; commit() renames DIR.partial to DIR, fail() keeps what was written as
+// DIR.incomplete/ with ERROR.txt. A killed run leaves only DIR.partial/.
+//
+// rootsim never deletes or overwrites what it did not write: every run directory carries a marker file
+// (kRunMarker) written first, and an existing DIR, DIR.partial or DIR.incomplete is replaced only when it
+// holds that marker and nothing but files a run writes. Anything else is refused with a SceneError
+// (exit 2) before the run starts.
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
 namespace rootsim {
 
+// the marker every run directory holds (its content: "rootsim run directory <version>")
+inline constexpr const char* kRunMarker = ".rootsim-run";
+
+// what may happen to an earlier run at the output path
+struct RunDirOptions {
+  // replace an earlier run directory (marker, nothing foreign) and discard an interrupted DIR.partial;
+  // never touches a folder that is not a run directory
+  bool force = false;
+  // paths the output must not contain or be (the scene file, the working directory): replacing an
+  // ancestor of them would delete them
+  std::vector<std::filesystem::path> protect;
+};
+
+// the --out path as the user meant it: "out/" -> "out", "./a/b/" -> "a/b"; throws SceneError for "",
+// ".", "..", "/" and paths ending in ".."
+std::filesystem::path normaliseOutDir(const std::string& text);
+
+// "" when dir is a run directory rootsim may replace, else why not (the first foreign entry)
+std::string whyNotReplaceable(const std::filesystem::path& dir);
+
 class RunDir {
  public:
-  // throws SceneError (exit 2) when DIR cannot be created or holds something that is not a run
-  explicit RunDir(const std::filesystem::path& dir);
+  // validates the output path (see above) and creates DIR.partial; throws SceneError (exit 2)
+  RunDir(const std::filesystem::path& dir, const RunDirOptions& opt);
   ~RunDir();
   RunDir(const RunDir&) = delete;
   RunDir& operator=(const RunDir&) = delete;
@@ -21,7 +47,9 @@ class RunDir {
   const std::filesystem::path& final() const { return final_; }
   // writes name atomically inside the working directory; throws RunError on I/O failure
   void write(const std::string& name, const std::string& content);
+  // DIR.partial -> DIR (an earlier run there is moved aside first and removed only after the rename)
   void commit();
+  // DIR.partial -> DIR.incomplete with ERROR.txt; never throws
   void fail(const std::string& error);
 
  private:

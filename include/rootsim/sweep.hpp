@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "rootsim/run_dir.hpp"
+#include "rootsim/scene.hpp"
 #include "rootsim/simulation.hpp"
 
 namespace rootsim {
@@ -24,6 +26,7 @@ struct SweepPoint {
   std::vector<std::string> overrides;          // "section.key=value", grid then fixed
   std::vector<std::pair<std::string, std::string>> grid;  // grid key, value text
   std::string dirName;                          // run directory name inside the sweep folder
+  bool grows = true;                            // growth run (else mechanics only: another result header)
 };
 
 struct SweepPlan {
@@ -53,13 +56,14 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
 // "K/N" -> (K, N); throws SceneError
 std::pair<int, int> parseShard(const std::string& text);
 
-// runs one scene into a run directory (what `rootsim run` does, without a movie); returns wall time
-double runSceneToDir(const std::string& scenePath, const std::vector<std::string>& overrides,
-                     const std::string& outDir,
+// runs one parsed scene into a run directory (what `rootsim run` does, without a movie); returns wall
+// time; throws SceneError (bad output path, before anything runs) or the run's error
+double runSceneToDir(const Scene& scene, const std::string& outDir, const RunDirOptions& dirOptions,
                      const std::function<void(const StepRecord&, int total)>& progress);
 
-// header of result.csv for growth runs (a sweep treats a run with another header as not done)
-const std::string& growthResultHeader();
+// header of result.csv for a growth run (grows) or a mechanics-only one; a sweep treats a run with
+// another header as not done
+const std::string& resultHeader(bool grows);
 
 // rebuilds table.csv of a sweep folder from the summary.json of every completed run
 void writeSweepTable(const SweepPlan& plan, const std::string& out);

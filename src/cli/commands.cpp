@@ -68,13 +68,21 @@ void Progress::finish(const std::string& detail) {
 int runCommand(const RunOptions& o) {
   // validate first so a bad scene exits 2 before anything is written
   const Scene sc = loadScene(o.scene, o.sets);
-  const fs::path out = o.out.empty() ? fs::path("runs") / sc.model.name : fs::path(o.out);
+  const fs::path out = normaliseOutDir(o.out.empty() ? (fs::path("runs") / sc.model.name).string() : o.out);
+  // contradictory options are refused before the run, not after it
 #ifndef ROOTSIM_HAVE_RENDER
   if (o.movie) throw SceneError("--movie: this rootsim was built without the renderer (ROOTSIM_BUILD_RENDER=OFF)");
 #endif
+  if (o.movie && !sc.model.output.trajectory)
+    throw SceneError("--movie needs the trajectory, but output.trajectory = false (" +
+                     std::string(sc.path) + "); drop one of them");
   const int steps = sc.model.growth.enabled ? sc.model.growth.steps : 0;
+  RunDirOptions ro;
+  ro.force = o.force;
+  // the run directory may not be (or contain) the scene file or the folder we are working in
+  ro.protect = {fs::path(o.scene), fs::current_path()};
   Progress pr(steps, o.quiet || steps == 0, sc.model.name);
-  runSceneToDir(o.scene, o.sets, out.string(), [&](const StepRecord& r, int n) {
+  runSceneToDir(sc, out.string(), ro, [&](const StepRecord& r, int n) {
     char buf[160];
     std::snprintf(buf, sizeof buf, "step %d/%d  t=%.1f h  L=%.2f mm  theta_tip=%.0f deg  %ld sub-steps", r.step, n,
                   r.timeH, r.length * 1e3, r.thetaTip * kDeg, r.substeps);

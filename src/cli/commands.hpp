@@ -11,6 +11,7 @@ struct RunOptions {
   std::vector<std::string> sets;
   std::string out;        // run directory; default runs/<scene name>
   bool movie = false;
+  bool force = false;     // replace an earlier run directory at --out (never a folder rootsim did not write)
   bool quiet = false;
 };
 int runCommand(const RunOptions& o);

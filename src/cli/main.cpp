@@ -24,6 +24,8 @@ int main(int argc, char** argv) {
   cRun->add_option("--set", run.sets, "override a scene key: section.key=value (repeatable)");
   cRun->add_option("--out", run.out, "run directory (default: runs/<scene name>)");
   cRun->add_flag("--movie", run.movie, "also render movie.mp4 and final_top.png into the run directory");
+  cRun->add_flag("--force", run.force,
+                 "replace an earlier run (or interrupted run) at --out; folders rootsim did not write are never touched");
   cRun->add_flag("--quiet", run.quiet, "no progress output");
 
   cli::CheckOptions check;

@@ -1,6 +1,7 @@
 // The paper's figure panels (MODEL.md section 10): run what a panel needs, then plot it beside theory.
 #include "rootsim/figure.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -716,6 +717,13 @@ const std::vector<std::string>& figureNames() {
 
 std::string makeFigure(const std::string& name, const FigureOptions& opt,
                        const std::function<void(const std::string&)>& log) {
+  // a bad name creates nothing
+  const auto& names = figureNames();
+  if (name != "all" && std::find(names.begin(), names.end(), name) == names.end()) {
+    std::string list;
+    for (const auto& n : names) list += " " + n;
+    throw SceneError("figure " + name + ": unknown figure (expected all or one of:" + list + ")");
+  }
   std::error_code ec;
   fs::create_directories(opt.out, ec);
   if (ec) throw SceneError("--out " + opt.out + ": cannot create: " + ec.message());

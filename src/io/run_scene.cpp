@@ -40,21 +40,23 @@ std::string csvNum(double x) {
 }
 }  // namespace
 
-const std::string& growthResultHeader() {
+namespace {
+const std::string kMechanicsHeader = "scene,status,steps,time_h,length_mm,elements,theta_tip_deg,total_substeps";
+}
+
+const std::string& resultHeader(bool grows) {
   static const std::string h =
       "scene,status,steps,time_h,length_mm,elements,theta_tip_deg,total_substeps,pattern,wavelength_mm,"
       "amplitude_mm,lateral_peaks,skew_deg,max_kappa_per_mm,theta_min_deg,theta_max_deg,first_snap_or_turning_h,"
       "alpha_deg,beta,gamma,r_tau,sensing,effective_gain,T0_h,max_kappa_eq8_per_mm,wavelength_eq9_mm,"
       "amplitude_eq10_mm,alpha_s_to_w_eq12_deg,alpha_w_to_c_eq13_deg,omega_T0";
-  return h;
+  return grows ? h : kMechanicsHeader;
 }
 
-double runSceneToDir(const std::string& scenePath, const std::vector<std::string>& overrides,
-                     const std::string& outDir,
+double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOptions& dirOptions,
                      const std::function<void(const StepRecord&, int total)>& progress) {
-  const Scene sc = loadScene(scenePath, overrides);
   const Model& m = sc.model;
-  RunDir rd(outDir);
+  RunDir rd(outDir, dirOptions);
   const double t0 = now();
   try {
     rd.write("scene.toml", sc.resolvedToml);
@@ -101,7 +103,7 @@ double runSceneToDir(const std::string& scenePath, const std::vector<std::string
     Json tip;
     tip.num("x_mm", r.tip.x() * 1e3).num("y_mm", r.tip.y() * 1e3).num("z_mm", r.tip.z() * 1e3);
     j.object("tip", tip);
-    std::string header = "scene,status,steps,time_h,length_mm,elements,theta_tip_deg,total_substeps";
+    std::string header = kMechanicsHeader;
     std::string row = m.name + ",complete," + std::to_string(sim.step()) + "," + csvNum(r.timeH) + "," +
                       csvNum(r.length * 1e3) + "," + std::to_string(r.elements) + "," +
                       csvNum(r.thetaTip * kDeg) + "," + std::to_string(sim.totalSubsteps());
@@ -120,7 +122,7 @@ double runSceneToDir(const std::string& scenePath, const std::vector<std::string
           .num("theta_max_deg", a.thetaMax * kDeg)
           .num(m.env.plane.enabled ? "first_snap_h" : "turning_time_h", m.env.plane.enabled ? snap.first : snap.vertical);
       j.object("theory", theoryJson(t));
-      header = growthResultHeader();
+      header = resultHeader(true);
       row += "," + a.pattern + "," + csvNum(lambda) + "," + csvNum(amp) + "," + std::to_string(a.peaks) + "," +
              csvNum(a.skew * kDeg) + "," + csvNum(a.maxKappa / 1e3) + "," + csvNum(a.thetaMin * kDeg) + "," +
              csvNum(a.thetaMax * kDeg) + "," + csvNum(m.env.plane.enabled ? snap.first : snap.vertical) + "," + csvNum(m.env.plane.alpha * kDeg) + "," +

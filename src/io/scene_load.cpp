@@ -1,4 +1,5 @@
 // Scene files: TOML (toml++) -> validated values -> Model. Every error names file:line and the key.
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -97,7 +98,25 @@ std::string where(const std::string& source, const toml::source_region& r) {
   return source + ":" + std::to_string(r.begin.line);
 }
 
-void applyOverride(const std::string& ov, Values& values) {
+// a value or key as it may appear inside a one-line message: control characters escaped
+std::string printable(const std::string& s) {
+  std::string o;
+  for (unsigned char c : s) {
+    if (c == '\n') o += "\\n";
+    else if (c == '\t') o += "\\t";
+    else if (c < 0x20 || c == 0x7f) {
+      char b[8];
+      std::snprintf(b, sizeof b, "\\x%02x", c);
+      o += b;
+    } else o += static_cast<char>(c);
+  }
+  return o;
+}
+
+void applyOverride(const std::string& ovRaw, Values& values) {
+  const std::string ov = printable(ovRaw);
+  // one key, one value: a newline would smuggle a second assignment past the parser (and past this check)
+  if (ov != ovRaw) throw SceneError("--set " + ov + ": control characters (newline, tab, ...) are not allowed");
   const auto eq = ov.find('=');
   if (eq == std::string::npos || eq == 0)
     throw SceneError("--set " + ov + ": expected section.key=value");
@@ -117,6 +136,8 @@ void applyOverride(const std::string& ov, Values& values) {
   std::string why;
   try {
     const toml::table t = toml::parse("v = " + text);
+    if (t.size() != 1 || !t.get("v"))
+      throw SceneError("--set " + ov + ": expected one value after '=' (got \"" + text + "\")");
     why = convert(*k, *t.get("v"), v);
   } catch (const toml::parse_error&) {
     // a bare word is a string ("--set tropism.sensing=apical")
@@ -150,18 +171,18 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
     for (const auto& s : sections()) known |= s == section;
     if (!known) {
       // a top-level key that belongs to a section ("beta = 0.2" without [tropism])
-      throw SceneError(where(sourceName, skey.source()) + ": unknown section [" + section + "]" +
+      throw SceneError(where(sourceName, skey.source()) + ": unknown section [" + printable(section) + "]" +
                        (snode.is_table() ? suggestSection(section) : suggestKey("", section)));
     }
     const toml::table* t = snode.as_table();
     if (!t)
-      throw SceneError(where(sourceName, skey.source()) + ": " + section + " must be a table ([" + section +
+      throw SceneError(where(sourceName, skey.source()) + ": " + printable(section) + " must be a table ([" + printable(section) +
                        "]), got " + describeNode(snode));
     for (auto&& [kkey, knode] : *t) {
       const std::string key(kkey.str());
       const KeySpec* k = findKey(section, key);
       const std::string loc = where(sourceName, kkey.source());
-      if (!k) throw SceneError(loc + ": unknown key " + section + "." + key + suggestKey(section, key));
+      if (!k) throw SceneError(loc + ": unknown key " + printable(section) + "." + printable(key) + suggestKey(section, key));
       Value v;
       std::string why = convert(*k, knode, v);
       if (why.empty()) why = checkValue(*k, v);
@@ -180,9 +201,16 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
 }
 
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
+  namespace fs = std::filesystem;
   std::error_code ec;
-  if (!std::filesystem::exists(path, ec)) throw SceneError(path + ": no such scene file");
-  if (std::filesystem::is_directory(path, ec)) throw SceneError(path + ": is a directory, expected a scene file");
+  const auto st = fs::status(path, ec);
+  if (!fs::exists(st)) throw SceneError(path + ": no such scene file");
+  if (fs::is_directory(st)) throw SceneError(path + ": is a directory, expected a scene file");
+  // a device, FIFO or socket would be read forever or block: only regular files of sane size
+  if (!fs::is_regular_file(st)) throw SceneError(path + ": not a regular file, expected a scene file");
+  constexpr std::uintmax_t kMaxSceneBytes = 1u << 20;
+  if (fs::file_size(path, ec) > kMaxSceneBytes)
+    throw SceneError(path + ": larger than 1 MiB; a scene file is a few hundred bytes of TOML");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(path + ": cannot open for reading");
   std::ostringstream ss;

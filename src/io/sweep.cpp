@@ -121,7 +121,7 @@ SweepPlan loadSweep(const std::string& path) {
     p.overrides.insert(p.overrides.end(), fixed.begin(), fixed.end());
     // validate now: a typo in the grid fails before any run starts
     try {
-      loadScene(plan.scenePath, p.overrides);
+      p.grows = loadScene(plan.scenePath, p.overrides).model.growth.enabled;
     } catch (const SceneError& e) {
       throw SceneError(path + ": point " + std::to_string(i) + ": " + e.what());
     }
@@ -161,7 +161,7 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
     // an older rootsim with other columns is redone)
     std::ifstream prev(fs::path(opt.out) / p.dirName / "result.csv");
     std::string head;
-    if (prev && std::getline(prev, head) && head == growthResultHeader()) {
+    if (prev && std::getline(prev, head) && head == resultHeader(p.grows)) {
       ++res.skipped;
       continue;
     }
@@ -179,7 +179,11 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
       bool ok = true;
       double wall = 0;
       try {
-        wall = runSceneToDir(plan.scenePath, p.overrides, (fs::path(opt.out) / p.dirName).string(), nullptr);
+        // a point not complete is redone: its earlier attempt (a run directory, never user files) is replaced
+        RunDirOptions ro;
+        ro.force = true;
+        wall = runSceneToDir(loadScene(plan.scenePath, p.overrides), (fs::path(opt.out) / p.dirName).string(), ro,
+                             nullptr);
       } catch (const std::exception& e) {
         ok = false;
         msg = e.what();

@@ -25,7 +25,6 @@ struct Cantilever {
     sh.elementLength = length / n;
     sh.perturbation = 0.0;
     s = makeInitialRod(p, env.plane, sh);
-    env.baseFrame = s.Q[0];
   }
   double B1() const { return p.bendStiffness().x(); }
   Vec3 tip() const { return s.x.col(s.nodes() - 1) - s.x.col(0); }

@@ -22,7 +22,7 @@ Model coarse(double alphaDeg, double beta, int steps) {
   m.initial.elementLength = 1e-4;
   m.growth.stepTime = 0.1 * 3600;
   m.growth.steps = steps;
-  m.solver.lengthScale = m.growth.zoneLength;
+  completeModel(m);
   return m;
 }
 

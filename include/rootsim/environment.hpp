@@ -2,18 +2,42 @@
 // Everything that acts on the rod from outside: the tilted plane, adhesion springs, the clamped base,
 // tip loads (MODEL.md sections 3 and 6).
 #include "rootsim/rod.hpp"
+#include "rootsim/units.hpp"
 
 namespace rootsim {
 
-// the tilted plate (MODEL.md section 3): through the origin, unit normal n = (0, -cos a, sin a)
+// The frame of a plate tilted by alpha from the vertical (MODEL.md section 3): the one place it is
+// computed; the physics, the renderer and the figure panels all use it. Plate coordinates are taken
+// from the origin, which is where the base node's foot lies (the base node sits at R n).
+struct PlateFrame {
+  Vec3 normal = Vec3(0, -1, 0);    // unit normal (0, -cos a, sin a), pointing to the side the root lies on
+  Vec3 downhill = Vec3(0, 0, -1);  // in-plane downhill unit vector g_par = (0, -sin a, -cos a)
+  Vec3 lateral = Vec3(1, 0, 0);    // in-plane lateral unit vector x
+
+  // exact at multiples of 90 degrees: cos(pi/2) = 6e-17 would seed out-of-plane modes on a horizontal plate
+  static PlateFrame tilted(double alpha);  // alpha [rad]
+  Vec3 uphill() const { return -downhill; }
+  // plate coordinates of a lab point: (lateral, downhill, height above the plate), same unit as lab
+  Vec3 coords(const Vec3& lab) const { return Vec3(lateral.dot(lab), downhill.dot(lab), normal.dot(lab)); }
+  // the top view's coordinates [mm] of a lab point [m]: (lateral, uphill, height); uphill is up the image
+  Vec3 toPlateMm(const Vec3& labM) const;
+  // components of a lab direction along (lateral, uphill, normal)
+  Vec3 dirToPlate(const Vec3& dir) const { return Vec3(lateral.dot(dir), -downhill.dot(dir), normal.dot(dir)); }
+};
+
+// the tilted plate as a contact surface: through the origin, normal PlateFrame::normal
 struct Plane {
   bool enabled = true;
-  double alpha = 0.0;          // tilt from the vertical [rad]
-  double k = 1000.0;           // normal penalty spring, per element [N/m] (paper: 100; scene_schema.cpp)
+  double alpha = 40.0 * units::deg;  // tilt from the vertical [rad]
+  // normal penalty spring, per element [N/m]. MODEL.md/paper: 100 N/m. Measured here (fig2b scene,
+  // 700 steps): with 100 N/m the tip, pressed into the plate by gravitropism, sinks 0.17-0.34 R into it;
+  // 1000 N/m keeps it below 0.03 R with the same waves (lambda 2.34 vs 2.35 mm) and the same cost.
+  double k = 1000.0;
   double c = 0.01;             // normal damping, per element [kg/s]
-  Vec3 normal() const;         // unit normal, pointing to the side the root lies on
-  Vec3 downhill() const;       // in-plane downhill unit vector (0, -sin a, -cos a)
-  Vec3 lateral() const { return Vec3::UnitX(); }
+  PlateFrame frame() const { return PlateFrame::tilted(alpha); }
+  Vec3 normal() const { return frame().normal; }
+  Vec3 downhill() const { return frame().downhill; }
+  Vec3 lateral() const { return frame().lateral; }
 };
 
 enum class BaseCondition { Clamped, Free };
@@ -22,24 +46,40 @@ struct Environment {
   Plane plane;
   bool adhesion = true;        // pin material leaving the growth zone
   double kAdhesion = 1000.0;   // adhesion spring [N/m]
-  // clamped: node 0 is held and element 0 is tied to the fixed frame baseFrame at s = 0 by a boundary
-  // Voronoi domain of rest length l0/2 (see addExternalForces)
+  // clamped: node 0 is held and element 0 is tied to the state's clampFrame at s = 0 by a boundary
+  // Voronoi domain of rest length l0/2 (clampCouple)
   BaseCondition base = BaseCondition::Clamped;
-  Mat3 baseFrame = Mat3::Identity();  // clamp frame, rows d1 d2 d3 (lab); set from the initial rod
   Vec3 tipForce = Vec3::Zero();    // dead load on the last node, lab [N]
   Vec3 tipTorque = Vec3::Zero();   // couple on the last element, lab [N m]
   Vec3 gravity = Vec3::Zero();     // body acceleration, lab [m/s^2] (off by default: weight is negligible)
 };
 
-// adds contact, adhesion, tip loads and body forces to force (lab, 3 x n+1) and torque (material, 3 x n);
-// dampedVelocity selects whether the plane's normal damping acts (only meaningful with physical masses)
+// The outside forces, one piece each (MODEL.md section 6). Forces are lab components on nodes
+// (3 x n+1), torques material components on elements (3 x n); each piece adds to what is there.
+
+// plate contact, per element: one-sided penalty on the surface gap, plus normal damping (damping: only
+// meaningful with physical masses)
+void addPlaneContact(const RodParams& p, const Plane& plane, const RodState& s, bool damping,
+                     Eigen::Matrix3Xd& force);
+// adhesion springs of stiffness k [N/m] pin anchored nodes; directors stay free
+void addAdhesion(double k, const RodState& s, Eigen::Matrix3Xd& force);
+// weight, lumped to nodes; gravity [m/s^2]
+void addWeight(const RodParams& p, const Vec3& gravity, const RodState& s, Eigen::Matrix3Xd& force);
+// dead force on the last node, lab-fixed couple on the last element
+void addTipLoads(const Environment& env, const RodState& s, Eigen::Matrix3Xd& force, Eigen::Matrix3Xd& torque);
+
+// all of the above that env switches on, and the clamp's couple on element 0, in this order
 void addExternalForces(const RodParams& p, const Environment& env, const RodState& s,
                        const RodStrains& k, bool planeDamping, Eigen::Matrix3Xd& force,
                        Eigen::Matrix3Xd& torque);
 
 // couple of the clamp on element 0 (material frame) and the clamp curvature [1/m]: the clamp is a
-// boundary Voronoi domain of rest length l0[0]/2 between baseFrame and element 0
+// boundary Voronoi domain of rest length l0[0]/2 between the state's clampFrame and element 0
 struct ClampCouple { Vec3 kappa, m, torque; };
-ClampCouple clampCouple(const RodParams& p, const Environment& env, const RodState& s, double e0);
+ClampCouple clampCouple(const RodParams& p, const RodState& s, double e0);
+
+// the clamp's kinematic half, the one place it is enforced: node 0 does not move, so the force on it is
+// a reaction and is removed (a solver then never moves it: its velocity stays zero)
+void holdClampedBase(const Environment& env, Eigen::Matrix3Xd& force);
 
 }  // namespace rootsim

@@ -4,6 +4,7 @@
 
 #include "rootsim/initial.hpp"
 #include "rootsim/relax.hpp"
+#include "rootsim/units.hpp"
 
 namespace rootsim {
 
@@ -12,9 +13,9 @@ enum class Sensing { Local, Apical };
 struct GrowthParams {
   bool enabled = true;
   double zoneLength = 1e-3;        // Lgz [m]
-  double rate = 0.2 / 3600.0;      // relative growth rate in the zone, eps0 [1/s]
+  double rate = 0.2 / units::hour;  // relative growth rate in the zone, eps0 [1/s]
   int steps = 3000;                // growth steps
-  double stepTime = 0.05 * 3600.0; // growth step [s]
+  double stepTime = 0.05 * units::hour;  // growth step [s]
   double splitFactor = 2.0;        // an element longer than splitFactor * h is split in two
 };
 
@@ -24,7 +25,7 @@ struct TropismParams {
   Sensing sensing = Sensing::Local;
   double rTau = 0.0;               // intrinsic twist R tau (dimensionless)
   double cnGain = 0.0;             // circumnutation gain lambda_cn
-  double cnPeriod = 3600.0;        // circumnutation period [s]
+  double cnPeriod = 1.0 * units::hour;  // circumnutation period [s]
 };
 
 struct AnalysisParams {
@@ -50,5 +51,16 @@ struct Model {
   AnalysisParams analysis;
   OutputParams output;
 };
+
+// The defaults: the paper's parameters (MODEL.md section 2) and rootsim's numerical choices. They are
+// written once, as the member initialisers of the parameter structs (this header, rod.hpp,
+// environment.hpp, relax.hpp, initial.hpp); defaultModel() is the way to read them, and the scene
+// schema takes every key's default from it.
+Model defaultModel();
+
+// fills in what follows from the other parameters, once, when a model is built (the model is constant
+// afterwards): the solver's length scale Lref is the growth zone for a growing root (its equilibrium
+// tolerance must not loosen as the root grows), the rod itself otherwise
+void completeModel(Model& m);
 
 }  // namespace rootsim

@@ -1,5 +1,7 @@
 #pragma once
-// Mechanical relaxation to equilibrium (MODEL.md section 7).
+// Mechanical relaxation to equilibrium (MODEL.md section 7): the options and result of every solver, the
+// explicit solver (DynamicRelaxation, relax_dynamic.cpp) and the force evaluation it shares with the
+// stability check (stability.cpp). One header for the concept "relaxation"; one source per solver.
 #include "rootsim/environment.hpp"
 #include <stdexcept>
 #include <string>
@@ -22,10 +24,10 @@ struct SolverOptions {
   Damping damping = Damping::Fire;
   double viscousRate = 2e4;       // nu for Damping::Viscous [1/s]
   double cfl = 0.9;               // fraction of the stability limit used for dt (physical masses)
-  double forceTol = 1e-5;         // residual force / (B1/Lref^2), residual torque / (B1/Lref)
-  double speedTol = 1e-6;         // max node displacement per sub-step / R, and rotation per sub-step [rad]
+  double forceTol = 1e-4;         // residual force / (B1/Lref^2), residual torque / (B1/Lref)
+  double speedTol = 1e-5;         // max node displacement per sub-step / R, and rotation per sub-step [rad]
   long maxSubsteps = 2000000;     // cap per relaxation; hitting it is an error
-  double lengthScale = 0.0;       // Lref [m]; 0 means the rod's rest length
+  double lengthScale = 0.0;       // Lref [m]; 0 means the rod's rest length (set by completeModel)
   bool stabilityCheck = true;     // growth runs: check each equilibrium's stability, follow unstable modes
 };
 
@@ -69,6 +71,15 @@ class DynamicRelaxation {
   std::string describeFailure() const;
 
  private:
+  // the pieces of one sub-step, in the order step() runs them (relax_dynamic.cpp's header lists it)
+  struct FirePowers { double P = 0, vm2 = 0, fm2 = 0; };
+  static void drift(RodState& s, double h);
+  bool inEquilibrium();
+  FirePowers firePowers() const;
+  void fireDamping(double P);
+  void fireKick(FirePowers pw);
+  void viscousKick();
+
   const RodParams& p_;
   const Environment& env_;
   const SolverOptions& opt_;

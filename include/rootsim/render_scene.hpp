@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "rootsim/environment.hpp"
 #include "rootsim/snapshot.hpp"
 
 namespace rootsim {
@@ -49,17 +50,7 @@ struct Framing {
   double topW = 0.5;             // highest point of the root above the plate [mm] (3-D camera)
 };
 
-// lab [m] -> plate coordinates [mm] for a plate tilted by alphaDeg
-struct PlateFrame {
-  Eigen::Vector3d lateral, uphill, normal;  // unit vectors in the lab frame
-  Eigen::Vector3d toPlateMm(const Eigen::Vector3d& labM) const {
-    return 1e3 * Eigen::Vector3d(lateral.dot(labM), uphill.dot(labM), normal.dot(labM));
-  }
-  Eigen::Vector3d dirToPlate(const Eigen::Vector3d& labDir) const {
-    return Eigen::Vector3d(lateral.dot(labDir), uphill.dot(labDir), normal.dot(labDir));
-  }
-};
-PlateFrame plateFrame(double alphaDeg);
+// plate coordinates: PlateFrame (environment.hpp), the one plate frame of sim, render and figure
 
 // one vertex of the lit meshes (root tube, caps, whiskers); positions in plate coordinates [mm]
 struct TubeVertex {

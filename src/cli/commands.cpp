@@ -24,6 +24,7 @@
 #include "render_glue.hpp"
 #include "rootsim/render_scene.hpp"
 #include "rootsim/renderer.hpp"
+#include "rootsim/units.hpp"
 #endif
 
 namespace fs = std::filesystem;
@@ -34,7 +35,6 @@ namespace {
 double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
-constexpr double kDeg = 180.0 / std::numbers::pi;
 
 
 }  // namespace
@@ -85,7 +85,7 @@ int runCommand(const RunOptions& o) {
   runSceneToDir(sc, out.string(), ro, [&](const StepRecord& r, int n) {
     char buf[160];
     std::snprintf(buf, sizeof buf, "step %d/%d  t=%.1f h  L=%.2f mm  theta_tip=%.0f deg  %ld sub-steps", r.step, n,
-                  r.timeH, r.length * 1e3, r.thetaTip * kDeg, r.substeps);
+                  r.timeH, r.length / units::mm, r.thetaTip / units::deg, r.substeps);
     pr.update(r.step, buf);
   });
   if (steps > 0) pr.finish(std::to_string(steps) + " steps");

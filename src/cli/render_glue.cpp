@@ -14,6 +14,7 @@
 #include "rootsim/render_scene.hpp"
 #include "rootsim/renderer.hpp"
 #include "rootsim/scene.hpp"
+#include "rootsim/units.hpp"
 
 namespace fs = std::filesystem;
 
@@ -46,7 +47,7 @@ std::pair<int, int> parseSize(const std::string& s) {
 // "auto": 1280x720 for a root that spreads sideways, 720x1280 for one that grows mostly downhill
 // (a long waving root in a landscape frame is a thin line); the top view's bounding box decides
 std::pair<int, int> autoSize(const std::vector<Snapshot>& snaps, const SceneInfo& info) {
-  const PlateFrame pf = plateFrame(info.alphaDeg);
+  const PlateFrame pf = PlateFrame::tilted(info.alphaDeg * units::deg);
   double umin = 1e300, umax = -1e300, vmin = 1e300, vmax = -1e300;
   for (const auto& sn : snaps)
     for (int i = 0; i < sn.x.cols(); ++i) {
@@ -63,7 +64,7 @@ std::pair<int, int> autoSize(const std::vector<Snapshot>& snaps, const SceneInfo
 
 SceneInfo sceneInfoOf(const Model& m) {
   SceneInfo si;
-  si.alphaDeg = m.env.plane.alpha * 180.0 / std::numbers::pi;
+  si.alphaDeg = m.env.plane.alpha / units::deg;
   si.beta = m.tropism.beta;
   si.gamma = m.tropism.gamma;
   si.rTau = m.tropism.rTau;

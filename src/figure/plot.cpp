@@ -10,6 +10,7 @@
 #include <limits>
 
 #include "rootsim/errors.hpp"
+#include "rootsim/units.hpp"
 
 namespace fs = std::filesystem;
 
@@ -72,7 +73,7 @@ void marker(cairo_t* cr, char m, double x, double y, double r) {
     case 'x':
       cairo_move_to(cr, x - r, y - r); cairo_line_to(cr, x + r, y + r);
       cairo_move_to(cr, x - r, y + r); cairo_line_to(cr, x + r, y - r); cairo_stroke(cr); break;
-    default: cairo_arc(cr, x, y, r, 0, 2 * M_PI); cairo_fill(cr);
+    default: cairo_arc(cr, x, y, r, 0, 2 * units::pi); cairo_fill(cr);
   }
 }
 
@@ -134,7 +135,7 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
   if (!a.title.empty()) text(cr, 0.5 * (L + R), box.y + 8, a.title, 15, 0.5, 0.0, true);
   if (!a.panelLabel.empty()) text(cr, box.x + 8, box.y + 6, a.panelLabel, 20, 0.0, 0.0, true);
   text(cr, 0.5 * (L + R), B + 26, a.xlabel, 13, 0.5, 0.0);
-  text(cr, box.x + 14, 0.5 * (T + B), a.ylabel, 13, 0.5, 0.5, false, -M_PI / 2);
+  text(cr, box.x + 14, 0.5 * (T + B), a.ylabel, 13, 0.5, 0.5, false, -units::pi / 2);
 
   // data, clipped to the plot area
   cairo_save(cr);

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "rootsim/errors.hpp"
+#include "rootsim/units.hpp"
 
 namespace fs = std::filesystem;
 
@@ -28,7 +29,6 @@ std::string jsonEscape(const std::string& s) {
   }
   return o + "\"";
 }
-constexpr double mm = 1e3;  // metres -> millimetres
 }  // namespace
 
 std::string shapeCsv(const Model& m, const RodState& s, const RodStrains& k) {
@@ -44,15 +44,15 @@ std::string shapeCsv(const Model& m, const RodState& s, const RodStrains& k) {
     d1 = (d1 - d1.dot(d3) * d3).normalized();
     const Vec3 d2 = d3.cross(d1);
     Vec3 kap = Vec3::Zero();
-    if (i >= 1 && i <= n - 1) kap = k.kappa.col(i - 1) / k.ev[i - 1] / mm;
+    if (i >= 1 && i <= n - 1) kap = k.kappa.col(i - 1) / k.ev[i - 1] * units::mm;
     const double e = 0.5 * (k.e[a] + k.e[b]);
-    os << fmt(s.S[i] * mm);
-    for (int d = 0; d < 3; ++d) os << ',' << fmt(s.x(d, i) * mm);
+    os << fmt(s.S[i] / units::mm);
+    for (int d = 0; d < 3; ++d) os << ',' << fmt(s.x(d, i) / units::mm);
     const Vec3* frame[3] = {&d1, &d2, &d3};
     for (const Vec3* v : frame)
       for (int d = 0; d < 3; ++d) os << ',' << fmt((*v)[d]);
     for (int d = 0; d < 3; ++d) os << ',' << fmt(kap[d]);
-    os << ',' << fmt(e) << ',' << fmt(elementRadius(m.rod, e) * mm) << '\n';
+    os << ',' << fmt(e) << ',' << fmt(elementRadius(m.rod, e) / units::mm) << '\n';
   }
   return os.str();
 }
@@ -64,10 +64,10 @@ TimeseriesWriter::TimeseriesWriter(const fs::path& path) : f_(path) {
 
 void TimeseriesWriter::add(const StepRecord& r) {
   auto& o = f_.stream();
-  o << r.step << ',' << fmt(r.timeH) << ',' << fmt(r.length * mm) << ',' << r.elements << ','
-    << fmt(r.thetaTip * 180.0 / M_PI) << ',' << fmt(r.zone.Eb) << ',' << fmt(r.zone.Et) << ','
+  o << r.step << ',' << fmt(r.timeH) << ',' << fmt(r.length / units::mm) << ',' << r.elements << ','
+    << fmt(r.thetaTip / units::deg) << ',' << fmt(r.zone.Eb) << ',' << fmt(r.zone.Et) << ','
     << fmt(r.zone.Wr) << ',' << fmt(r.zone.Tw) << ',' << r.substeps << ',' << fmt(r.residualForce) << ','
-    << r.splits << ',' << r.unstable << ',' << fmt(r.tip.x() * mm) << ',' << fmt(r.tip.y() * mm) << ',' << fmt(r.tip.z() * mm)
+    << r.splits << ',' << r.unstable << ',' << fmt(r.tip.x() / units::mm) << ',' << fmt(r.tip.y() / units::mm) << ',' << fmt(r.tip.z() / units::mm)
     << '\n';
 }
 
@@ -82,11 +82,11 @@ void TrajectoryWriter::add(const Snapshot& s) {
   const int n = s.elements();
   for (int i = 0; i <= n; ++i) {
     o << frames_ << ',' << s.step << ',' << fmt(s.timeH) << ',' << i;
-    for (int d = 0; d < 3; ++d) o << ',' << fmt(s.x(d, i) * mm);
+    for (int d = 0; d < 3; ++d) o << ',' << fmt(s.x(d, i) / units::mm);
     if (i < n) {
       for (int d = 0; d < 3; ++d) o << ',' << fmt(s.d1(d, i));
       for (int d = 0; d < 3; ++d) o << ',' << fmt(s.d3(d, i));
-      o << ',' << fmt(s.radius[i] * mm) << '\n';
+      o << ',' << fmt(s.radius[i] / units::mm) << '\n';
     } else {
       o << ",,,,,,,\n";
     }
@@ -119,11 +119,11 @@ std::vector<Snapshot> readTrajectory(const fs::path& path) {
     s.d3.resize(3, n);
     s.radius.resize(n);
     for (int i = 0; i < nn; ++i) {
-      for (int d = 0; d < 3; ++d) s.x(d, i) = rows[static_cast<size_t>(i)].v[d] / mm;
+      for (int d = 0; d < 3; ++d) s.x(d, i) = rows[static_cast<size_t>(i)].v[d] * units::mm;
       if (i < n) {
         for (int d = 0; d < 3; ++d) s.d1(d, i) = rows[static_cast<size_t>(i)].v[3 + d];
         for (int d = 0; d < 3; ++d) s.d3(d, i) = rows[static_cast<size_t>(i)].v[6 + d];
-        s.radius[i] = rows[static_cast<size_t>(i)].v[9] / mm;
+        s.radius[i] = rows[static_cast<size_t>(i)].v[9] * units::mm;
       }
     }
     out.push_back(std::move(s));
@@ -182,14 +182,14 @@ void VtkSeriesWriter::add(const Snapshot& s) {
     << "<PolyData>\n<Piece NumberOfPoints=\"" << nn << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << n
     << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n<Points>\n"
     << "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (int i = 0; i < nn; ++i) o << fmt(s.x(0, i) * mm) << ' ' << fmt(s.x(1, i) * mm) << ' ' << fmt(s.x(2, i) * mm) << '\n';
+  for (int i = 0; i < nn; ++i) o << fmt(s.x(0, i) / units::mm) << ' ' << fmt(s.x(1, i) / units::mm) << ' ' << fmt(s.x(2, i) / units::mm) << '\n';
   o << "</DataArray>\n</Points>\n<Lines>\n<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n";
   for (int i = 0; i < n; ++i) o << i << ' ' << i + 1 << '\n';
   o << "</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n";
   for (int i = 0; i < n; ++i) o << 2 * (i + 1) << '\n';
   o << "</DataArray>\n</Lines>\n<CellData Scalars=\"radius_mm\">\n"
     << "<DataArray type=\"Float64\" Name=\"radius_mm\" format=\"ascii\">\n";
-  for (int i = 0; i < n; ++i) o << fmt(s.radius[i] * mm) << '\n';
+  for (int i = 0; i < n; ++i) o << fmt(s.radius[i] / units::mm) << '\n';
   for (const auto* arr : {&s.d1, &s.d3}) {
     o << "</DataArray>\n<DataArray type=\"Float64\" Name=\"" << (arr == &s.d1 ? "d1" : "d3")
       << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";
@@ -239,19 +239,18 @@ std::string Json::dump(int indent) const {
 }
 
 Json theoryJson(const Theory& t) {
-  const double deg = 180.0 / M_PI;
   Json j;
   j.num("effective_gain_beta_Lgz_over_R", t.effectiveGain)
-      .num("T0_h", t.T0 / 3600.0)
-      .num("max_kappa_per_mm_eq8", t.maxKappa / mm)
-      .num("wavelength_mm_eq9", t.wavelength * mm)
-      .num("amplitude_mm_eq10", t.amplitude * mm)
-      .num("alpha_straight_to_waving_deg_eq12", t.alphaStraightToWave * deg)
-      .num("alpha_waving_to_coiling_deg_eq13", t.alphaWaveToCoil * deg)
-      .num("omega_per_h_eq5", t.omega * 3600.0)
+      .num("T0_h", t.T0 / units::hour)
+      .num("max_kappa_per_mm_eq8", t.maxKappa * units::mm)
+      .num("wavelength_mm_eq9", t.wavelength / units::mm)
+      .num("amplitude_mm_eq10", t.amplitude / units::mm)
+      .num("alpha_straight_to_waving_deg_eq12", t.alphaStraightToWave / units::deg)
+      .num("alpha_waving_to_coiling_deg_eq13", t.alphaWaveToCoil / units::deg)
+      .num("omega_per_h_eq5", t.omega * units::hour)
       .num("omega_T0", t.omegaT0)
-      .num("skew_deg_eq14_small_omegaT0", t.skewSmall * deg)
-      .num("skew_deg_eq15_large_omegaT0", t.skewLarge * deg);
+      .num("skew_deg_eq14_small_omegaT0", t.skewSmall / units::deg)
+      .num("skew_deg_eq15_large_omegaT0", t.skewLarge / units::deg);
   return j;
 }
 

@@ -2,7 +2,6 @@
 
 #include <charconv>
 #include <cmath>
-#include <numbers>
 #include <sstream>
 
 #include "rootsim/errors.hpp"
@@ -45,13 +44,15 @@ KeySpec boolean(const char* sec, const char* key, bool def, const char* doc) {
   k.defBool = def; k.doc = doc;
   return k;
 }
-KeySpec choice(const char* sec, const char* key, std::vector<std::string> choices, const char* doc) {
+KeySpec choice(const char* sec, const char* key, const char* def, std::vector<std::string> choices,
+               const char* doc) {
   KeySpec k = make(sec, key, KeyType::String);
-  k.defStr = choices.front(); k.choices = std::move(choices); k.doc = doc;
+  k.defStr = def; k.choices = std::move(choices); k.doc = doc;
   return k;
 }
-KeySpec vec3(const char* sec, const char* key, const char* doc) {
+KeySpec vec3(const char* sec, const char* key, const Vec3& def, const char* doc) {
   KeySpec k = make(sec, key, KeyType::Vector3);
+  k.defVec = {def.x(), def.y(), def.z()};
   k.doc = doc;
   return k;
 }
@@ -63,68 +64,71 @@ const std::vector<std::string>& sections() {
   return s;
 }
 
+// every key, its unit, range and meaning; its default is read from defaultModel() (the one source of
+// defaults, include/rootsim/model.hpp), converted to the key's unit
 const std::vector<KeySpec>& schema() {
+  using units::mm;
+  using units::hour;
+  static const Model d = defaultModel();
   static const std::vector<KeySpec> keys = {
-      real("root", "radius_mm", 0.1, 0, true, kInf, false, "root radius R [mm]"),
-      real("root", "initial_length_mm", 1.1, 0, true, kInf, false, "initial length L0 [mm]"),
-      real("root", "youngs_modulus_mpa", 50, 0, true, kInf, false, "Young's modulus E [MPa]"),
-      real("root", "element_length_mm", 0.05, 0, true, kInf, false,
+      real("root", "radius_mm", d.rod.radius / mm, 0, true, kInf, false, "root radius R [mm]"),
+      real("root", "initial_length_mm", d.initial.length / mm, 0, true, kInf, false, "initial length L0 [mm]"),
+      real("root", "youngs_modulus_mpa", d.rod.youngs / units::mpa, 0, true, kInf, false, "Young's modulus E [MPa]"),
+      real("root", "element_length_mm", d.initial.elementLength / mm, 0, true, kInf, false,
            "target element length h [mm]; elements longer than growth.split_factor * h are split"),
-      real("root", "density_kg_per_m3", 1000, 0, true, kInf, false,
+      real("root", "density_kg_per_m3", d.rod.density, 0, true, kInf, false,
            "density [kg/m^3] (physical-mass relaxation and weight only)"),
-      boolean("growth", "enabled", true, "grow (false: mechanics only, one relaxation under [load])"),
-      real("growth", "growth_zone_mm", 1.0, 0, true, kInf, false, "growth-zone length Lgz [mm]"),
-      real("growth", "rate_per_h", 0.2, 0, true, kInf, false, "relative growth rate in the zone [1/h]"),
-      integer("growth", "steps", 3000, 0, 1e7, "number of growth steps"),
-      real("growth", "step_h", 0.05, 0, true, kInf, false, "growth step [h]"),
-      real("growth", "split_factor", 2.0, 1.2, false, 10, false,
+      boolean("growth", "enabled", d.growth.enabled, "grow (false: mechanics only, one relaxation under [load])"),
+      real("growth", "growth_zone_mm", d.growth.zoneLength / mm, 0, true, kInf, false, "growth-zone length Lgz [mm]"),
+      real("growth", "rate_per_h", d.growth.rate * hour, 0, true, kInf, false, "relative growth rate in the zone [1/h]"),
+      integer("growth", "steps", d.growth.steps, 0, 1e7, "number of growth steps"),
+      real("growth", "step_h", d.growth.stepTime / hour, 0, true, kInf, false, "growth step [h]"),
+      real("growth", "split_factor", d.growth.splitFactor, 1.2, false, 10, false,
            "split an element when it grows past this many target lengths h"),
-      real("tropism", "beta", 0.1, 0, false, kInf, false, "gravitropic gain beta"),
-      real("tropism", "gamma", 0.1, 0, false, kInf, false, "proprioceptive gain gamma"),
-      choice("tropism", "sensing", {"local", "apical"}, "where gravity is sensed"),
-      real("tropism", "twist_r_tau", 0.0, -kInf, false, kInf, false, "intrinsic twist R*tau (dimensionless)"),
-      real("tropism", "circumnutation_gain", 0.0, 0, false, kInf, false, "circumnutation gain lambda_cn"),
-      real("tropism", "circumnutation_period_h", 1.0, 0, true, kInf, false, "circumnutation period [h]"),
-      boolean("plane", "enabled", true, "the tilted plate is present"),
-      real("plane", "alpha_deg", 40, 0, false, 90, false,
+      real("tropism", "beta", d.tropism.beta, 0, false, kInf, false, "gravitropic gain beta"),
+      real("tropism", "gamma", d.tropism.gamma, 0, false, kInf, false, "proprioceptive gain gamma"),
+      choice("tropism", "sensing", d.tropism.sensing == Sensing::Local ? "local" : "apical", {"local", "apical"}, "where gravity is sensed"),
+      real("tropism", "twist_r_tau", d.tropism.rTau, -kInf, false, kInf, false, "intrinsic twist R*tau (dimensionless)"),
+      real("tropism", "circumnutation_gain", d.tropism.cnGain, 0, false, kInf, false, "circumnutation gain lambda_cn"),
+      real("tropism", "circumnutation_period_h", d.tropism.cnPeriod / hour, 0, true, kInf, false, "circumnutation period [h]"),
+      boolean("plane", "enabled", d.env.plane.enabled, "the tilted plate is present"),
+      real("plane", "alpha_deg", d.env.plane.alpha / units::deg, 0, false, 90, false,
            "plate tilt from the vertical [deg]; also sets the start direction when the plate is off"),
-      // MODEL.md/paper: 100 N/m. Measured here (fig2b scene, 700 steps): with 100 N/m the tip, pressed
-      // into the plate by gravitropism, sinks 0.17-0.34 R into it; 1000 N/m keeps it below 0.03 R with
-      // the same waves (lambda 2.34 vs 2.35 mm, theta_tip range within 2 deg) and the same cost.
-      real("plane", "k_n_per_m", 1000, 0, false, kInf, false,
+      // the default deviates from the paper's 100 N/m: see Plane::k (environment.hpp)
+      real("plane", "k_n_per_m", d.env.plane.k, 0, false, kInf, false,
            "contact penalty spring per element [N/m] (paper: 100; see README)"),
-      real("plane", "damping_kg_per_s", 0.01, 0, false, kInf, false,
+      real("plane", "damping_kg_per_s", d.env.plane.c, 0, false, kInf, false,
            "contact normal damping per element [kg/s] (physical-mass relaxation only)"),
-      boolean("adhesion", "enabled", true, "pin material that leaves the growth zone"),
-      real("adhesion", "k_n_per_m", 1000, 0, false, kInf, false, "adhesion spring [N/m]"),
-      choice("solver", "kind", {"dynamic"}, "relaxation method"),
-      choice("solver", "mass", {"scaled", "physical"},
+      boolean("adhesion", "enabled", d.env.adhesion, "pin material that leaves the growth zone"),
+      real("adhesion", "k_n_per_m", d.env.kAdhesion, 0, false, kInf, false, "adhesion spring [N/m]"),
+      choice("solver", "kind", "dynamic", {"dynamic"}, "relaxation method"),
+      choice("solver", "mass", d.solver.mass == MassModel::Scaled ? "scaled" : "physical", {"scaled", "physical"},
              "scaled: per-dof fictitious masses (fast); physical: density and dt from the stiffest spring"),
-      choice("solver", "damping", {"fire", "viscous"}, "FIRE or viscous damping of the pseudo-dynamics"),
-      real("solver", "damping_per_s", 2e4, 0, true, kInf, false, "viscous damping rate [1/s] (damping = \"viscous\")"),
-      real("solver", "force_tol", 1e-4, 0, true, 1, false,
+      choice("solver", "damping", d.solver.damping == Damping::Fire ? "fire" : "viscous", {"fire", "viscous"}, "FIRE or viscous damping of the pseudo-dynamics"),
+      real("solver", "damping_per_s", d.solver.viscousRate, 0, true, kInf, false, "viscous damping rate [1/s] (damping = \"viscous\")"),
+      real("solver", "force_tol", d.solver.forceTol, 0, true, 1, false,
            "equilibrium: residual force < force_tol * B1/Lref^2 and couple < force_tol * B1/Lref "
            "(Lref = growth zone, or the rod when not growing)"),
-      real("solver", "speed_tol", 1e-5, 0, true, 1, false,
+      real("solver", "speed_tol", d.solver.speedTol, 0, true, 1, false,
            "equilibrium: node displacement per sub-step < speed_tol * R, rotation < speed_tol rad"),
-      boolean("solver", "stability_check", true,
+      boolean("solver", "stability_check", d.solver.stabilityCheck,
               "check each growth step's equilibrium (inertia of the stiffness matrix) and leave saddle "
               "points along their unstable mode"),
-      integer("solver", "max_substeps", 2000000, 1, 1e12, "sub-step cap per relaxation; hitting it is an error"),
-      integer("solver", "seed", 1, 0, 9.007199254740992e15, "seed of the initial lateral perturbation"),
-      real("solver", "perturbation", 1e-6, 0, false, 1, false, "initial lateral perturbation amplitude / R"),
-      vec3("load", "tip_force_n", "dead load on the tip node, lab frame [N]"),
-      vec3("load", "tip_torque_nm", "couple on the tip element, lab frame [N m]"),
-      choice("load", "base", {"clamped", "free"}, "base boundary condition"),
-      boolean("load", "gravity", false, "weight of the root (negligible for real roots)"),
-      real("analysis", "skew_threshold_deg", 5, 0, false, 90, false, "|<theta>| above this is skewing [deg]"),
-      real("analysis", "coil_turn_deg", 180, 0, true, 3600, false,
+      integer("solver", "max_substeps", static_cast<double>(d.solver.maxSubsteps), 1, 1e12, "sub-step cap per relaxation; hitting it is an error"),
+      integer("solver", "seed", static_cast<double>(d.initial.seed), 0, 9.007199254740992e15, "seed of the initial lateral perturbation"),
+      real("solver", "perturbation", d.initial.perturbation, 0, false, 1, false, "initial lateral perturbation amplitude / R"),
+      vec3("load", "tip_force_n", d.env.tipForce, "dead load on the tip node, lab frame [N]"),
+      vec3("load", "tip_torque_nm", d.env.tipTorque, "couple on the tip element, lab frame [N m]"),
+      choice("load", "base", d.env.base == BaseCondition::Clamped ? "clamped" : "free", {"clamped", "free"}, "base boundary condition"),
+      boolean("load", "gravity", d.env.gravity.squaredNorm() > 0, "weight of the root (negligible for real roots)"),
+      real("analysis", "skew_threshold_deg", d.analysis.skewThresholdDeg, 0, false, 90, false, "|<theta>| above this is skewing [deg]"),
+      real("analysis", "coil_turn_deg", d.analysis.coilTurnDeg, 0, true, 3600, false,
            "planar tangent turning through more than this is coiling [deg]"),
-      real("analysis", "wave_min_amplitude_r", 0.5, 0, false, kInf, false,
+      real("analysis", "wave_min_amplitude_r", d.analysis.waveMinAmplitude, 0, false, kInf, false,
            "lateral peak-to-peak below this many R counts as straight"),
-      integer("output", "every_steps", 10, 1, 1e9, "snapshot and time-series row every N growth steps"),
-      boolean("output", "trajectory", true, "write trajectory.csv (what `rootsim render` reads)"),
-      boolean("output", "vtk", true, "write ParaView snapshots (vtk/*.vtp + trajectory.pvd)"),
+      integer("output", "every_steps", d.output.everySteps, 1, 1e9, "snapshot and time-series row every N growth steps"),
+      boolean("output", "trajectory", d.output.trajectory, "write trajectory.csv (what `rootsim render` reads)"),
+      boolean("output", "vtk", d.output.vtk, "write ParaView snapshots (vtk/*.vtp + trajectory.pvd)"),
   };
   return keys;
 }
@@ -223,11 +227,12 @@ Model buildModel(const Values& v, const std::string& name) {
   auto flag = [&](const char* k) { return v.at(k).b; };
   auto str = [&](const char* k) { return v.at(k).str; };
   auto vec = [&](const char* k) { const auto& a = v.at(k).vec; return Vec3(a[0], a[1], a[2]); };
-  constexpr double mm = 1e-3, hour = 3600.0;
-  Model m;
+  using units::mm;
+  using units::hour;
+  Model m = defaultModel();
   m.name = name;
   m.rod.radius = num("root.radius_mm") * mm;
-  m.rod.youngs = num("root.youngs_modulus_mpa") * 1e6;
+  m.rod.youngs = num("root.youngs_modulus_mpa") * units::mpa;
   m.rod.density = num("root.density_kg_per_m3");
   m.initial.length = num("root.initial_length_mm") * mm;
   m.initial.elementLength = num("root.element_length_mm") * mm;
@@ -246,7 +251,7 @@ Model buildModel(const Values& v, const std::string& name) {
   m.tropism.cnGain = num("tropism.circumnutation_gain");
   m.tropism.cnPeriod = num("tropism.circumnutation_period_h") * hour;
   m.env.plane.enabled = flag("plane.enabled");
-  m.env.plane.alpha = num("plane.alpha_deg") * std::numbers::pi / 180.0;
+  m.env.plane.alpha = num("plane.alpha_deg") * units::deg;
   m.env.plane.k = num("plane.k_n_per_m");
   m.env.plane.c = num("plane.damping_kg_per_s");
   m.env.adhesion = flag("adhesion.enabled");
@@ -262,13 +267,13 @@ Model buildModel(const Values& v, const std::string& name) {
   m.solver.speedTol = num("solver.speed_tol");
   m.solver.maxSubsteps = static_cast<long>(num("solver.max_substeps"));
   m.solver.stabilityCheck = flag("solver.stability_check");
-  m.solver.lengthScale = m.growth.enabled ? m.growth.zoneLength : 0.0;
   m.analysis.skewThresholdDeg = num("analysis.skew_threshold_deg");
   m.analysis.coilTurnDeg = num("analysis.coil_turn_deg");
   m.analysis.waveMinAmplitude = num("analysis.wave_min_amplitude_r");
   m.output.everySteps = static_cast<int>(num("output.every_steps"));
   m.output.trajectory = flag("output.trajectory");
   m.output.vtk = flag("output.vtk");
+  completeModel(m);
 
   // relations between keys
   if (m.initial.elementLength * 2 > m.initial.length * (1 + 1e-12))

@@ -17,7 +17,7 @@ namespace rootsim {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
+constexpr double kPi = units::pi;
 constexpr int kSides = 24;        // tube sides; normals are smooth, stripes are per pixel
 constexpr int kTipRings = 8;      // rings of the hemispherical tip cap
 constexpr int kWhiskerSides = 6;
@@ -102,7 +102,7 @@ std::vector<Ring> nodeRings(const Snapshot& s, const PlateFrame& pf) {
     if (a.norm() < 1e-12) a = g.t.unitOrthogonal();
     g.a = a.normalized();
     g.b = g.t.cross(g.a);
-    g.r = 1e3 * r / cnt;
+    g.r = r / cnt / units::mm;
   }
   return rings;
 }
@@ -228,19 +228,10 @@ void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, cons
 
 }  // namespace
 
-PlateFrame plateFrame(double alphaDeg) {
-  const double a = alphaDeg * kPi / 180.0;
-  PlateFrame pf;
-  pf.lateral = V3(1, 0, 0);
-  pf.uphill = V3(0, std::sin(a), std::cos(a));   // -g_par
-  pf.normal = V3(0, -std::cos(a), std::sin(a));  // n
-  return pf;
-}
-
 Framing frameFor(const std::vector<Snapshot>& snaps, const SceneInfo& info, const View& view) {
   checkSize(view);
   if (snaps.empty()) throw RenderError("render: no snapshots to frame");
-  const PlateFrame pf = plateFrame(info.alphaDeg);
+  const PlateFrame pf = PlateFrame::tilted(info.alphaDeg * units::deg);
   const double inf = std::numeric_limits<double>::infinity();
   double u0 = inf, u1 = -inf, v0 = inf, v1 = -inf, wTop = 0.0, rMax = 0.0;
   for (const Snapshot& s : snaps) {
@@ -251,7 +242,7 @@ Framing frameFor(const std::vector<Snapshot>& snaps, const SceneInfo& info, cons
       v0 = std::min(v0, p.y()), v1 = std::max(v1, p.y());
       wTop = std::max(wTop, p.z());
     }
-    rMax = std::max(rMax, 1e3 * s.radius.maxCoeff());
+    rMax = std::max(rMax, s.radius.maxCoeff() / units::mm);
   }
   const double pad = rMax + view.marginMm;
   const double aspect = static_cast<double>(view.width) / view.height;
@@ -290,10 +281,10 @@ RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const 
   rs.width = view.width;
   rs.height = view.height;
   rs.fontPath = view.fontPath;
-  rs.material.stripeCos = static_cast<float>(std::cos(view.stripeHalfWidthDeg * kPi / 180.0));
+  rs.material.stripeCos = static_cast<float>(std::cos(view.stripeHalfWidthDeg * units::deg));
 
   // the root
-  const PlateFrame pf = plateFrame(info.alphaDeg);
+  const PlateFrame pf = PlateFrame::tilted(info.alphaDeg * units::deg);
   const std::vector<Ring> rings = nodeRings(snap, pf);
   rs.vertices.reserve(static_cast<size_t>((rings.size() + kTipRings + 2) * kSides));
   rs.indices.reserve(rs.vertices.capacity() * 6);

@@ -7,6 +7,7 @@
 
 #include "rootsim/growth.hpp"
 #include "rootsim/rod.hpp"
+#include "rootsim/units.hpp"
 
 namespace rootsim {
 
@@ -150,8 +151,8 @@ ShapeAnalysis analyseShape(const Model& m, const RodState& s) {
     a.wavelength = sum / cnt;
   }
   const double turn = a.thetaMax - a.thetaMin;
-  if (turn > m.analysis.coilTurnDeg * std::numbers::pi / 180.0) a.pattern = "coiling";
-  else if (std::abs(a.skew) > m.analysis.skewThresholdDeg * std::numbers::pi / 180.0) a.pattern = "skewing";
+  if (turn > m.analysis.coilTurnDeg * units::deg) a.pattern = "coiling";
+  else if (std::abs(a.skew) > m.analysis.skewThresholdDeg * units::deg) a.pattern = "skewing";
   else if (ext.size() >= 2) a.pattern = "waving";
   else a.pattern = "straight";
   return a;

@@ -1,7 +1,6 @@
 #include "rootsim/environment.hpp"
 
 #include <cmath>
-#include <numbers>
 #include <utility>
 
 #include "rootsim/rotation.hpp"
@@ -23,16 +22,20 @@ std::pair<double, double> cosSin(double a) {
 }
 }  // namespace
 
-Vec3 Plane::normal() const {
+PlateFrame PlateFrame::tilted(double alpha) {
   const auto [ca, sa] = cosSin(alpha);
-  return Vec3(0.0, -ca, sa);
-}
-Vec3 Plane::downhill() const {
-  const auto [ca, sa] = cosSin(alpha);
-  return Vec3(0.0, -sa, -ca);
+  PlateFrame f;
+  f.normal = Vec3(0.0, -ca, sa);
+  f.downhill = Vec3(0.0, -sa, -ca);
+  f.lateral = Vec3::UnitX();
+  return f;
 }
 
-ClampCouple clampCouple(const RodParams& p, const Environment& env, const RodState& s, double e0) {
+Vec3 PlateFrame::toPlateMm(const Vec3& labM) const {
+  return Vec3(lateral.dot(labM), -downhill.dot(labM), normal.dot(labM)) / units::mm;
+}
+
+ClampCouple clampCouple(const RodParams& p, const RodState& s, double e0) {
   // A clamp that fixed element 0's own directors would put the clamped cross-section at the element
   // centre, l0/2 from the base node, and make every deflection first-order in l0 (measured: 5.9 % and
   // 3.0 % Timoshenko errors at 25 and 50 elements). Instead the clamp frame sits at s = 0 and couples
@@ -41,7 +44,7 @@ ClampCouple clampCouple(const RodParams& p, const Environment& env, const RodSta
   // same clamp moved to the base node.)
   const double D0 = 0.5 * s.l0[0];
   ClampCouple c;
-  c.kappa = rotationToVector(env.baseFrame * s.Q[0].transpose()) / D0;
+  c.kappa = rotationToVector(s.clampFrame * s.Q[0].transpose()) / D0;
   const double ev = e0;
   c.m = p.bendStiffness().cwiseProduct(c.kappa / ev) / (ev * ev);
   // element 0 sees the clamp domain on its left: -m + (D0/2) kappa x m
@@ -49,46 +52,58 @@ ClampCouple clampCouple(const RodParams& p, const Environment& env, const RodSta
   return c;
 }
 
+void addPlaneContact(const RodParams& p, const Plane& plane, const RodState& s, bool damping,
+                     Eigen::Matrix3Xd& force) {
+  // one-sided penalty on the surface gap (r_mid . n - R, with the rest radius as MODEL.md writes it: a
+  // gap using R / sqrt(e) would make the contact force depend on stretching without an energy behind
+  // it, which shows up as a spurious unstable direction of the stiffness matrix) plus normal damping,
+  // shared by the element's two nodes
+  const int n = s.elements();
+  const Vec3 nh = plane.normal();
+  for (int i = 0; i < n; ++i) {
+    const Vec3 mid = 0.5 * (s.x.col(i) + s.x.col(i + 1));
+    const double gap = mid.dot(nh) - p.radius;
+    if (gap >= 0.0) continue;
+    double fn = -plane.k * gap;
+    if (damping) fn -= plane.c * 0.5 * (s.v.col(i) + s.v.col(i + 1)).dot(nh);
+    const Vec3 f = 0.5 * fn * nh;
+    force.col(i) += f;
+    force.col(i + 1) += f;
+  }
+}
+
+void addAdhesion(double k, const RodState& s, Eigen::Matrix3Xd& force) {
+  for (int i = 0; i < s.nodes(); ++i)
+    if (s.anchored[static_cast<size_t>(i)]) force.col(i) += k * (s.anchor.col(i) - s.x.col(i));
+}
+
+void addWeight(const RodParams& p, const Vec3& gravity, const RodState& s, Eigen::Matrix3Xd& force) {
+  const double rhoA = p.density * units::pi * p.radius * p.radius;
+  for (int i = 0; i < s.elements(); ++i) {
+    const Vec3 w = 0.5 * rhoA * s.l0[i] * gravity;
+    force.col(i) += w;
+    force.col(i + 1) += w;
+  }
+}
+
+void addTipLoads(const Environment& env, const RodState& s, Eigen::Matrix3Xd& force, Eigen::Matrix3Xd& torque) {
+  const int n = s.elements();
+  force.col(n) += env.tipForce;
+  torque.col(n - 1) += s.Q[static_cast<size_t>(n - 1)] * env.tipTorque;
+}
+
 void addExternalForces(const RodParams& p, const Environment& env, const RodState& s,
                        const RodStrains& k, bool planeDamping, Eigen::Matrix3Xd& force,
                        Eigen::Matrix3Xd& torque) {
-  const int n = s.elements();
-  // plane contact, per element (MODEL.md section 6): one-sided penalty on the surface gap
-  // (r_mid . n - R, with the rest radius as MODEL.md writes it: a gap using R / sqrt(e) would make the
-  // contact force depend on stretching without an energy behind it, which shows up as a spurious
-  // unstable direction of the stiffness matrix) plus normal damping, shared by the two nodes
-  if (env.plane.enabled) {
-    const Vec3 nh = env.plane.normal();
-    for (int i = 0; i < n; ++i) {
-      const Vec3 mid = 0.5 * (s.x.col(i) + s.x.col(i + 1));
-      const double gap = mid.dot(nh) - p.radius;
-      if (gap >= 0.0) continue;
-      double fn = -env.plane.k * gap;
-      if (planeDamping) fn -= env.plane.c * 0.5 * (s.v.col(i) + s.v.col(i + 1)).dot(nh);
-      const Vec3 f = 0.5 * fn * nh;
-      force.col(i) += f;
-      force.col(i + 1) += f;
-    }
-  }
-  // adhesion springs pin nodes to their anchors; directors stay free
-  if (env.adhesion) {
-    for (int i = 0; i <= n; ++i)
-      if (s.anchored[static_cast<size_t>(i)]) force.col(i) += env.kAdhesion * (s.anchor.col(i) - s.x.col(i));
-  }
-  // weight, lumped to nodes
-  if (env.gravity.squaredNorm() > 0.0) {
-    const double rhoA = p.density * std::numbers::pi * p.radius * p.radius;
-    for (int i = 0; i < n; ++i) {
-      const Vec3 w = 0.5 * rhoA * s.l0[i] * env.gravity;
-      force.col(i) += w;
-      force.col(i + 1) += w;
-    }
-  }
-  // clamped base
-  if (env.base == BaseCondition::Clamped) torque.col(0) += clampCouple(p, env, s, k.e[0]).torque;
-  // tip loads: dead force on the last node, lab-fixed couple on the last element
-  force.col(n) += env.tipForce;
-  torque.col(n - 1) += s.Q[static_cast<size_t>(n - 1)] * env.tipTorque;
+  if (env.plane.enabled) addPlaneContact(p, env.plane, s, planeDamping, force);
+  if (env.adhesion) addAdhesion(env.kAdhesion, s, force);
+  if (env.gravity.squaredNorm() > 0.0) addWeight(p, env.gravity, s, force);
+  if (env.base == BaseCondition::Clamped) torque.col(0) += clampCouple(p, s, k.e[0]).torque;
+  addTipLoads(env, s, force, torque);
+}
+
+void holdClampedBase(const Environment& env, Eigen::Matrix3Xd& force) {
+  if (env.base == BaseCondition::Clamped) force.col(0).setZero();
 }
 
 }  // namespace rootsim

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "rootsim/rotation.hpp"
+#include "rootsim/units.hpp"
 
 namespace rootsim {
 
@@ -82,7 +83,7 @@ void updateIntrinsicCurvature(const Model& m, RodState& s, const RodStrains& k, 
   const bool cn = tp.cnGain > 0.0;
   Vec3 m1 = s.Q[0].row(0).transpose();
   Vec3 tPrev = s.Q[0].row(2).transpose();
-  const double phase = cn ? 2.0 * M_PI * s.time / tp.cnPeriod : 0.0;
+  const double phase = cn ? 2.0 * units::pi * s.time / tp.cnPeriod : 0.0;
   for (int j = 0; j + 1 < n; ++j) {
     const Mat3 F = voronoiFrame(s, j);
     Vec3 dcn = Vec3::Zero();
@@ -129,7 +130,9 @@ int splitLongElements(const Model& m, RodState& s) {
   const int n = s.elements(), nn = n + count;
   RodState t;
   t.resize(nn);
+  // every whole-rod field carries over (a field added to RodState must be added here)
   t.time = s.time;
+  t.clampFrame = s.clampFrame;
   int o = 0;  // output element index
   t.x.col(0) = s.x.col(0);
   t.anchor.col(0) = s.anchor.col(0);

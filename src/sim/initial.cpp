@@ -29,6 +29,7 @@ RodState makeInitialRod(const RodParams& p, const Plane& plane, const InitialSha
   Q.row(1) = nh.transpose();
   Q.row(2) = down.transpose();
   for (int i = 0; i < n; ++i) s.Q[static_cast<size_t>(i)] = Q;
+  s.clampFrame = Q;
   s.v.setZero();
   s.w.setZero();
   s.l0.setConstant(l);

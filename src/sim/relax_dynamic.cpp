@@ -1,12 +1,18 @@
-// Explicit damped relaxation (MODEL.md section 7, first bullet).
+// Explicit damped relaxation (MODEL.md section 7, first bullet). relax.hpp declares both this and
+// the stability helpers that share its workspace; this file holds the explicit solver only.
 //
-// One sub-step, in this fixed order (position Verlet, as ref. 37 / PyElastica):
-//   1. half drift: x += h v, Q <- exp(-h [w]x) Q  (h = dt/2; merged with the previous sub-step's
-//      closing half drift, the leapfrog form of position Verlet)
-//   2. strains -> internal forces -> contact, adhesion, loads  (at the mid-step configuration)
-//   3. residuals and finiteness; stop if in equilibrium
-//   4. damping decision (FIRE power test) and kick: v += dt F/m, w += dt tau/J
-//   5. half drift (deferred)
+// One sub-step, in this fixed order (position Verlet, as ref. 37 / PyElastica), each a short function:
+//   1. drift       x += h v, Q <- exp(-h [w]x) Q  (h = dt/2; merged with the previous sub-step's
+//                  closing half drift, the leapfrog form of position Verlet)
+//   2. strains     shear/stretch and bend/twist of the mid-step configuration        (rod.cpp)
+//   3. internal    forces and couples from the strains                               (rod.cpp)
+//   4. external    plate contact, adhesion, weight, clamp couple, tip loads, each a piece (environment.cpp)
+//   5. constraints the clamped base holds node 0: its force is a reaction and is removed (the one place
+//                  the clamp acts on motion; node 0's velocity then stays zero through kick and drift)
+//   6. residual    largest force, couple and speed; finiteness; stop if in equilibrium
+//   7. damping     FIRE's power test (or the viscous factor)
+//   8. kick        v += dt F/m, w += dt tau/J, mixed toward the force direction by FIRE
+//   9. half drift, deferred to the next sub-step (a converged state is the one forces were checked at)
 //
 // Only the equilibrium matters, so the masses are fictitious by default ("scaled"): each degree of
 // freedom gets a mass proportional to a bound on its stiffness (row sum of the stiffness matrix with
@@ -110,15 +116,6 @@ void reorthonormalise(RodState& s) {
   }
 }
 
-void drift(const Environment& env, RodState& s, double h) {
-  const int n = s.elements();
-  const int first = env.base == BaseCondition::Clamped ? 1 : 0;
-  for (int i = first; i <= n; ++i) s.x.col(i) += h * s.v.col(i);
-  for (int i = 0; i < n; ++i) {
-    rotateInPlace(-h * Vec3(s.w.col(i)), s.Q[static_cast<size_t>(i)]);
-  }
-}
-
 [[noreturn]] void failNonFinite(long step, const char* what, int index, const Vec3& val) {
   std::ostringstream os;
   os << "relaxation diverged at sub-step " << step << ": " << what << " " << index
@@ -141,12 +138,10 @@ void RelaxWorkspace::resize(int n) {
 void computeForces(const RodParams& p, const Environment& env, const RodState& s, bool planeDamping,
                    RelaxWorkspace& ws) {
   if (ws.force.cols() != s.nodes()) ws.resize(s.elements());
-  computeStrains(p, s, ws.strains);
-  computeInternalForces(s, ws.strains, ws.force, ws.torque);
-  addExternalForces(p, env, s, ws.strains, planeDamping, ws.force, ws.torque);
-  if (env.base == BaseCondition::Clamped) {
-    ws.force.col(0).setZero();
-  }
+  computeStrains(p, s, ws.strains);                                                    // 2.
+  computeInternalForces(s, ws.strains, ws.force, ws.torque);                           // 3.
+  addExternalForces(p, env, s, ws.strains, planeDamping, ws.force, ws.torque);         // 4.
+  holdClampedBase(env, ws.force);                                                      // 5.
 }
 
 DynamicRelaxation::DynamicRelaxation(const RodParams& p, const Environment& env,
@@ -174,86 +169,115 @@ DynamicRelaxation::DynamicRelaxation(const RodParams& p, const Environment& env,
 }
 
 bool DynamicRelaxation::step() {
-  RodState& s = s_;
-  RelaxWorkspace& ws = ws_;
-  const int n = s.elements();
-  const bool fire = opt_.damping == Damping::Fire;
-  const long step = ++res_.substeps;
-  // 1. drift: the closing half drift of the previous sub-step and the opening half drift of this one,
-  //    merged (leapfrog form of position Verlet; halves the director rotations)
-  if (pendingDrift_ > 0.0) drift(env_, s, pendingDrift_ + 0.5 * dt_);
+  ++res_.substeps;
+  if (pendingDrift_ > 0.0) drift(s_, pendingDrift_ + 0.5 * dt_);  // 1. (and 9. of the previous sub-step)
   pendingDrift_ = 0.0;
-  // 2. forces at the mid-step configuration
-  computeForces(p_, env_, s, opt_.mass == MassModel::Physical, ws);
-  // 3. residuals, power, finiteness; also the mass-weighted |v|^2 and |F|^2 that FIRE mixes with
-  double maxF2 = 0, maxM2 = 0, maxV2 = 0, maxW2 = 0, P = 0, vm2 = 0, fm2 = 0;
+  computeForces(p_, env_, s_, opt_.mass == MassModel::Physical, ws_);  // 2. - 5.
+  if (inEquilibrium()) {                                               // 6.
+    s_.v.setZero();
+    s_.w.setZero();
+    return true;
+  }
+  if (opt_.damping == Damping::Fire) {
+    const FirePowers pw = firePowers();
+    fireDamping(pw.P);                                                 // 7.
+    fireKick(pw);                                                      // 8.
+  } else {
+    viscousKick();                                                     // 7. + 8.
+  }
+  pendingDrift_ = 0.5 * dt_;                                           // 9.
+  return false;
+}
+
+void DynamicRelaxation::drift(RodState& s, double h) {
+  for (int i = 0; i < s.nodes(); ++i) s.x.col(i) += h * s.v.col(i);
+  for (int i = 0; i < s.elements(); ++i) rotateInPlace(-h * Vec3(s.w.col(i)), s.Q[static_cast<size_t>(i)]);
+}
+
+bool DynamicRelaxation::inEquilibrium() {
+  const RodState& s = s_;
+  const RelaxWorkspace& ws = ws_;
+  const int n = s.elements();
+  double maxF2 = 0, maxM2 = 0, maxV2 = 0, maxW2 = 0;
   for (int i = 0; i <= n; ++i) {
     const double f2 = ws.force.col(i).squaredNorm();
-    if (!std::isfinite(f2)) failNonFinite(step, "force on node", i, ws.force.col(i));
+    if (!std::isfinite(f2)) failNonFinite(res_.substeps, "force on node", i, ws.force.col(i));
     if (f2 > maxF2) { maxF2 = f2; argF_ = i; }
-    const double v2 = s.v.col(i).squaredNorm();
-    maxV2 = std::max(maxV2, v2);
-    P += ws.force.col(i).dot(s.v.col(i));
-    vm2 += ws.mass[i] * v2;
-    fm2 += ws.invMass[i] * f2;
+    maxV2 = std::max(maxV2, s.v.col(i).squaredNorm());
   }
   for (int i = 0; i < n; ++i) {
     const double m2 = ws.torque.col(i).squaredNorm();
-    if (!std::isfinite(m2)) failNonFinite(step, "couple on element", i, ws.torque.col(i));
+    if (!std::isfinite(m2)) failNonFinite(res_.substeps, "couple on element", i, ws.torque.col(i));
     if (m2 > maxM2) { maxM2 = m2; argM_ = i; }
     maxW2 = std::max(maxW2, s.w.col(i).squaredNorm());
-    P += ws.torque.col(i).dot(s.w.col(i));
-    vm2 += ws.inertia.col(i).dot(s.w.col(i).cwiseAbs2());
-    fm2 += ws.invInertia.col(i).dot(ws.torque.col(i).cwiseAbs2());
   }
   res_.residualForce = std::sqrt(maxF2);
   res_.residualTorque = std::sqrt(maxM2);
   res_.maxSpeed = std::sqrt(maxV2);
   res_.dt = dt_;
-  if (maxF2 < ftol2_ && maxM2 < mtol2_ && maxV2 * dtMax_ * dtMax_ < xtol_ * xtol_ &&
-      maxW2 * dtMax_ * dtMax_ < rtol_ * rtol_) {
-    s.v.setZero();
-    s.w.setZero();
-    return true;
+  return maxF2 < ftol2_ && maxM2 < mtol2_ && maxV2 * dtMax_ * dtMax_ < xtol_ * xtol_ &&
+         maxW2 * dtMax_ * dtMax_ < rtol_ * rtol_;
+}
+
+DynamicRelaxation::FirePowers DynamicRelaxation::firePowers() const {
+  // the power F.v and the mass-weighted |v|^2 (u = sqrt(m) v) and |F|^2 (g = F / sqrt(m)) FIRE mixes with
+  const RodState& s = s_;
+  const RelaxWorkspace& ws = ws_;
+  FirePowers pw;
+  for (int i = 0; i < s.nodes(); ++i) {
+    pw.P += ws.force.col(i).dot(s.v.col(i));
+    pw.vm2 += ws.mass[i] * s.v.col(i).squaredNorm();
+    pw.fm2 += ws.invMass[i] * ws.force.col(i).squaredNorm();
   }
-  // 4. damping decision and kick, in one pass
-  if (fire) {
-    if (P > 0.0) {
-      if (++npos_ > kFireNmin) {
-        dt_ = std::min(dt_ * kFireInc, dtMax_);
-        alpha_ *= kFireAlphaDec;
-      }
-    } else {
-      npos_ = 0;
-      dt_ *= kFireDec;
-      alpha_ = kFireAlpha0;
-      s.v.setZero();
-      s.w.setZero();
-      vm2 = 0.0;
-      P = 0.0;
+  for (int i = 0; i < s.elements(); ++i) {
+    pw.P += ws.torque.col(i).dot(s.w.col(i));
+    pw.vm2 += ws.inertia.col(i).dot(s.w.col(i).cwiseAbs2());
+    pw.fm2 += ws.invInertia.col(i).dot(ws.torque.col(i).cwiseAbs2());
+  }
+  return pw;
+}
+
+void DynamicRelaxation::fireDamping(double P) {
+  // FIRE (Bitzek et al. 2006): while the power stays positive, grow the step and lessen the mixing;
+  // when it turns negative, stop (zero velocities), halve the step and restart the mixing
+  if (P > 0.0) {
+    if (++npos_ > kFireNmin) {
+      dt_ = std::min(dt_ * kFireInc, dtMax_);
+      alpha_ *= kFireAlphaDec;
     }
-  }
-  const double dt = dt_;
-  if (fire) {
-    // kick v' = v + dt F/m, then mix v'' = (1 - alpha) v' + alpha |v'| F^ in mass-weighted coordinates
-    // (u = sqrt(m) v, g = F / sqrt(m)); |v'|^2 = |v|^2 + 2 dt F.v + dt^2 |F|^2 exactly, so both fold
-    // into v'' = (1 - alpha) v + ((1 - alpha) dt + c) F/m with c = alpha |v'| / |g|
-    const double vm2Kicked = std::max(0.0, vm2 + 2.0 * dt * P + dt * dt * fm2);
-    const double c = fm2 > 0.0 ? alpha_ * std::sqrt(vm2Kicked / fm2) : 0.0;
-    const double keep = 1.0 - alpha_, gain = keep * dt + c;
-    for (int i = 0; i <= n; ++i) s.v.col(i) = keep * s.v.col(i) + (gain * ws.invMass[i]) * ws.force.col(i);
-    for (int i = 0; i < n; ++i)
-      s.w.col(i) = keep * s.w.col(i) + gain * ws.torque.col(i).cwiseProduct(ws.invInertia.col(i));
   } else {
-    for (int i = 0; i <= n; ++i)
-      s.v.col(i) = viscousFactor_ * (s.v.col(i) + (dt * ws.invMass[i]) * ws.force.col(i));
-    for (int i = 0; i < n; ++i)
-      s.w.col(i) = viscousFactor_ * (s.w.col(i) + dt * ws.torque.col(i).cwiseProduct(ws.invInertia.col(i)));
+    npos_ = 0;
+    dt_ *= kFireDec;
+    alpha_ = kFireAlpha0;
+    s_.v.setZero();
+    s_.w.setZero();
   }
-  if (env_.base == BaseCondition::Clamped) s.v.col(0).setZero();
-  // 5. half drift, deferred to the next sub-step (a converged state is the one forces were checked at)
-  pendingDrift_ = 0.5 * dt;
-  return false;
+}
+
+void DynamicRelaxation::fireKick(FirePowers pw) {
+  // kick v' = v + dt F/m, then mix v'' = (1 - alpha) v' + alpha |v'| F^ in mass-weighted coordinates;
+  // |v'|^2 = |v|^2 + 2 dt F.v + dt^2 |F|^2 exactly, so both fold into
+  // v'' = (1 - alpha) v + ((1 - alpha) dt + c) F/m with c = alpha |v'| / |g|
+  RodState& s = s_;
+  const RelaxWorkspace& ws = ws_;
+  if (npos_ == 0) pw.vm2 = pw.P = 0.0;  // FIRE just stopped the motion
+  const double dt = dt_;
+  const double vm2Kicked = std::max(0.0, pw.vm2 + 2.0 * dt * pw.P + dt * dt * pw.fm2);
+  const double c = pw.fm2 > 0.0 ? alpha_ * std::sqrt(vm2Kicked / pw.fm2) : 0.0;
+  const double keep = 1.0 - alpha_, gain = keep * dt + c;
+  for (int i = 0; i < s.nodes(); ++i) s.v.col(i) = keep * s.v.col(i) + (gain * ws.invMass[i]) * ws.force.col(i);
+  for (int i = 0; i < s.elements(); ++i)
+    s.w.col(i) = keep * s.w.col(i) + gain * ws.torque.col(i).cwiseProduct(ws.invInertia.col(i));
+}
+
+void DynamicRelaxation::viscousKick() {
+  RodState& s = s_;
+  const RelaxWorkspace& ws = ws_;
+  const double dt = dt_;
+  for (int i = 0; i < s.nodes(); ++i)
+    s.v.col(i) = viscousFactor_ * (s.v.col(i) + (dt * ws.invMass[i]) * ws.force.col(i));
+  for (int i = 0; i < s.elements(); ++i)
+    s.w.col(i) = viscousFactor_ * (s.w.col(i) + dt * ws.torque.col(i).cwiseProduct(ws.invInertia.col(i)));
 }
 
 std::string DynamicRelaxation::describeFailure() const {

@@ -6,6 +6,7 @@
 
 #include "rootsim/growth.hpp"
 #include "rootsim/stability.hpp"
+#include "rootsim/units.hpp"
 
 namespace rootsim {
 
@@ -15,7 +16,7 @@ RelaxResult relaxOrExplain(const Model& m, RodState& s, RelaxWorkspace& ws, int 
     return relax(m.rod, m.env, m.solver, s, ws);
   } catch (const RelaxError& e) {
     std::ostringstream os;
-    os << "growth step " << step << " (t = " << s.time / 3600.0 << " h, " << s.elements()
+    os << "growth step " << step << " (t = " << s.time / units::hour << " h, " << s.elements()
        << " elements): " << e.what();
     throw RelaxError(os.str());
   }
@@ -24,7 +25,6 @@ RelaxResult relaxOrExplain(const Model& m, RodState& s, RelaxWorkspace& ws, int 
 
 Simulation::Simulation(const Model& m) : m_(m) {
   s_ = makeInitialRod(m_.rod, m_.env.plane, m_.initial);
-  m_.env.baseFrame = s_.Q[0];
   if (m_.growth.enabled) {
     applyTwistProfile(m_, s_);
     anchorMatureNodes(m_, s_);
@@ -84,7 +84,7 @@ void Simulation::observe(long substeps, double residual, int splits, int unstabl
   computeStrains(m_.rod, s_, ws_.strains);
   StepRecord r;
   r.step = step_;
-  r.timeH = s_.time / 3600.0;
+  r.timeH = s_.time / units::hour;
   r.length = s_.restLength();
   r.elements = s_.elements();
   const double th = tipAngle(m_, s_);
@@ -102,7 +102,7 @@ void Simulation::observe(long substeps, double residual, int splits, int unstabl
 
 Snapshot Simulation::snapshot() const {
   Snapshot sn = makeSnapshot(m_.rod, s_, ws_.strains, step_);
-  sn.timeH = s_.time / 3600.0;
+  sn.timeH = s_.time / units::hour;
   return sn;
 }
 
@@ -110,7 +110,7 @@ Snapshot makeSnapshot(const RodParams& p, const RodState& s, const RodStrains& k
   Snapshot sn;
   const int n = s.elements();
   sn.step = step;
-  sn.timeH = s.time / 3600.0;
+  sn.timeH = s.time / units::hour;
   sn.x = s.x;
   sn.d1.resize(3, n);
   sn.d3.resize(3, n);

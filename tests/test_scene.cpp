@@ -1,4 +1,4 @@
-// scene files: every bad input is an error naming the file, line and key (src/io/scene_load.cpp)
+// scene files: every bad input is an error naming the file, line and key (src/io/scene.cpp)
 #include <doctest/doctest.h>
 
 #include <cmath>

@@ -6,6 +6,12 @@
 
 namespace rootsim {
 
+// planar tip angle theta_tip (MODEL.md section 3) [rad], in (-pi, pi]; without a plate (free organ)
+// the angle of the tip from gravity in the vertical plane of motion, about +x (starts at -alpha)
+double tipAngle(const Model& m, const RodState& s);
+// signed planar angle of a lab direction against downhill, counter-clockwise seen from the normal [rad]
+double planarAngle(const Plane& plane, const Vec3& t);
+
 // writhe of the open polyline through columns [first, last] of p (exact Gauss double integral over
 // segment pairs, Klenin & Langowski, Biopolymers 54, 307, 2000)
 double writheOpen(const Eigen::Matrix3Xd& p, int first, int last);

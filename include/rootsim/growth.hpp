@@ -28,10 +28,4 @@ void applyTwistProfile(const Model& m, RodState& s);
 // anchors; returns the number of splits
 int splitLongElements(const Model& m, RodState& s);
 
-// planar tip angle theta_tip (MODEL.md section 3) [rad], in (-pi, pi]; without a plate (free organ)
-// the angle of the tip from gravity in the vertical plane of motion, about +x (starts at -alpha)
-double tipAngle(const Model& m, const RodState& s);
-// signed planar angle of a lab direction against downhill, counter-clockwise seen from the normal [rad]
-double planarAngle(const Plane& plane, const Vec3& t);
-
 }  // namespace rootsim

@@ -51,7 +51,4 @@ class Simulation {
   StepRecord rec_;
 };
 
-// the snapshot of a state: shape, directors, radius R / sqrt(e)
-Snapshot makeSnapshot(const RodParams& p, const RodState& s, const RodStrains& k, int step);
-
 }  // namespace rootsim

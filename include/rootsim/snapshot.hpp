@@ -18,6 +18,12 @@ struct Snapshot {
   int elements() const { return static_cast<int>(radius.size()); }
 };
 
+struct RodParams;
+struct RodState;
+struct RodStrains;
+// the snapshot of a state: shape, directors, radius R / sqrt(e) (strains must belong to the state)
+Snapshot makeSnapshot(const RodParams& p, const RodState& s, const RodStrains& k, int step);
+
 // the constant facts a picture shows beside the rod: the plate and the parameters
 struct SceneInfo {
   double alphaDeg = 40.0;      // plate tilt from the vertical [deg]

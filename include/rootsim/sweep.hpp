@@ -15,9 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "rootsim/run_dir.hpp"
-#include "rootsim/scene.hpp"
-#include "rootsim/simulation.hpp"
+#include "rootsim/run_scene.hpp"
 
 namespace rootsim {
 
@@ -55,15 +53,6 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
 
 // "K/N" -> (K, N); throws SceneError
 std::pair<int, int> parseShard(const std::string& text);
-
-// runs one parsed scene into a run directory (what `rootsim run` does, without a movie); returns wall
-// time; throws SceneError (bad output path, before anything runs) or the run's error
-double runSceneToDir(const Scene& scene, const std::string& outDir, const RunDirOptions& dirOptions,
-                     const std::function<void(const StepRecord&, int total)>& progress);
-
-// header of result.csv for a growth run (grows) or a mechanics-only one; a sweep treats a run with
-// another header as not done
-const std::string& resultHeader(bool grows);
 
 // rebuilds table.csv of a sweep folder from the summary.json of every completed run
 void writeSweepTable(const SweepPlan& plan, const std::string& out);

@@ -16,6 +16,7 @@
 #include "rootsim/run_dir.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/simulation.hpp"
+#include "rootsim/run_scene.hpp"
 #include "rootsim/sweep.hpp"
 #include "rootsim/theory.hpp"
 #include "rootsim/version.hpp"

@@ -7,7 +7,7 @@
 
 #include "rootsim/outputs.hpp"
 #include "rootsim/scene.hpp"
-#include "rootsim/sweep.hpp"
+#include "rootsim/run_scene.hpp"
 #include "rootsim/version.hpp"
 
 namespace fs = std::filesystem;

@@ -3,6 +3,7 @@
 #include <cmath>
 #include <utility>
 
+#include "rootsim/assert.hpp"
 #include "rootsim/rotation.hpp"
 
 namespace rootsim {
@@ -42,6 +43,7 @@ ClampCouple clampCouple(const RodParams& p, const RodState& s, double e0) {
   // to element 0 through a half Voronoi domain, as interior elements couple to each other; the scheme
   // then stays second order. (MODEL.md section 6 says "directors of the first element"; this is the
   // same clamp moved to the base node.)
+  ROOTSIM_ASSERT(s.elements() >= 1 && s.l0[0] > 0.0 && e0 > 0.0, "a clamped rod with a first element of positive length");
   const double D0 = 0.5 * s.l0[0];
   ClampCouple c;
   c.kappa = rotationToVector(s.clampFrame * s.Q[0].transpose()) / D0;

@@ -170,20 +170,4 @@ int splitLongElements(const Model& m, RodState& s) {
   return count;
 }
 
-double planarAngle(const Plane& plane, const Vec3& t) {
-  const Vec3 nh = plane.normal(), down = plane.downhill();
-  return std::atan2(down.cross(t).dot(nh), t.dot(down));
-}
-
-double tipAngle(const Model& m, const RodState& s) {
-  const int n = s.elements();
-  const Vec3 t = (s.x.col(n) - s.x.col(n - 1)).normalized();
-  if (!m.env.plane.enabled) {
-    // free organ (Fig. 2C): angle from gravity in the vertical plane of motion, about +x
-    const Vec3 g(0.0, 0.0, -1.0);
-    return std::atan2(g.cross(t).x(), t.dot(g));
-  }
-  return planarAngle(m.env.plane, t);
-}
-
 }  // namespace rootsim

@@ -26,6 +26,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "rootsim/assert.hpp"
 #include "rootsim/relax.hpp"
 #include "rootsim/rotation.hpp"
 
@@ -137,6 +138,8 @@ void RelaxWorkspace::resize(int n) {
 
 void computeForces(const RodParams& p, const Environment& env, const RodState& s, bool planeDamping,
                    RelaxWorkspace& ws) {
+  ROOTSIM_ASSERT(s.elements() >= 1 && s.x.cols() == s.nodes() && static_cast<int>(s.Q.size()) == s.elements(),
+                 "a rod state whose fields agree on the element count");
   if (ws.force.cols() != s.nodes()) ws.resize(s.elements());
   computeStrains(p, s, ws.strains);                                                    // 2.
   computeInternalForces(s, ws.strains, ws.force, ws.torque);                           // 3.

@@ -106,21 +106,4 @@ Snapshot Simulation::snapshot() const {
   return sn;
 }
 
-Snapshot makeSnapshot(const RodParams& p, const RodState& s, const RodStrains& k, int step) {
-  Snapshot sn;
-  const int n = s.elements();
-  sn.step = step;
-  sn.timeH = s.time / units::hour;
-  sn.x = s.x;
-  sn.d1.resize(3, n);
-  sn.d3.resize(3, n);
-  sn.radius.resize(n);
-  for (int i = 0; i < n; ++i) {
-    sn.d1.col(i) = s.Q[static_cast<size_t>(i)].row(0).transpose();
-    sn.d3.col(i) = s.Q[static_cast<size_t>(i)].row(2).transpose();
-    sn.radius[i] = elementRadius(p, k.e.size() == n ? k.e[i] : 1.0);
-  }
-  return sn;
-}
-
 }  // namespace rootsim

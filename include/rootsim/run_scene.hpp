@@ -1,0 +1,21 @@
+#pragma once
+// One scene -> one run directory (what `rootsim run` does without a movie; sweeps and figures use it).
+#include <functional>
+#include <string>
+
+#include "rootsim/run_dir.hpp"
+#include "rootsim/scene.hpp"
+#include "rootsim/simulation.hpp"
+
+namespace rootsim {
+
+// runs one parsed scene into a run directory (what `rootsim run` does, without a movie); returns wall
+// time; throws SceneError (bad output path, before anything runs) or the run's error
+double runSceneToDir(const Scene& scene, const std::string& outDir, const RunDirOptions& dirOptions,
+                     const std::function<void(const StepRecord&, int total)>& progress);
+
+// header of result.csv for a growth run (grows) or a mechanics-only one; a sweep treats a run with
+// another header as not done
+const std::string& resultHeader(bool grows);
+
+}  // namespace rootsim

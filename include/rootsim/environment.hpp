@@ -55,23 +55,25 @@ struct Environment {
 };
 
 // The outside forces, one piece each (MODEL.md section 6). Forces are lab components on nodes
-// (3 x n+1), torques material components on elements (3 x n); each piece adds to what is there.
+// (3 x n+1), torques material components on elements (3 x n); each piece adds to what is there, for
+// the elements (nodes) from `first` on (a solver that moves only those).
 
 // plate contact, per element: one-sided penalty on the surface gap, plus normal damping (damping: only
 // meaningful with physical masses)
 void addPlaneContact(const RodParams& p, const Plane& plane, const RodState& s, bool damping,
-                     Eigen::Matrix3Xd& force);
+                     Eigen::Matrix3Xd& force, int first = 0);
 // adhesion springs of stiffness k [N/m] pin anchored nodes; directors stay free
-void addAdhesion(double k, const RodState& s, Eigen::Matrix3Xd& force);
+void addAdhesion(double k, const RodState& s, Eigen::Matrix3Xd& force, int first = 0);
 // weight, lumped to nodes; gravity [m/s^2]
-void addWeight(const RodParams& p, const Vec3& gravity, const RodState& s, Eigen::Matrix3Xd& force);
+void addWeight(const RodParams& p, const Vec3& gravity, const RodState& s, Eigen::Matrix3Xd& force,
+               int first = 0);
 // dead force on the last node, lab-fixed couple on the last element
 void addTipLoads(const Environment& env, const RodState& s, Eigen::Matrix3Xd& force, Eigen::Matrix3Xd& torque);
 
 // all of the above that env switches on, and the clamp's couple on element 0, in this order
 void addExternalForces(const RodParams& p, const Environment& env, const RodState& s,
                        const RodStrains& k, bool planeDamping, Eigen::Matrix3Xd& force,
-                       Eigen::Matrix3Xd& torque);
+                       Eigen::Matrix3Xd& torque, int first = 0);
 
 // couple of the clamp on element 0 (material frame) and the clamp curvature [1/m]: the clamp is a
 // boundary Voronoi domain of rest length l0[0]/2 between the state's clampFrame and element 0

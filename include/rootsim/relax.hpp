@@ -2,11 +2,20 @@
 // Mechanical relaxation to equilibrium (MODEL.md section 7): the options and result of every solver, the
 // explicit solver (DynamicRelaxation, relax_dynamic.cpp) and the force evaluation it shares with the
 // stability check (stability.cpp). One header for the concept "relaxation"; one source per solver.
-#include "rootsim/environment.hpp"
 #include <stdexcept>
 #include <string>
+#include <vector>
+
+#include "rootsim/band.hpp"
+#include "rootsim/environment.hpp"
 
 namespace rootsim {
+
+// which solver brings a growth step to equilibrium
+enum class SolverKind {
+  Dynamic,   // the paper's: explicit damped pseudo-dynamics (relax_dynamic.cpp)
+  Newton     // quasi-static Newton on the equilibrium equations, banded Jacobian (relax_newton.cpp)
+};
 
 // how fictitious masses are chosen
 enum class MassModel {
@@ -20,6 +29,12 @@ enum class Damping {
 };
 
 struct SolverOptions {
+  SolverKind kind = SolverKind::Dynamic;
+  // Newton: the unknowns are the nodes within this rest length behind the growth zone's start, and
+  // everything tipward [m]; 0: the whole rod. Measured on fig2b against the whole rod (README): 3 mm
+  // changes lambda, A and theta_tip by < 0.05 %, 1 mm changes A by 9 %
+  double window = 3e-3;
+  int newtonMaxIterations = 30;   // Newton iterations before a relaxation continues explicitly
   MassModel mass = MassModel::Scaled;
   Damping damping = Damping::Fire;
   double viscousRate = 2e4;       // nu for Damping::Viscous [1/s]
@@ -32,7 +47,12 @@ struct SolverOptions {
 };
 
 struct RelaxResult {
-  long substeps = 0;
+  long substeps = 0;              // explicit sub-steps
+  long iterations = 0;            // Newton iterations
+  bool converged = false;         // Newton: reached the equilibrium criterion
+  bool stalled = false;           // Newton: no acceptable step, or the iteration cap (the caller relaxes
+                                  // explicitly); message says which
+  std::string message;
   double residualForce = 0;       // max over free nodes [N]
   double residualTorque = 0;      // max over free elements [N m]
   double maxSpeed = 0;            // max node speed at exit [m/s]
@@ -91,12 +111,46 @@ class DynamicRelaxation {
   RelaxResult res_;
 };
 
+// memory of the Newton solver, kept across growth steps so that solving allocates nothing once it has
+// seen the largest rod; also what it found about the stability of the last equilibrium
+struct NewtonWorkspace {
+  BandLU lu;                      // the Jacobian over the free dofs and its LU factors
+  BandLDLT ldlt;                  // its symmetric part at the converged state, LDL^T factors
+  std::vector<double> r, r0, delta, mode;  // scaled residual, base residual, Newton step, inverse iterate
+  std::vector<Vec3> save;         // node positions (by block index) saved across a trial step
+  std::vector<Mat3> saveQ;        // directors saved across a trial step
+  int firstFreeNode = 0;          // the window of the last solve
+  int negative = 0;               // negative pivots of the symmetric stiffness: unstable directions
+  double lowestEigenvalue = 0;    // eigenvalue of the scaled stiffness nearest zero (the lowest while
+                                  // stable) [N/m]
+  void reserve(int elements);
+  // the eigenvector of lowestEigenvalue as a full dof vector (per node 3 translations [m], per element 3
+  // rotations [rad]), largest translation 1
+  Eigen::VectorXd unstableMode(const RodState& s, const Environment& env) const;
+};
+
+// Newton's method on the discrete equilibrium (MODEL.md section 12) for the nodes firstFreeNode..n and
+// the elements from there on; the rest stays exactly where it is. With opt.stabilityCheck, also the
+// inertia of the converged state's stiffness (nw.negative, nw.lowestEigenvalue). Returns stalled when
+// no acceptable step is found or opt.newtonMaxIterations is reached (the state is then where Newton
+// left it); throws RelaxError on divergence or a singular stiffness.
+RelaxResult relaxNewton(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
+                        RelaxWorkspace& ws, NewtonWorkspace& nw, int firstFreeNode);
+
+// the stiffness K = -dF/du over the free dofs of state s, unfactorised, into nw.lu (scaled units:
+// translations [m] and rotations times the mean element length; forces [N] and couples over it); dof
+// 3b + c - 3 b0 for block b (node i: b = 2i, element i: b = 2i + 1), b0 the first free block
+void assembleStiffness(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
+                       RelaxWorkspace& ws, NewtonWorkspace& nw, int firstFreeNode);
+
 // relaxes the rod to equilibrium under env; throws RelaxError on divergence or on hitting the cap
 RelaxResult relax(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
                   RelaxWorkspace& ws);
 
-// evaluates all forces of state s into ws.force / ws.torque (used by relax and by tests)
+// evaluates all forces of state s into ws.force / ws.torque (used by both solvers, the stability check
+// and tests); first > 0: exact only on the nodes and elements after `first` (rod.hpp), for the Newton
+// solver's window
 void computeForces(const RodParams& p, const Environment& env, const RodState& s, bool planeDamping,
-                   RelaxWorkspace& ws);
+                   RelaxWorkspace& ws, int first = 0);
 
 }  // namespace rootsim

@@ -71,12 +71,15 @@ struct RodStrains {
 
 // strains and stresses of the rod (MODEL.md section 4; paper Eqs. 24-25 with the incompressibility
 // rescaling S -> S/e, B -> B/e^2, kappa -> kappa/e)
-void computeStrains(const RodParams& p, const RodState& s, RodStrains& k);
+// (first > 0: only elements and Voronoi domains from `first` on, for a solver that moves only those;
+// what lies before is left as it was)
+void computeStrains(const RodParams& p, const RodState& s, RodStrains& k, int first = 0);
 
 // internal forces on nodes (lab) and couples on elements (material), from computed strains;
-// force (3 x n+1) and torque (3 x n) are overwritten
+// force (3 x n+1) and torque (3 x n) are overwritten (from node and element `first` on; node `first`
+// then lacks the force of element first - 1, and element `first` the couple of Voronoi first - 1)
 void computeInternalForces(const RodState& s, const RodStrains& k, Eigen::Matrix3Xd& force,
-                           Eigen::Matrix3Xd& torque);
+                           Eigen::Matrix3Xd& torque, int first = 0);
 
 // radius of element i, shrinking with dilatation as R / sqrt(e) [m]
 inline double elementRadius(const RodParams& p, double e) { return p.radius / std::sqrt(e); }

@@ -14,7 +14,10 @@ struct StepRecord {
   int elements = 0;
   double thetaTip = 0;        // planar tip angle, unwrapped over time [rad]
   ZoneObservables zone;
-  long substeps = 0;          // relaxation sub-steps of this step
+  long substeps = 0;          // explicit relaxation sub-steps of this step
+  long iterations = 0;        // Newton iterations of this step
+  double lowestEigenvalue = 0;  // Newton with stability check: eigenvalue of the scaled stiffness nearest
+                                // zero at the equilibrium found (the lowest while stable) [N/m]; else NaN
   double residualForce = 0;   // at exit [N]
   int splits = 0;             // elements split in this step
   int unstable = 0;           // unstable equilibria found (and left along their unstable mode) in this step
@@ -36,17 +39,23 @@ class Simulation {
   const StepRecord& last() const { return rec_; }
   int step() const { return step_; }
   long totalSubsteps() const { return totalSubsteps_; }
+  long totalIterations() const { return totalIterations_; }
   Snapshot snapshot() const;
 
  private:
-  void observe(long substeps, double residual, int splits, int unstable);
+  void observe(const RelaxResult& res, int splits, int unstable);
   // relaxes; with solver.stabilityCheck, leaves saddle points along their unstable mode
   RelaxResult relaxStable(int step, int& unstable);
+  RelaxResult relaxNewtonStable(int step, int& unstable);
+  RelaxResult newtonOrExplain(int step);
+  int windowStart() const;
   Model m_;
   RodState s_;
   RelaxWorkspace ws_;
+  NewtonWorkspace nw_;
   int step_ = 0;
   long totalSubsteps_ = 0;
+  long totalIterations_ = 0;
   double thetaUnwrapped_ = 0;
   StepRecord rec_;
 };

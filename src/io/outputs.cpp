@@ -59,7 +59,7 @@ std::string shapeCsv(const Model& m, const RodState& s, const RodStrains& k) {
 
 TimeseriesWriter::TimeseriesWriter(const fs::path& path) : f_(path) {
   f_.stream() << "step,time_h,length_mm,elements,theta_tip_deg,Eb,Et,Wr,Tw,substeps,residual_force_n,splits,unstable,"
-                 "tip_x_mm,tip_y_mm,tip_z_mm\n";
+                 "tip_x_mm,tip_y_mm,tip_z_mm,newton_iterations,lowest_eigenvalue_n_per_m\n";
 }
 
 void TimeseriesWriter::add(const StepRecord& r) {
@@ -68,7 +68,7 @@ void TimeseriesWriter::add(const StepRecord& r) {
     << fmt(r.thetaTip / units::deg) << ',' << fmt(r.zone.Eb) << ',' << fmt(r.zone.Et) << ','
     << fmt(r.zone.Wr) << ',' << fmt(r.zone.Tw) << ',' << r.substeps << ',' << fmt(r.residualForce) << ','
     << r.splits << ',' << r.unstable << ',' << fmt(r.tip.x() / units::mm) << ',' << fmt(r.tip.y() / units::mm) << ',' << fmt(r.tip.z() / units::mm)
-    << '\n';
+    << ',' << r.iterations << ',' << fmt(r.lowestEigenvalue) << '\n';
 }
 
 void TimeseriesWriter::close() { f_.close(); }

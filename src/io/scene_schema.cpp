@@ -101,7 +101,13 @@ const std::vector<KeySpec>& schema() {
            "contact normal damping per element [kg/s] (physical-mass relaxation only)"),
       boolean("adhesion", "enabled", d.env.adhesion, "pin material that leaves the growth zone"),
       real("adhesion", "k_n_per_m", d.env.kAdhesion, 0, false, kInf, false, "adhesion spring [N/m]"),
-      choice("solver", "kind", "dynamic", {"dynamic"}, "relaxation method"),
+      choice("solver", "kind", d.solver.kind == SolverKind::Newton ? "newton" : "dynamic", {"newton", "dynamic"},
+             "newton: quasi-static Newton with a banded Jacobian (MODEL.md section 12); dynamic: the paper's "
+             "explicit damped relaxation"),
+      real("solver", "window_mm", d.solver.window / mm, 0, false, kInf, false,
+           "newton: solve only the nodes within this length behind the growth zone, and the zone (0: whole rod)"),
+      integer("solver", "newton_max_iterations", d.solver.newtonMaxIterations, 1, 100000,
+              "Newton iterations before a growth step continues with the explicit relaxation (snaps)"),
       choice("solver", "mass", d.solver.mass == MassModel::Scaled ? "scaled" : "physical", {"scaled", "physical"},
              "scaled: per-dof fictitious masses (fast); physical: density and dt from the stiffest spring"),
       choice("solver", "damping", d.solver.damping == Damping::Fire ? "fire" : "viscous", {"fire", "viscous"}, "FIRE or viscous damping of the pseudo-dynamics"),
@@ -260,6 +266,9 @@ Model buildModel(const Values& v, const std::string& name) {
   m.env.tipTorque = vec("load.tip_torque_nm");
   m.env.base = str("load.base") == "free" ? BaseCondition::Free : BaseCondition::Clamped;
   m.env.gravity = flag("load.gravity") ? Vec3(0, 0, -9.81) : Vec3::Zero();
+  m.solver.kind = str("solver.kind") == "newton" ? SolverKind::Newton : SolverKind::Dynamic;
+  m.solver.window = num("solver.window_mm") * mm;
+  m.solver.newtonMaxIterations = static_cast<int>(num("solver.newton_max_iterations"));
   m.solver.mass = str("solver.mass") == "physical" ? MassModel::Physical : MassModel::Scaled;
   m.solver.damping = str("solver.damping") == "viscous" ? Damping::Viscous : Damping::Fire;
   m.solver.viscousRate = num("solver.damping_per_s");

@@ -55,14 +55,14 @@ ClampCouple clampCouple(const RodParams& p, const RodState& s, double e0) {
 }
 
 void addPlaneContact(const RodParams& p, const Plane& plane, const RodState& s, bool damping,
-                     Eigen::Matrix3Xd& force) {
+                     Eigen::Matrix3Xd& force, int first) {
   // one-sided penalty on the surface gap (r_mid . n - R, with the rest radius as MODEL.md writes it: a
   // gap using R / sqrt(e) would make the contact force depend on stretching without an energy behind
   // it, which shows up as a spurious unstable direction of the stiffness matrix) plus normal damping,
   // shared by the element's two nodes
   const int n = s.elements();
   const Vec3 nh = plane.normal();
-  for (int i = 0; i < n; ++i) {
+  for (int i = first; i < n; ++i) {
     const Vec3 mid = 0.5 * (s.x.col(i) + s.x.col(i + 1));
     const double gap = mid.dot(nh) - p.radius;
     if (gap >= 0.0) continue;
@@ -74,14 +74,14 @@ void addPlaneContact(const RodParams& p, const Plane& plane, const RodState& s, 
   }
 }
 
-void addAdhesion(double k, const RodState& s, Eigen::Matrix3Xd& force) {
-  for (int i = 0; i < s.nodes(); ++i)
+void addAdhesion(double k, const RodState& s, Eigen::Matrix3Xd& force, int first) {
+  for (int i = first; i < s.nodes(); ++i)
     if (s.anchored[static_cast<size_t>(i)]) force.col(i) += k * (s.anchor.col(i) - s.x.col(i));
 }
 
-void addWeight(const RodParams& p, const Vec3& gravity, const RodState& s, Eigen::Matrix3Xd& force) {
+void addWeight(const RodParams& p, const Vec3& gravity, const RodState& s, Eigen::Matrix3Xd& force, int first) {
   const double rhoA = p.density * units::pi * p.radius * p.radius;
-  for (int i = 0; i < s.elements(); ++i) {
+  for (int i = first; i < s.elements(); ++i) {
     const Vec3 w = 0.5 * rhoA * s.l0[i] * gravity;
     force.col(i) += w;
     force.col(i + 1) += w;
@@ -96,11 +96,11 @@ void addTipLoads(const Environment& env, const RodState& s, Eigen::Matrix3Xd& fo
 
 void addExternalForces(const RodParams& p, const Environment& env, const RodState& s,
                        const RodStrains& k, bool planeDamping, Eigen::Matrix3Xd& force,
-                       Eigen::Matrix3Xd& torque) {
-  if (env.plane.enabled) addPlaneContact(p, env.plane, s, planeDamping, force);
-  if (env.adhesion) addAdhesion(env.kAdhesion, s, force);
-  if (env.gravity.squaredNorm() > 0.0) addWeight(p, env.gravity, s, force);
-  if (env.base == BaseCondition::Clamped) torque.col(0) += clampCouple(p, s, k.e[0]).torque;
+                       Eigen::Matrix3Xd& torque, int first) {
+  if (env.plane.enabled) addPlaneContact(p, env.plane, s, planeDamping, force, first);
+  if (env.adhesion) addAdhesion(env.kAdhesion, s, force, first);
+  if (env.gravity.squaredNorm() > 0.0) addWeight(p, env.gravity, s, force, first);
+  if (env.base == BaseCondition::Clamped && first == 0) torque.col(0) += clampCouple(p, s, k.e[0]).torque;
   addTipLoads(env, s, force, torque);
 }
 

@@ -66,13 +66,13 @@ inline Vec3 relativeRotation(const Mat3& A, const Mat3& B) {
 
 }  // namespace
 
-void computeStrains(const RodParams& p, const RodState& s, RodStrains& k) {
+void computeStrains(const RodParams& p, const RodState& s, RodStrains& k, int first) {
   const int n = s.elements();
   const Vec3 Sd = p.shearStiffness();
   const Vec3 Bd = p.bendStiffness();
   // elements: length, dilatation, tangent, shear strain, internal force (Eq. 24, S -> S/e)
   // (reciprocals instead of repeated divisions: this loop is most of a relaxation sub-step)
-  for (int i = 0; i < n; ++i) {
+  for (int i = first; i < n; ++i) {
     const Vec3 dx = s.x.col(i + 1) - s.x.col(i);
     const double l = dx.norm();
     const double il = 1.0 / l;
@@ -92,7 +92,7 @@ void computeStrains(const RodParams& p, const RodState& s, RodStrains& k) {
   // Voronoi domains: curvature from the relative rotation of neighbouring elements, kappa defined by
   // d(d_j)/ds = kappa x d_j; with rows of Q the directors, Q_j Q_{j+1}^T = exp([kappa D0]x) in material
   // components. Couple (Eq. 25) with the rescaling B -> B/e^2, kappa -> kappa/e.
-  for (int j = 0; j + 1 < n; ++j) {
+  for (int j = first; j + 1 < n; ++j) {
     const double D0 = 0.5 * (s.l0[j] + s.l0[j + 1]);
     const double iD0 = 1.0 / D0;
     const double ev = 0.5 * (k.l[j] + k.l[j + 1]) * iD0;
@@ -106,22 +106,22 @@ void computeStrains(const RodParams& p, const RodState& s, RodStrains& k) {
 }
 
 void computeInternalForces(const RodState& s, const RodStrains& k, Eigen::Matrix3Xd& force,
-                           Eigen::Matrix3Xd& torque) {
+                           Eigen::Matrix3Xd& torque, int first) {
   const int n = s.elements();
   // nodes: difference of element internal forces (Eq. 22, discrete)
-  force.col(0) = k.nLab.col(0);
-  for (int i = 1; i < n; ++i) force.col(i) = k.nLab.col(i) - k.nLab.col(i - 1);
+  force.col(first) = k.nLab.col(first);
+  for (int i = first + 1; i < n; ++i) force.col(i) = k.nLab.col(i) - k.nLab.col(i - 1);
   force.col(n) = -k.nLab.col(n - 1);
   // elements (Eq. 23, discrete, material frame): difference of Voronoi couples, the averaged
   // kappa x m term, and the shear couple (Q t) x n l
-  for (int i = 0; i < n; ++i) {
+  for (int i = first; i < n; ++i) {
     Vec3 tq = s.Q[static_cast<size_t>(i)] * k.t.col(i);
     tq = tq.cross(Vec3(k.nMat.col(i))) * k.l[i];
     if (i + 1 < n) {
       const Vec3 mr = k.m.col(i);
       tq += mr + 0.5 * k.D0[i] * Vec3(k.kappa.col(i)).cross(mr);
     }
-    if (i > 0) {
+    if (i > first) {
       const Vec3 ml = k.m.col(i - 1);
       tq += -ml + 0.5 * k.D0[i - 1] * Vec3(k.kappa.col(i - 1)).cross(ml);
     }

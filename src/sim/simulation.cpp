@@ -32,7 +32,8 @@ Simulation::Simulation(const Model& m) : m_(m) {
   int unstable = 0;
   const RelaxResult r = relaxStable(0, unstable);
   totalSubsteps_ = r.substeps;
-  observe(r.substeps, r.residualForce, 0, unstable);
+  totalIterations_ = r.iterations;
+  observe(r, 0, unstable);
 }
 
 const StepRecord& Simulation::growthStep() {
@@ -49,11 +50,46 @@ const StepRecord& Simulation::growthStep() {
   int unstable = 0;
   const RelaxResult r = relaxStable(step_, unstable);
   totalSubsteps_ += r.substeps;
-  observe(r.substeps, r.residualForce, splits, unstable);
+  totalIterations_ += r.iterations;
+  observe(r, splits, unstable);
   return rec_;
 }
 
+int Simulation::windowStart() const {
+  // the active window (MODEL.md section 12): the growth zone, solver.window_mm of mature root behind
+  // it, and the tip; the rest is adhered and frozen
+  if (m_.solver.window <= 0.0 || !m_.growth.enabled) return 0;
+  const double from = growthZoneStart(m_, s_) - m_.solver.window;
+  int first = 0;
+  while (first < s_.elements() - 2 && s_.S[first] < from) ++first;
+  return first;
+}
+
+RelaxResult Simulation::newtonOrExplain(int step) {
+  try {
+    RelaxResult r = relaxNewton(m_.rod, m_.env, m_.solver, s_, ws_, nw_, windowStart());
+    if (r.stalled) {
+      // no acceptable Newton step from here (far from equilibrium, indefinite): relax explicitly, then
+      // let Newton confirm the equilibrium and check its stability
+      const RelaxResult d = relaxOrExplain(m_, s_, ws_, step);
+      const long its = r.iterations;
+      r = relaxNewton(m_.rod, m_.env, m_.solver, s_, ws_, nw_, windowStart());
+      if (!r.converged)
+        throw RelaxError("after an explicit relaxation to equilibrium, Newton still finds none: " + r.message);
+      r.iterations += its;
+      r.substeps += d.substeps;
+    }
+    return r;
+  } catch (const RelaxError& e) {
+    std::ostringstream os;
+    os << "growth step " << step << " (t = " << s_.time / units::hour << " h, " << s_.elements()
+       << " elements): " << e.what();
+    throw RelaxError(os.str());
+  }
+}
+
 RelaxResult Simulation::relaxStable(int step, int& unstable) {
+  if (m_.solver.kind == SolverKind::Newton) return relaxNewtonStable(step, unstable);
   RelaxResult total = relaxOrExplain(m_, s_, ws_, step);
   if (!m_.solver.stabilityCheck || !m_.growth.enabled) return total;
   // An explicit relaxation can settle on a saddle point (the straight root just past the loss of
@@ -79,7 +115,32 @@ RelaxResult Simulation::relaxStable(int step, int& unstable) {
   return total;
 }
 
-void Simulation::observe(long substeps, double residual, int splits, int unstable) {
+RelaxResult Simulation::relaxNewtonStable(int step, int& unstable) {
+  RelaxResult total = newtonOrExplain(step);
+  if (!m_.solver.stabilityCheck || !m_.growth.enabled) return total;
+  // stability from Newton's own factorisation; at a saddle, follow the unstable mode with a short
+  // explicit relaxation to the stable branch, then let Newton confirm (as relaxStable does)
+  const double amplitudes[] = {0.02, 0.1, 0.5};  // of R
+  for (double a : amplitudes) {
+    if (nw_.negative == 0) break;
+    ++unstable;
+    const Eigen::VectorXd mode = nw_.unstableMode(s_, m_.env);
+    const int n = s_.elements();
+    const double lean = s_.x(0, n) - s_.x(0, 0);
+    const double tipMode = mode[6 * n];
+    const double sign = (lean == 0.0 || tipMode == 0.0) ? 1.0 : (lean * tipMode > 0 ? 1.0 : -1.0);
+    perturbAlong(s_, mode, sign * a * m_.rod.radius);
+    const RelaxResult d = relaxOrExplain(m_, s_, ws_, step);
+    const RelaxResult r = newtonOrExplain(step);
+    total.substeps += d.substeps + r.substeps;
+    total.iterations += r.iterations;
+    total.residualForce = r.residualForce;
+    total.residualTorque = r.residualTorque;
+  }
+  return total;
+}
+
+void Simulation::observe(const RelaxResult& res, int splits, int unstable) {
   // ws_.strains holds the strains of the relaxed state (computed at the last sub-step)
   computeStrains(m_.rod, s_, ws_.strains);
   StepRecord r;
@@ -92,8 +153,10 @@ void Simulation::observe(long substeps, double residual, int splits, int unstabl
   else thetaUnwrapped_ += std::remainder(th - thetaUnwrapped_, 2.0 * std::numbers::pi);
   r.thetaTip = thetaUnwrapped_;
   if (m_.growth.enabled) r.zone = observeZone(m_, s_, ws_.strains);
-  r.substeps = substeps;
-  r.residualForce = residual;
+  r.substeps = res.substeps;
+  r.iterations = res.iterations;
+  r.residualForce = res.residualForce;
+  r.lowestEigenvalue = m_.solver.kind == SolverKind::Newton && m_.solver.stabilityCheck ? nw_.lowestEigenvalue : NAN;
   r.splits = splits;
   r.unstable = unstable;
   r.tip = s_.x.col(s_.nodes() - 1);

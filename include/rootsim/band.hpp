@@ -1,0 +1,55 @@
+#pragma once
+// Banded linear algebra for the rod's stiffness (MODEL.md section 12): every element couples only to
+// its neighbours, so the stiffness of the discrete rod, with node and element blocks interleaved, is a
+// band matrix of half-bandwidth ~14. Storage is allocated by reserve() and reused: factorising and
+// solving allocate nothing.
+#include <Eigen/Core>
+#include <vector>
+
+namespace rootsim {
+
+// general band matrix with kl sub- and ku super-diagonals and its LU factorisation with partial
+// pivoting (the LAPACK dgbtf2/dgbtrs algorithm, written out; LAPACK's band storage with kl extra rows
+// for the fill-in of row interchanges)
+class BandLU {
+ public:
+  // sizes the storage for n unknowns; allocates only when n grows past what was reserved
+  void reset(int n, int kl, int ku);
+  int size() const { return n_; }
+  int kl() const { return kl_; }
+  int ku() const { return ku_; }
+  // A(i, j) += v; only inside the band (|i - j| within kl, ku)
+  void add(int i, int j, double v) { ab_[static_cast<size_t>(kv_ + i - j + j * ld_)] += v; }
+  double at(int i, int j) const { return ab_[static_cast<size_t>(kv_ + i - j + j * ld_)]; }
+  bool inBand(int i, int j) const { return i - j <= kl_ && j - i <= ku_; }
+  // factorises in place; false when a pivot is exactly zero (singular)
+  bool factorize();
+  // solves A x = b in place (after factorize())
+  void solve(double* b) const;
+
+ private:
+  int n_ = 0, kl_ = 0, ku_ = 0, kv_ = 0, ld_ = 1;
+  std::vector<double> ab_;
+  std::vector<int> piv_;
+};
+
+// symmetric band matrix (half-bandwidth k, lower band stored) and its LDL^T factorisation without
+// pivoting: the count of negative pivots is the number of negative eigenvalues (Sylvester's law of
+// inertia) whenever the factorisation exists
+class BandLDLT {
+ public:
+  void reset(int n, int k);
+  int size() const { return n_; }
+  // A(i, j) = A(j, i) += v for i >= j within the band
+  void addLower(int i, int j, double v) { a_[static_cast<size_t>((i - j) + j * (k_ + 1))] += v; }
+  // false when a pivot is zero or not finite
+  bool factorize();
+  int negativePivots(double relTol) const;
+  void solve(double* b) const;
+
+ private:
+  int n_ = 0, k_ = 0;
+  std::vector<double> a_;  // column j holds A(j..j+k, j); after factorize(): D on the diagonal, L below
+};
+
+}  // namespace rootsim

@@ -1,0 +1,129 @@
+#include "rootsim/band.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "rootsim/assert.hpp"
+
+namespace rootsim {
+
+void BandLU::reset(int n, int kl, int ku) {
+  ROOTSIM_ASSERT(n >= 1 && kl >= 0 && ku >= 0, "a band matrix of positive size");
+  n_ = n;
+  kl_ = kl;
+  ku_ = ku;
+  kv_ = kl + ku;
+  ld_ = 2 * kl + ku + 1;
+  ab_.assign(static_cast<size_t>(ld_) * static_cast<size_t>(n), 0.0);  // reuses the capacity
+  piv_.assign(static_cast<size_t>(n), 0);
+}
+
+bool BandLU::factorize() {
+  // column j: pick the largest of A(j..j+km, j) as pivot, swap its row up across the columns the
+  // interchanges can reach (ju), scale the multipliers, update the trailing band
+  double* ab = ab_.data();
+  const int ld = ld_, kv = kv_;
+  int ju = 0;
+  for (int j = 0; j < n_; ++j) {
+    const int km = std::min(kl_, n_ - 1 - j);
+    double* col = ab + static_cast<size_t>(j) * ld + kv;  // col[i] = A(j + i, j)
+    int jp = 0;
+    double best = std::abs(col[0]);
+    for (int i = 1; i <= km; ++i)
+      if (std::abs(col[i]) > best) { best = std::abs(col[i]); jp = i; }
+    piv_[static_cast<size_t>(j)] = j + jp;
+    if (!(best > 0.0) || !std::isfinite(best)) return false;
+    ju = std::max(ju, std::min(j + ku_ + jp, n_ - 1));
+    if (jp != 0)
+      for (int c = j; c <= ju; ++c)
+        std::swap(ab[kv + j - c + static_cast<size_t>(c) * ld], ab[kv + j + jp - c + static_cast<size_t>(c) * ld]);
+    if (km > 0) {
+      const double inv = 1.0 / col[0];
+      for (int i = 1; i <= km; ++i) col[i] *= inv;
+      for (int c = j + 1; c <= ju; ++c) {
+        double* cc = ab + static_cast<size_t>(c) * ld + kv + j - c;  // cc[i] = A(j + i, c)
+        const double u = cc[0];
+        if (u != 0.0)
+          for (int i = 1; i <= km; ++i) cc[i] -= col[i] * u;
+      }
+    }
+  }
+  return true;
+}
+
+void BandLU::solve(double* b) const {
+  const double* ab = ab_.data();
+  const int ld = ld_, kv = kv_;
+  // L y = P b
+  for (int j = 0; j + 1 < n_; ++j) {
+    const int km = std::min(kl_, n_ - 1 - j);
+    const int l = piv_[static_cast<size_t>(j)];
+    if (l != j) std::swap(b[l], b[j]);
+    const double* col = ab + static_cast<size_t>(j) * ld + kv;
+    for (int i = 1; i <= km; ++i) b[j + i] -= col[i] * b[j];
+  }
+  // U x = y (U has kl + ku super-diagonals after the interchanges)
+  for (int j = n_ - 1; j >= 0; --j) {
+    const double* col = ab + static_cast<size_t>(j) * ld + kv - j;  // col[i] = A(i, j)
+    b[j] /= col[j];
+    const double bj = b[j];
+    for (int i = std::max(0, j - kv); i < j; ++i) b[i] -= col[i] * bj;
+  }
+}
+
+void BandLDLT::reset(int n, int k) {
+  ROOTSIM_ASSERT(n >= 1 && k >= 0 && k < 64, "a symmetric band matrix of positive size, half-bandwidth < 64");
+  n_ = n;
+  k_ = k;
+  a_.assign(static_cast<size_t>(k + 1) * static_cast<size_t>(n), 0.0);
+}
+
+bool BandLDLT::factorize() {
+  // column by column: D_j = A_jj - sum_m L_jm^2 D_m, L_ij = (A_ij - sum_m L_im L_jm D_m) / D_j
+  const int K = k_ + 1;
+  double* a = a_.data();
+  double w[64];  // w[m - j0] = L_jm D_m for the columns m in [j0, j) that reach row j
+  for (int j = 0; j < n_; ++j) {
+    const int j0 = std::max(0, j - k_);
+    double d = a[static_cast<size_t>(j) * K];
+    for (int m = j0; m < j; ++m) {
+      const double l = a[(j - m) + static_cast<size_t>(m) * K];
+      w[m - j0] = l * a[static_cast<size_t>(m) * K];
+      d -= l * w[m - j0];
+    }
+    if (!(std::abs(d) > 0.0) || !std::isfinite(d)) return false;
+    a[static_cast<size_t>(j) * K] = d;
+    const int iMax = std::min(n_ - 1, j + k_);
+    for (int i = j + 1; i <= iMax; ++i) {
+      double s = a[(i - j) + static_cast<size_t>(j) * K];
+      for (int m = std::max(j0, i - k_); m < j; ++m) s -= a[(i - m) + static_cast<size_t>(m) * K] * w[m - j0];
+      a[(i - j) + static_cast<size_t>(j) * K] = s / d;
+    }
+  }
+  return true;
+}
+
+int BandLDLT::negativePivots(double relTol) const {
+  double big = 0.0;
+  for (int j = 0; j < n_; ++j) big = std::max(big, std::abs(a_[static_cast<size_t>(j) * (k_ + 1)]));
+  int neg = 0;
+  for (int j = 0; j < n_; ++j) neg += a_[static_cast<size_t>(j) * (k_ + 1)] < -relTol * big;
+  return neg;
+}
+
+void BandLDLT::solve(double* b) const {
+  const int K = k_ + 1;
+  const double* a = a_.data();
+  for (int j = 0; j < n_; ++j) {
+    const int iMax = std::min(n_ - 1, j + k_);
+    for (int i = j + 1; i <= iMax; ++i) b[i] -= a[(i - j) + static_cast<size_t>(j) * K] * b[j];
+  }
+  for (int j = 0; j < n_; ++j) b[j] /= a[static_cast<size_t>(j) * K];
+  for (int j = n_ - 1; j >= 0; --j) {
+    const int iMax = std::min(n_ - 1, j + k_);
+    for (int i = j + 1; i <= iMax; ++i) b[j] -= a[(i - j) + static_cast<size_t>(j) * K] * b[i];
+  }
+}
+
+}  // namespace rootsim

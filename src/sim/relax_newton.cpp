@@ -1,0 +1,337 @@
+// Quasi-static Newton solver (MODEL.md section 12).
+//
+// Unknowns: node positions and one incremental rotation per element (material components; directors
+// updated by the exponential map, Q <- exp(-[dtheta]x) Q, the same convention as the explicit solver's
+// drift). Residual: the explicit solver's forces and couples, from computeForces() (one code path for
+// the physics, so the two solvers cannot drift apart). Jacobian K = -dF/du by coloured finite
+// differences: a dof of block b (node or element) changes the forces of blocks b-4 .. b+4 only, so nine
+// colours x three components x two (central differences) = 54 force evaluations give the whole band; rotations are scaled by the
+// mean element length (u = lbar theta, couples / lbar) so that the blocks have comparable units. The
+// band (half-bandwidth 14) is factorised by BandLU with partial pivoting: K is not symmetric away from
+// equilibrium. Newton steps are damped by Deuflhard's natural monotonicity test (below).
+//
+// Active window: only the blocks from `firstFreeNode` to the tip are unknowns; the rest is frozen
+// exactly (adhered mature material, held by stiff springs, barely moves). The equilibrium criterion is
+// the explicit solver's, over the free dofs.
+//
+// Stability (MODEL.md section 12): at the converged state the symmetric part of K is factorised as
+// LDL^T; its negative pivots are the unstable directions (Sylvester), and inverse iteration with the
+// same factors gives the eigenvalue nearest zero and its mode.
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+#include <cstdio>
+#include <cstdlib>
+
+#include "rootsim/assert.hpp"
+#include "rootsim/relax.hpp"
+#include "rootsim/rotation.hpp"
+
+namespace rootsim {
+
+namespace {
+
+constexpr int kRadius = 4;                // blocks whose forces a block's dofs change, each side
+constexpr int kColours = 2 * kRadius + 1;
+constexpr int kBand = 3 * kRadius + 2;    // dof half-bandwidth
+constexpr int kMaxHalvings = 30;
+
+// dof layout: block b = 2i is node i, b = 2i + 1 is element i; the unknowns are blocks [b0, 2n]
+struct Window {
+  int n = 0, b0 = 0;
+  int blocks() const { return 2 * n + 1 - b0; }
+  int dofs() const { return 3 * blocks(); }
+  // the first element whose strains the free dofs' forces need (the one before the first free node)
+  int firstElement() const { return std::max(0, b0 / 2 - 1); }
+  static bool isNode(int b) { return b % 2 == 0; }
+};
+
+Window windowOf(const Environment& env, const RodState& s, int firstFreeNode) {
+  Window w;
+  w.n = s.elements();
+  w.b0 = std::clamp(2 * firstFreeNode, 0, 2 * w.n - 1);
+  if (env.base == BaseCondition::Clamped && w.b0 == 0) w.b0 = 1;  // node 0 is held
+  return w;
+}
+
+// generalized force of block b, component c, in scaled units (couples / lbar)
+double scaledForce(const RelaxWorkspace& ws, int b, int c, double lbar) {
+  return Window::isNode(b) ? ws.force(c, b / 2) : ws.torque(c, b / 2) / lbar;
+}
+
+void moveBlock(RodState& s, int b, const Vec3& u, double lbar) {
+  if (Window::isNode(b)) s.x.col(b / 2) += u;
+  else rotateInPlace(-(u / lbar), s.Q[static_cast<size_t>(b / 2)]);
+}
+
+}  // namespace
+
+namespace {
+struct NewtonSolver {
+  const RodParams& p;
+  const Environment& env;
+  const SolverOptions& opt;
+  RodState& s;
+  RelaxWorkspace& ws;
+  NewtonWorkspace& nw;
+  Window w;
+  double lbar = 0, ftol = 0, mtol = 0;
+
+  // forces of the current state; returns |F_scaled|^2 over the free dofs and fills nw.r
+  double residual() {
+    computeForces(p, env, s, false, ws, w.firstElement());
+    double sum = 0;
+    for (int b = w.b0; b <= 2 * w.n; ++b)
+      for (int c = 0; c < 3; ++c) {
+        const double f = scaledForce(ws, b, c, lbar);
+        nw.r[static_cast<size_t>(3 * (b - w.b0) + c)] = f;
+        sum += f * f;
+      }
+    return sum;
+  }
+
+  bool converged(RelaxResult& res, int& argF, int& argM) const {
+    double maxF2 = 0, maxM2 = 0;
+    for (int b = w.b0; b <= 2 * w.n; ++b) {
+      const int i = b / 2;
+      if (Window::isNode(b)) {
+        const double f2 = ws.force.col(i).squaredNorm();
+        if (!std::isfinite(f2)) fail("force on node", i, ws.force.col(i), res.iterations);
+        if (f2 > maxF2) { maxF2 = f2; argF = i; }
+      } else {
+        const double m2 = ws.torque.col(i).squaredNorm();
+        if (!std::isfinite(m2)) fail("couple on element", i, ws.torque.col(i), res.iterations);
+        if (m2 > maxM2) { maxM2 = m2; argM = i; }
+      }
+    }
+    res.residualForce = std::sqrt(maxF2);
+    res.residualTorque = std::sqrt(maxM2);
+    return maxF2 < ftol * ftol && maxM2 < mtol * mtol;
+  }
+
+  [[noreturn]] static void fail(const char* what, int index, const Vec3& val, long it) {
+    std::ostringstream os;
+    os << "Newton solver diverged at iteration " << it << ": " << what << " " << index << " is not finite ("
+       << val.transpose() << ")";
+    throw RelaxError(os.str());
+  }
+
+  // K = -dF/du over the free dofs into nw.lu (and, when sym, its symmetric part into nw.ldlt); the
+  // forces of the current state must be in nw.r
+  void jacobian(bool sym) {
+    const int N = w.dofs();
+    nw.lu.reset(N, kBand, kBand);
+    const double h = 1e-6 * lbar;  // [m], and h / lbar [rad]
+    for (int colour = 0; colour < kColours; ++colour)
+      for (int c = 0; c < 3; ++c) {
+        Vec3 u = Vec3::Zero();
+        u[c] = h;
+        int first = w.b0 + ((colour - w.b0 % kColours) + kColours) % kColours;
+        if (first > 2 * w.n) continue;
+        // central differences: forward differences leave an O(h) error in the stiff stretch/shear
+        // entries that swamps the soft bending modes of a long rod (Newton then crawls)
+        for (int b = first; b <= 2 * w.n; b += kColours) {
+          if (Window::isNode(b)) nw.save[static_cast<size_t>(b)] = s.x.col(b / 2);
+          else nw.saveQ[static_cast<size_t>(b / 2)] = s.Q[static_cast<size_t>(b / 2)];
+          moveBlock(s, b, u, lbar);
+        }
+        computeForces(p, env, s, false, ws, w.firstElement());
+        for (int b = first; b <= 2 * w.n; b += kColours)
+          for (int rb = std::max(w.b0, b - kRadius); rb <= std::min(2 * w.n, b + kRadius); ++rb)
+            for (int rc = 0; rc < 3; ++rc) nw.r0[static_cast<size_t>(3 * (rb - w.b0) + rc)] = scaledForce(ws, rb, rc, lbar);
+        for (int b = first; b <= 2 * w.n; b += kColours) {
+          if (Window::isNode(b)) s.x.col(b / 2) = nw.save[static_cast<size_t>(b)];
+          else s.Q[static_cast<size_t>(b / 2)] = nw.saveQ[static_cast<size_t>(b / 2)];
+          moveBlock(s, b, -u, lbar);
+        }
+        computeForces(p, env, s, false, ws, w.firstElement());
+        for (int b = first; b <= 2 * w.n; b += kColours) {
+          const int col = 3 * (b - w.b0) + c;
+          for (int rb = std::max(w.b0, b - kRadius); rb <= std::min(2 * w.n, b + kRadius); ++rb)
+            for (int rc = 0; rc < 3; ++rc) {
+              const int row = 3 * (rb - w.b0) + rc;
+              const double k = -(nw.r0[static_cast<size_t>(row)] - scaledForce(ws, rb, rc, lbar)) / (2.0 * h);
+              if (k != 0.0) nw.lu.add(row, col, k);
+            }
+          if (Window::isNode(b)) s.x.col(b / 2) = nw.save[static_cast<size_t>(b)];
+          else s.Q[static_cast<size_t>(b / 2)] = nw.saveQ[static_cast<size_t>(b / 2)];
+        }
+      }
+    if (sym) {
+      nw.ldlt.reset(N, kBand);
+      for (int j = 0; j < N; ++j)
+        for (int i = j; i <= std::min(N - 1, j + kBand); ++i)
+          nw.ldlt.addLower(i, j, 0.5 * (nw.lu.at(i, j) + nw.lu.at(j, i)));
+    }
+  }
+
+  void saveState() {
+    for (int b = w.b0; b <= 2 * w.n; ++b) {
+      if (Window::isNode(b)) nw.save[static_cast<size_t>(b)] = s.x.col(b / 2);
+      else nw.saveQ[static_cast<size_t>(b / 2)] = s.Q[static_cast<size_t>(b / 2)];
+    }
+  }
+  void restoreState() {
+    for (int b = w.b0; b <= 2 * w.n; ++b) {
+      if (Window::isNode(b)) s.x.col(b / 2) = nw.save[static_cast<size_t>(b)];
+      else s.Q[static_cast<size_t>(b / 2)] = nw.saveQ[static_cast<size_t>(b / 2)];
+    }
+  }
+  // state = saved + a * delta (delta in scaled units)
+  void applyStep(double a) {
+    for (int b = w.b0; b <= 2 * w.n; ++b) {
+      const Vec3 u = a * Eigen::Map<const Vec3>(nw.delta.data() + 3 * (b - w.b0));
+      moveBlock(s, b, u, lbar);
+    }
+  }
+};
+
+}  // namespace
+
+void NewtonWorkspace::reserve(int elements) {
+  const size_t nb = static_cast<size_t>(2 * elements + 1);
+  if (r.size() < 3 * nb) {
+    r.resize(3 * nb);
+    r0.resize(3 * nb);
+    delta.resize(3 * nb);
+    mode.resize(3 * nb);
+  }
+  if (save.size() < nb) save.resize(nb);
+  if (saveQ.size() < static_cast<size_t>(elements)) saveQ.resize(static_cast<size_t>(elements));
+}
+
+RelaxResult relaxNewton(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
+                        RelaxWorkspace& ws, NewtonWorkspace& nw, int firstFreeNode) {
+  const int n = s.elements();
+  if (n < 2) throw RelaxError("relaxation needs at least 2 elements");
+  ROOTSIM_ASSERT(firstFreeNode >= 0 && firstFreeNode <= n, "a window inside the rod");
+  nw.reserve(n);
+  s.v.setZero();
+  s.w.setZero();
+  NewtonSolver ns{p, env, opt, s, ws, nw, windowOf(env, s, firstFreeNode)};
+  ns.lbar = s.restLength() / n;
+  const double B1 = p.bendStiffness().x();
+  const double Lref = opt.lengthScale > 0.0 ? opt.lengthScale : s.restLength();
+  ns.ftol = opt.forceTol * B1 / (Lref * Lref);
+  ns.mtol = opt.forceTol * B1 / Lref;
+  const int N = ns.w.dofs();
+  RelaxResult res;
+  nw.firstFreeNode = firstFreeNode;
+  int argF = 0, argM = 0;
+  ns.residual();
+  for (;;) {
+    if (ns.converged(res, argF, argM)) break;
+    if (res.iterations >= opt.newtonMaxIterations) {
+      // a snap: the equilibrium sought is far away (the straight branch lost); Newton wanders there, the
+      // explicit relaxation gets there. The caller continues explicitly from here.
+      std::ostringstream os;
+      os << "Newton solver did not reach equilibrium in " << res.iterations << " iterations: residual force "
+         << res.residualForce << " N at node " << argF << " (tolerance " << ns.ftol << "), residual couple "
+         << res.residualTorque << " N m on element " << argM << " (tolerance " << ns.mtol << ")";
+      res.message = os.str();
+      res.stalled = true;
+      return res;
+    }
+    ++res.iterations;
+    ns.jacobian(false);
+    if (!nw.lu.factorize()) {
+      std::ostringstream os;
+      os << "Newton solver: singular stiffness at iteration " << res.iterations << " (" << N << " unknowns)";
+      throw RelaxError(os.str());
+    }
+    std::copy(nw.r.begin(), nw.r.begin() + N, nw.delta.begin());
+    nw.lu.solve(nw.delta.data());
+    // Damped Newton with Deuflhard's natural monotonicity test: a step a*delta is accepted when the
+    // simplified Newton correction there, |K^-1 F(u + a delta)|, is smaller than |delta| by (1 - a/4).
+    // This measures the residual in the solver's own metric; a plain |F|^2 test rejects good steps,
+    // because a bending step of a stiff-in-stretch rod leaves second-order stretch forces that dwarf
+    // the bending loads (measured: the full step of a cantilever raised |F| 100-fold, yet was exact).
+    double norm0 = 0;
+    for (int i = 0; i < N; ++i) norm0 += nw.delta[static_cast<size_t>(i)] * nw.delta[static_cast<size_t>(i)];
+    norm0 = std::sqrt(norm0);
+    ns.saveState();
+    double a = 1.0;
+    int halvings = 0;
+    for (;;) {
+      ns.applyStep(a);
+      ns.residual();
+      std::copy(nw.r.begin(), nw.r.begin() + N, nw.r0.begin());
+      nw.lu.solve(nw.r0.data());
+      double norm1 = 0;
+      for (int i = 0; i < N; ++i) norm1 += nw.r0[static_cast<size_t>(i)] * nw.r0[static_cast<size_t>(i)];
+      norm1 = std::sqrt(norm1);
+      if (std::getenv("ROOTSIM_NEWTON_TRACE"))
+        std::fprintf(stderr, "it %ld a %g |delta| %g |simplified| %g\n", res.iterations, a, norm0, norm1);
+      if (std::isfinite(norm1) && norm1 <= (1.0 - 0.25 * a) * norm0) break;
+      ns.restoreState();
+      if (++halvings > kMaxHalvings) {
+        // no acceptable step along the Newton direction (K indefinite far from equilibrium): the
+        // caller continues with the explicit relaxation from here
+        ns.residual();
+        res.stalled = true;
+        res.message = "Newton solver: no acceptable step along the Newton direction at iteration " +
+                      std::to_string(res.iterations);
+        return res;
+      }
+      a *= 0.5;
+    }
+  }
+  res.converged = true;
+  // stability from the factorisation of the converged state's stiffness
+  if (opt.stabilityCheck) {
+    ns.jacobian(true);
+    nw.negative = nw.ldlt.factorize() ? nw.ldlt.negativePivots(1e-10) : 1;
+    // eigenvalue nearest zero (the lowest while stable) and its mode: inverse iteration
+    double* v = nw.mode.data();
+    for (int i = 0; i < N; ++i) v[i] = std::sin(1.0 + 12.9898 * i);  // deterministic start
+    double lambda = 0.0;
+    if (nw.ldlt.factorize()) {
+      for (int it = 0; it < 20; ++it) {
+        double norm = 0;
+        for (int i = 0; i < N; ++i) norm += v[i] * v[i];
+        norm = std::sqrt(norm);
+        for (int i = 0; i < N; ++i) v[i] /= norm;
+        std::copy(v, v + N, nw.delta.begin());
+        nw.ldlt.solve(v);
+        double dot = 0;
+        for (int i = 0; i < N; ++i) dot += v[i] * nw.delta[static_cast<size_t>(i)];
+        lambda = dot != 0.0 ? 1.0 / dot : 0.0;  // Rayleigh-like estimate from v_old . K^-1 v_old
+      }
+      double norm = 0;
+      for (int i = 0; i < N; ++i) norm += v[i] * v[i];
+      norm = std::sqrt(norm);
+      for (int i = 0; i < N; ++i) v[i] /= norm;
+    }
+    nw.lowestEigenvalue = lambda;
+  }
+  return res;
+}
+
+void assembleStiffness(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
+                       RelaxWorkspace& ws, NewtonWorkspace& nw, int firstFreeNode) {
+  nw.reserve(s.elements());
+  NewtonSolver ns{p, env, opt, s, ws, nw, windowOf(env, s, firstFreeNode)};
+  ns.lbar = s.restLength() / s.elements();
+  ns.residual();
+  ns.jacobian(false);
+}
+
+Eigen::VectorXd NewtonWorkspace::unstableMode(const RodState& s, const Environment& env) const {
+  // the inverse-iteration vector, embedded in the full dof vector (per node 3 translations [m], per
+  // element 3 rotations [rad]) and scaled so that its largest translation is 1, as checkStability's
+  const int n = s.elements();
+  const Window w = windowOf(env, s, firstFreeNode);
+  const double lbar = s.restLength() / n;
+  Eigen::VectorXd m = Eigen::VectorXd::Zero(6 * n + 3);
+  double big = 0;
+  for (int b = w.b0; b <= 2 * n; ++b) {
+    Vec3 u = Eigen::Map<const Vec3>(mode.data() + 3 * (b - w.b0));
+    if (!Window::isNode(b)) u /= lbar;
+    else big = std::max(big, u.norm());
+    m.segment<3>(3 * b) = u;
+  }
+  if (big > 0) m /= big;
+  return m;
+}
+
+}  // namespace rootsim

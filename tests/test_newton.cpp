@@ -1,0 +1,165 @@
+// the quasi-static Newton solver (src/sim/relax_newton.cpp, src/sim/band.cpp): band algebra against
+// dense, the coloured Jacobian against plain finite differences, the same equilibria as the explicit
+// solver, stability from the factorisation, no allocation once warm
+#include <doctest/doctest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <numbers>
+
+#include "rod_fixture.hpp"
+#include "rootsim/band.hpp"
+#include "rootsim/rotation.hpp"
+#include "rootsim/stability.hpp"
+
+using namespace rootsim;
+using rootsim::test::Cantilever;
+
+namespace {
+// a deterministic band matrix with a dominant but not overwhelming diagonal of both signs
+Eigen::MatrixXd bandMatrix(int n, int kl, int ku, bool symmetric) {
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int j = std::max(0, i - kl); j <= std::min(n - 1, i + ku); ++j)
+      A(i, j) = std::sin(1.0 + 3.7 * i + 1.3 * j * j) + (i == j ? (i % 3 == 0 ? -2.0 : 3.0) : 0.0);
+  if (symmetric) A = (0.5 * (A + A.transpose())).eval();
+  return A;
+}
+}  // namespace
+
+TEST_CASE("band LU with partial pivoting solves what a dense LU solves") {
+  for (int n : {1, 5, 40, 200}) {
+    const int kl = 14, ku = 14;
+    const Eigen::MatrixXd A = bandMatrix(n, kl, ku, false);
+    BandLU lu;
+    lu.reset(n, kl, ku);
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j)
+        if (A(i, j) != 0.0) lu.add(i, j, A(i, j));
+    REQUIRE(lu.factorize());
+    Eigen::VectorXd b(n);
+    for (int i = 0; i < n; ++i) b[i] = std::cos(0.3 * i);
+    Eigen::VectorXd x = b;
+    lu.solve(x.data());
+    const Eigen::VectorXd ref = A.partialPivLu().solve(b);
+    INFO("n " << n);
+    CHECK((x - ref).norm() <= 1e-10 * ref.norm());
+    CHECK((A * x - b).norm() <= 1e-10 * b.norm());
+  }
+}
+
+TEST_CASE("band LDL^T counts the negative eigenvalues of a symmetric indefinite band matrix") {
+  const int n = 60, k = 14;
+  const Eigen::MatrixXd A = bandMatrix(n, k, k, true);
+  BandLDLT f;
+  f.reset(n, k);
+  for (int j = 0; j < n; ++j)
+    for (int i = j; i <= std::min(n - 1, j + k); ++i) f.addLower(i, j, A(i, j));
+  REQUIRE(f.factorize());
+  const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(A).eigenvalues();
+  int neg = 0;
+  for (int i = 0; i < n; ++i) neg += ev[i] < 0;
+  CHECK(neg > 0);
+  CHECK(f.negativePivots(1e-12) == neg);
+  Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0), x = b;
+  f.solve(x.data());
+  CHECK((A * x - b).norm() <= 1e-9 * b.norm());
+}
+
+TEST_CASE("the coloured band Jacobian equals one-dof-at-a-time central differences") {
+  Cantilever c(12);
+  c.env.plane.enabled = true;  // plate contact, adhesion and a tip load in play
+  c.env.plane.alpha = 0.7;
+  c.env.adhesion = true;
+  c.s.anchored[4] = 1;
+  c.env.tipForce = Vec3(2e-5, 1e-5, -3e-5);
+  // a generic bent and twisted state
+  for (int i = 1; i < c.s.nodes(); ++i) c.s.x.col(i) += 1e-4 * Vec3(std::sin(0.7 * i), 0.3 * std::cos(i), 0.2 * i / 12.0);
+  for (int i = 0; i < c.s.elements(); ++i) rotateInPlace(Vec3(0.02 * i, -0.01 * i, 0.03), c.s.Q[static_cast<size_t>(i)]);
+  NewtonWorkspace nw;
+  assembleStiffness(c.p, c.env, c.opt, c.s, c.ws, nw, 0);
+  const int n = c.s.elements(), b0 = 1;  // clamped: node 0 is not free
+  const double lbar = c.s.restLength() / n, h = 1e-6 * lbar;
+  auto gen = [&](const RodState& st, int b, int comp) {
+    computeForces(c.p, c.env, st, false, c.ws);
+    return b % 2 == 0 ? c.ws.force(comp, b / 2) : c.ws.torque(comp, b / 2) / lbar;
+  };
+  double worst = 0, scale = 0;
+  for (int cb = b0; cb <= 2 * n; ++cb)
+    for (int cc = 0; cc < 3; ++cc) {
+      RodState plus = c.s, minus = c.s;
+      Vec3 u = Vec3::Zero();
+      u[cc] = h;
+      if (cb % 2 == 0) {
+        plus.x.col(cb / 2) += u;
+        minus.x.col(cb / 2) -= u;
+      } else {
+        rotateInPlace(-u / lbar, plus.Q[static_cast<size_t>(cb / 2)]);
+        rotateInPlace(u / lbar, minus.Q[static_cast<size_t>(cb / 2)]);
+      }
+      for (int rb = b0; rb <= 2 * n; ++rb)
+        for (int rc = 0; rc < 3; ++rc) {
+          const double ref = -(gen(plus, rb, rc) - gen(minus, rb, rc)) / (2 * h);
+          const int row = 3 * (rb - b0) + rc, col = 3 * (cb - b0) + cc;
+          const double got = nw.lu.inBand(row, col) ? nw.lu.at(row, col) : 0.0;
+          scale = std::max(scale, std::abs(ref));
+          worst = std::max(worst, std::abs(got - ref));
+        }
+    }
+  INFO("largest entry " << scale << ", largest difference " << worst);
+  CHECK(worst <= 1e-6 * scale);
+}
+
+TEST_CASE("Newton finds the explicit solver's cantilever equilibria (small and large load)") {
+  for (double load : {1e-6, 1e-4}) {
+    Cantilever a(40), b(40);
+    a.env.tipForce = b.env.tipForce = Vec3(0, 0, -load);
+    a.relax();
+    b.opt.kind = SolverKind::Newton;
+    NewtonWorkspace nw;
+    const RelaxResult r = relaxNewton(b.p, b.env, b.opt, b.s, b.ws, nw, 0);
+    INFO("load " << load << " N: " << r.iterations << " Newton iterations");
+    CHECK(r.converged);
+    // quadratic convergence from the straight start for the small load; the large one (P L^2 / B = 2.6,
+    // tip rotation ~60 deg) from the straight start in one load step takes longer
+    CHECK(r.iterations <= (load < 1e-5 ? 8 : 40));
+    CHECK((a.tip() - b.tip()).norm() < 1e-6 * a.L);
+  }
+}
+
+TEST_CASE("Newton's factorisation tells Euler buckling, as the stability check does") {
+  for (double ratio : {0.9, 1.1}) {
+    Cantilever c(30);
+    const double Pcr = std::numbers::pi * std::numbers::pi * c.B1() / (4 * c.L * c.L);
+    c.env.tipForce = Vec3(0, ratio * Pcr, 0);
+    NewtonWorkspace nw;
+    const RelaxResult r = relaxNewton(c.p, c.env, c.opt, c.s, c.ws, nw, 0);
+    REQUIRE(r.converged);
+    CHECK(std::abs(c.tip().x()) < 1e-12);  // the straight column is an equilibrium either way
+    CHECK(nw.negative == checkStability(c.p, c.env, c.s, c.ws).negative);
+    CHECK(nw.negative == (ratio < 1 ? 0 : 2));
+    if (ratio > 1) {
+      CHECK(nw.lowestEigenvalue < 0);
+      // following the mode with a short explicit relaxation reaches the buckled branch
+      perturbAlong(c.s, nw.unstableMode(c.s, c.env), 1e-2 * c.p.radius);
+      c.relax();
+      REQUIRE(relaxNewton(c.p, c.env, c.opt, c.s, c.ws, nw, 0).converged);
+      CHECK(nw.negative == 0);
+      CHECK(std::hypot(c.tip().x(), c.tip().z()) / c.L > 0.3);
+    } else {
+      CHECK(nw.lowestEigenvalue > 0);
+    }
+  }
+}
+
+TEST_CASE("a window freezes the rest of the rod exactly") {
+  Cantilever c(30);
+  c.env.tipForce = Vec3(0, 0, -1e-5);
+  const RodState before = c.s;
+  NewtonWorkspace nw;
+  const RelaxResult r = relaxNewton(c.p, c.env, c.opt, c.s, c.ws, nw, 20);
+  CHECK(r.converged);
+  for (int i = 0; i < 20; ++i) CHECK(c.s.x.col(i) == before.x.col(i));  // node 20 is the first free one
+  for (int i = 0; i < 20; ++i) CHECK(c.s.Q[static_cast<size_t>(i)] == before.Q[static_cast<size_t>(i)]);
+  CHECK(c.s.x.col(30) != before.x.col(30));
+}

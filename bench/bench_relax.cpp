@@ -1,4 +1,5 @@
-// Relaxation benchmarks (issue #2): cost of one sub-step, and sub-steps + wall time to settle a rod.
+// Relaxation benchmarks: cost of one sub-step, sub-steps + wall time to settle a rod, and one growth
+// step of each solver at several root lengths.
 //   ./build/bench/bench_relax --benchmark_counters_tabular=true
 #include <benchmark/benchmark.h>
 
@@ -6,6 +7,8 @@
 #include <cmath>
 
 #include "../tests/rod_fixture.hpp"
+#include "rootsim/simulation.hpp"
+#include "rootsim/units.hpp"
 
 using namespace rootsim;
 
@@ -74,6 +77,37 @@ BENCHMARK(BM_Settle)
     ->Args({100, 2})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(1);
+
+// one growth step of the Fig. 2B root (alpha 40, beta 0.2, gamma 0.1, 0.05 mm elements, 0.05 h steps)
+// at a root length of arg 0 mm, with arg 1: 0 = dynamic (the paper's explicit relaxation with the
+// stability check), 1 = newton (active window, the default). The root is grown to that length with the
+// Newton solver first (not timed), then handed to the solver measured; each iteration is one growth step.
+void BM_GrowthStep(benchmark::State& state) {
+  const double lengthMm = static_cast<double>(state.range(0));
+  Model m = defaultModel();
+  m.env.plane.alpha = 40 * units::deg;
+  m.tropism.beta = 0.2;
+  m.solver.kind = SolverKind::Newton;
+  completeModel(m);
+  const int steps = static_cast<int>(std::lround((lengthMm - 1.1) / 0.2 / 0.05));
+  Simulation grow(m);
+  for (int k = 0; k < steps; ++k) grow.growthStep();
+  m.solver.kind = state.range(1) == 0 ? SolverKind::Dynamic : SolverKind::Newton;
+  Simulation sim(m, grow.state(), grow.step());
+  long substeps = 0, iterations = 0;
+  for (auto _ : state) {
+    const StepRecord& r = sim.growthStep();
+    substeps += r.substeps;
+    iterations += r.iterations;
+  }
+  state.counters["elements"] = sim.state().elements();
+  state.counters["substeps_per_step"] = static_cast<double>(substeps) / static_cast<double>(state.iterations());
+  state.counters["newton_its_per_step"] = static_cast<double>(iterations) / static_cast<double>(state.iterations());
+}
+BENCHMARK(BM_GrowthStep)
+    ->ArgsProduct({{5, 10, 20, 30}, {0, 1}})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(40);
 
 }  // namespace
 

@@ -301,3 +301,27 @@ TEST_CASE("a sweep over a mechanics-only scene resumes (its points count as comp
   CHECK(b.code == 0);
   CHECK(b.out.find("0 ran, 2 already complete") != std::string::npos);
 }
+
+TEST_CASE("modes writes the softest stiffness modes of a run's final state") {
+  const fs::path d = scratch("modes");
+  REQUIRE(run("run " + kSmall + " --set solver.kind=newton --out " + (d / "r").string()).code == 0);
+  const Result r = run("modes " + (d / "r").string() + " --count 3 --quiet");
+  REQUIRE(r.code == 0);
+  std::istringstream csv(slurp(d / "r" / "modes.csv"));
+  std::string line;
+  std::getline(csv, line);
+  CHECK(line == "mode,eigenvalue_n_per_m,node,s_mm,x_mm,y_mm,z_mm,ux,uy,uz");
+  std::map<int, double> eig;
+  while (std::getline(csv, line)) {
+    const int mode = std::stoi(line.substr(0, line.find(',')));
+    eig[mode] = std::stod(line.substr(line.find(',') + 1));
+  }
+  REQUIRE(eig.size() == 3);
+  CHECK(eig[1] > 0);  // a relaxed, stable root
+  CHECK(eig[1] <= eig[2]);
+  CHECK(eig[2] <= eig[3]);
+  CHECK(slurp(d / "r" / "modes.vtp").find("Name=\"mode_3\"") != std::string::npos);
+  // a folder that is not a run
+  CHECK(run("modes " + d.string() + " --quiet").code == 2);
+  CHECK(run("modes " + (d / "r").string() + " --count 0").code == 2);
+}

@@ -8,6 +8,7 @@
 
 #include "rootsim/run_dir.hpp"
 #include "rootsim/simulation.hpp"
+#include "rootsim/stability.hpp"
 #include "rootsim/theory.hpp"
 
 namespace rootsim {
@@ -16,6 +17,12 @@ namespace rootsim {
 // directors, re-orthonormalised) d1x..d3z, curvature kappa1..3 [1/mm] (Voronoi value per current
 // length at interior nodes, 0 at the ends), stretch (dilatation, mean of neighbours), radius_mm
 std::string shapeCsv(const Model& m, const RodState& s, const RodStrains& k);
+
+// stiffness modes of a state (`rootsim modes`): modes.csv, one row per mode and node
+// (mode,eigenvalue_n_per_m,node,s_mm,x_mm,y_mm,z_mm,ux,uy,uz: the node's position and its displacement
+// in the mode, largest 1), and modes.vtp, the centreline with one point-data vector per mode
+std::string modesCsv(const RodState& s, const StiffnessModes& m);
+std::string modesVtp(const RodState& s, const StiffnessModes& m);
 
 // time series, one row per output step, streamed (temp file renamed on close)
 class TimeseriesWriter {

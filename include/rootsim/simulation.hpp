@@ -28,6 +28,9 @@ class Simulation {
  public:
   // builds the initial rod (MODEL.md section 3) and relaxes it once (no growth yet)
   explicit Simulation(const Model& m);
+  // continues from a state of an earlier simulation of a compatible model (its growth step `step`), as it
+  // is: no relaxation (a restart, or the same root handed to another solver)
+  Simulation(const Model& m, const RodState& s, int step);
 
   // one growth step: anchor mature nodes, grow rest lengths, update kappa0 (Eq. 17) and the twist
   // profile, split long elements, relax; throws RelaxError naming the growth step

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
 #include <numbers>
 #include <tuple>
@@ -16,6 +17,7 @@
 #include "rootsim/run_dir.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/simulation.hpp"
+#include "rootsim/stability.hpp"
 #include "rootsim/run_scene.hpp"
 #include "rootsim/sweep.hpp"
 #include "rootsim/theory.hpp"
@@ -154,6 +156,40 @@ int figureCommand(const FigureCliOptions& o) {
   const double t0 = now();
   makeFigure(o.name, fo, [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
   if (!o.quiet) std::fprintf(stderr, "figure %s: done in %.1f s -> %s\n", o.name.c_str(), now() - t0, o.out.c_str());
+  return 0;
+}
+
+int modesCommand(const ModesOptions& o) {
+  const fs::path dir = normaliseOutDir(o.runDir);
+  if (!fs::is_regular_file(dir / "scene.toml") || !fs::is_regular_file(dir / "summary.json"))
+    throw SceneError(o.runDir + ": not a complete run directory (no scene.toml and summary.json)");
+  if (const std::string why = whyNotReplaceable(dir); !why.empty()) throw SceneError(o.runDir + ": " + why);
+  // the final state is not stored; the run is repeated from its resolved scene (same scene, same bytes)
+  const Scene sc = loadScene((dir / "scene.toml").string());
+  Simulation sim(sc.model);
+  const int steps = sc.model.growth.enabled ? sc.model.growth.steps : 0;
+  Progress pr(steps, o.quiet || steps == 0, "modes: repeating " + sc.model.name);
+  for (int k = 1; k <= steps; ++k) {
+    sim.growthStep();
+    pr.update(k, "");
+  }
+  // the repeated run must end where the stored one did
+  std::ifstream in(dir / "shape.csv");
+  std::string header, last, line;
+  std::getline(in, header);
+  while (std::getline(in, line)) last = line;
+  const std::string now = shapeCsv(sc.model, sim.state(), sim.strains());
+  if (now.empty() || now.find(last) == std::string::npos)
+    throw SceneError(o.runDir + ": repeating the run from scene.toml does not reproduce shape.csv (written by "
+                     "another rootsim version?)");
+  const StiffnessModes m = softestModes(sc.model.rod, sc.model.env, sim.state(), o.count);
+  writeFileAtomic(dir / "modes.csv", modesCsv(sim.state(), m));
+  writeFileAtomic(dir / "modes.vtp", modesVtp(sim.state(), m));
+  if (!o.quiet) {
+    std::fprintf(stderr, "%s: %d modes, stiffness eigenvalues [N/m]:", o.runDir.c_str(), static_cast<int>(m.modes.size()));
+    for (long q = 0; q < m.eigenvalues.size(); ++q) std::fprintf(stderr, " %.4g", m.eigenvalues[q]);
+    std::fprintf(stderr, "\nwrote %s and %s\n", (dir / "modes.csv").c_str(), (dir / "modes.vtp").c_str());
+  }
   return 0;
 }
 

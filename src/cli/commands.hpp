@@ -38,6 +38,13 @@ struct RenderOptions {
 };
 int renderCommand(const RenderOptions& o);
 
+struct ModesOptions {
+  std::string runDir;
+  int count = 6;          // modes to write
+  bool quiet = false;
+};
+int modesCommand(const ModesOptions& o);
+
 struct SweepCliOptions {
   std::string sweep;
   int jobs = 1;

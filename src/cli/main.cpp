@@ -49,6 +49,12 @@ int main(int argc, char** argv) {
                       "development: load tube/plane .vert/.frag from DIR instead of the built-in shaders");
   cRender->add_flag("--quiet", render.quiet, "no progress output");
 
+  cli::ModesOptions modes;
+  CLI::App* cModes = app.add_subcommand("modes", "the softest stiffness modes of a run's final state (modes.csv, modes.vtp)");
+  cModes->add_option("run_dir", modes.runDir, "run directory")->required();
+  cModes->add_option("--count", modes.count, "number of modes (default 6)")->check(CLI::Range(1, 1000));
+  cModes->add_flag("--quiet", modes.quiet, "no progress output");
+
   cli::SweepCliOptions sweep;
   CLI::App* cSweep = app.add_subcommand("sweep", "run a grid of scenes (resumable, shardable); writes table.csv");
   cSweep->add_option("sweep", sweep.sweep, "sweep file (TOML: [sweep] scene, [grid], [set])")->required();
@@ -76,6 +82,7 @@ int main(int argc, char** argv) {
     if (cCheck->parsed()) return cli::checkCommand(check);
     if (cRender->parsed()) return cli::renderCommand(render);
     if (cSweep->parsed()) return cli::sweepCommand(sweep);
+    if (cModes->parsed()) return cli::modesCommand(modes);
     if (cFigure->parsed()) return cli::figureCommand(figure);
   } catch (const SceneError& e) {
     std::fprintf(stderr, "rootsim: error: %s\n", e.what());

@@ -57,6 +57,42 @@ std::string shapeCsv(const Model& m, const RodState& s, const RodStrains& k) {
   return os.str();
 }
 
+std::string modesCsv(const RodState& s, const StiffnessModes& m) {
+  std::ostringstream o;
+  o << "mode,eigenvalue_n_per_m,node,s_mm,x_mm,y_mm,z_mm,ux,uy,uz\n";
+  for (size_t q = 0; q < m.modes.size(); ++q)
+    for (int i = 0; i < s.nodes(); ++i) {
+      o << q + 1 << ',' << fmt(m.eigenvalues[static_cast<long>(q)]) << ',' << i << ',' << fmt(s.S[i] / units::mm);
+      for (int d = 0; d < 3; ++d) o << ',' << fmt(s.x(d, i) / units::mm);
+      for (int d = 0; d < 3; ++d) o << ',' << fmt(m.modes[q][6 * i + d]);
+      o << '\n';
+    }
+  return o.str();
+}
+
+std::string modesVtp(const RodState& s, const StiffnessModes& m) {
+  const int nn = s.nodes(), n = s.elements();
+  std::ostringstream o;
+  o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+    << "<PolyData>\n<Piece NumberOfPoints=\"" << nn << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << n
+    << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n<Points>\n"
+    << "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (int i = 0; i < nn; ++i) o << fmt(s.x(0, i) / units::mm) << ' ' << fmt(s.x(1, i) / units::mm) << ' ' << fmt(s.x(2, i) / units::mm) << '\n';
+  o << "</DataArray>\n</Points>\n<Lines>\n<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n";
+  for (int i = 0; i < n; ++i) o << i << ' ' << i + 1 << '\n';
+  o << "</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n";
+  for (int i = 0; i < n; ++i) o << 2 * (i + 1) << '\n';
+  o << "</DataArray>\n</Lines>\n<PointData Vectors=\"mode_1\">\n";
+  for (size_t q = 0; q < m.modes.size(); ++q) {
+    o << "<DataArray type=\"Float64\" Name=\"mode_" << q + 1 << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+    for (int i = 0; i < nn; ++i)
+      o << fmt(m.modes[q][6 * i]) << ' ' << fmt(m.modes[q][6 * i + 1]) << ' ' << fmt(m.modes[q][6 * i + 2]) << '\n';
+    o << "</DataArray>\n";
+  }
+  o << "</PointData>\n</Piece>\n</PolyData>\n</VTKFile>\n";
+  return o.str();
+}
+
 TimeseriesWriter::TimeseriesWriter(const fs::path& path) : f_(path) {
   f_.stream() << "step,time_h,length_mm,elements,theta_tip_deg,Eb,Et,Wr,Tw,substeps,residual_force_n,splits,unstable,"
                  "tip_x_mm,tip_y_mm,tip_z_mm,newton_iterations,lowest_eigenvalue_n_per_m\n";

@@ -13,7 +13,8 @@ namespace rootsim {
 
 namespace {
 // every name a run (and `run --movie`) writes into its directory; anything else in it is the user's
-constexpr std::array<const char*, 14> kRunEntries = {
+constexpr std::array<const char*, 16> kRunEntries = {
+    "modes.csv",      "modes.vtp",
     kRunMarker,       "scene.toml",     "timeseries.csv", "shape.csv",    "summary.json",
     "result.csv",     "trajectory.csv", "trajectory.pvd", "vtk",          "movie.mp4",
     "final_top.png",  "ERROR.txt",      "checkpoint.bin", "movie.mp4.partial"};

@@ -36,6 +36,12 @@ Simulation::Simulation(const Model& m) : m_(m) {
   observe(r, 0, unstable);
 }
 
+Simulation::Simulation(const Model& m, const RodState& s, int step) : m_(m), s_(s), step_(step) {
+  ws_.resize(s_.elements());
+  thetaUnwrapped_ = tipAngle(m_, s_);  // the tip angle's earlier turns are not known here
+  observe(RelaxResult{}, 0, 0);
+}
+
 const StepRecord& Simulation::growthStep() {
   ++step_;
   const double dt = m_.growth.stepTime;

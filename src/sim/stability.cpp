@@ -2,6 +2,9 @@
 
 #include <Eigen/Sparse>
 #include <Eigen/SparseCholesky>
+#include <Eigen/Dense>
+
+#include <algorithm>
 
 #include <cmath>
 #include <vector>
@@ -117,6 +120,71 @@ StabilityReport checkStability(const RodParams& p, const Environment& env, const
   }
   r.mode = big > 0 ? Eigen::VectorXd(v / big) : v;
   return r;
+}
+
+StiffnessModes softestModes(const RodParams& p, const Environment& env, const RodState& s0, int k) {
+  RodState s = s0;
+  RelaxWorkspace ws;
+  NewtonWorkspace nw;
+  SolverOptions opt;
+  assembleStiffness(p, env, opt, s, ws, nw, 0);
+  const int N = nw.lu.size(), band = nw.lu.kl();
+  BandLDLT f;
+  f.reset(N, band);
+  for (int j = 0; j < N; ++j)
+    for (int i = j; i <= std::min(N - 1, j + band); ++i) f.addLower(i, j, 0.5 * (nw.lu.at(i, j) + nw.lu.at(j, i)));
+  if (!f.factorize()) throw RelaxError("modes: the stiffness of the final state is singular");
+  // dense copy of the symmetric matrix for the Rayleigh quotients (N ~ 6 n, fine for one state)
+  auto Kx = [&](const Eigen::VectorXd& x) {
+    Eigen::VectorXd y = Eigen::VectorXd::Zero(N);
+    for (int j = 0; j < N; ++j)
+      for (int i = std::max(0, j - band); i <= std::min(N - 1, j + band); ++i)
+        y[i] += 0.5 * (nw.lu.at(i, j) + nw.lu.at(j, i)) * x[j];
+    return y;
+  };
+  k = std::clamp(k, 1, N);
+  const int m = std::min(N, 2 * k + 4);  // a larger subspace converges faster to the k wanted
+  Eigen::MatrixXd V(N, m);
+  for (int c = 0; c < m; ++c)
+    for (int i = 0; i < N; ++i) V(i, c) = std::sin(1.0 + 12.9898 * i + 78.233 * c);  // deterministic
+  for (int it = 0; it < 60; ++it) {
+    for (int c = 0; c < m; ++c) {
+      Eigen::VectorXd col = V.col(c);
+      f.solve(col.data());
+      V.col(c) = col;
+    }
+    V = Eigen::HouseholderQR<Eigen::MatrixXd>(V).householderQ() * Eigen::MatrixXd::Identity(N, m);
+  }
+  Eigen::MatrixXd KV(N, m);
+  for (int c = 0; c < m; ++c) KV.col(c) = Kx(V.col(c));
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> es(V.transpose() * KV);
+  // Ritz values nearest zero, ascending
+  std::vector<int> order(static_cast<size_t>(m));
+  for (int i = 0; i < m; ++i) order[static_cast<size_t>(i)] = i;
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return std::abs(es.eigenvalues()[a]) < std::abs(es.eigenvalues()[b]); });
+  order.resize(static_cast<size_t>(k));
+  std::sort(order.begin(), order.end(), [&](int a, int b) { return es.eigenvalues()[a] < es.eigenvalues()[b]; });
+  const int n = s.elements();
+  const double lbar = s.restLength() / n;
+  const int b0 = env.base == BaseCondition::Clamped ? 1 : 0;
+  StiffnessModes out;
+  out.eigenvalues.resize(k);
+  for (int q = 0; q < k; ++q) {
+    const int c = order[static_cast<size_t>(q)];
+    out.eigenvalues[q] = es.eigenvalues()[c];
+    const Eigen::VectorXd v = V * es.eigenvectors().col(c);
+    Eigen::VectorXd mode = Eigen::VectorXd::Zero(6 * n + 3);
+    double big = 0;
+    for (int b = b0; b <= 2 * n; ++b) {
+      Vec3 u = v.segment<3>(3 * (b - b0));
+      if (b % 2 == 1) u /= lbar;
+      else big = std::max(big, u.norm());
+      mode.segment<3>(3 * b) = u;
+    }
+    if (big > 0) mode /= big;
+    out.modes.push_back(mode);
+  }
+  return out;
 }
 
 void perturbAlong(RodState& s, const Eigen::VectorXd& mode, double amplitude) {

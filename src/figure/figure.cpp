@@ -347,8 +347,9 @@ void bisect(const Ctx& c, const Case& base, std::vector<Transition*> trs, double
 }
 
 std::string fig2a(const Ctx& c) {
-  const std::vector<double> alphas = c.opt.quick ? std::vector<double>{0, 20, 40, 60, 80}
-                                                 : std::vector<double>{0, 10, 20, 30, 40, 50, 60, 70, 80, 90};
+  // the paper's ten tilts; quick: the quick phase grid, so these runs are shared with fig3d
+  std::vector<double> alphas;
+  for (double a = 0; a <= 90 + 1e-9; a += c.opt.quick ? c.alphaStep() : 10) alphas.push_back(a);
   const double L = c.opt.quick ? 12 : 15;
   std::vector<Case> cases;
   for (double a : alphas) cases.push_back(Case{a, 0.1, 0.1, 0, false, L});

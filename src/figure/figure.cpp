@@ -634,8 +634,8 @@ std::vector<Case> scalingCases(const Ctx& c) {
   return cs;
 }
 
-// measured against predicted with the identity line; returns the median ratio measured / predicted
-double identityPlot(const Ctx& c, const std::string& name, const std::string& title, const std::string& xl,
+// measured against predicted with the identity line
+void identityPlot(const Ctx& c, const std::string& name, const std::string& title, const std::string& xl,
                     const std::string& yl, const std::vector<double>& x, const std::vector<double>& y, int color, char mark,
                     const std::string& label, const std::string& lineLabel) {
   double hi = 0.5;
@@ -656,12 +656,6 @@ double identityPlot(const Ctx& c, const std::string& name, const std::string& ti
   ax.legendPos = "nw";
   f.axes.push_back(ax);
   saveFigure(f, (fs::path(c.opt.out) / name).string());
-  std::vector<double> ratio;
-  for (size_t i = 0; i < x.size(); ++i)
-    if (std::isfinite(x[i]) && std::isfinite(y[i]) && x[i] > 0) ratio.push_back(y[i] / x[i]);
-  if (ratio.empty()) return NAN;
-  std::sort(ratio.begin(), ratio.end());
-  return ratio[ratio.size() / 2];
 }
 
 std::string fig3a(const Ctx& c) {

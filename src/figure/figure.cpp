@@ -353,7 +353,13 @@ std::string fig2a(const Ctx& c) {
   const double L = c.opt.quick ? 12 : 15;
   std::vector<Case> cases;
   for (double a : alphas) cases.push_back(Case{a, 0.1, 0.1, 0, false, L});
-  runCases(c, cases);
+  // the shipped Fig. 2A scene as it is (scenes/fig2a_alpha40.toml: 10 mm), run in the same batch
+  const Case short40{40, 0.1, 0.1, 0, false, 10};
+  {
+    std::vector<Case> batch = cases;
+    batch.push_back(short40);
+    runCases(c, batch);
+  }
   std::vector<std::vector<Snapshot>> traj;
   std::vector<const Snapshot*> finals;
   for (const auto& k : cases) traj.push_back(trajectory(c, k));
@@ -426,9 +432,7 @@ std::string fig2a(const Ctx& c) {
                   "≈ 15°");
   transitionClaim("Fig. 2A: coiling sets in at α_w→c (β = 0.1), by bisection", wc, t.alphaWaveToCoil / kDeg, "Eq. 13",
                   "≈ 50°");
-  // the Fig. 2A scene as shipped (scenes/fig2a_alpha40.toml: 10 mm): a short root that waves
-  const Case short40{40, 0.1, 0.1, 0, false, 10};
-  runCases(c, {short40});
+  // the Fig. 2A scene as shipped: a short root that waves
   const Row rs = result(c, short40);
   c.claims->push_back({"Fig. 2A: the 10 mm root at α = 40° (β = γ = 0.1) waves", "waving", "waving (Fig. 2A)",
                        rs.at("pattern") + " (" + rs.at("lateral_peaks") + " lateral peaks, θ " +
@@ -447,10 +451,23 @@ std::string fig2a(const Ctx& c) {
 
 Case wavingCase(const Ctx& c) { return Case{40, 0.2, 0.1, 0, false, c.opt.quick ? 13.1 : 31.1}; }
 Case freeCase(const Ctx& c) { return Case{40, 0.2, 0.1, 0, true, c.opt.quick ? 7.1 : 13.1}; }
+// free organs over the paper's range of beta (Lgz/R = 10), 20 h of growth each: Eq. 7's exponent
+const std::vector<double> kFreeBetas = {0.05, 0.1, 0.2, 0.5, 1.0};
+std::vector<Case> freeOrgans() {
+  std::vector<Case> f;
+  for (double bt : kFreeBetas) f.push_back(Case{40, bt, 0.1, 0, true, 5.1});
+  return f;
+}
+// every run of fig2b and fig2cde, in one batch (so both jobs stay busy)
+std::vector<Case> fig2Runs(const Ctx& c) {
+  std::vector<Case> b = {wavingCase(c), freeCase(c)};
+  for (const Case& k : freeOrgans()) b.push_back(k);
+  return b;
+}
 
 std::string fig2b(const Ctx& c) {
   const Case w = wavingCase(c);
-  runCases(c, {w});
+  runCases(c, fig2Runs(c));
   const auto traj = trajectory(c, w);
   // five snapshots, evenly spaced in time after the first one
   std::vector<const Snapshot*> snaps;
@@ -495,7 +512,9 @@ std::string fig2b(const Ctx& c) {
 
 std::string fig2cde(const Ctx& c) {
   const Case w = wavingCase(c), fr = freeCase(c);
-  runCases(c, {w, fr});
+  runCases(c, fig2Runs(c));
+  const std::vector<double>& betas = kFreeBetas;
+  const std::vector<Case> frees = freeOrgans();
   const auto sw = series(c, w), sf = series(c, fr);
   std::vector<double> t, th, eb, et, wr, tw, tf, thf;
   for (const auto& r : sw) {
@@ -555,11 +574,7 @@ std::string fig2cde(const Ctx& c) {
   const double vtipMmH = mw.growth.rate * mw.growth.zoneLength * 3600.0 * 1e3;  // v_tip [mm/h]
   c.claims->push_back({"Eq. 7: first sideways snap at the turning time T0 (α = 40°, β = 0.2)", fmt3(T0h) + " h", "≈ T0",
                        fmt3(snap) + " h (ratio " + fmt3(snap / T0h) + ")", kScaleTol, within(snap / T0h, kScaleLo, kScaleHi)});
-  // Eq. 7's exponent: the free organ's turning time over the paper's range of beta (Lgz/R = 10)
-  const std::vector<double> betas = {0.05, 0.1, 0.2, 0.5, 1.0};
-  std::vector<Case> frees;
-  for (double bt : betas) frees.push_back(Case{40, bt, 0.1, 0, true, 5.1});  // 20 h of growth
-  runCases(c, frees);
+  // Eq. 7's exponent from the free organs run above
   std::string table = "Free organ (α = 40°, γ = 0.1) reaching the vertical, against Eq. 7:\n\n"
                       "| β | β Lgz/R | T0 Eq. 7 (h) | turning time (h) | ratio |\n|---|---|---|---|---|\n";
   double sx = 0, sy = 0, sxx = 0, sxy = 0;

@@ -1,7 +1,9 @@
-// observables (src/sim/analysis.cpp): writhe, twist, linking number
+// observables (src/sim/analysis.cpp): writhe, twist, linking number; wavelength, amplitude and pattern of
+// synthetic shapes with known answers
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include "rootsim/analysis.hpp"
@@ -10,6 +12,147 @@ using namespace rootsim;
 
 namespace {
 constexpr double pi = std::numbers::pi;
+constexpr double deg = pi / 180.0;
+
+// a model whose whole rod counts as mature (no growth zone), on a plate tilted by 40 degrees
+Model plateModel() {
+  Model m;
+  m.growth.enabled = false;
+  m.env.plane.alpha = 40 * deg;
+  return m;
+}
+
+// a rod lying on the plate along the curve p -> (lateral u(p), downhill w(p)) [m], p in [0, 1], n elements
+RodState onPlate(const Model& m, int n, const std::function<void(double, double&, double&)>& curve) {
+  RodState s;
+  s.resize(n);
+  const Plane& pl = m.env.plane;
+  for (int i = 0; i <= n; ++i) {
+    double u = 0, w = 0;
+    curve(static_cast<double>(i) / n, u, w);
+    s.x.col(i) = m.rod.radius * pl.normal() + u * pl.lateral() + w * pl.downhill();
+  }
+  s.S[0] = 0;
+  for (int i = 0; i < n; ++i) {
+    s.l0[i] = (s.x.col(i + 1) - s.x.col(i)).norm();
+    s.S[i + 1] = s.S[i] + s.l0[i];
+  }
+  return s;
+}
+
+// a sine of `waves` wavelengths lam [m] and half excursion a [m] along downhill, its axis tilted by
+// `tilt` [rad] toward +lateral: u = a sin(2 pi w / lam) + w tan(tilt)
+RodState sine(const Model& m, double waves, double lam, double a, double tilt = 0, int perWave = 80) {
+  const double L = waves * lam;
+  return onPlate(m, static_cast<int>(std::lround(waves * perWave)), [&](double p, double& u, double& w) {
+    w = p * L;
+    u = a * std::sin(2 * pi * w / lam) + w * std::tan(tilt);
+  });
+}
+}  // namespace
+
+TEST_CASE("a sine of 10 waves: lambda is its wavelength, A its peak-to-peak excursion, and it waves") {
+  const Model m = plateModel();
+  const double lam = 2e-3, a = 0.25e-3;
+  const ShapeAnalysis r = analyseShape(m, sine(m, 10, lam, a));
+  INFO("lambda " << r.wavelength << " A " << r.amplitude << " peaks " << r.peaks << " skew " << r.skew / deg);
+  CHECK(r.peaks == 20);
+  CHECK(r.waves == doctest::Approx(9.5));
+  CHECK(r.wavelength == doctest::Approx(lam).epsilon(1e-3));
+  // the turning points are nodes: within half a node spacing of the crest, cos(pi / 80) of 2a
+  CHECK(r.amplitude == doctest::Approx(2 * a).epsilon(1e-3));
+  CHECK(r.amplitudeHalf == doctest::Approx(a).epsilon(1e-3));
+  CHECK(std::abs(r.skew) < 0.1 * deg);
+  CHECK(r.skewJudged);
+  CHECK(r.pattern == "waving");
+}
+
+TEST_CASE("a sine of 1.5 waves ending to one side waves: too few waves to judge a skew") {
+  const Model m = plateModel();
+  const double lam = 2e-3, a = 0.25e-3;
+  // 1.5 waves of a sine tilted by 8 degrees: the base-to-end direction is off by 13 degrees
+  const ShapeAnalysis r = analyseShape(m, sine(m, 1.5, lam, a, 8 * deg));
+  INFO("peaks " << r.peaks << " skew " << r.skew / deg << " lambda " << r.wavelength);
+  CHECK(r.peaks == 3);
+  CHECK_FALSE(r.skewJudged);
+  CHECK(std::abs(r.skew) > m.analysis.skewThresholdDeg * deg);  // the measured angle would say skewing
+  CHECK(r.pattern == "waving");
+  CHECK(r.wavelength == doctest::Approx(lam).epsilon(0.01));
+  // the untilted 1.5 waves: lambda and A exactly as for the long sine
+  const ShapeAnalysis s = analyseShape(m, sine(m, 1.5, lam, a));
+  CHECK(s.pattern == "waving");
+  CHECK(s.wavelength == doctest::Approx(lam).epsilon(1e-3));
+  CHECK(s.amplitude == doctest::Approx(2 * a).epsilon(1e-3));
+}
+
+TEST_CASE("a tilted sine of 6 waves skews by its tilt, and the mirror image the other way") {
+  const Model m = plateModel();
+  const double lam = 2e-3, a = 0.25e-3, tilt = 15 * deg;
+  const ShapeAnalysis r = analyseShape(m, sine(m, 6, lam, a, tilt));
+  const ShapeAnalysis q = analyseShape(m, sine(m, 6, lam, a, -tilt));
+  INFO("skew " << r.skew / deg << " / " << q.skew / deg << " peaks " << r.peaks);
+  CHECK(r.skewJudged);
+  CHECK(r.pattern == "skewing");
+  CHECK(q.pattern == "skewing");
+  // the root leans toward +lateral: counter-clockwise from downhill seen from above (MODEL.md section 3)
+  CHECK(r.skew == doctest::Approx(tilt).epsilon(0.01));
+  CHECK(q.skew == doctest::Approx(-tilt).epsilon(0.01));
+  // same-side peaks stay one wavelength apart along downhill
+  CHECK(r.wavelength == doctest::Approx(lam).epsilon(0.01));
+  // and a tilt below the threshold still waves
+  CHECK(analyseShape(m, sine(m, 6, lam, a, 3 * deg)).pattern == "waving");
+}
+
+TEST_CASE("a loop coils, a straight line is straight, a tilted line skews, ripples below the hysteresis are not waves") {
+  const Model m = plateModel();
+  SUBCASE("a circle: the tangent turns through 2 pi") {
+    const double r0 = 0.9e-3;
+    const ShapeAnalysis r = analyseShape(m, onPlate(m, 200, [&](double p, double& u, double& w) {
+      u = r0 * (1 - std::cos(2 * pi * p));
+      w = r0 * std::sin(2 * pi * p);
+    }));
+    INFO("theta " << r.thetaMin / deg << " .. " << r.thetaMax / deg << " max kappa " << r.maxKappa);
+    CHECK(r.pattern == "coiling");
+    CHECK(r.thetaMax - r.thetaMin == doctest::Approx(2 * pi).epsilon(0.02));
+    CHECK(r.maxKappa == doctest::Approx(1 / r0).epsilon(0.01));
+  }
+  SUBCASE("a straight line along downhill") {
+    const ShapeAnalysis r = analyseShape(m, onPlate(m, 100, [](double p, double& u, double& w) {
+      u = 0;
+      w = 10e-3 * p;
+    }));
+    CHECK(r.pattern == "straight");
+    CHECK(r.peaks == 0);
+    CHECK(r.amplitude == 0);
+    CHECK(r.wavelength == 0);
+  }
+  SUBCASE("a straight line tilted by 20 degrees: no waves, so its direction is the skew") {
+    const ShapeAnalysis r = analyseShape(m, onPlate(m, 100, [](double p, double& u, double& w) {
+      w = 10e-3 * p;
+      u = -w * std::tan(20 * deg);
+    }));
+    CHECK(r.pattern == "skewing");
+    CHECK(r.skewJudged);
+    CHECK(r.skew == doctest::Approx(-20 * deg).epsilon(1e-9));
+  }
+  SUBCASE("ripples of 0.4 R peak-to-peak (hysteresis 0.5 R) on a line are straight; on a sine they add no peaks") {
+    const double rip = 0.2 * m.rod.radius;
+    const ShapeAnalysis r = analyseShape(m, onPlate(m, 400, [&](double p, double& u, double& w) {
+      w = 10e-3 * p;
+      u = rip * std::sin(2 * pi * 60 * p);
+    }));
+    CHECK(r.pattern == "straight");
+    CHECK(r.peaks == 0);
+    const double lam = 2e-3, a = 0.25e-3;
+    const ShapeAnalysis s = analyseShape(m, onPlate(m, 2000, [&](double p, double& u, double& w) {
+      w = 5 * lam * p;
+      u = a * std::sin(2 * pi * w / lam) + rip * std::sin(2 * pi * 150 * p);
+    }));
+    INFO("peaks " << s.peaks);
+    CHECK(s.peaks == 10);
+    CHECK(s.pattern == "waving");
+    CHECK(s.wavelength == doctest::Approx(lam).epsilon(0.02));
+  }
 }
 
 TEST_CASE("a planar curve has zero writhe") {

@@ -161,6 +161,33 @@ TEST_CASE("every shipped scene and sweep validates, and every scene runs coarsen
   }
 }
 
+TEST_CASE("shipped scenes coarsened: the 10 mm alpha = 40 root waves (not skews), 0 is straight, 80 coils, twist skews") {
+  // 0.1 mm elements and 0.1 h steps as the coarse tests do; grown to 10 mm (the scene's own length)
+  const fs::path src = ROOTSIM_SOURCE_DIR;
+  const fs::path d = scratch("patterns");
+  const std::string coarse = " --set root.element_length_mm=0.1 --set growth.step_h=0.1 --set output.vtk=false"
+                             " --set output.trajectory=false --quiet";
+  struct Expect { const char* scene; const char* sets; const char* pattern; };
+  const Expect cases[] = {
+      {"fig2a_alpha40", " --set growth.steps=450", "waving"},  // 1.1 + 450 x 0.02 mm = 10.1 mm
+      {"fig2a_alpha0", " --set growth.steps=450", "straight"},
+      {"fig2a_alpha80", " --set growth.steps=450", "coiling"},
+      {"fig4a_skewing", " --set growth.steps=500", "skewing"},
+  };
+  for (const auto& c : cases) {
+    INFO(c.scene);
+    const fs::path out = d / c.scene;
+    const Result r = run("run " + (src / "scenes" / (std::string(c.scene) + ".toml")).string() + coarse + c.sets +
+                         " --out " + out.string());
+    REQUIRE(r.code == 0);
+    const std::string j = slurp(out / "summary.json");
+    INFO(j);
+    CHECK(j.find(std::string("\"pattern\": \"") + c.pattern + "\"") != std::string::npos);
+    CHECK(j.find("\"amplitude_half_mm\"") != std::string::npos);
+    CHECK(slurp(out / "result.csv").find(",amplitude_mm,amplitude_half_mm,") != std::string::npos);
+  }
+}
+
 // --- rootsim never deletes or overwrites what it did not write (the run-directory marker) ---
 
 TEST_CASE("--out at a user's folder holding the scene: refused, the folder untouched") {

@@ -27,16 +27,31 @@ struct ZoneObservables {
 };
 ZoneObservables observeZone(const Model& m, const RodState& s, const RodStrains& k);
 
-// the final shape on the plate
+// the final shape on the plate (MODEL.md section 8). Waves are read from the turning points ("peaks") of
+// the lateral displacement of the mature part along the rod, found with a hysteresis of
+// analysis.wave_min_amplitude_r * R so numerical ripples are not peaks; consecutive peaks alternate sides.
 struct ShapeAnalysis {
   std::string pattern;        // straight | waving | coiling | skewing
-  double wavelength = 0;      // mean distance between neighbouring lateral peaks along downhill [m] (0: none)
-  double amplitude = 0;       // half the mean lateral peak-to-peak distance [m]
-  int peaks = 0;              // lateral extrema used
-  double skew = 0;            // mean planar angle of the mature shape [rad]
+  double wavelength = 0;      // lambda: mean downhill distance between successive peaks on the same side
+                              //   (a full wave) [m] (0: fewer than 3 peaks)
+  double amplitude = 0;       // A: mean lateral distance between neighbouring (opposite) peaks, the
+                              //   peak-to-peak excursion, as the paper's Fig. 3B caption measures it [m]
+                              //   (0: fewer than 2 peaks)
+  double amplitudeHalf = 0;   // A / 2, the half excursion (what the triangle argument of Eq. 10 calls A) [m]
+  int peaks = 0;              // lateral turning points used
+  double waves = 0;           // full waves between the first and the last peak, (peaks - 1) / 2
+  double skew = 0;            // mean planar angle of the mature shape [rad]: over whole waves (first peak to
+                              //   the last peak on its side) when there are at least 3 peaks, otherwise
+                              //   the direction of the mature part as a whole
+  bool skewJudged = false;    // true when the pattern could be "skewing": no waves at all (fewer than 2
+                              //   peaks) or at least analysis.skew_min_waves full waves
   double maxKappa = 0;        // max curvature of the shape projected on the plane [1/m]
   double thetaMin = 0, thetaMax = 0;  // range of the unwrapped planar tangent angle [rad]
 };
+// pattern rule, in order: coiling if the planar tangent turns through more than analysis.coil_turn_deg;
+// with 2 or more peaks but fewer than analysis.skew_min_waves full waves: waving (a short root's mean
+// angle is biased by its incomplete wave, so a skew is not judged); otherwise skewing if |skew| exceeds
+// analysis.skew_threshold_deg; otherwise waving (2 or more peaks) or straight.
 ShapeAnalysis analyseShape(const Model& m, const RodState& s);
 
 }  // namespace rootsim

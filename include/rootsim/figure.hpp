@@ -21,14 +21,14 @@ struct PlateWindow {
 using TileRenderer = std::function<Raster(const Snapshot&, const SceneInfo&, const PlateWindow&)>;
 
 struct FigureOptions {
-  bool quick = false;   // coarsened runs (0.1 mm elements, 0.1 h steps, shorter growth): for CI
+  bool quick = false;   // coarsened runs (0.1 mm elements, 0.1 h steps, shorter growth, 15 deg phase grid): for CI
   std::string out = "figures";
   int jobs = 2;         // parallel simulations
   bool quiet = false;
   TileRenderer renderTile;  // if empty, roots are drawn as centreline strokes of width 2R
 };
 
-// fig2a, fig2b, fig2cde, fig3a, fig3b, fig3d, fig4a, fig4g
+// fig2a, fig2b, fig2cde, fig3a, fig3b, fig3d, fig3d_gamma1, fig3d_apical, fig4a, fig4g
 const std::vector<std::string>& figureNames();
 
 // makes one panel (or "all" plus report.md); returns a markdown section describing it;

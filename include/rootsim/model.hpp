@@ -31,7 +31,9 @@ struct TropismParams {
 struct AnalysisParams {
   double skewThresholdDeg = 5.0;   // |<theta>| above this is "skewing" [deg]
   double coilTurnDeg = 180.0;      // planar tangent turning through more than this is "coiling" [deg]
-  double waveMinAmplitude = 0.5;   // lateral peak-to-peak below this many R is "straight"
+  double waveMinAmplitude = 0.5;   // hysteresis of the lateral turning points, in R: a swing smaller than
+                                   // this is not a peak (so a root whose lateral peak-to-peak stays below it is "straight")
+  double skewMinWaves = 2.0;       // a skew is judged only over at least this many full waves (MODEL.md section 8)
 };
 
 struct OutputParams {

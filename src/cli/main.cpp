@@ -65,7 +65,7 @@ int main(int argc, char** argv) {
 
   cli::FigureCliOptions figure;
   CLI::App* cFigure = app.add_subcommand("figure", "make the paper's figure panels (PNG + SVG) and report.md");
-  cFigure->add_option("name", figure.name, "fig2a fig2b fig2cde fig3a fig3b fig3d fig4a fig4g, or all")->required();
+  cFigure->add_option("name", figure.name, "fig2a fig2b fig2cde fig3a fig3b fig3d fig3d_gamma1 fig3d_apical fig4a fig4g, or all")->required();
   cFigure->add_flag("--quick", figure.quick, "coarsened runs (for CI)");
   cFigure->add_option("--out", figure.out, "output folder (default: figures)");
   cFigure->add_option("-j,--jobs", figure.jobs, "parallel simulations")->check(CLI::Range(1, 1024));

@@ -31,12 +31,14 @@ struct Case {
   double alpha = 40, beta = 0.1, gamma = 0.1, rTau = 0;
   bool free = false;        // free organ: no plate, no adhesion
   double lengthMm = 10;     // grown to this length
+  bool apical = false;      // apical gravisensing (MODEL.md section 5) instead of local
 };
 
 // one claim of the paper with its theory value, the paper's value and the measured value
 struct Claim {
   std::string what, theory, paper, measured, tolerance;
   bool agrees;
+  std::string note = "";  // what was found when it does not agree (printed under the table)
 };
 
 struct Ctx {
@@ -46,6 +48,8 @@ struct Ctx {
   fs::path runs() const { return fs::path(opt.out) / "runs"; }
   double h() const { return opt.quick ? 0.1 : 0.05; }   // element length [mm]
   double dt() const { return opt.quick ? 0.1 : 0.05; }  // growth step [h]
+  // the phase diagrams' step in alpha [deg]: the tolerance of every transition-angle claim
+  double alphaStep() const { return opt.quick ? 15 : 5; }
 };
 
 std::string num(double v) {
@@ -56,7 +60,8 @@ std::string num(double v) {
 
 std::string dirOf(const Ctx& c, const Case& k) {
   return std::string(c.opt.quick ? "quick" : "full") + "_a" + num(k.alpha) + "_b" + num(k.beta) + "_g" +
-         num(k.gamma) + "_t" + num(k.rTau) + (k.free ? "_free" : "") + "_L" + num(k.lengthMm);
+         num(k.gamma) + "_t" + num(k.rTau) + (k.free ? "_free" : "") + (k.apical ? "_apical" : "") + "_L" +
+         num(k.lengthMm);
 }
 
 std::vector<std::string> setsOf(const Ctx& c, const Case& k) {
@@ -67,6 +72,7 @@ std::vector<std::string> setsOf(const Ctx& c, const Case& k) {
       "root.element_length_mm=" + num(c.h()), "growth.step_h=" + num(c.dt()),
       "growth.steps=" + std::to_string(steps), "output.vtk=false",
       "output.every_steps=" + std::to_string(std::max(1, static_cast<int>(std::lround(0.5 / c.dt()))))};
+  if (k.apical) s.push_back("tropism.sensing=apical");
   if (k.free) {
     s.push_back("plane.enabled=false");
     s.push_back("adhesion.enabled=false");
@@ -247,12 +253,48 @@ Series points(std::vector<double> x, std::vector<double> y, int color, char mark
   return s;
 }
 
+// the referee's tolerances (issue 13): a scaling law holds when measured / predicted is within +-25 %;
+// a ratio of two measured quantities that the paper says is 1 holds within 0.75 ... 1.33 (symmetric in log)
+constexpr double kScaleLo = 0.75, kScaleHi = 1.25, kRatioLo = 0.75, kRatioHi = 1.33;
+const char* kScaleTol = "±25 % (0.75 … 1.25)";
+const char* kRatioTol = "0.75 … 1.33";
+bool within(double v, double lo, double hi) { return std::isfinite(v) && v >= lo && v <= hi; }
+
+// median of the finite values (NaN if none)
+double median(std::vector<double> v) {
+  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
+  if (v.empty()) return NAN;
+  std::sort(v.begin(), v.end());
+  const size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+// "k of n within lo ... hi"
+std::string countWithin(const std::vector<double>& v, double lo, double hi) {
+  int k = 0, n = 0;
+  for (double x : v)
+    if (std::isfinite(x)) { ++n; k += within(x, lo, hi); }
+  return std::to_string(k) + " of " + std::to_string(n) + " runs within";
+}
+
+// times where y crosses zero, interpolated linearly, after time t0 [h]
+std::vector<double> zeroCrossings(const std::vector<double>& t, const std::vector<double>& y, double t0) {
+  std::vector<double> z;
+  for (size_t i = 1; i < t.size(); ++i)
+    if (t[i - 1] >= t0 && y[i - 1] * y[i] < 0) z.push_back(t[i - 1] + (t[i] - t[i - 1]) * (-y[i - 1]) / (y[i] - y[i - 1]));
+  return z;
+}
+// mean spacing of successive values (NaN if fewer than 2)
+double meanSpacing(const std::vector<double>& z) {
+  return z.size() >= 2 ? (z.back() - z.front()) / static_cast<double>(z.size() - 1) : NAN;
+}
+
 Model modelOf(const Case& k) {
   Model m;
   m.env.plane.alpha = k.alpha * kDeg;
   m.tropism.beta = k.beta;
   m.tropism.gamma = k.gamma;
   m.tropism.rTau = k.rTau;
+  m.tropism.sensing = k.apical ? Sensing::Apical : Sensing::Local;
   return m;
 }
 
@@ -263,13 +305,61 @@ std::string md(const Ctx& c, const std::string& name, const std::string& caption
 
 // ---------------------------------------------------------------------------------------------------
 
+// a transition in alpha, located by bisection: above(pattern) holds on the high-alpha side
+struct Transition {
+  std::function<bool(const std::string&)> above;
+  double lo = NAN, hi = NAN;  // bracket [deg]: the pattern at lo is below the transition, at hi above
+  int runs = 0;               // bisection runs made
+  std::string log;            // markdown rows "| alpha | pattern |" of the bisection runs
+};
+
+// brackets a transition from a grid of runs ordered by alpha: the first run above, and the run before it
+void bracket(Transition& tr, const std::vector<double>& alphas, const std::vector<std::string>& patterns) {
+  for (size_t i = 1; i < alphas.size(); ++i)
+    if (tr.above(patterns[i]) && !tr.above(patterns[i - 1])) {
+      tr.lo = alphas[i - 1];
+      tr.hi = alphas[i];
+      return;
+    }
+}
+
+// halves every bracket until it is at most `width` [deg] wide; the midpoints of all brackets run together
+void bisect(const Ctx& c, const Case& base, std::vector<Transition*> trs, double width) {
+  for (;;) {
+    std::vector<Case> cs;
+    std::vector<Transition*> who;
+    for (Transition* tr : trs)
+      if (std::isfinite(tr->lo) && tr->hi - tr->lo > width + 1e-9) {
+        Case k = base;
+        k.alpha = 0.5 * (tr->lo + tr->hi);
+        cs.push_back(k);
+        who.push_back(tr);
+      }
+    if (cs.empty()) return;
+    runCases(c, cs);
+    for (size_t j = 0; j < cs.size(); ++j) {
+      const std::string pat = result(c, cs[j]).at("pattern");
+      (who[j]->above(pat) ? who[j]->hi : who[j]->lo) = cs[j].alpha;
+      ++who[j]->runs;
+      who[j]->log += "| " + num(cs[j].alpha) + " | " + pat + " |\n";
+    }
+  }
+}
+
 std::string fig2a(const Ctx& c) {
-  const std::vector<double> alphas = c.opt.quick ? std::vector<double>{0, 20, 40, 60, 80}
-                                                 : std::vector<double>{0, 10, 20, 30, 40, 50, 60, 70, 80, 90};
+  // the paper's ten tilts; quick: the quick phase grid, so these runs are shared with fig3d
+  std::vector<double> alphas;
+  for (double a = 0; a <= 90 + 1e-9; a += c.opt.quick ? c.alphaStep() : 10) alphas.push_back(a);
   const double L = c.opt.quick ? 12 : 15;
   std::vector<Case> cases;
   for (double a : alphas) cases.push_back(Case{a, 0.1, 0.1, 0, false, L});
-  runCases(c, cases);
+  // the shipped Fig. 2A scene as it is (scenes/fig2a_alpha40.toml: 10 mm), run in the same batch
+  const Case short40{40, 0.1, 0.1, 0, false, 10};
+  {
+    std::vector<Case> batch = cases;
+    batch.push_back(short40);
+    runCases(c, batch);
+  }
   std::vector<std::vector<Snapshot>> traj;
   std::vector<const Snapshot*> finals;
   for (const auto& k : cases) traj.push_back(trajectory(c, k));
@@ -288,8 +378,7 @@ std::string fig2a(const Ctx& c) {
   f.width = 170 * f.cols + 40;
   f.height = 780;
   f.title = "Fig. 2A: final shapes on the plate (β = γ = 0.1, 1 mm grid; downhill is down)";
-  std::string table = "| α (deg) | pattern | λ (mm) | A (mm) | θ range (deg) |\n|---|---|---|---|---|\n";
-  double firstWave = NAN, firstCoil = NAN;
+  std::string table = "| α (deg) | pattern | λ (mm) | A peak-to-peak (mm) | θ range (deg) |\n|---|---|---|---|---|\n";
   bool straight0 = false;
   for (size_t i = 0; i < cases.size(); ++i) {
     const Row r = result(c, cases[i]);
@@ -307,37 +396,78 @@ std::string fig2a(const Ctx& c) {
     f.axes.push_back(ax);
     const std::string pat = r.at("pattern");
     if (cases[i].alpha == 0) straight0 = pat == "straight";
-    if (pat == "waving" && std::isnan(firstWave)) firstWave = cases[i].alpha;
-    if (pat == "coiling" && std::isnan(firstCoil)) firstCoil = cases[i].alpha;
     table += "| " + num(cases[i].alpha) + " | " + pat + " | " + fmt3(val(r, "wavelength_mm")) + " | " +
              fmt3(val(r, "amplitude_mm")) + " | " + num(std::round(val(r, "theta_min_deg"))) + " .. " +
              num(std::round(val(r, "theta_max_deg"))) + " |\n";
   }
   saveFigure(f, (fs::path(c.opt.out) / "fig2a").string());
   const Theory t = theoryFor(modelOf(cases[0]));
-  const double step = alphas[1] - alphas[0];
   c.claims->push_back({"Fig. 2A: α = 0 grows straight", "straight", "straight", straight0 ? "straight" : "not straight",
                        "pattern", straight0});
-  c.claims->push_back({"Fig. 2A: waving sets in at α_s→w (β = 0.1)", fmt3(t.alphaStraightToWave / kDeg) + "° (Eq. 12)",
-                       "≈ 15°", std::isnan(firstWave) ? "no waving" : "first waving run at " + num(firstWave) + "°",
-                       "within one grid step (" + num(step) + "°) of Eq. 12",
-                       std::abs(firstWave - t.alphaStraightToWave / kDeg) <= step});
-  c.claims->push_back({"Fig. 2A: coiling sets in at α_w→c (β = 0.1)", fmt3(t.alphaWaveToCoil / kDeg) + "° (Eq. 13)",
-                       "≈ 50°", std::isnan(firstCoil) ? "no coiling" : "first coiling run at " + num(firstCoil) + "°",
-                       "within one grid step (" + num(step) + "°) of Eq. 13",
-                       std::abs(firstCoil - t.alphaWaveToCoil / kDeg) <= step});
+  // the transition angles: bracketed by the grid above, then bisected to a quarter of the phase step
+  std::vector<double> gridA;
+  std::vector<std::string> gridP;
+  for (const auto& k : cases) {
+    gridA.push_back(k.alpha);
+    gridP.push_back(result(c, k).at("pattern"));
+  }
+  Transition sw, wc;
+  sw.above = [](const std::string& p) { return p != "straight"; };
+  wc.above = [](const std::string& p) { return p == "coiling"; };
+  bracket(sw, gridA, gridP);
+  bracket(wc, gridA, gridP);
+  const double width = c.alphaStep() / 4;
+  bisect(c, cases[0], {&sw, &wc}, width);
+  const double step = c.alphaStep();
+  auto transitionClaim = [&](const std::string& what, const Transition& tr, double theoryDeg, const std::string& eq,
+                             const std::string& paper) {
+    const double mid = 0.5 * (tr.lo + tr.hi);
+    const std::string meas = std::isfinite(mid) ? fmt3(mid) + "° (bracket " + num(tr.lo) + "° … " + num(tr.hi) + "°, " +
+                                                      std::to_string(tr.runs) + " bisection runs)"
+                                                : "no bracket on the grid";
+    c.claims->push_back({what, fmt3(theoryDeg) + "° (" + eq + ")", paper, meas,
+                         "within the phase step (" + num(step) + "°) of " + eq, std::abs(mid - theoryDeg) <= step});
+  };
+  transitionClaim("Fig. 2A: waving sets in at α_s→w (β = 0.1), by bisection", sw, t.alphaStraightToWave / kDeg, "Eq. 12",
+                  "≈ 15°");
+  transitionClaim("Fig. 2A: coiling sets in at α_w→c (β = 0.1), by bisection", wc, t.alphaWaveToCoil / kDeg, "Eq. 13",
+                  "≈ 50°");
+  // the Fig. 2A scene as shipped: a short root that waves
+  const Row rs = result(c, short40);
+  c.claims->push_back({"Fig. 2A: the 10 mm root at α = 40° (β = γ = 0.1) waves", "waving", "waving (Fig. 2A)",
+                       rs.at("pattern") + " (" + rs.at("lateral_peaks") + " lateral peaks, θ " +
+                           num(std::round(val(rs, "theta_min_deg"))) + "° … " + num(std::round(val(rs, "theta_max_deg"))) +
+                           "°, mean angle " + fmt3(val(rs, "skew_deg")) + "°)",
+                       "pattern", rs.at("pattern") == "waving"});
+  table += "\nTransition angles by bisection (the grid's bracket halved down to " + num(width) +
+           "°; each row one run):\n\n| α (deg) | pattern |\n|---|---|\n" + sw.log + wc.log;
   return md(c, "fig2a", "Final top views for increasing tilt. Theory (Eqs. 12, 13) at β Lgz/R = " + num(t.effectiveGain) +
                             ": straight → waving at " + fmt3(t.alphaStraightToWave / kDeg) + "°, waving → coiling at " +
-                            fmt3(t.alphaWaveToCoil / kDeg) + "°.",
+                            fmt3(t.alphaWaveToCoil / kDeg) + "°. Measured by bisection: straight → waving between " +
+                            num(sw.lo) + "° and " + num(sw.hi) + "°, waving → coiling between " + num(wc.lo) + "° and " +
+                            num(wc.hi) + "°.",
             table);
 }
 
 Case wavingCase(const Ctx& c) { return Case{40, 0.2, 0.1, 0, false, c.opt.quick ? 13.1 : 31.1}; }
 Case freeCase(const Ctx& c) { return Case{40, 0.2, 0.1, 0, true, c.opt.quick ? 7.1 : 13.1}; }
+// free organs over the paper's range of beta (Lgz/R = 10), 20 h of growth each: Eq. 7's exponent
+const std::vector<double> kFreeBetas = {0.05, 0.1, 0.2, 0.5, 1.0};
+std::vector<Case> freeOrgans() {
+  std::vector<Case> f;
+  for (double bt : kFreeBetas) f.push_back(Case{40, bt, 0.1, 0, true, 5.1});
+  return f;
+}
+// every run of fig2b and fig2cde, in one batch (so both jobs stay busy)
+std::vector<Case> fig2Runs(const Ctx& c) {
+  std::vector<Case> b = {wavingCase(c), freeCase(c)};
+  for (const Case& k : freeOrgans()) b.push_back(k);
+  return b;
+}
 
 std::string fig2b(const Ctx& c) {
   const Case w = wavingCase(c);
-  runCases(c, {w});
+  runCases(c, fig2Runs(c));
   const auto traj = trajectory(c, w);
   // five snapshots, evenly spaced in time after the first one
   std::vector<const Snapshot*> snaps;
@@ -369,18 +499,22 @@ std::string fig2b(const Ctx& c) {
   const double lam = val(r, "wavelength_mm"), A = val(r, "amplitude_mm");
   c.claims->push_back({"Fig. 2B: the root waves (α = 40°, β = 0.2)", "waving", "waving", r.at("pattern"), "pattern",
                        r.at("pattern") == "waving"});
-  c.claims->push_back({"Eq. 9: wavelength λ = 2 T0 v_tip", fmt3(t.wavelength * 1e3) + " mm", "—", fmt3(lam) + " mm",
-                       "±30 % (a scaling law)", std::abs(lam / (t.wavelength * 1e3) - 1) <= 0.3});
-  c.claims->push_back({"Eq. 10: amplitude A = T0 v_tip tan(α) / 2", fmt3(t.amplitude * 1e3) + " mm", "—", fmt3(A) + " mm",
-                       "factor 2 (a scaling law)", A > 0.5 * t.amplitude * 1e3 && A < 2 * t.amplitude * 1e3});
+  const double rl = lam / (t.wavelength * 1e3), ra = A / (t.amplitude * 1e3);
+  c.claims->push_back({"Eq. 9: wavelength λ = 2 T0 v_tip (α = 40°, β = 0.2)", fmt3(t.wavelength * 1e3) + " mm", "—",
+                       fmt3(lam) + " mm (ratio " + fmt3(rl) + ")", kScaleTol, within(rl, kScaleLo, kScaleHi)});
+  c.claims->push_back({"Eq. 10: amplitude A = T0 v_tip tan(α) / 2, A peak-to-peak (α = 40°, β = 0.2)",
+                       fmt3(t.amplitude * 1e3) + " mm", "—", fmt3(A) + " mm (ratio " + fmt3(ra) + ")", kScaleTol,
+                       within(ra, kScaleLo, kScaleHi)});
   return md(c, "fig2b", "Five top views of the waving root, evenly spaced in time, at one scale. λ = " + fmt3(lam) +
-                            " mm (Eq. 9: " + fmt3(t.wavelength * 1e3) + " mm), A = " + fmt3(A) + " mm (Eq. 10: " +
-                            fmt3(t.amplitude * 1e3) + " mm).");
+                            " mm (Eq. 9: " + fmt3(t.wavelength * 1e3) + " mm), A = " + fmt3(A) + " mm peak-to-peak, A/2 = " +
+                            fmt3(val(r, "amplitude_half_mm")) + " mm (Eq. 10: " + fmt3(t.amplitude * 1e3) + " mm).");
 }
 
 std::string fig2cde(const Ctx& c) {
   const Case w = wavingCase(c), fr = freeCase(c);
-  runCases(c, {w, fr});
+  runCases(c, fig2Runs(c));
+  const std::vector<double>& betas = kFreeBetas;
+  const std::vector<Case> frees = freeOrgans();
   const auto sw = series(c, w), sf = series(c, fr);
   std::vector<double> t, th, eb, et, wr, tw, tf, thf;
   for (const auto& r : sw) {
@@ -435,16 +569,75 @@ std::string fig2cde(const Ctx& c) {
   const bool decays = lobes.size() >= 3 && lobes[1] < lobes[0];
   double late = 0;  // the waving root's swing in the last third
   for (size_t i = 2 * th.size() / 3; i < th.size(); ++i) late = std::max(late, std::abs(th[i]));
-  c.claims->push_back({"Eq. 7: first sideways snap near the turning time T0", fmt3(theo.T0 / 3600) + " h", "≈ T0",
-                       fmt3(snap) + " h", "within a factor 2", snap > 0.5 * theo.T0 / 3600 && snap < 2 * theo.T0 / 3600});
-  c.claims->push_back({"Fig. 2C: the free organ reaches the vertical in about T0", fmt3(theo.T0 / 3600) + " h", "≈ T0",
-                       fmt3(turn) + " h", "within a factor 2", turn > 0.5 * theo.T0 / 3600 && turn < 2 * theo.T0 / 3600});
+  const double T0h = theo.T0 / 3600;
+  const Model mw = modelOf(w);
+  const double vtipMmH = mw.growth.rate * mw.growth.zoneLength * 3600.0 * 1e3;  // v_tip [mm/h]
+  c.claims->push_back({"Eq. 7: first sideways snap at the turning time T0 (α = 40°, β = 0.2)", fmt3(T0h) + " h", "≈ T0",
+                       fmt3(snap) + " h (ratio " + fmt3(snap / T0h) + ")", kScaleTol, within(snap / T0h, kScaleLo, kScaleHi)});
+  // Eq. 7's exponent from the free organs run above
+  std::string table = "Free organ (α = 40°, γ = 0.1) reaching the vertical, against Eq. 7:\n\n"
+                      "| β | β Lgz/R | T0 Eq. 7 (h) | turning time (h) | ratio |\n|---|---|---|---|---|\n";
+  double sx = 0, sy = 0, sxx = 0, sxy = 0;
+  int nfit = 0;
+  for (const auto& k : frees) {
+    const Row rk = result(c, k);
+    const double g = val(rk, "effective_gain"), T = val(rk, "first_snap_or_turning_h"), T0k = val(rk, "T0_h");
+    table += "| " + num(k.beta) + " | " + num(g) + " | " + fmt3(T0k) + " | " + fmt3(T) + " | " + fmt3(T / T0k) + " |\n";
+    if (!std::isfinite(T)) continue;
+    const double x = std::log(g), y = std::log(T);
+    sx += x; sy += y; sxx += x * x; sxy += x * y;
+    ++nfit;
+  }
+  const double slope = nfit >= 2 ? (nfit * sxy - sx * sy) / (nfit * sxx - sx * sx) : NAN;
+  // turning time / T0 at the ends of the beta range, and the local exponents there
+  std::vector<double> Tf, gf;
+  for (const auto& k : frees) {
+    const Row rk = result(c, k);
+    Tf.push_back(val(rk, "first_snap_or_turning_h") / val(rk, "T0_h"));
+    gf.push_back(val(rk, "effective_gain"));
+  }
+  auto localExp = [&](size_t i, size_t j) {
+    return std::log(Tf[j] / Tf[i]) / std::log(gf[j] / gf[i]) - 0.6;  // Tf is T / T0 and T0 ~ g^-0.6
+  };
+  const double eLo = localExp(0, 1), eHi = localExp(Tf.size() - 2, Tf.size() - 1);
+  const double halfWave = val(r, "wavelength_mm") / (2 * vtipMmH);  // time to grow half a wave [h]
+  c.claims->push_back({"Eq. 7: the free organ reaches the vertical at T0 (α = 40°, β = 0.2)", fmt3(T0h) + " h", "≈ T0",
+                       fmt3(turn) + " h (ratio " + fmt3(turn / T0h) + ")", kScaleTol, within(turn / T0h, kScaleLo, kScaleHi),
+                       "Eq. 7 is a scaling law (the paper writes ∼): its π/2 prefactor and −3/5 exponent are the paper's "
+                       "fit to its own free-organ runs (SI 5), derived with γ = 0. On the plate the same root snaps first "
+                       "at " + fmt3(snap / T0h) + " T0 and grows half a wave in λ / (2 v_tip) = " + fmt3(halfWave / T0h) +
+                       " T0, as Eq. 7's T0 says (Eqs. 7, 9 hold); the free organ crosses the vertical earlier, and its "
+                       "turning time / T0 drifts with β from " + fmt3(Tf.front()) + " (β = " + num(betas.front()) +
+                       ") to " + fmt3(Tf.back()) + " (β = " + num(betas.back()) + "; table under fig2cde), so no O(1) "
+                       "prefactor makes Eq. 7 hold for all β. The crossing time is interpolated between growth steps; "
+                       "README (Claims) lists the full-resolution runs (γ = 0 and a horizontal start included) that "
+                       "give the same picture."});
+  c.claims->push_back({"Eq. 7: the free organ's turning time ∝ (β Lgz/R)^(−3/5) (β = 0.05 … 1)", "exponent −0.6",
+                       "−3/5 (fit to the paper's free-organ runs, SI 5)",
+                       "exponent " + fmt3(slope) + " (least squares over " + std::to_string(nfit) + " runs; ratio " +
+                           fmt3(slope / -0.6) + ")",
+                       std::string(kScaleTol) + " of the exponent", within(slope / -0.6, kScaleLo, kScaleHi),
+                       "The local exponent steepens with the gain: " + fmt3(eLo) + " between β = " + num(betas[0]) +
+                           " and " + num(betas[1]) + ", " + fmt3(eHi) + " between β = " + num(betas[betas.size() - 2]) +
+                           " and " + num(betas.back()) + ". This model, as MODEL.md specifies it, does not reproduce the "
+                           "paper's fitted −3/5; not refitted."});
+  // Fig. 2C: "both profiles present oscillations with a similar period": the mean time between crossings
+  // of theta_tip = 0 (half a period), for the waving root after its first snap and for the free organ
+  const double halfW = meanSpacing(zeroCrossings(t, th, snap)), halfF = meanSpacing(zeroCrossings(tf, thf, 0));
+  c.claims->push_back({"Fig. 2C: the free organ and the waving root oscillate with a similar period", "ratio 1",
+                       "similar period", "half-periods " + fmt3(halfF) + " h (free) / " + fmt3(halfW) + " h (waving): ratio " +
+                           fmt3(halfF / halfW),
+                       kRatioTol, within(halfF / halfW, kRatioLo, kRatioHi)});
   c.claims->push_back({"Fig. 2C: the free organ's oscillation decays, the waving one does not", "—", "decays / persists",
                        "free lobes " + (lobes.size() >= 2 ? fmt3(lobes[0]) + "°, " + fmt3(lobes[1]) + "°" : std::string("n/a")) +
                            "; waving swing in the last third " + fmt3(late) + "°",
                        "second lobe smaller; waving swing > 20°", decays && late > 20});
+  table += "\nMeasured exponent of the turning time against β Lgz/R: " + fmt3(slope) +
+           " (Eq. 7: −0.6). Half-periods of θ_tip: free organ " + fmt3(halfF) + " h, waving root " + fmt3(halfW) +
+           " h; λ / (2 v_tip) = " + fmt3(val(r, "wavelength_mm") / (2 * vtipMmH)) + " h; T0 = " + fmt3(T0h) + " h.\n";
   return md(c, "fig2cde", "(C) tip angle of the waving root and of the free organ; (D) bending and twisting energy of the "
-                          "growth zone; (E) its writhe and twist. Each sideways snap releases bending energy.");
+                          "growth zone; (E) its writhe and twist. Each sideways snap releases bending energy.",
+            table);
 }
 
 std::vector<Case> scalingCases(const Ctx& c) {
@@ -456,8 +649,8 @@ std::vector<Case> scalingCases(const Ctx& c) {
   return cs;
 }
 
-// measured against predicted with the identity line; returns the median ratio measured / predicted
-double identityPlot(const Ctx& c, const std::string& name, const std::string& title, const std::string& xl,
+// measured against predicted with the identity line
+void identityPlot(const Ctx& c, const std::string& name, const std::string& title, const std::string& xl,
                     const std::string& yl, const std::vector<double>& x, const std::vector<double>& y, int color, char mark,
                     const std::string& label, const std::string& lineLabel) {
   double hi = 0.5;
@@ -478,68 +671,102 @@ double identityPlot(const Ctx& c, const std::string& name, const std::string& ti
   ax.legendPos = "nw";
   f.axes.push_back(ax);
   saveFigure(f, (fs::path(c.opt.out) / name).string());
-  std::vector<double> ratio;
-  for (size_t i = 0; i < x.size(); ++i)
-    if (std::isfinite(x[i]) && std::isfinite(y[i]) && x[i] > 0) ratio.push_back(y[i] / x[i]);
-  if (ratio.empty()) return NAN;
-  std::sort(ratio.begin(), ratio.end());
-  return ratio[ratio.size() / 2];
 }
 
 std::string fig3a(const Ctx& c) {
   const auto cs = scalingCases(c);
   runCases(c, cs);
-  std::vector<double> pred, meas;
-  std::string table = "| α | β | max κ measured (1/mm) | Eq. 8 (1/mm) |\n|---|---|---|---|\n";
+  // Eq. 6 is about waving patterns: only the runs that wave are plotted and counted
+  std::vector<double> pred, meas, ratio;
+  std::string table = "| α | β | pattern | max κ measured (1/mm) | Eq. 8 (1/mm) | ratio |\n|---|---|---|---|---|---|\n";
   for (const auto& k : cs) {
     const Row r = result(c, k);
-    pred.push_back(val(r, "max_kappa_eq8_per_mm"));
-    meas.push_back(val(r, "max_kappa_per_mm"));
-    table += "| " + num(k.alpha) + " | " + num(k.beta) + " | " + fmt3(meas.back()) + " | " + fmt3(pred.back()) + " |\n";
+    const double p = val(r, "max_kappa_eq8_per_mm"), mk = val(r, "max_kappa_per_mm");
+    table += "| " + num(k.alpha) + " | " + num(k.beta) + " | " + r.at("pattern") + " | " + fmt3(mk) + " | " + fmt3(p) +
+             " | " + fmt3(mk / p) + " |\n";
+    if (r.at("pattern") != "waving") continue;
+    pred.push_back(p);
+    meas.push_back(mk);
+    ratio.push_back(mk / p);
   }
-  const double med = identityPlot(c, "fig3a", "Fig. 3A: max curvature vs Eq. 8", "T0 (ε̇0/R) β sin α  (1/mm)",
-                                  "measured max κ (1/mm)", pred, meas, 0, 'o', "simulations (γ = 0.1)", "y = x");
-  c.claims->push_back({"Eq. 8: max κ ≈ T0 (ε̇0/R) β sin α", "ratio 1", "ratio ≈ 1 (Fig. 3A)",
-                       "median ratio " + fmt3(med), "0.5 … 2 (a scaling law)", med > 0.5 && med < 2});
-  return md(c, "fig3a", "Measured maximum projected curvature of the final shape against Eq. 8.", table);
+  identityPlot(c, "fig3a", "Fig. 3A: max curvature vs Eq. 8", "T0 (ε̇0/R) β sin α  (1/mm)", "measured max κ (1/mm)", pred,
+               meas, 0, 'o', "waving simulations (γ = 0.1)", "y = x");
+  const double med = median(ratio);
+  c.claims->push_back({"Eq. 8 (Fig. 3A): max κ ≈ T0 (ε̇0/R) β sin α", "ratio 1", "ratio ≈ 1",
+                       "median ratio " + fmt3(med) + " over " + std::to_string(ratio.size()) + " waving runs (" +
+                           countWithin(ratio, kScaleLo, kScaleHi) + " ±25 %)",
+                       kScaleTol, within(med, kScaleLo, kScaleHi)});
+  return md(c, "fig3a", "Measured maximum projected curvature of the final shape against Eq. 8 (waving runs only: Eq. 6 is "
+                        "about waving patterns).", table);
 }
 
 std::string fig3b(const Ctx& c) {
   const auto cs = scalingCases(c);
   runCases(c, cs);
-  std::vector<double> x, y;
-  std::string table = "| α | β | pattern | λ (mm) | A (mm) | 4A cot α (mm) | Eq. 9 λ (mm) |\n|---|---|---|---|---|---|---|\n";
+  std::vector<double> x, y, r11, r9, r10;
+  std::string table = "| α | β | pattern | λ (mm) | A (mm) | A/2 (mm) | 4A cot α (mm) | λ / 4A cot α | Eq. 9 λ (mm) | "
+                      "Eq. 10 A (mm) |\n|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& k : cs) {
     const Row r = result(c, k);
     const double lam = val(r, "wavelength_mm"), A = val(r, "amplitude_mm");
     const double pred = 4 * A / std::tan(k.alpha * kDeg);
     table += "| " + num(k.alpha) + " | " + num(k.beta) + " | " + r.at("pattern") + " | " + fmt3(lam) + " | " + fmt3(A) +
-             " | " + fmt3(pred) + " | " + fmt3(val(r, "wavelength_eq9_mm")) + " |\n";
+             " | " + fmt3(val(r, "amplitude_half_mm")) + " | " + fmt3(pred) + " | " + fmt3(lam / pred) + " | " +
+             fmt3(val(r, "wavelength_eq9_mm")) + " | " + fmt3(val(r, "amplitude_eq10_mm")) + " |\n";
     if (r.at("pattern") != "waving" || !std::isfinite(lam) || !std::isfinite(A)) continue;
     x.push_back(pred);
     y.push_back(lam);
+    r11.push_back(lam / pred);
+    r9.push_back(lam / val(r, "wavelength_eq9_mm"));
+    r10.push_back(A / val(r, "amplitude_eq10_mm"));
   }
-  const double med = identityPlot(c, "fig3b", "Fig. 3B: wavelength vs 4 A cot α (Eq. 11)", "4 A cot α  (mm)",
-                                  "wavelength λ (mm)", x, y, 1, 's', "waving simulations", "Eq. 11: λ = 4 A cot α");
-  c.claims->push_back({"Eq. 11: λ ≈ 4 A cot α", "ratio 1", "ratio ≈ 1 (Fig. 3B)", "median ratio " + fmt3(med) + " over " +
-                       std::to_string(x.size()) + " waving runs", "0.5 … 2 (a scaling law)", med > 0.5 && med < 2});
-  return md(c, "fig3b", "Wavelength against 4 A cot α for the runs that wave. A is half the mean lateral peak-to-peak "
-                        "distance (MODEL.md section 8). Measured λ / (4 A cot α) is close to 2 and A close to half of Eq. 10: "
-                        "with A taken as the full peak-to-peak distance both Eq. 10 and Eq. 11 would hold within about "
-                        "10 %, so the paper's A is probably the peak-to-peak excursion. Reported as measured, not refitted.",
+  identityPlot(c, "fig3b", "Fig. 3B: wavelength vs 4 A cot α (Eq. 11), A peak-to-peak", "4 A cot α  (mm)",
+               "wavelength λ (mm)", x, y, 1, 's', "waving simulations", "Eq. 11: λ = 4 A cot α");
+  const std::string over = " over " + std::to_string(r11.size()) + " waving runs (";
+  const double m11 = median(r11), m9 = median(r9), m10 = median(r10);
+  c.claims->push_back({"Eq. 11 (Fig. 3B): λ ≈ 4 A cot α, A peak-to-peak", "ratio 1", "ratio ≈ 1",
+                       "median λ / (4 A cot α) " + fmt3(m11) + over + countWithin(r11, kRatioLo, kRatioHi) + ")",
+                       kRatioTol, within(m11, kRatioLo, kRatioHi)});
+  c.claims->push_back({"Eq. 9 over the Fig. 3 runs: λ ≈ 2 T0 v_tip", "ratio 1", "tested in SI 5",
+                       "median ratio " + fmt3(m9) + over + countWithin(r9, kScaleLo, kScaleHi) + " ±25 %)", kScaleTol,
+                       within(m9, kScaleLo, kScaleHi)});
+  c.claims->push_back({"Eq. 10 over the Fig. 3 runs: A ≈ T0 v_tip tan(α) / 2, A peak-to-peak", "ratio 1", "tested in SI 5",
+                       "median ratio " + fmt3(m10) + over + countWithin(r10, kScaleLo, kScaleHi) + " ±25 %)", kScaleTol,
+                       within(m10, kScaleLo, kScaleHi)});
+  return md(c, "fig3b", "Wavelength against 4 A cot α for the runs that wave. λ is the mean downhill distance between "
+                        "successive lateral peaks on the same side; A is the mean lateral distance between neighbouring "
+                        "(opposite) peaks, the peak-to-peak excursion, as the paper's Fig. 3B caption measures it "
+                        "(\"distances between neighboring peaks ... normal to the downhill direction\"); A/2 is listed "
+                        "beside it. The paper's triangle argument for Eq. 10 would call that excursion 2A; with A/2 in "
+                        "place of A, λ / (4 A cot α) would double. This is the paper's own inconsistency (MODEL.md section "
+                        "8); the caption's definition is the one its Fig. 3B plots.",
             table);
 }
 
-std::string fig3d(const Ctx& c) {
-  const std::vector<double> betas = c.opt.quick ? std::vector<double>{0.1, 0.2, 0.5} : std::vector<double>{0.05, 0.1, 0.2, 0.5, 1.0};
-  const std::vector<double> alphas = c.opt.quick ? std::vector<double>{0, 20, 40, 60, 80}
-                                                 : std::vector<double>{0, 10, 20, 30, 40, 50, 60, 70, 80, 90};
+// a phase diagram over alpha (a grid of c.alphaStep() degrees) and beta Lgz / R, against Eqs. 12-13
+// (Fig. 3D: gamma = 0.1, local sensing; the SI's variants: gamma = 1, apical sensing)
+std::string phaseDiagram(const Ctx& c, const std::string& name, const std::string& variant, double gamma, bool apical) {
+  // quick: the SI's variants on one column only, beta Lgz / R = 5 (CI time: the fixture must stay
+  // under 2 minutes on a shared 2-core machine)
+  const bool variantOfSi = gamma != 0.1 || apical;
+  const std::vector<double> betas = !c.opt.quick ? std::vector<double>{0.05, 0.1, 0.2, 0.5, 1.0}
+                                    : variantOfSi ? std::vector<double>{0.5}
+                                                  : std::vector<double>{0.1, 0.2, 0.5};
+  std::vector<double> alphas;
+  for (double a = 0; a <= 90 + 1e-9; a += c.alphaStep()) alphas.push_back(a);
   std::vector<Case> cs;
   for (double b : betas)
-    for (double a : alphas) cs.push_back(Case{a, b, 0.1, 0, false, c.opt.quick ? 12.0 : 15.0});
+    for (double a : alphas) {
+      Case k{a, b, gamma, 0, false, c.opt.quick ? 12.0 : 15.0};
+      k.apical = apical;
+      cs.push_back(k);
+    }
   runCases(c, cs);
+  const double step = c.alphaStep();
   std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> byPattern;
   int agree = 0, total = 0;
+  std::string far;  // disagreeing cells farther than one step from a boundary of Eqs. 12-13
+  int nearMiss = 0, farMiss = 0;
   std::string table = "| β Lgz/R | α | simulated | Eqs. 12-13 |\n|---|---|---|---|\n";
   for (const auto& k : cs) {
     const Row r = result(c, k);
@@ -547,14 +774,33 @@ std::string fig3d(const Ctx& c) {
     const double g = val(r, "effective_gain");
     p.first.push_back(g);
     p.second.push_back(k.alpha);
-    const std::string th = k.alpha < val(r, "alpha_s_to_w_eq12_deg") ? "straight"
-                           : k.alpha < val(r, "alpha_w_to_c_eq13_deg") ? "waving" : "coiling";
+    double a12 = val(r, "alpha_s_to_w_eq12_deg");
+    if (!std::isfinite(a12)) a12 = 90;  // Eq. 12 without a solution: no waving below coiling
+    const double a13 = val(r, "alpha_w_to_c_eq13_deg");
+    const std::string th = k.alpha < std::min(a12, a13) ? "straight" : k.alpha < a13 ? "waving" : "coiling";
     ++total;
-    agree += r.at("pattern") == th;
-    table += "| " + num(g) + " | " + num(k.alpha) + " | " + r.at("pattern") + " | " + th + " |\n";
+    const bool ok = r.at("pattern") == th;
+    agree += ok;
+    if (!ok) {
+      // a miss is "near" only when the simulated pattern is the theory's neighbour across a boundary that
+      // lies within one step: straight/waving across Eq. 12, waving/coiling (or straight/coiling where
+      // Eq. 12 lies above Eq. 13) across Eq. 13
+      const std::string& sim = r.at("pattern");
+      auto is = [&](const char* x, const char* y) { return (sim == x && th == y) || (sim == y && th == x); };
+      const double b = is("straight", "waving") ? a12
+                       : is("waving", "coiling") || (is("straight", "coiling") && a12 >= a13) ? a13
+                                                                                            : NAN;
+      if (std::isfinite(b) && std::abs(k.alpha - b) <= step) ++nearMiss;
+      else {
+        ++farMiss;
+        far += (far.empty() ? "" : ", ") + std::string("g ") + num(g) + " α " + num(k.alpha) + "°: " + r.at("pattern") +
+               " (theory " + th + ")";
+      }
+    }
+    table += "| " + num(g) + " | " + num(k.alpha) + " | " + r.at("pattern") + " | " + th + (ok ? "" : " **≠**") + " |\n";
   }
   Axes ax;
-  ax.title = "Fig. 3D: phase diagram (γ = 0.1); background: Eqs. 12-13";
+  ax.title = "Fig. 3D: phase diagram (" + variant + "); background: Eqs. 12-13";
   ax.xlabel = "effective gravitropic gain β Lgz / R";
   ax.ylabel = "plate tilt α (deg)";
   ax.autoX = ax.autoY = false;
@@ -597,13 +843,27 @@ std::string fig3d(const Ctx& c) {
   f.width = 950;
   f.height = 720;
   f.axes.push_back(ax);
-  saveFigure(f, (fs::path(c.opt.out) / "fig3d").string());
-  c.claims->push_back({"Fig. 3D: simulated patterns follow Eqs. 12-13", "—", "agreement in most cells",
-                       std::to_string(agree) + " of " + std::to_string(total) + " cells agree", "≥ 60 % of cells",
-                       agree >= 0.6 * total});
-  return md(c, "fig3d", "Simulated pattern (symbols) over tilt and effective gain, on the regions predicted by Eqs. 12 and 13.",
+  saveFigure(f, (fs::path(c.opt.out) / name).string());
+  c.claims->push_back({"Fig. 3D (" + variant + "): simulated patterns follow Eqs. 12-13", "the regions of Eqs. 12-13",
+                       name == "fig3d" ? "good agreement" : "no qualitative difference (SI 7)",
+                       std::to_string(agree) + " of " + std::to_string(total) + " cells agree; " +
+                           std::to_string(nearMiss) + " disagree as the neighbouring phase within one step of its boundary, " +
+                           std::to_string(farMiss) + " farther" + (far.empty() ? "" : ": " + far),
+                       "a disagreement only as the neighbouring phase within the phase step (" + num(step) +
+                           "°) of their boundary",
+                       farMiss == 0,
+                       "Eqs. 12-13 were derived for γ = 0 and local sensing; the paper reports no qualitative difference "
+                       "for γ = 1 and apical sensing (SI 7). The cells are listed under the " + name + " panel (≠ marks a "
+                       "disagreement); README (Claims) lists full-resolution runs of the cells the quick report gets "
+                       "wrong, which tell a resolution effect from a property of the model."});
+  return md(c, name, "Simulated pattern (symbols) over tilt (" + num(step) + "° grid) and effective gain (" + variant +
+                         "), on the regions predicted by Eqs. 12 and 13 (derived for γ = 0 and local sensing).",
             table);
 }
+
+std::string fig3d(const Ctx& c) { return phaseDiagram(c, "fig3d", "γ = 0.1", 0.1, false); }
+std::string fig3dGamma1(const Ctx& c) { return phaseDiagram(c, "fig3d_gamma1", "γ = 1", 1.0, false); }
+std::string fig3dApical(const Ctx& c) { return phaseDiagram(c, "fig3d_apical", "γ = 0.1, apical sensing", 0.1, true); }
 
 std::vector<double> tauValues(const Ctx& c) {
   return c.opt.quick ? std::vector<double>{0, 0.1, 0.4} : std::vector<double>{0, 0.05, 0.1, 0.2, 0.4, 0.8};
@@ -689,8 +949,9 @@ std::string fig4g(const Ctx& c) {
   f.height = 620;
   f.axes.push_back(ax);
   saveFigure(f, (fs::path(c.opt.out) / "fig4g").string());
-  c.claims->push_back({"Eq. 15: sin⟨θ⟩ → tan α for ω T0 ≫ 1", "1", "≈ 1 (Fig. 4G)",
-                       fmt3(largeRatio) + " at ω T0 = " + fmt3(largeWT), "0.7 … 1.3", largeRatio > 0.7 && largeRatio < 1.3});
+  c.claims->push_back({"Eq. 15: sin⟨θ⟩ → tan α for ω T0 ≫ 1", "ratio 1", "≈ 1 (Fig. 4G)",
+                       "sin⟨θ⟩ / tan α = " + fmt3(largeRatio) + " at ω T0 = " + fmt3(largeWT), kRatioTol,
+                       within(largeRatio, kRatioLo, kRatioHi)});
   return md(c, "fig4g", "Skewing angle against the apex twist rate, with the limits of Eqs. 14 and 15.", table);
 }
 
@@ -701,6 +962,8 @@ std::string makeOne(const std::string& name, const Ctx& c) {
   if (name == "fig3a") return fig3a(c);
   if (name == "fig3b") return fig3b(c);
   if (name == "fig3d") return fig3d(c);
+  if (name == "fig3d_gamma1") return fig3dGamma1(c);
+  if (name == "fig3d_apical") return fig3dApical(c);
   if (name == "fig4a") return fig4a(c);
   if (name == "fig4g") return fig4g(c);
   std::string names;
@@ -711,7 +974,9 @@ std::string makeOne(const std::string& name, const Ctx& c) {
 }  // namespace
 
 const std::vector<std::string>& figureNames() {
-  static const std::vector<std::string> n = {"fig2a", "fig2b", "fig2cde", "fig3a", "fig3b", "fig3d", "fig4a", "fig4g"};
+  static const std::vector<std::string> n = {"fig2a",        "fig2b", "fig2cde", "fig3a", "fig3b",
+                                                "fig3d",        "fig3d_gamma1",    "fig3d_apical", "fig4a",
+                                                "fig4g"};
   return n;
 }
 
@@ -730,10 +995,23 @@ std::string makeFigure(const std::string& name, const FigureOptions& opt,
   std::vector<Claim> claims;
   Ctx c{opt, log, &claims};
   if (name == "all") {
-    std::string report = std::string("# rootsim figure report\n\nGenerated by `rootsim figure all") +
-                         (opt.quick ? " --quick`: coarsened runs (0.1 mm elements, 0.1 h steps, shorter growth)"
-                                    : "`: 0.05 mm elements, 0.05 h steps") +
-                         ". Simulations are in `runs/` (one run directory each).\n\n";
+    std::string report =
+        std::string("# rootsim figure report\n\nGenerated by `rootsim figure all") +
+        (opt.quick ? " --quick`: coarsened runs (0.1 mm elements, 0.1 h steps, shorter growth; phase diagrams on a 15° "
+                     "grid in α, so transition angles are held to 15°)"
+                   : "`: 0.05 mm elements, 0.05 h steps; phase diagrams on a 5° grid in α") +
+        ". Simulations are in `runs/` (one run directory each).\n\n"
+        "Definitions (MODEL.md section 8): the waves are read from the turning points of the lateral displacement of "
+        "the mature part (hysteresis 0.5 R). λ is the mean downhill distance between successive peaks on the same "
+        "side; A is the mean lateral distance between neighbouring opposite peaks — the peak-to-peak excursion, as "
+        "the paper's Fig. 3B caption measures it (`amplitude_mm`; half of it is `amplitude_half_mm`). The paper's "
+        "triangle argument for Eq. 10 would call that excursion 2A: the paper is inconsistent, and its Fig. 3B plots "
+        "the caption's A. A root with lateral peaks but fewer than two full waves is waving: its mean angle is "
+        "biased by its incomplete wave, so a skew is judged only without waves or over at least two full waves.\n\n"
+        "Tolerances (a referee's, never widened to make a claim pass): a scaling law holds when measured / predicted "
+        "is within ±25 %; a ratio the paper says is 1 within 0.75 … 1.33; a transition angle within the phase "
+        "diagram's step in α (" +
+        num(c.alphaStep()) + "° here).\n\n";
     std::string sections;
     for (const auto& n : figureNames()) {
       if (log && !opt.quiet) log("figure " + n);
@@ -747,6 +1025,13 @@ std::string makeFigure(const std::string& name, const FigureOptions& opt,
     for (const auto& cl : claims)
       report += "| " + cl.what + " | " + cl.theory + " | " + cl.paper + " | " + cl.measured + " | " + cl.tolerance + " | " +
                 yesNo(cl.agrees) + " |\n";
+    if (ok < static_cast<int>(claims.size())) {
+      report += "\n### Not reproduced\n\n";
+      for (const auto& cl : claims)
+        if (!cl.agrees)
+          report += "- **" + cl.what + "**: measured " + cl.measured + " against " + cl.theory + " (tolerance " +
+                    cl.tolerance + "). " + (cl.note.empty() ? "" : cl.note) + "\n";
+    }
     report += std::string("\nRoots are drawn ") +
               (opt.renderTile ? "by the OSMesa renderer (tube with +d1 pink / -d1 orange stripes)"
                               : "as centreline strokes of width 2R (this rootsim was built without the renderer)") +

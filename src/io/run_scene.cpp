@@ -23,12 +23,19 @@ double now() {
 
 // first time the tip leaves the downhill direction by more than 30 degrees (the first sideways snap) [h]
 // and, for a free organ (theta_tip measured from gravity, starting at -alpha), the first time the tip
-// reaches the vertical: the measured turning time T0 of Eq. 7 [h]
+// reaches the vertical: the measured turning time of Eq. 7 [h], interpolated linearly in theta between
+// the two growth steps around the crossing (a growth step is 0.05 h; the turning time can be < 1 h)
 struct SnapWatch {
   double first = NAN, vertical = NAN;
+  double prevTheta = NAN, prevTime = NAN;
   void see(const StepRecord& r) {
     if (std::isnan(first) && std::abs(r.thetaTip) > 30.0 / kDeg && r.step > 0) first = r.timeH;
-    if (std::isnan(vertical) && r.thetaTip >= 0.0 && r.step > 0) vertical = r.timeH;
+    if (std::isnan(vertical) && r.thetaTip >= 0.0 && r.step > 0)
+      vertical = std::isfinite(prevTheta) && prevTheta < 0.0
+                     ? prevTime + (r.timeH - prevTime) * (-prevTheta) / (r.thetaTip - prevTheta)
+                     : r.timeH;
+    prevTheta = r.thetaTip;
+    prevTime = r.timeH;
   }
 };
 
@@ -47,7 +54,7 @@ const std::string kMechanicsHeader = "scene,status,steps,time_h,length_mm,elemen
 const std::string& resultHeader(bool grows) {
   static const std::string h =
       "scene,status,steps,time_h,length_mm,elements,theta_tip_deg,total_substeps,pattern,wavelength_mm,"
-      "amplitude_mm,lateral_peaks,skew_deg,max_kappa_per_mm,theta_min_deg,theta_max_deg,first_snap_or_turning_h,"
+      "amplitude_mm,amplitude_half_mm,lateral_peaks,skew_deg,max_kappa_per_mm,theta_min_deg,theta_max_deg,first_snap_or_turning_h,"
       "alpha_deg,beta,gamma,r_tau,sensing,effective_gain,T0_h,max_kappa_eq8_per_mm,wavelength_eq9_mm,"
       "amplitude_eq10_mm,alpha_s_to_w_eq12_deg,alpha_w_to_c_eq13_deg,omega_T0";
   return grows ? h : kMechanicsHeader;
@@ -77,6 +84,7 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     };
     record();
     SnapWatch snap;
+    snap.see(sim.last());  // the initial state: only remembered, as the step before the first
     long maxSub = sim.last().substeps;
     const int steps = m.growth.enabled ? m.growth.steps : 0;
     for (int k = 1; k <= steps; ++k) {
@@ -111,10 +119,13 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
       const ShapeAnalysis a = analyseShape(m, sim.state());
       const Theory t = theoryFor(m);
       const double lambda = a.peaks >= 3 ? a.wavelength * 1e3 : NAN;
+      // A: the peak-to-peak excursion (MODEL.md section 8), and half of it beside it
       const double amp = a.peaks >= 2 ? a.amplitude * 1e3 : NAN;
+      const double ampHalf = a.peaks >= 2 ? a.amplitudeHalf * 1e3 : NAN;
       j.str("pattern", a.pattern)
           .num("wavelength_mm", lambda)
           .num("amplitude_mm", amp)
+          .num("amplitude_half_mm", ampHalf)
           .integer("lateral_peaks", a.peaks)
           .num("skew_deg", a.skew * kDeg)
           .num("max_kappa_per_mm", a.maxKappa / 1e3)
@@ -123,7 +134,7 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
           .num(m.env.plane.enabled ? "first_snap_h" : "turning_time_h", m.env.plane.enabled ? snap.first : snap.vertical);
       j.object("theory", theoryJson(t));
       header = resultHeader(true);
-      row += "," + a.pattern + "," + csvNum(lambda) + "," + csvNum(amp) + "," + std::to_string(a.peaks) + "," +
+      row += "," + a.pattern + "," + csvNum(lambda) + "," + csvNum(amp) + "," + csvNum(ampHalf) + "," + std::to_string(a.peaks) + "," +
              csvNum(a.skew * kDeg) + "," + csvNum(a.maxKappa / 1e3) + "," + csvNum(a.thetaMin * kDeg) + "," +
              csvNum(a.thetaMax * kDeg) + "," + csvNum(m.env.plane.enabled ? snap.first : snap.vertical) + "," + csvNum(m.env.plane.alpha * kDeg) + "," +
              csvNum(m.tropism.beta) + "," + csvNum(m.tropism.gamma) + "," + csvNum(m.tropism.rTau) + "," +

@@ -132,7 +132,9 @@ const std::vector<KeySpec>& schema() {
       real("analysis", "coil_turn_deg", d.analysis.coilTurnDeg, 0, true, 3600, false,
            "planar tangent turning through more than this is coiling [deg]"),
       real("analysis", "wave_min_amplitude_r", d.analysis.waveMinAmplitude, 0, false, kInf, false,
-           "lateral peak-to-peak below this many R counts as straight"),
+           "hysteresis of the lateral turning points in R (a lateral peak-to-peak below it counts as straight)"),
+      real("analysis", "skew_min_waves", d.analysis.skewMinWaves, 0, false, kInf, false,
+           "a waving root is called skewing only over at least this many full waves"),
       integer("output", "every_steps", d.output.everySteps, 1, 1e9, "snapshot and time-series row every N growth steps"),
       boolean("output", "trajectory", d.output.trajectory, "write trajectory.csv (what `rootsim render` reads)"),
       boolean("output", "vtk", d.output.vtk, "write ParaView snapshots (vtk/*.vtp + trajectory.pvd)"),
@@ -280,6 +282,7 @@ Model buildModel(const Values& v, const std::string& name) {
   m.analysis.skewThresholdDeg = num("analysis.skew_threshold_deg");
   m.analysis.coilTurnDeg = num("analysis.coil_turn_deg");
   m.analysis.waveMinAmplitude = num("analysis.wave_min_amplitude_r");
+  m.analysis.skewMinWaves = num("analysis.skew_min_waves");
   m.output.everySteps = static_cast<int>(num("output.every_steps"));
   m.output.trajectory = flag("output.trajectory");
   m.output.vtk = flag("output.vtk");

@@ -114,19 +114,24 @@ ShapeAnalysis analyseShape(const Model& m, const RodState& s) {
     a.maxKappa = std::max(a.maxKappa, std::abs(th[static_cast<size_t>(j + 1)] - th[static_cast<size_t>(j)]) / ds);
   }
   // mature part: nodes with S below the growth zone (the whole rod when not growing)
-  const double S0 = m.growth.enabled ? growthZoneStart(m, s) : s.restLength();
-  int last = 0;
-  while (last < n && s.S[last + 1] <= S0 + 1e-15) ++last;
-  // skew: direction of the mature part as a whole
+  int last = n;
+  if (m.growth.enabled) {
+    const double S0 = growthZoneStart(m, s);
+    last = 0;
+    while (last < n && s.S[last + 1] <= S0 + 1e-15) ++last;
+  }
+  // skew: direction of the mature part as a whole (replaced below by the direction over whole waves)
   if (last >= 1) a.skew = planarAngle(pl, s.x.col(last) - s.x.col(0));
-  // lateral peaks of the mature shape, as a function of the node index
-  std::vector<double> u, w;  // lateral, downhill coordinates
+  // lateral and downhill plate coordinates of the mature nodes, in order along the rod
+  std::vector<double> u, w;
   for (int i = 0; i <= last; ++i) {
     u.push_back(s.x.col(i).dot(lat));
     w.push_back(s.x.col(i).dot(down));
   }
+  // turning points of u with hysteresis minSwing: a running extreme becomes a peak once u has come back
+  // from it by more than minSwing, so ripples smaller than minSwing never make peaks and consecutive
+  // peaks alternate sides
   const double minSwing = m.analysis.waveMinAmplitude * m.rod.radius;
-  // extrema with hysteresis minSwing (so numerical ripples are not peaks)
   std::vector<int> ext;
   {
     int cand = 0, dir = 0;
@@ -143,33 +148,37 @@ ShapeAnalysis analyseShape(const Model& m, const RodState& s) {
       }
     }
   }
-  a.peaks = static_cast<int>(ext.size());
-  // a waving shape: measure the skew over whole wavelengths (first to last peak of the same sign), so
-  // the first sideways excursion does not bias it
-  if (ext.size() >= 3) {
-    const size_t lastSame = ext.size() - 1 - ((ext.size() - 1) % 2);
+  const size_t np = ext.size();
+  a.peaks = static_cast<int>(np);
+  a.waves = np >= 1 ? 0.5 * static_cast<double>(np - 1) : 0.0;
+  auto U = [&](size_t k) { return u[static_cast<size_t>(ext[k])]; };
+  auto W = [&](size_t k) { return w[static_cast<size_t>(ext[k])]; };
+  // a waving shape: the skew over whole waves (first peak to the last peak on its side), so an
+  // incomplete first or last excursion does not bias it
+  if (np >= 3) {
+    const size_t lastSame = np - 1 - ((np - 1) % 2);
     a.skew = planarAngle(pl, s.x.col(ext[lastSame]) - s.x.col(ext[0]));
   }
-  if (ext.size() >= 2) {
+  // A: mean lateral distance between neighbouring (opposite) peaks, the peak-to-peak excursion
+  if (np >= 2) {
     double p2p = 0;
-    for (size_t i = 1; i < ext.size(); ++i)
-      p2p += std::abs(u[static_cast<size_t>(ext[i])] - u[static_cast<size_t>(ext[i - 1])]);
-    a.amplitude = 0.5 * p2p / static_cast<double>(ext.size() - 1);
+    for (size_t k = 1; k < np; ++k) p2p += std::abs(U(k) - U(k - 1));
+    a.amplitude = p2p / static_cast<double>(np - 1);
+    a.amplitudeHalf = 0.5 * a.amplitude;
   }
-  if (ext.size() >= 3) {
-    // neighbouring peaks of the same sign are one wavelength apart along downhill
+  // lambda: mean downhill distance between successive peaks on the same side (one full wave)
+  if (np >= 3) {
     double sum = 0;
-    int cnt = 0;
-    for (size_t i = 2; i < ext.size(); ++i) {
-      sum += std::abs(w[static_cast<size_t>(ext[i])] - w[static_cast<size_t>(ext[i - 2])]);
-      ++cnt;
-    }
-    a.wavelength = sum / cnt;
+    for (size_t k = 2; k < np; ++k) sum += std::abs(W(k) - W(k - 2));
+    a.wavelength = sum / static_cast<double>(np - 2);
   }
+  // pattern (MODEL.md section 8): a skew is judged only without waves or over enough whole waves
+  const bool wavy = np >= 2;
+  a.skewJudged = !wavy || a.waves >= m.analysis.skewMinWaves;
   const double turn = a.thetaMax - a.thetaMin;
   if (turn > m.analysis.coilTurnDeg * units::deg) a.pattern = "coiling";
-  else if (std::abs(a.skew) > m.analysis.skewThresholdDeg * units::deg) a.pattern = "skewing";
-  else if (ext.size() >= 2) a.pattern = "waving";
+  else if (a.skewJudged && std::abs(a.skew) > m.analysis.skewThresholdDeg * units::deg) a.pattern = "skewing";
+  else if (wavy) a.pattern = "waving";
   else a.pattern = "straight";
   return a;
 }

@@ -95,12 +95,23 @@ TEST_CASE("an unwritable or foreign output folder exits 2") {
 
 TEST_CASE("a run that fails exits 1 and keeps its partial output marked incomplete") {
   const fs::path d = scratch("fail");
-  const Result r = run("run " + kSmall + " --set solver.max_substeps=3 --out " + (d / "out").string());
+  const Result r = run("run " + kSmall + " --set solver.kind=dynamic --set solver.max_substeps=3 --out " + (d / "out").string());
   CHECK(r.code == 1);
   CHECK(r.out.find("did not reach equilibrium in 3 sub-steps") != std::string::npos);
   CHECK(!fs::exists(d / "out"));
   CHECK(fs::exists(d / "out.incomplete" / "ERROR.txt"));
   CHECK(fs::exists(d / "out.incomplete" / "scene.toml"));
+}
+
+TEST_CASE("a Newton run that cannot reach equilibrium fails with the step and the solver's message") {
+  const fs::path d = scratch("newtonfail");
+  // one Newton iteration, then the explicit relaxation with a cap of 3 sub-steps: neither gets there
+  const Result r = run("run " + kSmall + " --set solver.kind=newton --set solver.newton_max_iterations=1 "
+                       "--set solver.max_substeps=3 --out " + (d / "out").string());
+  CHECK(r.code == 1);
+  CHECK(r.out.find("growth step") != std::string::npos);
+  CHECK(r.out.find("did not reach equilibrium") != std::string::npos);
+  CHECK(fs::exists(d / "out.incomplete" / "ERROR.txt"));
 }
 
 TEST_CASE("determinism: the same scene twice gives identical files") {

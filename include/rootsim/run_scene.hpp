@@ -14,8 +14,4 @@ namespace rootsim {
 double runSceneToDir(const Scene& scene, const std::string& outDir, const RunDirOptions& dirOptions,
                      const std::function<void(const StepRecord&, int total)>& progress);
 
-// header of result.csv for a growth run (grows) or a mechanics-only one; a sweep treats a run with
-// another header as not done
-const std::string& resultHeader(bool grows);
-
 }  // namespace rootsim

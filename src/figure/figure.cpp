@@ -13,6 +13,7 @@
 #include "rootsim/outputs.hpp"
 #include "rootsim/model.hpp"
 #include "rootsim/plot.hpp"
+#include "rootsim/results.hpp"
 #include "rootsim/run_dir.hpp"
 #include "rootsim/sweep.hpp"
 #include "rootsim/theory.hpp"
@@ -134,7 +135,9 @@ double val(const Row& r, const std::string& k) {
   return std::stod(it->second);
 }
 
-Row result(const Ctx& c, const Case& k) { return readCsv(c.runs() / dirOf(c, k) / "result.csv").at(0); }
+// the measured and theory values of a case's run, typed (result.csv read through the one column table)
+RunResult result(const Ctx& c, const Case& k) { return readResult(c.runs() / dirOf(c, k) / "result.csv"); }
+double val(const RunResult& r, const std::string& k) { return r.number(k); }
 std::vector<Row> series(const Ctx& c, const Case& k) { return readCsv(c.runs() / dirOf(c, k) / "timeseries.csv"); }
 
 std::vector<Snapshot> trajectory(const Ctx& c, const Case& k) {
@@ -338,7 +341,7 @@ void bisect(const Ctx& c, const Case& base, std::vector<Transition*> trs, double
     if (cs.empty()) return;
     runCases(c, cs);
     for (size_t j = 0; j < cs.size(); ++j) {
-      const std::string pat = result(c, cs[j]).at("pattern");
+      const std::string pat = result(c, cs[j]).pattern;
       (who[j]->above(pat) ? who[j]->hi : who[j]->lo) = cs[j].alpha;
       ++who[j]->runs;
       who[j]->log += "| " + num(cs[j].alpha) + " | " + pat + " |\n";
@@ -381,11 +384,11 @@ std::string fig2a(const Ctx& c) {
   std::string table = "| α (deg) | pattern | λ (mm) | A peak-to-peak (mm) | θ range (deg) |\n|---|---|---|---|---|\n";
   bool straight0 = false;
   for (size_t i = 0; i < cases.size(); ++i) {
-    const Row r = result(c, cases[i]);
+    const RunResult r = result(c, cases[i]);
     Axes ax;
     ax.panelLabel = std::string(1, static_cast<char>('a' + i));
     ax.title = "α = " + num(cases[i].alpha) + "°";
-    ax.xlabel = r.at("pattern");
+    ax.xlabel = r.pattern;
     // centre each root laterally in the common window
     PlateWindow w = win;
     const PlateWindow own = windowOf({finals[i]}, cases[i].alpha, 0.4, 1.5);
@@ -394,7 +397,7 @@ std::string fig2a(const Ctx& c) {
     w.lateralMax += cx;
     addRoot(c, f, ax, *finals[i], cases[i], w, {0.3, 0.3, 0.32});
     f.axes.push_back(ax);
-    const std::string pat = r.at("pattern");
+    const std::string pat = r.pattern;
     if (cases[i].alpha == 0) straight0 = pat == "straight";
     table += "| " + num(cases[i].alpha) + " | " + pat + " | " + fmt3(val(r, "wavelength_mm")) + " | " +
              fmt3(val(r, "amplitude_mm")) + " | " + num(std::round(val(r, "theta_min_deg"))) + " .. " +
@@ -409,7 +412,7 @@ std::string fig2a(const Ctx& c) {
   std::vector<std::string> gridP;
   for (const auto& k : cases) {
     gridA.push_back(k.alpha);
-    gridP.push_back(result(c, k).at("pattern"));
+    gridP.push_back(result(c, k).pattern);
   }
   Transition sw, wc;
   sw.above = [](const std::string& p) { return p != "straight"; };
@@ -433,12 +436,12 @@ std::string fig2a(const Ctx& c) {
   transitionClaim("Fig. 2A: coiling sets in at α_w→c (β = 0.1), by bisection", wc, t.alphaWaveToCoil / kDeg, "Eq. 13",
                   "≈ 50°");
   // the Fig. 2A scene as shipped: a short root that waves
-  const Row rs = result(c, short40);
+  const RunResult rs = result(c, short40);
   c.claims->push_back({"Fig. 2A: the 10 mm root at α = 40° (β = γ = 0.1) waves", "waving", "waving (Fig. 2A)",
-                       rs.at("pattern") + " (" + rs.at("lateral_peaks") + " lateral peaks, θ " +
+                       rs.pattern + " (" + num(rs.lateralPeaks) + " lateral peaks, θ " +
                            num(std::round(val(rs, "theta_min_deg"))) + "° … " + num(std::round(val(rs, "theta_max_deg"))) +
                            "°, mean angle " + fmt3(val(rs, "skew_deg")) + "°)",
-                       "pattern", rs.at("pattern") == "waving"});
+                       "pattern", rs.pattern == "waving"});
   table += "\nTransition angles by bisection (the grid's bracket halved down to " + num(width) +
            "°; each row one run):\n\n| α (deg) | pattern |\n|---|---|\n" + sw.log + wc.log;
   return md(c, "fig2a", "Final top views for increasing tilt. Theory (Eqs. 12, 13) at β Lgz/R = " + num(t.effectiveGain) +
@@ -494,11 +497,11 @@ std::string fig2b(const Ctx& c) {
     f.axes.push_back(ax);
   }
   saveFigure(f, (fs::path(c.opt.out) / "fig2b").string());
-  const Row r = result(c, w);
+  const RunResult r = result(c, w);
   const Theory t = theoryFor(modelOf(w));
   const double lam = val(r, "wavelength_mm"), A = val(r, "amplitude_mm");
-  c.claims->push_back({"Fig. 2B: the root waves (α = 40°, β = 0.2)", "waving", "waving", r.at("pattern"), "pattern",
-                       r.at("pattern") == "waving"});
+  c.claims->push_back({"Fig. 2B: the root waves (α = 40°, β = 0.2)", "waving", "waving", r.pattern, "pattern",
+                       r.pattern == "waving"});
   const double rl = lam / (t.wavelength * 1e3), ra = A / (t.amplitude * 1e3);
   c.claims->push_back({"Eq. 9: wavelength λ = 2 T0 v_tip (α = 40°, β = 0.2)", fmt3(t.wavelength * 1e3) + " mm", "—",
                        fmt3(lam) + " mm (ratio " + fmt3(rl) + ")", kScaleTol, within(rl, kScaleLo, kScaleHi)});
@@ -558,7 +561,7 @@ std::string fig2cde(const Ctx& c) {
   f.axes = {a, b, d};
   saveFigure(f, (fs::path(c.opt.out) / "fig2cde").string());
 
-  const Row r = result(c, w), rf = result(c, fr);
+  const RunResult r = result(c, w), rf = result(c, fr);
   const double snap = val(r, "first_snap_or_turning_h"), turn = val(rf, "first_snap_or_turning_h");
   // the free organ's oscillation: the largest |theta| between crossings of the vertical
   std::vector<double> lobes;
@@ -580,7 +583,7 @@ std::string fig2cde(const Ctx& c) {
   double sx = 0, sy = 0, sxx = 0, sxy = 0;
   int nfit = 0;
   for (const auto& k : frees) {
-    const Row rk = result(c, k);
+    const RunResult rk = result(c, k);
     const double g = val(rk, "effective_gain"), T = val(rk, "first_snap_or_turning_h"), T0k = val(rk, "T0_h");
     table += "| " + num(k.beta) + " | " + num(g) + " | " + fmt3(T0k) + " | " + fmt3(T) + " | " + fmt3(T / T0k) + " |\n";
     if (!std::isfinite(T)) continue;
@@ -592,7 +595,7 @@ std::string fig2cde(const Ctx& c) {
   // turning time / T0 at the ends of the beta range, and the local exponents there
   std::vector<double> Tf, gf;
   for (const auto& k : frees) {
-    const Row rk = result(c, k);
+    const RunResult rk = result(c, k);
     Tf.push_back(val(rk, "first_snap_or_turning_h") / val(rk, "T0_h"));
     gf.push_back(val(rk, "effective_gain"));
   }
@@ -680,11 +683,11 @@ std::string fig3a(const Ctx& c) {
   std::vector<double> pred, meas, ratio;
   std::string table = "| α | β | pattern | max κ measured (1/mm) | Eq. 8 (1/mm) | ratio |\n|---|---|---|---|---|---|\n";
   for (const auto& k : cs) {
-    const Row r = result(c, k);
+    const RunResult r = result(c, k);
     const double p = val(r, "max_kappa_eq8_per_mm"), mk = val(r, "max_kappa_per_mm");
-    table += "| " + num(k.alpha) + " | " + num(k.beta) + " | " + r.at("pattern") + " | " + fmt3(mk) + " | " + fmt3(p) +
+    table += "| " + num(k.alpha) + " | " + num(k.beta) + " | " + r.pattern + " | " + fmt3(mk) + " | " + fmt3(p) +
              " | " + fmt3(mk / p) + " |\n";
-    if (r.at("pattern") != "waving") continue;
+    if (r.pattern != "waving") continue;
     pred.push_back(p);
     meas.push_back(mk);
     ratio.push_back(mk / p);
@@ -707,13 +710,13 @@ std::string fig3b(const Ctx& c) {
   std::string table = "| α | β | pattern | λ (mm) | A (mm) | A/2 (mm) | 4A cot α (mm) | λ / 4A cot α | Eq. 9 λ (mm) | "
                       "Eq. 10 A (mm) |\n|---|---|---|---|---|---|---|---|---|---|\n";
   for (const auto& k : cs) {
-    const Row r = result(c, k);
+    const RunResult r = result(c, k);
     const double lam = val(r, "wavelength_mm"), A = val(r, "amplitude_mm");
     const double pred = 4 * A / std::tan(k.alpha * kDeg);
-    table += "| " + num(k.alpha) + " | " + num(k.beta) + " | " + r.at("pattern") + " | " + fmt3(lam) + " | " + fmt3(A) +
+    table += "| " + num(k.alpha) + " | " + num(k.beta) + " | " + r.pattern + " | " + fmt3(lam) + " | " + fmt3(A) +
              " | " + fmt3(val(r, "amplitude_half_mm")) + " | " + fmt3(pred) + " | " + fmt3(lam / pred) + " | " +
              fmt3(val(r, "wavelength_eq9_mm")) + " | " + fmt3(val(r, "amplitude_eq10_mm")) + " |\n";
-    if (r.at("pattern") != "waving" || !std::isfinite(lam) || !std::isfinite(A)) continue;
+    if (r.pattern != "waving" || !std::isfinite(lam) || !std::isfinite(A)) continue;
     x.push_back(pred);
     y.push_back(lam);
     r11.push_back(lam / pred);
@@ -769,8 +772,8 @@ std::string phaseDiagram(const Ctx& c, const std::string& name, const std::strin
   int nearMiss = 0, farMiss = 0;
   std::string table = "| β Lgz/R | α | simulated | Eqs. 12-13 |\n|---|---|---|---|\n";
   for (const auto& k : cs) {
-    const Row r = result(c, k);
-    auto& p = byPattern[r.at("pattern")];
+    const RunResult r = result(c, k);
+    auto& p = byPattern[r.pattern];
     const double g = val(r, "effective_gain");
     p.first.push_back(g);
     p.second.push_back(k.alpha);
@@ -779,13 +782,13 @@ std::string phaseDiagram(const Ctx& c, const std::string& name, const std::strin
     const double a13 = val(r, "alpha_w_to_c_eq13_deg");
     const std::string th = k.alpha < std::min(a12, a13) ? "straight" : k.alpha < a13 ? "waving" : "coiling";
     ++total;
-    const bool ok = r.at("pattern") == th;
+    const bool ok = r.pattern == th;
     agree += ok;
     if (!ok) {
       // a miss is "near" only when the simulated pattern is the theory's neighbour across a boundary that
       // lies within one step: straight/waving across Eq. 12, waving/coiling (or straight/coiling where
       // Eq. 12 lies above Eq. 13) across Eq. 13
-      const std::string& sim = r.at("pattern");
+      const std::string& sim = r.pattern;
       auto is = [&](const char* x, const char* y) { return (sim == x && th == y) || (sim == y && th == x); };
       const double b = is("straight", "waving") ? a12
                        : is("waving", "coiling") || (is("straight", "coiling") && a12 >= a13) ? a13
@@ -793,11 +796,11 @@ std::string phaseDiagram(const Ctx& c, const std::string& name, const std::strin
       if (std::isfinite(b) && std::abs(k.alpha - b) <= step) ++nearMiss;
       else {
         ++farMiss;
-        far += (far.empty() ? "" : ", ") + std::string("g ") + num(g) + " α " + num(k.alpha) + "°: " + r.at("pattern") +
+        far += (far.empty() ? "" : ", ") + std::string("g ") + num(g) + " α " + num(k.alpha) + "°: " + r.pattern +
                " (theory " + th + ")";
       }
     }
-    table += "| " + num(g) + " | " + num(k.alpha) + " | " + r.at("pattern") + " | " + th + (ok ? "" : " **≠**") + " |\n";
+    table += "| " + num(g) + " | " + num(k.alpha) + " | " + r.pattern + " | " + th + (ok ? "" : " **≠**") + " |\n";
   }
   Axes ax;
   ax.title = "Fig. 3D: phase diagram (" + variant + "); background: Eqs. 12-13";
@@ -886,7 +889,7 @@ std::string fig4a(const Ctx& c) {
   std::string table = "| R τ | ω T0 | skew ⟨θ⟩ (deg) | pattern |\n|---|---|---|---|\n";
   std::vector<double> skews;
   for (size_t i = 0; i < cs.size(); ++i) {
-    const Row r = result(c, cs[i]);
+    const RunResult r = result(c, cs[i]);
     Axes ax;
     ax.panelLabel = std::string(1, static_cast<char>('a' + i));
     ax.title = "R τ = " + num(cs[i].rTau);
@@ -895,7 +898,7 @@ std::string fig4a(const Ctx& c) {
     f.axes.push_back(ax);
     skews.push_back(std::abs(val(r, "skew_deg")));
     table += "| " + num(cs[i].rTau) + " | " + fmt3(val(r, "omega_T0")) + " | " + fmt3(val(r, "skew_deg")) + " | " +
-             r.at("pattern") + " |\n";
+             r.pattern + " |\n";
   }
   saveFigure(f, (fs::path(c.opt.out) / "fig4a").string());
   bool grows = skews.back() > skews.front() + 5;
@@ -922,7 +925,7 @@ std::string fig4g(const Ctx& c) {
     std::vector<double> x, y;
     for (const auto& k : cs) {
       if (k.alpha != alphas[ia]) continue;
-      const Row r = result(c, k);
+      const RunResult r = result(c, k);
       const double wt = val(r, "omega_T0"), sk = val(r, "skew_deg") * kDeg;
       x.push_back(wt * 0.1);  // R / Lgz = 0.1
       y.push_back(std::abs(std::sin(sk)) / std::tan(k.alpha * kDeg));

@@ -5,7 +5,11 @@
 #include <memory>
 #include <numbers>
 
+#include <optional>
+
 #include "rootsim/outputs.hpp"
+#include "rootsim/results.hpp"
+#include "rootsim/units.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/run_scene.hpp"
 #include "rootsim/version.hpp"
@@ -15,7 +19,6 @@ namespace fs = std::filesystem;
 namespace rootsim {
 
 namespace {
-constexpr double kDeg = 180.0 / std::numbers::pi;
 
 double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -29,7 +32,7 @@ struct SnapWatch {
   double first = NAN, vertical = NAN;
   double prevTheta = NAN, prevTime = NAN;
   void see(const StepRecord& r) {
-    if (std::isnan(first) && std::abs(r.thetaTip) > 30.0 / kDeg && r.step > 0) first = r.timeH;
+    if (std::isnan(first) && std::abs(r.thetaTip) > 30.0 * units::deg && r.step > 0) first = r.timeH;
     if (std::isnan(vertical) && r.thetaTip >= 0.0 && r.step > 0)
       vertical = std::isfinite(prevTheta) && prevTheta < 0.0
                      ? prevTime + (r.timeH - prevTime) * (-prevTheta) / (r.thetaTip - prevTheta)
@@ -39,26 +42,7 @@ struct SnapWatch {
   }
 };
 
-std::string csvNum(double x) {
-  if (!std::isfinite(x)) return "";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.10g", x);
-  return b;
-}
 }  // namespace
-
-namespace {
-const std::string kMechanicsHeader = "scene,status,steps,time_h,length_mm,elements,theta_tip_deg,total_substeps";
-}
-
-const std::string& resultHeader(bool grows) {
-  static const std::string h =
-      "scene,status,steps,time_h,length_mm,elements,theta_tip_deg,total_substeps,pattern,wavelength_mm,"
-      "amplitude_mm,amplitude_half_mm,lateral_peaks,skew_deg,max_kappa_per_mm,theta_min_deg,theta_max_deg,first_snap_or_turning_h,"
-      "alpha_deg,beta,gamma,r_tau,sensing,effective_gain,T0_h,max_kappa_eq8_per_mm,wavelength_eq9_mm,"
-      "amplitude_eq10_mm,alpha_s_to_w_eq12_deg,alpha_w_to_c_eq13_deg,omega_T0";
-  return grows ? h : kMechanicsHeader;
-}
 
 double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOptions& dirOptions,
                      const std::function<void(const StepRecord&, int total)>& progress) {
@@ -104,50 +88,35 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     const StepRecord& r = sim.last();
     Json j;
     j.str("rootsim_version", kVersion).str("scene", m.name).str("status", "complete");
-    j.integer("steps", sim.step()).num("time_h", r.timeH).num("length_mm", r.length * 1e3);
+    j.integer("steps", sim.step()).num("time_h", r.timeH).num("length_mm", r.length / units::mm);
     j.integer("elements", r.elements).integer("total_substeps", sim.totalSubsteps());
     j.integer("max_substeps_per_step", maxSub);
-    j.num("theta_tip_deg", r.thetaTip * kDeg);
+    j.num("theta_tip_deg", r.thetaTip / units::deg);
     Json tip;
-    tip.num("x_mm", r.tip.x() * 1e3).num("y_mm", r.tip.y() * 1e3).num("z_mm", r.tip.z() * 1e3);
+    tip.num("x_mm", r.tip.x() / units::mm).num("y_mm", r.tip.y() / units::mm).num("z_mm", r.tip.z() / units::mm);
     j.object("tip", tip);
-    std::string header = kMechanicsHeader;
-    std::string row = m.name + ",complete," + std::to_string(sim.step()) + "," + csvNum(r.timeH) + "," +
-                      csvNum(r.length * 1e3) + "," + std::to_string(r.elements) + "," +
-                      csvNum(r.thetaTip * kDeg) + "," + std::to_string(sim.totalSubsteps());
-    if (m.growth.enabled) {
-      const ShapeAnalysis a = analyseShape(m, sim.state());
-      const Theory t = theoryFor(m);
-      const double lambda = a.peaks >= 3 ? a.wavelength * 1e3 : NAN;
-      // A: the peak-to-peak excursion (MODEL.md section 8), and half of it beside it
-      const double amp = a.peaks >= 2 ? a.amplitude * 1e3 : NAN;
-      const double ampHalf = a.peaks >= 2 ? a.amplitudeHalf * 1e3 : NAN;
-      j.str("pattern", a.pattern)
-          .num("wavelength_mm", lambda)
-          .num("amplitude_mm", amp)
-          .num("amplitude_half_mm", ampHalf)
-          .integer("lateral_peaks", a.peaks)
-          .num("skew_deg", a.skew * kDeg)
-          .num("max_kappa_per_mm", a.maxKappa / 1e3)
-          .num("theta_min_deg", a.thetaMin * kDeg)
-          .num("theta_max_deg", a.thetaMax * kDeg)
-          .num(m.env.plane.enabled ? "first_snap_h" : "turning_time_h", m.env.plane.enabled ? snap.first : snap.vertical);
-      j.object("theory", theoryJson(t));
-      header = resultHeader(true);
-      row += "," + a.pattern + "," + csvNum(lambda) + "," + csvNum(amp) + "," + csvNum(ampHalf) + "," + std::to_string(a.peaks) + "," +
-             csvNum(a.skew * kDeg) + "," + csvNum(a.maxKappa / 1e3) + "," + csvNum(a.thetaMin * kDeg) + "," +
-             csvNum(a.thetaMax * kDeg) + "," + csvNum(m.env.plane.enabled ? snap.first : snap.vertical) + "," + csvNum(m.env.plane.alpha * kDeg) + "," +
-             csvNum(m.tropism.beta) + "," + csvNum(m.tropism.gamma) + "," + csvNum(m.tropism.rTau) + "," +
-             (m.tropism.sensing == Sensing::Apical ? "apical" : "local") + "," + csvNum(t.effectiveGain) + "," +
-             csvNum(t.T0 / 3600) + "," + csvNum(t.maxKappa / 1e3) + "," + csvNum(t.wavelength * 1e3) + "," +
-             csvNum(t.amplitude * 1e3) + "," + csvNum(t.alphaStraightToWave * kDeg) + "," +
-             csvNum(t.alphaWaveToCoil * kDeg) + "," + csvNum(t.omegaT0);
+    const double snapOrTurn = m.env.plane.enabled ? snap.first : snap.vertical;
+    std::optional<ShapeAnalysis> shape;
+    if (m.growth.enabled) shape = analyseShape(m, sim.state());
+    const RunResult res = makeResult(m, sim, shape ? &*shape : nullptr, snapOrTurn);
+    if (shape) {
+      j.str("pattern", res.pattern)
+          .num("wavelength_mm", res.wavelengthMm)
+          .num("amplitude_mm", res.amplitudeMm)
+          .num("amplitude_half_mm", res.amplitudeHalfMm)
+          .integer("lateral_peaks", static_cast<long>(res.lateralPeaks))
+          .num("skew_deg", res.skewDeg)
+          .num("max_kappa_per_mm", res.maxKappaPerMm)
+          .num("theta_min_deg", res.thetaMinDeg)
+          .num("theta_max_deg", res.thetaMaxDeg)
+          .num(m.env.plane.enabled ? "first_snap_h" : "turning_time_h", snapOrTurn);
+      j.object("theory", theoryJson(theoryFor(m)));
     } else {
       j.num("residual_force_n", r.residualForce);
     }
     j.num("wall_time_s", wall);
     rd.write("summary.json", j.dump() + "\n");
-    rd.write("result.csv", header + "\n" + row + "\n");
+    rd.write("result.csv", resultCsv(res));
     rd.commit();
   } catch (const std::exception& e) {
     rd.fail(e.what());

@@ -11,6 +11,7 @@
 #include <toml++/toml.h>
 
 #include "rootsim/errors.hpp"
+#include "rootsim/results.hpp"
 #include "rootsim/run_dir.hpp"
 #include "rootsim/scene.hpp"
 

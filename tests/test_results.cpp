@@ -1,0 +1,64 @@
+// result.csv through its one column table (src/io/results.cpp): header and row always agree, and what is
+// written reads back to the same values
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "rootsim/errors.hpp"
+#include "rootsim/results.hpp"
+#include "rootsim/units.hpp"
+
+using namespace rootsim;
+namespace fs = std::filesystem;
+
+namespace {
+int cells(const std::string& line) {
+  int n = 1;
+  for (char c : line) n += c == ',';
+  return n;
+}
+}  // namespace
+
+TEST_CASE("result.csv: header and row have the same columns, and a written result reads back") {
+  Model m = defaultModel();
+  m.name = "t";
+  m.initial.elementLength = 0.1 * units::mm;
+  m.growth.stepTime = 0.1 * units::hour;
+  completeModel(m);
+  Simulation sim(m);
+  for (int k = 0; k < 10; ++k) sim.growthStep();
+  const ShapeAnalysis a = analyseShape(m, sim.state());
+  const RunResult r = makeResult(m, sim, &a, 0.25);
+  const std::string csv = resultCsv(r);
+  std::istringstream in(csv);
+  std::string head, row;
+  std::getline(in, head);
+  std::getline(in, row);
+  CHECK(head == resultHeader(true));
+  CHECK(cells(head) == cells(row));
+  CHECK(cells(head) == static_cast<int>(resultColumns().size()));
+  const fs::path p = fs::temp_directory_path() / ("rootsim_result_" + std::to_string(::getpid()) + ".csv");
+  { std::ofstream(p) << csv; }
+  const RunResult b = readResult(p);
+  CHECK(b.grows);
+  CHECK(b.scene == "t");
+  CHECK(b.pattern == r.pattern);
+  CHECK(b.steps == 10);
+  CHECK(b.lengthMm == doctest::Approx(r.lengthMm).epsilon(1e-9));
+  CHECK(b.T0h == doctest::Approx(r.T0h).epsilon(1e-9));
+  CHECK(b.snapOrTurningH == doctest::Approx(0.25));
+  CHECK(std::isnan(b.wavelengthMm) == std::isnan(r.wavelengthMm));
+  CHECK(b.number("alpha_deg") == doctest::Approx(40));
+  // mechanics-only runs have only the first columns
+  RunResult mech = r;
+  mech.grows = false;
+  CHECK(cells(resultHeader(false)) == 8);
+  { std::ofstream(p) << resultCsv(mech); }
+  CHECK_FALSE(readResult(p).grows);
+  // another header is refused by name
+  { std::ofstream(p) << "scene,status\nx,complete\n"; }
+  CHECK_THROWS_AS(readResult(p), RunError);
+  fs::remove(p);
+}

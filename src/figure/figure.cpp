@@ -1,5 +1,9 @@
-// The paper's figure panels (MODEL.md section 10): run what a panel needs, then plot it beside theory.
+// The paper's figure panels (MODEL.md section 10): each panel names its cases (figure_cases.hpp), runs
+// them (figure_runs.hpp), then plots them beside theory and adds its claims to the report.
 #include "rootsim/figure.hpp"
+
+#include "figure_cases.hpp"
+#include "figure_runs.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -9,6 +13,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "rootsim/environment.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/outputs.hpp"
 #include "rootsim/model.hpp"
@@ -17,6 +22,7 @@
 #include "rootsim/run_dir.hpp"
 #include "rootsim/sweep.hpp"
 #include "rootsim/theory.hpp"
+#include "rootsim/units.hpp"
 
 namespace fs = std::filesystem;
 
@@ -24,144 +30,17 @@ namespace rootsim {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
-
-// one simulated root of a panel
-struct Case {
-  double alpha = 40, beta = 0.1, gamma = 0.1, rTau = 0;
-  bool free = false;        // free organ: no plate, no adhesion
-  double lengthMm = 10;     // grown to this length
-  bool apical = false;      // apical gravisensing (MODEL.md section 5) instead of local
-};
-
-// one claim of the paper with its theory value, the paper's value and the measured value
-struct Claim {
-  std::string what, theory, paper, measured, tolerance;
-  bool agrees;
-  std::string note = "";  // what was found when it does not agree (printed under the table)
-};
-
-struct Ctx {
-  const FigureOptions& opt;
-  const std::function<void(const std::string&)>& log;
-  std::vector<Claim>* claims;
-  fs::path runs() const { return fs::path(opt.out) / "runs"; }
-  double h() const { return opt.quick ? 0.1 : 0.05; }   // element length [mm]
-  double dt() const { return opt.quick ? 0.1 : 0.05; }  // growth step [h]
-  // the phase diagrams' step in alpha [deg]: the tolerance of every transition-angle claim
-  double alphaStep() const { return opt.quick ? 15 : 5; }
-};
-
-std::string num(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
-
-std::string dirOf(const Ctx& c, const Case& k) {
-  return std::string(c.opt.quick ? "quick" : "full") + "_a" + num(k.alpha) + "_b" + num(k.beta) + "_g" +
-         num(k.gamma) + "_t" + num(k.rTau) + (k.free ? "_free" : "") + (k.apical ? "_apical" : "") + "_L" +
-         num(k.lengthMm);
-}
-
-std::vector<std::string> setsOf(const Ctx& c, const Case& k) {
-  const int steps = static_cast<int>(std::lround((k.lengthMm - 1.1) / (0.2 * c.dt())));
-  std::vector<std::string> s = {
-      "plane.alpha_deg=" + num(k.alpha),     "tropism.beta=" + num(k.beta),
-      "tropism.gamma=" + num(k.gamma),       "tropism.twist_r_tau=" + num(k.rTau),
-      "root.element_length_mm=" + num(c.h()), "growth.step_h=" + num(c.dt()),
-      "growth.steps=" + std::to_string(steps), "output.vtk=false",
-      "output.every_steps=" + std::to_string(std::max(1, static_cast<int>(std::lround(0.5 / c.dt()))))};
-  if (k.apical) s.push_back("tropism.sensing=apical");
-  if (k.free) {
-    s.push_back("plane.enabled=false");
-    s.push_back("adhesion.enabled=false");
-  }
-  return s;
-}
-
-// runs every case not yet complete (in parallel), throws RunError if one fails
-void runCases(const Ctx& c, const std::vector<Case>& cases) {
-  std::error_code ec;
-  fs::create_directories(c.runs(), ec);
-  const fs::path base = c.runs() / "base.toml";
-  if (!fs::exists(base)) writeFileAtomic(base, "# figure runs: defaults of MODEL.md section 2, overridden per run\n");
-  SweepPlan plan;
-  plan.scenePath = base.string();
-  for (const auto& k : cases) {
-    SweepPoint p;
-    p.index = static_cast<int>(plan.points.size());
-    p.overrides = setsOf(c, k);
-    p.dirName = dirOf(c, k);
-    bool dup = false;
-    for (const auto& q : plan.points) dup |= q.dirName == p.dirName;
-    if (!dup) plan.points.push_back(p);
-  }
-  SweepOptions so;
-  so.jobs = c.opt.jobs;
-  so.out = c.runs().string();
-  const SweepResult r = runSweep(plan, so, c.opt.quiet ? std::function<void(const std::string&)>() : c.log);
-  if (r.failed > 0) throw RunError(std::to_string(r.failed) + " figure run(s) failed; see " + c.runs().string());
-}
-
-using Row = std::map<std::string, std::string>;
-
-std::vector<Row> readCsv(const fs::path& p) {
-  std::ifstream in(p);
-  if (!in) throw RunError("cannot read " + p.string());
-  std::string line;
-  std::getline(in, line);
-  std::vector<std::string> head;
-  {
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) head.push_back(cell);
-  }
-  std::vector<Row> rows;
-  while (std::getline(in, line)) {
-    Row r;
-    std::stringstream ss(line);
-    std::string cell;
-    for (size_t i = 0; i < head.size() && std::getline(ss, cell, ','); ++i) r[head[i]] = cell;
-    rows.push_back(r);
-  }
-  return rows;
-}
-
-double val(const Row& r, const std::string& k) {
-  auto it = r.find(k);
-  if (it == r.end() || it->second.empty()) return NAN;
-  return std::stod(it->second);
-}
-
-// the measured and theory values of a case's run, typed (result.csv read through the one column table)
-RunResult result(const Ctx& c, const Case& k) { return readResult(c.runs() / dirOf(c, k) / "result.csv"); }
-double val(const RunResult& r, const std::string& k) { return r.number(k); }
-std::vector<Row> series(const Ctx& c, const Case& k) { return readCsv(c.runs() / dirOf(c, k) / "timeseries.csv"); }
-
-std::vector<Snapshot> trajectory(const Ctx& c, const Case& k) {
-  return readTrajectory(c.runs() / dirOf(c, k) / "trajectory.csv");
-}
-
-SceneInfo infoOf(const Case& k) {
-  SceneInfo si;
-  si.alphaDeg = k.alpha;
-  si.beta = k.beta;
-  si.gamma = k.gamma;
-  si.rTau = k.rTau;
-  si.plate = !k.free;
-  return si;
-}
+using namespace fig;
 
 // plate coordinates [mm] of a snapshot's nodes: lateral x and downhill w (drawn with downhill down)
 void plateCoords(const Snapshot& sn, double alphaDeg, std::vector<double>& x, std::vector<double>& w) {
-  const double a = alphaDeg * kDeg;
+  const PlateFrame f = PlateFrame::tilted(alphaDeg * units::deg);
   x.clear();
   w.clear();
   for (int i = 0; i < sn.x.cols(); ++i) {
-    x.push_back(sn.x(0, i) * 1e3);
-    w.push_back((-std::sin(a) * sn.x(1, i) - std::cos(a) * sn.x(2, i)) * 1e3);
+    const Vec3 p = f.coords(sn.x.col(i)) / units::mm;
+    x.push_back(p.x());
+    w.push_back(p.y());
   }
 }
 
@@ -289,16 +168,6 @@ std::vector<double> zeroCrossings(const std::vector<double>& t, const std::vecto
 // mean spacing of successive values (NaN if fewer than 2)
 double meanSpacing(const std::vector<double>& z) {
   return z.size() >= 2 ? (z.back() - z.front()) / static_cast<double>(z.size() - 1) : NAN;
-}
-
-Model modelOf(const Case& k) {
-  Model m;
-  m.env.plane.alpha = k.alpha * kDeg;
-  m.tropism.beta = k.beta;
-  m.tropism.gamma = k.gamma;
-  m.tropism.rTau = k.rTau;
-  m.tropism.sensing = k.apical ? Sensing::Apical : Sensing::Local;
-  return m;
 }
 
 std::string md(const Ctx& c, const std::string& name, const std::string& caption, const std::string& body = "") {
@@ -431,9 +300,9 @@ std::string fig2a(const Ctx& c) {
     c.claims->push_back({what, fmt3(theoryDeg) + "° (" + eq + ")", paper, meas,
                          "within the phase step (" + num(step) + "°) of " + eq, std::abs(mid - theoryDeg) <= step});
   };
-  transitionClaim("Fig. 2A: waving sets in at α_s→w (β = 0.1), by bisection", sw, t.alphaStraightToWave / kDeg, "Eq. 12",
+  transitionClaim("Fig. 2A: waving sets in at α_s→w (β = 0.1), by bisection", sw, t.alphaStraightToWave / units::deg, "Eq. 12",
                   "≈ 15°");
-  transitionClaim("Fig. 2A: coiling sets in at α_w→c (β = 0.1), by bisection", wc, t.alphaWaveToCoil / kDeg, "Eq. 13",
+  transitionClaim("Fig. 2A: coiling sets in at α_w→c (β = 0.1), by bisection", wc, t.alphaWaveToCoil / units::deg, "Eq. 13",
                   "≈ 50°");
   // the Fig. 2A scene as shipped: a short root that waves
   const RunResult rs = result(c, short40);
@@ -445,8 +314,8 @@ std::string fig2a(const Ctx& c) {
   table += "\nTransition angles by bisection (the grid's bracket halved down to " + num(width) +
            "°; each row one run):\n\n| α (deg) | pattern |\n|---|---|\n" + sw.log + wc.log;
   return md(c, "fig2a", "Final top views for increasing tilt. Theory (Eqs. 12, 13) at β Lgz/R = " + num(t.effectiveGain) +
-                            ": straight → waving at " + fmt3(t.alphaStraightToWave / kDeg) + "°, waving → coiling at " +
-                            fmt3(t.alphaWaveToCoil / kDeg) + "°. Measured by bisection: straight → waving between " +
+                            ": straight → waving at " + fmt3(t.alphaStraightToWave / units::deg) + "°, waving → coiling at " +
+                            fmt3(t.alphaWaveToCoil / units::deg) + "°. Measured by bisection: straight → waving between " +
                             num(sw.lo) + "° and " + num(sw.hi) + "°, waving → coiling between " + num(wc.lo) + "° and " +
                             num(wc.hi) + "°.",
             table);
@@ -502,15 +371,15 @@ std::string fig2b(const Ctx& c) {
   const double lam = val(r, "wavelength_mm"), A = val(r, "amplitude_mm");
   c.claims->push_back({"Fig. 2B: the root waves (α = 40°, β = 0.2)", "waving", "waving", r.pattern, "pattern",
                        r.pattern == "waving"});
-  const double rl = lam / (t.wavelength * 1e3), ra = A / (t.amplitude * 1e3);
-  c.claims->push_back({"Eq. 9: wavelength λ = 2 T0 v_tip (α = 40°, β = 0.2)", fmt3(t.wavelength * 1e3) + " mm", "—",
+  const double rl = lam / (t.wavelength / units::mm), ra = A / (t.amplitude / units::mm);
+  c.claims->push_back({"Eq. 9: wavelength λ = 2 T0 v_tip (α = 40°, β = 0.2)", fmt3(t.wavelength / units::mm) + " mm", "—",
                        fmt3(lam) + " mm (ratio " + fmt3(rl) + ")", kScaleTol, within(rl, kScaleLo, kScaleHi)});
   c.claims->push_back({"Eq. 10: amplitude A = T0 v_tip tan(α) / 2, A peak-to-peak (α = 40°, β = 0.2)",
-                       fmt3(t.amplitude * 1e3) + " mm", "—", fmt3(A) + " mm (ratio " + fmt3(ra) + ")", kScaleTol,
+                       fmt3(t.amplitude / units::mm) + " mm", "—", fmt3(A) + " mm (ratio " + fmt3(ra) + ")", kScaleTol,
                        within(ra, kScaleLo, kScaleHi)});
   return md(c, "fig2b", "Five top views of the waving root, evenly spaced in time, at one scale. λ = " + fmt3(lam) +
-                            " mm (Eq. 9: " + fmt3(t.wavelength * 1e3) + " mm), A = " + fmt3(A) + " mm peak-to-peak, A/2 = " +
-                            fmt3(val(r, "amplitude_half_mm")) + " mm (Eq. 10: " + fmt3(t.amplitude * 1e3) + " mm).");
+                            " mm (Eq. 9: " + fmt3(t.wavelength / units::mm) + " mm), A = " + fmt3(A) + " mm peak-to-peak, A/2 = " +
+                            fmt3(val(r, "amplitude_half_mm")) + " mm (Eq. 10: " + fmt3(t.amplitude / units::mm) + " mm).");
 }
 
 std::string fig2cde(const Ctx& c) {
@@ -544,7 +413,7 @@ std::string fig2cde(const Ctx& c) {
   a.ylabel = "θ_tip (deg)";
   a.series.push_back(line(t, th, 0, "on the plate: planar tip angle"));
   a.series.push_back(line(tf, thf, 1, "free organ: angle from gravity"));
-  a.series.push_back(line({theo.T0 / 3600, theo.T0 / 3600}, {-90, 90}, 7, "T0 (Eq. 7)", true));
+  a.series.push_back(line({theo.T0 / units::hour, theo.T0 / units::hour}, {-90, 90}, 7, "T0 (Eq. 7)", true));
   a.legendPos = "se";
   b.panelLabel = "D";
   b.title = "growth-zone energies (no factor 1/2)";
@@ -572,9 +441,9 @@ std::string fig2cde(const Ctx& c) {
   const bool decays = lobes.size() >= 3 && lobes[1] < lobes[0];
   double late = 0;  // the waving root's swing in the last third
   for (size_t i = 2 * th.size() / 3; i < th.size(); ++i) late = std::max(late, std::abs(th[i]));
-  const double T0h = theo.T0 / 3600;
+  const double T0h = theo.T0 / units::hour;
   const Model mw = modelOf(w);
-  const double vtipMmH = mw.growth.rate * mw.growth.zoneLength * 3600.0 * 1e3;  // v_tip [mm/h]
+  const double vtipMmH = mw.growth.rate * mw.growth.zoneLength * units::hour / units::mm;  // v_tip [mm/h]
   c.claims->push_back({"Eq. 7: first sideways snap at the turning time T0 (α = 40°, β = 0.2)", fmt3(T0h) + " h", "≈ T0",
                        fmt3(snap) + " h (ratio " + fmt3(snap / T0h) + ")", kScaleTol, within(snap / T0h, kScaleLo, kScaleHi)});
   // Eq. 7's exponent from the free organs run above
@@ -712,7 +581,7 @@ std::string fig3b(const Ctx& c) {
   for (const auto& k : cs) {
     const RunResult r = result(c, k);
     const double lam = val(r, "wavelength_mm"), A = val(r, "amplitude_mm");
-    const double pred = 4 * A / std::tan(k.alpha * kDeg);
+    const double pred = 4 * A / std::tan(k.alpha * units::deg);
     table += "| " + num(k.alpha) + " | " + num(k.beta) + " | " + r.pattern + " | " + fmt3(lam) + " | " + fmt3(A) +
              " | " + fmt3(val(r, "amplitude_half_mm")) + " | " + fmt3(pred) + " | " + fmt3(lam / pred) + " | " +
              fmt3(val(r, "wavelength_eq9_mm")) + " | " + fmt3(val(r, "amplitude_eq10_mm")) + " |\n";
@@ -817,8 +686,8 @@ std::string phaseDiagram(const Ctx& c, const std::string& name, const std::strin
     m.tropism.beta = x * m.rod.radius / m.growth.zoneLength;
     const Theory t = theoryFor(m);
     g.push_back(x);
-    a12.push_back(std::isfinite(t.alphaStraightToWave) ? t.alphaStraightToWave / kDeg : 93.0);
-    a13.push_back(t.alphaWaveToCoil / kDeg);
+    a12.push_back(std::isfinite(t.alphaStraightToWave) ? t.alphaStraightToWave / units::deg : 93.0);
+    a13.push_back(t.alphaWaveToCoil / units::deg);
   }
   auto band = [&](const std::vector<double>& lo, const std::vector<double>& hi, Rgb col, const std::string& label) {
     Fill fl;
@@ -926,9 +795,9 @@ std::string fig4g(const Ctx& c) {
     for (const auto& k : cs) {
       if (k.alpha != alphas[ia]) continue;
       const RunResult r = result(c, k);
-      const double wt = val(r, "omega_T0"), sk = val(r, "skew_deg") * kDeg;
+      const double wt = val(r, "omega_T0"), sk = val(r, "skew_deg") * units::deg;
       x.push_back(wt * 0.1);  // R / Lgz = 0.1
-      y.push_back(std::abs(std::sin(sk)) / std::tan(k.alpha * kDeg));
+      y.push_back(std::abs(std::sin(sk)) / std::tan(k.alpha * units::deg));
       xmax = std::max(xmax, x.back());
       if (wt > largeWT) { largeWT = wt; largeRatio = y.back(); }
       table += "| " + num(k.alpha) + " | " + num(k.rTau) + " | " + fmt3(wt) + " | " + fmt3(val(r, "skew_deg")) + " | " +

@@ -1,0 +1,52 @@
+#pragma once
+// The cases of the figure panels: one simulated root each (its parameters and length), the context a
+// panel runs in, and the claims it reports; how a case becomes a run (its directory and overrides).
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "rootsim/figure.hpp"
+#include "rootsim/model.hpp"
+#include "rootsim/snapshot.hpp"
+
+namespace rootsim::fig {
+
+// one simulated root of a panel
+struct Case {
+  double alpha = 40, beta = 0.1, gamma = 0.1, rTau = 0;
+  bool free = false;        // free organ: no plate, no adhesion
+  double lengthMm = 10;     // grown to this length
+  bool apical = false;      // apical gravisensing (MODEL.md section 5) instead of local
+};
+
+// one claim of the paper with its theory value, the paper's value and the measured value
+struct Claim {
+  std::string what, theory, paper, measured, tolerance;
+  bool agrees;
+  std::string note = "";  // what was found when it does not agree (printed under the table)
+};
+
+struct Ctx {
+  const FigureOptions& opt;
+  const std::function<void(const std::string&)>& log;
+  std::vector<Claim>* claims;
+  std::filesystem::path runs() const { return std::filesystem::path(opt.out) / "runs"; }
+  double h() const { return opt.quick ? 0.1 : 0.05; }   // element length [mm]
+  double dt() const { return opt.quick ? 0.1 : 0.05; }  // growth step [h]
+  // the phase diagrams' step in alpha [deg]: the tolerance of every transition-angle claim
+  double alphaStep() const { return opt.quick ? 15 : 5; }
+};
+
+// short decimal text of a number ("0.2", "40")
+std::string num(double v);
+// the run directory of a case inside ctx's runs folder (the same case, the same directory: resumable)
+std::string dirOf(const Ctx& c, const Case& k);
+// the scene overrides that make the case from the default scene
+std::vector<std::string> setsOf(const Ctx& c, const Case& k);
+// the model of a case (for its theory values)
+Model modelOf(const Case& k);
+// what a picture of the case shows beside the root
+SceneInfo infoOf(const Case& k);
+
+}  // namespace rootsim::fig

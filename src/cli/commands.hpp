@@ -24,8 +24,11 @@ int checkCommand(const CheckOptions& o);
 
 struct RenderOptions {
   std::string runDir;
-  std::string mp4;        // default RUN_DIR/movie.mp4
-  std::string pngDir;     // also write every frame as PNG
+  // outputs: with none of mp4, pngDir, finalPng given, RUN_DIR/movie.mp4 and RUN_DIR/final_top.png;
+  // otherwise exactly the ones given
+  std::string mp4;        // H.264 movie
+  std::string pngDir;     // every frame as PNG
+  std::string finalPng;   // the last snapshot, top view
   std::string view = "top";
   std::string size = "auto";  // WxH, or auto: 1280x720 or 720x1280 from the root's shape
   int fps = 30;

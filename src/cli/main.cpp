@@ -36,8 +36,9 @@ int main(int argc, char** argv) {
   cli::RenderOptions render;
   CLI::App* cRender = app.add_subcommand("render", "render a saved run (trajectory.csv) to MP4 / PNG frames");
   cRender->add_option("run_dir", render.runDir, "run directory")->required();
-  cRender->add_option("--mp4", render.mp4, "movie file (default: RUN_DIR/movie.mp4)");
-  cRender->add_option("--png-dir", render.pngDir, "also write every frame as PNG into this folder");
+  cRender->add_option("--mp4", render.mp4, "movie file (with no output flag: RUN_DIR/movie.mp4 + RUN_DIR/final_top.png)");
+  cRender->add_option("--png-dir", render.pngDir, "write every frame as PNG into this folder");
+  cRender->add_option("--final-png", render.finalPng, "write the last snapshot (top view) as PNG");
   cRender->add_option("--view", render.view, "top or 3d")->check(CLI::IsMember({"top", "3d"}));
   cRender->add_option("--size", render.size, "frame size WxH (even numbers), or auto (default): 1280x720, or 720x1280 for a root growing mostly downhill");
   cRender->add_option("--fps", render.fps, "frames per second")->check(CLI::Range(1, 240));

@@ -104,17 +104,17 @@ void writeFinalTop(const std::vector<Snapshot>& snaps, const SceneInfo& info, co
   writePng(path.string(), renderer.render(buildRenderScene(snaps.back(), info, top, framing)));
 }
 
-void renderRun(const fs::path& runDir, const std::vector<Snapshot>& snaps, const SceneInfo& info,
-               MovieJob job, bool quiet) {
+// the movie and, when asked for, the final picture (always the top view, framed like a top-view movie)
+void renderRun(const std::vector<Snapshot>& snaps, const SceneInfo& info, MovieJob job,
+               const fs::path& finalTop, bool quiet) {
   const bool top = job.view.kind == View::Kind::Top;
-  const fs::path finalTop = runDir / "final_top.png";
-  if (top) job.finalPng = finalTop.string();
+  if (top && !finalTop.empty()) job.finalPng = finalTop.string();
   renderMovie(snaps, info, job, progressLines(quiet, "render " + info.title));
-  if (!top) writeFinalTop(snaps, info, job.view, finalTop);
+  if (!top && !finalTop.empty()) writeFinalTop(snaps, info, job.view, finalTop);
   if (!quiet) {
     if (!job.mp4.empty()) std::fprintf(stderr, "wrote %s\n", job.mp4.c_str());
     if (!job.pngDir.empty()) std::fprintf(stderr, "wrote %zu frames to %s\n", snaps.size(), job.pngDir.c_str());
-    std::fprintf(stderr, "wrote %s\n", finalTop.string().c_str());
+    if (!finalTop.empty()) std::fprintf(stderr, "wrote %s\n", finalTop.string().c_str());
   }
 }
 
@@ -137,9 +137,17 @@ int renderRunCommand(const RenderOptions& o) {
   if (o.crf < 0 || o.crf > 51) throw SceneError("--crf " + std::to_string(o.crf) + ": expected 0..51");
   job.video.fps = o.fps;
   job.video.crf = o.crf;
-  job.mp4 = o.mp4.empty() ? (runDir / "movie.mp4").string() : o.mp4;
-  const fs::path mp4Dir = fs::absolute(fs::path(job.mp4)).parent_path();
-  if (!fs::is_directory(mp4Dir)) throw SceneError("--mp4 " + job.mp4 + ": folder " + mp4Dir.string() + " not found");
+  // only what is asked for: with no output flag at all, RUN_DIR/movie.mp4 and RUN_DIR/final_top.png;
+  // with any of --mp4, --png-dir, --final-png, exactly those (the run directory stays untouched)
+  const bool asked = !o.mp4.empty() || !o.pngDir.empty() || !o.finalPng.empty();
+  job.mp4 = asked ? o.mp4 : (runDir / "movie.mp4").string();
+  const fs::path finalTop = asked ? fs::path(o.finalPng) : runDir / "final_top.png";
+  auto checkFolder = [](const char* flag, const fs::path& file) {
+    const fs::path dir = fs::absolute(file).parent_path();
+    if (!fs::is_directory(dir)) throw SceneError(std::string(flag) + " " + file.string() + ": folder " + dir.string() + " not found");
+  };
+  if (!job.mp4.empty()) checkFolder("--mp4", job.mp4);
+  if (!finalTop.empty()) checkFolder("--final-png", finalTop);
   job.pngDir = o.pngDir;
   job.view.whiskers = o.whiskers;
   if (o.transparent) {
@@ -147,7 +155,6 @@ int renderRunCommand(const RenderOptions& o) {
     if (o.pngDir.empty()) throw SceneError("--transparent: applies to PNG frames; add --png-dir DIR");
     if (!o.mp4.empty()) throw SceneError("--transparent: MP4 has no alpha channel; drop --mp4 " + o.mp4);
     job.view.transparent = true;
-    job.mp4.clear();
   }
   if (o.noOverlays) job.view.overlays = false;
   if (!o.shaderDir.empty()) {
@@ -162,7 +169,7 @@ int renderRunCommand(const RenderOptions& o) {
   const std::vector<Snapshot> snaps = loadSnapshots(runDir);
   if (autoSized) std::tie(job.view.width, job.view.height) = autoSize(snaps, info);
 
-  renderRun(runDir, snaps, info, job, o.quiet);
+  renderRun(snaps, info, job, finalTop, o.quiet);
   return 0;
 }
 
@@ -172,7 +179,7 @@ void renderRunMovie(const fs::path& runDir, bool quiet) {
   job.mp4 = (runDir / "movie.mp4").string();
   const std::vector<Snapshot> snaps = loadSnapshots(runDir);
   std::tie(job.view.width, job.view.height) = autoSize(snaps, info);
-  renderRun(runDir, snaps, info, job, quiet);
+  renderRun(snaps, info, job, runDir / "final_top.png", quiet);
 }
 
 }  // namespace rootsim::cli

@@ -7,6 +7,7 @@
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -203,7 +204,9 @@ TEST_CASE("rootsim render on a tiny run: movie.mp4 with one frame per snapshot, 
                          "/scenes/fig2b_waving.toml --set growth.steps=40 --set output.every_steps=4 --quiet --out " +
                          runDir);
   REQUIRE_MESSAGE(ran.code == 0, ran.out);
-  const Result rendered = run("render " + runDir + " --size 320x180 --fps 10 --png-dir " + (d / "frames").string());
+  // asked for explicitly: the run directory's own files, plus frames elsewhere
+  const Result rendered = run("render " + runDir + " --size 320x180 --fps 10 --mp4 " + runDir + "/movie.mp4 --final-png " +
+                              runDir + "/final_top.png --png-dir " + (d / "frames").string());
   REQUIRE_MESSAGE(rendered.code == 0, rendered.out);
   CHECK(rendered.out.find("(100 %)") != std::string::npos);  // progress lines
   const rtest::Decoded m = rtest::decodeMp4(runDir + "/movie.mp4");
@@ -253,6 +256,37 @@ TEST_CASE("rootsim render on a tiny run: movie.mp4 with one frame per snapshot, 
     const Result rbad = run("render " + runDir + " --quiet --shader-dir " + (d / "nowhere").string());
     CHECK(rbad.code == 2);
     CHECK(rbad.out.find("--shader-dir") != std::string::npos);
+  }
+  SUBCASE("render to another path leaves every byte of the run directory as it was") {
+    // every file of the run directory, path -> contents
+    auto contents = [](const fs::path& dir) {
+      std::map<std::string, std::string> files;
+      for (const auto& e : fs::recursive_directory_iterator(dir)) {
+        std::ifstream in(e.path(), std::ios::binary);
+        std::stringstream ss;
+        ss << in.rdbuf();
+        files[fs::relative(e.path(), dir).string()] = e.is_regular_file() ? ss.str() : std::string("<dir>");
+      }
+      return files;
+    };
+    const auto before = contents(runDir);
+    const Result r1 = run("render " + runDir + " --size 320x180 --quiet --mp4 " + (d / "elsewhere.mp4").string());
+    REQUIRE_MESSAGE(r1.code == 0, r1.out);
+    const Result r2 = run("render " + runDir + " --view 3d --size 320x180 --quiet --png-dir " + (d / "pngs").string() +
+                          " --final-png " + (d / "last.png").string());
+    REQUIRE_MESSAGE(r2.code == 0, r2.out);
+    CHECK(contents(runDir) == before);
+    CHECK(rtest::decodeMp4((d / "elsewhere.mp4").string()).frames == 11);
+    CHECK(fs::exists(d / "pngs" / "frame_00010.png"));
+    CHECK(readPng((d / "last.png").string()).rgba == readPng(runDir + "/final_top.png").rgba);
+    // no output flag at all: the run directory's movie.mp4 and final_top.png, nothing else
+    fs::remove(runDir + "/movie.mp4");
+    fs::remove(runDir + "/final_top.png");
+    const Result r3 = run("render " + runDir + " --size 320x180 --quiet");
+    REQUIRE_MESSAGE(r3.code == 0, r3.out);
+    const auto after = contents(runDir);
+    CHECK(after.size() == before.size());
+    CHECK(after.at("final_top.png") == before.at("final_top.png"));
   }
   SUBCASE("bad input exits 2 naming the flag or the file") {
     const Result odd = run("render " + runDir + " --size 321x180");

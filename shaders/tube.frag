@@ -20,11 +20,19 @@ out vec4 fragColour;
 void main() {
   vec3 base = vColour;
   if (vStriped > 0.5) {
+    // striped 1: ivory body; striped 2: the vertex colour (--color-by) as the body
+    vec3 body = vStriped > 1.5 ? vColour : uBody;
     float c = vSide.x / max(length(vSide), 1e-6);
     float aa = max(fwidth(c), 1e-4);
     float plus = smoothstep(uStripeCos - aa, uStripeCos + aa, c);
     float minus = smoothstep(uStripeCos - aa, uStripeCos + aa, -c);
-    base = mix(mix(uBody, uPlus, plus), uMinus, minus);
+    base = mix(mix(body, uPlus, plus), uMinus, minus);
+    if (vStriped > 1.5) {
+      // a dark outline on each stripe edge, so pink and orange read on every colour of the map
+      float w = 0.05 + 1.5 * aa;
+      float edge = max(1.0 - smoothstep(0.0, w, abs(c - uStripeCos)), 1.0 - smoothstep(0.0, w, abs(-c - uStripeCos)));
+      base = mix(base, vec3(0.08), 0.85 * edge);
+    }
   }
   vec3 N = normalize(vNormalEye);
   if (!gl_FrontFacing) N = -N;

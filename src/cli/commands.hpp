@@ -6,11 +6,22 @@
 
 namespace rootsim::cli {
 
+// how a movie looks (render, run --movie, montage): camera, colour, plots, shadows
+struct LookOptions {
+  std::string camera = "fit";  // fit | follow
+  double fieldMm = 2.0;        // follow window width [mm]
+  bool inset = false;          // fit view with a follow window in its corner
+  std::string colorBy = "none";  // none | curvature | twist | kappa0 | stretch | contact
+  std::string plot;            // comma-separated subset of theta_tip,Eb,Et,Wr,Tw
+  bool shadows = false;        // the root's shadow on the plate
+};
+
 struct RunOptions {
   std::string scene;
   std::vector<std::string> sets;
   std::string out;        // run directory; default runs/<scene name>
   bool movie = false;
+  LookOptions look;       // the movie's camera, colours, plots (with movie)
   bool force = false;     // replace an earlier run directory at --out (never a folder rootsim did not write)
   bool quiet = false;
 };
@@ -36,6 +47,7 @@ struct RenderOptions {
   bool whiskers = false;     // thin +-d1 spikes
   bool transparent = false;  // PNG frames without the plate (alpha 0 outside the root)
   bool noOverlays = false;   // no time, scale bar or parameters
+  LookOptions look;
   std::string shaderDir;     // development: load tube/plane shaders from here instead of the built-in copies
   bool quiet = false;
 };
@@ -47,6 +59,21 @@ struct ModesOptions {
   bool quiet = false;
 };
 int modesCommand(const ModesOptions& o);
+
+struct MontageOptions {
+  std::vector<std::string> runDirs;
+  std::string mp4;           // at least one of mp4, pngDir
+  std::string pngDir;
+  std::string size = "1280x720";
+  std::string labels;        // comma-separated, one per run; default: the scene keys that differ
+  std::string view = "top";
+  int fps = 30;
+  int crf = 18;
+  std::string colorBy = "none";
+  bool shadows = false;
+  bool quiet = false;
+};
+int montageCommand(const MontageOptions& o);
 
 struct SweepCliOptions {
   std::string sweep;

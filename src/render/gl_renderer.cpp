@@ -123,7 +123,9 @@ struct GlRenderer::Impl {
   GLuint msFbo = 0, msColour = 0, msDepth = 0, resFbo = 0, resColour = 0;
   GLuint plateFbo = 0, plateColour = 0, plateDepth = 0;  // the plate of the last frame (fixed camera)
   std::vector<float> plateKey;                           // what it was drawn with; empty: none
-  GLuint tubeProg = 0, planeProg = 0;
+  GLuint tubeProg = 0, planeProg = 0, shadowProg = 0;
+  GLuint shadowFbo = 0, shadowTex = 0;                   // the shadow map (depth texture)
+  int shadowSize = 0;                                    // its side [px]
   GLuint tubeVao = 0, tubeVbo = 0, tubeIbo = 0, planeVao = 0, planeVbo = 0;
   std::vector<std::uint8_t> readback;
   detail::OverlayPainter overlays;
@@ -142,6 +144,7 @@ struct GlRenderer::Impl {
 
     tubeProg = link(opt.shaderDir, "tube.vert", "tube.frag");
     planeProg = link(opt.shaderDir, "plane.vert", "plane.frag");
+    shadowProg = link(opt.shaderDir, "shadow.vert", "shadow.frag");
 
     glGenVertexArrays(1, &tubeVao);
     glGenBuffers(1, &tubeVbo);
@@ -182,6 +185,52 @@ struct GlRenderer::Impl {
     glDeleteVertexArrays(1, &planeVao);
     glDeleteProgram(tubeProg);
     glDeleteProgram(planeProg);
+    glDeleteProgram(shadowProg);
+    if (shadowFbo) glDeleteFramebuffers(1, &shadowFbo);
+    if (shadowTex) glDeleteTextures(1, &shadowTex);
+  }
+
+  // a depth texture of side px, compared in the shader (sampler2DShadow), lit outside its border
+  void ensureShadowMap(int px) {
+    if (shadowFbo && shadowSize == px) return;
+    if (shadowFbo) glDeleteFramebuffers(1, &shadowFbo);
+    if (shadowTex) glDeleteTextures(1, &shadowTex);
+    glGenTextures(1, &shadowTex);
+    glBindTexture(GL_TEXTURE_2D, shadowTex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, px, px, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+    const float border[4] = {1, 1, 1, 1};
+    glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, border);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    glGenFramebuffers(1, &shadowFbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, shadowFbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadowTex, 0);
+    glDrawBuffer(GL_NONE);
+    glReadBuffer(GL_NONE);
+    const GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (st != GL_FRAMEBUFFER_COMPLETE) throw RenderError("GL: glCheckFramebufferStatus(shadow map) = " + hex(st));
+    checkGl("shadow map setup");
+    shadowSize = px;
+  }
+
+  // the root's depth from the key light into the shadow map (tube buffers already uploaded)
+  void drawShadowMap(const RenderScene& s) {
+    ensureShadowMap(s.shadowMapPx);
+    glBindFramebuffer(GL_FRAMEBUFFER, shadowFbo);
+    glViewport(0, 0, shadowSize, shadowSize);
+    glClearDepth(1.0);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glUseProgram(shadowProg);
+    glUniformMatrix4fv(glGetUniformLocation(shadowProg, "uLightViewProj"), 1, GL_FALSE, s.lightViewProj.data());
+    glBindVertexArray(tubeVao);
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(s.indices.size()), GL_UNSIGNED_INT, nullptr);
+    glBindVertexArray(0);
+    checkGl("draw shadow map");
+    glViewport(0, 0, width, height);
   }
 
   void freeTargets() {
@@ -275,6 +324,21 @@ struct GlRenderer::Impl {
   }
 
   void draw(const RenderScene& s) {
+    // the root's vertices, for the shadow pass and the colour pass
+    if (!s.indices.empty()) {
+      glBindVertexArray(tubeVao);
+      glBindBuffer(GL_ARRAY_BUFFER, tubeVbo);
+      glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(s.vertices.size() * sizeof(TubeVertex)),
+                   s.vertices.data(), GL_STREAM_DRAW);
+      glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(s.indices.size() * sizeof(std::uint32_t)),
+                   s.indices.data(), GL_STREAM_DRAW);
+      glBindVertexArray(0);
+      checkGl("upload tube");
+    }
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    const bool shadows = s.shadows && s.plate.visible && !s.indices.empty();
+    if (shadows) drawShadowMap(s);
     glViewport(0, 0, width, height);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
@@ -284,8 +348,9 @@ struct GlRenderer::Impl {
 
     // a movie keeps its camera, so its plate is the same on every frame: copy the stored one (a
     // third of the drawing time at 1080p) instead of clearing and drawing it again
-    const std::vector<float> key = s.plate.visible ? keyOf(s) : std::vector<float>{};
-    const bool cached = s.plate.visible && key == plateKey;
+    // (with shadows the plate changes with the root: drawn every frame)
+    const std::vector<float> key = s.plate.visible && !shadows ? keyOf(s) : std::vector<float>{};
+    const bool cached = s.plate.visible && !shadows && key == plateKey;
     if (cached) {
       copyBuffers(plateFbo, msFbo);
       checkGl("restore the plate (glBlitFramebuffer)");
@@ -309,6 +374,14 @@ struct GlRenderer::Impl {
       glUniform3fv(glGetUniformLocation(planeProg, "uColour"), 1, p.colour.data());
       glUniform3fv(glGetUniformLocation(planeProg, "uLine"), 1, p.line.data());
       glUniform3fv(glGetUniformLocation(planeProg, "uMajor"), 1, p.major.data());
+      glUniform1i(glGetUniformLocation(planeProg, "uShadows"), shadows ? 1 : 0);
+      glActiveTexture(GL_TEXTURE0);
+      glBindTexture(GL_TEXTURE_2D, shadows ? shadowTex : 0);
+      glUniform1i(glGetUniformLocation(planeProg, "uShadowMap"), 0);
+      if (shadows) {
+        glUniformMatrix4fv(glGetUniformLocation(planeProg, "uLightViewProj"), 1, GL_FALSE, s.lightViewProj.data());
+        glUniform1f(glGetUniformLocation(planeProg, "uShadowTexel"), 1.0f / static_cast<float>(shadowSize));
+      }
       glBindVertexArray(planeVao);
       glBindBuffer(GL_ARRAY_BUFFER, planeVbo);
       glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof quad, quad);
@@ -317,7 +390,7 @@ struct GlRenderer::Impl {
       glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
       glDisable(GL_POLYGON_OFFSET_FILL);
       checkGl("draw plate");
-      storePlate(key);
+      if (!shadows) storePlate(key);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, msFbo);
 
@@ -334,11 +407,6 @@ struct GlRenderer::Impl {
       glUniform1f(glGetUniformLocation(tubeProg, "uStripeCos"), m.stripeCos);
       glUniform4f(glGetUniformLocation(tubeProg, "uLighting"), m.ambient, m.diffuse, m.specular, m.shininess);
       glBindVertexArray(tubeVao);
-      glBindBuffer(GL_ARRAY_BUFFER, tubeVbo);
-      glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(s.vertices.size() * sizeof(TubeVertex)),
-                   s.vertices.data(), GL_STREAM_DRAW);
-      glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(s.indices.size() * sizeof(std::uint32_t)),
-                   s.indices.data(), GL_STREAM_DRAW);
       glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(s.indices.size()), GL_UNSIGNED_INT, nullptr);
       checkGl("draw tube");
     }

@@ -13,7 +13,7 @@ enum class CameraMode { Fit, Follow };
 
 struct FollowOptions {
   double fieldMm = 2.0;        // visible plate width [mm]
-  double smoothFrames = 3.0;   // time constant of the critically damped follow [frames]
+  double smoothFrames = 2.0;   // time constant of the critically damped follow [frames]
   double keepCentral = 0.2;    // the tip region's centre stays within this fraction of the width
                                // (height) from the picture's centre
 };

@@ -49,13 +49,16 @@ struct FrameLayout {
   int insetX = 0, insetY = 0, insetW = 0, insetH = 0;
 };
 // the view takes the whole frame, or 64 % of its width (landscape) / height (portrait) beside a panel;
-// the inset is a square of 0.42 x the view's shorter side in its lower left corner
+// the inset is a square of 0.42 x the view's shorter side, by default in its lower left corner
 FrameLayout frameLayout(int width, int height, bool plots, bool inset);
 
 // the cameras of a whole movie, fixed before the first frame
 struct FramePlan {
   std::vector<Framing> view;   // per snapshot (one entry: the same for all)
   std::vector<Framing> inset;  // per snapshot; empty without an inset
+  int insetX = -1, insetY = -1;  // the inset's corner in the frame [px]; -1: frameLayout's default.
+                                 // planFrames picks the corner (clear of the overlays) that covers
+                                 // the fewest of the root's nodes over the whole movie
 };
 FramePlan planFrames(const std::vector<Snapshot>& snaps, const SceneInfo& info, const MovieJob& job);
 

@@ -8,6 +8,7 @@
 
 #include "overlay.hpp"
 #include "rootsim/movie.hpp"
+#include "rootsim/units.hpp"
 
 namespace rootsim {
 
@@ -116,7 +117,40 @@ FramePlan planFrames(const std::vector<Snapshot>& snaps, const SceneInfo& info, 
     p.view = followFramings(snaps, info, l.viewW, l.viewH, fo);
   else
     p.view = {frameFor(snaps, info, v)};
-  if (l.inset) p.inset = followFramings(snaps, info, l.insetW, l.insetH, fo);
+  if (l.inset) {
+    p.inset = followFramings(snaps, info, l.insetW, l.insetH, fo);
+    // candidate corners, clear of the overlays (time and parameters on top, scale bar bottom right,
+    // colour bar on the right); the one covering the fewest root nodes over the movie wins
+    const Framing fit = frameFor(snaps, info, v);
+    const PlateFrame pf = PlateFrame::tilted(info.alphaDeg * units::deg);
+    const int side = l.insetW, m = l.insetX - l.viewX;
+    const double font = std::max(12.0, std::min(v.width, v.height) / 26.0);
+    const bool portrait = v.height > v.width;
+    const int top = v.overlays ? static_cast<int>((portrait ? 3.4 : 1.9) * font) + m : m;
+    const int lowY = v.height - m - side;
+    const int barY = v.overlays && v.showScaleBar ? static_cast<int>(2.6 * font) : 0;
+    std::vector<std::array<int, 2>> corners = {{m, lowY}, {m, top}};
+    if (v.colourBy == ColourField::None || !v.overlays) {
+      corners.push_back({v.width - m - side, lowY - barY});
+      corners.push_back({v.width - m - side, top});
+    }
+    int best = -1;
+    for (const auto& c : corners) {
+      if (c[1] < 0 || c[1] + side > v.height) continue;
+      int count = 0;
+      for (const Snapshot& s : snaps)
+        for (long i = 0; i < s.x.cols(); ++i) {
+          const Eigen::Vector3d q = pf.toPlateMm(s.x.col(i));
+          const Eigen::Vector2d px = topViewPixel(fit, v, q.x(), q.y());
+          if (px.x() >= c[0] && px.x() < c[0] + side && px.y() >= c[1] && px.y() < c[1] + side) ++count;
+        }
+      if (best < 0 || count < best) {
+        best = count;
+        p.insetX = l.viewX + c[0];
+        p.insetY = l.viewY + c[1];
+      }
+    }
+  }
   return p;
 }
 
@@ -146,7 +180,7 @@ struct FrameComposer::Impl {
       : info(i),
         job(j),
         plan(std::move(p)),
-        layout(frameLayout(j.view.width, j.view.height, !j.plots.empty(), j.inset)),
+        layout(placedLayout(j, plan)),
         mainView(viewOf(j, layout.viewW, layout.viewH)),
         insetView(viewOf(j, layout.insetW, layout.insetH)),
         mainGl(layout.viewW, layout.viewH, j.renderer) {
@@ -158,6 +192,12 @@ struct FrameComposer::Impl {
     }
     font = std::max(11.0f, std::round(static_cast<float>(std::min(layout.width, layout.height)) / 40.0f));
     if (layout.panel) planCells();
+  }
+
+  static FrameLayout placedLayout(const MovieJob& j, const FramePlan& p) {
+    FrameLayout l = frameLayout(j.view.width, j.view.height, !j.plots.empty(), j.inset);
+    if (l.inset && p.insetX >= 0 && p.insetY >= 0) l.insetX = p.insetX, l.insetY = p.insetY;
+    return l;
   }
 
   static View viewOf(const MovieJob& j, int w, int h) {
@@ -215,20 +255,25 @@ struct FrameComposer::Impl {
       const PlotSeries& s = job.plots[i];
       const auto& col = kSeriesColour[i % kSeriesColour.size()];
       // y ticks with light grid lines, x ticks in hours
-      for (int k = 0; k <= 2; ++k) {
-        const double v = c.lo + (c.hi - c.lo) * k / 2.0;
-        const float y = std::round(static_cast<float>(toPixel(c, c.t0, v).y()));
+      // about as many round y ticks as fit the cell's height
+      const int yCount = std::clamp(static_cast<int>((c.y1 - c.y0) / (2.2f * small)), 1, 4);
+      const double ys = niceStep(c.hi - c.lo, yCount);
+      for (double v = std::ceil(c.lo / ys) * ys; v <= c.hi + 1e-9 * ys; v += ys) {
+        const double vv = std::abs(v) < 1e-9 * ys ? 0.0 : v;
+        const float y = std::round(static_cast<float>(toPixel(c, c.t0, vv).y()));
         rects.push_back({c.x0, y, c.x1 - c.x0, 1, kGrid});
         rects.push_back({c.x0 - 5, y, 5, 1, kInk});
-        texts.push_back({tick(v), c.x0 - 8, y - 0.55f * small, small, OverlayText::Anchor::TopRight});
+        texts.push_back({tick(vv), c.x0 - 8, y - 0.55f * small, small, OverlayText::Anchor::TopRight});
       }
+      // time ticks in hours; the unit on the last one
       const double step = niceStep(c.t1 - c.t0, 4);
-      for (double t = std::ceil(c.t0 / step) * step; t <= c.t1 + 1e-9 * step; t += step) {
+      const double tLast = std::floor(c.t1 / step + 1e-9) * step;
+      for (double t = std::ceil(c.t0 / step - 1e-9) * step; t <= c.t1 + 1e-9 * step; t += step) {
         const float x = std::round(static_cast<float>(toPixel(c, t, c.lo).x()));
         rects.push_back({x, c.y1, 1, 5, kInk});
-        texts.push_back({tick(t), x, c.y1 + 6 + small * 1.05f, small, OverlayText::Anchor::BottomCentre});
+        const bool last = std::abs(t - tLast) < 1e-6 * step;
+        texts.push_back({tick(t) + (last ? " h" : ""), x, c.y1 + 6 + small * 1.05f, small, OverlayText::Anchor::BottomCentre});
       }
-      texts.push_back({"t [h]", c.x1, c.y1 + 6 + small * 1.05f, small, OverlayText::Anchor::BottomRight});
       // axes
       rects.push_back({c.x0, c.y0, 1, c.y1 - c.y0 + 1, kInk});
       rects.push_back({c.x0, c.y1, c.x1 - c.x0, 1, kInk});

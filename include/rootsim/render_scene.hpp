@@ -39,6 +39,7 @@ struct View {
   bool showScaleBar = true;      // a bar of 1, 2, 5, 10 ... mm with its label
   bool showParams = true;        // alpha, beta, gamma, and R tau when nonzero
   bool showTitle = false;        // SceneInfo::title
+  bool showColourBar = true;     // with colourBy: the map, its range and the field's unit
   std::string fontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";  // fonts-dejavu-core
   // framing; unset fields are computed from the snapshots' bounding box
   std::optional<std::array<double, 2>> centreMm;  // picture centre, plate (u, v) [mm]

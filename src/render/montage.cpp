@@ -152,7 +152,8 @@ void renderMontage(const std::vector<MontageRun>& runs, const MontageJob& job, c
       const MontageRun& r = runs[i];
       const int col = static_cast<int>(i) % l.cols, row = static_cast<int>(i) / l.cols;
       View v = tileView;
-      v.showScaleBar = i + 1 == runs.size();  // one scale bar: the scale is common
+      v.showScaleBar = i + 1 == runs.size();  // one scale bar and one colour bar: both are common
+      v.showColourBar = i + 1 == runs.size();
       const Snapshot& s = r.snaps[static_cast<std::size_t>(snapshotAt(r.snaps, t))];
       gl.render(buildRenderScene(s, r.info, v, l.framing[i]), tile);
       const int x = col * l.tileW, y = l.headerH + row * l.tileH;

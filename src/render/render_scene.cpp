@@ -271,7 +271,7 @@ void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, cons
     const std::string label = (lenMm >= 1 ? fmt("%.0f", lenMm) : fmt("%.1f", lenMm)) + " mm";
     rs.texts.push_back({label, x + 0.5f * len, y - 0.35f * font, font, OverlayText::Anchor::BottomCentre});
   }
-  if (view.colourBy != ColourField::None) addColourBar(rs, view, font);
+  if (view.colourBy != ColourField::None && view.showColourBar) addColourBar(rs, view, font);
 }
 
 // the key light's depth view of the root: an orthographic box along the light, fitted around the

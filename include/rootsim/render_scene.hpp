@@ -32,7 +32,8 @@ struct View {
   ColourField colourBy = ColourField::None;   // colour the body along the tube (stripes stay on top)
   std::array<double, 2> colourRange{0.0, 1.0}; // field values at the two ends of the map (fieldRange)
   bool shadows = false;          // the root's shadow on the plate (shadow map)
-  int shadowMapPx = 2048;        // shadow map side [px]
+  int shadowMapPx = 4096;        // largest shadow map side [px]; the map gets about one texel per
+                                 // picture pixel over the root's box, a power of two up to this
   // overlays (drawn in the top view; the scale bar only there)
   bool overlays = true;          // master switch
   bool showTime = true;          // "t = 12.0 h"
@@ -122,6 +123,8 @@ struct RenderScene {
   bool shadows = false;
   std::array<float, 16> lightViewProj{};  // plate [mm] -> light clip space, column-major
   int shadowMapPx = 2048;                 // [px]
+  std::array<float, 8> shadowQuad{};      // the plate region the map covers: 4 corners (u, v) [mm],
+                                          // in triangle-strip order
 
   std::vector<OverlayRect> rects;       // drawn first
   std::vector<OverlayLine> lines;       // then the lines

@@ -243,7 +243,6 @@ void applyLook(const MovieLook& look, const fs::path& runDir, const std::vector<
   job.inset = look.inset;
   job.view.colourBy = look.colourBy;
   job.view.shadows = look.shadows;
-  if (look.shadows && std::max(job.view.width, job.view.height) > 1920) job.view.shadowMapPx = 4096;
   const Snapshot& last = snaps.back();
   if (look.colourBy == ColourField::Kappa0 && last.kappa0.size() == 0)
     throw SceneError("--color-by kappa0: " + (runDir / "trajectory.csv").string() +
@@ -324,7 +323,7 @@ int renderRunCommand(const RenderOptions& o) {
   if (o.noOverlays) job.view.overlays = false;
   const MovieLook look = parseLook(o.look);
   if (!o.shaderDir.empty()) {
-    for (const char* f : {"tube.vert", "tube.frag", "plane.vert", "plane.frag", "shadow.vert", "shadow.frag"})
+    for (const char* f : {"tube.vert", "tube.frag", "plane.vert", "plane.frag", "shadow.vert", "shadow.frag", "shade.frag"})
       if (!fs::is_regular_file(fs::path(o.shaderDir) / f))
         throw SceneError("--shader-dir " + o.shaderDir + ": " + f + " not found");
     job.renderer.shaderDir = o.shaderDir;

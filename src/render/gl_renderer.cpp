@@ -123,7 +123,8 @@ struct GlRenderer::Impl {
   GLuint msFbo = 0, msColour = 0, msDepth = 0, resFbo = 0, resColour = 0;
   GLuint plateFbo = 0, plateColour = 0, plateDepth = 0;  // the plate of the last frame (fixed camera)
   std::vector<float> plateKey;                           // what it was drawn with; empty: none
-  GLuint tubeProg = 0, planeProg = 0, shadowProg = 0;
+  std::vector<float> lastKey;                            // the plate of the previous frame
+  GLuint tubeProg = 0, planeProg = 0, shadowProg = 0, shadeProg = 0;
   GLuint shadowFbo = 0, shadowTex = 0;                   // the shadow map (depth texture)
   int shadowSize = 0;                                    // its side [px]
   GLuint tubeVao = 0, tubeVbo = 0, tubeIbo = 0, planeVao = 0, planeVbo = 0;
@@ -145,6 +146,7 @@ struct GlRenderer::Impl {
     tubeProg = link(opt.shaderDir, "tube.vert", "tube.frag");
     planeProg = link(opt.shaderDir, "plane.vert", "plane.frag");
     shadowProg = link(opt.shaderDir, "shadow.vert", "shadow.frag");
+    shadeProg = link(opt.shaderDir, "plane.vert", "shade.frag");
 
     glGenVertexArrays(1, &tubeVao);
     glGenBuffers(1, &tubeVbo);
@@ -186,6 +188,7 @@ struct GlRenderer::Impl {
     glDeleteProgram(tubeProg);
     glDeleteProgram(planeProg);
     glDeleteProgram(shadowProg);
+    glDeleteProgram(shadeProg);
     if (shadowFbo) glDeleteFramebuffers(1, &shadowFbo);
     if (shadowTex) glDeleteTextures(1, &shadowTex);
   }
@@ -348,9 +351,10 @@ struct GlRenderer::Impl {
 
     // a movie keeps its camera, so its plate is the same on every frame: copy the stored one (a
     // third of the drawing time at 1080p) instead of clearing and drawing it again
-    // (with shadows the plate changes with the root: drawn every frame)
-    const std::vector<float> key = s.plate.visible && !shadows ? keyOf(s) : std::vector<float>{};
-    const bool cached = s.plate.visible && !shadows && key == plateKey;
+    const std::vector<float> key = s.plate.visible ? keyOf(s) : std::vector<float>{};
+    const bool cached = s.plate.visible && key == plateKey;
+    const std::vector<float> previous = std::move(lastKey);
+    lastKey = key;
     if (cached) {
       copyBuffers(plateFbo, msFbo);
       checkGl("restore the plate (glBlitFramebuffer)");
@@ -374,14 +378,6 @@ struct GlRenderer::Impl {
       glUniform3fv(glGetUniformLocation(planeProg, "uColour"), 1, p.colour.data());
       glUniform3fv(glGetUniformLocation(planeProg, "uLine"), 1, p.line.data());
       glUniform3fv(glGetUniformLocation(planeProg, "uMajor"), 1, p.major.data());
-      glUniform1i(glGetUniformLocation(planeProg, "uShadows"), shadows ? 1 : 0);
-      glActiveTexture(GL_TEXTURE0);
-      glBindTexture(GL_TEXTURE_2D, shadows ? shadowTex : 0);
-      glUniform1i(glGetUniformLocation(planeProg, "uShadowMap"), 0);
-      if (shadows) {
-        glUniformMatrix4fv(glGetUniformLocation(planeProg, "uLightViewProj"), 1, GL_FALSE, s.lightViewProj.data());
-        glUniform1f(glGetUniformLocation(planeProg, "uShadowTexel"), 1.0f / static_cast<float>(shadowSize));
-      }
       glBindVertexArray(planeVao);
       glBindBuffer(GL_ARRAY_BUFFER, planeVbo);
       glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof quad, quad);
@@ -390,9 +386,33 @@ struct GlRenderer::Impl {
       glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
       glDisable(GL_POLYGON_OFFSET_FILL);
       checkGl("draw plate");
-      if (!shadows) storePlate(key);
+      // keep a copy only once the camera has stood still for a frame: a moving camera (follow)
+      // would pay for the copy on every frame and never use it
+      if (key == previous) storePlate(key);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, msFbo);
+
+    // the shadow: the plate under the map's footprint multiplied by the lit fraction, before the root
+    // is drawn over it (no depth test: it lies in the plate)
+    if (shadows) {
+      glUseProgram(shadeProg);
+      glUniformMatrix4fv(glGetUniformLocation(shadeProg, "uView"), 1, GL_FALSE, s.viewMatrix.data());
+      glUniformMatrix4fv(glGetUniformLocation(shadeProg, "uProj"), 1, GL_FALSE, s.projMatrix.data());
+      glUniformMatrix4fv(glGetUniformLocation(shadeProg, "uLightViewProj"), 1, GL_FALSE, s.lightViewProj.data());
+      glActiveTexture(GL_TEXTURE0);
+      glBindTexture(GL_TEXTURE_2D, shadowTex);
+      glUniform1i(glGetUniformLocation(shadeProg, "uShadowMap"), 0);
+      glBindVertexArray(planeVao);
+      glBindBuffer(GL_ARRAY_BUFFER, planeVbo);
+      glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof(float) * 8, s.shadowQuad.data());
+      glDisable(GL_DEPTH_TEST);
+      glEnable(GL_BLEND);
+      glBlendFunc(GL_ZERO, GL_SRC_COLOR);
+      glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+      glDisable(GL_BLEND);
+      glEnable(GL_DEPTH_TEST);
+      checkGl("draw shadow");
+    }
 
     if (!s.indices.empty()) {
       const auto& m = s.material;

@@ -276,7 +276,9 @@ void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, cons
 
 // the key light's depth view of the root: an orthographic box along the light, fitted around the
 // tube vertices near the visible part of the plate (their shadows can fall into the picture)
-std::array<float, 16> lightViewProj(const RenderScene& rs, const glm::vec3& towardsLight, const Framing& f) {
+// mapSide: in, the largest map side [px]; out, a side giving about one texel per picture pixel
+std::array<float, 16> lightViewProj(const RenderScene& rs, const glm::vec3& towardsLight, const Framing& f,
+                                    double pxPerMm, int& mapSide) {
   const glm::vec3 L = glm::normalize(towardsLight);
   const glm::vec3 up = std::abs(L.y) > 0.95f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
   const glm::mat4 look = glm::lookAt(glm::vec3(0.0f), -L, up);  // light looks along -L
@@ -296,6 +298,11 @@ std::array<float, 16> lightViewProj(const RenderScene& rs, const glm::vec3& towa
     hi = glm::vec3(-0.5f);
   }
   const float pad = 0.02f * std::max(hi.x - lo.x, hi.y - lo.y) + 1e-3f;
+  // texels: about one per picture pixel across the box (a power of two, 256 .. mapSide)
+  const double needed = (std::max(hi.x - lo.x, hi.y - lo.y) + 2 * pad) * pxPerMm;
+  int side = 256;
+  while (side < needed && side < mapSide) side *= 2;
+  mapSide = std::min(side, mapSide);
   // eye-space z is negative in front: near/far from the depth range, the far plane well behind
   // the plate so every plate point under the root compares against the stored depths
   const float nearZ = -hi.z - pad, farZ = -lo.z + 100.0f * (hi.z - lo.z + 1.0f);
@@ -428,7 +435,21 @@ RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const 
     if (view.shadowMapPx < 256 || view.shadowMapPx > 8192)
       throw RenderError("render view: shadowMapPx must be in 256..8192 (got " + std::to_string(view.shadowMapPx) + ")");
     rs.shadowMapPx = view.shadowMapPx;
-    rs.lightViewProj = lightViewProj(rs, towardsLightPlate, framing);
+    rs.lightViewProj = lightViewProj(rs, towardsLightPlate, framing, view.width / framing.widthMm, rs.shadowMapPx);
+    // the map's footprint on the plate: each corner's ray through the light box meets w = 0
+    glm::mat4 lvp;
+    std::copy(rs.lightViewProj.begin(), rs.lightViewProj.end(), glm::value_ptr(lvp));
+    const glm::mat4 inv = glm::inverse(lvp);
+    const float corners[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+    for (int c = 0; c < 4; ++c) {
+      glm::vec4 a = inv * glm::vec4(corners[c][0], corners[c][1], -1.0f, 1.0f);
+      glm::vec4 b = inv * glm::vec4(corners[c][0], corners[c][1], 1.0f, 1.0f);
+      a /= a.w;
+      b /= b.w;
+      const float t = std::abs(a.z - b.z) > 1e-12f ? a.z / (a.z - b.z) : 0.0f;
+      rs.shadowQuad[static_cast<std::size_t>(2 * c)] = a.x + t * (b.x - a.x);
+      rs.shadowQuad[static_cast<std::size_t>(2 * c + 1)] = a.y + t * (b.y - a.y);
+    }
   }
 
   // background: the plate, a plain light field without one, or nothing (transparent)

@@ -8,6 +8,7 @@
 #include <GL/glext.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdio>
 #include <cstring>
@@ -129,6 +130,7 @@ struct GlRenderer::Impl {
   int shadowSize = 0;                                    // its side [px]
   GLuint tubeVao = 0, tubeVbo = 0, tubeIbo = 0, planeVao = 0, planeVbo = 0;
   std::vector<std::uint8_t> readback;
+  std::vector<float> plateTris;                          // plate triangles (u, v) [mm] of this frame
   detail::OverlayPainter overlays;
   std::string version;
 
@@ -359,8 +361,15 @@ struct GlRenderer::Impl {
       copyBuffers(plateFbo, msFbo);
       checkGl("restore the plate (glBlitFramebuffer)");
     } else {
+      // the top view's plate covers the picture: clear to its colour and shade only the grid lines
+      const bool topPlate = s.plate.visible && s.pxPerMm > 0;
+      const auto& bg = s.background;
+      const auto& pc = s.plate.colour;
       glBindFramebuffer(GL_FRAMEBUFFER, msFbo);
-      glClearColor(s.background[0], s.background[1], s.background[2], s.background[3]);
+      if (topPlate)
+        glClearColor(pc[0], pc[1], pc[2], 1.0f);
+      else
+        glClearColor(bg[0], bg[1], bg[2], bg[3]);
       glClearDepth(1.0);
       glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     }
@@ -368,7 +377,24 @@ struct GlRenderer::Impl {
     // the plate first, pushed back a little so the root's contact line wins the depth test
     if (s.plate.visible && !cached) {
       const auto& p = s.plate;
-      const float quad[8] = {p.u0, p.v0, p.u1, p.v0, p.u0, p.v1, p.u1, p.v1};
+      // triangles in plate (u, v): in perspective the whole plate; in the top view only strips of a
+      // few pixels around each grid line (the plate colour is the clear colour, and the shader's
+      // line coverage is zero further than a pixel from a line): a tenth of the plate's fragments
+      // when the camera moves (follow) and the plate cannot be copied
+      plateTris.clear();
+      auto rect = [&](float a0, float b0, float a1, float b1) {
+        plateTris.insert(plateTris.end(), {a0, b0, a1, b0, a0, b1, a1, b0, a1, b1, a0, b1});
+      };
+      if (s.pxPerMm > 0) {
+        const float half = static_cast<float>((0.5 * p.lineWidthPx + 2.0) / s.pxPerMm);
+        const double g = p.gridMm;
+        for (double k = std::ceil((p.u0 - half) / g); k * g <= p.u1 + half; k += 1.0)
+          rect(static_cast<float>(k * g) - half, p.v0, static_cast<float>(k * g) + half, p.v1);
+        for (double k = std::ceil((p.v0 - half) / g); k * g <= p.v1 + half; k += 1.0)
+          rect(p.u0, static_cast<float>(k * g) - half, p.u1, static_cast<float>(k * g) + half);
+      } else {
+        rect(p.u0, p.v0, p.u1, p.v1);
+      }
       glUseProgram(planeProg);
       glUniformMatrix4fv(glGetUniformLocation(planeProg, "uView"), 1, GL_FALSE, s.viewMatrix.data());
       glUniformMatrix4fv(glGetUniformLocation(planeProg, "uProj"), 1, GL_FALSE, s.projMatrix.data());
@@ -380,10 +406,11 @@ struct GlRenderer::Impl {
       glUniform3fv(glGetUniformLocation(planeProg, "uMajor"), 1, p.major.data());
       glBindVertexArray(planeVao);
       glBindBuffer(GL_ARRAY_BUFFER, planeVbo);
-      glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof quad, quad);
+      glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(plateTris.size() * sizeof(float)), plateTris.data(),
+                   GL_STREAM_DRAW);
       glEnable(GL_POLYGON_OFFSET_FILL);
       glPolygonOffset(1.0f, 1.0f);
-      glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+      glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(plateTris.size() / 2));
       glDisable(GL_POLYGON_OFFSET_FILL);
       checkGl("draw plate");
       // keep a copy only once the camera has stood still for a frame: a moving camera (follow)
@@ -404,7 +431,7 @@ struct GlRenderer::Impl {
       glUniform1i(glGetUniformLocation(shadeProg, "uShadowMap"), 0);
       glBindVertexArray(planeVao);
       glBindBuffer(GL_ARRAY_BUFFER, planeVbo);
-      glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof(float) * 8, s.shadowQuad.data());
+      glBufferData(GL_ARRAY_BUFFER, sizeof(float) * 8, s.shadowQuad.data(), GL_STREAM_DRAW);
       glDisable(GL_DEPTH_TEST);
       glEnable(GL_BLEND);
       glBlendFunc(GL_ZERO, GL_SRC_COLOR);

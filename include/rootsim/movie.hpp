@@ -86,14 +86,16 @@ class FrameComposer {
 // progress(done, total) after each frame
 using MovieProgress = std::function<void(int done, int total)>;
 
-// render every snapshot (cameras from planFrames). Throws RenderError; an MP4 interrupted by an error
-// is left as "<mp4>.partial".
+// render every snapshot (cameras from planFrames; with View::colourBy, View::colourRange is replaced
+// by fieldRange over all snapshots). Throws RenderError; an MP4 interrupted by an error is left as
+// "<mp4>.partial".
 void renderMovie(const std::vector<Snapshot>& snaps, const SceneInfo& info, const MovieJob& job,
                  const MovieProgress& progress = {});
 
 // the same, one snapshot at a time, for rendering while a simulation runs: the framing is given
-// up front (e.g. frameFor over the expected extent, or View::centreMm / widthMm); fit camera only,
-// or a full plan
+// up front (e.g. frameFor over the expected extent, or View::centreMm / widthMm; fit camera), or a
+// full plan (planFrames). With View::colourBy the caller sets View::colourRange (renderMovie computes
+// it with fieldRange over all snapshots)
 class MovieRecorder {
  public:
   MovieRecorder(const SceneInfo& info, const MovieJob& job, const Framing& framing);

@@ -319,7 +319,7 @@ TEST_CASE("rootsim render on a tiny run: movie.mp4 with one frame per snapshot, 
   }
 }
 
-TEST_CASE("movie looks on the command line: follow, colour, plots, inset, shadows, montage; bad options exit 2 and write nothing") {
+TEST_CASE("movie looks on the command line (follow, colour, plots, inset, shadows, montage) and bad options that exit 2 and write nothing") {
   const fs::path d = rtest::scratch("looks");
   const std::string scene = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2b_waving.toml";
   const std::string runDir = (d / "run").string();

@@ -127,7 +127,6 @@ void renderMontage(const std::vector<MontageRun>& runs, const MontageJob& job, c
   tileView.showParams = false;
   tileView.showTitle = false;
   if (tileView.colourBy != ColourField::None) {
-    std::vector<Snapshot> all;
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (const MontageRun& r : runs) {
       const auto range = fieldRange(r.snaps, r.info, tileView.colourBy);

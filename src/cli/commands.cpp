@@ -79,6 +79,8 @@ int runCommand(const RunOptions& o) {
 #ifdef ROOTSIM_HAVE_RENDER
   // the movie's flags are checked before the run, so a bad one writes nothing
   const MovieLook look = parseLook(o.look);
+  if (o.movie && look.shadows && !sc.model.env.plane.enabled)
+    throw SceneError("--shadows: " + std::string(sc.path) + " has no plate to cast them on (plane.enabled = false)");
   if (o.movie && (look.camera == CameraMode::Follow || look.inset) && sc.model.growth.enabled) {
     // the plate a fit view can show: at most twice the longest root the run can grow (the zone grows
     // at eps0 over at most max(L0, Lgz)) plus margins [mm]

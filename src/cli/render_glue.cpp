@@ -322,6 +322,8 @@ int renderRunCommand(const RenderOptions& o) {
   }
   if (o.noOverlays) job.view.overlays = false;
   const MovieLook look = parseLook(o.look);
+  if (o.transparent && (look.inset || !look.plots.empty() || look.shadows))
+    throw SceneError("--transparent: frames of the root alone, without a plate; not with --inset, --plot or --shadows");
   if (!o.shaderDir.empty()) {
     for (const char* f : {"tube.vert", "tube.frag", "plane.vert", "plane.frag", "shadow.vert", "shadow.frag", "shade.frag"})
       if (!fs::is_regular_file(fs::path(o.shaderDir) / f))
@@ -331,6 +333,8 @@ int renderRunCommand(const RenderOptions& o) {
   const fs::path sceneFile = runDir / "scene.toml";
   if (!fs::is_regular_file(sceneFile)) throw SceneError(sceneFile.string() + ": not found (not a run directory?)");
   const SceneInfo info = sceneInfoOf(loadScene(sceneFile.string()).model);
+  if (look.shadows && !info.plate)
+    throw SceneError("--shadows: " + sceneFile.string() + " has no plate to cast them on (plane.enabled = false)");
   const std::vector<Snapshot> snaps = loadSnapshots(runDir);
   if (autoSized) std::tie(job.view.width, job.view.height) = autoSizeFor(snaps, info, look);
   applyLook(look, runDir, snaps, job);
@@ -457,6 +461,8 @@ int montageRunsCommand(const MontageOptions& o) {
   for (std::size_t i = 0; i < dirs.size(); ++i) {
     MontageRun r;
     r.info = sceneInfoOf(loadScene((dirs[i] / "scene.toml").string()).model);
+    if (job.view.shadows && !r.info.plate)
+      throw SceneError("--shadows: " + (dirs[i] / "scene.toml").string() + " has no plate to cast them on (plane.enabled = false)");
     r.snaps = loadSnapshots(dirs[i]);
     r.label = labels[i];
     if (job.view.colourBy == ColourField::Kappa0 && r.snaps.back().kappa0.size() == 0)

@@ -367,6 +367,10 @@ TEST_CASE("movie looks on the command line (follow, colour, plots, inset, shadow
       {"render " + runDir + " --size 3842x2160" + outputs, "--size 3842x2160"},
       {"render " + runDir + " --size 3840x2162" + outputs, "--size"},
       {"render " + runDir + " --camera follow --inset" + outputs, "--inset"},
+      {"render " + runDir + " --transparent --shadows --png-dir " + pngs, "--transparent"},
+      {"render " + runDir + " --transparent --plot Tw --png-dir " + pngs, "--transparent"},
+      {"run " + std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2c_free_organ.toml --set growth.steps=4 --movie --shadows --out " +
+           (d / "run3").string(), "--shadows"},
       {"montage --size 640x360" + outputs, "no run directories"},
       {"montage " + runDir + " " + (d / "nothing").string() + outputs, "nothing not found"},
       {"montage " + runDir + " --labels a,b" + outputs, "--labels"},

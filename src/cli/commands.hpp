@@ -10,6 +10,7 @@ namespace rootsim::cli {
 struct LookOptions {
   std::string camera = "fit";  // fit | follow
   double fieldMm = 2.0;        // follow window width [mm]
+  bool fieldGiven = false;     // --field-mm was on the command line
   bool inset = false;          // fit view with a follow window in its corner
   std::string colorBy = "none";  // none | curvature | twist | kappa0 | stretch | contact
   std::string plot;            // comma-separated subset of theta_tip,Eb,Et,Wr,Tw

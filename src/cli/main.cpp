@@ -106,6 +106,9 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
   }
+  // a --field-mm without a follow window to size is refused (render_glue.cpp), not ignored
+  run.look.fieldGiven = cRun->get_option("--field-mm")->count() > 0;
+  render.look.fieldGiven = cRender->get_option("--field-mm")->count() > 0;
   try {
     if (cRun->parsed()) return cli::runCommand(run);
     if (cCheck->parsed()) return cli::checkCommand(check);

@@ -208,6 +208,8 @@ MovieLook parseLook(const LookOptions& o) {
     throw SceneError("--camera " + o.camera + ": expected fit or follow");
   if (!(o.fieldMm > 0)) throw SceneError("--field-mm " + fmtNumber(o.fieldMm) + ": must be > 0 mm");
   l.fieldMm = o.fieldMm;
+  if (o.fieldGiven && l.camera != CameraMode::Follow && !o.inset)
+    throw SceneError("--field-mm " + fmtNumber(o.fieldMm) + ": sizes the follow window; add --camera follow or --inset");
   if (o.inset && l.camera == CameraMode::Follow)
     throw SceneError("--inset: puts a follow window into the fit view; use it with --camera fit");
   l.inset = o.inset;

@@ -367,6 +367,7 @@ TEST_CASE("movie looks on the command line (follow, colour, plots, inset, shadow
       {"render " + runDir + " --size 3842x2160" + outputs, "--size 3842x2160"},
       {"render " + runDir + " --size 3840x2162" + outputs, "--size"},
       {"render " + runDir + " --camera follow --inset" + outputs, "--inset"},
+      {"render " + runDir + " --field-mm 3" + outputs, "--field-mm 3"},
       {"render " + runDir + " --transparent --shadows --png-dir " + pngs, "--transparent"},
       {"render " + runDir + " --transparent --plot Tw --png-dir " + pngs, "--transparent"},
       {"run " + std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2c_free_organ.toml --set growth.steps=4 --movie --shadows --out " +

@@ -31,7 +31,7 @@ struct View {
   double stripeHalfWidthDeg = 38.0;  // half the angular width of each stripe around +-d1 [deg]
   ColourField colourBy = ColourField::None;   // colour the body along the tube (stripes stay on top)
   std::array<double, 2> colourRange{0.0, 1.0}; // field values at the two ends of the map (fieldRange)
-  bool shadows = false;          // the root's shadow on the plate (shadow map)
+  bool shadows = false;          // the root's shadow on the plate and on itself (shadow map)
   int shadowMapPx = 4096;        // largest shadow map side [px]; the map gets about one texel per
                                  // picture pixel over the root's box, a power of two up to this
   // overlays (drawn in the top view; the scale bar only there)
@@ -122,6 +122,8 @@ struct RenderScene {
   // shadows: a depth map of the root seen from the key light, sampled by the plate
   bool shadows = false;
   std::array<float, 16> lightViewProj{};  // plate [mm] -> light clip space, column-major
+  std::array<float, 3> lightPlate{};      // towards the key light, plate axes, unit
+  float shadowTexelMm = 0.0f;             // one shadow-map texel on the light's view [mm]
   int shadowMapPx = 2048;                 // [px]
   std::array<float, 8> shadowQuad{};      // the plate region the map covers: 4 corners (u, v) [mm],
                                           // in triangle-strip order

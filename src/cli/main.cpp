@@ -20,7 +20,7 @@ void addLookOptions(CLI::App* c, cli::LookOptions& look) {
   c->add_flag("--inset", look.inset, "fit view with a follow window in a free corner, its region marked");
   c->add_option("--color-by", look.colorBy, "colour the tube: curvature, twist, kappa0, stretch or contact");
   c->add_option("--plot", look.plot, "panel of time series: any of theta_tip,Eb,Et,Wr,Tw (comma separated)");
-  c->add_flag("--shadows", look.shadows, "cast the root's shadow on the plate (shadow map)");
+  c->add_flag("--shadows", look.shadows, "cast the root's shadow on the plate and on itself (shadow map)");
 }
 }  // namespace
 

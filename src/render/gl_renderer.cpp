@@ -453,6 +453,15 @@ struct GlRenderer::Impl {
       glUniform3fv(glGetUniformLocation(tubeProg, "uMinus"), 1, m.minus.data());
       glUniform1f(glGetUniformLocation(tubeProg, "uStripeCos"), m.stripeCos);
       glUniform4f(glGetUniformLocation(tubeProg, "uLighting"), m.ambient, m.diffuse, m.specular, m.shininess);
+      glUniform1i(glGetUniformLocation(tubeProg, "uShadows"), shadows ? 1 : 0);
+      glActiveTexture(GL_TEXTURE0);
+      glBindTexture(GL_TEXTURE_2D, shadows ? shadowTex : 0);
+      glUniform1i(glGetUniformLocation(tubeProg, "uShadowMap"), 0);
+      if (shadows) {
+        glUniformMatrix4fv(glGetUniformLocation(tubeProg, "uLightViewProj"), 1, GL_FALSE, s.lightViewProj.data());
+        glUniform3fv(glGetUniformLocation(tubeProg, "uLightPlate"), 1, s.lightPlate.data());
+        glUniform1f(glGetUniformLocation(tubeProg, "uShadowTexel"), s.shadowTexelMm);
+      }
       glBindVertexArray(tubeVao);
       glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(s.indices.size()), GL_UNSIGNED_INT, nullptr);
       checkGl("draw tube");

@@ -276,9 +276,10 @@ void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, cons
 
 // the key light's depth view of the root: an orthographic box along the light, fitted around the
 // tube vertices near the visible part of the plate (their shadows can fall into the picture)
-// mapSide: in, the largest map side [px]; out, a side giving about one texel per picture pixel
+// mapSide: in, the largest map side [px]; out, a side giving about one texel per picture pixel;
+// texelMm: out, the size of one texel on the light's view [mm]
 std::array<float, 16> lightViewProj(const RenderScene& rs, const glm::vec3& towardsLight, const Framing& f,
-                                    double pxPerMm, int& mapSide) {
+                                    double pxPerMm, int& mapSide, float& texelMm) {
   const glm::vec3 L = glm::normalize(towardsLight);
   const glm::vec3 up = std::abs(L.y) > 0.95f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
   const glm::mat4 look = glm::lookAt(glm::vec3(0.0f), -L, up);  // light looks along -L
@@ -303,6 +304,7 @@ std::array<float, 16> lightViewProj(const RenderScene& rs, const glm::vec3& towa
   int side = 256;
   while (side < needed && side < mapSide) side *= 2;
   mapSide = std::min(side, mapSide);
+  texelMm = (std::max(hi.x - lo.x, hi.y - lo.y) + 2 * pad) / static_cast<float>(mapSide);
   // eye-space z is negative in front: near/far from the depth range, the far plane well behind
   // the plate so every plate point under the root compares against the stored depths
   const float nearZ = -hi.z - pad, farZ = -lo.z + 100.0f * (hi.z - lo.z + 1.0f);
@@ -435,7 +437,9 @@ RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const 
     if (view.shadowMapPx < 256 || view.shadowMapPx > 8192)
       throw RenderError("render view: shadowMapPx must be in 256..8192 (got " + std::to_string(view.shadowMapPx) + ")");
     rs.shadowMapPx = view.shadowMapPx;
-    rs.lightViewProj = lightViewProj(rs, towardsLightPlate, framing, view.width / framing.widthMm, rs.shadowMapPx);
+    rs.lightViewProj = lightViewProj(rs, towardsLightPlate, framing, view.width / framing.widthMm, rs.shadowMapPx,
+                                     rs.shadowTexelMm);
+    rs.lightPlate = {towardsLightPlate.x, towardsLightPlate.y, towardsLightPlate.z};
     // the map's footprint on the plate: each corner's ray through the light box meets w = 0
     glm::mat4 lvp;
     std::copy(rs.lightViewProj.begin(), rs.lightViewProj.end(), glm::value_ptr(lvp));

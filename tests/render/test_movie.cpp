@@ -413,3 +413,52 @@ TEST_CASE("shadows darken the plate beside a raised rod, on the side away from t
   CHECK((sumX / darker - axis.x()) / pxPerMm == doctest::Approx(0.6 * 0.35).epsilon(0.3));
   CHECK(elsewhere == 0);
 }
+
+TEST_CASE("shadows: a strand lifted across another darkens the lower strand's top where the light is blocked") {
+  // down the plate for 3 mm, then up and back across its own start 1 mm above the plate (a crossing
+  // of a coil); polyline in plate (u, v, w) [mm], ~0.05 mm elements
+  const double R = 0.1;
+  const std::vector<Eigen::Vector3d> corner = {{0, 0, R}, {0, -3, R}, {1.2, -3.3, 0.6}, {1.5, -1.75, 1.0}, {-1.5, -1.75, 1.0}};
+  std::vector<Eigen::Vector3d> pts{corner[0]};
+  for (std::size_t c = 1; c < corner.size(); ++c) {
+    const int pieces = static_cast<int>(std::ceil((corner[c] - corner[c - 1]).norm() / 0.05));
+    for (int k = 1; k <= pieces; ++k) pts.push_back(corner[c - 1] + (corner[c] - corner[c - 1]) * (double(k) / pieces));
+  }
+  const PlateFrame pf = PlateFrame::tilted(40 * units::deg);
+  const int n = static_cast<int>(pts.size()) - 1;
+  Snapshot rod;
+  rod.x.resize(3, n + 1);
+  rod.d1.resize(3, n);
+  rod.d3.resize(3, n);
+  rod.radius = Eigen::VectorXd::Constant(n, R * units::mm);
+  for (int i = 0; i <= n; ++i)
+    rod.x.col(i) = units::mm * (pts[i].x() * pf.lateral + pts[i].y() * pf.uphill() + pts[i].z() * pf.normal);
+  for (int e = 0; e < n; ++e) {
+    const Eigen::Vector3d d3 = (rod.x.col(e + 1) - rod.x.col(e)).normalized();
+    rod.d3.col(e) = d3;
+    rod.d1.col(e) = pf.normal.cross(d3).normalized();
+  }
+  const SceneInfo info = rtest::info(40);
+  View v;
+  v.width = 640;
+  v.height = 640;
+  v.overlays = false;
+  const Framing f = frameFor({rod}, info, v);
+  GlRenderer gl(v.width, v.height);
+  const Image plain = gl.render(buildRenderScene(rod, info, v, f));
+  v.shadows = true;
+  const Image shaded = gl.render(buildRenderScene(rod, info, v, f));
+  auto at = [&](const Image& img, double u, double vv) {
+    const Eigen::Vector2d px = topViewPixel(f, v, u, vv);
+    return luminance(img.at(static_cast<int>(px.x()), static_cast<int>(px.y())));
+  };
+  // the upper strand (axis 1 mm up) throws its shadow 0.8 mm x (0.35, -0.5) off itself: onto the
+  // lower strand's top at v = -1.75 - 0.4
+  INFO("lower strand top in the shadow: " << int(at(plain, 0, -2.15)) << " -> " << int(at(shaded, 0, -2.15)));
+  CHECK(at(plain, 0, -2.15) - at(shaded, 0, -2.15) > 25);
+  // elsewhere on the lower strand, and on the upper strand itself, nothing changes (no acne)
+  for (double vv : {-0.5, -1.0, -2.7})
+    CHECK(at(plain, 0, vv) == at(shaded, 0, vv));
+  for (double u : {-1.0, -0.5, 0.5})
+    CHECK(at(plain, u, -1.75) == at(shaded, u, -1.75));
+}

@@ -14,7 +14,7 @@ enum class CameraMode { Fit, Follow };
 struct FollowOptions {
   double fieldMm = 2.0;        // visible plate width [mm]
   double smoothFrames = 2.0;   // time constant of the critically damped follow [frames]
-  double keepCentral = 0.2;    // the tip region's centre stays within this fraction of the width
+  double keepCentral = 0.12;   // the tip region's centre stays within this fraction of the width
                                // (height) from the picture's centre
 };
 
@@ -23,7 +23,7 @@ struct FollowOptions {
 // (a split keeps the centreline).
 Eigen::Vector2d tipRegionCentre(const Snapshot& s, const PlateFrame& pf, double lengthMm);
 
-// length of the tip region for a window of w x h mm: 0.3 of the shorter side, so the tip itself
+// length of the tip region for a window of w x h mm: 0.25 of the shorter side, so the tip itself
 // stays inside the middle of the picture
 double tipRegionLength(double widthMm, double heightMm);
 

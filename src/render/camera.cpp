@@ -36,7 +36,7 @@ std::vector<Eigen::Vector2d> criticallyDamped(const std::vector<Eigen::Vector2d>
 
 }  // namespace
 
-double tipRegionLength(double widthMm, double heightMm) { return 0.3 * std::min(widthMm, heightMm); }
+double tipRegionLength(double widthMm, double heightMm) { return 0.25 * std::min(widthMm, heightMm); }
 
 Eigen::Vector2d tipRegionCentre(const Snapshot& s, const PlateFrame& pf, double lengthMm) {
   const long nn = s.x.cols();

@@ -9,6 +9,8 @@ layout(location = 4) in float aStriped;
 uniform mat4 uView;
 uniform mat4 uProj;
 
+out vec3 vPlate;       // plate coordinates [mm], for the shadow map
+out vec3 vNormalPlate;
 out vec3 vPosEye;
 out vec3 vNormalEye;
 out vec2 vSide;
@@ -16,6 +18,8 @@ out vec3 vColour;
 out float vStriped;
 
 void main() {
+  vPlate = aPos;
+  vNormalPlate = aNormal;
   vec4 pe = uView * vec4(aPos, 1.0);
   vPosEye = pe.xyz;
   vNormalEye = mat3(uView) * aNormal;   // the view matrix is a rotation plus a translation

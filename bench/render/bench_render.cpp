@@ -1,6 +1,7 @@
 // rendering costs of a 300-element waving, twisted root at 1280x720 and 1920x1080 (4x MSAA):
 // scene build, draw + readback, PNG, H.264 encode, and the end-to-end movie rate with drawing and
-// encoding overlapped (renderMovie). Run: bench_render --benchmark_min_time=2
+// encoding overlapped (renderMovie), plain and with the movie looks (follow camera, colours, plot
+// panel, shadows) up to 4K. Run: bench_render --benchmark_min_time=1
 #include <benchmark/benchmark.h>
 
 #include <Eigen/Geometry>
@@ -130,22 +131,100 @@ void BM_Encode(benchmark::State& st) {
 }
 BENCHMARK(BM_Encode)->Args({1280, 720})->Args({1920, 1080})->Unit(benchmark::kMillisecond)->UseRealTime();
 
-// end to end: 60 snapshots -> MP4 (build, draw, readback, overlays | swscale, x264) per iteration;
-// items/s is the movie's frame rate
+// end to end: snapshots -> MP4 (build, draw, readback, overlays | swscale, x264) per iteration;
+// items/s and the fps counter are the movie's frame rate. Arguments: width, height, look (0 plain fit
+// view, 1 follow camera 2 mm + curvature colours + a panel of all five time series, 2 plain + shadows,
+// 3 the look of 1 + shadows), frames
+
+PlotSeries series(const char* name, double phase) {
+  PlotSeries s;
+  s.name = name;
+  s.unit = "J";
+  s.siPrefix = true;
+  for (int i = 0; i <= 600; ++i) {
+    s.timeH.push_back(0.05 * i);
+    s.value.push_back(1e-9 * (1.0 + std::sin(0.1 * i + phase)));
+  }
+  return s;
+}
+
+// one composed frame without encoding (scene build, draw, readback, overlays, inset, panel), so the
+// looks' drawing costs can be told apart from the encoder's; arguments as BM_Movie without frames,
+// plus look 4: the follow camera alone
+void BM_Compose(benchmark::State& st) {
+  const int w = static_cast<int>(st.range(0)), h = static_cast<int>(st.range(1));
+  const int look = static_cast<int>(st.range(2));
+  std::vector<Snapshot> snaps;
+  for (int k = 0; k < 8; ++k) snaps.push_back(wavingRoot(k));
+  MovieJob job;
+  job.view = view(w, h);
+  if (look == 1 || look == 3 || look == 4) {
+    job.camera = CameraMode::Follow;
+    job.fieldMm = 2.0;
+  }
+  if (look == 1 || look == 3) {
+    job.view.colourBy = ColourField::Curvature;
+    job.view.colourRange = fieldRange(snaps, info(), job.view.colourBy);
+  }
+  if (look == 1 || look == 3)
+    for (const char* n : {"theta", "Eb", "Et", "Wr", "Tw"}) job.plots.push_back(series(n, n[0]));
+  job.view.shadows = look == 2 || look == 3;
+  FrameComposer comp(info(), job, planFrames(snaps, info(), job));
+  Image img;
+  int k = 0;
+  for (auto _ : st) {
+    comp.compose(snaps[static_cast<std::size_t>(k % 8)], k % 8, img);
+    ++k;
+  }
+  st.SetItemsProcessed(st.iterations());
+}
+BENCHMARK(BM_Compose)
+    ->ArgNames({"w", "h", "look"})
+    ->Args({1280, 720, 0})
+    ->Args({1280, 720, 1})
+    ->Args({1280, 720, 2})
+    ->Args({1280, 720, 4})
+    ->Args({1920, 1080, 0})
+    ->Args({1920, 1080, 1})
+    ->Args({1920, 1080, 2})
+    ->Args({1920, 1080, 4})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
+
 void BM_Movie(benchmark::State& st) {
   const int w = static_cast<int>(st.range(0)), h = static_cast<int>(st.range(1));
-  constexpr int kFrames = 60;
+  const int look = static_cast<int>(st.range(2)), frames = static_cast<int>(st.range(3));
   std::vector<Snapshot> snaps;
-  for (int k = 0; k < kFrames; ++k) snaps.push_back(wavingRoot(k));
+  for (int k = 0; k < frames; ++k) snaps.push_back(wavingRoot(k));
   MovieJob job;
   job.view = view(w, h);
   job.mp4 = (scratch() / "movie.mp4").string();
+  if (look == 1 || look == 3) {
+    job.camera = CameraMode::Follow;
+    job.fieldMm = 2.0;
+    job.view.colourBy = ColourField::Curvature;
+    for (const char* n : {"theta", "Eb", "Et", "Wr", "Tw"}) job.plots.push_back(series(n, n[0]));
+  }
+  job.view.shadows = look >= 2;
   for (auto _ : st) renderMovie(snaps, info(), job);
   std::filesystem::remove(job.mp4);
-  st.SetItemsProcessed(st.iterations() * kFrames);
-  st.counters["fps"] = benchmark::Counter(static_cast<double>(st.iterations() * kFrames), benchmark::Counter::kIsRate);
+  st.SetItemsProcessed(st.iterations() * frames);
+  st.counters["fps"] = benchmark::Counter(static_cast<double>(st.iterations() * frames), benchmark::Counter::kIsRate);
 }
-BENCHMARK(BM_Movie)->Args({1280, 720})->Args({1920, 1080})->Unit(benchmark::kMillisecond)->UseRealTime()->Iterations(2);
+BENCHMARK(BM_Movie)
+    ->ArgNames({"w", "h", "look", "frames"})
+    ->Args({1280, 720, 0, 60})
+    ->Args({1920, 1080, 0, 60})
+    ->Args({1280, 720, 1, 60})
+    ->Args({1920, 1080, 1, 60})
+    ->Args({1280, 720, 2, 60})
+    ->Args({1920, 1080, 2, 60})
+    ->Args({1920, 1080, 3, 60})
+    ->Args({3840, 2160, 0, 20})
+    ->Args({3840, 2160, 3, 20})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime()
+    ->Iterations(1);
 
 }  // namespace
 

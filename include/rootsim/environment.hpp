@@ -75,6 +75,10 @@ void addExternalForces(const RodParams& p, const Environment& env, const RodStat
                        const RodStrains& k, bool planeDamping, Eigen::Matrix3Xd& force,
                        Eigen::Matrix3Xd& torque, int first = 0);
 
+// normal force of the plate on each node (n+1) [N]: addPlaneContact without its
+// damping, each element's force shared by its two nodes; zeros without a plate
+Eigen::VectorXd plateNormalForce(const RodParams& p, const Plane& plane, const RodState& s);
+
 // couple of the clamp on element 0 (material frame) and the clamp curvature [1/m]: the clamp is a
 // boundary Voronoi domain of rest length l0[0]/2 between the state's clampFrame and element 0
 struct ClampCouple { Vec3 kappa, m, torque; };

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "rootsim/environment.hpp"
+#include "rootsim/colour_map.hpp"
 #include "rootsim/snapshot.hpp"
 
 namespace rootsim {
@@ -28,12 +29,18 @@ struct View {
   bool whiskers = false;         // thin +d1 (pink) / -d1 (orange) spikes along the root
   bool transparent = false;      // no plate, alpha 0 outside the root (PNG only; MP4 has no alpha)
   double stripeHalfWidthDeg = 38.0;  // half the angular width of each stripe around +-d1 [deg]
+  ColourField colourBy = ColourField::None;   // colour the body along the tube (stripes stay on top)
+  std::array<double, 2> colourRange{0.0, 1.0}; // field values at the two ends of the map (fieldRange)
+  bool shadows = false;          // the root's shadow on the plate and on itself (shadow map)
+  int shadowMapPx = 4096;        // largest shadow map side [px]; the map gets about one texel per
+                                 // picture pixel over the root's box, a power of two up to this
   // overlays (drawn in the top view; the scale bar only there)
   bool overlays = true;          // master switch
   bool showTime = true;          // "t = 12.0 h"
   bool showScaleBar = true;      // a bar of 1, 2, 5, 10 ... mm with its label
   bool showParams = true;        // alpha, beta, gamma, and R tau when nonzero
   bool showTitle = false;        // SceneInfo::title
+  bool showColourBar = true;     // with colourBy: the map, its range and the field's unit
   std::string fontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";  // fonts-dejavu-core
   // framing; unset fields are computed from the snapshots' bounding box
   std::optional<std::array<double, 2>> centreMm;  // picture centre, plate (u, v) [mm]
@@ -75,6 +82,13 @@ struct OverlayRect {
   std::array<std::uint8_t, 4> colour{40, 40, 40, 255};
 };
 
+// an anti-aliased polyline (a single point draws a round dot)
+struct OverlayLine {
+  std::vector<std::array<float, 2>> points;   // [px], from the top-left corner
+  float widthPx = 2;
+  std::array<std::uint8_t, 4> colour{40, 40, 40, 255};
+};
+
 struct RenderScene {
   int width = 0, height = 0;            // [px]
   std::array<float, 16> viewMatrix{};   // plate [mm] -> eye, column-major
@@ -105,8 +119,18 @@ struct RenderScene {
     float lineWidthPx = 1.0f;                          // grid line width [px] (anti-aliased)
   } plate;
 
+  // shadows: a depth map of the root seen from the key light, sampled by the plate
+  bool shadows = false;
+  std::array<float, 16> lightViewProj{};  // plate [mm] -> light clip space, column-major
+  std::array<float, 3> lightPlate{};      // towards the key light, plate axes, unit
+  float shadowTexelMm = 0.0f;             // one shadow-map texel on the light's view [mm]
+  int shadowMapPx = 2048;                 // [px]
+  std::array<float, 8> shadowQuad{};      // the plate region the map covers: 4 corners (u, v) [mm],
+                                          // in triangle-strip order
+
   std::vector<OverlayRect> rects;       // drawn first
-  std::vector<OverlayText> texts;       // drawn over the rects
+  std::vector<OverlayLine> lines;       // then the lines
+  std::vector<OverlayText> texts;       // drawn over the rects and lines
   std::string fontPath;                 // TrueType font for texts
 
   double pxPerMm = 0.0;                 // top view scale [px/mm]; 0 in perspective
@@ -120,6 +144,10 @@ Framing frameFor(const std::vector<Snapshot>& snaps, const SceneInfo& info, cons
 // the scene for one snapshot. Throws RenderError on inconsistent snapshot shapes or sizes <= 0.
 RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const View& view,
                              const Framing& framing);
+
+// where plate point (u, v, w) [mm] appears in the picture of scene (either camera) [px, from the
+// top-left corner]; false if it is behind the camera
+bool projectToPixel(const RenderScene& scene, const Eigen::Vector3d& plateMm, Eigen::Vector2d& px);
 
 // where plate point (u, v) [mm] appears in the top view [px, from the top-left corner, continuous:
 // pixel (i, j) covers [i, i+1) x [j, j+1)]

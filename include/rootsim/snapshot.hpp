@@ -15,6 +15,11 @@ struct Snapshot {
   Eigen::Matrix3Xd d1;         // director d1 of each element, lab, unit     (3 x n)
   Eigen::Matrix3Xd d3;         // director d3 of each element, lab, unit     (3 x n); d2 = d3 x d1
   Eigen::VectorXd radius;      // element radius R / sqrt(lambda_e) [m]      (n)
+  // per node, for colouring the tube; empty when the trajectory predates them
+  Eigen::VectorXd kappa0;      // |(kappa0_1, kappa0_2)| intrinsic bending curvature per rest length,
+                               // Voronoi value at interior nodes, 0 at the two ends [1/m]   (n+1)
+  Eigen::VectorXd plateForce;  // normal force of the plate on the node (the law of
+                               // addPlaneContact without damping) [N]                        (n+1)
   int elements() const { return static_cast<int>(radius.size()); }
 };
 

@@ -76,6 +76,23 @@ int runCommand(const RunOptions& o) {
 #ifndef ROOTSIM_HAVE_RENDER
   if (o.movie) throw SceneError("--movie: this rootsim was built without the renderer (ROOTSIM_BUILD_RENDER=OFF)");
 #endif
+#ifdef ROOTSIM_HAVE_RENDER
+  // the movie's flags are checked before the run, so a bad one writes nothing
+  const MovieLook look = parseLook(o.look);
+  if (o.movie && look.shadows && !sc.model.env.plane.enabled)
+    throw SceneError("--shadows: " + std::string(sc.path) + " has no plate to cast them on (plane.enabled = false)");
+  if (o.movie && (look.camera == CameraMode::Follow || look.inset) && sc.model.growth.enabled) {
+    // the plate a fit view can show: at most twice the longest root the run can grow (the zone grows
+    // at eps0 over at most max(L0, Lgz)) plus margins [mm]
+    const Model& m = sc.model;
+    const double lMax = m.initial.length + m.growth.rate * std::max(m.initial.length, m.growth.zoneLength) *
+                                               m.growth.steps * m.growth.stepTime;
+    checkFieldAgainstPlate(look, 2e3 * lMax + 2.0);
+  }
+  if (!o.movie && (o.look.camera != "fit" || o.look.inset || o.look.colorBy != "none" || !o.look.plot.empty() ||
+                   o.look.shadows))
+    throw SceneError("--camera, --inset, --color-by, --plot and --shadows shape the movie; add --movie");
+#endif
   if (o.movie && !sc.model.output.trajectory)
     throw SceneError("--movie needs the trajectory, but output.trajectory = false (" +
                      std::string(sc.path) + "); drop one of them");
@@ -93,7 +110,7 @@ int runCommand(const RunOptions& o) {
   });
   if (steps > 0) pr.finish(std::to_string(steps) + " steps");
 #ifdef ROOTSIM_HAVE_RENDER
-  if (o.movie) renderRunMovie(out, o.quiet);
+  if (o.movie) renderRunMovie(out, o.quiet, look);
 #endif
   if (!o.quiet) std::fprintf(stderr, "wrote %s\n", out.string().c_str());
   return 0;
@@ -203,6 +220,15 @@ int checkCommand(const CheckOptions& o) {
   }
   std::cout << "# scene is valid\n";
   return 0;
+}
+
+int montageCommand(const MontageOptions& o) {
+#ifdef ROOTSIM_HAVE_RENDER
+  return montageRunsCommand(o);
+#else
+  (void)o;
+  throw SceneError("montage: this rootsim was built without the renderer (ROOTSIM_BUILD_RENDER=OFF)");
+#endif
 }
 
 int renderCommand(const RenderOptions& o) {

@@ -6,11 +6,23 @@
 
 namespace rootsim::cli {
 
+// how a movie looks (render, run --movie, montage): camera, colour, plots, shadows
+struct LookOptions {
+  std::string camera = "fit";  // fit | follow
+  double fieldMm = 2.0;        // follow window width [mm]
+  bool fieldGiven = false;     // --field-mm was on the command line
+  bool inset = false;          // fit view with a follow window in its corner
+  std::string colorBy = "none";  // none | curvature | twist | kappa0 | stretch | contact
+  std::string plot;            // comma-separated subset of theta_tip,Eb,Et,Wr,Tw
+  bool shadows = false;        // the root's shadow on the plate
+};
+
 struct RunOptions {
   std::string scene;
   std::vector<std::string> sets;
   std::string out;        // run directory; default runs/<scene name>
   bool movie = false;
+  LookOptions look;       // the movie's camera, colours, plots (with movie)
   bool force = false;     // replace an earlier run directory at --out (never a folder rootsim did not write)
   bool quiet = false;
 };
@@ -24,8 +36,11 @@ int checkCommand(const CheckOptions& o);
 
 struct RenderOptions {
   std::string runDir;
-  std::string mp4;        // default RUN_DIR/movie.mp4
-  std::string pngDir;     // also write every frame as PNG
+  // outputs: with none of mp4, pngDir, finalPng given, RUN_DIR/movie.mp4 and RUN_DIR/final_top.png;
+  // otherwise exactly the ones given
+  std::string mp4;        // H.264 movie
+  std::string pngDir;     // every frame as PNG
+  std::string finalPng;   // the last snapshot, top view
   std::string view = "top";
   std::string size = "auto";  // WxH, or auto: 1280x720 or 720x1280 from the root's shape
   int fps = 30;
@@ -33,6 +48,7 @@ struct RenderOptions {
   bool whiskers = false;     // thin +-d1 spikes
   bool transparent = false;  // PNG frames without the plate (alpha 0 outside the root)
   bool noOverlays = false;   // no time, scale bar or parameters
+  LookOptions look;
   std::string shaderDir;     // development: load tube/plane shaders from here instead of the built-in copies
   bool quiet = false;
 };
@@ -44,6 +60,21 @@ struct ModesOptions {
   bool quiet = false;
 };
 int modesCommand(const ModesOptions& o);
+
+struct MontageOptions {
+  std::vector<std::string> runDirs;
+  std::string mp4;           // at least one of mp4, pngDir
+  std::string pngDir;
+  std::string size = "1280x720";
+  std::string labels;        // comma-separated, one per run; default: the scene keys that differ
+  std::string view = "top";
+  int fps = 30;
+  int crf = 18;
+  std::string colorBy = "none";
+  bool shadows = false;
+  bool quiet = false;
+};
+int montageCommand(const MontageOptions& o);
 
 struct SweepCliOptions {
   std::string sweep;

@@ -12,6 +12,18 @@
 
 using namespace rootsim;
 
+namespace {
+// the movie look flags shared by run --movie and render
+void addLookOptions(CLI::App* c, cli::LookOptions& look) {
+  c->add_option("--camera", look.camera, "fit (whole root, default) or follow (a window following the growth zone)");
+  c->add_option("--field-mm", look.fieldMm, "follow window width [mm] (default 2)");
+  c->add_flag("--inset", look.inset, "fit view with a follow window in a free corner, its region marked");
+  c->add_option("--color-by", look.colorBy, "colour the tube: curvature, twist, kappa0, stretch or contact");
+  c->add_option("--plot", look.plot, "panel of time series: any of theta_tip,Eb,Et,Wr,Tw (comma separated)");
+  c->add_flag("--shadows", look.shadows, "cast the root's shadow on the plate and on itself (shadow map)");
+}
+}  // namespace
+
 int main(int argc, char** argv) {
   CLI::App app{"rootsim: growing Cosserat-rod roots on tilted plates (Cosserat mechanics, growth, movies)"};
   app.fallthrough();
@@ -24,6 +36,7 @@ int main(int argc, char** argv) {
   cRun->add_option("--set", run.sets, "override a scene key: section.key=value (repeatable)");
   cRun->add_option("--out", run.out, "run directory (default: runs/<scene name>)");
   cRun->add_flag("--movie", run.movie, "also render movie.mp4 and final_top.png into the run directory");
+  addLookOptions(cRun, run.look);
   cRun->add_flag("--force", run.force,
                  "replace an earlier run (or interrupted run) at --out; folders rootsim did not write are never touched");
   cRun->add_flag("--quiet", run.quiet, "no progress output");
@@ -36,8 +49,9 @@ int main(int argc, char** argv) {
   cli::RenderOptions render;
   CLI::App* cRender = app.add_subcommand("render", "render a saved run (trajectory.csv) to MP4 / PNG frames");
   cRender->add_option("run_dir", render.runDir, "run directory")->required();
-  cRender->add_option("--mp4", render.mp4, "movie file (default: RUN_DIR/movie.mp4)");
-  cRender->add_option("--png-dir", render.pngDir, "also write every frame as PNG into this folder");
+  cRender->add_option("--mp4", render.mp4, "movie file (with no output flag: RUN_DIR/movie.mp4 + RUN_DIR/final_top.png)");
+  cRender->add_option("--png-dir", render.pngDir, "write every frame as PNG into this folder");
+  cRender->add_option("--final-png", render.finalPng, "write the last snapshot (top view) as PNG");
   cRender->add_option("--view", render.view, "top or 3d")->check(CLI::IsMember({"top", "3d"}));
   cRender->add_option("--size", render.size, "frame size WxH (even numbers), or auto (default): 1280x720, or 720x1280 for a root growing mostly downhill");
   cRender->add_option("--fps", render.fps, "frames per second")->check(CLI::Range(1, 240));
@@ -47,6 +61,7 @@ int main(int argc, char** argv) {
   cRender->add_flag("--no-overlays", render.noOverlays, "no time, scale bar or parameters");
   cRender->add_option("--shader-dir", render.shaderDir,
                       "development: load tube/plane .vert/.frag from DIR instead of the built-in shaders");
+  addLookOptions(cRender, render.look);
   cRender->add_flag("--quiet", render.quiet, "no progress output");
 
   cli::ModesOptions modes;
@@ -54,6 +69,20 @@ int main(int argc, char** argv) {
   cModes->add_option("run_dir", modes.runDir, "run directory")->required();
   cModes->add_option("--count", modes.count, "number of modes (default 6)")->check(CLI::Range(1, 1000));
   cModes->add_flag("--quiet", modes.quiet, "no progress output");
+
+  cli::MontageOptions montage;
+  CLI::App* cMontage = app.add_subcommand("montage", "several runs side by side on one scale and one clock");
+  cMontage->add_option("run_dirs", montage.runDirs, "run directories");
+  cMontage->add_option("--mp4", montage.mp4, "movie file");
+  cMontage->add_option("--png-dir", montage.pngDir, "write every frame as PNG into this folder");
+  cMontage->add_option("--size", montage.size, "frame size WxH (even numbers), default 1280x720");
+  cMontage->add_option("--labels", montage.labels, "one label per run, comma separated (default: the scene keys that differ)");
+  cMontage->add_option("--view", montage.view, "top or 3d");
+  cMontage->add_option("--fps", montage.fps, "frames per second")->check(CLI::Range(1, 240));
+  cMontage->add_option("--crf", montage.crf, "H.264 quality, 0 (lossless) .. 51")->check(CLI::Range(0, 51));
+  cMontage->add_option("--color-by", montage.colorBy, "colour the tubes: curvature, twist, kappa0, stretch or contact");
+  cMontage->add_flag("--shadows", montage.shadows, "cast the roots' shadows on the plate");
+  cMontage->add_flag("--quiet", montage.quiet, "no progress output");
 
   cli::SweepCliOptions sweep;
   CLI::App* cSweep = app.add_subcommand("sweep", "run a grid of scenes (resumable, shardable); writes table.csv");
@@ -77,10 +106,14 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
   }
+  // a --field-mm without a follow window to size is refused (render_glue.cpp), not ignored
+  run.look.fieldGiven = cRun->get_option("--field-mm")->count() > 0;
+  render.look.fieldGiven = cRender->get_option("--field-mm")->count() > 0;
   try {
     if (cRun->parsed()) return cli::runCommand(run);
     if (cCheck->parsed()) return cli::checkCommand(check);
     if (cRender->parsed()) return cli::renderCommand(render);
+    if (cMontage->parsed()) return cli::montageCommand(montage);
     if (cSweep->parsed()) return cli::sweepCommand(sweep);
     if (cModes->parsed()) return cli::modesCommand(modes);
     if (cFigure->parsed()) return cli::figureCommand(figure);

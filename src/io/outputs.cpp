@@ -110,22 +110,25 @@ void TimeseriesWriter::add(const StepRecord& r) {
 void TimeseriesWriter::close() { f_.close(); }
 
 TrajectoryWriter::TrajectoryWriter(const fs::path& path) : f_(path) {
-  f_.stream() << "frame,step,time_h,node,x_mm,y_mm,z_mm,d1x,d1y,d1z,d3x,d3y,d3z,radius_mm\n";
+  f_.stream() << "frame,step,time_h,node,x_mm,y_mm,z_mm,d1x,d1y,d1z,d3x,d3y,d3z,radius_mm,kappa0_per_mm,"
+                 "plate_force_n\n";
 }
 
 void TrajectoryWriter::add(const Snapshot& s) {
   auto& o = f_.stream();
   const int n = s.elements();
+  const bool k0 = s.kappa0.size() == n + 1, pf = s.plateForce.size() == n + 1;
   for (int i = 0; i <= n; ++i) {
     o << frames_ << ',' << s.step << ',' << fmt(s.timeH) << ',' << i;
     for (int d = 0; d < 3; ++d) o << ',' << fmt(s.x(d, i) / units::mm);
     if (i < n) {
       for (int d = 0; d < 3; ++d) o << ',' << fmt(s.d1(d, i));
       for (int d = 0; d < 3; ++d) o << ',' << fmt(s.d3(d, i));
-      o << ',' << fmt(s.radius[i] / units::mm) << '\n';
+      o << ',' << fmt(s.radius[i] / units::mm);
     } else {
-      o << ",,,,,,,\n";
+      o << ",,,,,,,";
     }
+    o << ',' << (k0 ? fmt(s.kappa0[i] * units::mm) : "") << ',' << (pf ? fmt(s.plateForce[i]) : "") << '\n';
   }
   ++frames_;
 }
@@ -140,7 +143,9 @@ std::vector<Snapshot> readTrajectory(const fs::path& path) {
   int lineNo = 1;
   if (!std::getline(in, line) || line.rfind("frame,step,time_h,node,x_mm", 0) != 0)
     throw SceneError(path.string() + ":1: not a rootsim trajectory (unexpected header)");
-  struct Row { int frame, step, node; double t; double v[10]; bool hasElem; };
+  // 14 columns (before the node fields) or 16 (with kappa0_per_mm, plate_force_n)
+  const std::size_t columns = line.find(",kappa0_per_mm,plate_force_n") != std::string::npos ? 16 : 14;
+  struct Row { int frame, step, node; double t; double v[10]; bool hasElem; double k0 = 0, pf = 0; bool hasK0 = false, hasPf = false; };
   std::vector<Snapshot> out;
   std::vector<Row> rows;
   auto flush = [&]() {
@@ -154,7 +159,13 @@ std::vector<Snapshot> readTrajectory(const fs::path& path) {
     s.d1.resize(3, n);
     s.d3.resize(3, n);
     s.radius.resize(n);
+    bool allK0 = true, allPf = true;
+    for (const Row& r : rows) allK0 = allK0 && r.hasK0, allPf = allPf && r.hasPf;
+    if (allK0) s.kappa0.resize(nn);
+    if (allPf) s.plateForce.resize(nn);
     for (int i = 0; i < nn; ++i) {
+      if (allK0) s.kappa0[i] = rows[static_cast<size_t>(i)].k0 / units::mm;
+      if (allPf) s.plateForce[i] = rows[static_cast<size_t>(i)].pf;
       for (int d = 0; d < 3; ++d) s.x(d, i) = rows[static_cast<size_t>(i)].v[d] * units::mm;
       if (i < n) {
         for (int d = 0; d < 3; ++d) s.d1(d, i) = rows[static_cast<size_t>(i)].v[3 + d];
@@ -176,7 +187,7 @@ std::vector<Snapshot> readTrajectory(const fs::path& path) {
     auto bad = [&](const std::string& why) {
       throw SceneError(path.string() + ":" + std::to_string(lineNo) + ": " + why);
     };
-    if (f.size() != 14) bad("expected 14 columns, found " + std::to_string(f.size()));
+    if (f.size() != columns) bad("expected " + std::to_string(columns) + " columns, found " + std::to_string(f.size()));
     Row r{};
     try {
       r.frame = std::stoi(f[0]);
@@ -187,6 +198,10 @@ std::vector<Snapshot> readTrajectory(const fs::path& path) {
       r.hasElem = !f[7].empty();
       if (r.hasElem)
         for (int d = 0; d < 7; ++d) r.v[3 + d] = std::stod(f[static_cast<size_t>(7 + d)]);
+      if (columns == 16) {
+        if ((r.hasK0 = !f[14].empty())) r.k0 = std::stod(f[14]);
+        if ((r.hasPf = !f[15].empty())) r.pf = std::stod(f[15]);
+      }
     } catch (const std::exception&) {
       bad("malformed number");
     }

@@ -8,6 +8,7 @@
 #include <GL/glext.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdio>
 #include <cstring>
@@ -123,9 +124,13 @@ struct GlRenderer::Impl {
   GLuint msFbo = 0, msColour = 0, msDepth = 0, resFbo = 0, resColour = 0;
   GLuint plateFbo = 0, plateColour = 0, plateDepth = 0;  // the plate of the last frame (fixed camera)
   std::vector<float> plateKey;                           // what it was drawn with; empty: none
-  GLuint tubeProg = 0, planeProg = 0;
+  std::vector<float> lastKey;                            // the plate of the previous frame
+  GLuint tubeProg = 0, planeProg = 0, shadowProg = 0, shadeProg = 0;
+  GLuint shadowFbo = 0, shadowTex = 0;                   // the shadow map (depth texture)
+  int shadowSize = 0;                                    // its side [px]
   GLuint tubeVao = 0, tubeVbo = 0, tubeIbo = 0, planeVao = 0, planeVbo = 0;
   std::vector<std::uint8_t> readback;
+  std::vector<float> plateTris;                          // plate triangles (u, v) [mm] of this frame
   detail::OverlayPainter overlays;
   std::string version;
 
@@ -142,6 +147,8 @@ struct GlRenderer::Impl {
 
     tubeProg = link(opt.shaderDir, "tube.vert", "tube.frag");
     planeProg = link(opt.shaderDir, "plane.vert", "plane.frag");
+    shadowProg = link(opt.shaderDir, "shadow.vert", "shadow.frag");
+    shadeProg = link(opt.shaderDir, "plane.vert", "shade.frag");
 
     glGenVertexArrays(1, &tubeVao);
     glGenBuffers(1, &tubeVbo);
@@ -182,6 +189,53 @@ struct GlRenderer::Impl {
     glDeleteVertexArrays(1, &planeVao);
     glDeleteProgram(tubeProg);
     glDeleteProgram(planeProg);
+    glDeleteProgram(shadowProg);
+    glDeleteProgram(shadeProg);
+    if (shadowFbo) glDeleteFramebuffers(1, &shadowFbo);
+    if (shadowTex) glDeleteTextures(1, &shadowTex);
+  }
+
+  // a depth texture of side px, compared in the shader (sampler2DShadow), lit outside its border
+  void ensureShadowMap(int px) {
+    if (shadowFbo && shadowSize == px) return;
+    if (shadowFbo) glDeleteFramebuffers(1, &shadowFbo);
+    if (shadowTex) glDeleteTextures(1, &shadowTex);
+    glGenTextures(1, &shadowTex);
+    glBindTexture(GL_TEXTURE_2D, shadowTex);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT24, px, px, 0, GL_DEPTH_COMPONENT, GL_UNSIGNED_INT, nullptr);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_BORDER);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_BORDER);
+    const float border[4] = {1, 1, 1, 1};
+    glTexParameterfv(GL_TEXTURE_2D, GL_TEXTURE_BORDER_COLOR, border);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+    glGenFramebuffers(1, &shadowFbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, shadowFbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadowTex, 0);
+    glDrawBuffer(GL_NONE);
+    glReadBuffer(GL_NONE);
+    const GLenum st = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+    if (st != GL_FRAMEBUFFER_COMPLETE) throw RenderError("GL: glCheckFramebufferStatus(shadow map) = " + hex(st));
+    checkGl("shadow map setup");
+    shadowSize = px;
+  }
+
+  // the root's depth from the key light into the shadow map (tube buffers already uploaded)
+  void drawShadowMap(const RenderScene& s) {
+    ensureShadowMap(s.shadowMapPx);
+    glBindFramebuffer(GL_FRAMEBUFFER, shadowFbo);
+    glViewport(0, 0, shadowSize, shadowSize);
+    glClearDepth(1.0);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glUseProgram(shadowProg);
+    glUniformMatrix4fv(glGetUniformLocation(shadowProg, "uLightViewProj"), 1, GL_FALSE, s.lightViewProj.data());
+    glBindVertexArray(tubeVao);
+    glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(s.indices.size()), GL_UNSIGNED_INT, nullptr);
+    glBindVertexArray(0);
+    checkGl("draw shadow map");
+    glViewport(0, 0, width, height);
   }
 
   void freeTargets() {
@@ -275,6 +329,21 @@ struct GlRenderer::Impl {
   }
 
   void draw(const RenderScene& s) {
+    // the root's vertices, for the shadow pass and the colour pass
+    if (!s.indices.empty()) {
+      glBindVertexArray(tubeVao);
+      glBindBuffer(GL_ARRAY_BUFFER, tubeVbo);
+      glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(s.vertices.size() * sizeof(TubeVertex)),
+                   s.vertices.data(), GL_STREAM_DRAW);
+      glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(s.indices.size() * sizeof(std::uint32_t)),
+                   s.indices.data(), GL_STREAM_DRAW);
+      glBindVertexArray(0);
+      checkGl("upload tube");
+    }
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LEQUAL);
+    const bool shadows = s.shadows && s.plate.visible && !s.indices.empty();
+    if (shadows) drawShadowMap(s);
     glViewport(0, 0, width, height);
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LEQUAL);
@@ -286,12 +355,21 @@ struct GlRenderer::Impl {
     // third of the drawing time at 1080p) instead of clearing and drawing it again
     const std::vector<float> key = s.plate.visible ? keyOf(s) : std::vector<float>{};
     const bool cached = s.plate.visible && key == plateKey;
+    const std::vector<float> previous = std::move(lastKey);
+    lastKey = key;
     if (cached) {
       copyBuffers(plateFbo, msFbo);
       checkGl("restore the plate (glBlitFramebuffer)");
     } else {
+      // the top view's plate covers the picture: clear to its colour and shade only the grid lines
+      const bool topPlate = s.plate.visible && s.pxPerMm > 0;
+      const auto& bg = s.background;
+      const auto& pc = s.plate.colour;
       glBindFramebuffer(GL_FRAMEBUFFER, msFbo);
-      glClearColor(s.background[0], s.background[1], s.background[2], s.background[3]);
+      if (topPlate)
+        glClearColor(pc[0], pc[1], pc[2], 1.0f);
+      else
+        glClearColor(bg[0], bg[1], bg[2], bg[3]);
       glClearDepth(1.0);
       glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     }
@@ -299,7 +377,24 @@ struct GlRenderer::Impl {
     // the plate first, pushed back a little so the root's contact line wins the depth test
     if (s.plate.visible && !cached) {
       const auto& p = s.plate;
-      const float quad[8] = {p.u0, p.v0, p.u1, p.v0, p.u0, p.v1, p.u1, p.v1};
+      // triangles in plate (u, v): in perspective the whole plate; in the top view only strips of a
+      // few pixels around each grid line (the plate colour is the clear colour, and the shader's
+      // line coverage is zero further than a pixel from a line): a tenth of the plate's fragments
+      // when the camera moves (follow) and the plate cannot be copied
+      plateTris.clear();
+      auto rect = [&](float a0, float b0, float a1, float b1) {
+        plateTris.insert(plateTris.end(), {a0, b0, a1, b0, a0, b1, a1, b0, a1, b1, a0, b1});
+      };
+      if (s.pxPerMm > 0) {
+        const float half = static_cast<float>((0.5 * p.lineWidthPx + 2.0) / s.pxPerMm);
+        const double g = p.gridMm;
+        for (double k = std::ceil((p.u0 - half) / g); k * g <= p.u1 + half; k += 1.0)
+          rect(static_cast<float>(k * g) - half, p.v0, static_cast<float>(k * g) + half, p.v1);
+        for (double k = std::ceil((p.v0 - half) / g); k * g <= p.v1 + half; k += 1.0)
+          rect(p.u0, static_cast<float>(k * g) - half, p.u1, static_cast<float>(k * g) + half);
+      } else {
+        rect(p.u0, p.v0, p.u1, p.v1);
+      }
       glUseProgram(planeProg);
       glUniformMatrix4fv(glGetUniformLocation(planeProg, "uView"), 1, GL_FALSE, s.viewMatrix.data());
       glUniformMatrix4fv(glGetUniformLocation(planeProg, "uProj"), 1, GL_FALSE, s.projMatrix.data());
@@ -311,15 +406,40 @@ struct GlRenderer::Impl {
       glUniform3fv(glGetUniformLocation(planeProg, "uMajor"), 1, p.major.data());
       glBindVertexArray(planeVao);
       glBindBuffer(GL_ARRAY_BUFFER, planeVbo);
-      glBufferSubData(GL_ARRAY_BUFFER, 0, sizeof quad, quad);
+      glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(plateTris.size() * sizeof(float)), plateTris.data(),
+                   GL_STREAM_DRAW);
       glEnable(GL_POLYGON_OFFSET_FILL);
       glPolygonOffset(1.0f, 1.0f);
-      glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+      glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(plateTris.size() / 2));
       glDisable(GL_POLYGON_OFFSET_FILL);
       checkGl("draw plate");
-      storePlate(key);
+      // keep a copy only once the camera has stood still for a frame: a moving camera (follow)
+      // would pay for the copy on every frame and never use it
+      if (key == previous) storePlate(key);
     }
     glBindFramebuffer(GL_FRAMEBUFFER, msFbo);
+
+    // the shadow: the plate under the map's footprint multiplied by the lit fraction, before the root
+    // is drawn over it (no depth test: it lies in the plate)
+    if (shadows) {
+      glUseProgram(shadeProg);
+      glUniformMatrix4fv(glGetUniformLocation(shadeProg, "uView"), 1, GL_FALSE, s.viewMatrix.data());
+      glUniformMatrix4fv(glGetUniformLocation(shadeProg, "uProj"), 1, GL_FALSE, s.projMatrix.data());
+      glUniformMatrix4fv(glGetUniformLocation(shadeProg, "uLightViewProj"), 1, GL_FALSE, s.lightViewProj.data());
+      glActiveTexture(GL_TEXTURE0);
+      glBindTexture(GL_TEXTURE_2D, shadowTex);
+      glUniform1i(glGetUniformLocation(shadeProg, "uShadowMap"), 0);
+      glBindVertexArray(planeVao);
+      glBindBuffer(GL_ARRAY_BUFFER, planeVbo);
+      glBufferData(GL_ARRAY_BUFFER, sizeof(float) * 8, s.shadowQuad.data(), GL_STREAM_DRAW);
+      glDisable(GL_DEPTH_TEST);
+      glEnable(GL_BLEND);
+      glBlendFunc(GL_ZERO, GL_SRC_COLOR);
+      glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+      glDisable(GL_BLEND);
+      glEnable(GL_DEPTH_TEST);
+      checkGl("draw shadow");
+    }
 
     if (!s.indices.empty()) {
       const auto& m = s.material;
@@ -333,12 +453,16 @@ struct GlRenderer::Impl {
       glUniform3fv(glGetUniformLocation(tubeProg, "uMinus"), 1, m.minus.data());
       glUniform1f(glGetUniformLocation(tubeProg, "uStripeCos"), m.stripeCos);
       glUniform4f(glGetUniformLocation(tubeProg, "uLighting"), m.ambient, m.diffuse, m.specular, m.shininess);
+      glUniform1i(glGetUniformLocation(tubeProg, "uShadows"), shadows ? 1 : 0);
+      glActiveTexture(GL_TEXTURE0);
+      glBindTexture(GL_TEXTURE_2D, shadows ? shadowTex : 0);
+      glUniform1i(glGetUniformLocation(tubeProg, "uShadowMap"), 0);
+      if (shadows) {
+        glUniformMatrix4fv(glGetUniformLocation(tubeProg, "uLightViewProj"), 1, GL_FALSE, s.lightViewProj.data());
+        glUniform3fv(glGetUniformLocation(tubeProg, "uLightPlate"), 1, s.lightPlate.data());
+        glUniform1f(glGetUniformLocation(tubeProg, "uShadowTexel"), s.shadowTexelMm);
+      }
       glBindVertexArray(tubeVao);
-      glBindBuffer(GL_ARRAY_BUFFER, tubeVbo);
-      glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(s.vertices.size() * sizeof(TubeVertex)),
-                   s.vertices.data(), GL_STREAM_DRAW);
-      glBufferData(GL_ELEMENT_ARRAY_BUFFER, static_cast<GLsizeiptr>(s.indices.size() * sizeof(std::uint32_t)),
-                   s.indices.data(), GL_STREAM_DRAW);
       glDrawElements(GL_TRIANGLES, static_cast<GLsizei>(s.indices.size()), GL_UNSIGNED_INT, nullptr);
       checkGl("draw tube");
     }

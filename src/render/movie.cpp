@@ -1,140 +1,139 @@
-// snapshots -> pictures -> MP4 / PNG files. This thread builds the scene and draws (llvmpipe); a second
-// thread converts and encodes (swscale + x264) and writes PNG frames. They meet at a one-slot queue, so
-// drawing frame k+1 overlaps encoding frame k and at most three frames exist at any time.
+// snapshots -> composed pictures -> MP4 / PNG files. This thread builds the scenes and draws (llvmpipe);
+// a second thread converts and encodes (swscale + x264) and writes PNG frames. They meet at a one-slot
+// queue, so drawing frame k+1 overlaps encoding frame k and at most three frames exist at any time.
 #include "rootsim/movie.hpp"
 
-#include <condition_variable>
 #include <cstdio>
-#include <exception>
 #include <filesystem>
-#include <mutex>
 #include <system_error>
-#include <thread>
 
+#include "frame_sink.hpp"
 #include "rootsim/png.hpp"
 #include "rootsim/renderer.hpp"
 
 namespace rootsim {
 
-namespace {
+namespace detail {
 
+namespace {
 std::string framePath(const std::string& dir, int index) {
   char name[32];
   std::snprintf(name, sizeof name, "frame_%05d.png", index);
   return (std::filesystem::path(dir) / name).string();
 }
+}  // namespace
 
-void checkJob(const MovieJob& job) {
-  if (job.view.transparent && !job.mp4.empty())
-    throw RenderError("movie " + job.mp4 + ": a transparent background is for PNG only (MP4 has no alpha)");
-  if (!job.pngDir.empty()) {
+FrameSink::FrameSink(const std::string& mp4, const std::string& pngDir, const std::string& finalPng, int width,
+                     int height, const VideoOptions& video)
+    : pngDir_(pngDir), finalPng_(finalPng) {
+  if (!pngDir.empty()) {
     std::error_code ec;
-    std::filesystem::create_directories(job.pngDir, ec);
-    if (ec || !std::filesystem::is_directory(job.pngDir))
-      throw RenderError("movie: cannot create the PNG folder " + job.pngDir + ": " +
+    std::filesystem::create_directories(pngDir, ec);
+    if (ec || !std::filesystem::is_directory(pngDir))
+      throw RenderError("movie: cannot create the PNG folder " + pngDir + ": " +
                         (ec ? ec.message() : std::string("not a directory")));
+  }
+  if (!mp4.empty()) video_ = std::make_unique<VideoWriter>(mp4, width, height, video);
+  encoder_ = std::thread([this] { encodeLoop(); });
+}
+
+FrameSink::~FrameSink() { stopEncoder(); }
+
+void FrameSink::stopEncoder() {
+  if (!encoder_.joinable()) return;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  cv_.notify_all();
+  encoder_.join();
+}
+
+// frames in arrival order: PNG file, then the video encoder
+void FrameSink::encodeLoop() {
+  int index = 0;
+  for (;;) {
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      cv_.wait(lock, [&] { return full_ || stop_; });
+      if (!full_) return;
+      std::swap(slot_, work_);
+      full_ = false;
+    }
+    cv_.notify_all();
+    try {
+      if (!pngDir_.empty()) writePng(framePath(pngDir_, index), work_);
+      if (video_) video_->add(work_);
+    } catch (...) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      error_ = std::current_exception();
+      cv_.notify_all();
+      return;
+    }
+    ++index;
   }
 }
 
+void FrameSink::push(Image& img) {
+  std::unique_lock<std::mutex> lock(mutex_);
+  cv_.wait(lock, [&] { return !full_ || error_; });
+  if (error_) std::rethrow_exception(error_);
+  std::swap(slot_, img);
+  full_ = true;
+  ++added_;
+  lock.unlock();
+  cv_.notify_all();
+}
+
+void FrameSink::finish() {
+  stopEncoder();
+  if (error_) std::rethrow_exception(error_);
+  if (video_) video_->finish();
+  if (!finalPng_.empty()) {
+    if (added_ == 0) throw RenderError("movie: no frames, so no final picture " + finalPng_);
+    writePng(finalPng_, work_);
+  }
+}
+
+}  // namespace detail
+
+namespace {
+void checkJob(const MovieJob& job) {
+  if (job.view.transparent && !job.mp4.empty())
+    throw RenderError("movie " + job.mp4 + ": a transparent background is for PNG only (MP4 has no alpha)");
+}
 }  // namespace
 
 struct MovieRecorder::Impl {
-  SceneInfo info;
-  MovieJob job;
-  Framing framing;
-  GlRenderer renderer;
-  std::unique_ptr<VideoWriter> video;
-  int added = 0;      // frames handed to the encoder thread
-  Image drawn;        // this thread's picture
+  FrameComposer composer;
+  detail::FrameSink sink;
+  Image drawn;  // this thread's picture
 
-  // the one-slot queue
-  std::mutex mutex;
-  std::condition_variable cv;
-  Image slot;
-  bool full = false, stop = false;
-  std::exception_ptr error;   // first failure of the encoder thread
-  Image work;                 // the encoder thread's picture; after join(): the last frame
-  std::thread encoder;
-
-  Impl(const SceneInfo& i, const MovieJob& j, const Framing& f)
-      : info(i), job(j), framing(f), renderer(j.view.width, j.view.height, j.renderer) {
-    checkJob(job);
-    if (!job.mp4.empty()) video = std::make_unique<VideoWriter>(job.mp4, job.view.width, job.view.height, job.video);
-    encoder = std::thread([this] { encodeLoop(); });
-  }
-
-  ~Impl() { stopEncoder(); }
-
-  void stopEncoder() {
-    if (!encoder.joinable()) return;
-    {
-      std::lock_guard<std::mutex> lock(mutex);
-      stop = true;
-    }
-    cv.notify_all();
-    encoder.join();
-  }
-
-  // frames in arrival order: PNG file, then the video encoder
-  void encodeLoop() {
-    int index = 0;
-    for (;;) {
-      {
-        std::unique_lock<std::mutex> lock(mutex);
-        cv.wait(lock, [&] { return full || stop; });
-        if (!full) return;
-        std::swap(slot, work);
-        full = false;
-      }
-      cv.notify_all();
-      try {
-        if (!job.pngDir.empty()) writePng(framePath(job.pngDir, index), work);
-        if (video) video->add(work);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(mutex);
-        error = std::current_exception();
-        cv.notify_all();
-        return;
-      }
-      ++index;
-    }
-  }
+  Impl(const SceneInfo& info, const MovieJob& job, FramePlan plan)
+      : composer(info, (checkJob(job), job), std::move(plan)),
+        sink(job.mp4, job.pngDir, job.finalPng, job.view.width, job.view.height, job.video) {}
 
   void add(const Snapshot& snap) {
-    const RenderScene scene = buildRenderScene(snap, info, job.view, framing);
-    renderer.render(scene, drawn);
-    std::unique_lock<std::mutex> lock(mutex);
-    cv.wait(lock, [&] { return !full || error; });
-    if (error) std::rethrow_exception(error);
-    std::swap(slot, drawn);
-    full = true;
-    ++added;
-    lock.unlock();
-    cv.notify_all();
-  }
-
-  void finish() {
-    stopEncoder();
-    if (error) std::rethrow_exception(error);
-    if (video) video->finish();
-    if (!job.finalPng.empty()) {
-      if (added == 0) throw RenderError("movie: no frames, so no final picture " + job.finalPng);
-      writePng(job.finalPng, work);
-    }
+    composer.compose(snap, sink.frames(), drawn);
+    sink.push(drawn);
   }
 };
 
 MovieRecorder::MovieRecorder(const SceneInfo& info, const MovieJob& job, const Framing& framing)
-    : impl_(std::make_unique<Impl>(info, job, framing)) {}
+    : impl_(std::make_unique<Impl>(info, job, FramePlan{{framing}, {}})) {}
+MovieRecorder::MovieRecorder(const SceneInfo& info, const MovieJob& job, FramePlan plan)
+    : impl_(std::make_unique<Impl>(info, job, std::move(plan))) {}
 MovieRecorder::~MovieRecorder() = default;
 void MovieRecorder::add(const Snapshot& snap) { impl_->add(snap); }
-void MovieRecorder::finish() { impl_->finish(); }
-int MovieRecorder::frames() const { return impl_->added; }
+void MovieRecorder::finish() { impl_->sink.finish(); }
+int MovieRecorder::frames() const { return impl_->sink.frames(); }
 
 void renderMovie(const std::vector<Snapshot>& snaps, const SceneInfo& info, const MovieJob& job,
                  const MovieProgress& progress) {
-  const Framing framing = frameFor(snaps, info, job.view);
-  MovieRecorder rec(info, job, framing);
+  MovieJob j = job;
+  // one colour range for the whole movie
+  if (j.view.colourBy != ColourField::None) j.view.colourRange = fieldRange(snaps, info, j.view.colourBy);
+  MovieRecorder rec(info, j, planFrames(snaps, info, j));
   const int total = static_cast<int>(snaps.size());
   for (int i = 0; i < total; ++i) {
     rec.add(snaps[static_cast<std::size_t>(i)]);

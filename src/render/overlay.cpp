@@ -147,6 +147,52 @@ struct OverlayPainter::Impl {
     }
   }
 
+  std::vector<float> cover;  // coverage of one line over its bounding box (reused)
+
+  // a thick anti-aliased polyline: coverage from the distance to the nearest segment, collected over
+  // the whole line first (max), so joints are not blended twice
+  void drawLine(const OverlayLine& l, Image& img) {
+    if (l.points.empty()) return;
+    const float hw = 0.5f * l.widthPx;
+    float x0 = 1e30f, y0 = 1e30f, x1 = -1e30f, y1 = -1e30f;
+    for (const auto& p : l.points) {
+      x0 = std::min(x0, p[0]), y0 = std::min(y0, p[1]);
+      x1 = std::max(x1, p[0]), y1 = std::max(y1, p[1]);
+    }
+    const int bx0 = std::max(0, static_cast<int>(std::floor(x0 - hw - 1)));
+    const int by0 = std::max(0, static_cast<int>(std::floor(y0 - hw - 1)));
+    const int bx1 = std::min(img.width, static_cast<int>(std::ceil(x1 + hw + 2)));
+    const int by1 = std::min(img.height, static_cast<int>(std::ceil(y1 + hw + 2)));
+    if (bx0 >= bx1 || by0 >= by1) return;
+    const int bw = bx1 - bx0, bh = by1 - by0;
+    cover.assign(static_cast<std::size_t>(bw) * bh, 0.0f);
+    const std::size_t segs = l.points.size() == 1 ? 1 : l.points.size() - 1;
+    for (std::size_t i = 0; i < segs; ++i) {
+      const auto& a = l.points[i];
+      const auto& b = l.points[std::min(i + 1, l.points.size() - 1)];
+      const int sx0 = std::max(bx0, static_cast<int>(std::floor(std::min(a[0], b[0]) - hw - 1)));
+      const int sy0 = std::max(by0, static_cast<int>(std::floor(std::min(a[1], b[1]) - hw - 1)));
+      const int sx1 = std::min(bx1, static_cast<int>(std::ceil(std::max(a[0], b[0]) + hw + 2)));
+      const int sy1 = std::min(by1, static_cast<int>(std::ceil(std::max(a[1], b[1]) + hw + 2)));
+      const float dx = b[0] - a[0], dy = b[1] - a[1], len2 = dx * dx + dy * dy;
+      for (int y = sy0; y < sy1; ++y)
+        for (int x = sx0; x < sx1; ++x) {
+          // pixel centre to the segment
+          const float px = static_cast<float>(x) + 0.5f - a[0], py = static_cast<float>(y) + 0.5f - a[1];
+          const float t = len2 > 0 ? std::clamp((px * dx + py * dy) / len2, 0.0f, 1.0f) : 0.0f;
+          const float ex = px - t * dx, ey = py - t * dy;
+          const float c = std::clamp(hw + 0.5f - std::sqrt(ex * ex + ey * ey), 0.0f, 1.0f);
+          float& cv = cover[static_cast<std::size_t>(y - by0) * bw + (x - bx0)];
+          cv = std::max(cv, c);
+        }
+    }
+    for (int y = by0; y < by1; ++y)
+      for (int x = bx0; x < bx1; ++x) {
+        const float c = cover[static_cast<std::size_t>(y - by0) * bw + (x - bx0)];
+        if (c > 0) blend(img.at(x, y), l.colour, static_cast<unsigned>(std::lround(255.0f * c)));
+      }
+  }
+
   static void drawRect(const OverlayRect& r, Image& img) {
     const int x0 = std::max(0, static_cast<int>(std::lround(r.x)));
     const int y0 = std::max(0, static_cast<int>(std::lround(r.y)));
@@ -161,8 +207,14 @@ OverlayPainter::OverlayPainter() : impl_(std::make_unique<Impl>()) {}
 OverlayPainter::~OverlayPainter() = default;
 
 void OverlayPainter::draw(const RenderScene& scene, Image& img) {
-  for (const OverlayRect& r : scene.rects) Impl::drawRect(r, img);
-  for (const OverlayText& t : scene.texts) impl_->drawText(t, scene.fontPath, img);
+  draw(scene.rects, scene.lines, scene.texts, scene.fontPath, img);
+}
+
+void OverlayPainter::draw(const std::vector<OverlayRect>& rects, const std::vector<OverlayLine>& lines,
+                          const std::vector<OverlayText>& texts, const std::string& fontPath, Image& img) {
+  for (const OverlayRect& r : rects) Impl::drawRect(r, img);
+  for (const OverlayLine& l : lines) impl_->drawLine(l, img);
+  for (const OverlayText& t : texts) impl_->drawText(t, fontPath, img);
 }
 
 float OverlayPainter::textWidth(const std::string& fontPath, const std::string& text, float sizePx) {

@@ -2,6 +2,7 @@
 // overlay texts and rectangles drawn onto a finished picture on the CPU (stb_truetype)
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "rootsim/image.hpp"
 #include "rootsim/render_scene.hpp"
@@ -17,8 +18,11 @@ class OverlayPainter {
   OverlayPainter(const OverlayPainter&) = delete;
   OverlayPainter& operator=(const OverlayPainter&) = delete;
 
-  // draw scene.rects then scene.texts over img (straight alpha "over")
+  // draw scene.rects, scene.lines, then scene.texts over img (straight alpha "over")
   void draw(const RenderScene& scene, Image& img);
+  // the same for loose items (the compositor's panels, marks and labels)
+  void draw(const std::vector<OverlayRect>& rects, const std::vector<OverlayLine>& lines,
+            const std::vector<OverlayText>& texts, const std::string& fontPath, Image& img);
   // width of text in pixels at sizePx with the font at fontPath
   float textWidth(const std::string& fontPath, const std::string& text, float sizePx);
 

@@ -107,16 +107,24 @@ std::vector<Ring> nodeRings(const Snapshot& s, const PlateFrame& pf) {
   return rings;
 }
 
-void addTube(RenderScene& rs, const std::vector<Ring>& rings) {
-  const std::array<float, 3> body = rs.material.body;
+// ringColour: the body colour of each ring (empty: the material's ivory); with colours, the vertices
+// carry striped = 2 (stripes over the vertex colour, outlined so they read on any map colour)
+void addTube(RenderScene& rs, const std::vector<Ring>& rings, const std::vector<std::array<float, 3>>& ringColour) {
+  const bool coloured = !ringColour.empty();
+  const float stripedFlag = coloured ? 2.0f : 1.0f;
+  auto colourOf = [&](std::size_t i) { return coloured ? ringColour[i] : rs.material.body; };
+  auto striped = [&]() { rs.vertices.back().striped = stripedFlag; };
   // side wall
   const auto first = static_cast<std::uint32_t>(rs.vertices.size());
-  for (const Ring& g : rings)
+  for (std::size_t i = 0; i < rings.size(); ++i) {
+    const Ring& g = rings[i];
     for (int k = 0; k < kSides; ++k) {
       const double phi = 2 * kPi * k / kSides, cs = std::cos(phi), sn = std::sin(phi);
       const V3 dir = cs * g.a + sn * g.b;
-      addVertex(rs, g.c + g.r * dir, dir, cs, sn, body, true);
+      addVertex(rs, g.c + g.r * dir, dir, cs, sn, colourOf(i), true);
+      striped();
     }
+  }
   stitchRings(rs, first, static_cast<int>(rings.size()), kSides);
 
   // tip: a hemisphere whose stripes run on to the apex
@@ -128,7 +136,8 @@ void addTube(RenderScene& rs, const std::vector<Ring>& rings) {
       const double phi = 2 * kPi * k / kSides, cs = std::cos(phi), sn = std::sin(phi);
       const V3 dir = cs * tip.a + sn * tip.b;
       const V3 nrm = std::cos(th) * dir + std::sin(th) * tip.t;
-      addVertex(rs, tip.c + tip.r * nrm, nrm, cs, sn, body, true);
+      addVertex(rs, tip.c + tip.r * nrm, nrm, cs, sn, colourOf(rings.size() - 1), true);
+      striped();
     }
   }
   stitchRings(rs, tipFirst, kTipRings + 1, kSides);
@@ -136,11 +145,11 @@ void addTube(RenderScene& rs, const std::vector<Ring>& rings) {
   // base: a flat disc facing back along the axis
   const Ring& base = rings.front();
   const auto centre = static_cast<std::uint32_t>(rs.vertices.size());
-  addVertex(rs, base.c, -base.t, 1, 0, body, false);
+  addVertex(rs, base.c, -base.t, 1, 0, colourOf(0), false);
   for (int k = 0; k < kSides; ++k) {
     const double phi = 2 * kPi * k / kSides;
     addVertex(rs, base.c + base.r * (std::cos(phi) * base.a + std::sin(phi) * base.b), -base.t, 1, 0,
-              body, false);
+              colourOf(0), false);
   }
   for (int k = 0; k < kSides; ++k)
     rs.indices.insert(rs.indices.end(), {centre, centre + 1 + static_cast<std::uint32_t>((k + 1) % kSides),
@@ -193,6 +202,44 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 
+// a number for an axis or colour bar label: 3 significant digits, no trailing zeros
+std::string tick(double v) {
+  if (std::abs(v) < 1e-300) return "0";
+  return fmt("%.3g", v);
+}
+
+// vertical colour bar at the right edge, middle half of the height: the map from the range's low
+// end (bottom) to its high end (top), three labelled values and the field's name with its unit
+void addColourBar(RenderScene& rs, const View& view, float font) {
+  const float m = 0.7f * font;
+  const float barW = std::max(8.0f, std::round(0.6f * font));
+  const float y0 = std::round(0.28f * static_cast<float>(view.height));
+  const float y1 = std::round(0.78f * static_cast<float>(view.height));
+  const float x = std::round(static_cast<float>(view.width) - m - barW);
+  const int rows = static_cast<int>(y1 - y0);
+  for (int r = 0; r < rows; ++r) {
+    const auto c = viridis(1.0 - (r + 0.5) / rows);
+    rs.rects.push_back({x, y0 + static_cast<float>(r), barW, 1.0f,
+                        {static_cast<std::uint8_t>(std::lround(255 * c[0])), static_cast<std::uint8_t>(std::lround(255 * c[1])),
+                         static_cast<std::uint8_t>(std::lround(255 * c[2])), 255}});
+  }
+  // frame around the bar
+  const std::array<std::uint8_t, 4> ink{40, 40, 40, 255};
+  rs.rects.push_back({x - 1, y0 - 1, barW + 2, 1, ink});
+  rs.rects.push_back({x - 1, y1, barW + 2, 1, ink});
+  rs.rects.push_back({x - 1, y0 - 1, 1, y1 - y0 + 2, ink});
+  rs.rects.push_back({x + barW, y0 - 1, 1, y1 - y0 + 2, ink});
+  const float small = std::round(0.8f * font);
+  const auto [lo, hi] = view.colourRange;
+  for (int k = 0; k <= 2; ++k) {
+    const double v = lo + (hi - lo) * k / 2.0;
+    const float y = y1 - (y1 - y0) * static_cast<float>(k) / 2.0f;
+    rs.rects.push_back({x - 5, std::round(y), 5, 1, ink});
+    rs.texts.push_back({tick(v), x - 7, y - 0.5f * small, small, OverlayText::Anchor::TopRight});
+  }
+  rs.texts.push_back({colourFieldLabel(view.colourBy), x + barW, y0 - 0.5f * font, small, OverlayText::Anchor::BottomRight});
+}
+
 void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, const View& view) {
   if (!view.overlays) return;
   // text scales with the shorter side, so portrait frames get the same text as landscape ones
@@ -224,6 +271,44 @@ void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, cons
     const std::string label = (lenMm >= 1 ? fmt("%.0f", lenMm) : fmt("%.1f", lenMm)) + " mm";
     rs.texts.push_back({label, x + 0.5f * len, y - 0.35f * font, font, OverlayText::Anchor::BottomCentre});
   }
+  if (view.colourBy != ColourField::None && view.showColourBar) addColourBar(rs, view, font);
+}
+
+// the key light's depth view of the root: an orthographic box along the light, fitted around the
+// tube vertices near the visible part of the plate (their shadows can fall into the picture)
+// mapSide: in, the largest map side [px]; out, a side giving about one texel per picture pixel;
+// texelMm: out, the size of one texel on the light's view [mm]
+std::array<float, 16> lightViewProj(const RenderScene& rs, const glm::vec3& towardsLight, const Framing& f,
+                                    double pxPerMm, int& mapSide, float& texelMm) {
+  const glm::vec3 L = glm::normalize(towardsLight);
+  const glm::vec3 up = std::abs(L.y) > 0.95f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+  const glm::mat4 look = glm::lookAt(glm::vec3(0.0f), -L, up);  // light looks along -L
+  // plate window with room for the shadows of raised parts
+  const double reach = 2.0 * f.topW + 1.0;
+  const double u0 = f.centreU - 0.5 * f.widthMm - reach, u1 = f.centreU + 0.5 * f.widthMm + reach;
+  const double v0 = f.centreV - 0.5 * f.heightMm - reach, v1 = f.centreV + 0.5 * f.heightMm + reach;
+  glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+  for (const TubeVertex& v : rs.vertices) {
+    if (v.pos[0] < u0 || v.pos[0] > u1 || v.pos[1] < v0 || v.pos[1] > v1) continue;
+    const glm::vec3 q = glm::vec3(look * glm::vec4(v.pos[0], v.pos[1], v.pos[2], 1.0f));
+    lo = glm::min(lo, q);
+    hi = glm::max(hi, q);
+  }
+  if (lo.x > hi.x) {  // nothing of the root near the picture: an empty box far from everything
+    lo = glm::vec3(-1.0f);
+    hi = glm::vec3(-0.5f);
+  }
+  const float pad = 0.02f * std::max(hi.x - lo.x, hi.y - lo.y) + 1e-3f;
+  // texels: about one per picture pixel across the box (a power of two, 256 .. mapSide)
+  const double needed = (std::max(hi.x - lo.x, hi.y - lo.y) + 2 * pad) * pxPerMm;
+  int side = 256;
+  while (side < needed && side < mapSide) side *= 2;
+  mapSide = std::min(side, mapSide);
+  texelMm = (std::max(hi.x - lo.x, hi.y - lo.y) + 2 * pad) / static_cast<float>(mapSide);
+  // eye-space z is negative in front: near/far from the depth range, the far plane well behind
+  // the plate so every plate point under the root compares against the stored depths
+  const float nearZ = -hi.z - pad, farZ = -lo.z + 100.0f * (hi.z - lo.z + 1.0f);
+  return toArray(glm::ortho(lo.x - pad, hi.x + pad, lo.y - pad, hi.y + pad, nearZ, farZ) * look);
 }
 
 }  // namespace
@@ -265,6 +350,16 @@ Framing frameFor(const std::vector<Snapshot>& snaps, const SceneInfo& info, cons
   return f;
 }
 
+bool projectToPixel(const RenderScene& rs, const Eigen::Vector3d& p, Eigen::Vector2d& px) {
+  glm::mat4 V, P;
+  std::copy(rs.viewMatrix.begin(), rs.viewMatrix.end(), glm::value_ptr(V));
+  std::copy(rs.projMatrix.begin(), rs.projMatrix.end(), glm::value_ptr(P));
+  const glm::vec4 c = P * V * glm::vec4(static_cast<float>(p.x()), static_cast<float>(p.y()), static_cast<float>(p.z()), 1.0f);
+  if (!(c.w > 0.0f)) return false;
+  px = {(0.5 * (c.x / c.w) + 0.5) * rs.width, (0.5 - 0.5 * (c.y / c.w)) * rs.height};
+  return true;
+}
+
 Eigen::Vector2d topViewPixel(const Framing& f, const View& view, double u, double v) {
   return {(u - (f.centreU - 0.5 * f.widthMm)) / f.widthMm * view.width,
           ((f.centreV + 0.5 * f.heightMm) - v) / f.heightMm * view.height};
@@ -288,14 +383,21 @@ RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const 
   const std::vector<Ring> rings = nodeRings(snap, pf);
   rs.vertices.reserve(static_cast<size_t>((rings.size() + kTipRings + 2) * kSides));
   rs.indices.reserve(rs.vertices.capacity() * 6);
-  addTube(rs, rings);
+  std::vector<std::array<float, 3>> ringColour;
+  if (view.colourBy != ColourField::None) {
+    const Eigen::VectorXd field = nodeField(snap, info, view.colourBy);
+    const auto [lo, hi] = view.colourRange;
+    if (!(hi > lo)) throw RenderError("render view: colourRange must be increasing");
+    for (double v : field) ringColour.push_back(viridis((v - lo) / (hi - lo)));
+  }
+  addTube(rs, rings, ringColour);
   if (view.whiskers) addWhiskers(rs, rings);
 
   // camera
   const auto cu = static_cast<float>(framing.centreU), cv = static_cast<float>(framing.centreV);
   const auto hw = static_cast<float>(0.5 * framing.widthMm), hh = static_cast<float>(0.5 * framing.heightMm);
   const float aspect = static_cast<float>(view.width) / static_cast<float>(view.height);
-  glm::vec3 light;
+  glm::vec3 light, towardsLightPlate;
   if (view.kind == View::Kind::Top) {
     // orthographic along -n: u to the right, v (uphill) up, so downhill points down the image
     const float eyeW = 1000.0f;
@@ -305,6 +407,7 @@ RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const 
     rs.plate.u0 = cu - 1.05f * hw, rs.plate.u1 = cu + 1.05f * hw;
     rs.plate.v0 = cv - 1.05f * hh, rs.plate.v1 = cv + 1.05f * hh;
     light = glm::normalize(glm::vec3(-0.35f, 0.5f, 1.0f));
+    towardsLightPlate = light;  // the view is a translation: eye axes are the plate axes
   } else {
     // oblique preset: from above the plate, in front of its lower right part, uphill up the image
     const float fovY = glm::radians(30.0f);
@@ -318,8 +421,40 @@ RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const 
     rs.plate.u0 = cu - ext, rs.plate.u1 = cu + ext;
     rs.plate.v0 = cv - ext, rs.plate.v1 = cv + ext;
     light = glm::normalize(glm::vec3(-0.3f, 0.6f, 1.0f));
+    // the same light in plate axes (the view's rotation is orthonormal)
+    glm::mat4 viewM;
+    std::copy(rs.viewMatrix.begin(), rs.viewMatrix.end(), glm::value_ptr(viewM));
+    towardsLightPlate = glm::transpose(glm::mat3(viewM)) * light;
   }
   rs.lightDir = {light.x, light.y, light.z};
+
+  // a 1 mm grid, or 0.1 mm (every 10th line darker) when millimetres are hundreds of pixels apart
+  if (view.width / framing.widthMm > 250.0) rs.plate.gridMm = 0.1f;
+
+  // shadows need a plate to fall on
+  rs.shadows = view.shadows && info.plate && !view.transparent;
+  if (rs.shadows) {
+    if (view.shadowMapPx < 256 || view.shadowMapPx > 8192)
+      throw RenderError("render view: shadowMapPx must be in 256..8192 (got " + std::to_string(view.shadowMapPx) + ")");
+    rs.shadowMapPx = view.shadowMapPx;
+    rs.lightViewProj = lightViewProj(rs, towardsLightPlate, framing, view.width / framing.widthMm, rs.shadowMapPx,
+                                     rs.shadowTexelMm);
+    rs.lightPlate = {towardsLightPlate.x, towardsLightPlate.y, towardsLightPlate.z};
+    // the map's footprint on the plate: each corner's ray through the light box meets w = 0
+    glm::mat4 lvp;
+    std::copy(rs.lightViewProj.begin(), rs.lightViewProj.end(), glm::value_ptr(lvp));
+    const glm::mat4 inv = glm::inverse(lvp);
+    const float corners[4][2] = {{-1, -1}, {1, -1}, {-1, 1}, {1, 1}};
+    for (int c = 0; c < 4; ++c) {
+      glm::vec4 a = inv * glm::vec4(corners[c][0], corners[c][1], -1.0f, 1.0f);
+      glm::vec4 b = inv * glm::vec4(corners[c][0], corners[c][1], 1.0f, 1.0f);
+      a /= a.w;
+      b /= b.w;
+      const float t = std::abs(a.z - b.z) > 1e-12f ? a.z / (a.z - b.z) : 0.0f;
+      rs.shadowQuad[static_cast<std::size_t>(2 * c)] = a.x + t * (b.x - a.x);
+      rs.shadowQuad[static_cast<std::size_t>(2 * c + 1)] = a.y + t * (b.y - a.y);
+    }
+  }
 
   // background: the plate, a plain light field without one, or nothing (transparent)
   rs.plate.visible = info.plate && !view.transparent;

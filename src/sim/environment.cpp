@@ -74,6 +74,14 @@ void addPlaneContact(const RodParams& p, const Plane& plane, const RodState& s, 
   }
 }
 
+Eigen::VectorXd plateNormalForce(const RodParams& p, const Plane& plane, const RodState& s) {
+  if (!plane.enabled) return Eigen::VectorXd::Zero(s.nodes());
+  // the contact law itself (addPlaneContact, without damping), projected on the normal
+  Eigen::Matrix3Xd force = Eigen::Matrix3Xd::Zero(3, s.nodes());
+  addPlaneContact(p, plane, s, false, force);
+  return (plane.normal().transpose() * force).transpose();
+}
+
 void addAdhesion(double k, const RodState& s, Eigen::Matrix3Xd& force, int first) {
   for (int i = first; i < s.nodes(); ++i)
     if (s.anchored[static_cast<size_t>(i)]) force.col(i) += k * (s.anchor.col(i) - s.x.col(i));

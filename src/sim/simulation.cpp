@@ -172,6 +172,7 @@ void Simulation::observe(const RelaxResult& res, int splits, int unstable) {
 Snapshot Simulation::snapshot() const {
   Snapshot sn = makeSnapshot(m_.rod, s_, ws_.strains, step_);
   sn.timeH = s_.time / units::hour;
+  sn.plateForce = plateNormalForce(m_.rod, m_.env.plane, s_);
   return sn;
 }
 

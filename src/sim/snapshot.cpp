@@ -21,6 +21,9 @@ Snapshot makeSnapshot(const RodParams& p, const RodState& s, const RodStrains& k
     sn.d3.col(i) = s.Q[static_cast<size_t>(i)].row(2).transpose();
     sn.radius[i] = elementRadius(p, k.e.size() == n ? k.e[i] : 1.0);
   }
+  // |(kappa0_1, kappa0_2)| of each interior (Voronoi) node, 0 at the two ends
+  sn.kappa0 = Eigen::VectorXd::Zero(n + 1);
+  for (int j = 0; j + 1 < n && j < s.kappa0.cols(); ++j) sn.kappa0[j + 1] = s.kappa0.col(j).head<2>().norm();
   return sn;
 }
 

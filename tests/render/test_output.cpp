@@ -4,9 +4,11 @@
 
 #include "../run_rootsim.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -203,7 +205,9 @@ TEST_CASE("rootsim render on a tiny run: movie.mp4 with one frame per snapshot, 
                          "/scenes/fig2b_waving.toml --set growth.steps=40 --set output.every_steps=4 --quiet --out " +
                          runDir);
   REQUIRE_MESSAGE(ran.code == 0, ran.out);
-  const Result rendered = run("render " + runDir + " --size 320x180 --fps 10 --png-dir " + (d / "frames").string());
+  // asked for explicitly: the run directory's own files, plus frames elsewhere
+  const Result rendered = run("render " + runDir + " --size 320x180 --fps 10 --mp4 " + runDir + "/movie.mp4 --final-png " +
+                              runDir + "/final_top.png --png-dir " + (d / "frames").string());
   REQUIRE_MESSAGE(rendered.code == 0, rendered.out);
   CHECK(rendered.out.find("(100 %)") != std::string::npos);  // progress lines
   const rtest::Decoded m = rtest::decodeMp4(runDir + "/movie.mp4");
@@ -254,6 +258,37 @@ TEST_CASE("rootsim render on a tiny run: movie.mp4 with one frame per snapshot, 
     CHECK(rbad.code == 2);
     CHECK(rbad.out.find("--shader-dir") != std::string::npos);
   }
+  SUBCASE("render to another path leaves every byte of the run directory as it was") {
+    // every file of the run directory, path -> contents
+    auto contents = [](const fs::path& dir) {
+      std::map<std::string, std::string> files;
+      for (const auto& e : fs::recursive_directory_iterator(dir)) {
+        std::ifstream in(e.path(), std::ios::binary);
+        std::stringstream ss;
+        ss << in.rdbuf();
+        files[fs::relative(e.path(), dir).string()] = e.is_regular_file() ? ss.str() : std::string("<dir>");
+      }
+      return files;
+    };
+    const auto before = contents(runDir);
+    const Result r1 = run("render " + runDir + " --size 320x180 --quiet --mp4 " + (d / "elsewhere.mp4").string());
+    REQUIRE_MESSAGE(r1.code == 0, r1.out);
+    const Result r2 = run("render " + runDir + " --view 3d --size 320x180 --quiet --png-dir " + (d / "pngs").string() +
+                          " --final-png " + (d / "last.png").string());
+    REQUIRE_MESSAGE(r2.code == 0, r2.out);
+    CHECK(contents(runDir) == before);
+    CHECK(rtest::decodeMp4((d / "elsewhere.mp4").string()).frames == 11);
+    CHECK(fs::exists(d / "pngs" / "frame_00010.png"));
+    CHECK(readPng((d / "last.png").string()).rgba == readPng(runDir + "/final_top.png").rgba);
+    // no output flag at all: the run directory's movie.mp4 and final_top.png, nothing else
+    fs::remove(runDir + "/movie.mp4");
+    fs::remove(runDir + "/final_top.png");
+    const Result r3 = run("render " + runDir + " --size 320x180 --quiet");
+    REQUIRE_MESSAGE(r3.code == 0, r3.out);
+    const auto after = contents(runDir);
+    CHECK(after.size() == before.size());
+    CHECK(after.at("final_top.png") == before.at("final_top.png"));
+  }
   SUBCASE("bad input exits 2 naming the flag or the file") {
     const Result odd = run("render " + runDir + " --size 321x180");
     CHECK(odd.code == 2);
@@ -282,4 +317,85 @@ TEST_CASE("rootsim render on a tiny run: movie.mp4 with one frame per snapshot, 
     CHECK(broken.code == 2);
     CHECK(broken.out.find("trajectory.csv:") != std::string::npos);
   }
+}
+
+TEST_CASE("movie looks on the command line (follow, colour, plots, inset, shadows, montage) and bad options that exit 2 and write nothing") {
+  const fs::path d = rtest::scratch("looks");
+  const std::string scene = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2b_waving.toml";
+  const std::string runDir = (d / "run").string();
+  const Result ran = run("run " + scene + " --set growth.steps=40 --set output.every_steps=8 --quiet --out " + runDir);
+  REQUIRE_MESSAGE(ran.code == 0, ran.out);
+  // every look at once, 720p: one frame per snapshot
+  const Result all = run("render " + runDir + " --camera follow --field-mm 2 --color-by twist --plot theta_tip,Eb,Et,Wr,Tw "
+                         "--shadows --size 1280x720 --quiet --mp4 " + (d / "all.mp4").string());
+  REQUIRE_MESSAGE(all.code == 0, all.out);
+  CHECK(rtest::decodeMp4((d / "all.mp4").string()).frames == 6);
+  const Result inset = run("render " + runDir + " --inset --color-by contact --size 640x360 --quiet --png-dir " +
+                           (d / "inset").string());
+  REQUIRE_MESSAGE(inset.code == 0, inset.out);
+  CHECK(readPng((d / "inset" / "frame_00005.png").string()).width == 640);
+  // run --movie with the follow camera: one flag away
+  const std::string run2 = (d / "run2").string();
+  const Result rm = run("run " + scene + " --set growth.steps=16 --set output.every_steps=8 --quiet --movie --camera follow --out " + run2);
+  REQUIRE_MESSAGE(rm.code == 0, rm.out);
+  const rtest::Decoded fm = rtest::decodeMp4(run2 + "/movie.mp4");
+  CHECK(fm.frames == 3);
+  CHECK(fm.width == 1280);
+  CHECK(fs::exists(run2 + "/final_top.png"));
+  // a montage of the two runs, frames matched by time: the union of their snapshot times (0, 0.4, 0.8 h,
+  // then the longer run's 1.2 ... 2.0 h)
+  const Result mo = run("montage " + runDir + " " + run2 + " --size 640x360 --quiet --png-dir " + (d / "mont").string() +
+                        " --mp4 " + (d / "mont.mp4").string());
+  REQUIRE_MESSAGE(mo.code == 0, mo.out);
+  CHECK(rtest::decodeMp4((d / "mont.mp4").string()).frames == 6);
+  CHECK(fs::exists(d / "mont" / "frame_00005.png"));
+
+  // bad options: exit 2, the option named, nothing written
+  const std::string out = (d / "bad.mp4").string(), pngs = (d / "badpng").string();
+  const std::string outputs = " --mp4 " + out + " --png-dir " + pngs;
+  const struct {
+    std::string args, names;
+  } bad[] = {
+      {"render " + runDir + " --camera follow --field-mm 0" + outputs, "--field-mm"},
+      {"render " + runDir + " --camera follow --field-mm -2" + outputs, "--field-mm"},
+      {"render " + runDir + " --camera follow --field-mm 500" + outputs, "larger than the plate"},
+      {"render " + runDir + " --inset --field-mm 500" + outputs, "--field-mm"},
+      {"render " + runDir + " --camera orbit" + outputs, "--camera orbit"},
+      {"render " + runDir + " --color-by colour" + outputs, "--color-by colour"},
+      {"render " + runDir + " --plot theta_tip,Ek" + outputs, "--plot"},
+      {"render " + runDir + " --plot Eb,Eb" + outputs, "--plot"},
+      {"render " + runDir + " --size 3842x2160" + outputs, "--size 3842x2160"},
+      {"render " + runDir + " --size 3840x2162" + outputs, "--size"},
+      {"render " + runDir + " --camera follow --inset" + outputs, "--inset"},
+      {"render " + runDir + " --field-mm 3" + outputs, "--field-mm 3"},
+      {"render " + runDir + " --transparent --shadows --png-dir " + pngs, "--transparent"},
+      {"render " + runDir + " --transparent --plot Tw --png-dir " + pngs, "--transparent"},
+      {"run " + std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2c_free_organ.toml --set growth.steps=4 --movie --shadows --out " +
+           (d / "run3").string(), "--shadows"},
+      {"montage --size 640x360" + outputs, "no run directories"},
+      {"montage " + runDir + " " + (d / "nothing").string() + outputs, "nothing not found"},
+      {"montage " + runDir + " --labels a,b" + outputs, "--labels"},
+      {"montage " + runDir + " --size 4096x2160" + outputs, "--size"},
+      {"montage " + runDir + " --color-by heat" + outputs, "--color-by"},
+      {"montage " + runDir, "nothing to write"},
+      {"run " + scene + " --set growth.steps=4 --movie --camera follow --field-mm 0 --out " + (d / "run3").string(), "--field-mm"},
+      {"run " + scene + " --set growth.steps=4 --movie --color-by nope --out " + (d / "run3").string(), "--color-by"},
+      {"run " + scene + " --set growth.steps=4 --camera follow --out " + (d / "run3").string(), "--movie"},
+  };
+  for (const auto& b : bad) {
+    const Result r = run(b.args);
+    INFO(b.args << "\n-> " << r.out);
+    CHECK(r.code == 2);
+    CHECK(r.out.find(b.names) != std::string::npos);
+    CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 1);  // one line
+    CHECK_FALSE(fs::exists(out));
+    CHECK_FALSE(fs::exists(out + ".partial"));
+    CHECK_FALSE(fs::exists(pngs));
+    CHECK_FALSE(fs::exists(d / "run3"));
+  }
+  // 4K works
+  const Result k4 = run("render " + runDir + " --size 3840x2160 --color-by curvature --shadows --quiet --final-png " +
+                        (d / "k4.png").string());
+  REQUIRE_MESSAGE(k4.code == 0, k4.out);
+  CHECK(readPng((d / "k4.png").string()).width == 3840);
 }

@@ -1,0 +1,42 @@
+#pragma once
+// Colour along the tube (`--color-by`): a per-node scalar computed from a snapshot alone (the renderer
+// never sees the simulation state), its range over a whole movie, and a perceptual colour map.
+#include <Eigen/Core>
+#include <array>
+#include <string>
+#include <vector>
+
+#include "rootsim/snapshot.hpp"
+
+namespace rootsim {
+
+enum class ColourField {
+  None,       // plain ivory body
+  Curvature,  // |kappa1, kappa2| per current length from neighbouring directors [1/mm]
+  Twist,      // kappa3 per current length from neighbouring directors [rad/mm], signed
+  Kappa0,     // |intrinsic bending curvature kappa0| per rest length, Snapshot::kappa0 [1/mm]
+  Stretch,    // dilatation lambda_e = (R / radius)^2, from the element radius [-]
+  Contact,    // plate contact force per node, Snapshot::plateForce [mN]
+};
+
+// "curvature" -> ColourField::Curvature ...; false for an unknown name
+bool parseColourField(const std::string& name, ColourField& out);
+// the names parseColourField accepts, comma separated (for error messages)
+std::string colourFieldNames();
+// colour bar title with its unit, e.g. "curvature [1/mm]" (UTF-8)
+std::string colourFieldLabel(ColourField f);
+
+// the field at every node (n+1 values). Throws RenderError if the snapshot lacks what the field needs
+// (kappa0 or plate force from an older trajectory, or a scene radius <= 0 for stretch).
+Eigen::VectorXd nodeField(const Snapshot& s, const SceneInfo& info, ColourField f);
+
+// one range for a whole movie, so a colour means the same value in every frame: [0, q99] for the
+// magnitudes (curvature, kappa0, contact), [-q99, q99] of |twist|, [q1, q99] for stretch (q = quantile
+// over every node of every snapshot, so one spike at the clamp does not wash the colours out)
+std::array<double, 2> fieldRange(const std::vector<Snapshot>& snaps, const SceneInfo& info, ColourField f);
+
+// viridis (van der Walt and Smith, matplotlib 2015), interpolated between its published 11 stops at
+// 0, 0.1, ..., 1; t is clamped to [0, 1]; sRGB 0..1
+std::array<float, 3> viridis(double t);
+
+}  // namespace rootsim

@@ -1,0 +1,3 @@
+#version 450 core
+// shadow map pass: depth only
+void main() {}

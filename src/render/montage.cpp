@@ -1,0 +1,175 @@
+// several runs side by side (`rootsim montage`): one scale (the same plate width in every tile, each
+// tile framed around its run's base node so the bases line up), one clock (the union of the runs'
+// snapshot times; a run that ended holds its last frame)
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+
+#include "frame_sink.hpp"
+#include "overlay.hpp"
+#include "rootsim/movie.hpp"
+#include "rootsim/units.hpp"
+
+namespace rootsim {
+
+namespace {
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
+
+void blit(const Image& src, Image& dst, int x, int y) {
+  for (int r = 0; r < src.height; ++r) {
+    const int yy = y + r;
+    if (yy < 0 || yy >= dst.height) continue;
+    const int x0 = std::max(0, x), x1 = std::min(dst.width, x + src.width);
+    if (x0 >= x1) continue;
+    std::memcpy(dst.at(x0, yy), src.at(x0 - x, r), static_cast<std::size_t>(4) * (x1 - x0));
+  }
+}
+
+void checkRuns(const std::vector<MontageRun>& runs) {
+  if (runs.empty()) throw RenderError("montage: no runs");
+  for (std::size_t i = 0; i < runs.size(); ++i)
+    if (runs[i].snaps.empty()) throw RenderError("montage: run " + std::to_string(i + 1) + " has no snapshots");
+}
+
+}  // namespace
+
+std::vector<double> montageClock(const std::vector<MontageRun>& runs) {
+  checkRuns(runs);
+  std::vector<double> t;
+  for (const MontageRun& r : runs)
+    for (const Snapshot& s : r.snaps) t.push_back(s.timeH);
+  std::sort(t.begin(), t.end());
+  std::vector<double> out;
+  for (double x : t)
+    if (out.empty() || x - out.back() > 1e-9) out.push_back(x);
+  return out;
+}
+
+int snapshotAt(const std::vector<Snapshot>& snaps, double tH) {
+  int k = 0;
+  for (int i = 0; i < static_cast<int>(snaps.size()); ++i)
+    if (snaps[static_cast<std::size_t>(i)].timeH <= tH + 1e-9) k = i;
+  return k;
+}
+
+MontageLayout montageLayout(const std::vector<MontageRun>& runs, const View& view) {
+  checkRuns(runs);
+  if (view.width <= 0 || view.height <= 0) throw RenderError("montage: size must be positive");
+  // every run's extent relative to its base node, over all its snapshots [mm]
+  const double inf = std::numeric_limits<double>::infinity();
+  double u0 = inf, u1 = -inf, v0 = inf, v1 = -inf, rMax = 0.0;
+  for (const MontageRun& r : runs) {
+    const PlateFrame pf = PlateFrame::tilted(r.info.alphaDeg * units::deg);
+    const Eigen::Vector3d base = pf.toPlateMm(r.snaps.front().x.col(0));
+    for (const Snapshot& s : r.snaps) {
+      for (long i = 0; i < s.x.cols(); ++i) {
+        const Eigen::Vector3d p = pf.toPlateMm(s.x.col(i)) - base;
+        u0 = std::min(u0, p.x()), u1 = std::max(u1, p.x());
+        v0 = std::min(v0, p.y()), v1 = std::max(v1, p.y());
+      }
+      rMax = std::max(rMax, s.radius.maxCoeff() / units::mm);
+    }
+  }
+  const double pad = rMax + view.marginMm;
+  const double wMm = u1 - u0 + 2 * pad, hMm = v1 - v0 + 2 * pad;
+  MontageLayout l;
+  const float font = std::max(11.0f, std::round(static_cast<float>(std::min(view.width, view.height)) / 40.0f));
+  l.headerH = static_cast<int>(std::lround(2.0f * font));
+  const int n = static_cast<int>(runs.size());
+  // the grid with the largest common scale [px/mm]; a tile keeps room for its label
+  double best = -1.0;
+  for (int c = 1; c <= n; ++c) {
+    const int r = (n + c - 1) / c;
+    const int tw = view.width / c, th = (view.height - l.headerH) / r;
+    const double scale = std::min(tw / wMm, (th - 2.2 * font) / hMm);
+    if (scale > best) best = scale, l.cols = c, l.rows = r, l.tileW = tw, l.tileH = th;
+  }
+  if (l.tileW < 16 || l.tileH < 16) throw RenderError("montage: " + std::to_string(n) + " tiles do not fit " +
+                                                      std::to_string(view.width) + "x" + std::to_string(view.height));
+  // one width in mm for every tile; the content centred (leaving the label band at the bottom free)
+  const double width = std::max(wMm, hMm * l.tileW / std::max(1.0, l.tileH - 2.2 * font));
+  const double height = width * l.tileH / l.tileW;
+  const double labelMm = 2.2 * font / l.tileH * height;
+  for (const MontageRun& r : runs) {
+    const PlateFrame pf = PlateFrame::tilted(r.info.alphaDeg * units::deg);
+    const Eigen::Vector3d base = pf.toPlateMm(r.snaps.front().x.col(0));
+    Framing f;
+    f.widthMm = width;
+    f.heightMm = height;
+    f.centreU = base.x() + 0.5 * (u0 + u1);
+    f.centreV = base.y() + 0.5 * (v0 + v1) - 0.5 * labelMm;
+    double wTop = 0.0;
+    for (const Snapshot& s : r.snaps)
+      for (long i = 0; i < s.x.cols(); ++i) wTop = std::max(wTop, pf.toPlateMm(s.x.col(i)).z());
+    f.topW = wTop + rMax;
+    l.framing.push_back(f);
+  }
+  return l;
+}
+
+void renderMontage(const std::vector<MontageRun>& runs, const MontageJob& job, const MovieProgress& progress) {
+  const MontageLayout l = montageLayout(runs, job.view);
+  const std::vector<double> clock = montageClock(runs);
+  if (job.view.transparent && !job.mp4.empty())
+    throw RenderError("montage " + job.mp4 + ": a transparent background is for PNG only (MP4 has no alpha)");
+  // one colour range over every run
+  View tileView = job.view;
+  tileView.width = l.tileW;
+  tileView.height = l.tileH;
+  tileView.showTime = false;
+  tileView.showParams = false;
+  tileView.showTitle = false;
+  if (tileView.colourBy != ColourField::None) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (const MontageRun& r : runs) {
+      const auto range = fieldRange(r.snaps, r.info, tileView.colourBy);
+      lo = std::min(lo, range[0]), hi = std::max(hi, range[1]);
+    }
+    tileView.colourRange = {lo, hi};
+  }
+  GlRenderer gl(l.tileW, l.tileH, job.renderer);
+  detail::OverlayPainter painter;
+  detail::FrameSink sink(job.mp4, job.pngDir, "", job.view.width, job.view.height, job.video);
+  const float font = std::max(11.0f, std::round(static_cast<float>(std::min(job.view.width, job.view.height)) / 40.0f));
+  Image frame(job.view.width, job.view.height), tile;
+  const int total = static_cast<int>(clock.size());
+  for (int k = 0; k < total; ++k) {
+    const double t = clock[static_cast<std::size_t>(k)];
+    if (frame.width != job.view.width || frame.rgba.size() != static_cast<std::size_t>(4) * job.view.width * job.view.height)
+      frame = Image(job.view.width, job.view.height);
+    std::fill(frame.rgba.begin(), frame.rgba.end(), std::uint8_t{255});
+    std::vector<OverlayText> texts;
+    std::vector<OverlayRect> rects;
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      const MontageRun& r = runs[i];
+      const int col = static_cast<int>(i) % l.cols, row = static_cast<int>(i) / l.cols;
+      View v = tileView;
+      v.showScaleBar = i + 1 == runs.size();  // one scale bar and one colour bar: both are common
+      v.showColourBar = i + 1 == runs.size();
+      const Snapshot& s = r.snaps[static_cast<std::size_t>(snapshotAt(r.snaps, t))];
+      gl.render(buildRenderScene(s, r.info, v, l.framing[i]), tile);
+      const int x = col * l.tileW, y = l.headerH + row * l.tileH;
+      blit(tile, frame, x, y);
+      // thin separators and the run's label at the bottom of its tile
+      rects.push_back({static_cast<float>(x), static_cast<float>(y), static_cast<float>(l.tileW), 1, {200, 200, 200, 255}});
+      rects.push_back({static_cast<float>(x), static_cast<float>(y), 1, static_cast<float>(l.tileH), {200, 200, 200, 255}});
+      texts.push_back({r.label, static_cast<float>(x) + 0.5f * static_cast<float>(l.tileW),
+                       static_cast<float>(y + l.tileH) - 0.5f * font, std::round(0.9f * font),
+                       OverlayText::Anchor::BottomCentre});
+    }
+    texts.push_back({"t = " + fmt("%.1f", t) + " h", 0.7f * font, 0.3f * font, font, OverlayText::Anchor::TopLeft});
+    painter.draw(rects, {}, texts, job.view.fontPath, frame);
+    sink.push(frame);
+    if (progress) progress(k + 1, total);
+  }
+  sink.finish();
+}
+
+}  // namespace rootsim

@@ -70,19 +70,29 @@ std::string modesCsv(const RodState& s, const StiffnessModes& m) {
   return o.str();
 }
 
-std::string modesVtp(const RodState& s, const StiffnessModes& m) {
-  const int nn = s.nodes(), n = s.elements();
-  std::ostringstream o;
+namespace {
+// the opening of a ParaView polyline file: the centreline nodes [mm] joined by one line per element; the
+// caller adds its point or cell data and closes with vtpClose()
+void vtpPolyline(std::ostream& o, const Eigen::Matrix3Xd& x) {
+  const long nn = x.cols(), n = nn - 1;
   o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
     << "<PolyData>\n<Piece NumberOfPoints=\"" << nn << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << n
     << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n<Points>\n"
     << "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (int i = 0; i < nn; ++i) o << fmt(s.x(0, i) / units::mm) << ' ' << fmt(s.x(1, i) / units::mm) << ' ' << fmt(s.x(2, i) / units::mm) << '\n';
+  for (long i = 0; i < nn; ++i) o << fmt(x(0, i) / units::mm) << ' ' << fmt(x(1, i) / units::mm) << ' ' << fmt(x(2, i) / units::mm) << '\n';
   o << "</DataArray>\n</Points>\n<Lines>\n<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n";
-  for (int i = 0; i < n; ++i) o << i << ' ' << i + 1 << '\n';
+  for (long i = 0; i < n; ++i) o << i << ' ' << i + 1 << '\n';
   o << "</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n";
-  for (int i = 0; i < n; ++i) o << 2 * (i + 1) << '\n';
-  o << "</DataArray>\n</Lines>\n<PointData Vectors=\"mode_1\">\n";
+  for (long i = 0; i < n; ++i) o << 2 * (i + 1) << '\n';
+  o << "</DataArray>\n</Lines>\n";
+}
+}  // namespace
+
+std::string modesVtp(const RodState& s, const StiffnessModes& m) {
+  const int nn = s.nodes();
+  std::ostringstream o;
+  vtpPolyline(o, s.x);
+  o << "<PointData Vectors=\"mode_1\">\n";
   for (size_t q = 0; q < m.modes.size(); ++q) {
     o << "<DataArray type=\"Float64\" Name=\"mode_" << q + 1 << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";
     for (int i = 0; i < nn; ++i)
@@ -227,18 +237,10 @@ VtkSeriesWriter::VtkSeriesWriter(const fs::path& runDir) : dir_(runDir) {
 void VtkSeriesWriter::add(const Snapshot& s) {
   char name[64];
   std::snprintf(name, sizeof name, "vtk/step_%06d.vtp", s.step);
-  const int nn = static_cast<int>(s.x.cols()), n = s.elements();
+  const int n = s.elements();
   std::ostringstream o;
-  o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-    << "<PolyData>\n<Piece NumberOfPoints=\"" << nn << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << n
-    << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n<Points>\n"
-    << "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (int i = 0; i < nn; ++i) o << fmt(s.x(0, i) / units::mm) << ' ' << fmt(s.x(1, i) / units::mm) << ' ' << fmt(s.x(2, i) / units::mm) << '\n';
-  o << "</DataArray>\n</Points>\n<Lines>\n<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n";
-  for (int i = 0; i < n; ++i) o << i << ' ' << i + 1 << '\n';
-  o << "</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n";
-  for (int i = 0; i < n; ++i) o << 2 * (i + 1) << '\n';
-  o << "</DataArray>\n</Lines>\n<CellData Scalars=\"radius_mm\">\n"
+  vtpPolyline(o, s.x);
+  o << "<CellData Scalars=\"radius_mm\">\n"
     << "<DataArray type=\"Float64\" Name=\"radius_mm\" format=\"ascii\">\n";
   for (int i = 0; i < n; ++i) o << fmt(s.radius[i] / units::mm) << '\n';
   for (const auto* arr : {&s.d1, &s.d3}) {

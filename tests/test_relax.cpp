@@ -40,6 +40,35 @@ TEST_CASE("a relaxation sub-step allocates nothing") {
   CHECK(gAllocs.load() - before == 0);
 }
 
+TEST_CASE("a relaxation sub-step with self-contact, friction and an obstacle in play allocates nothing") {
+  Cantilever c(100, 1e-2);
+  c.env.plane.enabled = true;
+  c.env.plane.alpha = 0.7;
+  c.env.friction.enabled = true;
+  c.env.friction.muStatic = 0.5;
+  c.env.friction.muKinetic = 0.3;
+  Obstacle peg;
+  peg.from = peg.to = Eigen::Vector2d(1.5e-4, 5e-3);  // overlaps the rod by half a radius
+  peg.radius = 1e-4;
+  c.env.obstacles.push_back(peg);
+  // element 80 laid over element 20, R above it: a self-contact pair
+  const Vec3 nh = c.env.plane.normal();
+  c.s.x.col(80) = c.s.x.col(20) + 1.0 * c.p.radius * nh;
+  c.s.x.col(81) = c.s.x.col(21) + 1.0 * c.p.radius * nh;
+  c.env.gravity = Vec3(0, 0, -9.81e3);
+  c.ws.resize(c.s.elements());
+  commitFriction(c.p, c.env, c.s, c.ws.contact);
+  c.opt.maxSubsteps = std::numeric_limits<long>::max();
+  DynamicRelaxation r(c.p, c.env, c.opt, c.s, c.ws);
+  r.step();
+  ContactObservables seen = observeContacts(c.p, c.env, c.s);
+  CHECK(seen.selfContacts > 0);
+  CHECK(seen.obstacleContacts > 0);
+  const long before = gAllocs.load();
+  for (int i = 0; i < 1000; ++i) r.step();
+  CHECK(gAllocs.load() - before == 0);
+}
+
 TEST_CASE("hitting the sub-step cap is an error naming node and residual") {
   Cantilever c(20);
   c.env.tipForce = Vec3(-1e-3, 0, 0);

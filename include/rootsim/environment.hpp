@@ -1,6 +1,8 @@
 #pragma once
 // Everything that acts on the rod from outside: the tilted plane, adhesion springs, the clamped base,
 // tip loads (MODEL.md sections 3 and 6).
+#include <vector>
+
 #include "rootsim/rod.hpp"
 #include "rootsim/units.hpp"
 
@@ -42,6 +44,35 @@ struct Plane {
 
 enum class BaseCondition { Clamped, Free };
 
+// contact of the rod with itself (MODEL.md section 11): capsules of the rest radius R, penalty along the
+// line between the closest points of two elements that are not neighbours along the rod
+struct SelfContact {
+  bool enabled = true;
+  double k = 1000.0;           // penalty spring per element pair [N/m] (the plate's default); damping is
+                               // the plate's c
+};
+
+// Coulomb friction on the plate and on obstacles (MODEL.md section 11): incremental stick points,
+// return mapping on slip, mu along the rod's in-plane axis = axialRatio * mu across it
+struct Friction {
+  bool enabled = false;
+  double muStatic = 0.0;       // static coefficient across the rod's axis
+  double muKinetic = 0.0;      // kinetic coefficient across the rod's axis (<= muStatic)
+  double axialRatio = 1.0;     // mu along the rod's in-plane axis / mu across it
+};
+
+// a rigid obstacle on the plate, infinitely tall along the plate normal (MODEL.md section 11): the set
+// of plate points within `radius` of the segment from-to. A peg has from == to (a cylinder); a wall is
+// a segment with rounded ends of radius thickness/2. Plate coordinates (lateral, downhill) are taken
+// from the foot of the base node (PlateFrame's origin).
+struct Obstacle {
+  enum class Shape { Peg, Wall };
+  Shape shape = Shape::Peg;
+  Eigen::Vector2d from = Eigen::Vector2d::Zero();  // (lateral, downhill) [m]; a peg's centre
+  Eigen::Vector2d to = Eigen::Vector2d::Zero();    // (lateral, downhill) [m]; == from for a peg
+  double radius = 0.0;                             // peg radius, or half the wall thickness [m]
+};
+
 struct Environment {
   Plane plane;
   bool adhesion = true;        // pin material leaving the growth zone
@@ -52,7 +83,12 @@ struct Environment {
   Vec3 tipForce = Vec3::Zero();    // dead load on the last node, lab [N]
   Vec3 tipTorque = Vec3::Zero();   // couple on the last element, lab [N m]
   Vec3 gravity = Vec3::Zero();     // body acceleration, lab [m/s^2] (off by default: weight is negligible)
+  SelfContact selfContact;         // on by default (coils climb over themselves)
+  Friction friction;               // off by default (the paper's frictionless plate)
+  std::vector<Obstacle> obstacles; // none by default
 };
+
+struct ContactWorkspace;  // contact.hpp
 
 // The outside forces, one piece each (MODEL.md section 6). Forces are lab components on nodes
 // (3 x n+1), torques material components on elements (3 x n); each piece adds to what is there, for
@@ -70,10 +106,12 @@ void addWeight(const RodParams& p, const Vec3& gravity, const RodState& s, Eigen
 // dead force on the last node, lab-fixed couple on the last element
 void addTipLoads(const Environment& env, const RodState& s, Eigen::Matrix3Xd& force, Eigen::Matrix3Xd& torque);
 
-// all of the above that env switches on, and the clamp's couple on element 0, in this order
+// all of the above that env switches on, the contact pieces of contact.hpp (obstacles, self-contact,
+// friction; cw is their scratch memory, sized by ContactWorkspace::resize) and the clamp's couple on
+// element 0, in this order
 void addExternalForces(const RodParams& p, const Environment& env, const RodState& s,
-                       const RodStrains& k, bool planeDamping, Eigen::Matrix3Xd& force,
-                       Eigen::Matrix3Xd& torque, int first = 0);
+                       const RodStrains& k, bool planeDamping, ContactWorkspace& cw,
+                       Eigen::Matrix3Xd& force, Eigen::Matrix3Xd& torque, int first = 0);
 
 // normal force of the plate on each node (n+1) [N]: addPlaneContact without its
 // damping, each element's force shared by its two nodes; zeros without a plate

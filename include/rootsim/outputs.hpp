@@ -36,10 +36,13 @@ class TimeseriesWriter {
 };
 
 // snapshots for `rootsim render`: trajectory.csv, one row per node and snapshot:
-// frame,step,time_h,node,x_mm,y_mm,z_mm,d1x,d1y,d1z,d3x,d3y,d3z,radius_mm,kappa0_per_mm,plate_force_n
+// frame,step,time_h,node,x_mm,y_mm,z_mm,d1x,d1y,d1z,d3x,d3y,d3z,radius_mm,kappa0_per_mm,plate_force_n,
+// f_plate_total_n,f_self_n,f_obstacle_n
 // (the element columns d1..radius_mm of node i describe element i; they are empty on a snapshot's last
-// node; kappa0_per_mm and plate_force_n are node values, see Snapshot). readTrajectory also reads the
-// older 14-column files (without the last two), leaving Snapshot::kappa0 and plateForce empty.
+// node; kappa0_per_mm and plate_force_n are node values, see Snapshot; the last three are the
+// magnitudes of the contact forces on the node [N]: plate with its friction, self-contact, obstacles with
+// their friction). readTrajectory also reads the older 14- and 16-column files, leaving the missing
+// fields of Snapshot empty.
 class TrajectoryWriter {
  public:
   explicit TrajectoryWriter(const std::filesystem::path& path);

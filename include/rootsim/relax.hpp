@@ -2,6 +2,7 @@
 // Mechanical relaxation to equilibrium (MODEL.md section 7): the options and result of every solver, the
 // explicit solver (DynamicRelaxation, relax_dynamic.cpp) and the force evaluation it shares with the
 // stability check (stability.cpp). One header for the concept "relaxation"; one source per solver.
+#include "rootsim/contact.hpp"
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -79,6 +80,8 @@ struct RelaxWorkspace {
   Eigen::Matrix3Xd inertia;    // element inertia per material axis (3 x n) [kg m^2]
   Eigen::VectorXd invMass;     // 1 / mass (n+1)
   Eigen::Matrix3Xd invInertia; // 1 / inertia (3 x n)
+  Eigen::Matrix3Xd xStart;     // node positions when the relaxation started (3 x n+1) [m]
+  ContactWorkspace contact;    // scratch of the contact pieces (self-contact list, obstacle forces)
   void resize(int n);
 };
 
@@ -89,7 +92,8 @@ class DynamicRelaxation {
   DynamicRelaxation(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
                     RelaxWorkspace& ws);
   // one sub-step; true when the state is in equilibrium (velocities are then zeroed); throws
-  // RelaxError when a force or couple is not finite. Allocates nothing.
+  // RelaxError when a force or couple is not finite, or when a node slides without bound (no static
+  // equilibrium: it moved more than kSlideLengths * Lref within the relaxation). Allocates nothing.
   bool step();
   const RelaxResult& result() const { return res_; }
   std::string describeFailure() const;
@@ -99,6 +103,7 @@ class DynamicRelaxation {
   struct FirePowers { double P = 0, vm2 = 0, fm2 = 0; };
   static void drift(RodState& s, double h);
   bool inEquilibrium();
+  void checkSliding() const;
   FirePowers firePowers() const;
   void fireDamping(double P);
   void fireKick(FirePowers pw);
@@ -110,7 +115,7 @@ class DynamicRelaxation {
   RodState& s_;
   RelaxWorkspace& ws_;
   double ftol2_ = 0, mtol2_ = 0, xtol_ = 0, rtol_ = 0;
-  double dtMax_ = 0, dt_ = 0, pendingDrift_ = 0, alpha_ = 0, viscousFactor_ = 1;
+  double dtMax_ = 0, dt_ = 0, pendingDrift_ = 0, alpha_ = 0, viscousFactor_ = 1, slideLimit_ = 0;
   int npos_ = 0, argF_ = 0, argM_ = 0;
   RelaxResult res_;
 };
@@ -147,6 +152,11 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
 // 3b + c - 3 b0 for block b (node i: b = 2i, element i: b = 2i + 1), b0 the first free block
 void assembleStiffness(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
                        RelaxWorkspace& ws, NewtonWorkspace& nw, int firstFreeNode);
+
+// a node that moves more than this many Lref within one relaxation is sliding away: no static
+// equilibrium (MODEL.md section 11). A clamped rod's node moves at most twice its arc length; a growing
+// root's snap moves its tip by less than the growth zone (Lref).
+inline constexpr double kSlideLengths = 3.0;
 
 // relaxes the rod to equilibrium under env; throws RelaxError on divergence or on hitting the cap
 RelaxResult relax(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,

@@ -41,6 +41,12 @@ struct RodState {
   Eigen::Matrix3Xd kappa0;   // intrinsic curvature per unit rest length, material comps [1/m] (3 x n-1)
   Eigen::Matrix3Xd anchor;   // adhesion anchor of each node [m]               (3 x n+1)
   std::vector<std::uint8_t> anchored;  // 1 if the node is pinned to its anchor   (n+1)
+  // friction history (MODEL.md section 11), committed once per growth step by commitFriction: the
+  // stick point of each node on the plate and on an obstacle [m] (3 x n+1), valid where the flag is 1
+  Eigen::Matrix3Xd plateStick;
+  std::vector<std::uint8_t> hasPlateStick;     // (n+1)
+  Eigen::Matrix3Xd obstacleStick;
+  std::vector<std::uint8_t> hasObstacleStick;  // (n+1)
   // frame of the clamped base at s = 0, rows d1 d2 d3 (lab): the first element's directors when the
   // rod was made (makeInitialRod); element 0 is tied to it through a half Voronoi domain (clampCouple)
   Mat3 clampFrame = Mat3::Identity();

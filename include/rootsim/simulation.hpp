@@ -1,5 +1,7 @@
 #pragma once
 // The run loop (STYLE.md "Data flow"): for each growth step grow -> relax -> observe. No I/O here.
+#include <limits>
+
 #include "rootsim/analysis.hpp"
 #include "rootsim/model.hpp"
 #include "rootsim/snapshot.hpp"
@@ -22,6 +24,13 @@ struct StepRecord {
   int splits = 0;             // elements split in this step
   int unstable = 0;           // unstable equilibria found (and left along their unstable mode) in this step
   Vec3 tip = Vec3::Zero();    // tip position, lab [m]
+  // contact (MODEL.md section 11; all zero when the features are off)
+  int selfContacts = 0;       // element pairs in self-contact
+  double minSelfDistance = std::numeric_limits<double>::quiet_NaN();  // closest approach of non-
+                              // neighbouring elements / R (NaN: none within 3R, or self-contact off)
+  int obstacleContacts = 0;   // elements touching an obstacle
+  long slipEvents = 0;        // node slips committed so far (friction), cumulative
+  double frictionWork = 0;    // work done against friction so far [J], cumulative
 };
 
 class Simulation {
@@ -33,7 +42,8 @@ class Simulation {
   Simulation(const Model& m, const RodState& s, int step);
 
   // one growth step: anchor mature nodes, grow rest lengths, update kappa0 (Eq. 17) and the twist
-  // profile, split long elements, relax; throws RelaxError naming the growth step
+  // profile, split long elements, relax, commit the friction stick points; throws RelaxError naming
+  // the growth step
   const StepRecord& growthStep();
 
   const Model& model() const { return m_; }
@@ -47,6 +57,7 @@ class Simulation {
 
  private:
   void observe(const RelaxResult& res, int splits, int unstable);
+  void commitStep();
   // relaxes; with solver.stabilityCheck, leaves saddle points along their unstable mode
   RelaxResult relaxStable(int step, int& unstable);
   RelaxResult relaxNewtonStable(int step, int& unstable);
@@ -60,6 +71,8 @@ class Simulation {
   long totalSubsteps_ = 0;
   long totalIterations_ = 0;
   double thetaUnwrapped_ = 0;
+  long slipEvents_ = 0;
+  double frictionWork_ = 0;
   StepRecord rec_;
 };
 

@@ -20,6 +20,9 @@ struct Snapshot {
                                // Voronoi value at interior nodes, 0 at the two ends [1/m]   (n+1)
   Eigen::VectorXd plateForce;  // normal force of the plate on the node (the law of
                                // addPlaneContact without damping) [N]                        (n+1)
+  // |contact force| on each node from the plate (with friction), from self-contact and from obstacles
+  // (with friction) [N] (3 x n+1); empty when the trajectory did not record it
+  Eigen::Matrix3Xd contactForce;
   int elements() const { return static_cast<int>(radius.size()); }
 };
 

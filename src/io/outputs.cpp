@@ -105,7 +105,8 @@ std::string modesVtp(const RodState& s, const StiffnessModes& m) {
 
 TimeseriesWriter::TimeseriesWriter(const fs::path& path) : f_(path) {
   f_.stream() << "step,time_h,length_mm,elements,theta_tip_deg,Eb,Et,Wr,Tw,substeps,residual_force_n,splits,unstable,"
-                 "tip_x_mm,tip_y_mm,tip_z_mm,newton_iterations,lowest_eigenvalue_n_per_m\n";
+                 "tip_x_mm,tip_y_mm,tip_z_mm,newton_iterations,lowest_eigenvalue_n_per_m,self_contacts,"
+                 "min_self_distance_r,obstacle_contacts,slip_events,frictional_work_j\n";
 }
 
 void TimeseriesWriter::add(const StepRecord& r) {
@@ -114,20 +115,22 @@ void TimeseriesWriter::add(const StepRecord& r) {
     << fmt(r.thetaTip / units::deg) << ',' << fmt(r.zone.Eb) << ',' << fmt(r.zone.Et) << ','
     << fmt(r.zone.Wr) << ',' << fmt(r.zone.Tw) << ',' << r.substeps << ',' << fmt(r.residualForce) << ','
     << r.splits << ',' << r.unstable << ',' << fmt(r.tip.x() / units::mm) << ',' << fmt(r.tip.y() / units::mm) << ',' << fmt(r.tip.z() / units::mm)
-    << ',' << r.iterations << ',' << fmt(r.lowestEigenvalue) << '\n';
+    << ',' << r.iterations << ',' << fmt(r.lowestEigenvalue)
+    << ',' << r.selfContacts << ',' << (std::isnan(r.minSelfDistance) ? std::string() : fmt(r.minSelfDistance))
+    << ',' << r.obstacleContacts << ',' << r.slipEvents << ',' << fmt(r.frictionWork) << '\n';
 }
 
 void TimeseriesWriter::close() { f_.close(); }
 
 TrajectoryWriter::TrajectoryWriter(const fs::path& path) : f_(path) {
   f_.stream() << "frame,step,time_h,node,x_mm,y_mm,z_mm,d1x,d1y,d1z,d3x,d3y,d3z,radius_mm,kappa0_per_mm,"
-                 "plate_force_n\n";
+                 "plate_force_n,f_plate_total_n,f_self_n,f_obstacle_n\n";
 }
 
 void TrajectoryWriter::add(const Snapshot& s) {
   auto& o = f_.stream();
   const int n = s.elements();
-  const bool k0 = s.kappa0.size() == n + 1, pf = s.plateForce.size() == n + 1;
+  const bool k0 = s.kappa0.size() == n + 1, pf = s.plateForce.size() == n + 1, cf = s.contactForce.cols() == n + 1;
   for (int i = 0; i <= n; ++i) {
     o << frames_ << ',' << s.step << ',' << fmt(s.timeH) << ',' << i;
     for (int d = 0; d < 3; ++d) o << ',' << fmt(s.x(d, i) / units::mm);
@@ -138,7 +141,9 @@ void TrajectoryWriter::add(const Snapshot& s) {
     } else {
       o << ",,,,,,,";
     }
-    o << ',' << (k0 ? fmt(s.kappa0[i] * units::mm) : "") << ',' << (pf ? fmt(s.plateForce[i]) : "") << '\n';
+    o << ',' << (k0 ? fmt(s.kappa0[i] * units::mm) : "") << ',' << (pf ? fmt(s.plateForce[i]) : "");
+    for (int c = 0; c < 3; ++c) o << ',' << (cf ? fmt(s.contactForce(c, i)) : "");
+    o << '\n';
   }
   ++frames_;
 }
@@ -153,9 +158,12 @@ std::vector<Snapshot> readTrajectory(const fs::path& path) {
   int lineNo = 1;
   if (!std::getline(in, line) || line.rfind("frame,step,time_h,node,x_mm", 0) != 0)
     throw SceneError(path.string() + ":1: not a rootsim trajectory (unexpected header)");
-  // 14 columns (before the node fields) or 16 (with kappa0_per_mm, plate_force_n)
-  const std::size_t columns = line.find(",kappa0_per_mm,plate_force_n") != std::string::npos ? 16 : 14;
-  struct Row { int frame, step, node; double t; double v[10]; bool hasElem; double k0 = 0, pf = 0; bool hasK0 = false, hasPf = false; };
+  // 14 columns (before the node fields), 16 (with kappa0_per_mm, plate_force_n) or 19 (and the contact
+  // forces f_plate_total_n, f_self_n, f_obstacle_n)
+  const std::size_t columns = line.find(",f_self_n,") != std::string::npos
+                                  ? 19
+                                  : (line.find(",kappa0_per_mm,plate_force_n") != std::string::npos ? 16 : 14);
+  struct Row { int frame, step, node; double t; double v[10]; bool hasElem; double k0 = 0, pf = 0; bool hasK0 = false, hasPf = false; double c[3] = {0, 0, 0}; bool hasContact = false; };
   std::vector<Snapshot> out;
   std::vector<Row> rows;
   auto flush = [&]() {
@@ -169,10 +177,15 @@ std::vector<Snapshot> readTrajectory(const fs::path& path) {
     s.d1.resize(3, n);
     s.d3.resize(3, n);
     s.radius.resize(n);
-    bool allK0 = true, allPf = true;
-    for (const Row& r : rows) allK0 = allK0 && r.hasK0, allPf = allPf && r.hasPf;
+    bool allK0 = true, allPf = true, allC = true;
+    for (const Row& r : rows) allK0 = allK0 && r.hasK0, allPf = allPf && r.hasPf, allC = allC && r.hasContact;
     if (allK0) s.kappa0.resize(nn);
     if (allPf) s.plateForce.resize(nn);
+    if (allC) {
+      s.contactForce.resize(3, nn);
+      for (int i = 0; i < nn; ++i)
+        for (int d = 0; d < 3; ++d) s.contactForce(d, i) = rows[static_cast<size_t>(i)].c[d];
+    }
     for (int i = 0; i < nn; ++i) {
       if (allK0) s.kappa0[i] = rows[static_cast<size_t>(i)].k0 / units::mm;
       if (allPf) s.plateForce[i] = rows[static_cast<size_t>(i)].pf;
@@ -208,10 +221,12 @@ std::vector<Snapshot> readTrajectory(const fs::path& path) {
       r.hasElem = !f[7].empty();
       if (r.hasElem)
         for (int d = 0; d < 7; ++d) r.v[3 + d] = std::stod(f[static_cast<size_t>(7 + d)]);
-      if (columns == 16) {
+      if (columns >= 16) {
         if ((r.hasK0 = !f[14].empty())) r.k0 = std::stod(f[14]);
         if ((r.hasPf = !f[15].empty())) r.pf = std::stod(f[15]);
       }
+      if (columns == 19 && (r.hasContact = !f[16].empty()))
+        for (int d = 0; d < 3; ++d) r.c[d] = std::stod(f[static_cast<size_t>(16 + d)]);
     } catch (const std::exception&) {
       bad("malformed number");
     }

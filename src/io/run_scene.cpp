@@ -70,10 +70,14 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     SnapWatch snap;
     snap.see(sim.last());  // the initial state: only remembered, as the step before the first
     long maxSub = sim.last().substeps;
+    int maxSelfContacts = sim.last().selfContacts;
+    double minSelfDistance = sim.last().minSelfDistance;  // NaN: never within 3R
     const int steps = m.growth.enabled ? m.growth.steps : 0;
     for (int k = 1; k <= steps; ++k) {
       const StepRecord& r = sim.growthStep();
       maxSub = std::max(maxSub, r.substeps);
+      maxSelfContacts = std::max(maxSelfContacts, r.selfContacts);
+      if (std::isnan(minSelfDistance) || r.minSelfDistance < minSelfDistance) minSelfDistance = r.minSelfDistance;
       snap.see(r);
       if (k % m.output.everySteps == 0 || k == steps) record();
       if (progress) progress(r, steps);
@@ -95,6 +99,15 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     Json tip;
     tip.num("x_mm", r.tip.x() / units::mm).num("y_mm", r.tip.y() / units::mm).num("z_mm", r.tip.z() / units::mm);
     j.object("tip", tip);
+    // contact (MODEL.md section 11): zero when self-contact, friction and obstacles are off
+    Json contact;
+    contact.integer("self_contacts", r.selfContacts)
+        .integer("max_self_contacts", maxSelfContacts)
+        .num("min_self_distance_r", minSelfDistance)
+        .integer("obstacle_contacts", r.obstacleContacts)
+        .integer("slip_events", r.slipEvents)
+        .num("frictional_work_j", r.frictionWork);
+    j.object("contact", contact);
     const double snapOrTurn = m.env.plane.enabled ? snap.first : snap.vertical;
     std::optional<ShapeAnalysis> shape;
     if (m.growth.enabled) shape = analyseShape(m, sim.state());

@@ -1,4 +1,6 @@
 // Scene files: TOML (toml++) -> validated values -> Model. Every error names file:line and the key.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -6,6 +8,7 @@
 
 #include <toml++/toml.h>
 
+#include "rootsim/contact.hpp"
 #include "rootsim/scene.hpp"
 #include "scene_schema.hpp"
 
@@ -113,6 +116,144 @@ std::string printable(const std::string& s) {
   return o;
 }
 
+// [[obstacle]] tables (MODEL.md section 11): one per obstacle, checked key by key like the sections;
+// the first table is obstacle[1] in messages
+struct ParsedObstacle {
+  Obstacle o;
+  std::string origin;     // file:line of the table's shape key (or its first key)
+  std::string where;      // "obstacle[k]"
+  std::string placeKey;   // the key that positions it (center_mm or from_mm), for overlap errors
+  std::string placeOrigin;
+};
+
+std::vector<ParsedObstacle> parseObstacles(const std::string& sourceName, const toml::key& akey,
+                                           const toml::node& anode) {
+  std::vector<ParsedObstacle> out;
+  const toml::array* arr = anode.as_array();
+  if (!arr || !arr->is_array_of_tables())
+    throw SceneError(where(sourceName, akey.source()) + ": obstacle must be an array of tables ([[obstacle]]), got " +
+                     describeNode(anode));
+  static const std::vector<std::string> keys = {"shape", "center_mm", "radius_mm", "from_mm", "to_mm", "thickness_mm"};
+  int index = 0;
+  for (const toml::node& tn : *arr) {
+    ++index;
+    const toml::table& t = *tn.as_table();
+    ParsedObstacle po;
+    po.where = "obstacle[" + std::to_string(index) + "]";
+    const std::string tableLoc = sourceName + ":" + std::to_string(t.source().begin.line);
+    auto fail = [&](const std::string& loc, const std::string& key, const std::string& why) {
+      throw SceneError(loc + ": " + po.where + "." + key + " " + why);
+    };
+    // which keys are present, where
+    std::map<std::string, const toml::node*> got;
+    std::map<std::string, std::string> loc;
+    for (auto&& [k, n] : t) {
+      const std::string key(k.str());
+      if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
+        std::string best;
+        int bestD = 1 << 30;
+        for (const auto& c : keys)
+          if (editDistance(key, c) < bestD) { bestD = editDistance(key, c); best = c; }
+        throw SceneError(where(sourceName, k.source()) + ": unknown key " + po.where + "." + printable(key) +
+                         (bestD <= 2 ? " (did you mean " + best + "?)" : " (obstacle keys: shape, center_mm, "
+                                                                          "radius_mm, from_mm, to_mm, thickness_mm)"));
+      }
+      got[key] = &n;
+      loc[key] = where(sourceName, k.source());
+    }
+    if (!got.count("shape")) throw SceneError(tableLoc + ": " + po.where + ".shape is missing (\"peg\" or \"wall\")");
+    const toml::node& shapeNode = *got["shape"];
+    const std::string shape = shapeNode.is_string() ? *shapeNode.value<std::string>() : std::string();
+    if (shape != "peg" && shape != "wall")
+      fail(loc["shape"], "shape", "must be one of \"peg\", \"wall\" (got " + (shapeNode.is_string() ? "\"" + printable(shape) + "\"" : describeNode(shapeNode)) + ")");
+    po.origin = loc["shape"];
+    const bool peg = shape == "peg";
+    const std::vector<std::string> need = peg ? std::vector<std::string>{"center_mm", "radius_mm"}
+                                              : std::vector<std::string>{"from_mm", "to_mm", "thickness_mm"};
+    for (const auto& [key, n] : got) {
+      if (key == "shape") continue;
+      if (std::find(need.begin(), need.end(), key) == need.end())
+        fail(loc[key], key, std::string("does not apply to a ") + shape + " (a " + shape + " takes " + need[0] +
+                                ", " + need[1] + (peg ? "" : ", " + need[2]) + ")");
+    }
+    for (const auto& key : need)
+      if (!got.count(key)) throw SceneError(po.origin + ": " + po.where + "." + key + " is missing (a " + shape + " needs it)");
+    auto number = [&](const std::string& key, const toml::node& n) {
+      double x = 0;
+      if (n.is_floating_point()) x = *n.value<double>();
+      else if (n.is_integer()) x = static_cast<double>(*n.value<int64_t>());
+      else fail(loc[key], key, "must be a number (got " + describeNode(n) + ")");
+      if (!std::isfinite(x)) fail(loc[key], key, "must be finite (got " + formatNumber(x, false) + ")");
+      return x;
+    };
+    auto point = [&](const std::string& key) {
+      const toml::node& n = *got[key];
+      const toml::array* a = n.as_array();
+      if (!a || a->size() != 2) fail(loc[key], key, "must be an array of 2 numbers [lateral, downhill] (got " + describeNode(n) + ")");
+      return Eigen::Vector2d(number(key, *a->get(0)), number(key, *a->get(1))) * units::mm;
+    };
+    auto positive = [&](const std::string& key) {
+      const double x = number(key, *got[key]);
+      if (!(x > 0)) fail(loc[key], key, "must be > 0 (got " + formatNumber(x, false) + ")");
+      return x * units::mm;
+    };
+    if (peg) {
+      po.o.shape = Obstacle::Shape::Peg;
+      po.o.from = po.o.to = point("center_mm");
+      po.o.radius = positive("radius_mm");
+      po.placeKey = "center_mm";
+    } else {
+      po.o.shape = Obstacle::Shape::Wall;
+      po.o.from = point("from_mm");
+      po.o.to = point("to_mm");
+      po.o.radius = 0.5 * positive("thickness_mm");
+      if (po.o.from == po.o.to) fail(loc["to_mm"], "to_mm", "must differ from from_mm (a wall of no length: use a peg)");
+      po.placeKey = "from_mm";
+    }
+    po.placeOrigin = loc[po.placeKey];
+    out.push_back(po);
+  }
+  return out;
+}
+
+// an obstacle must not overlap the initial root: the segment from the base's foot down the plate, of
+// length L0 and radius R (plate coordinates, the seeded perturbation of 1e-6 R aside)
+void checkObstacleClearance(const Model& m, const std::vector<ParsedObstacle>& obs) {
+  const PlateFrame f = m.env.plane.frame();
+  const Vec3 r0 = Vec3::Zero(), r1 = m.initial.length * f.downhill;
+  for (const ParsedObstacle& po : obs) {
+    const Vec3 b0 = po.o.from.x() * f.lateral + po.o.from.y() * f.downhill;
+    const Vec3 b1 = po.o.to.x() * f.lateral + po.o.to.y() * f.downhill;
+    double sa = 0, sb = 0;
+    closestSegmentPoints(r0, r1, b0, b1, sa, sb);
+    const double dist = ((r0 + sa * (r1 - r0)) - (b0 + sb * (b1 - b0))).norm();
+    const double clear = dist - m.rod.radius - po.o.radius;
+    if (clear < 0.0)
+      throw SceneError(po.placeOrigin + ": " + po.where + "." + po.placeKey + " overlaps the initial root by " +
+                       formatNumber(-clear / units::mm, false) + " mm (the root lies along [0, 0] to [0, " +
+                       formatNumber(m.initial.length / units::mm, false) + "] mm with radius " +
+                       formatNumber(m.rod.radius / units::mm, false) + " mm)");
+  }
+}
+
+std::string obstaclesToml(const std::vector<ParsedObstacle>& obs) {
+  std::ostringstream os;
+  auto pt = [](const Eigen::Vector2d& p) {
+    return "[" + formatNumber(p.x() / units::mm, false) + ", " + formatNumber(p.y() / units::mm, false) + "]";
+  };
+  for (const ParsedObstacle& po : obs) {
+    os << "\n[[obstacle]]\n";
+    if (po.o.shape == Obstacle::Shape::Peg) {
+      os << "shape = \"peg\"\ncenter_mm = " << pt(po.o.from) << "\nradius_mm = "
+         << formatNumber(po.o.radius / units::mm, false) << "\n";
+    } else {
+      os << "shape = \"wall\"\nfrom_mm = " << pt(po.o.from) << "\nto_mm = " << pt(po.o.to)
+         << "\nthickness_mm = " << formatNumber(2.0 * po.o.radius / units::mm, false) << "\n";
+    }
+  }
+  return os.str();
+}
+
 void applyOverride(const std::string& ovRaw, Values& values) {
   const std::string ov = printable(ovRaw);
   // one key, one value: a newline would smuggle a second assignment past the parser (and past this check)
@@ -165,8 +306,13 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
   }
   Values values;
   for (const auto& k : schema()) values[k.full()] = defaultValue(k);
+  std::vector<ParsedObstacle> obstacles;
   for (auto&& [skey, snode] : root) {
     const std::string section(skey.str());
+    if (section == "obstacle") {
+      obstacles = parseObstacles(sourceName, skey, snode);
+      continue;
+    }
     bool known = false;
     for (const auto& s : sections()) known |= s == section;
     if (!known) {
@@ -195,8 +341,10 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
   std::string name = std::filesystem::path(sourceName).stem().string();
   Scene sc;
   sc.model = buildModel(values, name);
+  checkObstacleClearance(sc.model, obstacles);
+  for (const ParsedObstacle& po : obstacles) sc.model.env.obstacles.push_back(po.o);
   sc.path = sourceName;
-  sc.resolvedToml = resolvedToml(values, name);
+  sc.resolvedToml = resolvedToml(values, name) + obstaclesToml(obstacles);
   return sc;
 }
 

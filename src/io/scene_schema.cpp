@@ -60,7 +60,8 @@ KeySpec vec3(const char* sec, const char* key, const Vec3& def, const char* doc)
 
 const std::vector<std::string>& sections() {
   static const std::vector<std::string> s = {"root", "growth", "tropism", "plane", "adhesion",
-                                             "solver", "load", "analysis", "output"};
+                                             "self_contact", "friction", "solver", "load", "analysis",
+                                             "output"};
   return s;
 }
 
@@ -101,6 +102,18 @@ const std::vector<KeySpec>& schema() {
            "contact normal damping per element [kg/s] (physical-mass relaxation only)"),
       boolean("adhesion", "enabled", d.env.adhesion, "pin material that leaves the growth zone"),
       real("adhesion", "k_n_per_m", d.env.kAdhesion, 0, false, kInf, false, "adhesion spring [N/m]"),
+      boolean("self_contact", "enabled", d.env.selfContact.enabled,
+              "the root cannot pass through itself: elements repel when closer than 2R (MODEL.md section 11)"),
+      real("self_contact", "k_n_per_m", d.env.selfContact.k, 0, true, kInf, false,
+           "self-contact penalty spring per element pair [N/m] (damping: plane.damping_kg_per_s)"),
+      boolean("friction", "enabled", d.env.friction.enabled,
+              "Coulomb friction on the plate and obstacles, with stick points (MODEL.md section 11)"),
+      real("friction", "mu_static", d.env.friction.muStatic, 0, false, kInf, false,
+           "static friction coefficient across the root's axis"),
+      real("friction", "mu_kinetic", d.env.friction.muKinetic, 0, false, kInf, false,
+           "kinetic friction coefficient across the root's axis (at most mu_static)"),
+      real("friction", "axial_ratio", d.env.friction.axialRatio, 0, false, kInf, false,
+           "friction along the root's in-plane axis / across it (root hairs anchor sideways: < 1)"),
       choice("solver", "kind", d.solver.kind == SolverKind::Newton ? "newton" : "dynamic", {"newton", "dynamic"},
              "newton: quasi-static Newton with a banded Jacobian (MODEL.md section 12); dynamic: the paper's "
              "explicit damped relaxation"),
@@ -263,6 +276,12 @@ Model buildModel(const Values& v, const std::string& name) {
   m.env.plane.alpha = num("plane.alpha_deg") * units::deg;
   m.env.plane.k = num("plane.k_n_per_m");
   m.env.plane.c = num("plane.damping_kg_per_s");
+  m.env.selfContact.enabled = flag("self_contact.enabled");
+  m.env.selfContact.k = num("self_contact.k_n_per_m");
+  m.env.friction.enabled = flag("friction.enabled");
+  m.env.friction.muStatic = num("friction.mu_static");
+  m.env.friction.muKinetic = num("friction.mu_kinetic");
+  m.env.friction.axialRatio = num("friction.axial_ratio");
   m.env.adhesion = flag("adhesion.enabled");
   m.env.kAdhesion = num("adhesion.k_n_per_m");
   m.env.tipForce = vec("load.tip_force_n");
@@ -306,6 +325,10 @@ Model buildModel(const Values& v, const std::string& name) {
     if (m.env.base == BaseCondition::Free)
       relationError(v, "load.base", "= \"free\" applies to mechanics-only scenes (a growing root is clamped)");
   }
+  if (m.env.friction.muKinetic > m.env.friction.muStatic)
+    relationError(v, "friction.mu_kinetic", "must be at most friction.mu_static (got " +
+                                                formatNumber(m.env.friction.muKinetic, false) + " > " +
+                                                formatNumber(m.env.friction.muStatic, false) + ")");
   if (!m.env.plane.enabled && m.env.base == BaseCondition::Free && !m.growth.enabled &&
       (m.env.tipForce.norm() > 0 || m.env.gravity.norm() > 0))
     relationError(v, "load.base", "= \"free\" with a net load has no equilibrium; clamp the base");

@@ -134,9 +134,25 @@ int splitLongElements(const Model& m, RodState& s) {
   t.time = s.time;
   t.clampFrame = s.clampFrame;
   int o = 0;  // output element index
-  t.x.col(0) = s.x.col(0);
-  t.anchor.col(0) = s.anchor.col(0);
-  t.anchored[0] = s.anchored[0];
+  // node-wise fields: a kept node carries its own; a node made inside a split element takes the mean of
+  // the element's two nodes (a friction stick point only when both nodes had one)
+  auto copyNode = [&](int to, int from) {
+    t.x.col(to) = s.x.col(from);
+    t.anchor.col(to) = s.anchor.col(from);
+    t.anchored[static_cast<size_t>(to)] = s.anchored[static_cast<size_t>(from)];
+    t.plateStick.col(to) = s.plateStick.col(from);
+    t.hasPlateStick[static_cast<size_t>(to)] = s.hasPlateStick[static_cast<size_t>(from)];
+    t.obstacleStick.col(to) = s.obstacleStick.col(from);
+    t.hasObstacleStick[static_cast<size_t>(to)] = s.hasObstacleStick[static_cast<size_t>(from)];
+  };
+  auto midNode = [&](int to, int a) {
+    const size_t ua = static_cast<size_t>(a), ub = static_cast<size_t>(a + 1), ut = static_cast<size_t>(to);
+    t.plateStick.col(to) = 0.5 * (s.plateStick.col(a) + s.plateStick.col(a + 1));
+    t.hasPlateStick[ut] = s.hasPlateStick[ua] && s.hasPlateStick[ub] ? 1 : 0;
+    t.obstacleStick.col(to) = 0.5 * (s.obstacleStick.col(a) + s.obstacleStick.col(a + 1));
+    t.hasObstacleStick[ut] = s.hasObstacleStick[ua] && s.hasObstacleStick[ub] ? 1 : 0;
+  };
+  copyNode(0, 0);
   for (int i = 0; i < n; ++i) {
     const bool split = s.l0[i] > limit;
     // Voronoi value on the left of output element o (between o-1 and o) comes from the input
@@ -148,6 +164,7 @@ int splitLongElements(const Model& m, RodState& s) {
       const bool both = s.anchored[static_cast<size_t>(i)] && s.anchored[static_cast<size_t>(i + 1)];
       t.anchored[static_cast<size_t>(o + 1)] = both ? 1 : 0;
       t.anchor.col(o + 1) = 0.5 * (s.anchor.col(i) + s.anchor.col(i + 1));
+      midNode(o + 1, i);
       // the new Voronoi node inside the split element takes the mean of its neighbours' kappa0
       Vec3 left = i > 0 ? Vec3(s.kappa0.col(i - 1)) : Vec3(s.kappa0.col(i));
       Vec3 right = i + 1 < n ? Vec3(s.kappa0.col(i)) : left;
@@ -159,9 +176,7 @@ int splitLongElements(const Model& m, RodState& s) {
       t.Q[static_cast<size_t>(o)] = s.Q[static_cast<size_t>(i)];
       o += 1;
     }
-    t.x.col(o) = s.x.col(i + 1);
-    t.anchor.col(o) = s.anchor.col(i + 1);
-    t.anchored[static_cast<size_t>(o)] = s.anchored[static_cast<size_t>(i + 1)];
+    copyNode(o, i + 1);
   }
   t.v.setZero();
   t.w.setZero();

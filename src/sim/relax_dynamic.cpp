@@ -6,10 +6,12 @@
 //                  closing half drift, the leapfrog form of position Verlet)
 //   2. strains     shear/stretch and bend/twist of the mid-step configuration        (rod.cpp)
 //   3. internal    forces and couples from the strains                               (rod.cpp)
-//   4. external    plate contact, adhesion, weight, clamp couple, tip loads, each a piece (environment.cpp)
+//   4. external    plate contact, obstacles, self-contact, friction, adhesion, weight, clamp couple, tip
+//                  loads, each a piece (environment.cpp, contact.cpp)
 //   5. constraints the clamped base holds node 0: its force is a reaction and is removed (the one place
 //                  the clamp acts on motion; node 0's velocity then stays zero through kick and drift)
-//   6. residual    largest force, couple and speed; finiteness; stop if in equilibrium
+//   6. residual    largest force, couple and speed; finiteness; stop if in equilibrium; every
+//                  kSlideCheckEvery sub-steps, a node sliding away (no static equilibrium) is an error
 //   7. damping     FIRE's power test (or the viscous factor)
 //   8. kick        v += dt F/m, w += dt tau/J, mixed toward the force direction by FIRE
 //   9. half drift, deferred to the next sub-step (a converged state is the one forces were checked at)
@@ -34,7 +36,8 @@ namespace rootsim {
 
 namespace {
 
-constexpr double kMassSafety = 2.0;  // scaled masses m = kMassSafety * k / 4: omega dt <= sqrt(2) < 2
+constexpr double kMassSafety = 2.0;
+constexpr long kSlideCheckEvery = 512;  // sub-steps between checks for a node sliding away  // scaled masses m = kMassSafety * k / 4: omega dt <= sqrt(2) < 2
 
 // FIRE constants (Bitzek et al. 2006, Table I)
 constexpr int kFireNmin = 5;
@@ -62,6 +65,14 @@ void stiffnessBounds(const RodParams& p, const Environment& env, const RodState&
       kx[i + 1] += 0.5 * env.plane.k;
     }
   }
+  // friction's stick springs and obstacle contact (stiffness plane.k each) where they may act. Self-
+  // contact (k of the order of the plate's, a few pairs per node) is far below the stretch stiffness
+  // S/l that dominates kx (1.6e3 N/m vs 3e4 N/m for the paper's root) and is not added, so that a run
+  // without contacts keeps its masses, and its results, to the bit.
+  const bool obstacles = !env.obstacles.empty();
+  const double kContact = env.plane.k * ((env.friction.enabled ? 1.0 : 0.0) + (obstacles ? 1.0 : 0.0) +
+                                         (env.friction.enabled && obstacles ? 1.0 : 0.0));
+  if (kContact > 0.0) kx.array() += kContact;
   for (int j = 0; j + 1 < n; ++j) {
     const double D0 = 0.5 * (s.l0[j] + s.l0[j + 1]);
     const Vec3 kb = 2.0 * Bd / D0;
@@ -134,6 +145,8 @@ void RelaxWorkspace::resize(int n) {
   inertia.resize(3, n);
   invMass.resize(n + 1);
   invInertia.resize(3, n);
+  xStart.resize(3, n + 1);
+  contact.resize(n);
 }
 
 void computeForces(const RodParams& p, const Environment& env, const RodState& s, bool planeDamping,
@@ -143,7 +156,7 @@ void computeForces(const RodParams& p, const Environment& env, const RodState& s
   if (ws.force.cols() != s.nodes()) ws.resize(s.elements());
   computeStrains(p, s, ws.strains, first);                                             // 2.
   computeInternalForces(s, ws.strains, ws.force, ws.torque, first);                    // 3.
-  addExternalForces(p, env, s, ws.strains, planeDamping, ws.force, ws.torque, first);  // 4.
+  addExternalForces(p, env, s, ws.strains, planeDamping, ws.contact, ws.force, ws.torque, first);  // 4.
   holdClampedBase(env, ws.force);                                                      // 5.
 }
 
@@ -166,6 +179,8 @@ DynamicRelaxation::DynamicRelaxation(const RodParams& p, const Environment& env,
   dtMax_ = setMasses(p, env, opt, s, ws);
   ws.invMass = ws.mass.cwiseInverse();
   ws.invInertia = ws.inertia.cwiseInverse();
+  ws.xStart = s.x;
+  slideLimit_ = kSlideLengths * Lref;
   dt_ = dtMax_;
   alpha_ = kFireAlpha0;
   viscousFactor_ = std::exp(-opt.viscousRate * dtMax_);
@@ -181,6 +196,7 @@ bool DynamicRelaxation::step() {
     s_.w.setZero();
     return true;
   }
+  if (res_.substeps % kSlideCheckEvery == 0) checkSliding();
   if (opt_.damping == Damping::Fire) {
     const FirePowers pw = firePowers();
     fireDamping(pw.P);                                                 // 7.
@@ -220,6 +236,22 @@ bool DynamicRelaxation::inEquilibrium() {
   res_.dt = dt_;
   return maxF2 < ftol2_ && maxM2 < mtol2_ && maxV2 * dtMax_ * dtMax_ < xtol_ * xtol_ &&
          maxW2 * dtMax_ * dtMax_ < rtol_ * rtol_;
+}
+
+void DynamicRelaxation::checkSliding() const {
+  double far2 = 0;
+  int arg = 0;
+  for (int i = 0; i < s_.nodes(); ++i) {
+    const double d2 = (s_.x.col(i) - ws_.xStart.col(i)).squaredNorm();
+    if (d2 > far2) { far2 = d2; arg = i; }
+  }
+  if (far2 <= slideLimit_ * slideLimit_) return;
+  std::ostringstream os;
+  os << "node " << arg << " slides: no static equilibrium (it moved " << std::sqrt(far2) * 1e3
+     << " mm within one relaxation, more than " << kSlideLengths << " Lref = " << slideLimit_ * 1e3
+     << " mm, after " << res_.substeps << " sub-steps; the loads exceed what friction, the plate and "
+     << "the supports can hold)";
+  throw RelaxError(os.str());
 }
 
 DynamicRelaxation::FirePowers DynamicRelaxation::firePowers() const {

@@ -25,6 +25,10 @@ void RodState::resize(int n) {
   kappa0.resize(3, std::max(n - 1, 0));
   anchor.resize(3, n + 1);
   anchored.assign(static_cast<size_t>(n + 1), 0);
+  plateStick.resize(3, n + 1);
+  hasPlateStick.assign(static_cast<size_t>(n + 1), 0);
+  obstacleStick.resize(3, n + 1);
+  hasObstacleStick.assign(static_cast<size_t>(n + 1), 0);
 }
 
 void RodStrains::resize(int n) {

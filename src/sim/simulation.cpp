@@ -4,6 +4,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "rootsim/contact.hpp"
 #include "rootsim/growth.hpp"
 #include "rootsim/stability.hpp"
 #include "rootsim/units.hpp"
@@ -29,8 +30,13 @@ Simulation::Simulation(const Model& m) : m_(m) {
     applyTwistProfile(m_, s_);
     anchorMatureNodes(m_, s_);
   }
+  // friction: stick points where the rod touches before it first relaxes (otherwise the first
+  // relaxation would be frictionless)
+  ws_.resize(s_.elements());
+  commitFriction(m_.rod, m_.env, s_, ws_.contact);
   int unstable = 0;
   const RelaxResult r = relaxStable(0, unstable);
+  commitStep();
   totalSubsteps_ = r.substeps;
   totalIterations_ = r.iterations;
   observe(r, 0, unstable);
@@ -55,6 +61,7 @@ const StepRecord& Simulation::growthStep() {
   const int splits = splitLongElements(m_, s_);
   int unstable = 0;
   const RelaxResult r = relaxStable(step_, unstable);
+  commitStep();
   totalSubsteps_ += r.substeps;
   totalIterations_ += r.iterations;
   observe(r, splits, unstable);
@@ -92,6 +99,13 @@ RelaxResult Simulation::newtonOrExplain(int step) {
        << " elements): " << e.what();
     throw RelaxError(os.str());
   }
+}
+
+void Simulation::commitStep() {
+  // friction is incremental: the stick points move once per growth step, at its equilibrium
+  const FrictionCommit c = commitFriction(m_.rod, m_.env, s_, ws_.contact);
+  slipEvents_ += c.slips;
+  frictionWork_ += c.work;
 }
 
 RelaxResult Simulation::relaxStable(int step, int& unstable) {
@@ -166,6 +180,14 @@ void Simulation::observe(const RelaxResult& res, int splits, int unstable) {
   r.splits = splits;
   r.unstable = unstable;
   r.tip = s_.x.col(s_.nodes() - 1);
+  if (m_.env.selfContact.enabled || !m_.env.obstacles.empty()) {
+    const ContactObservables c = observeContacts(m_.rod, m_.env, s_);
+    r.selfContacts = c.selfContacts;
+    r.minSelfDistance = c.minSelfDistance;
+    r.obstacleContacts = c.obstacleContacts;
+  }
+  r.slipEvents = slipEvents_;
+  r.frictionWork = frictionWork_;
   rec_ = r;
 }
 
@@ -173,6 +195,7 @@ Snapshot Simulation::snapshot() const {
   Snapshot sn = makeSnapshot(m_.rod, s_, ws_.strains, step_);
   sn.timeH = s_.time / units::hour;
   sn.plateForce = plateNormalForce(m_.rod, m_.env.plane, s_);
+  sn.contactForce = observeContacts(m_.rod, m_.env, s_).perNode;
   return sn;
 }
 

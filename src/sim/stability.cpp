@@ -9,6 +9,7 @@
 #include <cmath>
 #include <vector>
 
+#include "rootsim/contact.hpp"
 #include "rootsim/rotation.hpp"
 
 namespace rootsim {
@@ -62,27 +63,43 @@ StabilityReport checkStability(const RodParams& p, const Environment& env, const
   Eigen::Matrix3Xd f0 = ws.force, t0 = ws.torque;
   std::vector<Eigen::Triplet<double>> trip;
   trip.reserve(static_cast<size_t>(N) * 3 * kStride);
+  // self-contact couples nodes far apart along the rod (off the band): a node in a self-contact pair
+  // is nudged alone and its whole column is read; the coloured passes skip it, so no other column of
+  // its colour picks up its far coupling
+  std::vector<std::uint8_t> offBand;
+  selfContactNodes(p, env, s0, ws.contact, offBand);
+  auto alone = [&](int b) { return L.isNode(b) && offBand[static_cast<size_t>(L.index(b))]; };
+  auto entry = [&](int rb, int rc, int col) {
+    const double f1 = genForce(ws, L, rb, rc);
+    const double f00 = L.isNode(rb) ? f0(rc, L.index(rb)) : t0(rc, L.index(rb));
+    // K = -dF/du in scaled units: torques / lbar, rotations * lbar
+    double k = -(f1 - f00) / hx;
+    if (!L.isNode(rb)) k /= lbar;
+    if (k != 0.0) trip.emplace_back(3 * rb + rc, col, k);
+  };
   for (int color = 0; color < kStride; ++color) {
     for (int c = 0; c < 3; ++c) {
       s = s0;
       for (int b = color; b < L.blocks(); b += kStride)
-        if (L.free(b)) nudge(s, L, b, c, L.isNode(b) ? hx : hx / lbar);
+        if (L.free(b) && !alone(b)) nudge(s, L, b, c, L.isNode(b) ? hx : hx / lbar);
       computeForces(p, env, s, false, ws);
       for (int b = color; b < L.blocks(); b += kStride) {
-        if (!L.free(b)) continue;
-        const int col = 3 * b + c;
-        for (int rb = std::max(0, b - kRadius); rb <= std::min(L.blocks() - 1, b + kRadius); ++rb) {
-          if (!L.free(rb)) continue;
-          for (int rc = 0; rc < 3; ++rc) {
-            const double f1 = genForce(ws, L, rb, rc);
-            const double f00 = L.isNode(rb) ? f0(rc, L.index(rb)) : t0(rc, L.index(rb));
-            // K = -dF/du in scaled units: torques / lbar, rotations * lbar
-            double k = -(f1 - f00) / hx;
-            if (!L.isNode(rb)) k /= lbar;
-            if (k != 0.0) trip.emplace_back(3 * rb + rc, col, k);
-          }
-        }
+        if (!L.free(b) || alone(b)) continue;
+        for (int rb = std::max(0, b - kRadius); rb <= std::min(L.blocks() - 1, b + kRadius); ++rb)
+          if (L.free(rb))
+            for (int rc = 0; rc < 3; ++rc) entry(rb, rc, 3 * b + c);
       }
+    }
+  }
+  for (int b = 0; b < L.blocks(); ++b) {
+    if (!L.free(b) || !alone(b)) continue;
+    for (int c = 0; c < 3; ++c) {
+      s = s0;
+      nudge(s, L, b, c, hx);
+      computeForces(p, env, s, false, ws);
+      for (int rb = 0; rb < L.blocks(); ++rb)
+        if (L.free(rb))
+          for (int rc = 0; rc < 3; ++rc) entry(rb, rc, 3 * b + c);
     }
   }
   // clamped dofs: identity rows/columns so the matrix stays square and their pivots positive

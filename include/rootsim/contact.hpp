@@ -1,0 +1,95 @@
+#pragma once
+// Contact beyond the paper (MODEL.md section 11): the rod against itself, against rigid obstacles on
+// the plate, and Coulomb friction on the plate and the obstacles. Each is a force piece that
+// addExternalForces (environment.cpp) calls, so every solver that evaluates computeForces shares them.
+//
+// Conventions, as the plate's (environment.cpp): penalty springs act on the surface gap computed with
+// the rest radius R, per element (per element pair for self-contact), with normal damping c (only with
+// physical masses); a force applied at a point inside an element is split to its two nodes by the
+// point's segment parameter (linear interpolation), which keeps every pair of contact forces free of
+// net force and net moment about any point.
+//
+// Friction is quasi-static and incremental: within one relaxation the tangential force of a node is a
+// pure function of its position and of the stick point committed after the previous relaxation
+// (a backward-Euler step, as the return mapping of elastoplasticity), so the force evaluation stays a
+// function of the state (what a Newton solver needs); commitFriction moves the stick points once the
+// equilibrium is reached.
+#include <array>
+#include <vector>
+
+#include "rootsim/environment.hpp"
+
+namespace rootsim {
+
+// scratch memory of the contact pieces, sized once per element count (resize) so that a force
+// evaluation allocates nothing
+struct ContactWorkspace {
+  // filled by addObstacleContact, read by addFriction (elastic part of the contact force only)
+  Eigen::VectorXd obstacleN;        // obstacle normal force per node [N]                (n+1)
+  Eigen::Matrix3Xd obstacleNormal;  // sum of the obstacle contact normals per node, lab (3 x n+1)
+
+  // self-contact broad phase: a Verlet list of element pairs that are within 2R + skin (and far enough
+  // apart along the rod), found with a spatial hash of element midpoints; rebuilt when a node has moved
+  // more than skin/2 since the list was built, or when the element count or the rod's rest length
+  // changed (growth)
+  std::vector<std::array<int, 2>> pairs;  // candidate element pairs (i < j)
+  std::vector<int> bucketStart;           // spatial hash: first slot of each bucket (buckets + 1)
+  std::vector<int> bucketOf;              // bucket of each element (n)
+  std::vector<int> slots;                 // elements sorted by bucket (n)
+  Eigen::Matrix3Xd xBuilt;                // node positions when the list was built (3 x n+1)
+  int builtElements = -1;                 // element count when the list was built (-1: never)
+  double builtRestLength = -1.0;          // rest length when the list was built [m]
+  long builds = 0;                        // how often the list was built (for tests and benchmarks)
+
+  void resize(int n);
+  void invalidate() { builtElements = -1; }
+};
+
+// obstacles: each element against each obstacle (a 2-D segment-segment distance in the plate: the
+// obstacles are infinitely tall); fills cw.obstacleN / cw.obstacleNormal for friction
+void addObstacleContact(const RodParams& p, const Environment& env, const RodState& s, bool damping,
+                        ContactWorkspace& cw, Eigen::Matrix3Xd& force);
+
+// self-contact: element pairs whose rest arc-length separation is at least kSelfExclusionRadii * R,
+// closer than 2R between the closest points of their centrelines
+void addSelfContact(const RodParams& p, const Environment& env, const RodState& s, bool damping,
+                    ContactWorkspace& cw, Eigen::Matrix3Xd& force);
+inline constexpr double kSelfExclusionRadii = 3.0;
+
+// Coulomb friction on the plate and on obstacles from the committed stick points (needs the obstacle
+// normal forces of addObstacleContact in cw); adhered nodes are excluded
+void addFriction(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw,
+                 Eigen::Matrix3Xd& force);
+
+// what one commit did: nodes that slipped and the work done by friction against the slip [J]
+struct FrictionCommit {
+  int slips = 0;
+  double work = 0.0;
+};
+// after an equilibrium (or before the first relaxation): nodes in contact get a stick point where they
+// are (new contacts) or move it by the return mapping (slip); nodes off contact or adhered lose it
+FrictionCommit commitFriction(const RodParams& p, const Environment& env, RodState& s,
+                              ContactWorkspace& cw);
+
+// contact observables of a state (not for the sub-step: allocates)
+struct ContactObservables {
+  int selfContacts = 0;          // element pairs in self-contact (gap < 0)
+  int obstacleContacts = 0;      // elements touching an obstacle
+  double minSelfDistance = 0.0;  // smallest centreline distance of non-neighbouring elements / R, over
+                                 // pairs within 2R + skin (NaN when there are none)
+  Eigen::Matrix3Xd perNode;      // |force| on each node from the plate (with friction), from self-
+                                 // contact and from obstacles (with friction) [N]  (3 x n+1)
+};
+ContactObservables observeContacts(const RodParams& p, const Environment& env, const RodState& s);
+
+// nodes whose self-contact couples them to nodes far along the rod (off the banded pattern of the
+// stiffness matrix): 1 for both nodes of each element in a self-contact pair (gap < 0); others 0
+void selfContactNodes(const RodParams& p, const Environment& env, const RodState& s,
+                      ContactWorkspace& cw, std::vector<std::uint8_t>& mark);
+
+// closest points of segments a0-a1 and b0-b1: parameters sa, sb in [0, 1] (Ericson, Real-Time
+// Collision Detection, 5.1.9; near-parallel segments take the middle of their overlap)
+void closestSegmentPoints(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, double& sa,
+                          double& sb);
+
+}  // namespace rootsim

@@ -1,0 +1,434 @@
+// Contact beyond the paper (MODEL.md section 11): self-contact, obstacles, Coulomb friction. contact.hpp
+// states the conventions; each piece below is called from addExternalForces (environment.cpp).
+#include "rootsim/contact.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "rootsim/assert.hpp"
+
+namespace rootsim {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Verlet skin of the self-contact list, in radii: pairs within 2R + skin are listed, and the list stays
+// valid while no node has moved more than skin/2 (the centreline distance of two segments changes by at
+// most the largest displacement of their four nodes, twice skin/2 for two segments)
+constexpr double kSkinRadii = 1.0;
+
+// a node "touches" for friction (gets a stick point) within this fraction of R of a surface; the rod
+// starts exactly at the plate (gap 0 up to round-off)
+constexpr double kTouchRadii = 1e-3;
+
+double clamp01(double x) { return x < 0.0 ? 0.0 : (x > 1.0 ? 1.0 : x); }
+
+// unit in-plane axis of the rod at node i, perpendicular to the contact normal nh (zero when the rod is
+// along the normal there)
+Vec3 nodeAxis(const RodState& s, int i, const Vec3& nh) {
+  const int n = s.elements();
+  Vec3 t = s.x.col(std::min(i + 1, n)) - s.x.col(std::max(i - 1, 0));
+  t -= t.dot(nh) * nh;
+  const double l = t.norm();
+  return l > 0.0 ? Vec3(t / l) : Vec3::Zero();
+}
+
+// Coulomb's law with an elliptic, anisotropic cone: the trial force of the stick spring -kt u (u the
+// tangential displacement from the stick point) is kept while it lies inside the static ellipse
+// (fa / (ratio mu_s N))^2 + (fb / (mu_s N))^2 <= 1 (fa along the rod's axis a, fb across it); otherwise
+// the node slips and the force is returned radially onto the kinetic ellipse (same direction, mu_k).
+// The radial return is the closest-point return for an isotropic cone; for an anisotropic one it keeps
+// the force opposite to the slip instead of normal to the ellipse (a non-associated flow rule).
+Vec3 coulomb(const Vec3& u, const Vec3& a, double kt, double N, const Friction& fr, bool& slips) {
+  const Vec3 ft = -kt * u;
+  const double fa = ft.dot(a);
+  const double fb2 = std::max(0.0, ft.squaredNorm() - fa * fa);
+  auto measure = [&](double mu) {
+    const double ca = fr.axialRatio * mu * N, cb = mu * N;
+    double q = 0.0;
+    if (fa != 0.0) q += ca > 0.0 ? (fa / ca) * (fa / ca) : kInf;
+    if (fb2 > 0.0) q += cb > 0.0 ? fb2 / (cb * cb) : kInf;
+    return q;
+  };
+  if (measure(fr.muStatic) <= 1.0) {
+    slips = false;
+    return ft;
+  }
+  slips = true;
+  const double q = measure(fr.muKinetic);
+  return std::isinf(q) ? Vec3::Zero() : Vec3(ft / std::sqrt(q));
+}
+
+// elastic normal force of the plate on node i: half the penalty of each neighbouring element [N]
+double plateNodeNormal(const RodParams& p, const Plane& plane, const RodState& s, int i, double& minGap) {
+  const Vec3 nh = plane.normal();
+  double N = 0.0;
+  minGap = kInf;
+  for (int e = std::max(i - 1, 0); e <= std::min(i, s.elements() - 1); ++e) {
+    const double gap = 0.5 * (s.x.col(e) + s.x.col(e + 1)).dot(nh) - p.radius;
+    minGap = std::min(minGap, gap);
+    if (gap < 0.0) N += 0.5 * plane.k * -gap;
+  }
+  return N;
+}
+
+// an obstacle as a lab segment in the plate (height 0)
+void obstacleSegment(const PlateFrame& f, const Obstacle& o, Vec3& b0, Vec3& b1) {
+  b0 = o.from.x() * f.lateral + o.from.y() * f.downhill;
+  b1 = o.to.x() * f.lateral + o.to.y() * f.downhill;
+}
+
+// calls visit(element, node weight sa, unit normal, gap) for every element/obstacle pair with gap < limit
+template <class Visit>
+void forEachObstacleContact(const RodParams& p, const Environment& env, const RodState& s, double limit,
+                            Visit&& visit) {
+  const PlateFrame f = env.plane.frame();
+  const Vec3 nh = f.normal;
+  for (const Obstacle& o : env.obstacles) {
+    Vec3 b0, b1;
+    obstacleSegment(f, o, b0, b1);
+    for (int i = 0; i < s.elements(); ++i) {
+      // the element's centreline projected onto the plate: the obstacles are infinitely tall
+      const Vec3 a0 = s.x.col(i) - s.x.col(i).dot(nh) * nh;
+      const Vec3 a1 = s.x.col(i + 1) - s.x.col(i + 1).dot(nh) * nh;
+      double sa = 0, sb = 0;
+      closestSegmentPoints(a0, a1, b0, b1, sa, sb);
+      const Vec3 d = (a0 + sa * (a1 - a0)) - (b0 + sb * (b1 - b0));
+      const double dist = d.norm();
+      const double gap = dist - p.radius - o.radius;
+      if (gap >= limit) continue;
+      // centreline on the obstacle's axis: push sideways, across the element
+      Vec3 m = dist > 0.0 ? Vec3(d / dist) : Vec3(nh.cross(a1 - a0).normalized());
+      visit(i, sa, m, gap);
+    }
+  }
+}
+
+// ---- self-contact broad phase ----
+
+std::uint32_t hashCell(long long ix, long long iy, long long iz) {
+  const auto h = static_cast<std::uint64_t>(ix) * 73856093ULL ^ static_cast<std::uint64_t>(iy) * 19349663ULL ^
+                 static_cast<std::uint64_t>(iz) * 83492791ULL;
+  return static_cast<std::uint32_t>(h ^ (h >> 32));
+}
+
+bool excludedAlongRod(const RodParams& p, const RodState& s, int i, int j) {
+  // neighbours along the rod always overlap; elements whose nearest ends are closer than
+  // kSelfExclusionRadii * R in rest arc length are treated as neighbours too
+  return j <= i + 1 || s.S[j] - s.S[i + 1] < kSelfExclusionRadii * p.radius;
+}
+
+// (re)builds the Verlet list when it is stale; allocation-free while the pair count stays below the
+// capacity reserved by resize
+void updatePairs(const RodParams& p, const RodState& s, ContactWorkspace& cw) {
+  const int n = s.elements();
+  const double skin = kSkinRadii * p.radius;
+  bool stale = cw.builtElements != n || cw.builtRestLength != s.S[n];
+  if (!stale) {
+    const double lim2 = 0.25 * skin * skin;
+    for (int i = 0; i <= n && !stale; ++i) stale = (s.x.col(i) - cw.xBuilt.col(i)).squaredNorm() > lim2;
+  }
+  if (!stale) return;
+  ROOTSIM_ASSERT(static_cast<int>(cw.bucketOf.size()) == n, "a contact workspace sized for the rod");
+  ++cw.builds;
+  const double reach = 2.0 * p.radius + skin;
+  double lmax = 0.0;
+  for (int i = 0; i < n; ++i) lmax = std::max(lmax, (s.x.col(i + 1) - s.x.col(i)).norm());
+  // two elements within `reach` have midpoints within lmax + reach: the 27 cells around a midpoint's
+  // cell hold every candidate
+  const double cell = lmax + reach;
+  const auto buckets = static_cast<std::uint32_t>(cw.bucketStart.size() - 1);  // a power of two
+  auto cellOf = [&](int i, long long c[3]) {
+    const Vec3 mid = 0.5 * (s.x.col(i) + s.x.col(i + 1)) / cell;
+    for (int a = 0; a < 3; ++a) c[a] = std::isfinite(mid[a]) ? static_cast<long long>(std::floor(mid[a])) : 0;
+  };
+  // counting sort of the elements by bucket
+  std::fill(cw.bucketStart.begin(), cw.bucketStart.end(), 0);
+  for (int i = 0; i < n; ++i) {
+    long long c[3];
+    cellOf(i, c);
+    const int b = static_cast<int>(hashCell(c[0], c[1], c[2]) & (buckets - 1));
+    cw.bucketOf[static_cast<size_t>(i)] = b;
+    ++cw.bucketStart[static_cast<size_t>(b) + 1];
+  }
+  for (std::uint32_t b = 0; b < buckets; ++b) cw.bucketStart[b + 1] += cw.bucketStart[b];
+  for (int i = 0; i < n; ++i) cw.slots[static_cast<size_t>(cw.bucketStart[static_cast<size_t>(cw.bucketOf[static_cast<size_t>(i)])]++)] = i;
+  for (std::uint32_t b = buckets; b > 0; --b) cw.bucketStart[b] = cw.bucketStart[b - 1];
+  cw.bucketStart[0] = 0;
+  // candidates: each pair once (j > i), from the distinct buckets of the 27 neighbouring cells
+  cw.pairs.clear();
+  for (int i = 0; i < n; ++i) {
+    long long c[3];
+    cellOf(i, c);
+    std::array<int, 27> near{};
+    int count = 0;
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz)
+          near[static_cast<size_t>(count++)] =
+              static_cast<int>(hashCell(c[0] + dx, c[1] + dy, c[2] + dz) & (buckets - 1));
+    std::sort(near.begin(), near.end());
+    const auto last = std::unique(near.begin(), near.end());
+    for (auto it = near.begin(); it != last; ++it) {
+      for (int k = cw.bucketStart[static_cast<size_t>(*it)]; k < cw.bucketStart[static_cast<size_t>(*it) + 1]; ++k) {
+        const int j = cw.slots[static_cast<size_t>(k)];
+        if (j <= i || excludedAlongRod(p, s, i, j)) continue;
+        double sa = 0, sb = 0;
+        closestSegmentPoints(s.x.col(i), s.x.col(i + 1), s.x.col(j), s.x.col(j + 1), sa, sb);
+        const Vec3 d = (s.x.col(i) + sa * (s.x.col(i + 1) - s.x.col(i))) - (s.x.col(j) + sb * (s.x.col(j + 1) - s.x.col(j)));
+        if (d.squaredNorm() < reach * reach) cw.pairs.push_back({i, j});
+      }
+    }
+  }
+  cw.xBuilt = s.x;
+  cw.builtElements = n;
+  cw.builtRestLength = s.S[n];
+}
+
+// closest points of a listed pair: the two points, their parameters and the distance
+struct PairGeometry {
+  double sa = 0, sb = 0, dist = 0;
+  Vec3 d = Vec3::Zero();  // point on i minus point on j
+};
+PairGeometry pairGeometry(const RodState& s, int i, int j) {
+  PairGeometry g;
+  closestSegmentPoints(s.x.col(i), s.x.col(i + 1), s.x.col(j), s.x.col(j + 1), g.sa, g.sb);
+  g.d = (s.x.col(i) + g.sa * (s.x.col(i + 1) - s.x.col(i))) - (s.x.col(j) + g.sb * (s.x.col(j + 1) - s.x.col(j)));
+  g.dist = g.d.norm();
+  return g;
+}
+
+void addPlateFriction(const RodParams& p, const Environment& env, const RodState& s, Eigen::Matrix3Xd& force) {
+  const Vec3 nh = env.plane.normal();
+  const double kt = env.plane.k;
+  for (int i = 0; i < s.nodes(); ++i) {
+    const auto u = static_cast<size_t>(i);
+    if (!s.hasPlateStick[u] || s.anchored[u]) continue;
+    double minGap = 0;
+    const double N = plateNodeNormal(p, env.plane, s, i, minGap);
+    if (N <= 0.0) continue;  // lifted off: no friction (the stick point is dropped at the next commit)
+    Vec3 disp = s.x.col(i) - s.plateStick.col(i);
+    disp -= disp.dot(nh) * nh;
+    bool slips = false;
+    force.col(i) += coulomb(disp, nodeAxis(s, i, nh), kt, N, env.friction, slips);
+  }
+}
+
+void addObstacleFriction(const Environment& env, const RodState& s, const ContactWorkspace& cw,
+                         Eigen::Matrix3Xd& force) {
+  const double kt = env.plane.k;
+  for (int i = 0; i < s.nodes(); ++i) {
+    const auto u = static_cast<size_t>(i);
+    if (!s.hasObstacleStick[u] || s.anchored[u] || cw.obstacleN[i] <= 0.0) continue;
+    const Vec3 m = cw.obstacleNormal.col(i).normalized();
+    Vec3 disp = s.x.col(i) - s.obstacleStick.col(i);
+    disp -= disp.dot(m) * m;
+    bool slips = false;
+    force.col(i) += coulomb(disp, nodeAxis(s, i, m), kt, cw.obstacleN[i], env.friction, slips);
+  }
+}
+
+}  // namespace
+
+void closestSegmentPoints(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, double& sa,
+                          double& sb) {
+  const Vec3 d1 = a1 - a0, d2 = b1 - b0, r = a0 - b0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  if (a <= 0.0 && e <= 0.0) { sa = sb = 0.0; return; }
+  if (a <= 0.0) { sa = 0.0; sb = clamp01(f / e); return; }
+  const double c = d1.dot(r);
+  if (e <= 0.0) { sb = 0.0; sa = clamp01(-c / a); return; }
+  const double b = d1.dot(d2), denom = a * e - b * b;
+  if (denom > 1e-12 * a * e) {
+    sa = clamp01((b * f - c * e) / denom);
+  } else {
+    // parallel: any point of the overlap is closest; take the middle of a's part that faces b
+    const double lo = clamp01(-c / a), hi = clamp01((b - c) / a);
+    sa = 0.5 * (lo + hi);
+  }
+  sb = (b * sa + f) / e;
+  if (sb < 0.0) { sb = 0.0; sa = clamp01(-c / a); }
+  else if (sb > 1.0) { sb = 1.0; sa = clamp01((b - c) / a); }
+}
+
+void ContactWorkspace::resize(int n) {
+  obstacleN.resize(n + 1);
+  obstacleNormal.resize(3, n + 1);
+  // hash buckets: a power of two, at least twice the element count (few collisions)
+  size_t buckets = 64;
+  while (buckets < 2 * static_cast<size_t>(n)) buckets *= 2;
+  bucketStart.assign(buckets + 1, 0);
+  bucketOf.assign(static_cast<size_t>(n), 0);
+  slots.assign(static_cast<size_t>(n), 0);
+  // room for 16 candidates per element: a tight coil lists a handful (the turns on either side); more
+  // would need several turns stacked on one element, and the list then grows once (an allocation)
+  pairs.reserve(16 * static_cast<size_t>(n) + 64);
+  xBuilt.resize(3, n + 1);
+  invalidate();
+}
+
+void addObstacleContact(const RodParams& p, const Environment& env, const RodState& s, bool damping,
+                        ContactWorkspace& cw, Eigen::Matrix3Xd& force) {
+  if (cw.obstacleN.size() != s.nodes()) cw.resize(s.elements());
+  cw.obstacleN.setZero();
+  cw.obstacleNormal.setZero();
+  const double k = env.plane.k, c = env.plane.c;
+  forEachObstacleContact(p, env, s, 0.0, [&](int i, double sa, const Vec3& m, double gap) {
+    const double fe = -k * gap;  // elastic part: the normal force friction scales with
+    double fn = fe;
+    if (damping) fn -= c * ((1.0 - sa) * s.v.col(i) + sa * s.v.col(i + 1)).dot(m);
+    force.col(i) += (1.0 - sa) * fn * m;
+    force.col(i + 1) += sa * fn * m;
+    cw.obstacleN[i] += (1.0 - sa) * fe;
+    cw.obstacleN[i + 1] += sa * fe;
+    cw.obstacleNormal.col(i) += (1.0 - sa) * fe * m;
+    cw.obstacleNormal.col(i + 1) += sa * fe * m;
+  });
+}
+
+void addSelfContact(const RodParams& p, const Environment& env, const RodState& s, bool damping,
+                    ContactWorkspace& cw, Eigen::Matrix3Xd& force) {
+  if (static_cast<int>(cw.bucketOf.size()) != s.elements()) cw.resize(s.elements());
+  updatePairs(p, s, cw);
+  const double contact = 2.0 * p.radius, k = env.selfContact.k, c = env.plane.c;
+  for (const auto& [i, j] : cw.pairs) {
+    const PairGeometry g = pairGeometry(s, i, j);
+    if (g.dist >= contact) continue;
+    // centrelines crossing exactly: separate along the normal of both tangents, away from the plate
+    Vec3 nrm;
+    if (g.dist > 1e-9 * p.radius) {
+      nrm = g.d / g.dist;
+    } else {
+      nrm = (s.x.col(i + 1) - s.x.col(i)).cross(s.x.col(j + 1) - s.x.col(j));
+      if (nrm.squaredNorm() == 0.0) nrm = env.plane.normal();
+      nrm.normalize();
+      if (nrm.dot(env.plane.normal()) < 0.0) nrm = -nrm;
+    }
+    double fn = k * (contact - g.dist);
+    if (damping) {
+      const Vec3 vi = (1.0 - g.sa) * s.v.col(i) + g.sa * s.v.col(i + 1);
+      const Vec3 vj = (1.0 - g.sb) * s.v.col(j) + g.sb * s.v.col(j + 1);
+      fn -= c * (vi - vj).dot(nrm);
+    }
+    const Vec3 F = fn * nrm;
+    force.col(i) += (1.0 - g.sa) * F;
+    force.col(i + 1) += g.sa * F;
+    force.col(j) -= (1.0 - g.sb) * F;
+    force.col(j + 1) -= g.sb * F;
+  }
+}
+
+void addFriction(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw,
+                 Eigen::Matrix3Xd& force) {
+  if (env.plane.enabled) addPlateFriction(p, env, s, force);
+  if (!env.obstacles.empty()) addObstacleFriction(env, s, cw, force);
+}
+
+FrictionCommit commitFriction(const RodParams& p, const Environment& env, RodState& s, ContactWorkspace& cw) {
+  FrictionCommit r;
+  const int nn = s.nodes();
+  if (!env.friction.enabled) return r;
+  const double kt = env.plane.k, touch = kTouchRadii * p.radius;
+  // one stick point on a surface: made where the node touches, moved by the return mapping when the
+  // trial force leaves the static cone (work = the kinetic force times the slip), dropped off contact
+  auto commit = [&](int i, bool touching, double N, const Vec3& nrm, Eigen::Matrix3Xd& stick,
+                    std::vector<std::uint8_t>& has) {
+    const auto u = static_cast<size_t>(i);
+    if (!touching || s.anchored[u]) { has[u] = 0; return; }
+    if (!has[u]) { stick.col(i) = s.x.col(i); has[u] = 1; return; }
+    Vec3 disp = s.x.col(i) - stick.col(i);
+    disp -= disp.dot(nrm) * nrm;
+    bool slips = false;
+    const Vec3 f = coulomb(disp, nodeAxis(s, i, nrm), kt, N, env.friction, slips);
+    if (!slips) return;
+    // the new stick point makes the spring force equal the returned force: -kt (x - stick) = f
+    const Vec3 moved = s.x.col(i) + f / kt;
+    Vec3 slip = moved - stick.col(i);
+    slip -= slip.dot(nrm) * nrm;
+    r.work += std::abs(f.dot(slip));
+    ++r.slips;
+    stick.col(i) = moved;
+  };
+  if (env.plane.enabled) {
+    const Vec3 nh = env.plane.normal();
+    for (int i = 0; i < nn; ++i) {
+      double minGap = 0;
+      const double N = plateNodeNormal(p, env.plane, s, i, minGap);
+      commit(i, minGap < touch, N, nh, s.plateStick, s.hasPlateStick);
+    }
+  } else {
+    std::fill(s.hasPlateStick.begin(), s.hasPlateStick.end(), 0);
+  }
+  if (!env.obstacles.empty()) {
+    Eigen::Matrix3Xd scratch = Eigen::Matrix3Xd::Zero(3, nn);
+    addObstacleContact(p, env, s, false, cw, scratch);
+    std::vector<double> minGap(static_cast<size_t>(nn), kInf);
+    forEachObstacleContact(p, env, s, touch, [&](int i, double, const Vec3&, double gap) {
+      for (int a : {i, i + 1}) minGap[static_cast<size_t>(a)] = std::min(minGap[static_cast<size_t>(a)], gap);
+    });
+    for (int i = 0; i < nn; ++i) {
+      const double N = cw.obstacleN[i];
+      // the contact normal: the elastic normals' sum, or (touching without force yet) the plate's
+      // normal crossed with nothing useful; a stick point without force has no tangent plane to slip in
+      const Vec3 m = N > 0.0 ? Vec3(cw.obstacleNormal.col(i).normalized()) : Vec3::Zero();
+      commit(i, minGap[static_cast<size_t>(i)] < touch, N, m, s.obstacleStick, s.hasObstacleStick);
+    }
+  } else {
+    std::fill(s.hasObstacleStick.begin(), s.hasObstacleStick.end(), 0);
+  }
+  return r;
+}
+
+ContactObservables observeContacts(const RodParams& p, const Environment& env, const RodState& s) {
+  ContactObservables o;
+  const int nn = s.nodes();
+  o.perNode = Eigen::Matrix3Xd::Zero(3, nn);
+  o.minSelfDistance = std::numeric_limits<double>::quiet_NaN();
+  ContactWorkspace cw;
+  cw.resize(s.elements());
+  Eigen::Matrix3Xd f(3, nn);
+  if (env.plane.enabled) {
+    f.setZero();
+    addPlaneContact(p, env.plane, s, false, f);
+    if (env.friction.enabled) addPlateFriction(p, env, s, f);
+    o.perNode.row(0) = f.colwise().norm();
+  }
+  if (env.selfContact.enabled) {
+    f.setZero();
+    addSelfContact(p, env, s, false, cw, f);
+    o.perNode.row(1) = f.colwise().norm();
+    for (const auto& [i, j] : cw.pairs) {
+      const PairGeometry g = pairGeometry(s, i, j);
+      o.selfContacts += g.dist < 2.0 * p.radius;
+      const double d = g.dist / p.radius;
+      if (std::isnan(o.minSelfDistance) || d < o.minSelfDistance) o.minSelfDistance = d;
+    }
+  }
+  if (!env.obstacles.empty()) {
+    f.setZero();
+    addObstacleContact(p, env, s, false, cw, f);
+    if (env.friction.enabled) addObstacleFriction(env, s, cw, f);
+    o.perNode.row(2) = f.colwise().norm();
+    std::vector<std::uint8_t> touching(static_cast<size_t>(s.elements()), 0);
+    forEachObstacleContact(p, env, s, 0.0, [&](int i, double, const Vec3&, double) { touching[static_cast<size_t>(i)] = 1; });
+    for (auto t : touching) o.obstacleContacts += t;
+  }
+  return o;
+}
+
+void selfContactNodes(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw,
+                      std::vector<std::uint8_t>& mark) {
+  mark.assign(static_cast<size_t>(s.nodes()), 0);
+  if (!env.selfContact.enabled) return;
+  if (static_cast<int>(cw.bucketOf.size()) != s.elements()) cw.resize(s.elements());
+  updatePairs(p, s, cw);
+  for (const auto& [i, j] : cw.pairs) {
+    if (pairGeometry(s, i, j).dist >= 2.0 * p.radius) continue;
+    for (int a : {i, i + 1, j, j + 1}) mark[static_cast<size_t>(a)] = 1;
+  }
+}
+
+}  // namespace rootsim

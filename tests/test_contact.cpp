@@ -1,0 +1,455 @@
+// contact beyond the paper (src/sim/contact.cpp, MODEL.md section 11): self-contact, Coulomb friction
+// with stick-slip, obstacles, against closed forms and invariants
+#include <doctest/doctest.h>
+
+#include <chrono>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "rod_fixture.hpp"
+#include "rootsim/contact.hpp"
+#include "rootsim/growth.hpp"
+#include "rootsim/initial.hpp"
+#include "rootsim/model.hpp"
+#include "rootsim/relax.hpp"
+#include "rootsim/simulation.hpp"
+#include "rootsim/stability.hpp"
+#include "rootsim/units.hpp"
+#include "tolerance.hpp"
+
+using namespace rootsim;
+
+namespace {
+
+// a rod through the given nodes, straight elements, directors d3 along each element and d1 as close to
+// `up` x d3 as possible, material coordinates from the lengths (stress-free in stretch)
+RodState rodThrough(const std::vector<Vec3>& pts, const Vec3& up) {
+  RodState s;
+  const int n = static_cast<int>(pts.size()) - 1;
+  s.resize(n);
+  s.S[0] = 0;
+  for (int i = 0; i <= n; ++i) s.x.col(i) = pts[static_cast<size_t>(i)];
+  for (int i = 0; i < n; ++i) {
+    const Vec3 d3 = (pts[static_cast<size_t>(i + 1)] - pts[static_cast<size_t>(i)]).normalized();
+    Vec3 d1 = up.cross(d3);
+    if (d1.norm() < 1e-9) d1 = d3.unitOrthogonal();
+    d1.normalize();
+    Mat3 Q;
+    Q.row(0) = d1.transpose();
+    Q.row(1) = d3.cross(d1).transpose();
+    Q.row(2) = d3.transpose();
+    s.Q[static_cast<size_t>(i)] = Q;
+    s.l0[i] = (pts[static_cast<size_t>(i + 1)] - pts[static_cast<size_t>(i)]).norm();
+    s.S[i + 1] = s.S[i] + s.l0[i];
+  }
+  s.clampFrame = s.Q[0];
+  s.v.setZero();
+  s.w.setZero();
+  s.kappa0.setZero();
+  s.anchor = s.x;
+  return s;
+}
+
+// a straight rod of n elements from `from` along unit `dir`, lying with d2 = `up`
+RodState straightRod(const Vec3& from, const Vec3& dir, const Vec3& up, int n, double L) {
+  std::vector<Vec3> pts;
+  for (int i = 0; i <= n; ++i) pts.push_back(from + (L * i / n) * dir);
+  return rodThrough(pts, up);
+}
+
+// smallest centreline distance between elements that self-contact considers (not neighbours), / R,
+// by brute force
+double minDistantGap(const RodParams& p, const RodState& s) {
+  double best = 1e300;
+  for (int i = 0; i < s.elements(); ++i)
+    for (int j = i + 2; j < s.elements(); ++j) {
+      if (s.S[j] - s.S[i + 1] < kSelfExclusionRadii * p.radius) continue;
+      double a = 0, b = 0;
+      closestSegmentPoints(s.x.col(i), s.x.col(i + 1), s.x.col(j), s.x.col(j + 1), a, b);
+      const Vec3 d = (s.x.col(i) + a * (s.x.col(i + 1) - s.x.col(i))) - (s.x.col(j) + b * (s.x.col(j + 1) - s.x.col(j)));
+      best = std::min(best, d.norm() / p.radius);
+    }
+  return best;
+}
+
+// two straight rods crossing at right angles, rod A along x at height 0, rod B along y at height h
+// above it, crossing at the middle of an element of each; joined into one chain by a connector that
+// climbs far above (so that only the crossing is in contact). Returns the state and the node ranges.
+struct Crossing {
+  RodState s;
+  int bFirst = 0;  // first node of rod B
+};
+Crossing crossing(double R, double h) {
+  const int m = 20;
+  const double l = 0.5 * R, L = m * l;
+  std::vector<Vec3> pts;
+  for (int i = 0; i <= m; ++i) pts.push_back(Vec3((i - 10) * l, 0, 0));  // A: x = 0.5 l is mid-element
+  pts.push_back(Vec3(10 * l, 0, 10 * L));
+  pts.push_back(Vec3(0.5 * l, -9.5 * l, 10 * L));
+  Crossing c;
+  c.bFirst = static_cast<int>(pts.size());
+  for (int j = 0; j <= m; ++j) pts.push_back(Vec3(0.5 * l, (j - 9.5) * l, h));  // B: y = 0 mid-element
+  c.s = rodThrough(pts, Vec3::UnitZ());
+  return c;
+}
+
+// the total contact force on rod B by brute force over all A-B element pairs (the closed form of the
+// pair law: k (2R - d) along the closest-point line, for every pair closer than 2R)
+Vec3 bruteForceOnB(const RodParams& p, double k, const Crossing& c) {
+  Vec3 F = Vec3::Zero();
+  const RodState& s = c.s;
+  for (int i = 0; i < c.bFirst - 3; ++i)
+    for (int j = c.bFirst; j < s.elements(); ++j) {
+      double a = 0, b = 0;
+      closestSegmentPoints(s.x.col(i), s.x.col(i + 1), s.x.col(j), s.x.col(j + 1), a, b);
+      const Vec3 d = (s.x.col(j) + b * (s.x.col(j + 1) - s.x.col(j))) - (s.x.col(i) + a * (s.x.col(i + 1) - s.x.col(i)));
+      if (d.norm() < 2 * p.radius) F += k * (2 * p.radius - d.norm()) * d.normalized();
+    }
+  return F;
+}
+
+}  // namespace
+
+TEST_CASE("segment closest points: crossing, parallel overlap and end cases") {
+  double a = 0, b = 0;
+  closestSegmentPoints(Vec3(-1, 0, 0), Vec3(1, 0, 0), Vec3(0.5, -1, 1), Vec3(0.5, 1, 1), a, b);
+  CHECK(a == doctest::Approx(0.75));
+  CHECK(b == doctest::Approx(0.5));
+  // parallel, overlapping over x in [0, 1]: the middle of the overlap
+  closestSegmentPoints(Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(-1, 0, 1), Vec3(1, 0, 1), a, b);
+  CHECK(a == doctest::Approx(0.25));
+  CHECK(b == doctest::Approx(0.75));
+  // end to end
+  closestSegmentPoints(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 1, 0), Vec3(3, 2, 0), a, b);
+  CHECK(a == doctest::Approx(1.0));
+  CHECK(b == doctest::Approx(0.0));
+}
+
+TEST_CASE("self-contact: two rods pressed across each other stop at 2R apart, forces and moments sum to zero") {
+  RodParams p;
+  Environment env;
+  env.plane.enabled = false;
+  const double R = p.radius, k = env.selfContact.k;
+  ContactWorkspace cw;
+  // forces of a crossing 0.3 R deep: what the brute-force pair law gives, no net force, no net moment
+  {
+    Crossing c = crossing(R, 1.7 * R);
+    Eigen::Matrix3Xd f = Eigen::Matrix3Xd::Zero(3, c.s.nodes());
+    addSelfContact(p, env, c.s, false, cw, f);
+    Vec3 F = Vec3::Zero(), M = Vec3::Zero(), onB = Vec3::Zero();
+    const Vec3 o(0.3e-3, -0.7e-3, 0.2e-3);  // moments about an arbitrary point
+    for (int i = 0; i < c.s.nodes(); ++i) {
+      F += f.col(i);
+      M += (c.s.x.col(i) - o).cross(f.col(i));
+      if (i >= c.bFirst) onB += f.col(i);
+    }
+    const Vec3 want = bruteForceOnB(p, k, c);
+    CHECK(want.z() >= k * 0.3 * R);  // the crossing pair, and the neighbours that also overlap
+    CHECK((onB - want).norm() < 1e-12 * want.norm());
+    CHECK(std::abs(onB.x()) < 1e-12 * onB.z());  // symmetric crossing: straight up
+    CHECK(std::abs(onB.y()) < 1e-12 * onB.z());
+    CHECK(F.norm() < 1e-12 * onB.z());
+    CHECK(M.norm() < 1e-12 * onB.z() * R);
+  }
+  // rod B pressed down onto A with a total force P (rigid rods): equilibrium where the contact force
+  // equals P, found by bisection on the height; the centrelines stop at 2R - P/k, i.e. 2R to 1e-3
+  const double P = 1e-3 * k * R;
+  double lo = 1.0 * R, hi = 2.5 * R;
+  for (int it = 0; it < 80; ++it) {
+    const double h = 0.5 * (lo + hi);
+    Crossing c = crossing(R, h);
+    Eigen::Matrix3Xd f = Eigen::Matrix3Xd::Zero(3, c.s.nodes());
+    addSelfContact(p, env, c.s, false, cw, f);
+    double up = 0;
+    for (int i = c.bFirst; i < c.s.nodes(); ++i) up += f(2, i);
+    (up > P ? lo : hi) = h;
+  }
+  ROOTSIM_CHECK_REL("crossing rods: centreline distance / 2R", lo / (2 * R), 1.0, 1e-3);
+  CHECK(lo < 2 * R);
+  CHECK(lo >= (2 * R - P / k) * (1 - 1e-12));  // at most one pair's give
+}
+
+TEST_CASE("self-contact: a rod coiling under its own intrinsic curvature never brings distant parts within 1.9 R") {
+  // a clamped rod, no plate, with intrinsic curvature 1/(4R) over 1.6 turns of length: without
+  // self-contact it relaxes into a flat circle that runs through its own base (distance 0); with it,
+  // the turns stand off each other at 2R less the penalty's give
+  auto run = [](bool contact, double& gap, RodState* out) {
+    test::Cantilever c(90, 1.6 * 2 * units::pi * 4e-4, 1e-5);
+    c.env.selfContact.enabled = contact;
+    c.opt.speedTol = 1e-6;
+    c.s.kappa0.row(0).setConstant(1.0 / 4e-4);
+    c.s.kappa0.row(2).setConstant(0.01 / 4e-4);  // a slight twist: a helix of pitch 0.25 R
+    c.relax();
+    gap = minDistantGap(c.p, c.s);
+    if (out) *out = c.s;
+  };
+  double off = 0, on = 0;
+  RodState coiled;
+  run(false, off, nullptr);
+  run(true, on, &coiled);
+  INFO("closest distant approach / R: without self-contact " << off << ", with " << on);
+  CHECK(off < 1.0);
+  CHECK(on > 1.9);
+  // the coiled equilibrium, contacts included, is stable: the stiffness check reads the off-band
+  // contact couplings column by column
+  test::Cantilever c(90, 1.6 * 2 * units::pi * 4e-4);
+  c.s = coiled;
+  std::vector<std::uint8_t> mark;
+  selfContactNodes(c.p, c.env, c.s, c.ws.contact, mark);
+  int inContact = 0;
+  for (auto m : mark) inContact += m;
+  CHECK(inContact > 0);
+  CHECK(checkStability(c.p, c.env, c.s, c.ws).negative == 0);
+}
+
+TEST_CASE("self-contact: changes nothing, to the bit, while no distant parts come within 2R") {
+  Model m = defaultModel();
+  m.initial.elementLength = 1e-4;
+  m.env.plane.alpha = 40 * units::deg;
+  completeModel(m);
+  Model off = m;
+  off.env.selfContact.enabled = false;
+  Simulation a(m), b(off);
+  for (int k = 0; k < 60; ++k) {
+    a.growthStep();
+    b.growthStep();
+  }
+  CHECK(a.last().selfContacts == 0);
+  CHECK((a.state().x.array() == b.state().x.array()).all());
+  CHECK(a.totalSubsteps() == b.totalSubsteps());
+}
+
+namespace {
+// a free straight rod of 1 mm lying on a plate tilted by alpha, along `dir` (a plate direction), under
+// its weight (gravity scaled up 1000 times so that forces stand well above the solver's tolerance)
+struct Incline {
+  RodParams p;
+  Environment env;
+  SolverOptions opt;
+  RodState s;
+  RelaxWorkspace ws;
+  Incline(double alphaDeg, bool alongDownhill) {
+    env.plane.alpha = alphaDeg * units::deg;
+    env.adhesion = false;
+    env.base = BaseCondition::Free;
+    env.gravity = Vec3(0, 0, -9.81e3);
+    env.friction.enabled = true;
+    opt.forceTol = 1e-7;
+    const PlateFrame f = env.plane.frame();
+    const Vec3 dir = alongDownhill ? f.downhill : f.lateral;
+    s = straightRod(p.radius * f.normal, dir, f.normal, 20, 1e-3);
+    opt.lengthScale = 1e-3;
+  }
+  // stick points where it lies, then relax; throws RelaxError when it slides
+  void settle() {
+    ws.resize(s.elements());
+    commitFriction(p, env, s, ws.contact);
+    relax(p, env, opt, s, ws);
+  }
+};
+
+// true when the rod stays put; false when the relaxation reports sliding (the message is checked)
+bool sticks(Incline& c, double* seconds = nullptr) {
+  const RodState before = c.s;
+  const auto t0 = std::chrono::steady_clock::now();
+  try {
+    c.settle();
+  } catch (const RelaxError& e) {
+    if (seconds) *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const std::string w = e.what();
+    INFO(w);
+    CHECK(w.find("slides: no static equilibrium") != std::string::npos);
+    CHECK(w.find("node ") != std::string::npos);
+    return false;
+  }
+  // it stays where it was, to a fraction of R (the stick springs' give)
+  CHECK((c.s.x - before.x).colwise().norm().maxCoeff() < 1e-2 * c.p.radius);
+  return true;
+}
+}  // namespace
+
+TEST_CASE("incline: a free rod under its weight sticks iff mu_s >= cot(alpha), 5 percent either side") {
+  for (double alpha : {50.0, 70.0}) {
+    const double cot = 1.0 / std::tan(alpha * units::deg);
+    for (double factor : {1.05, 0.95}) {
+      INFO("alpha " << alpha << " deg, mu_s = " << factor << " cot(alpha)");
+      Incline c(alpha, true);
+      c.env.friction.muStatic = factor * cot;
+      c.env.friction.muKinetic = 0.8 * factor * cot;
+      double seconds = 0;
+      const bool stuck = sticks(c, &seconds);
+      CHECK(stuck == (factor > 1.0));
+      if (!stuck) CHECK(seconds < 10.0);  // seconds, not the sub-step cap
+    }
+  }
+}
+
+TEST_CASE("anisotropic friction: a rod along the slope slides when axial_ratio mu < cot(alpha), sticks across it") {
+  const double alpha = 60.0, cot = 1.0 / std::tan(alpha * units::deg);
+  for (bool downhill : {true, false}) {
+    INFO("lying " << (downhill ? "downhill" : "across the slope"));
+    Incline c(alpha, downhill);
+    c.env.friction.muStatic = 3.0 * cot;       // across the rod: three times what holds it
+    c.env.friction.muKinetic = 2.0 * cot;
+    c.env.friction.axialRatio = 0.95 / 3.0;    // along the rod: 0.95 cot(alpha)
+    CHECK(sticks(c) == !downhill);
+  }
+}
+
+TEST_CASE("stick-slip: a rod dragged by a slowly growing tip force saw-tooths between mu_s N and mu_k N") {
+  // horizontal plate (alpha = 90 deg), rod along y; its tip is pulled along the rod through a spring
+  // whose far end moves a little each step; friction commits after each equilibrium
+  // The closed form needs a rod stiff against its stick springs (a rigid block): with the paper's
+  // E = 50 MPa and k_t = 1000 N/m per node the rod's stretch compliance concentrates the pull near the
+  // tip, slip spreads from there and the whole rod lets go at 0.66 mu_s N (measured; a physical
+  // precursor, as in frictional interfaces). Here E = 5 GPa and k_t = 10 N/m: 0.1 % of shear lag.
+  Incline c(90.0, true);
+  c.p.youngs = 5e9;
+  c.env.plane.k = 10.0;
+  c.opt.forceTol = 1e-9;
+  const double muS = 0.6, muK = 0.3;
+  c.env.friction.muStatic = muS;
+  c.env.friction.muKinetic = muK;
+  c.settle();
+  const int tip = c.s.nodes() - 1;
+  c.env.adhesion = true;
+  c.env.kAdhesion = 200.0;
+  c.s.anchored[static_cast<size_t>(tip)] = 1;
+  c.s.anchor.col(tip) = c.s.x.col(tip);
+  // the normal force on the nodes that feel friction (all but the pulled tip): their weight
+  const double rhoA = c.p.density * units::pi * c.p.radius * c.p.radius;
+  const double W = rhoA * c.s.restLength() * 9.81e3, Wtip = 0.5 * rhoA * c.s.l0[c.s.elements() - 1] * 9.81e3;
+  const double N = W - Wtip;
+  const Vec3 pull = c.env.plane.downhill();
+  // 2 % of the breakaway force per step while stuck: the pulling spring in series with the stick
+  // springs of the other nodes
+  const double kStick = c.env.plane.k * (c.s.nodes() - 1);
+  const double dAnchor = 0.02 * muS * N * (1.0 / c.env.kAdhesion + 1.0 / kStick);
+  std::vector<double> F;
+  long slips = 0;
+  for (int k = 0; k < 150; ++k) {
+    c.s.anchor.col(tip) += dAnchor * pull;
+    relax(c.p, c.env, c.opt, c.s, c.ws);
+    slips += commitFriction(c.p, c.env, c.s, c.ws.contact).slips;
+    F.push_back(c.env.kAdhesion * (c.s.anchor.col(tip) - c.s.x.col(tip)).dot(pull));
+  }
+  // the saw-tooth: rises while stuck, drops on slip; peaks at mu_s N, troughs at mu_k N
+  int drops = 0;
+  double peak = 0, trough = 1e300;
+  for (size_t k = 1; k < F.size(); ++k) {
+    if (F[k] < F[k - 1] - 0.1 * muS * N) {
+      ++drops;
+      peak = std::max(peak, F[k - 1]);
+      trough = std::min(trough, F[k]);
+    }
+  }
+  INFO("drops " << drops << ", peak " << peak / N << " N, trough " << trough / N << " N");
+  CHECK(drops >= 3);
+  CHECK(slips > 0);
+  ROOTSIM_CHECK_REL("stick-slip peak / (mu_s N)", peak / (muS * N), 1.0, 0.05);
+  ROOTSIM_CHECK_REL("stick-slip trough / (mu_k N)", trough / (muK * N), 1.0, 0.05);
+  for (double f : F) CHECK(f < muS * N * 1.01);
+}
+
+TEST_CASE("obstacles: a root growing into a peg slightly off its line goes round it without entering it and grows on") {
+  Model m = defaultModel();
+  m.initial.elementLength = 1e-4;
+  m.env.plane.alpha = 10 * units::deg;
+  Obstacle peg;
+  peg.from = peg.to = Eigen::Vector2d(0.1e-3, 2.0e-3);  // R to the side of the root's line, 2 mm down
+  peg.radius = 0.3e-3;
+  m.env.obstacles.push_back(peg);
+  completeModel(m);
+  Simulation sim(m);
+  const PlateFrame f = m.env.plane.frame();
+  double worst = 1e300;
+  int touching = 0;
+  for (int k = 0; k < 260; ++k) {
+    sim.growthStep();
+    const RodState& s = sim.state();
+    for (int i = 0; i < s.nodes(); ++i) {
+      const Vec3 c = f.coords(s.x.col(i));
+      worst = std::min(worst, (Eigen::Vector2d(c.x(), c.y()) - peg.from).norm() - peg.radius - m.rod.radius);
+    }
+    touching = std::max(touching, sim.last().obstacleContacts);
+  }
+  const Vec3 tip = f.coords(sim.state().x.col(sim.state().nodes() - 1));
+  INFO("deepest overlap " << -worst / m.rod.radius << " R, tip at (" << tip.x() * 1e3 << ", " << tip.y() * 1e3 << ") mm");
+  CHECK(touching > 0);                                   // it met the peg
+  CHECK(worst > -0.1 * m.rod.radius);                    // and never entered it (penalty give < 0.1 R)
+  CHECK(tip.y() > peg.from.y() + peg.radius + 0.3e-3);   // it grew on past the peg
+  CHECK(tip.x() < 0.0);                                  // round the side away from the peg's centre
+}
+
+TEST_CASE("obstacles: forces push out along the in-plane normal, split by the segment parameter") {
+  RodParams p;
+  Environment env;
+  env.plane.alpha = 30 * units::deg;
+  const PlateFrame f = env.plane.frame();
+  const RodState s = straightRod(p.radius * f.normal, f.downhill, f.normal, 10, 1e-3);
+  ContactWorkspace cw;
+  const double k = env.plane.k;
+  // a wall along the whole rod, its face 0.5 R into it: every element pushed by k * 0.5 R sideways,
+  // shared equally by its nodes (parallel segments: the middle of the overlap)
+  {
+    Obstacle wall;
+    wall.shape = Obstacle::Shape::Wall;
+    wall.from = Eigen::Vector2d(0.25e-3, -1e-3);
+    wall.to = Eigen::Vector2d(0.25e-3, 2e-3);
+    wall.radius = 0.2e-3;
+    env.obstacles = {wall};
+    Eigen::Matrix3Xd force = Eigen::Matrix3Xd::Zero(3, s.nodes());
+    addObstacleContact(p, env, s, false, cw, force);
+    const double fn = k * 0.5 * p.radius;
+    for (int i = 0; i < s.nodes(); ++i) {
+      const double share = (i == 0 || i == s.nodes() - 1) ? 0.5 : 1.0;
+      CHECK((force.col(i) + share * fn * f.lateral).norm() < 1e-9 * fn);
+    }
+  }
+  // a thin peg 0.05 R into element 4 at 40 % of its length: 60 % of the push on node 4, 40 % on node 5
+  {
+    Obstacle peg;
+    peg.from = peg.to = Eigen::Vector2d(0.105e-3, 0.44e-3);
+    peg.radius = 0.01e-3;
+    env.obstacles = {peg};
+    Eigen::Matrix3Xd force = Eigen::Matrix3Xd::Zero(3, s.nodes());
+    addObstacleContact(p, env, s, false, cw, force);
+    const double fn = k * 0.005e-3;
+    CHECK((force.col(4) + 0.6 * fn * f.lateral).norm() < 1e-9 * fn);
+    CHECK((force.col(5) + 0.4 * fn * f.lateral).norm() < 1e-9 * fn);
+    CHECK(force.norm() == doctest::Approx(std::sqrt(0.36 + 0.16) * fn));
+    CHECK(cw.obstacleN[4] == doctest::Approx(0.6 * fn));
+  }
+}
+
+TEST_CASE("friction off: no stick points, no slips; splitting an element carries stick points") {
+  Model m = defaultModel();
+  m.initial.elementLength = 1e-4;
+  m.env.friction.enabled = true;
+  m.env.friction.muStatic = 0.3;
+  m.env.friction.muKinetic = 0.2;
+  completeModel(m);
+  Simulation sim(m);
+  for (int k = 0; k < 40; ++k) sim.growthStep();
+  const RodState& s = sim.state();
+  int sticks = 0;
+  for (int i = 0; i < s.nodes(); ++i) {
+    const auto u = static_cast<size_t>(i);
+    sticks += s.hasPlateStick[u];
+    CHECK(!(s.hasPlateStick[u] && s.anchored[u]));  // adhered nodes are glued, not rubbing
+  }
+  CHECK(sticks > 0);
+  CHECK(static_cast<int>(s.hasPlateStick.size()) == s.nodes());
+  CHECK(sim.last().slipEvents > 0);  // the growing tip slides over the plate
+  CHECK(sim.last().frictionWork > 0.0);
+
+  Model off = defaultModel();
+  off.initial.elementLength = 1e-4;
+  completeModel(off);
+  Simulation b(off);
+  for (int k = 0; k < 10; ++k) b.growthStep();
+  CHECK(b.last().slipEvents == 0);
+  CHECK(b.last().frictionWork == 0.0);
+  for (auto h : b.state().hasPlateStick) CHECK(h == 0);
+}

@@ -1,6 +1,8 @@
 // the rootsim binary: exit codes, messages, run directories, determinism (src/cli, src/io/run_dir.cpp)
 #include <doctest/doctest.h>
 
+#include <chrono>
+
 #include "run_rootsim.hpp"
 
 #include <array>
@@ -65,6 +67,35 @@ TEST_CASE("bad usage exits 2") {
   const Result r = run("run /nonexistent/x.toml");
   CHECK(r.code == 2);
   CHECK(r.out.find("/nonexistent/x.toml: no such scene file") != std::string::npos);
+}
+
+TEST_CASE("an obstacle overlapping the initial root exits 2 naming file:line and key") {
+  const fs::path d = scratch("badobstacle");
+  { std::ofstream(d / "peg.toml") << "[[obstacle]]\nshape = \"peg\"\ncenter_mm = [0, 0.5]\nradius_mm = 0.3\n"; }
+  const Result r = run("run " + (d / "peg.toml").string() + " --out " + (d / "out").string());
+  CHECK(r.code == 2);
+  CHECK(r.out.find("peg.toml:3: obstacle[1].center_mm overlaps the initial root") != std::string::npos);
+  CHECK(!fs::exists(d / "out"));
+}
+
+TEST_CASE("a rod with no static equilibrium exits 1 in seconds, saying it slides and naming the node") {
+  // a free 1 mm rod on a plate tilted by 60 deg under its weight, mu_s 5 % below cot(60 deg)
+  const fs::path d = scratch("slides");
+  {
+    std::ofstream(d / "slide.toml") << "[root]\ninitial_length_mm = 1\n[growth]\nenabled = false\n[plane]\n"
+                                       "alpha_deg = 60\n[adhesion]\nenabled = false\n[load]\nbase = \"free\"\n"
+                                       "gravity = true\n[friction]\nenabled = true\nmu_static = 0.55\n"
+                                       "mu_kinetic = 0.5\n[solver]\nforce_tol = 1e-9\n";
+  }
+  const auto t0 = std::chrono::steady_clock::now();
+  const Result r = run("run " + (d / "slide.toml").string() + " --quiet --out " + (d / "out").string());
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  CHECK(r.code == 1);
+  CHECK(r.out.find("slides: no static equilibrium") != std::string::npos);
+  CHECK(r.out.find("node ") != std::string::npos);
+  CHECK(secs < 30.0);
+  // 5 % above cot(alpha) it stays: the same scene runs to completion
+  CHECK(run("run " + (d / "slide.toml").string() + " --set friction.mu_static=0.61 --quiet --out " + (d / "stays").string()).code == 0);
 }
 
 TEST_CASE("a bad scene exits 2 with file:line:key and writes nothing") {

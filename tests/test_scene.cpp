@@ -95,3 +95,65 @@ TEST_CASE("theory: worked values of MODEL.md section 9") {
   CHECK(b.alphaWaveToCoil * deg == doctest::Approx(47.6).epsilon(0.005));
   CHECK(b.T0 / 3600 == doctest::Approx(7.85).epsilon(0.005));
 }
+
+// --- contact keys (MODEL.md section 11): [self_contact], [friction], [[obstacle]] ---
+
+TEST_CASE("contact keys: defaults, and obstacles that round-trip through the resolved scene") {
+  const Scene d = parseScene("", "scenes/empty.toml");
+  CHECK(d.model.env.selfContact.enabled);
+  CHECK(!d.model.env.friction.enabled);
+  CHECK(d.model.env.obstacles.empty());
+  const std::string text =
+      "[friction]\nenabled = true\nmu_static = 0.4\nmu_kinetic = 0.3\naxial_ratio = 0.5\n"
+      "[[obstacle]]\nshape = \"peg\"\ncenter_mm = [0.1, 3]\nradius_mm = 0.5\n"
+      "[[obstacle]]\nshape = \"wall\"\nfrom_mm = [-1.5, 2.5]\nto_mm = [1, 3.2]\nthickness_mm = 0.2\n";
+  const Scene a = parseScene(text, "o.toml");
+  REQUIRE(a.model.env.obstacles.size() == 2);
+  const Obstacle& peg = a.model.env.obstacles[0];
+  CHECK(peg.shape == Obstacle::Shape::Peg);
+  CHECK(peg.from.x() == doctest::Approx(1e-4));
+  CHECK(peg.from.y() == doctest::Approx(3e-3));
+  CHECK(peg.to == peg.from);
+  CHECK(peg.radius == doctest::Approx(5e-4));
+  const Obstacle& wall = a.model.env.obstacles[1];
+  CHECK(wall.shape == Obstacle::Shape::Wall);
+  CHECK(wall.to.y() == doctest::Approx(3.2e-3));
+  CHECK(wall.radius == doctest::Approx(1e-4));  // half the thickness
+  CHECK(a.model.env.friction.axialRatio == doctest::Approx(0.5));
+  const Scene b = parseScene(a.resolvedToml, "o.toml");
+  CHECK(b.resolvedToml == a.resolvedToml);
+  CHECK(b.model.env.obstacles.size() == 2);
+}
+
+TEST_CASE("contact keys: bad obstacles and friction are errors naming file:line and key") {
+  auto peg = [](const std::string& body) { return "[[obstacle]]\nshape = \"peg\"\n" + body; };
+  CHECK(errorOf(peg("center_mm = [0.05, 0.5]\nradius_mm = 0.2\n"))
+            .find("scenes/t.toml:3: obstacle[1].center_mm overlaps the initial root by 0.25 mm") != std::string::npos);
+  CHECK(errorOf(peg("center_mm = [0, 5]\nradius_mm = -0.5\n"))
+            .find("scenes/t.toml:4: obstacle[1].radius_mm must be > 0 (got -0.5)") != std::string::npos);
+  CHECK(errorOf(peg("center_mm = [0, 5]\nradius_mm = nan\n"))
+            .find("scenes/t.toml:4: obstacle[1].radius_mm must be finite") != std::string::npos);
+  CHECK(errorOf(peg("center_mm = [inf, 5]\nradius_mm = 0.5\n"))
+            .find("scenes/t.toml:3: obstacle[1].center_mm must be finite") != std::string::npos);
+  CHECK(errorOf(peg("center_mm = [0, 5, 1]\nradius_mm = 0.5\n"))
+            .find("scenes/t.toml:3: obstacle[1].center_mm must be an array of 2 numbers") != std::string::npos);
+  CHECK(errorOf(peg("center_mm = [0, 5]\nradius_mn = 0.5\n"))
+            .find("scenes/t.toml:4: unknown key obstacle[1].radius_mn (did you mean radius_mm?)") != std::string::npos);
+  CHECK(errorOf(peg("center_mm = [0, 5]\n")).find("obstacle[1].radius_mm is missing") != std::string::npos);
+  CHECK(errorOf(peg("center_mm = [0, 5]\nradius_mm = 0.5\nfrom_mm = [0, 1]\n"))
+            .find("scenes/t.toml:5: obstacle[1].from_mm does not apply to a peg") != std::string::npos);
+  CHECK(errorOf("[[obstacle]]\nshape = \"cone\"\n").find("scenes/t.toml:2: obstacle[1].shape must be one of \"peg\", \"wall\"") !=
+        std::string::npos);
+  CHECK(errorOf("[[obstacle]]\nshape = \"peg\"\ncenter_mm = [0, 5]\nradius_mm = 0.5\n"
+                "[[obstacle]]\nshape = \"wall\"\nfrom_mm = [-1, 0.5]\nto_mm = [1, 0.5]\nthickness_mm = 0.2\n")
+            .find("scenes/t.toml:7: obstacle[2].from_mm overlaps the initial root") != std::string::npos);
+  CHECK(errorOf("[[obstacle]]\nshape = \"wall\"\nfrom_mm = [1, 5]\nto_mm = [1, 5]\nthickness_mm = 0.2\n")
+            .find("scenes/t.toml:4: obstacle[1].to_mm must differ from from_mm") != std::string::npos);
+  CHECK(errorOf("obstacle = 3\n").find("scenes/t.toml:1: obstacle must be an array of tables") != std::string::npos);
+  CHECK(errorOf("[friction]\nmu_static = 0.2\nmu_kinetic = 0.3\n")
+            .find("scenes/t.toml:3: friction.mu_kinetic must be at most friction.mu_static") != std::string::npos);
+  CHECK(errorOf("[friction]\nmu_static = -0.2\n").find("scenes/t.toml:2: friction.mu_static must be >= 0 (got -0.2)") !=
+        std::string::npos);
+  CHECK(errorOf("[self_contact]\nk_n_per_m = 0\n").find("scenes/t.toml:2: self_contact.k_n_per_m must be > 0") !=
+        std::string::npos);
+}

@@ -59,6 +59,9 @@ struct Friction {
   double muStatic = 0.0;       // static coefficient across the rod's axis
   double muKinetic = 0.0;      // kinetic coefficient across the rod's axis (<= muStatic)
   double axialRatio = 1.0;     // mu along the rod's in-plane axis / mu across it
+  // slip over which the sliding coefficient falls from mu_s to mu_k [m] (slip weakening, contact.cpp;
+  // 0: at once). 1e-3 R: far below any slip that matters, far above a solver's overshoot
+  double slipWeakening = 1e-7;
 };
 
 // a rigid obstacle on the plate, infinitely tall along the plate normal (MODEL.md section 11): the set

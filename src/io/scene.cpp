@@ -178,7 +178,7 @@ std::vector<ParsedObstacle> parseObstacles(const std::string& sourceName, const 
     }
     for (const auto& key : need)
       if (!got.count(key)) throw SceneError(po.origin + ": " + po.where + "." + key + " is missing (a " + shape + " needs it)");
-    auto number = [&](const std::string& key, const toml::node& n) {
+    auto number = [&](const std::string& key, const toml::node& n) -> double {
       double x = 0;
       if (n.is_floating_point()) x = *n.value<double>();
       else if (n.is_integer()) x = static_cast<double>(*n.value<int64_t>());
@@ -186,13 +186,13 @@ std::vector<ParsedObstacle> parseObstacles(const std::string& sourceName, const 
       if (!std::isfinite(x)) fail(loc[key], key, "must be finite (got " + formatNumber(x, false) + ")");
       return x;
     };
-    auto point = [&](const std::string& key) {
+    auto point = [&](const std::string& key) -> Eigen::Vector2d {
       const toml::node& n = *got[key];
       const toml::array* a = n.as_array();
       if (!a || a->size() != 2) fail(loc[key], key, "must be an array of 2 numbers [lateral, downhill] (got " + describeNode(n) + ")");
       return Eigen::Vector2d(number(key, *a->get(0)), number(key, *a->get(1))) * units::mm;
     };
-    auto positive = [&](const std::string& key) {
+    auto positive = [&](const std::string& key) -> double {
       const double x = number(key, *got[key]);
       if (!(x > 0)) fail(loc[key], key, "must be > 0 (got " + formatNumber(x, false) + ")");
       return x * units::mm;

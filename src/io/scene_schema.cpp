@@ -114,6 +114,8 @@ const std::vector<KeySpec>& schema() {
            "kinetic friction coefficient across the root's axis (at most mu_static)"),
       real("friction", "axial_ratio", d.env.friction.axialRatio, 0, false, kInf, false,
            "friction along the root's in-plane axis / across it (root hairs anchor sideways: < 1)"),
+      real("friction", "slip_weakening_mm", d.env.friction.slipWeakening / mm, 0, false, kInf, false,
+           "slip over which friction falls from mu_static to mu_kinetic [mm] (0: at once; see README)"),
       choice("solver", "kind", d.solver.kind == SolverKind::Newton ? "newton" : "dynamic", {"newton", "dynamic"},
              "newton: quasi-static Newton with a banded Jacobian (MODEL.md section 12); dynamic: the paper's "
              "explicit damped relaxation"),
@@ -282,6 +284,7 @@ Model buildModel(const Values& v, const std::string& name) {
   m.env.friction.muStatic = num("friction.mu_static");
   m.env.friction.muKinetic = num("friction.mu_kinetic");
   m.env.friction.axialRatio = num("friction.axial_ratio");
+  m.env.friction.slipWeakening = num("friction.slip_weakening_mm") * mm;
   m.env.adhesion = flag("adhesion.enabled");
   m.env.kAdhesion = num("adhesion.k_n_per_m");
   m.env.tipForce = vec("load.tip_force_n");

@@ -7,6 +7,7 @@
 #include <cmath>
 
 #include "../tests/rod_fixture.hpp"
+#include "rootsim/model.hpp"
 #include "rootsim/simulation.hpp"
 #include "rootsim/units.hpp"
 
@@ -43,6 +44,41 @@ void BM_Substep(benchmark::State& state) {
       benchmark::Counter(static_cast<double>(state.iterations()) * n, benchmark::Counter::kIsRate);
 }
 BENCHMARK(BM_Substep)->Arg(50)->Arg(100)->Arg(200)->Arg(400)->Unit(benchmark::kMicrosecond);
+
+// issue 11: the cost of self-contact's broad phase where nothing touches. Arg 0: element count,
+// arg 1: self-contact off (0) or on (1). The sub-step of a bent rod relaxing, as BM_Substep.
+void BM_SubstepSelfContact(benchmark::State& state) {
+  const int n = static_cast<int>(state.range(0));
+  Setup st(n);
+  st.env.selfContact.enabled = state.range(1) != 0;
+  st.env.tipForce = Vec3(-1e-3, 0, 1e-4);
+  st.opt.maxSubsteps = 1L << 60;
+  st.opt.forceTol = 0.0;
+  st.opt.speedTol = 0.0;
+  DynamicRelaxation r(st.p, st.env, st.opt, st.s, st.ws);
+  for (auto _ : state) benchmark::DoNotOptimize(r.step());
+  state.counters["list_builds"] = static_cast<double>(st.ws.contact.builds);
+}
+BENCHMARK(BM_SubstepSelfContact)
+    ->Args({100, 0})->Args({100, 1})->Args({400, 0})->Args({400, 1})
+    ->Unit(benchmark::kMicrosecond);
+
+// issue 11: a growing root with no contact (Fig. 2B scene, alpha = 40, beta = 0.2; 300 growth steps of
+// the paper's resolution), self-contact off (0) or on (1): the whole run, grow + relax + observe
+void BM_GrowthSelfContact(benchmark::State& state) {
+  long substeps = 0;
+  for (auto _ : state) {
+    Model m = defaultModel();
+    m.tropism.beta = 0.2;
+    m.env.selfContact.enabled = state.range(0) != 0;
+    completeModel(m);
+    Simulation sim(m);
+    for (int k = 0; k < 300; ++k) sim.growthStep();
+    substeps = sim.totalSubsteps();
+  }
+  state.counters["substeps"] = static_cast<double>(substeps);
+}
+BENCHMARK(BM_GrowthSelfContact)->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->Iterations(3);
 
 // settling of the 10 mm rod released from a 1 mm tip displacement; arg 0: element count,
 // arg 1: 0 = scaled masses + FIRE (default), 1 = physical masses + viscous damping (PyElastica-like,

@@ -40,6 +40,14 @@ struct SceneInfo {
   double rTau = 0.0;           // intrinsic twist R tau
   double radius = 1e-4;        // rest radius R [m]
   bool plate = true;           // draw the plate (false for a free organ)
+  // obstacles on the plate (MODEL.md section 11), in the top view's plate coordinates [mm]:
+  // u lateral, v uphill (PlateFrame::toPlateMm); a peg has from == to
+  struct ObstacleShape {
+    bool peg = true;
+    double fromU = 0, fromV = 0, toU = 0, toV = 0;
+    double radiusMm = 0;       // peg radius, or half the wall's thickness [mm]
+  };
+  std::vector<ObstacleShape> obstacles;
   std::string title;           // e.g. the scene name
 };
 

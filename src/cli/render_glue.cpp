@@ -90,6 +90,14 @@ SceneInfo sceneInfoOf(const Model& m) {
   si.radius = m.rod.radius;
   si.plate = m.env.plane.enabled;
   si.title = m.name;
+  for (const Obstacle& o : m.env.obstacles) {
+    SceneInfo::ObstacleShape sh;
+    sh.peg = o.shape == Obstacle::Shape::Peg;
+    sh.fromU = o.from.x() / units::mm, sh.fromV = -o.from.y() / units::mm;  // downhill -> uphill
+    sh.toU = o.to.x() / units::mm, sh.toV = -o.to.y() / units::mm;
+    sh.radiusMm = o.radius / units::mm;
+    si.obstacles.push_back(sh);
+  }
   return si;
 }
 

@@ -392,6 +392,7 @@ RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const 
   }
   addTube(rs, rings, ringColour);
   if (view.whiskers) addWhiskers(rs, rings);
+  addObstacleMeshes(info, rs);
 
   // camera
   const auto cu = static_cast<float>(framing.centreU), cv = static_cast<float>(framing.centreV);

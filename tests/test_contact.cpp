@@ -195,10 +195,9 @@ TEST_CASE("self-contact: a rod coiling under its own intrinsic curvature never b
   // contact couplings column by column
   test::Cantilever c(90, 1.6 * 2 * units::pi * 4e-4);
   c.s = coiled;
-  std::vector<std::uint8_t> mark;
-  selfContactNodes(c.p, c.env, c.s, c.ws.contact, mark);
+  markSelfContactNodes(c.p, c.env, c.s, c.ws.contact);
   int inContact = 0;
-  for (auto m : mark) inContact += m;
+  for (auto m : c.ws.contact.contactNode) inContact += m;
   CHECK(inContact > 0);
   CHECK(checkStability(c.p, c.env, c.s, c.ws).negative == 0);
 }

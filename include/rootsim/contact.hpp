@@ -15,6 +15,7 @@
 // function of the state (what a Newton solver needs); commitFriction moves the stick points once the
 // equilibrium is reached.
 #include <array>
+#include <cstdint>
 #include <vector>
 
 #include "rootsim/environment.hpp"
@@ -40,6 +41,8 @@ struct ContactWorkspace {
   int builtElements = -1;                 // element count when the list was built (-1: never)
   double builtRestLength = -1.0;          // rest length when the list was built [m]
   long builds = 0;                        // how often the list was built (for tests and benchmarks)
+  std::vector<std::uint8_t> contactNode;  // markSelfContactNodes: 1 for nodes of pairs in contact (n+1)
+  std::vector<std::uint8_t> elementFlag;  // scratch of countContacts (n)
 
   void resize(int n);
   void invalidate() { builtElements = -1; }
@@ -71,21 +74,27 @@ struct FrictionCommit {
 FrictionCommit commitFriction(const RodParams& p, const Environment& env, RodState& s,
                               ContactWorkspace& cw);
 
-// contact observables of a state (not for the sub-step: allocates)
-struct ContactObservables {
+// contact counts of a state; allocates nothing once cw is sized (use a workspace of its own, not the
+// solver's, so that observing never changes when the solver's list is rebuilt)
+struct ContactCounts {
   int selfContacts = 0;          // element pairs in self-contact (gap < 0)
   int obstacleContacts = 0;      // elements touching an obstacle
-  double minSelfDistance = 0.0;  // smallest centreline distance of non-neighbouring elements / R, over
-                                 // pairs within 2R + skin (NaN when there are none)
+  double minSelfDistance = 0.0;  // smallest centreline distance of elements at least 3R apart along the
+                                 // rod / R, over pairs within 2R + skin (NaN when there are none)
+};
+ContactCounts countContacts(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw);
+
+// the counts and the contact force on each node (for snapshots; allocates)
+struct ContactObservables : ContactCounts {
   Eigen::Matrix3Xd perNode;      // |force| on each node from the plate (with friction), from self-
                                  // contact and from obstacles (with friction) [N]  (3 x n+1)
 };
 ContactObservables observeContacts(const RodParams& p, const Environment& env, const RodState& s);
 
 // nodes whose self-contact couples them to nodes far along the rod (off the banded pattern of the
-// stiffness matrix): 1 for both nodes of each element in a self-contact pair (gap < 0); others 0
-void selfContactNodes(const RodParams& p, const Environment& env, const RodState& s,
-                      ContactWorkspace& cw, std::vector<std::uint8_t>& mark);
+// stiffness matrix): cw.contactNode is 1 for both nodes of each element in a self-contact pair (gap < 0),
+// 0 elsewhere. Allocates nothing once cw is sized.
+void markSelfContactNodes(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw);
 
 // closest points of segments a0-a1 and b0-b1: parameters sa, sb in [0, 1] (Ericson, Real-Time
 // Collision Detection, 5.1.9; near-parallel segments take the middle of their overlap)

@@ -71,6 +71,7 @@ class Simulation {
   long totalSubsteps_ = 0;
   long totalIterations_ = 0;
   double thetaUnwrapped_ = 0;
+  ContactWorkspace observed_;   // contact counts' own scratch (the solver's list stays untouched)
   long slipEvents_ = 0;
   double frictionWork_ = 0;
   StepRecord rec_;

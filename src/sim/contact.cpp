@@ -281,6 +281,8 @@ void ContactWorkspace::resize(int n) {
   // would need several turns stacked on one element, and the list then grows once (an allocation)
   pairs.reserve(16 * static_cast<size_t>(n) + 64);
   xBuilt.resize(3, n + 1);
+  contactNode.assign(static_cast<size_t>(n + 1), 0);
+  elementFlag.assign(static_cast<size_t>(n), 0);
   invalidate();
 }
 
@@ -396,13 +398,35 @@ FrictionCommit commitFriction(const RodParams& p, const Environment& env, RodSta
   return r;
 }
 
+ContactCounts countContacts(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw) {
+  ContactCounts c;
+  c.minSelfDistance = std::numeric_limits<double>::quiet_NaN();
+  if (static_cast<int>(cw.bucketOf.size()) != s.elements()) cw.resize(s.elements());
+  if (env.selfContact.enabled) {
+    cw.invalidate();  // the pairs within 2R + skin of this very state
+    updatePairs(p, s, cw);
+    for (const auto& [i, j] : cw.pairs) {
+      const PairGeometry g = pairGeometry(s, i, j);
+      c.selfContacts += g.dist < 2.0 * p.radius;
+      const double d = g.dist / p.radius;
+      if (std::isnan(c.minSelfDistance) || d < c.minSelfDistance) c.minSelfDistance = d;
+    }
+  }
+  if (!env.obstacles.empty()) {
+    std::fill(cw.elementFlag.begin(), cw.elementFlag.end(), 0);
+    forEachObstacleContact(p, env, s, 0.0, [&](int i, double, const Vec3&, double) { cw.elementFlag[static_cast<size_t>(i)] = 1; });
+    for (auto t : cw.elementFlag) c.obstacleContacts += t;
+  }
+  return c;
+}
+
 ContactObservables observeContacts(const RodParams& p, const Environment& env, const RodState& s) {
   ContactObservables o;
   const int nn = s.nodes();
-  o.perNode = Eigen::Matrix3Xd::Zero(3, nn);
-  o.minSelfDistance = std::numeric_limits<double>::quiet_NaN();
   ContactWorkspace cw;
   cw.resize(s.elements());
+  static_cast<ContactCounts&>(o) = countContacts(p, env, s, cw);
+  o.perNode = Eigen::Matrix3Xd::Zero(3, nn);
   Eigen::Matrix3Xd f(3, nn);
   if (env.plane.enabled) {
     f.setZero();
@@ -414,34 +438,24 @@ ContactObservables observeContacts(const RodParams& p, const Environment& env, c
     f.setZero();
     addSelfContact(p, env, s, false, cw, f);
     o.perNode.row(1) = f.colwise().norm();
-    for (const auto& [i, j] : cw.pairs) {
-      const PairGeometry g = pairGeometry(s, i, j);
-      o.selfContacts += g.dist < 2.0 * p.radius;
-      const double d = g.dist / p.radius;
-      if (std::isnan(o.minSelfDistance) || d < o.minSelfDistance) o.minSelfDistance = d;
-    }
   }
   if (!env.obstacles.empty()) {
     f.setZero();
     addObstacleContact(p, env, s, false, cw, f);
     if (env.friction.enabled) addObstacleFriction(env, s, cw, f);
     o.perNode.row(2) = f.colwise().norm();
-    std::vector<std::uint8_t> touching(static_cast<size_t>(s.elements()), 0);
-    forEachObstacleContact(p, env, s, 0.0, [&](int i, double, const Vec3&, double) { touching[static_cast<size_t>(i)] = 1; });
-    for (auto t : touching) o.obstacleContacts += t;
   }
   return o;
 }
 
-void selfContactNodes(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw,
-                      std::vector<std::uint8_t>& mark) {
-  mark.assign(static_cast<size_t>(s.nodes()), 0);
-  if (!env.selfContact.enabled) return;
+void markSelfContactNodes(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw) {
   if (static_cast<int>(cw.bucketOf.size()) != s.elements()) cw.resize(s.elements());
+  std::fill(cw.contactNode.begin(), cw.contactNode.end(), 0);
+  if (!env.selfContact.enabled) return;
   updatePairs(p, s, cw);
   for (const auto& [i, j] : cw.pairs) {
     if (pairGeometry(s, i, j).dist >= 2.0 * p.radius) continue;
-    for (int a : {i, i + 1, j, j + 1}) mark[static_cast<size_t>(a)] = 1;
+    for (int a : {i, i + 1, j, j + 1}) cw.contactNode[static_cast<size_t>(a)] = 1;
   }
 }
 

@@ -122,41 +122,59 @@ struct NewtonSolver {
     const int N = w.dofs();
     nw.lu.reset(N, kBand, kBand);
     const double h = 1e-6 * lbar;  // [m], and h / lbar [rad]
-    for (int colour = 0; colour < kColours; ++colour)
-      for (int c = 0; c < 3; ++c) {
-        Vec3 u = Vec3::Zero();
-        u[c] = h;
-        int first = w.b0 + ((colour - w.b0 % kColours) + kColours) % kColours;
-        if (first > 2 * w.n) continue;
-        // central differences: forward differences leave an O(h) error in the stiff stretch/shear
-        // entries that swamps the soft bending modes of a long rod (Newton then crawls)
-        for (int b = first; b <= 2 * w.n; b += kColours) {
-          if (Window::isNode(b)) nw.save[static_cast<size_t>(b)] = s.x.col(b / 2);
-          else nw.saveQ[static_cast<size_t>(b / 2)] = s.Q[static_cast<size_t>(b / 2)];
-          moveBlock(s, b, u, lbar);
-        }
-        computeForces(p, env, s, false, ws, w.firstElement());
-        for (int b = first; b <= 2 * w.n; b += kColours)
-          for (int rb = std::max(w.b0, b - kRadius); rb <= std::min(2 * w.n, b + kRadius); ++rb)
-            for (int rc = 0; rc < 3; ++rc) nw.r0[static_cast<size_t>(3 * (rb - w.b0) + rc)] = scaledForce(ws, rb, rc, lbar);
-        for (int b = first; b <= 2 * w.n; b += kColours) {
-          if (Window::isNode(b)) s.x.col(b / 2) = nw.save[static_cast<size_t>(b)];
-          else s.Q[static_cast<size_t>(b / 2)] = nw.saveQ[static_cast<size_t>(b / 2)];
-          moveBlock(s, b, -u, lbar);
-        }
-        computeForces(p, env, s, false, ws, w.firstElement());
-        for (int b = first; b <= 2 * w.n; b += kColours) {
-          const int col = 3 * (b - w.b0) + c;
-          for (int rb = std::max(w.b0, b - kRadius); rb <= std::min(2 * w.n, b + kRadius); ++rb)
-            for (int rc = 0; rc < 3; ++rc) {
-              const int row = 3 * (rb - w.b0) + rc;
-              const double k = -(nw.r0[static_cast<size_t>(row)] - scaledForce(ws, rb, rc, lbar)) / (2.0 * h);
-              if (k != 0.0) nw.lu.add(row, col, k);
-            }
-          if (Window::isNode(b)) s.x.col(b / 2) = nw.save[static_cast<size_t>(b)];
-          else s.Q[static_cast<size_t>(b / 2)] = nw.saveQ[static_cast<size_t>(b / 2)];
-        }
-      }
+    // self-contact couples nodes far apart along the rod: the nodes of pairs in contact are nudged one
+    // at a time (a coloured pass would read their far partners' response into the rows of its own
+    // blocks) and only their band rows are kept; the band cannot hold the off-band couplings, so with
+    // contacts K is the band part of the stiffness (Newton converges more slowly; the explicit
+    // relaxation takes over when it stalls)
+    markSelfContactNodes(p, env, s, ws.contact);
+    auto alone = [&](int b) { return Window::isNode(b) && ws.contact.contactNode[static_cast<size_t>(b / 2)] != 0; };
+    // one pass of central differences over blocks start, start + stride, ... (those alone or not)
+    auto pass = [&](int start, int stride, bool lonely, int c) {
+      Vec3 u = Vec3::Zero();
+      u[c] = h;
+      auto blocks = [&](auto&& f) {
+        for (int b = start; b <= 2 * w.n; b += stride)
+          if (alone(b) == lonely) f(b);
+      };
+      // central differences: forward differences leave an O(h) error in the stiff stretch/shear
+      // entries that swamps the soft bending modes of a long rod (Newton then crawls)
+      blocks([&](int b) {
+        if (Window::isNode(b)) nw.save[static_cast<size_t>(b)] = s.x.col(b / 2);
+        else nw.saveQ[static_cast<size_t>(b / 2)] = s.Q[static_cast<size_t>(b / 2)];
+        moveBlock(s, b, u, lbar);
+      });
+      computeForces(p, env, s, false, ws, w.firstElement());
+      blocks([&](int b) {
+        for (int rb = std::max(w.b0, b - kRadius); rb <= std::min(2 * w.n, b + kRadius); ++rb)
+          for (int rc = 0; rc < 3; ++rc) nw.r0[static_cast<size_t>(3 * (rb - w.b0) + rc)] = scaledForce(ws, rb, rc, lbar);
+      });
+      blocks([&](int b) {
+        if (Window::isNode(b)) s.x.col(b / 2) = nw.save[static_cast<size_t>(b)];
+        else s.Q[static_cast<size_t>(b / 2)] = nw.saveQ[static_cast<size_t>(b / 2)];
+        moveBlock(s, b, -u, lbar);
+      });
+      computeForces(p, env, s, false, ws, w.firstElement());
+      blocks([&](int b) {
+        const int col = 3 * (b - w.b0) + c;
+        for (int rb = std::max(w.b0, b - kRadius); rb <= std::min(2 * w.n, b + kRadius); ++rb)
+          for (int rc = 0; rc < 3; ++rc) {
+            const int row = 3 * (rb - w.b0) + rc;
+            const double k = -(nw.r0[static_cast<size_t>(row)] - scaledForce(ws, rb, rc, lbar)) / (2.0 * h);
+            if (k != 0.0) nw.lu.add(row, col, k);
+          }
+        if (Window::isNode(b)) s.x.col(b / 2) = nw.save[static_cast<size_t>(b)];
+        else s.Q[static_cast<size_t>(b / 2)] = nw.saveQ[static_cast<size_t>(b / 2)];
+      });
+    };
+    for (int colour = 0; colour < kColours; ++colour) {
+      const int first = w.b0 + ((colour - w.b0 % kColours) + kColours) % kColours;
+      if (first > 2 * w.n) continue;
+      for (int c = 0; c < 3; ++c) pass(first, kColours, false, c);
+    }
+    for (int b = w.b0; b <= 2 * w.n; b += 2)
+      if (alone(b))
+        for (int c = 0; c < 3; ++c) pass(b, 2 * w.n + 1, true, c);
     if (sym) {
       nw.ldlt.reset(N, kBand);
       for (int j = 0; j < N; ++j)

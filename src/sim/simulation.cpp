@@ -181,7 +181,7 @@ void Simulation::observe(const RelaxResult& res, int splits, int unstable) {
   r.unstable = unstable;
   r.tip = s_.x.col(s_.nodes() - 1);
   if (m_.env.selfContact.enabled || !m_.env.obstacles.empty()) {
-    const ContactObservables c = observeContacts(m_.rod, m_.env, s_);
+    const ContactCounts c = countContacts(m_.rod, m_.env, s_, observed_);
     r.selfContacts = c.selfContacts;
     r.minSelfDistance = c.minSelfDistance;
     r.obstacleContacts = c.obstacleContacts;

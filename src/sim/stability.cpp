@@ -66,8 +66,8 @@ StabilityReport checkStability(const RodParams& p, const Environment& env, const
   // self-contact couples nodes far apart along the rod (off the band): a node in a self-contact pair
   // is nudged alone and its whole column is read; the coloured passes skip it, so no other column of
   // its colour picks up its far coupling
-  std::vector<std::uint8_t> offBand;
-  selfContactNodes(p, env, s0, ws.contact, offBand);
+  markSelfContactNodes(p, env, s0, ws.contact);
+  const std::vector<std::uint8_t> offBand = ws.contact.contactNode;
   auto alone = [&](int b) { return L.isNode(b) && offBand[static_cast<size_t>(L.index(b))]; };
   auto entry = [&](int rb, int rc, int col) {
     const double f1 = genForce(ws, L, rb, rc);

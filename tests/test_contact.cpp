@@ -422,7 +422,7 @@ TEST_CASE("obstacles: forces push out along the in-plane normal, split by the se
   }
 }
 
-TEST_CASE("friction off: no stick points, no slips; splitting an element carries stick points") {
+TEST_CASE("friction in a growing root: stick points where it touches, none on adhered nodes, slips counted, nothing without friction") {
   Model m = defaultModel();
   m.initial.elementLength = 1e-4;
   m.env.friction.enabled = true;

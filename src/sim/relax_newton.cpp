@@ -172,7 +172,7 @@ struct NewtonSolver {
       if (first > 2 * w.n) continue;
       for (int c = 0; c < 3; ++c) pass(first, kColours, false, c);
     }
-    for (int b = w.b0; b <= 2 * w.n; b += 2)
+    for (int b = w.b0; b <= 2 * w.n; ++b)
       if (alone(b))
         for (int c = 0; c < 3; ++c) pass(b, 2 * w.n + 1, true, c);
     if (sym) {

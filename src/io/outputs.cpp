@@ -116,7 +116,7 @@ void TimeseriesWriter::add(const StepRecord& r) {
     << fmt(r.zone.Wr) << ',' << fmt(r.zone.Tw) << ',' << r.substeps << ',' << fmt(r.residualForce) << ','
     << r.splits << ',' << r.unstable << ',' << fmt(r.tip.x() / units::mm) << ',' << fmt(r.tip.y() / units::mm) << ',' << fmt(r.tip.z() / units::mm)
     << ',' << r.iterations << ',' << fmt(r.lowestEigenvalue)
-    << ',' << r.selfContacts << ',' << (std::isnan(r.minSelfDistance) ? std::string() : fmt(r.minSelfDistance))
+    << ',' << r.selfContacts << ',' << fmt(r.minSelfDistance)
     << ',' << r.obstacleContacts << ',' << r.slipEvents << ',' << fmt(r.frictionWork) << '\n';
 }
 

@@ -47,7 +47,7 @@ std::string suggestSection(const std::string& section) {
 
 std::string describeNode(const toml::node& n) {
   std::ostringstream os;
-  if (n.is_string()) os << "the string \"" << n.value_or(std::string()) << "\"";
+  if (n.is_string()) os << "the string \"" << printable(n.value_or(std::string())) << "\"";
   else if (n.is_integer()) os << "the integer " << n.value_or<int64_t>(0);
   else if (n.is_floating_point()) os << "the number " << formatNumber(n.value_or(0.0), false);
   else if (n.is_boolean()) os << (n.value_or(false) ? "true" : "false");
@@ -95,22 +95,7 @@ std::string convert(const KeySpec& k, const toml::node& n, Value& out) {
 }
 
 std::string where(const std::string& source, const toml::source_region& r) {
-  return source + ":" + std::to_string(r.begin.line);
-}
-
-// a value or key as it may appear inside a one-line message: control characters escaped
-std::string printable(const std::string& s) {
-  std::string o;
-  for (unsigned char c : s) {
-    if (c == '\n') o += "\\n";
-    else if (c == '\t') o += "\\t";
-    else if (c < 0x20 || c == 0x7f) {
-      char b[8];
-      std::snprintf(b, sizeof b, "\\x%02x", c);
-      o += b;
-    } else o += static_cast<char>(c);
-  }
-  return o;
+  return printable(source) + ":" + std::to_string(r.begin.line);
 }
 
 void applyOverride(const std::string& ovRaw, Values& values) {
@@ -160,8 +145,8 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
   try {
     root = toml::parse(text, sourceName);
   } catch (const toml::parse_error& e) {
-    throw SceneError(sourceName + ":" + std::to_string(e.source().begin.line) + ": TOML syntax error: " +
-                     std::string(e.description()));
+    throw SceneError(printable(sourceName) + ":" + std::to_string(e.source().begin.line) + ": TOML syntax error: " +
+                     printable(std::string(e.description())));
   }
   Values values;
   for (const auto& k : schema()) values[k.full()] = defaultValue(k);
@@ -200,22 +185,26 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
   return sc;
 }
 
-Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
+std::string readSceneFile(const std::string& path) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const auto st = fs::status(path, ec);
-  if (!fs::exists(st)) throw SceneError(path + ": no such scene file");
-  if (fs::is_directory(st)) throw SceneError(path + ": is a directory, expected a scene file");
+  if (!fs::exists(st)) throw SceneError(printable(path) + ": no such scene file");
+  if (fs::is_directory(st)) throw SceneError(printable(path) + ": is a directory, expected a scene file");
   // a device, FIFO or socket would be read forever or block: only regular files of sane size
-  if (!fs::is_regular_file(st)) throw SceneError(path + ": not a regular file, expected a scene file");
+  if (!fs::is_regular_file(st)) throw SceneError(printable(path) + ": not a regular file, expected a scene file");
   constexpr std::uintmax_t kMaxSceneBytes = 1u << 20;
   if (fs::file_size(path, ec) > kMaxSceneBytes)
-    throw SceneError(path + ": larger than 1 MiB; a scene file is a few hundred bytes of TOML");
+    throw SceneError(printable(path) + ": larger than 1 MiB; a scene file is a few hundred bytes of TOML");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path + ": cannot open for reading");
+  if (!in) throw SceneError(printable(path) + ": cannot open for reading");
   std::ostringstream ss;
   ss << in.rdbuf();
-  return parseScene(ss.str(), path, overrides);
+  return ss.str();
+}
+
+Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
+  return parseScene(readSceneFile(path), path, overrides);
 }
 
 }  // namespace rootsim

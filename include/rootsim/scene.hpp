@@ -22,9 +22,9 @@ struct Scene {
 // reads and validates a scene; overrides are "section.key=value" (TOML value syntax; bare words are
 // taken as strings); throws SceneError naming the file, the line and the key
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides = {});
-// the text of a scene file: a regular file of at most 1 MiB (a device or FIFO would be read forever or
+// the text of a scene (or sweep) file: a regular file of at most 1 MiB (a device or FIFO would be read forever or
 // block); throws SceneError
-std::string readSceneFile(const std::string& path);
+std::string readSceneFile(const std::string& path, const std::string& kind = "scene file");
 Scene parseScene(const std::string& text, const std::string& sourceName,
                  const std::vector<std::string>& overrides = {});
 

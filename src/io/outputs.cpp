@@ -116,6 +116,7 @@ void TimeseriesWriter::add(const StepRecord& r) {
     << fmt(r.zone.Wr) << ',' << fmt(r.zone.Tw) << ',' << r.substeps << ',' << fmt(r.residualForce) << ','
     << r.splits << ',' << r.unstable << ',' << fmt(r.tip.x() / units::mm) << ',' << fmt(r.tip.y() / units::mm) << ',' << fmt(r.tip.z() / units::mm)
     << ',' << r.iterations << ',' << fmt(r.lowestEigenvalue) << '\n';
+  f_.flush();  // one row per output step: a write failure stops the run here, not after the last step
 }
 
 void TimeseriesWriter::close() { f_.close(); }
@@ -142,6 +143,7 @@ void TrajectoryWriter::add(const Snapshot& s) {
     o << ',' << (k0 ? fmt(s.kappa0[i] * units::mm) : "") << ',' << (pf ? fmt(s.plateForce[i]) : "") << '\n';
   }
   ++frames_;
+  f_.flush();  // one frame per output step: a write failure stops the run here, not after the last step
 }
 
 void TrajectoryWriter::close() { f_.close(); }

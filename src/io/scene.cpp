@@ -8,6 +8,7 @@
 
 #include "rootsim/scene.hpp"
 #include "scene_schema.hpp"
+#include "toml_guard.hpp"
 
 namespace rootsim {
 
@@ -117,6 +118,8 @@ void applyOverride(const std::string& ovRaw, Values& values) {
     throw SceneError("--set " + ov + ": unknown key " + full +
                      (sectionKnown ? suggestKey(section, key) : suggestSection(section)));
   }
+  if (!nonAsciiOutsideComments(text).empty())
+    throw SceneError("--set " + ov + ": non-ASCII characters are not allowed (scene values are ASCII)");
   Value v;
   std::string why;
   try {
@@ -141,6 +144,8 @@ void applyOverride(const std::string& ovRaw, Values& values) {
 
 Scene parseScene(const std::string& text, const std::string& sourceName,
                  const std::vector<std::string>& overrides) {
+  if (const std::string bad = nonAsciiOutsideComments(text); !bad.empty())
+    throw SceneError(printable(sourceName) + ":" + bad);
   toml::table root;
   try {
     root = toml::parse(text, sourceName);
@@ -185,17 +190,17 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
   return sc;
 }
 
-std::string readSceneFile(const std::string& path) {
+std::string readSceneFile(const std::string& path, const std::string& kind) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const auto st = fs::status(path, ec);
-  if (!fs::exists(st)) throw SceneError(printable(path) + ": no such scene file");
-  if (fs::is_directory(st)) throw SceneError(printable(path) + ": is a directory, expected a scene file");
+  if (!fs::exists(st)) throw SceneError(printable(path) + ": no such " + kind);
+  if (fs::is_directory(st)) throw SceneError(printable(path) + ": is a directory, expected a " + kind);
   // a device, FIFO or socket would be read forever or block: only regular files of sane size
-  if (!fs::is_regular_file(st)) throw SceneError(printable(path) + ": not a regular file, expected a scene file");
+  if (!fs::is_regular_file(st)) throw SceneError(printable(path) + ": not a regular file, expected a " + kind);
   constexpr std::uintmax_t kMaxSceneBytes = 1u << 20;
   if (fs::file_size(path, ec) > kMaxSceneBytes)
-    throw SceneError(printable(path) + ": larger than 1 MiB; a scene file is a few hundred bytes of TOML");
+    throw SceneError(printable(path) + ": larger than 1 MiB; a " + kind + " is a few hundred bytes of TOML");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw SceneError(printable(path) + ": cannot open for reading");
   std::ostringstream ss;

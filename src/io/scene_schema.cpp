@@ -316,25 +316,37 @@ Model buildModel(const Values& v, const std::string& name) {
   // the work one scene may ask for: memory and time grow with the number of elements, at the start and
   // after growing (growth adds rate * step * zone length per step). Without this cap
   // root.initial_length_mm = 1e4 grew to GBs and root.element_length_mm = 1e-12 never finished.
+  // The error names the first of the keys involved that --set gave, else that the scene file gave.
+  auto capError = [&](std::initializer_list<const char*> keys, const std::string& what) {
+    const char* key = nullptr;
+    for (const char* k : keys)
+      if (!key && v.at(k).origin.rfind("--set", 0) == 0) key = k;
+    for (const char* k : keys)
+      if (!key && v.at(k).origin != "default") key = k;
+    if (!key) key = *keys.begin();
+    const double x = num(key);
+    const std::string shown = x == std::floor(x) && x < 1e15 ? formatNumber(x, true) : pretty(x);
+    throw SceneError(v.at(key).origin + ": " + key + " = " + shown + ": " + what + "; at most " +
+                     pretty(kMaxElements) + " elements are allowed");
+  };
   const double h = num("root.element_length_mm");
-  auto count = [](double x) { return x < 1e15 ? formatNumber(std::ceil(x), true) : formatNumber(x, false); };
+  auto count = [](double x) { return x < 1e15 ? formatNumber(std::ceil(x), true) : pretty(x); };
   const double initialElements = num("root.initial_length_mm") / h;
   if (initialElements > kMaxElements)
-    relationError(v, "root.initial_length_mm",
-                  "= " + formatNumber(num("root.initial_length_mm"), false) + " mm in elements of root.element_length_mm = " +
-                      formatNumber(h, false) + " mm makes " + count(initialElements) +
-                      " elements; at most " + formatNumber(kMaxElements, true) + " are allowed");
+    capError({"root.initial_length_mm", "root.element_length_mm"},
+             "root.initial_length_mm / root.element_length_mm = " + pretty(num("root.initial_length_mm")) + " mm / " +
+                 pretty(h) + " mm = " + count(initialElements) + " elements at the start");
   if (m.growth.enabled) {
     const double grown = num("root.initial_length_mm") +
                          num("growth.steps") * num("growth.step_h") * num("growth.rate_per_h") * num("growth.growth_zone_mm");
     const double finalElements = grown / h;
     if (finalElements > kMaxElements)
-      relationError(v, "growth.steps",
-                    "= " + formatNumber(num("growth.steps"), true) + " grows the root to " + formatNumber(grown, false) +
-                        " mm (root.initial_length_mm + growth.steps * growth.step_h * growth.rate_per_h * "
-                        "growth.growth_zone_mm) = " + count(finalElements) +
-                        " elements of root.element_length_mm = " + formatNumber(h, false) + " mm; at most " +
-                        formatNumber(kMaxElements, true) + " are allowed");
+      capError({"growth.steps", "growth.step_h", "growth.rate_per_h", "growth.growth_zone_mm", "root.element_length_mm",
+                "root.initial_length_mm"},
+               "the root grows to " + pretty(grown) +
+                   " mm (root.initial_length_mm + growth.steps * growth.step_h * growth.rate_per_h * "
+                   "growth.growth_zone_mm) = " + count(finalElements) + " elements of root.element_length_mm = " +
+                   pretty(h) + " mm");
   }
   if (!m.env.plane.enabled && m.env.base == BaseCondition::Free && !m.growth.enabled &&
       (m.env.tipForce.norm() > 0 || m.env.gravity.norm() > 0))

@@ -16,6 +16,7 @@
 #include "rootsim/results.hpp"
 #include "rootsim/run_dir.hpp"
 #include "rootsim/scene.hpp"
+#include "toml_guard.hpp"
 
 namespace fs = std::filesystem;
 
@@ -78,9 +79,16 @@ std::pair<int, int> parseShard(const std::string& text) {
 SweepPlan loadSweep(const std::string& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw SceneError(path + ": no such sweep file");
+  std::string text;
+  {
+    // a sweep file is a few lines of TOML: like a scene, a regular file of at most 1 MiB
+    text = readSceneFile(path, "sweep file");
+    if (const std::string bad = detail::nonAsciiOutsideComments(text); !bad.empty())
+      throw SceneError(printable(path) + ":" + bad);
+  }
   toml::table root;
   try {
-    root = toml::parse_file(path);
+    root = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     throw SceneError(path + ":" + std::to_string(e.source().begin.line) + ": TOML syntax error: " +
                      printable(std::string(e.description())));

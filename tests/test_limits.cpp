@@ -78,7 +78,7 @@ TEST_CASE("every physical key has an upper bound named in the error and in the k
   CHECK(errorOf("[root]\nradius_mm = 1e300\n") == "scenes/t.toml:2: root.radius_mm must be in (0, 100] (got 1e+300)");
 }
 
-TEST_CASE("the element cap refuses scenes that would grow without bound, naming keys and cap") {
+TEST_CASE("the element cap refuses scenes that would grow without bound naming keys and cap") {
   // 1e4 mm in 0.05 mm elements: 200000 elements at the start (it grew to GBs)
   CHECK(errorOf("", {"root.initial_length_mm=1e4"}) ==
         "--set root.initial_length_mm: root.initial_length_mm = 10000: root.initial_length_mm / "
@@ -139,7 +139,7 @@ TEST_CASE("sweep grids are counted before they are expanded") {
   fs::remove_all(d);
 }
 
-TEST_CASE("sweep run-directory names stay short, unique and deterministic") {
+TEST_CASE("sweep run-directory names stay short and unique and deterministic") {
   const fs::path d = scratch("names");
   {
     std::ofstream(d / "long.toml")
@@ -189,7 +189,7 @@ TEST_CASE("sweep keys with control characters are escaped in messages") {
   fs::remove_all(d);
 }
 
-TEST_CASE("a trajectory with NaN, inf or a malformed cell is refused naming file and line") {
+TEST_CASE("a trajectory with NaN or inf or a malformed cell is refused naming file and line") {
   const fs::path d = scratch("traj");
   const std::string head = "frame,step,time_h,node,x_mm,y_mm,z_mm,d1x,d1y,d1z,d3x,d3y,d3z,radius_mm\n";
   const std::string good = "0,0,0,0,0,0,0.1,1,0,0,0,-0.6,-0.8,0.1\n0,0,0,1,0,-0.3,-0.3,,,,,,,\n";

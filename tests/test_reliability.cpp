@@ -43,7 +43,7 @@ const std::string kScene = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2b_wavi
 const std::string kCantilever = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/cantilever_tip_load.toml";
 }  // namespace
 
-TEST_CASE("a value beyond its physical bound exits 2 naming key and range, and writes nothing") {
+TEST_CASE("a value beyond its physical bound exits 2 naming key and range and writes nothing") {
   const fs::path d = scratch("bounds");
   const Result c = run("check " + kScene + " --set root.radius_mm=1e300");
   CHECK(c.code == 2);
@@ -60,7 +60,7 @@ TEST_CASE("a value beyond its physical bound exits 2 naming key and range, and w
   fs::remove_all(d);
 }
 
-TEST_CASE("scenes beyond the element cap exit 2 at once, naming the keys and the cap") {
+TEST_CASE("scenes beyond the element cap exit 2 at once naming the keys and the cap") {
   const fs::path d = scratch("cap");
   const std::string out = " --quiet --out " + (d / "out").string();
   const Result a = run("run " + kScene + " --set root.initial_length_mm=1e4" + out);

@@ -10,6 +10,8 @@
 #include <sstream>
 #include <thread>
 
+#include <unistd.h>
+
 #include <toml++/toml.h>
 
 #include "rootsim/errors.hpp"
@@ -197,7 +199,19 @@ void writeSweepTable(const SweepPlan& plan, const std::string& out) {
     }
     body += prefix + "," + r + "\n";
   }
-  if (!header.empty()) writeFileAtomic(fs::path(out) / "table.csv", header + "\n" + body);
+  if (header.empty()) return;
+  // shards of a job array finish at the same time and each writes the table: every process through a
+  // temporary name of its own (host and pid: shards may share a network file system), then one rename
+  char host[256] = "host";
+  ::gethostname(host, sizeof host - 1);
+  const fs::path mine = fs::path(out) / ("table.csv." + std::string(host) + "." + std::to_string(::getpid()));
+  writeFileAtomic(mine, header + "\n" + body);
+  std::error_code ec;
+  fs::rename(mine, fs::path(out) / "table.csv", ec);
+  if (ec) {
+    fs::remove(mine, ec);
+    throw RunError("cannot write " + (fs::path(out) / "table.csv").string() + ": " + ec.message());
+  }
 }
 
 SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,

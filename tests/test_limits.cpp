@@ -60,17 +60,18 @@ TEST_CASE("every physical key has an upper bound named in the error and in the k
       {"solver.damping_per_s", "in (0, 1e+09]"}, {"analysis.wave_min_amplitude_r", "in [0, 1000]"},
   };
   const std::string resolved = parseScene("", "scenes/t.toml").resolvedToml;
-  for (const auto& [key, range] : keys) {
+  for (const auto& kr : keys) {
+    const std::string key = kr.first, range = kr.second;
     CAPTURE(key);
-    const std::string e = errorOf("", {std::string(key) + "=1e300"});
-    CHECK(e == std::string("--set ") + key + "=1e300: " + key + " must be " + range + " (got 1e+300)");
+    const std::string e = errorOf("", {key + "=1e300"});
+    CHECK(e == "--set " + key + "=1e300: " + key + " must be " + range + " (got 1e+300)");
     // the key's line in the resolved scene (what `rootsim check` prints) ends with its range
-    const std::string k = std::string(key).substr(std::string(key).find('.') + 1);
+    const std::string k = key.substr(key.find('.') + 1);
     const auto at = resolved.find("\n" + k + " = ");
     REQUIRE(at != std::string::npos);
     const std::string line = resolved.substr(at + 1, resolved.find('\n', at + 1) - at - 1);
-    CHECK(line.size() > std::string(range).size());
-    CHECK(line.substr(line.size() - std::string(range).size()) == range);
+    CHECK(line.size() > range.size());
+    CHECK(line.substr(line.size() - range.size()) == range);
   }
   // negative twist is a direction, not a bound
   CHECK(errorOf("", {"tropism.twist_r_tau=-10"}) == "(no error)");

@@ -48,7 +48,7 @@ TEST_CASE("scene errors name file, line and key") {
   CHECK(errorOf("[tropsim]\nbeta = 0.1\n").find("scenes/t.toml:1: unknown section [tropsim] (did you mean [tropism]?)") != std::string::npos);
   CHECK(errorOf("beta = 0.2\n").find("did you mean tropism.beta?") != std::string::npos);
   CHECK(errorOf("[root]\nradius_mm = \"thin\"\n").find("scenes/t.toml:2: root.radius_mm must be a number (got the string \"thin\")") != std::string::npos);
-  CHECK(errorOf("[root]\nradius_mm = -0.1\n").find("scenes/t.toml:2: root.radius_mm must be > 0 (got -0.1)") != std::string::npos);
+  CHECK(errorOf("[root]\nradius_mm = -0.1\n").find("scenes/t.toml:2: root.radius_mm must be in (0, 100] (got -0.1)") != std::string::npos);
   CHECK(errorOf("[plane]\n\nalpha_deg = nan\n").find("scenes/t.toml:3: plane.alpha_deg must be finite") != std::string::npos);
   CHECK(errorOf("[plane]\nalpha_deg = 95\n").find("plane.alpha_deg must be in [0, 90] (got 95)") != std::string::npos);
   CHECK(errorOf("[growth]\nsteps = 1.5\n").find("scenes/t.toml:2: growth.steps must be an integer (got the number 1.5)") != std::string::npos);
@@ -67,7 +67,7 @@ TEST_CASE("--set overrides, and their errors name the flag") {
   CHECK(s.model.env.tipForce.z() == doctest::Approx(1.0));
   CHECK(errorOf("", {"tropism.bta=0.5"}).find("--set tropism.bta=0.5: unknown key tropism.bta (did you mean tropism.beta?)") != std::string::npos);
   CHECK(errorOf("", {"tropism.beta=abc"}).find("--set tropism.beta=abc: tropism.beta must be a number (got \"abc\")") != std::string::npos);
-  CHECK(errorOf("", {"tropism.beta=-1"}).find("--set tropism.beta=-1: tropism.beta must be >= 0 (got -1)") != std::string::npos);
+  CHECK(errorOf("", {"tropism.beta=-1"}).find("--set tropism.beta=-1: tropism.beta must be in [0, 100] (got -1)") != std::string::npos);
   CHECK(errorOf("", {"beta=1"}).find("expected section.key=value") != std::string::npos);
 }
 
@@ -152,8 +152,8 @@ TEST_CASE("contact keys: bad obstacles and friction are errors naming file:line 
   CHECK(errorOf("obstacle = 3\n").find("scenes/t.toml:1: obstacle must be an array of tables") != std::string::npos);
   CHECK(errorOf("[friction]\nmu_static = 0.2\nmu_kinetic = 0.3\n")
             .find("scenes/t.toml:3: friction.mu_kinetic must be at most friction.mu_static") != std::string::npos);
-  CHECK(errorOf("[friction]\nmu_static = -0.2\n").find("scenes/t.toml:2: friction.mu_static must be >= 0 (got -0.2)") !=
+  CHECK(errorOf("[friction]\nmu_static = -0.2\n").find("scenes/t.toml:2: friction.mu_static must be in [0, 100] (got -0.2)") !=
         std::string::npos);
-  CHECK(errorOf("[self_contact]\nk_n_per_m = 0\n").find("scenes/t.toml:2: self_contact.k_n_per_m must be > 0") !=
+  CHECK(errorOf("[self_contact]\nk_n_per_m = 0\n").find("scenes/t.toml:2: self_contact.k_n_per_m must be in (0, 1e+06]") !=
         std::string::npos);
 }

@@ -1,5 +1,6 @@
 #pragma once
 // The two kinds of failure a user sees (SPEC.md): bad input exits 2, a failed run exits 1.
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -17,5 +18,21 @@ class RunError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
+
+// text from a file or the command line (a key, a value) as it may appear inside a one-line message:
+// newline, tab and other control characters escaped (as \n, \t, \x01)
+inline std::string printable(const std::string& s) {
+  std::string o;
+  for (unsigned char c : s) {
+    if (c == '\n') o += "\\n";
+    else if (c == '\t') o += "\\t";
+    else if (c < 0x20 || c == 0x7f) {
+      char b[8];
+      std::snprintf(b, sizeof b, "\\x%02x", c);
+      o += b;
+    } else o += static_cast<char>(c);
+  }
+  return o;
+}
 
 }  // namespace rootsim

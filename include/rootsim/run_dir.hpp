@@ -66,6 +66,9 @@ class AtomicFile {
   explicit AtomicFile(std::filesystem::path path);
   ~AtomicFile();
   std::ofstream& stream() { return out_; }
+  // hands what was streamed to the system now; throws RunError naming the file when it cannot be written
+  // (a full disk is noticed at the next flush, not at close() after the whole run)
+  void flush();
   void close();
 
  private:

@@ -9,6 +9,10 @@
 
 namespace rootsim {
 
+// most elements a scene may ask for, at the start (root.initial_length_mm / root.element_length_mm)
+// and after growing: memory and time per step grow with it (a 600-element fig2b run takes minutes)
+inline constexpr double kMaxElements = 20000;
+
 struct Scene {
   Model model;
   std::string path;          // file it came from ("" for text)
@@ -18,6 +22,9 @@ struct Scene {
 // reads and validates a scene; overrides are "section.key=value" (TOML value syntax; bare words are
 // taken as strings); throws SceneError naming the file, the line and the key
 Scene loadScene(const std::string& path, const std::vector<std::string>& overrides = {});
+// the text of a scene (or sweep) file: a regular file of at most 1 MiB (a device or FIFO would be read forever or
+// block); throws SceneError
+std::string readSceneFile(const std::string& path, const std::string& kind = "scene file");
 Scene parseScene(const std::string& text, const std::string& sourceName,
                  const std::vector<std::string>& overrides = {});
 

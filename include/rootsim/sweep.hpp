@@ -11,6 +11,7 @@
 //   "tropism.beta" = [0.1, 0.2]
 //   [set]                              # fixed overrides for every point
 //   "growth.steps" = 600
+#include <cstdint>
 #include <functional>
 #include <string>
 #include <vector>
@@ -19,11 +20,16 @@
 
 namespace rootsim {
 
+// most points a sweep file may have (the product of its grid arrays' lengths); counted before the grid
+// is expanded
+inline constexpr std::uint64_t kMaxSweepPoints = 10000;
+
 struct SweepPoint {
   int index = 0;
   std::vector<std::string> overrides;          // "section.key=value", grid then fixed
   std::vector<std::pair<std::string, std::string>> grid;  // grid key, value text
-  std::string dirName;                          // run directory name inside the sweep folder
+  std::string dirName;                          // run directory name inside the sweep folder (<= 200
+                                                // bytes: long names end in a hash of the full name)
   bool grows = true;                            // growth run (else mechanics only: another result header)
 };
 

@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <cmath>
+#include <system_error>
 #include <fstream>
 #include <sstream>
 
@@ -118,6 +119,7 @@ void TimeseriesWriter::add(const StepRecord& r) {
     << ',' << r.iterations << ',' << fmt(r.lowestEigenvalue)
     << ',' << r.selfContacts << ',' << fmt(r.minSelfDistance)
     << ',' << r.obstacleContacts << ',' << r.slipEvents << ',' << fmt(r.frictionWork) << '\n';
+  f_.flush();  // one row per output step: a write failure stops the run here, not after the last step
 }
 
 void TimeseriesWriter::close() { f_.close(); }
@@ -146,6 +148,7 @@ void TrajectoryWriter::add(const Snapshot& s) {
     o << '\n';
   }
   ++frames_;
+  f_.flush();  // one frame per output step: a write failure stops the run here, not after the last step
 }
 
 void TrajectoryWriter::close() { f_.close(); }
@@ -211,29 +214,56 @@ std::vector<Snapshot> readTrajectory(const fs::path& path) {
       throw SceneError(path.string() + ":" + std::to_string(lineNo) + ": " + why);
     };
     if (f.size() != columns) bad("expected " + std::to_string(columns) + " columns, found " + std::to_string(f.size()));
+    static const char* const kColumns[19] = {"frame", "step", "time_h", "node", "x_mm", "y_mm", "z_mm", "d1x",
+                                             "d1y", "d1z", "d3x", "d3y", "d3z", "radius_mm", "kappa0_per_mm",
+                                             "plate_force_n", "f_plate_total_n", "f_self_n", "f_obstacle_n"};
+    // every cell whole (no "12abc"), every number finite: a corrupt file is bad input, found here with
+    // its line rather than by the renderer
+    auto integer = [&](size_t c) {
+      int x = 0;
+      const char* b = f[c].data();
+      const char* e = b + f[c].size();
+      const auto r = std::from_chars(b, e, x);
+      if (f[c].empty() || r.ec != std::errc() || r.ptr != e)
+        bad(std::string(kColumns[c]) + ": expected an integer (got \"" + printable(f[c]) + "\")");
+      return x;
+    };
+    auto real = [&](size_t c) {
+      double x = 0;
+      const char* b = f[c].data();
+      const char* e = b + f[c].size();
+      const auto r = std::from_chars(b, e, x);
+      if (f[c].empty() || r.ec != std::errc() || r.ptr != e)
+        bad(std::string(kColumns[c]) + ": expected a number (got \"" + printable(f[c]) + "\")");
+      if (!std::isfinite(x)) bad(std::string(kColumns[c]) + ": not a finite number (got " + f[c] + ")");
+      return x;
+    };
     Row r{};
-    try {
-      r.frame = std::stoi(f[0]);
-      r.step = std::stoi(f[1]);
-      r.t = std::stod(f[2]);
-      r.node = std::stoi(f[3]);
-      for (int d = 0; d < 3; ++d) r.v[d] = std::stod(f[static_cast<size_t>(4 + d)]);
-      r.hasElem = !f[7].empty();
-      if (r.hasElem)
-        for (int d = 0; d < 7; ++d) r.v[3 + d] = std::stod(f[static_cast<size_t>(7 + d)]);
-      if (columns >= 16) {
-        if ((r.hasK0 = !f[14].empty())) r.k0 = std::stod(f[14]);
-        if ((r.hasPf = !f[15].empty())) r.pf = std::stod(f[15]);
-      }
-      if (columns == 19 && (r.hasContact = !f[16].empty()))
-        for (int d = 0; d < 3; ++d) r.c[d] = std::stod(f[static_cast<size_t>(16 + d)]);
-    } catch (const std::exception&) {
-      bad("malformed number");
+    r.frame = integer(0);
+    r.step = integer(1);
+    r.t = real(2);
+    r.node = integer(3);
+    for (int d = 0; d < 3; ++d) r.v[d] = real(static_cast<size_t>(4 + d));
+    r.hasElem = !f[7].empty();
+    if (r.hasElem) {
+      for (int d = 0; d < 7; ++d) r.v[3 + d] = real(static_cast<size_t>(7 + d));
+      if (r.v[9] <= 0) bad("radius_mm: must be > 0 (got " + f[13] + ")");
+    } else {
+      for (size_t c = 8; c < 14; ++c)
+        if (!f[c].empty()) bad("the element columns of a frame's last node must all be empty");
+    }
+    if (columns >= 16) {
+      if ((r.hasK0 = !f[14].empty())) r.k0 = real(14);
+      if ((r.hasPf = !f[15].empty())) r.pf = real(15);
+    }
+    if (columns == 19 && (r.hasContact = !f[16].empty())) {
+      for (int d = 0; d < 3; ++d) r.c[d] = real(static_cast<size_t>(16 + d));
     }
     if (!rows.empty() && r.frame != rows[0].frame) {
       if (rows.back().hasElem) bad("frame " + std::to_string(rows[0].frame) + " ends without its last node");
       flush();
     }
+    if (rows.empty() && !r.hasElem) bad("frame " + std::to_string(r.frame) + " has one node (a rod needs two)");
     if (r.node != static_cast<int>(rows.size())) bad("node " + std::to_string(r.node) + " out of order");
     rows.push_back(r);
   }

@@ -186,6 +186,14 @@ AtomicFile::~AtomicFile() {
   }
 }
 
+void AtomicFile::flush() {
+  out_.flush();
+  if (!out_) {
+    const int err = errno;
+    throw RunError("write error on " + path_.string() + " (disk full?): " + std::strerror(err));
+  }
+}
+
 void AtomicFile::close() {
   out_.flush();
   if (!out_) throw RunError("write error on " + path_.string() + " (disk full?): " + std::strerror(errno));

@@ -7,6 +7,7 @@
 
 #include <optional>
 
+#include "rootsim/errors.hpp"
 #include "rootsim/outputs.hpp"
 #include "rootsim/results.hpp"
 #include "rootsim/units.hpp"
@@ -79,7 +80,12 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
       maxSelfContacts = std::max(maxSelfContacts, r.selfContacts);
       if (std::isnan(minSelfDistance) || r.minSelfDistance < minSelfDistance) minSelfDistance = r.minSelfDistance;
       snap.see(r);
-      if (k % m.output.everySteps == 0 || k == steps) record();
+      try {
+        if (k % m.output.everySteps == 0 || k == steps) record();
+      } catch (const RunError& e) {
+        throw RunError(std::string(e.what()) + " (at growth step " + std::to_string(k) + " of " +
+                       std::to_string(steps) + ")");
+      }
       if (progress) progress(r, steps);
     }
     ts.close();

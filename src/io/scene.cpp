@@ -11,6 +11,7 @@
 #include "rootsim/contact.hpp"
 #include "rootsim/scene.hpp"
 #include "scene_schema.hpp"
+#include "toml_guard.hpp"
 
 namespace rootsim {
 
@@ -50,7 +51,7 @@ std::string suggestSection(const std::string& section) {
 
 std::string describeNode(const toml::node& n) {
   std::ostringstream os;
-  if (n.is_string()) os << "the string \"" << n.value_or(std::string()) << "\"";
+  if (n.is_string()) os << "the string \"" << printable(n.value_or(std::string())) << "\"";
   else if (n.is_integer()) os << "the integer " << n.value_or<int64_t>(0);
   else if (n.is_floating_point()) os << "the number " << formatNumber(n.value_or(0.0), false);
   else if (n.is_boolean()) os << (n.value_or(false) ? "true" : "false");
@@ -98,22 +99,7 @@ std::string convert(const KeySpec& k, const toml::node& n, Value& out) {
 }
 
 std::string where(const std::string& source, const toml::source_region& r) {
-  return source + ":" + std::to_string(r.begin.line);
-}
-
-// a value or key as it may appear inside a one-line message: control characters escaped
-std::string printable(const std::string& s) {
-  std::string o;
-  for (unsigned char c : s) {
-    if (c == '\n') o += "\\n";
-    else if (c == '\t') o += "\\t";
-    else if (c < 0x20 || c == 0x7f) {
-      char b[8];
-      std::snprintf(b, sizeof b, "\\x%02x", c);
-      o += b;
-    } else o += static_cast<char>(c);
-  }
-  return o;
+  return printable(source) + ":" + std::to_string(r.begin.line);
 }
 
 // [[obstacle]] tables (MODEL.md section 11): one per obstacle, checked key by key like the sections;
@@ -273,6 +259,8 @@ void applyOverride(const std::string& ovRaw, Values& values) {
     throw SceneError("--set " + ov + ": unknown key " + full +
                      (sectionKnown ? suggestKey(section, key) : suggestSection(section)));
   }
+  if (!nonAsciiOutsideComments(text).empty())
+    throw SceneError("--set " + ov + ": non-ASCII characters are not allowed (scene values are ASCII)");
   Value v;
   std::string why;
   try {
@@ -297,12 +285,14 @@ void applyOverride(const std::string& ovRaw, Values& values) {
 
 Scene parseScene(const std::string& text, const std::string& sourceName,
                  const std::vector<std::string>& overrides) {
+  if (const std::string bad = nonAsciiOutsideComments(text); !bad.empty())
+    throw SceneError(printable(sourceName) + ":" + bad);
   toml::table root;
   try {
     root = toml::parse(text, sourceName);
   } catch (const toml::parse_error& e) {
-    throw SceneError(sourceName + ":" + std::to_string(e.source().begin.line) + ": TOML syntax error: " +
-                     std::string(e.description()));
+    throw SceneError(printable(sourceName) + ":" + std::to_string(e.source().begin.line) + ": TOML syntax error: " +
+                     printable(std::string(e.description())));
   }
   Values values;
   for (const auto& k : schema()) values[k.full()] = defaultValue(k);
@@ -348,22 +338,26 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
   return sc;
 }
 
-Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
+std::string readSceneFile(const std::string& path, const std::string& kind) {
   namespace fs = std::filesystem;
   std::error_code ec;
   const auto st = fs::status(path, ec);
-  if (!fs::exists(st)) throw SceneError(path + ": no such scene file");
-  if (fs::is_directory(st)) throw SceneError(path + ": is a directory, expected a scene file");
+  if (!fs::exists(st)) throw SceneError(printable(path) + ": no such " + kind);
+  if (fs::is_directory(st)) throw SceneError(printable(path) + ": is a directory, expected a " + kind);
   // a device, FIFO or socket would be read forever or block: only regular files of sane size
-  if (!fs::is_regular_file(st)) throw SceneError(path + ": not a regular file, expected a scene file");
+  if (!fs::is_regular_file(st)) throw SceneError(printable(path) + ": not a regular file, expected a " + kind);
   constexpr std::uintmax_t kMaxSceneBytes = 1u << 20;
   if (fs::file_size(path, ec) > kMaxSceneBytes)
-    throw SceneError(path + ": larger than 1 MiB; a scene file is a few hundred bytes of TOML");
+    throw SceneError(printable(path) + ": larger than 1 MiB; a " + kind + " is a few hundred bytes of TOML");
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path + ": cannot open for reading");
+  if (!in) throw SceneError(printable(path) + ": cannot open for reading");
   std::ostringstream ss;
   ss << in.rdbuf();
-  return parseScene(ss.str(), path, overrides);
+  return ss.str();
+}
+
+Scene loadScene(const std::string& path, const std::vector<std::string>& overrides) {
+  return parseScene(readSceneFile(path), path, overrides);
 }
 
 }  // namespace rootsim

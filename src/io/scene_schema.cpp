@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "rootsim/errors.hpp"
+#include "rootsim/scene.hpp"
 
 namespace rootsim::detail {
 
@@ -66,60 +67,66 @@ const std::vector<std::string>& sections() {
 }
 
 // every key, its unit, range and meaning; its default is read from defaultModel() (the one source of
-// defaults, include/rootsim/model.hpp), converted to the key's unit
+// defaults, include/rootsim/model.hpp), converted to the key's unit.
+// Ranges (each key's doc in `rootsim check` and scene.toml ends with it). Upper bounds are physical
+// sanity, a generous factor beyond anything a root (or any plant organ) has: radius <= 100 mm, E <= 1e6
+// MPa (diamond), growth rate <= 10 /h, step <= 10 h, growth zone <= 1 m, gains <= 100 (the paper uses
+// < 2), |R tau| <= 10, springs <= 1e6 N/m. Beyond them a run diverges or exhausts the sub-step cap
+// after minutes instead of being refused up front (issue 15). The number of elements is capped
+// separately (kMaxElements, buildModel).
 const std::vector<KeySpec>& schema() {
   using units::mm;
   using units::hour;
   static const Model d = defaultModel();
   static const std::vector<KeySpec> keys = {
-      real("root", "radius_mm", d.rod.radius / mm, 0, true, kInf, false, "root radius R [mm]"),
-      real("root", "initial_length_mm", d.initial.length / mm, 0, true, kInf, false, "initial length L0 [mm]"),
-      real("root", "youngs_modulus_mpa", d.rod.youngs / units::mpa, 0, true, kInf, false, "Young's modulus E [MPa]"),
-      real("root", "element_length_mm", d.initial.elementLength / mm, 0, true, kInf, false,
+      real("root", "radius_mm", d.rod.radius / mm, 0, true, 100, false, "root radius R [mm]"),
+      real("root", "initial_length_mm", d.initial.length / mm, 0, true, 1e4, false, "initial length L0 [mm]"),
+      real("root", "youngs_modulus_mpa", d.rod.youngs / units::mpa, 0, true, 1e6, false, "Young's modulus E [MPa]"),
+      real("root", "element_length_mm", d.initial.elementLength / mm, 0, true, 1e3, false,
            "target element length h [mm]; elements longer than growth.split_factor * h are split"),
-      real("root", "density_kg_per_m3", d.rod.density, 0, true, kInf, false,
+      real("root", "density_kg_per_m3", d.rod.density, 0, true, 1e5, false,
            "density [kg/m^3] (physical-mass relaxation and weight only)"),
       boolean("growth", "enabled", d.growth.enabled, "grow (false: mechanics only, one relaxation under [load])"),
-      real("growth", "growth_zone_mm", d.growth.zoneLength / mm, 0, true, kInf, false, "growth-zone length Lgz [mm]"),
-      real("growth", "rate_per_h", d.growth.rate * hour, 0, true, kInf, false, "relative growth rate in the zone [1/h]"),
+      real("growth", "growth_zone_mm", d.growth.zoneLength / mm, 0, true, 1e3, false, "growth-zone length Lgz [mm]"),
+      real("growth", "rate_per_h", d.growth.rate * hour, 0, true, 10, false, "relative growth rate in the zone [1/h]"),
       integer("growth", "steps", d.growth.steps, 0, 1e7, "number of growth steps"),
-      real("growth", "step_h", d.growth.stepTime / hour, 0, true, kInf, false, "growth step [h]"),
+      real("growth", "step_h", d.growth.stepTime / hour, 0, true, 10, false, "growth step [h]"),
       real("growth", "split_factor", d.growth.splitFactor, 1.2, false, 10, false,
            "split an element when it grows past this many target lengths h"),
-      real("tropism", "beta", d.tropism.beta, 0, false, kInf, false, "gravitropic gain beta"),
-      real("tropism", "gamma", d.tropism.gamma, 0, false, kInf, false, "proprioceptive gain gamma"),
+      real("tropism", "beta", d.tropism.beta, 0, false, 100, false, "gravitropic gain beta"),
+      real("tropism", "gamma", d.tropism.gamma, 0, false, 100, false, "proprioceptive gain gamma"),
       choice("tropism", "sensing", d.tropism.sensing == Sensing::Local ? "local" : "apical", {"local", "apical"}, "where gravity is sensed"),
-      real("tropism", "twist_r_tau", d.tropism.rTau, -kInf, false, kInf, false, "intrinsic twist R*tau (dimensionless)"),
-      real("tropism", "circumnutation_gain", d.tropism.cnGain, 0, false, kInf, false, "circumnutation gain lambda_cn"),
-      real("tropism", "circumnutation_period_h", d.tropism.cnPeriod / hour, 0, true, kInf, false, "circumnutation period [h]"),
+      real("tropism", "twist_r_tau", d.tropism.rTau, -10, false, 10, false, "intrinsic twist R*tau (dimensionless)"),
+      real("tropism", "circumnutation_gain", d.tropism.cnGain, 0, false, 100, false, "circumnutation gain lambda_cn"),
+      real("tropism", "circumnutation_period_h", d.tropism.cnPeriod / hour, 0, true, 1e4, false, "circumnutation period [h]"),
       boolean("plane", "enabled", d.env.plane.enabled, "the tilted plate is present"),
       real("plane", "alpha_deg", d.env.plane.alpha / units::deg, 0, false, 90, false,
            "plate tilt from the vertical [deg]; also sets the start direction when the plate is off"),
       // the default deviates from the paper's 100 N/m: see Plane::k (environment.hpp)
-      real("plane", "k_n_per_m", d.env.plane.k, 0, false, kInf, false,
+      real("plane", "k_n_per_m", d.env.plane.k, 0, false, 1e6, false,
            "contact penalty spring per element [N/m] (paper: 100; see README)"),
-      real("plane", "damping_kg_per_s", d.env.plane.c, 0, false, kInf, false,
+      real("plane", "damping_kg_per_s", d.env.plane.c, 0, false, 1e3, false,
            "contact normal damping per element [kg/s] (physical-mass relaxation only)"),
       boolean("adhesion", "enabled", d.env.adhesion, "pin material that leaves the growth zone"),
-      real("adhesion", "k_n_per_m", d.env.kAdhesion, 0, false, kInf, false, "adhesion spring [N/m]"),
+      real("adhesion", "k_n_per_m", d.env.kAdhesion, 0, false, 1e6, false, "adhesion spring [N/m]"),
       boolean("self_contact", "enabled", d.env.selfContact.enabled,
               "the root cannot pass through itself: elements repel when closer than 2R (MODEL.md section 11)"),
-      real("self_contact", "k_n_per_m", d.env.selfContact.k, 0, true, kInf, false,
+      real("self_contact", "k_n_per_m", d.env.selfContact.k, 0, true, 1e6, false,
            "self-contact penalty spring per element pair [N/m] (damping: plane.damping_kg_per_s)"),
       boolean("friction", "enabled", d.env.friction.enabled,
               "Coulomb friction on the plate and obstacles, with stick points (MODEL.md section 11)"),
-      real("friction", "mu_static", d.env.friction.muStatic, 0, false, kInf, false,
+      real("friction", "mu_static", d.env.friction.muStatic, 0, false, 100, false,
            "static friction coefficient across the root's axis"),
-      real("friction", "mu_kinetic", d.env.friction.muKinetic, 0, false, kInf, false,
+      real("friction", "mu_kinetic", d.env.friction.muKinetic, 0, false, 100, false,
            "kinetic friction coefficient across the root's axis (at most mu_static)"),
-      real("friction", "axial_ratio", d.env.friction.axialRatio, 0, false, kInf, false,
+      real("friction", "axial_ratio", d.env.friction.axialRatio, 0, false, 100, false,
            "friction along the root's in-plane axis / across it (root hairs anchor sideways: < 1)"),
-      real("friction", "slip_weakening_mm", d.env.friction.slipWeakening / mm, 0, false, kInf, false,
+      real("friction", "slip_weakening_mm", d.env.friction.slipWeakening / mm, 0, false, 1e3, false,
            "slip over which friction falls from mu_static to mu_kinetic [mm] (0: at once; see README)"),
       choice("solver", "kind", d.solver.kind == SolverKind::Newton ? "newton" : "dynamic", {"newton", "dynamic"},
              "newton: quasi-static Newton with a banded Jacobian (MODEL.md section 12); dynamic: the paper's "
              "explicit damped relaxation"),
-      real("solver", "window_mm", d.solver.window / mm, 0, false, kInf, false,
+      real("solver", "window_mm", d.solver.window / mm, 0, false, 1e4, false,
            "newton: solve only the nodes within this length behind the growth zone, and the zone (0: the whole "
            "rod; a window freezes the mature root's twist: see README)"),
       integer("solver", "newton_max_iterations", d.solver.newtonMaxIterations, 1, 100000,
@@ -127,7 +134,7 @@ const std::vector<KeySpec>& schema() {
       choice("solver", "mass", d.solver.mass == MassModel::Scaled ? "scaled" : "physical", {"scaled", "physical"},
              "scaled: per-dof fictitious masses (fast); physical: density and dt from the stiffest spring"),
       choice("solver", "damping", d.solver.damping == Damping::Fire ? "fire" : "viscous", {"fire", "viscous"}, "FIRE or viscous damping of the pseudo-dynamics"),
-      real("solver", "damping_per_s", d.solver.viscousRate, 0, true, kInf, false, "viscous damping rate [1/s] (damping = \"viscous\")"),
+      real("solver", "damping_per_s", d.solver.viscousRate, 0, true, 1e9, false, "viscous damping rate [1/s] (damping = \"viscous\")"),
       real("solver", "force_tol", d.solver.forceTol, 0, true, 1, false,
            "equilibrium: residual force < force_tol * B1/Lref^2 and couple < force_tol * B1/Lref "
            "(Lref = growth zone, or the rod when not growing)"),
@@ -146,9 +153,9 @@ const std::vector<KeySpec>& schema() {
       real("analysis", "skew_threshold_deg", d.analysis.skewThresholdDeg, 0, false, 90, false, "|<theta>| above this is skewing [deg]"),
       real("analysis", "coil_turn_deg", d.analysis.coilTurnDeg, 0, true, 3600, false,
            "planar tangent turning through more than this is coiling [deg]"),
-      real("analysis", "wave_min_amplitude_r", d.analysis.waveMinAmplitude, 0, false, kInf, false,
+      real("analysis", "wave_min_amplitude_r", d.analysis.waveMinAmplitude, 0, false, 1e3, false,
            "hysteresis of the lateral turning points in R (a lateral peak-to-peak below it counts as straight)"),
-      real("analysis", "skew_min_waves", d.analysis.skewMinWaves, 0, false, kInf, false,
+      real("analysis", "skew_min_waves", d.analysis.skewMinWaves, 0, false, 1e4, false,
            "a waving root is called skewing only over at least this many full waves"),
       integer("output", "every_steps", d.output.everySteps, 1, 1e9, "snapshot and time-series row every N growth steps"),
       boolean("output", "trajectory", d.output.trajectory, "write trajectory.csv (what `rootsim render` reads)"),
@@ -186,24 +193,24 @@ std::string pretty(double x) {
 }
 }  // namespace
 
+std::string rangeText(const KeySpec& k) {
+  std::ostringstream e;
+  if (k.lo > -kInf && k.hi < kInf)
+    e << "in " << (k.loOpen ? "(" : "[") << pretty(k.lo) << ", " << pretty(k.hi) << (k.hiOpen ? ")" : "]");
+  else if (k.lo > -kInf)
+    e << (k.loOpen ? "> " : ">= ") << pretty(k.lo);
+  else if (k.hi < kInf)
+    e << (k.hiOpen ? "< " : "<= ") << pretty(k.hi);
+  return e.str();
+}
+
 std::string checkValue(const KeySpec& k, const Value& v) {
   std::ostringstream os;
   auto range = [&](double x) -> std::string {
     if (!std::isfinite(x)) return "must be finite (got " + pretty(x) + ")";
     const bool low = k.loOpen ? x <= k.lo : x < k.lo;
     const bool high = k.hiOpen ? x >= k.hi : x > k.hi;
-    if (low || high) {
-      std::ostringstream e;
-      if (k.lo > -kInf && k.hi < kInf)
-        e << "must be in " << (k.loOpen ? "(" : "[") << pretty(k.lo) << ", "
-          << pretty(k.hi) << (k.hiOpen ? ")" : "]");
-      else if (k.lo > -kInf)
-        e << "must be " << (k.loOpen ? "> " : ">= ") << pretty(k.lo);
-      else
-        e << "must be " << (k.hiOpen ? "< " : "<= ") << pretty(k.hi);
-      e << " (got " << pretty(x) << ")";
-      return e.str();
-    }
+    if (low || high) return "must be " + rangeText(k) + " (got " + pretty(x) + ")";
     return "";
   };
   switch (k.type) {
@@ -219,7 +226,7 @@ std::string checkValue(const KeySpec& k, const Value& v) {
         if (c == v.str) return "";
       os << "must be one of";
       for (size_t i = 0; i < k.choices.size(); ++i) os << (i ? ", " : " ") << '"' << k.choices[i] << '"';
-      os << " (got \"" << v.str << "\")";
+      os << " (got \"" << printable(v.str) << "\")";
       return os.str();
     }
     case KeyType::Boolean:
@@ -332,6 +339,41 @@ Model buildModel(const Values& v, const std::string& name) {
     relationError(v, "friction.mu_kinetic", "must be at most friction.mu_static (got " +
                                                 formatNumber(m.env.friction.muKinetic, false) + " > " +
                                                 formatNumber(m.env.friction.muStatic, false) + ")");
+  // the work one scene may ask for: memory and time grow with the number of elements, at the start and
+  // after growing (growth adds rate * step * zone length per step). Without this cap
+  // root.initial_length_mm = 1e4 grew to GBs and root.element_length_mm = 1e-12 never finished.
+  // The error names the first of the keys involved that --set gave, else that the scene file gave.
+  auto capError = [&](std::initializer_list<const char*> keys, const std::string& what) {
+    const char* key = nullptr;
+    for (const char* k : keys)
+      if (!key && v.at(k).origin.rfind("--set", 0) == 0) key = k;
+    for (const char* k : keys)
+      if (!key && v.at(k).origin != "default") key = k;
+    if (!key) key = *keys.begin();
+    const double x = num(key);
+    const std::string shown = x == std::floor(x) && x < 1e15 ? formatNumber(x, true) : pretty(x);
+    throw SceneError(v.at(key).origin + ": " + key + " = " + shown + ": " + what + "; at most " +
+                     pretty(kMaxElements) + " elements are allowed");
+  };
+  const double h = num("root.element_length_mm");
+  auto count = [](double x) { return x < 1e15 ? formatNumber(std::ceil(x), true) : pretty(x); };
+  const double initialElements = num("root.initial_length_mm") / h;
+  if (initialElements > kMaxElements)
+    capError({"root.initial_length_mm", "root.element_length_mm"},
+             "root.initial_length_mm / root.element_length_mm = " + pretty(num("root.initial_length_mm")) + " mm / " +
+                 pretty(h) + " mm = " + count(initialElements) + " elements at the start");
+  if (m.growth.enabled) {
+    const double grown = num("root.initial_length_mm") +
+                         num("growth.steps") * num("growth.step_h") * num("growth.rate_per_h") * num("growth.growth_zone_mm");
+    const double finalElements = grown / h;
+    if (finalElements > kMaxElements)
+      capError({"growth.steps", "growth.step_h", "growth.rate_per_h", "growth.growth_zone_mm", "root.element_length_mm",
+                "root.initial_length_mm"},
+               "the root grows to " + pretty(grown) +
+                   " mm (root.initial_length_mm + growth.steps * growth.step_h * growth.rate_per_h * "
+                   "growth.growth_zone_mm) = " + count(finalElements) + " elements of root.element_length_mm = " +
+                   pretty(h) + " mm");
+  }
   if (!m.env.plane.enabled && m.env.base == BaseCondition::Free && !m.growth.enabled &&
       (m.env.tipForce.norm() > 0 || m.env.gravity.norm() > 0))
     relationError(v, "load.base", "= \"free\" with a net load has no equilibrium; clamp the base");
@@ -361,7 +403,9 @@ std::string resolvedToml(const Values& v, const std::string& name) {
       const std::string val = tomlText(k, v.at(k.full()));
       os << k.key << " = " << val;
       const size_t pad = k.key.size() + 3 + val.size();
-      os << std::string(pad < 40 ? 40 - pad : 1, ' ') << "# " << k.doc << "\n";
+      os << std::string(pad < 40 ? 40 - pad : 1, ' ') << "# " << k.doc;
+      if (k.type == KeyType::Real || k.type == KeyType::Integer) os << "; " << rangeText(k);
+      os << "\n";
     }
   }
   return os.str();

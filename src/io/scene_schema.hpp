@@ -43,6 +43,8 @@ using Values = std::map<std::string, Value>;  // by "section.key"
 Value defaultValue(const KeySpec& k);
 // checks range / choices; returns "" or the reason ("must be > 0 (got -1)")
 std::string checkValue(const KeySpec& k, const Value& v);
+// the accepted range of a number key as text: "in (0, 100]", ">= 0"; "" when unbounded
+std::string rangeText(const KeySpec& k);
 // builds the model and checks relations between keys; throws SceneError with the origin of a key
 Model buildModel(const Values& v, const std::string& name);
 // a value in TOML syntax

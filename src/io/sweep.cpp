@@ -2,11 +2,15 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <mutex>
 #include <sstream>
 #include <thread>
+
+#include <unistd.h>
 
 #include <toml++/toml.h>
 
@@ -14,6 +18,7 @@
 #include "rootsim/results.hpp"
 #include "rootsim/run_dir.hpp"
 #include "rootsim/scene.hpp"
+#include "toml_guard.hpp"
 
 namespace fs = std::filesystem;
 
@@ -50,6 +55,18 @@ std::string slug(const std::string& key, const std::string& val) {
   for (char c : k + "=" + val) s += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '=') ? c : '_';
   return s;
 }
+// a run-directory name short enough for every file system (255 bytes per name, with room for the
+// ".incomplete" / ".partial" / ".replaced" siblings): a longer one keeps its first bytes and gets a hash
+// of the whole name (FNV-1a, the same on every machine, so shards and reruns agree)
+std::string shortName(const std::string& name) {
+  constexpr size_t kMax = 200;
+  if (name.size() <= kMax) return name;
+  std::uint64_t h = 14695981039346656037ull;
+  for (unsigned char c : name) h = (h ^ c) * 1099511628211ull;
+  char tail[24];
+  std::snprintf(tail, sizeof tail, "_h%016llx", static_cast<unsigned long long>(h));
+  return name.substr(0, kMax - std::strlen(tail)) + tail;
+}
 }  // namespace
 
 std::pair<int, int> parseShard(const std::string& text) {
@@ -64,44 +81,79 @@ std::pair<int, int> parseShard(const std::string& text) {
 SweepPlan loadSweep(const std::string& path) {
   std::error_code ec;
   if (!fs::exists(path, ec)) throw SceneError(path + ": no such sweep file");
+  std::string text;
+  {
+    // a sweep file is a few lines of TOML: like a scene, a regular file of at most 1 MiB
+    text = readSceneFile(path, "sweep file");
+    if (const std::string bad = detail::nonAsciiOutsideComments(text); !bad.empty())
+      throw SceneError(printable(path) + ":" + bad);
+  }
   toml::table root;
   try {
-    root = toml::parse_file(path);
+    root = toml::parse(text, path);
   } catch (const toml::parse_error& e) {
     throw SceneError(path + ":" + std::to_string(e.source().begin.line) + ": TOML syntax error: " +
-                     std::string(e.description()));
+                     printable(std::string(e.description())));
   }
   for (auto&& [k, node] : root) {
     const std::string key(k.str());
     if (key != "sweep" && key != "grid" && key != "set")
-      throw SceneError(where(path, k.source()) + ": unknown section [" + key + "] (expected [sweep], [grid], [set])");
+      throw SceneError(where(path, k.source()) + ": unknown section [" + printable(key) +
+                       "] (expected [sweep], [grid], [set])");
+    if (!node.is_table())
+      throw SceneError(where(path, k.source()) + ": " + key + " must be a table ([" + key + "])");
   }
   SweepPlan plan;
   const toml::table* sw = root["sweep"].as_table();
   if (!sw || !sw->get("scene") || !sw->get("scene")->is_string())
     throw SceneError(path + ": [sweep] needs scene = \"base scene file\"");
   for (auto&& [k, node] : *sw)
-    if (k.str() != "scene") throw SceneError(where(path, k.source()) + ": unknown key sweep." + std::string(k.str()));
+    if (k.str() != "scene")
+      throw SceneError(where(path, k.source()) + ": unknown key sweep." + printable(std::string(k.str())));
   const fs::path base = fs::path(path).parent_path() / *sw->get("scene")->value<std::string>();
   plan.scenePath = base.string();
   std::vector<std::string> fixed;
-  if (const toml::table* st = root["set"].as_table())
-    for (auto&& [k, node] : *st) fixed.push_back(std::string(k.str()) + "=" + valueText(node, where(path, k.source())));
+  const toml::table* st = root["set"].as_table();
+  const toml::table* gt = root["grid"].as_table();
+  if (st)
+    for (auto&& [k, node] : *st) {
+      // a key in both tables would silently make every point the same (the fixed value wins)
+      if (gt && gt->contains(k.str()))
+        throw SceneError(where(path, k.source()) + ": set." + printable(std::string(k.str())) +
+                         " is also a grid key; give it in [grid] or in [set], not both");
+      fixed.push_back(std::string(k.str()) + "=" + valueText(node, where(path, k.source())));
+    }
   std::vector<std::vector<std::string>> values;
-  std::vector<std::string> locs;
-  if (const toml::table* gt = root["grid"].as_table())
+  // every combination, first key slowest: counted before anything is expanded (a grid of 40^4 points
+  // once took GBs before failing)
+  std::uint64_t total = 1;
+  if (gt)
     for (auto&& [k, node] : *gt) {
       const std::string loc = where(path, k.source());
       const toml::array* a = node.as_array();
-      if (!a || a->empty()) throw SceneError(loc + ": grid." + std::string(k.str()) + " must be a non-empty array");
-      plan.gridKeys.emplace_back(k.str());
-      locs.push_back(loc);
-      values.emplace_back();
-      for (const auto& v : *a) values.back().push_back(valueText(v, loc));
+      if (!a || a->empty())
+        throw SceneError(loc + ": grid." + printable(std::string(k.str())) + " must be a non-empty array");
+      total *= a->size();
+      if (total > kMaxSweepPoints)
+        throw SceneError(loc + ": the grid has more than " + std::to_string(kMaxSweepPoints) +
+                         " points (the product of the grid arrays' lengths, up to grid." +
+                         printable(std::string(k.str())) + "); split the sweep into several files");
     }
-  // every combination, first key slowest
-  size_t total = 1;
-  for (const auto& v : values) total *= v.size();
+  if (gt)
+    for (auto&& [k, node] : *gt) {
+      const std::string loc = where(path, k.source());
+      plan.gridKeys.emplace_back(k.str());
+      values.emplace_back();
+      for (const auto& v : *node.as_array()) values.back().push_back(valueText(v, loc));
+    }
+  // the base scene is read once; each point is validated with its overrides
+  std::string baseText;
+  try {
+    baseText = readSceneFile(plan.scenePath);
+  } catch (const SceneError& e) {
+    throw SceneError(where(path, sw->get("scene")->source()) + ": sweep.scene: " + e.what());
+  }
+  plan.points.reserve(static_cast<size_t>(total));
   for (size_t i = 0; i < total; ++i) {
     SweepPoint p;
     p.index = static_cast<int>(i);
@@ -119,10 +171,11 @@ SweepPlan loadSweep(const std::string& path) {
       p.overrides.push_back(plan.gridKeys[d] + "=" + values[d][idx[d]]);
       p.dirName += "_" + slug(plan.gridKeys[d], values[d][idx[d]]);
     }
+    p.dirName = shortName(p.dirName);
     p.overrides.insert(p.overrides.end(), fixed.begin(), fixed.end());
     // validate now: a typo in the grid fails before any run starts
     try {
-      p.grows = loadScene(plan.scenePath, p.overrides).model.growth.enabled;
+      p.grows = parseScene(baseText, plan.scenePath, p.overrides).model.growth.enabled;
     } catch (const SceneError& e) {
       throw SceneError(path + ": point " + std::to_string(i) + ": " + e.what());
     }
@@ -146,7 +199,19 @@ void writeSweepTable(const SweepPlan& plan, const std::string& out) {
     }
     body += prefix + "," + r + "\n";
   }
-  if (!header.empty()) writeFileAtomic(fs::path(out) / "table.csv", header + "\n" + body);
+  if (header.empty()) return;
+  // shards of a job array finish at the same time and each writes the table: every process through a
+  // temporary name of its own (host and pid: shards may share a network file system), then one rename
+  char host[256] = "host";
+  ::gethostname(host, sizeof host - 1);
+  const fs::path mine = fs::path(out) / ("table.csv." + std::string(host) + "." + std::to_string(::getpid()));
+  writeFileAtomic(mine, header + "\n" + body);
+  std::error_code ec;
+  fs::rename(mine, fs::path(out) / "table.csv", ec);
+  if (ec) {
+    fs::remove(mine, ec);
+    throw RunError("cannot write " + (fs::path(out) / "table.csv").string() + ": " + ec.message());
+  }
 }
 
 SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,

@@ -78,7 +78,7 @@ TEST_CASE("an obstacle overlapping the initial root exits 2 naming file:line and
   CHECK(!fs::exists(d / "out"));
 }
 
-TEST_CASE("a rod with no static equilibrium exits 1 in seconds, saying it slides and naming the node") {
+TEST_CASE("a rod with no static equilibrium exits 1 saying it slides and naming the node, not at the sub-step cap") {
   // a free 1 mm rod on a plate tilted by 60 deg under its weight, mu_s 5 % below cot(60 deg)
   const fs::path d = scratch("slides");
   {
@@ -87,13 +87,12 @@ TEST_CASE("a rod with no static equilibrium exits 1 in seconds, saying it slides
                                        "gravity = true\n[friction]\nenabled = true\nmu_static = 0.55\n"
                                        "mu_kinetic = 0.5\n[solver]\nforce_tol = 1e-9\n";
   }
-  const auto t0 = std::chrono::steady_clock::now();
+  // (how fast is measured, not asserted: it takes seconds in Release, minutes under ASan)
   const Result r = run("run " + (d / "slide.toml").string() + " --quiet --out " + (d / "out").string());
-  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   CHECK(r.code == 1);
   CHECK(r.out.find("slides: no static equilibrium") != std::string::npos);
   CHECK(r.out.find("node ") != std::string::npos);
-  CHECK(secs < 30.0);
+  CHECK(r.out.find("did not reach equilibrium in") == std::string::npos);  // found by the slide check, not the cap
   // 5 % above cot(alpha) it stays: the same scene runs to completion
   CHECK(run("run " + (d / "slide.toml").string() + " --set friction.mu_static=0.61 --quiet --out " + (d / "stays").string()).code == 0);
 }

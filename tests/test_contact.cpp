@@ -249,13 +249,11 @@ struct Incline {
 };
 
 // true when the rod stays put; false when the relaxation reports sliding (the message is checked)
-bool sticks(Incline& c, double* seconds = nullptr) {
+bool sticks(Incline& c) {
   const RodState before = c.s;
-  const auto t0 = std::chrono::steady_clock::now();
   try {
     c.settle();
   } catch (const RelaxError& e) {
-    if (seconds) *seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const std::string w = e.what();
     INFO(w);
     CHECK(w.find("slides: no static equilibrium") != std::string::npos);
@@ -276,10 +274,10 @@ TEST_CASE("incline: a free rod under its weight sticks iff mu_s >= cot(alpha), 5
       Incline c(alpha, true);
       c.env.friction.muStatic = factor * cot;
       c.env.friction.muKinetic = 0.8 * factor * cot;
-      double seconds = 0;
-      const bool stuck = sticks(c, &seconds);
+      // sliding is reported by the slide check ("slides: no static equilibrium", checked in sticks()), not
+      // by the sub-step cap; how long it takes is measured (README), not asserted
+      const bool stuck = sticks(c);
       CHECK(stuck == (factor > 1.0));
-      if (!stuck) CHECK(seconds < 10.0);  // seconds, not the sub-step cap
     }
   }
 }

@@ -1,7 +1,9 @@
 #pragma once
 // An RGBA picture in memory: what the renderer produces and what the PNG and video writers consume.
 // Also home of RenderError, the one exception type of the rendering layer.
+#include <algorithm>
 #include <cstddef>
+#include <cstring>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -32,5 +34,16 @@ struct Image {
   std::uint8_t* at(int x, int y) { return rgba.data() + index(x, y); }
   const std::uint8_t* at(int x, int y) const { return rgba.data() + index(x, y); }
 };
+
+// copies src into dst with src's top-left corner at (x, y) of dst, clipped to dst
+inline void blit(const Image& src, Image& dst, int x, int y) {
+  for (int r = 0; r < src.height; ++r) {
+    const int yy = y + r;
+    if (yy < 0 || yy >= dst.height) continue;
+    const int x0 = std::max(0, x), x1 = std::min(dst.width, x + src.width);
+    if (x0 >= x1) continue;
+    std::memcpy(dst.at(x0, yy), src.at(x0 - x, r), static_cast<std::size_t>(4) * (x1 - x0));
+  }
+}
 
 }  // namespace rootsim

@@ -31,6 +31,13 @@ constexpr int kMaxLong = 3840;   // [px] 4K UHD: the longer side at most 3840,
 constexpr int kMaxShort = 2160;  // [px] the shorter at most 2160 (landscape or portrait)
 
 // "WxH" -> (W, H), both even, at least kMinSide, at most 3840x2160 (or 2160x3840)
+// --view: "top" or "3d"
+View::Kind parseViewKind(const std::string& v) {
+  if (v == "top") return View::Kind::Top;
+  if (v == "3d") return View::Kind::Perspective;
+  throw SceneError("--view " + v + ": expected top or 3d");
+}
+
 std::pair<int, int> parseSize(const std::string& s) {
   const std::size_t x = s.find('x');
   auto number = [&](const std::string& part) {
@@ -299,12 +306,7 @@ int renderRunCommand(const RenderOptions& o) {
   const fs::path runDir(o.runDir);
   if (!fs::is_directory(runDir)) throw SceneError(o.runDir + ": run directory not found");
   MovieJob job;
-  if (o.view == "top")
-    job.view.kind = View::Kind::Top;
-  else if (o.view == "3d")
-    job.view.kind = View::Kind::Perspective;
-  else
-    throw SceneError("--view " + o.view + ": expected top or 3d");
+  job.view.kind = parseViewKind(o.view);
   const bool autoSized = o.size == "auto";
   if (!autoSized) std::tie(job.view.width, job.view.height) = parseSize(o.size);
   if (o.fps < 1 || o.fps > 240) throw SceneError("--fps " + std::to_string(o.fps) + ": expected 1..240");
@@ -439,12 +441,7 @@ int montageRunsCommand(const MontageOptions& o) {
   if (o.mp4.empty() && o.pngDir.empty()) throw SceneError("montage: nothing to write; give --mp4 FILE and/or --png-dir DIR");
   MontageJob job;
   std::tie(job.view.width, job.view.height) = parseSize(o.size);
-  if (o.view == "top")
-    job.view.kind = View::Kind::Top;
-  else if (o.view == "3d")
-    job.view.kind = View::Kind::Perspective;
-  else
-    throw SceneError("--view " + o.view + ": expected top or 3d");
+  job.view.kind = parseViewKind(o.view);
   if (o.fps < 1 || o.fps > 240) throw SceneError("--fps " + std::to_string(o.fps) + ": expected 1..240");
   if (o.crf < 0 || o.crf > 51) throw SceneError("--crf " + std::to_string(o.crf) + ": expected 0..51");
   job.video.fps = o.fps;

@@ -33,16 +33,6 @@ std::string fmt(const char* f, double v) {
 }
 std::string tick(double v) { return std::abs(v) < 1e-300 ? "0" : fmt("%.3g", v); }
 
-// copy src into dst at (x, y), clipped
-void blit(const Image& src, Image& dst, int x, int y) {
-  for (int r = 0; r < src.height; ++r) {
-    const int yy = y + r;
-    if (yy < 0 || yy >= dst.height) continue;
-    const int x0 = std::max(0, x), x1 = std::min(dst.width, x + src.width);
-    if (x0 >= x1) continue;
-    std::memcpy(dst.at(x0, yy), src.at(x0 - x, r), static_cast<std::size_t>(4) * (x1 - x0));
-  }
-}
 
 // a round axis step: 1, 2 or 5 x 10^n giving about `count` intervals over span
 double niceStep(double span, int count) {

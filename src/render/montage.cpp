@@ -22,15 +22,6 @@ std::string fmt(const char* f, double v) {
   return buf;
 }
 
-void blit(const Image& src, Image& dst, int x, int y) {
-  for (int r = 0; r < src.height; ++r) {
-    const int yy = y + r;
-    if (yy < 0 || yy >= dst.height) continue;
-    const int x0 = std::max(0, x), x1 = std::min(dst.width, x + src.width);
-    if (x0 >= x1) continue;
-    std::memcpy(dst.at(x0, yy), src.at(x0 - x, r), static_cast<std::size_t>(4) * (x1 - x0));
-  }
-}
 
 void checkRuns(const std::vector<MontageRun>& runs) {
   if (runs.empty()) throw RenderError("montage: no runs");

@@ -2,6 +2,7 @@
 // with stick-slip, obstacles, against closed forms and invariants
 #include <doctest/doctest.h>
 
+#include <Eigen/Dense>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -13,6 +14,7 @@
 #include "rootsim/initial.hpp"
 #include "rootsim/model.hpp"
 #include "rootsim/relax.hpp"
+#include "rootsim/rotation.hpp"
 #include "rootsim/simulation.hpp"
 #include "rootsim/stability.hpp"
 #include "rootsim/units.hpp"
@@ -451,7 +453,7 @@ TEST_CASE("friction in a growing root: stick points where it touches, none on ad
   for (auto h : b.state().hasPlateStick) CHECK(h == 0);
 }
 
-TEST_CASE("self-contact with the Newton solver: a coil in contact under a new load reaches the explicit equilibrium (explicitly where Newton stalls)") {
+TEST_CASE("self-contact with the Newton solver: a coil in contact under a new load reaches the explicit equilibrium by Newton alone, with the stability check's inertia") {
   auto coil = [] {
     test::Cantilever c(90, 1.6 * 2 * units::pi * 4e-4, 1e-6);
     c.opt.speedTol = 1e-7;
@@ -466,20 +468,84 @@ TEST_CASE("self-contact with the Newton solver: a coil in contact under a new lo
   int inContact = 0;
   for (auto m : a.ws.contact.contactNode) inContact += m;
   REQUIRE(inContact > 0);
-  // a small tip load on both: explicit relaxation and Newton (band Jacobian, contact nodes nudged alone)
+  // a small tip load on both: explicit relaxation and Newton (with the off-band contact couplings, a
+  // sparse Jacobian)
   const Vec3 F(0, 0, 2e-3 * a.B1() / (a.L * a.L));
   a.env.tipForce = b.env.tipForce = F;
   a.relax();
-  // as Simulation does: Newton; where its band Jacobian (off-band contact couplings dropped) finds no
-  // acceptable step, the explicit relaxation, and Newton confirms the equilibrium
   NewtonWorkspace nw;
-  RelaxResult r = relaxNewton(b.p, b.env, b.opt, b.s, b.ws, nw, 0);
-  MESSAGE("Newton alone: " << (r.converged ? "converged" : r.message) << " after " << r.iterations << " iterations");
-  if (r.stalled) {
-    b.relax();
-    r = relaxNewton(b.p, b.env, b.opt, b.s, b.ws, nw, 0);
-  }
+  b.opt.stabilityCheck = true;
+  const RelaxResult r = relaxNewton(b.p, b.env, b.opt, b.s, b.ws, nw, 0);
+  INFO("Newton: " << (r.converged ? "converged" : r.message) << " after " << r.iterations << " iterations");
   CHECK(r.converged);
+  CHECK(!r.stalled);
+  CHECK(r.iterations <= 6);  // quadratic convergence from a nearby equilibrium
+  CHECK(nw.sparseActive);
   CHECK((a.s.x - b.s.x).colwise().norm().maxCoeff() < 1e-3 * a.p.radius);
   CHECK(minDistantGap(b.p, b.s) > 1.9);
+  // the inertia of Newton's sparse LDL^T is the stability check's (which reads whole columns), and its
+  // eigenvalue nearest zero is the dense symmetric stiffness's
+  CHECK(nw.negative == checkStability(b.p, b.env, b.s, b.ws).negative);
+  NewtonWorkspace dense;
+  assembleStiffness(b.p, b.env, b.opt, b.s, b.ws, dense, 0);
+  const int N = dense.lu.size();
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(N, N);
+  for (int j = 0; j < N; ++j)
+    for (int i = 0; i < N; ++i)
+      if (dense.lu.inBand(i, j)) K(i, j) = dense.lu.at(i, j);
+  for (const OffBandEntry& e : dense.offBand) K(e.row, e.col) += e.value;
+  const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (K + K.transpose())).eigenvalues();
+  Eigen::Index nearest = 0;
+  ev.cwiseAbs().minCoeff(&nearest);
+  INFO("eigenvalue nearest zero: Newton " << nw.lowestEigenvalue << ", dense " << ev[nearest]);
+  CHECK(nw.lowestEigenvalue == doctest::Approx(ev[nearest]).epsilon(1e-3));
+}
+
+TEST_CASE("self-contact: Newton's Jacobian, band and off-band entries, equals one-dof-at-a-time central differences on a coil in contact") {
+  test::Cantilever c(90, 1.6 * 2 * units::pi * 4e-4, 1e-6);
+  c.opt.speedTol = 1e-7;
+  c.s.kappa0.row(0).setConstant(1.0 / 4e-4);
+  c.s.kappa0.row(2).setConstant(0.01 / 4e-4);
+  c.relax();
+  NewtonWorkspace nw;
+  assembleStiffness(c.p, c.env, c.opt, c.s, c.ws, nw, 0);
+  REQUIRE(!nw.offBand.empty());
+  const int n = c.s.elements(), b0 = 1;  // clamped: node 0 is not free
+  const int N = 3 * (2 * n + 1 - b0);
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(N, N);
+  for (int j = 0; j < N; ++j)
+    for (int i = 0; i < N; ++i)
+      if (nw.lu.inBand(i, j)) K(i, j) = nw.lu.at(i, j);
+  for (const OffBandEntry& e : nw.offBand) K(e.row, e.col) += e.value;
+  const double lbar = c.s.restLength() / n, h = 1e-6 * lbar;
+  auto forces = [&](const RodState& st) {
+    computeForces(c.p, c.env, st, false, c.ws);
+    Eigen::VectorXd f(N);
+    for (int b = b0; b <= 2 * n; ++b)
+      for (int comp = 0; comp < 3; ++comp)
+        f[3 * (b - b0) + comp] = b % 2 == 0 ? c.ws.force(comp, b / 2) : c.ws.torque(comp, b / 2) / lbar;
+    return f;
+  };
+  Eigen::MatrixXd ref(N, N);
+  for (int cb = b0; cb <= 2 * n; ++cb)
+    for (int cc = 0; cc < 3; ++cc) {
+      RodState plus = c.s, minus = c.s;
+      Vec3 u = Vec3::Zero();
+      u[cc] = h;
+      if (cb % 2 == 0) {
+        plus.x.col(cb / 2) += u;
+        minus.x.col(cb / 2) -= u;
+      } else {
+        rotateInPlace(-u / lbar, plus.Q[static_cast<size_t>(cb / 2)]);
+        rotateInPlace(u / lbar, minus.Q[static_cast<size_t>(cb / 2)]);
+      }
+      ref.col(3 * (cb - b0) + cc) = -(forces(plus) - forces(minus)) / (2 * h);
+    }
+  // the far (off-band) couplings are there and right, and nothing is lost anywhere else
+  double farRef = 0;
+  for (const OffBandEntry& e : nw.offBand) farRef = std::max(farRef, std::abs(ref(e.row, e.col)));
+  INFO("largest entry " << ref.cwiseAbs().maxCoeff() << ", largest off-band entry " << farRef
+                        << ", largest difference " << (K - ref).cwiseAbs().maxCoeff());
+  CHECK(farRef > 1e-3 * ref.cwiseAbs().maxCoeff());
+  CHECK((K - ref).cwiseAbs().maxCoeff() <= 1e-6 * ref.cwiseAbs().maxCoeff());
 }

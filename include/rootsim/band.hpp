@@ -4,6 +4,7 @@
 // band matrix of half-bandwidth ~14. Storage is allocated by reserve() and reused: factorising and
 // solving allocate nothing.
 #include <Eigen/Core>
+#include <memory>
 #include <vector>
 
 namespace rootsim {
@@ -50,6 +51,40 @@ class BandLDLT {
  private:
   int n_ = 0, k_ = 0;
   std::vector<double> a_;  // column j holds A(j..j+k, j); after factorize(): D on the diagonal, L below
+};
+
+// an entry of a band matrix outside its band
+struct OffBandEntry {
+  int row = 0, col = 0;
+  double value = 0;
+};
+
+// a band matrix plus a few off-band entries (self-contact couples nodes far apart along the rod: MODEL.md
+// section 12), factorised as a sparse matrix: LU with COLAMD ordering (Eigen's SparseLU) for the Newton
+// step, and LDL^T of its symmetric part with AMD ordering (Eigen's SimplicialLDLT, no pivoting: the
+// negative pivots count the negative eigenvalues, as BandLDLT's) for the stability check. Each symbolic
+// analysis is reused while the sparsity pattern stays the same (the whole band is structurally nonzero,
+// so the pattern changes only with the size and the contacts). Unlike the band classes this allocates
+// while assembling and factorising: it serves only the steps with self-contact. A copy starts empty.
+class SparseStiffness {
+ public:
+  SparseStiffness();
+  ~SparseStiffness();
+  SparseStiffness(const SparseStiffness&);
+  SparseStiffness& operator=(const SparseStiffness&);
+  // A = band (not yet factorised) + extra (entries at the same place are summed)
+  void assemble(const BandLU& band, const std::vector<OffBandEntry>& extra);
+  int size() const;
+  bool factorizeLU();          // false when singular
+  void solveLU(double* b) const;
+  bool factorizeSymmetric();   // LDL^T of (A + A^T) / 2; false when a pivot is zero or not finite
+  int negativePivots(double relTol) const;  // as BandLDLT::negativePivots
+  void solveSymmetric(double* b) const;
+  long luAnalyses() const;     // symbolic analyses done so far (tests and benchmarks)
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
 };
 
 }  // namespace rootsim

@@ -22,6 +22,13 @@
 
 namespace rootsim {
 
+// the stiffness of one self-contact pair, K = -dF/dx over the 12 coordinates of its four nodes
+// (i, i+1, j, j+1 in that order) [N/m]
+struct PairStiffness {
+  int i = 0, j = 0;
+  Eigen::Matrix<double, 12, 12> K;
+};
+
 // scratch memory of the contact pieces, sized once per element count (resize) so that a force
 // evaluation allocates nothing
 struct ContactWorkspace {
@@ -43,6 +50,7 @@ struct ContactWorkspace {
   long builds = 0;                        // how often the list was built (for tests and benchmarks)
   std::vector<std::uint8_t> contactNode;  // markSelfContactNodes: 1 for nodes of pairs in contact (n+1)
   std::vector<std::uint8_t> elementFlag;  // scratch of countContacts (n)
+  std::vector<PairStiffness> stiffness;   // selfContactStiffness: one per pair in contact (grows once)
 
   void resize(int n);
   void invalidate() { builtElements = -1; }
@@ -58,6 +66,13 @@ void addObstacleContact(const RodParams& p, const Environment& env, const RodSta
 void addSelfContact(const RodParams& p, const Environment& env, const RodState& s, bool damping,
                     ContactWorkspace& cw, Eigen::Matrix3Xd& force);
 inline constexpr double kSelfExclusionRadii = 3.0;
+
+// the stiffness of every self-contact pair in contact (gap < 0) into cw.stiffness, by central differences
+// of the pair's force with step h [m] (the closest points and the normal move with the nodes). The Newton
+// solver takes the rest of its Jacobian from coloured differences without self-contact: a coloured pass
+// would read a far partner's response into the rows of its own colour's blocks.
+void selfContactStiffness(const RodParams& p, const Environment& env, const RodState& s, double h,
+                          ContactWorkspace& cw);
 
 // Coulomb friction on the plate and on obstacles from the committed stick points (needs the obstacle
 // normal forces of addObstacleContact in cw); adhered nodes are excluded

@@ -113,12 +113,17 @@ void addWeight(const RodParams& p, const Vec3& gravity, const RodState& s, Eigen
 // dead force on the last node, lab-fixed couple on the last element
 void addTipLoads(const Environment& env, const RodState& s, Eigen::Matrix3Xd& force, Eigen::Matrix3Xd& torque);
 
+// which outside forces to add: all, or all but self-contact (the Newton solver's coloured Jacobian
+// passes, which take the self-contact stiffness pair by pair: relax_newton.cpp)
+enum class ForcePieces { All, NoSelfContact };
+
 // all of the above that env switches on, the contact pieces of contact.hpp (obstacles, self-contact,
 // friction; cw is their scratch memory, sized by ContactWorkspace::resize) and the clamp's couple on
 // element 0, in this order
 void addExternalForces(const RodParams& p, const Environment& env, const RodState& s,
                        const RodStrains& k, bool planeDamping, ContactWorkspace& cw,
-                       Eigen::Matrix3Xd& force, Eigen::Matrix3Xd& torque, int first = 0);
+                       Eigen::Matrix3Xd& force, Eigen::Matrix3Xd& torque, int first = 0,
+                       ForcePieces pieces = ForcePieces::All);
 
 // normal force of the plate on each node (n+1) [N]: addPlaneContact without its
 // damping, each element's force shared by its two nodes; zeros without a plate

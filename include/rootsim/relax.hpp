@@ -125,6 +125,11 @@ class DynamicRelaxation {
 struct NewtonWorkspace {
   BandLU lu;                      // the Jacobian over the free dofs and its LU factors
   BandLDLT ldlt;                  // its symmetric part at the converged state, LDL^T factors
+  // self-contact's couplings of nodes far apart along the rod (off the band), and with them the whole
+  // Jacobian as a sparse matrix (used instead of lu / ldlt while offBand is not empty)
+  std::vector<OffBandEntry> offBand;
+  SparseStiffness sparse;
+  bool sparseActive = false;
   std::vector<double> r, r0, delta, mode;  // scaled residual, base residual, Newton step, inverse iterate
   std::vector<Vec3> save;         // node positions (by block index) saved across a trial step
   std::vector<Mat3> saveQ;        // directors saved across a trial step
@@ -164,8 +169,8 @@ RelaxResult relax(const RodParams& p, const Environment& env, const SolverOption
 
 // evaluates all forces of state s into ws.force / ws.torque (used by both solvers, the stability check
 // and tests); first > 0: exact only on the nodes and elements after `first` (rod.hpp), for the Newton
-// solver's window
+// solver's window; pieces: ForcePieces::NoSelfContact leaves self-contact out (environment.hpp)
 void computeForces(const RodParams& p, const Environment& env, const RodState& s, bool planeDamping,
-                   RelaxWorkspace& ws, int first = 0);
+                   RelaxWorkspace& ws, int first = 0, ForcePieces pieces = ForcePieces::All);
 
 }  // namespace rootsim

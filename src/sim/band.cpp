@@ -1,5 +1,10 @@
 #include "rootsim/band.hpp"
 
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+
 #include <algorithm>
 #include <cmath>
 #include <utility>
@@ -125,5 +130,97 @@ void BandLDLT::solve(double* b) const {
     for (int i = j + 1; i <= iMax; ++i) b[j] -= a[(i - j) + static_cast<size_t>(j) * K] * b[i];
   }
 }
+
+struct SparseStiffness::Impl {
+  using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
+  Matrix a, sym;
+  std::vector<Eigen::Triplet<double, int>> triplets;
+  Eigen::SparseLU<Matrix, Eigen::COLAMDOrdering<int>> lu;
+  Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
+  // the patterns the symbolic analyses were made for (column starts, row indices)
+  std::vector<int> luOuter, luInner, symOuter, symInner;
+  long luAnalyses = 0;
+
+  // true (and the pattern remembered) when m's pattern differs from the one saved
+  static bool patternChanged(const Matrix& m, std::vector<int>& outer, std::vector<int>& inner) {
+    const int cols = static_cast<int>(m.outerSize());
+    const int nnz = static_cast<int>(m.nonZeros());
+    const bool same = static_cast<int>(outer.size()) == cols + 1 && static_cast<int>(inner.size()) == nnz &&
+                      std::equal(outer.begin(), outer.end(), m.outerIndexPtr()) &&
+                      std::equal(inner.begin(), inner.end(), m.innerIndexPtr());
+    if (same) return false;
+    outer.assign(m.outerIndexPtr(), m.outerIndexPtr() + cols + 1);
+    inner.assign(m.innerIndexPtr(), m.innerIndexPtr() + nnz);
+    return true;
+  }
+};
+
+SparseStiffness::SparseStiffness() : impl_(std::make_unique<Impl>()) {}
+SparseStiffness::~SparseStiffness() = default;
+SparseStiffness::SparseStiffness(const SparseStiffness&) : impl_(std::make_unique<Impl>()) {}
+SparseStiffness& SparseStiffness::operator=(const SparseStiffness& o) {
+  if (this != &o) impl_ = std::make_unique<Impl>();
+  return *this;
+}
+
+void SparseStiffness::assemble(const BandLU& band, const std::vector<OffBandEntry>& extra) {
+  Impl& m = *impl_;
+  const int n = band.size(), kl = band.kl(), ku = band.ku();
+  m.triplets.clear();
+  for (int j = 0; j < n; ++j)
+    for (int i = std::max(0, j - ku); i <= std::min(n - 1, j + kl); ++i) m.triplets.emplace_back(i, j, band.at(i, j));
+  for (const OffBandEntry& e : extra) {
+    ROOTSIM_ASSERT(e.row >= 0 && e.row < n && e.col >= 0 && e.col < n && !band.inBand(e.row, e.col),
+                   "an off-band entry inside the matrix");
+    m.triplets.emplace_back(e.row, e.col, e.value);
+  }
+  m.a.resize(n, n);
+  m.a.setFromTriplets(m.triplets.begin(), m.triplets.end());  // sums duplicates, sorted and compressed
+}
+
+int SparseStiffness::size() const { return static_cast<int>(impl_->a.rows()); }
+
+bool SparseStiffness::factorizeLU() {
+  Impl& m = *impl_;
+  if (Impl::patternChanged(m.a, m.luOuter, m.luInner)) {
+    m.lu.analyzePattern(m.a);
+    ++m.luAnalyses;
+  }
+  m.lu.factorize(m.a);
+  return m.lu.info() == Eigen::Success;
+}
+
+void SparseStiffness::solveLU(double* b) const {
+  Eigen::Map<Eigen::VectorXd> x(b, size());
+  x = impl_->lu.solve(x).eval();
+}
+
+bool SparseStiffness::factorizeSymmetric() {
+  Impl& m = *impl_;
+  m.sym = Impl::Matrix(m.a.transpose());
+  m.sym = 0.5 * (m.sym + m.a);
+  if (Impl::patternChanged(m.sym, m.symOuter, m.symInner)) m.ldlt.analyzePattern(m.sym);
+  m.ldlt.factorize(m.sym);
+  if (m.ldlt.info() != Eigen::Success) return false;
+  const auto& d = m.ldlt.vectorD();
+  for (Eigen::Index i = 0; i < d.size(); ++i)
+    if (d[i] == 0.0 || !std::isfinite(d[i])) return false;
+  return true;
+}
+
+int SparseStiffness::negativePivots(double relTol) const {
+  const auto& d = impl_->ldlt.vectorD();
+  const double big = d.cwiseAbs().maxCoeff();
+  int neg = 0;
+  for (Eigen::Index i = 0; i < d.size(); ++i) neg += d[i] < -relTol * big;
+  return neg;
+}
+
+void SparseStiffness::solveSymmetric(double* b) const {
+  Eigen::Map<Eigen::VectorXd> x(b, size());
+  x = impl_->ldlt.solve(x).eval();
+}
+
+long SparseStiffness::luAnalyses() const { return impl_->luAnalyses; }
 
 }  // namespace rootsim

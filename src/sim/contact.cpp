@@ -305,35 +305,94 @@ void addObstacleContact(const RodParams& p, const Environment& env, const RodSta
   });
 }
 
+namespace {
+// the elastic contact of one element pair (nodes a0-a1 against b0-b1): closest-point weights, the
+// normal (from b towards a) and fn = k (2R - distance); false when the capsules do not overlap
+struct PairContact {
+  double sa = 0, sb = 0, fn = 0;
+  Vec3 nrm = Vec3::Zero();
+};
+bool pairContact(double R, double k, const Vec3& up, const Vec3& a0, const Vec3& a1, const Vec3& b0,
+                 const Vec3& b1, PairContact& pc) {
+  closestSegmentPoints(a0, a1, b0, b1, pc.sa, pc.sb);
+  const Vec3 d = (a0 + pc.sa * (a1 - a0)) - (b0 + pc.sb * (b1 - b0));
+  const double dist = d.norm(), contact = 2.0 * R;
+  if (dist >= contact) return false;
+  // centrelines crossing exactly: separate along the normal of both tangents, away from the plate
+  if (dist > 1e-9 * R) {
+    pc.nrm = d / dist;
+  } else {
+    pc.nrm = (a1 - a0).cross(b1 - b0);
+    if (pc.nrm.squaredNorm() == 0.0) pc.nrm = up;
+    pc.nrm.normalize();
+    if (pc.nrm.dot(up) < 0.0) pc.nrm = -pc.nrm;
+  }
+  pc.fn = k * (contact - dist);
+  return true;
+}
+}  // namespace
+
 void addSelfContact(const RodParams& p, const Environment& env, const RodState& s, bool damping,
                     ContactWorkspace& cw, Eigen::Matrix3Xd& force) {
   if (static_cast<int>(cw.bucketOf.size()) != s.elements()) cw.resize(s.elements());
   updatePairs(p, s, cw);
-  const double contact = 2.0 * p.radius, k = env.selfContact.k, c = env.plane.c;
+  const double k = env.selfContact.k, c = env.plane.c;
+  const Vec3 up = env.plane.normal();
+  PairContact g;
   for (const auto& [i, j] : cw.pairs) {
-    const PairGeometry g = pairGeometry(s, i, j);
-    if (g.dist >= contact) continue;
-    // centrelines crossing exactly: separate along the normal of both tangents, away from the plate
-    Vec3 nrm;
-    if (g.dist > 1e-9 * p.radius) {
-      nrm = g.d / g.dist;
-    } else {
-      nrm = (s.x.col(i + 1) - s.x.col(i)).cross(s.x.col(j + 1) - s.x.col(j));
-      if (nrm.squaredNorm() == 0.0) nrm = env.plane.normal();
-      nrm.normalize();
-      if (nrm.dot(env.plane.normal()) < 0.0) nrm = -nrm;
-    }
-    double fn = k * (contact - g.dist);
+    if (!pairContact(p.radius, k, up, s.x.col(i), s.x.col(i + 1), s.x.col(j), s.x.col(j + 1), g)) continue;
+    double fn = g.fn;
     if (damping) {
       const Vec3 vi = (1.0 - g.sa) * s.v.col(i) + g.sa * s.v.col(i + 1);
       const Vec3 vj = (1.0 - g.sb) * s.v.col(j) + g.sb * s.v.col(j + 1);
-      fn -= c * (vi - vj).dot(nrm);
+      fn -= c * (vi - vj).dot(g.nrm);
     }
-    const Vec3 F = fn * nrm;
+    const Vec3 F = fn * g.nrm;
     force.col(i) += (1.0 - g.sa) * F;
     force.col(i + 1) += g.sa * F;
     force.col(j) -= (1.0 - g.sb) * F;
     force.col(j + 1) -= g.sb * F;
+  }
+}
+
+void selfContactStiffness(const RodParams& p, const Environment& env, const RodState& s, double h,
+                          ContactWorkspace& cw) {
+  cw.stiffness.clear();
+  if (!env.selfContact.enabled) return;
+  if (static_cast<int>(cw.bucketOf.size()) != s.elements()) cw.resize(s.elements());
+  updatePairs(p, s, cw);
+  const double k = env.selfContact.k;
+  const Vec3 up = env.plane.normal();
+  PairContact g;
+  for (const auto& [i, j] : cw.pairs) {
+    const std::array<int, 4> nodes{i, i + 1, j, j + 1};
+    std::array<Vec3, 4> x;
+    for (int a = 0; a < 4; ++a) x[static_cast<size_t>(a)] = s.x.col(nodes[static_cast<size_t>(a)]);
+    if (!pairContact(p.radius, k, up, x[0], x[1], x[2], x[3], g)) continue;
+    // forces on the four nodes of the pair at positions x (zero when apart)
+    auto forces = [&](Eigen::Matrix<double, 12, 1>& f) {
+      f.setZero();
+      if (!pairContact(p.radius, k, up, x[0], x[1], x[2], x[3], g)) return;
+      const Vec3 F = g.fn * g.nrm;
+      f.segment<3>(0) = (1.0 - g.sa) * F;
+      f.segment<3>(3) = g.sa * F;
+      f.segment<3>(6) = -(1.0 - g.sb) * F;
+      f.segment<3>(9) = -g.sb * F;
+    };
+    PairStiffness& ps = cw.stiffness.emplace_back();
+    ps.i = i;
+    ps.j = j;
+    Eigen::Matrix<double, 12, 1> fp, fm;
+    for (int col = 0; col < 12; ++col) {
+      double& xc = x[static_cast<size_t>(col / 3)][col % 3];
+      const double x0 = xc;
+      xc = x0 + h;
+      forces(fp);
+      xc = x0 - h;
+      forces(fm);
+      xc = x0;
+      ps.K.col(col) = -(fp - fm) / (2.0 * h);
+    }
   }
 }
 

@@ -105,12 +105,12 @@ void addTipLoads(const Environment& env, const RodState& s, Eigen::Matrix3Xd& fo
 
 void addExternalForces(const RodParams& p, const Environment& env, const RodState& s,
                        const RodStrains& k, bool planeDamping, ContactWorkspace& cw,
-                       Eigen::Matrix3Xd& force, Eigen::Matrix3Xd& torque, int first) {
+                       Eigen::Matrix3Xd& force, Eigen::Matrix3Xd& torque, int first, ForcePieces pieces) {
   // the contact pieces of contact.cpp act on the whole rod (contacts may couple any two nodes); on
   // nodes before `first` their forces are exact too
   if (env.plane.enabled) addPlaneContact(p, env.plane, s, planeDamping, force, first);
   if (!env.obstacles.empty()) addObstacleContact(p, env, s, planeDamping, cw, force);
-  if (env.selfContact.enabled) addSelfContact(p, env, s, planeDamping, cw, force);
+  if (env.selfContact.enabled && pieces == ForcePieces::All) addSelfContact(p, env, s, planeDamping, cw, force);
   if (env.friction.enabled) addFriction(p, env, s, cw, force);
   if (env.adhesion) addAdhesion(env.kAdhesion, s, force, first);
   if (env.gravity.squaredNorm() > 0.0) addWeight(p, env.gravity, s, force, first);

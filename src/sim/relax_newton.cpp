@@ -24,6 +24,7 @@
 #include <cstdlib>
 
 #include "rootsim/assert.hpp"
+#include "rootsim/contact.hpp"
 #include "rootsim/relax.hpp"
 #include "rootsim/rotation.hpp"
 
@@ -117,25 +118,22 @@ struct NewtonSolver {
   }
 
   // K = -dF/du over the free dofs into nw.lu (and, when sym, its symmetric part into nw.ldlt); the
-  // forces of the current state must be in nw.r
+  // forces of the current state must be in nw.r. With self-contact, the couplings of nodes far apart
+  // along the rod go to nw.offBand and the whole matrix to nw.sparse (nw.sparseActive).
   void jacobian(bool sym) {
     const int N = w.dofs();
     nw.lu.reset(N, kBand, kBand);
     const double h = 1e-6 * lbar;  // [m], and h / lbar [rad]
-    // self-contact couples nodes far apart along the rod: the nodes of pairs in contact are nudged one
-    // at a time (a coloured pass would read their far partners' response into the rows of its own
-    // blocks) and only their band rows are kept; the band cannot hold the off-band couplings, so with
-    // contacts K is the band part of the stiffness (Newton converges more slowly; the explicit
-    // relaxation takes over when it stalls)
-    markSelfContactNodes(p, env, s, ws.contact);
-    auto alone = [&](int b) { return Window::isNode(b) && ws.contact.contactNode[static_cast<size_t>(b / 2)] != 0; };
-    // one pass of central differences over blocks start, start + stride, ... (those alone or not)
-    auto pass = [&](int start, int stride, bool lonely, int c) {
+    // self-contact couples nodes far apart along the rod: a coloured pass would read a far partner's
+    // response into the rows of its own colour's blocks. So the passes leave self-contact out, and its
+    // stiffness is added pair by pair below (each pair's force depends on its four nodes only).
+    const ForcePieces pieces = env.selfContact.enabled ? ForcePieces::NoSelfContact : ForcePieces::All;
+    // one pass of central differences over blocks start, start + stride, ...
+    auto pass = [&](int start, int stride, int c) {
       Vec3 u = Vec3::Zero();
       u[c] = h;
       auto blocks = [&](auto&& f) {
-        for (int b = start; b <= 2 * w.n; b += stride)
-          if (alone(b) == lonely) f(b);
+        for (int b = start; b <= 2 * w.n; b += stride) f(b);
       };
       // central differences: forward differences leave an O(h) error in the stiff stretch/shear
       // entries that swamps the soft bending modes of a long rod (Newton then crawls)
@@ -144,7 +142,7 @@ struct NewtonSolver {
         else nw.saveQ[static_cast<size_t>(b / 2)] = s.Q[static_cast<size_t>(b / 2)];
         moveBlock(s, b, u, lbar);
       });
-      computeForces(p, env, s, false, ws, w.firstElement());
+      computeForces(p, env, s, false, ws, w.firstElement(), pieces);
       blocks([&](int b) {
         for (int rb = std::max(w.b0, b - kRadius); rb <= std::min(2 * w.n, b + kRadius); ++rb)
           for (int rc = 0; rc < 3; ++rc) nw.r0[static_cast<size_t>(3 * (rb - w.b0) + rc)] = scaledForce(ws, rb, rc, lbar);
@@ -154,7 +152,7 @@ struct NewtonSolver {
         else s.Q[static_cast<size_t>(b / 2)] = nw.saveQ[static_cast<size_t>(b / 2)];
         moveBlock(s, b, -u, lbar);
       });
-      computeForces(p, env, s, false, ws, w.firstElement());
+      computeForces(p, env, s, false, ws, w.firstElement(), pieces);
       blocks([&](int b) {
         const int col = 3 * (b - w.b0) + c;
         for (int rb = std::max(w.b0, b - kRadius); rb <= std::min(2 * w.n, b + kRadius); ++rb)
@@ -170,17 +168,54 @@ struct NewtonSolver {
     for (int colour = 0; colour < kColours; ++colour) {
       const int first = w.b0 + ((colour - w.b0 % kColours) + kColours) % kColours;
       if (first > 2 * w.n) continue;
-      for (int c = 0; c < 3; ++c) pass(first, kColours, false, c);
+      for (int c = 0; c < 3; ++c) pass(first, kColours, c);
     }
-    for (int b = w.b0; b <= 2 * w.n; ++b)
-      if (alone(b))
-        for (int c = 0; c < 3; ++c) pass(b, 2 * w.n + 1, true, c);
-    if (sym) {
+    // self-contact: each pair's 12 x 12 stiffness (node translations only: scaled units are SI there),
+    // inside the band where the nodes are close enough, off it otherwise
+    nw.offBand.clear();
+    if (env.selfContact.enabled) {
+      selfContactStiffness(p, env, s, h, ws.contact);
+      for (const PairStiffness& ps : ws.contact.stiffness) {
+        const int nodes[4] = {ps.i, ps.i + 1, ps.j, ps.j + 1};
+        for (int a = 0; a < 4; ++a)
+          for (int bn = 0; bn < 4; ++bn) {
+            const int rb = 2 * nodes[a], cb = 2 * nodes[bn];
+            if (rb < w.b0 || cb < w.b0) continue;  // frozen
+            for (int rc = 0; rc < 3; ++rc)
+              for (int cc = 0; cc < 3; ++cc) {
+                const double k = ps.K(3 * a + rc, 3 * bn + cc);
+                if (k == 0.0) continue;
+                const int row = 3 * (rb - w.b0) + rc, col = 3 * (cb - w.b0) + cc;
+                if (nw.lu.inBand(row, col)) nw.lu.add(row, col, k);
+                else nw.offBand.push_back({row, col, k});
+              }
+          }
+      }
+    }
+    nw.sparseActive = !nw.offBand.empty();
+    if (nw.sparseActive) {
+      nw.sparse.assemble(nw.lu, nw.offBand);  // keeps its own copy: the symmetric part is taken from it
+    } else if (sym) {
       nw.ldlt.reset(N, kBand);
       for (int j = 0; j < N; ++j)
         for (int i = j; i <= std::min(N - 1, j + kBand); ++i)
           nw.ldlt.addLower(i, j, 0.5 * (nw.lu.at(i, j) + nw.lu.at(j, i)));
     }
+  }
+
+  // the factorisations and solves of the last jacobian(): band, or sparse with self-contact
+  bool factorize() { return nw.sparseActive ? nw.sparse.factorizeLU() : nw.lu.factorize(); }
+  void solve(double* b) const {
+    if (nw.sparseActive) nw.sparse.solveLU(b);
+    else nw.lu.solve(b);
+  }
+  bool factorizeSymmetric() { return nw.sparseActive ? nw.sparse.factorizeSymmetric() : nw.ldlt.factorize(); }
+  int negativePivots(double relTol) const {
+    return nw.sparseActive ? nw.sparse.negativePivots(relTol) : nw.ldlt.negativePivots(relTol);
+  }
+  void solveSymmetric(double* b) const {
+    if (nw.sparseActive) nw.sparse.solveSymmetric(b);
+    else nw.ldlt.solve(b);
   }
 
   void saveState() {
@@ -256,13 +291,13 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
     // Jacobian per growth step. (Reusing one factorisation over several iterations, simplified Newton,
     // was measured: 9 % faster on fig2b, but its stale Jacobian misjudged stability after large steps.)
     ns.jacobian(opt.stabilityCheck);
-    if (!nw.lu.factorize()) {
+    if (!ns.factorize()) {
       std::ostringstream os;
       os << "Newton solver: singular stiffness at iteration " << res.iterations << " (" << N << " unknowns)";
       throw RelaxError(os.str());
     }
     std::copy(nw.r.begin(), nw.r.begin() + N, nw.delta.begin());
-    nw.lu.solve(nw.delta.data());
+    ns.solve(nw.delta.data());
     // Damped Newton with Deuflhard's natural monotonicity test: a step a*delta is accepted when the
     // simplified Newton correction there, |K^-1 F(u + a delta)|, is smaller than |delta| by (1 - a/4).
     // This measures the residual in the solver's own metric; a plain |F|^2 test rejects good steps,
@@ -278,7 +313,7 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
       ns.applyStep(a);
       ns.residual();
       std::copy(nw.r.begin(), nw.r.begin() + N, nw.r0.begin());
-      nw.lu.solve(nw.r0.data());
+      ns.solve(nw.r0.data());
       double norm1 = 0;
       for (int i = 0; i < N; ++i) norm1 += nw.r0[static_cast<size_t>(i)] * nw.r0[static_cast<size_t>(i)];
       norm1 = std::sqrt(norm1);
@@ -302,8 +337,8 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
   // stability from the factorisation of the converged state's stiffness
   if (opt.stabilityCheck) {
     if (res.iterations == 0) ns.jacobian(true);  // already in equilibrium: no Jacobian of this state yet
-    const bool factorised = nw.ldlt.factorize();
-    nw.negative = factorised ? nw.ldlt.negativePivots(1e-10) : 1;
+    const bool factorised = ns.factorizeSymmetric();
+    nw.negative = factorised ? ns.negativePivots(1e-10) : 1;
     // eigenvalue nearest zero (the lowest while stable) and its mode: inverse iteration
     // (warm start from the last growth step's mode when the unknowns are the same: a few iterations
     // then suffice; otherwise a deterministic start and more iterations)
@@ -320,7 +355,7 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
         norm = std::sqrt(norm);
         for (int i = 0; i < N; ++i) v[i] /= norm;
         std::copy(v, v + N, nw.delta.begin());
-        nw.ldlt.solve(v);
+        ns.solveSymmetric(v);
         double dot = 0;
         for (int i = 0; i < N; ++i) dot += v[i] * nw.delta[static_cast<size_t>(i)];
         lambda = dot != 0.0 ? 1.0 / dot : 0.0;  // Rayleigh-like estimate from v_old . K^-1 v_old

@@ -116,4 +116,17 @@ void markSelfContactNodes(const RodParams& p, const Environment& env, const RodS
 void closestSegmentPoints(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, double& sa,
                           double& sb);
 
+// where contact forces act between two segments (self-contact, obstacle walls): the closest points,
+// except for nearly parallel segments (sin^2 of their angle below kParallelSin2), whose closest points
+// jump from one end of their overlap to the other as they pass through parallel. There the point on a
+// blends smoothly (smoothstep in sin^2) into the middle of a's part facing b, and the point on b is its
+// projection. The force then acts along the line between the two points (no net moment) and is a
+// continuous function of the nodes, so that a static equilibrium exists where turns of a coil lie side
+// by side (with the closest points the residual jumps there and neither solver settles; MODEL.md section
+// 11 names the closest points, this is the deviation). The distance between the points is at least the
+// closest distance.
+void contactSegmentPoints(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, double& sa,
+                          double& sb);
+inline constexpr double kParallelSin2 = 0.030153689607045803;  // sin^2(10 degrees)
+
 }  // namespace rootsim

@@ -109,7 +109,7 @@ void forEachObstacleContact(const RodParams& p, const Environment& env, const Ro
       const Vec3 a0 = s.x.col(i) - s.x.col(i).dot(nh) * nh;
       const Vec3 a1 = s.x.col(i + 1) - s.x.col(i + 1).dot(nh) * nh;
       double sa = 0, sb = 0;
-      closestSegmentPoints(a0, a1, b0, b1, sa, sb);
+      contactSegmentPoints(a0, a1, b0, b1, sa, sb);
       const Vec3 d = (a0 + sa * (a1 - a0)) - (b0 + sb * (b1 - b0));
       const double dist = d.norm();
       const double gap = dist - p.radius - o.radius;
@@ -268,6 +268,24 @@ void closestSegmentPoints(const Vec3& a0, const Vec3& a1, const Vec3& b0, const 
   else if (sb > 1.0) { sb = 1.0; sa = clamp01((b - c) / a); }
 }
 
+void contactSegmentPoints(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, double& sa,
+                          double& sb) {
+  closestSegmentPoints(a0, a1, b0, b1, sa, sb);
+  const Vec3 d1 = a1 - a0, d2 = b1 - b0, r = a0 - b0;
+  const double a = d1.squaredNorm(), e = d2.squaredNorm();
+  if (a <= 0.0 || e <= 0.0) return;
+  const double b = d1.dot(d2), c = d1.dot(r);
+  const double sin2 = std::max(0.0, (a * e - b * b) / (a * e));
+  if (sin2 >= kParallelSin2) return;
+  // nearly parallel: the closest points jump from one end of the overlap to the other as the segments
+  // pass through parallel (the distance does not): blend towards the middle of a's part facing b, so
+  // that the point, and the force applied there, are continuous functions of the nodes
+  const double t = sin2 / kParallelSin2, w = t * t * (3.0 - 2.0 * t);
+  const double lo = clamp01(-c / a), hi = clamp01((b - c) / a);
+  sa = w * sa + (1.0 - w) * 0.5 * (lo + hi);
+  sb = clamp01((a0 + sa * d1 - b0).dot(d2) / e);
+}
+
 void ContactWorkspace::resize(int n) {
   obstacleN.resize(n + 1);
   obstacleNormal.resize(3, n + 1);
@@ -314,7 +332,7 @@ struct PairContact {
 };
 bool pairContact(double R, double k, const Vec3& up, const Vec3& a0, const Vec3& a1, const Vec3& b0,
                  const Vec3& b1, PairContact& pc) {
-  closestSegmentPoints(a0, a1, b0, b1, pc.sa, pc.sb);
+  contactSegmentPoints(a0, a1, b0, b1, pc.sa, pc.sb);
   const Vec3 d = (a0 + pc.sa * (a1 - a0)) - (b0 + pc.sb * (b1 - b0));
   const double dist = d.norm(), contact = 2.0 * R;
   if (dist >= contact) return false;

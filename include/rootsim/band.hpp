@@ -72,8 +72,11 @@ class SparseStiffness {
   ~SparseStiffness();
   SparseStiffness(const SparseStiffness&);
   SparseStiffness& operator=(const SparseStiffness&);
-  // A = band (not yet factorised) + extra (entries at the same place are summed)
+  // A = band (not yet factorised) + extra (entries at the same place are summed). The pattern keeps the
+  // off-band places of earlier calls (as zeros) until resetPattern() or a change of size, so that one
+  // symbolic analysis serves a whole relaxation while contacts come and go.
   void assemble(const BandLU& band, const std::vector<OffBandEntry>& extra);
+  void resetPattern();
   int size() const;
   bool factorizeLU();          // false when singular
   void solveLU(double* b) const;

@@ -140,6 +140,10 @@ struct SparseStiffness::Impl {
   // the patterns the symbolic analyses were made for (column starts, row indices)
   std::vector<int> luOuter, luInner, symOuter, symInner;
   long luAnalyses = 0;
+  // off-band places seen since resetPattern(), kept (as zeros when absent) so that the pattern, and
+  // with it the symbolic analysis, stays the same over the iterations of one relaxation
+  std::vector<std::pair<int, int>> structural;  // (col, row), sorted
+  int structuralSize = -1;
 
   // true (and the pattern remembered) when m's pattern differs from the one saved
   static bool patternChanged(const Matrix& m, std::vector<int>& outer, std::vector<int>& inner) {
@@ -166,16 +170,49 @@ SparseStiffness& SparseStiffness::operator=(const SparseStiffness& o) {
 void SparseStiffness::assemble(const BandLU& band, const std::vector<OffBandEntry>& extra) {
   Impl& m = *impl_;
   const int n = band.size(), kl = band.kl(), ku = band.ku();
-  m.triplets.clear();
-  for (int j = 0; j < n; ++j)
-    for (int i = std::max(0, j - ku); i <= std::min(n - 1, j + kl); ++i) m.triplets.emplace_back(i, j, band.at(i, j));
+  bool changed = m.structuralSize != n || m.a.rows() != n;
+  if (m.structuralSize != n) {
+    m.structural.clear();
+    m.structuralSize = n;
+  }
   for (const OffBandEntry& e : extra) {
     ROOTSIM_ASSERT(e.row >= 0 && e.row < n && e.col >= 0 && e.col < n && !band.inBand(e.row, e.col),
                    "an off-band entry inside the matrix");
-    m.triplets.emplace_back(e.row, e.col, e.value);
+    const std::pair<int, int> place{e.col, e.row};
+    const auto it = std::lower_bound(m.structural.begin(), m.structural.end(), place);
+    if (it == m.structural.end() || *it != place) {
+      m.structural.insert(it, place);
+      changed = true;
+    }
   }
-  m.a.resize(n, n);
-  m.a.setFromTriplets(m.triplets.begin(), m.triplets.end());  // sums duplicates, sorted and compressed
+  if (changed) {
+    // the pattern: the whole band and the off-band places (built only when they change)
+    m.triplets.clear();
+    for (int j = 0; j < n; ++j)
+      for (int i = std::max(0, j - ku); i <= std::min(n - 1, j + kl); ++i) m.triplets.emplace_back(i, j, 0.0);
+    for (const auto& [col, row] : m.structural) m.triplets.emplace_back(row, col, 0.0);
+    m.a.resize(n, n);
+    m.a.setFromTriplets(m.triplets.begin(), m.triplets.end());
+  }
+  // the values: each column's band rows are contiguous in its row list
+  double* val = m.a.valuePtr();
+  const int* outer = m.a.outerIndexPtr();
+  const int* inner = m.a.innerIndexPtr();
+  std::fill(val, val + m.a.nonZeros(), 0.0);
+  for (int j = 0; j < n; ++j) {
+    const int i0 = std::max(0, j - ku), i1 = std::min(n - 1, j + kl);
+    const int k0 = static_cast<int>(std::lower_bound(inner + outer[j], inner + outer[j + 1], i0) - inner);
+    for (int i = i0; i <= i1; ++i) val[k0 + (i - i0)] = band.at(i, j);
+  }
+  for (const OffBandEntry& e : extra) {
+    const int* k = std::lower_bound(inner + outer[e.col], inner + outer[e.col + 1], e.row);
+    val[k - inner] += e.value;
+  }
+}
+
+void SparseStiffness::resetPattern() {
+  impl_->structural.clear();
+  impl_->structuralSize = -1;  // the next assemble() rebuilds the pattern
 }
 
 int SparseStiffness::size() const { return static_cast<int>(impl_->a.rows()); }

@@ -184,10 +184,9 @@ struct NewtonSolver {
             for (int rc = 0; rc < 3; ++rc)
               for (int cc = 0; cc < 3; ++cc) {
                 const double k = ps.K(3 * a + rc, 3 * bn + cc);
-                if (k == 0.0) continue;
                 const int row = 3 * (rb - w.b0) + rc, col = 3 * (cb - w.b0) + cc;
                 if (nw.lu.inBand(row, col)) nw.lu.add(row, col, k);
-                else nw.offBand.push_back({row, col, k});
+                else nw.offBand.push_back({row, col, k});  // zeros too: a pattern that changes less
               }
           }
       }
@@ -263,6 +262,7 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
   s.w.setZero();
   NewtonSolver ns{p, env, opt, s, ws, nw, windowOf(env, s, firstFreeNode)};
   ns.lbar = s.restLength() / n;
+  nw.sparse.resetPattern();  // the symbolic analysis depends on this relaxation only (same bytes on resume)
   const double B1 = p.bendStiffness().x();
   const double Lref = opt.lengthScale > 0.0 ? opt.lengthScale : s.restLength();
   ns.ftol = opt.forceTol * B1 / (Lref * Lref);

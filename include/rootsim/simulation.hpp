@@ -65,6 +65,7 @@ class Simulation {
   int windowStart() const;
   Model m_;
   RodState s_;
+  RodState start_;              // newtonOrExplain's copy of the state before Newton (scratch)
   RelaxWorkspace ws_;
   NewtonWorkspace nw_;
   int step_ = 0;

@@ -79,26 +79,37 @@ int Simulation::windowStart() const {
 }
 
 RelaxResult Simulation::newtonOrExplain(int step) {
-  try {
-    RelaxResult r = relaxNewton(m_.rod, m_.env, m_.solver, s_, ws_, nw_, windowStart());
-    if (r.stalled) {
-      // no acceptable Newton step from here (far from equilibrium, indefinite): relax explicitly, then
-      // let Newton confirm the equilibrium and check its stability
-      const RelaxResult d = relaxOrExplain(m_, s_, ws_, step);
-      const long its = r.iterations;
-      r = relaxNewton(m_.rod, m_.env, m_.solver, s_, ws_, nw_, windowStart());
-      if (!r.converged)
-        throw RelaxError("after an explicit relaxation to equilibrium, Newton still finds none: " + r.message);
-      r.iterations += its;
-      r.substeps += d.substeps;
+  auto newton = [&] {
+    try {
+      return relaxNewton(m_.rod, m_.env, m_.solver, s_, ws_, nw_, windowStart());
+    } catch (const RelaxError& e) {
+      std::ostringstream os;
+      os << "growth step " << step << " (t = " << s_.time / units::hour << " h, " << s_.elements()
+         << " elements): " << e.what();
+      throw RelaxError(os.str());
     }
-    return r;
-  } catch (const RelaxError& e) {
+  };
+  start_ = s_;  // reuses its memory while the element count stays (scratch: not part of the state)
+  RelaxResult r = newton();
+  if (!r.stalled) return r;
+  // no acceptable Newton step from here (far from equilibrium, indefinite): relax explicitly, then let
+  // Newton confirm the equilibrium and check its stability. Where Newton wandered off (a node moved
+  // more than the solver's length scale: measured 30 mm in one coiling snap, after which the explicit
+  // relaxation slid away), the explicit relaxation starts again from where Newton started.
+  const double Lref = m_.solver.lengthScale > 0.0 ? m_.solver.lengthScale : s_.restLength();
+  if ((s_.x - start_.x).colwise().norm().maxCoeff() > Lref) s_ = start_;
+  const RelaxResult d = relaxOrExplain(m_, s_, ws_, step);
+  const long its = r.iterations;
+  r = newton();
+  if (!r.converged) {
     std::ostringstream os;
     os << "growth step " << step << " (t = " << s_.time / units::hour << " h, " << s_.elements()
-       << " elements): " << e.what();
+       << " elements): after an explicit relaxation to equilibrium, Newton still finds none: " << r.message;
     throw RelaxError(os.str());
   }
+  r.iterations += its;
+  r.substeps += d.substeps;
+  return r;
 }
 
 void Simulation::commitStep() {

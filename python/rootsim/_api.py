@@ -219,7 +219,9 @@ class Run:
 
     @cached_property
     def scene(self) -> Scene:
-        return Scene.load(self.dir / "scene.toml")
+        # the resolved scene.toml, named as the run's scene (a file named scene.toml would be "scene")
+        text = (self.dir / "scene.toml").read_text(encoding="utf-8")
+        return Scene.from_toml(text, name=self.summary.get("scene", "scene"))
 
     def render(self, **options: Any) -> List[pathlib.Path]:
         """``rootsim.render(self.dir, **options)``."""

@@ -72,10 +72,12 @@ class Scene:
     tropism.beta?)`` or ``--set plane.alpha_deg=120: plane.alpha_deg must be in [0, 90] (got 120)``.
     """
 
-    def __init__(self, _scene: Any, _path: Optional[str], _text: Optional[str], _overrides: List[str]):
+    def __init__(self, _scene: Any, _path: Optional[str], _text: Optional[str], _overrides: List[str],
+                 _source: str = ""):
         self._scene = _scene
         self._path = _path
-        self._text = _text
+        self._text = _text  # for a scene from text: the text and the name it was given
+        self._source = _source
         self._overrides = list(_overrides)
 
     @classmethod
@@ -89,12 +91,12 @@ class Scene:
     def from_toml(cls, text: str, name: str = "scene", set: Optional[Mapping[str, Value]] = None) -> "Scene":
         """A scene from TOML text; ``name`` plays the file's part in messages and names the run."""
         ov = _overrides(set)
-        return cls(_c.parse_scene(text, name, ov), None, text, ov)
+        return cls(_c.parse_scene(text, name, ov), None, text, ov, name)
 
     def _parse(self, overrides: List[str]) -> Any:
         if self._path is not None:
             return _c.load_scene(self._path, overrides)
-        return _c.parse_scene(self._text, self._scene.path or self.name, overrides)
+        return _c.parse_scene(self._text, self._source, overrides)
 
     def set(self, key: str, value: Value) -> "Scene":
         """Overrides one key (validated now, as ``--set key=value``); returns the scene itself."""
@@ -104,7 +106,7 @@ class Scene:
         return self
 
     def copy(self) -> "Scene":
-        return Scene(self._scene, self._path, self._text, self._overrides)
+        return Scene(self._scene, self._path, self._text, self._overrides, self._source)
 
     def to_toml(self) -> str:
         """Every key with its value, defaults filled in: the scene.toml a run directory holds."""
@@ -257,7 +259,8 @@ def run(scene_or_path: Union[Scene, PathLike], set: Optional[Mapping[str, Value]
         is replaced only with ``force=True`` (never a folder rootsim did not write). ``None``: a temporary
         directory, deleted when the returned Run is garbage-collected (``run.dir`` tells where it is).
     progress: called as ``progress(step, total)`` after every growth step (from the calling thread).
-        An exception it raises stops the run and propagates; the directory stays ``OUT.partial/``.
+        An exception it raises stops the run and propagates; the directory stays ``OUT.partial/``
+        (with ``out=None`` the temporary directory is removed: nothing is kept).
 
     Returns a ``Run`` (``timeseries``, ``shape``, ``frames``, ``summary``, ``result``, ``dir``).
     Raises SceneError (ValueError) for a bad scene, key, value or output path, before anything is
@@ -510,7 +513,8 @@ class Simulation:
     ``set("tropism.beta", 0.4)`` changes a tropism key between steps.
 
     A run's time series holds the rows of steps 0, every ``output.every_steps`` and the last; stepping
-    the same scene gives the same numbers.
+    the same scene gives the same numbers. One thread at a time per Simulation (separate Simulations
+    can step in separate threads: the GIL is released while they compute).
     """
 
     def __init__(self, scene: Union[Scene, PathLike], set: Optional[Mapping[str, Value]] = None):

@@ -398,6 +398,8 @@ def sweep(sweep_file: Optional[PathLike] = None, *, scene: Union[Scene, PathLike
         raise TypeError("sweep: scene= needs grid= (a dict of key -> list of values)")
     if sweep_file is not None and (grid is not None or set is not None):
         raise TypeError("sweep: grid= and set= go with scene=; a sweep file has its own [grid] and [set]")
+    if int(jobs) < 1:
+        raise SceneError(f"jobs={jobs}: expected at least 1 parallel run")
     k, n = (1, 1) if shard is None else _c.parse_shard(shard)
     keep = None
     if sweep_file is None:

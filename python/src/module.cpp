@@ -335,7 +335,11 @@ class SweepRunner {
     cancel_ = true;
     join();
   }
-  py::dict summary() const {
+  py::dict summary() {
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      if (!finished_) throw std::runtime_error("the sweep is still running: its summary comes when it is over");
+    }
     py::dict d;
     d["ran"] = result_.ran;
     d["skipped"] = result_.skipped;

@@ -273,6 +273,8 @@ def run(scene_or_path: Union[Scene, PathLike], set: Optional[Mapping[str, Value]
     >>> r = rootsim.run("scenes/fig2a_alpha40.toml", set={"growth.steps": 100})
     >>> r.summary["pattern"], r.timeseries["theta_tip_deg"][-1]
     """
+    if progress is not None and not callable(progress):
+        raise TypeError(f"progress: expected a callable progress(step, total) (got {type(progress).__name__})")
     scene = _scene_of(scene_or_path, set)
     tmp = None
     if out is None:

@@ -8,7 +8,7 @@ import os
 import pathlib
 import re
 import tempfile
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from functools import cached_property
 from typing import Any, Callable, Dict, Iterator, List, Mapping, Optional, Sequence, Union
 
@@ -308,7 +308,7 @@ class SweepPoint:
     error: Optional[str]
     skipped: bool
     wall_s: float
-    _tmp: Any = None
+    _tmp: Any = field(default=None, repr=False, compare=False)  # keeps a temporary sweep folder alive
 
     @property
     def ok(self) -> bool:

@@ -270,8 +270,10 @@ def run(scene_or_path: Union[Scene, PathLike], set: Optional[Mapping[str, Value]
 
     The GIL is released while simulating: several runs can go on in threads at once.
 
-    >>> r = rootsim.run("scenes/fig2a_alpha40.toml", set={"growth.steps": 100})
-    >>> r.summary["pattern"], r.timeseries["theta_tip_deg"][-1]
+    Example::
+
+        r = rootsim.run("scenes/fig2a_alpha40.toml", set={"growth.steps": 100})
+        r.summary["pattern"], r.timeseries["theta_tip_deg"][-1]
     """
     if progress is not None and not callable(progress):
         raise TypeError(f"progress: expected a callable progress(step, total) (got {type(progress).__name__})")

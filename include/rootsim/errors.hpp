@@ -19,6 +19,13 @@ class RunError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// a run stopped on purpose between growth steps (Ctrl-C in Python, a cancelled sweep): not a failure, so
+// the run directory is left as DIR.partial/ (like a killed run), without ERROR.txt
+class RunInterrupted : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 // text from a file or the command line (a key, a value) as it may appear inside a one-line message:
 // newline, tab and other control characters escaped (as \n, \t, \x01)
 inline std::string printable(const std::string& s) {

@@ -35,6 +35,16 @@ class TimeseriesWriter {
   AtomicFile f_;
 };
 
+// a numeric CSV file of a run directory (timeseries.csv, shape.csv), column by column: the header's names
+// and every column's values, parsed with from_chars, so they are the doubles the run wrote (writers use
+// to_chars, a shortest round trip); "nan" and "inf" cells are read as such. Throws SceneError naming
+// the file and line when it is missing or malformed (a cell that is not a whole number, a short row).
+struct CsvColumns {
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> values;  // values[c][row]
+};
+CsvColumns readCsvColumns(const std::filesystem::path& path);
+
 // snapshots for `rootsim render`: trajectory.csv, one row per node and snapshot:
 // frame,step,time_h,node,x_mm,y_mm,z_mm,d1x,d1y,d1z,d3x,d3y,d3z,radius_mm,kappa0_per_mm,plate_force_n,
 // f_plate_total_n,f_self_n,f_obstacle_n

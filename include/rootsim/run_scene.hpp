@@ -10,7 +10,8 @@
 namespace rootsim {
 
 // runs one parsed scene into a run directory (what `rootsim run` does, without a movie); returns wall
-// time; throws SceneError (bad output path, before anything runs) or the run's error
+// time; throws SceneError (bad output path, before anything runs) or the run's error. progress is called
+// after every growth step; when it throws RunInterrupted the run stops there and DIR.partial stays
 double runSceneToDir(const Scene& scene, const std::string& outDir, const RunDirOptions& dirOptions,
                      const std::function<void(const StepRecord&, int total)>& progress);
 

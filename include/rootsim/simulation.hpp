@@ -46,6 +46,11 @@ class Simulation {
   // the growth step
   const StepRecord& growthStep();
 
+  // changes the tropism parameters (beta, gamma, sensing, twist, circumnutation) between growth steps:
+  // the next growthStep uses them (an experiment that changes gravity's effect half-way). The caller
+  // validates them (the scene schema's ranges); the rest of the model stays constant.
+  void setTropism(const TropismParams& t) { m_.tropism = t; }
+
   const Model& model() const { return m_; }
   const RodState& state() const { return s_; }
   const RodStrains& strains() const { return ws_.strains; }

@@ -42,15 +42,32 @@ struct SweepPlan {
 // parses and validates the sweep file (each point's scene is validated too); throws SceneError
 SweepPlan loadSweep(const std::string& path);
 
+// one point of a running sweep, reported as it finishes (SweepOptions::onPoint)
+struct SweepPointDone {
+  const SweepPoint* point = nullptr;
+  std::string dir;            // its run directory (complete unless error is set)
+  std::string error;          // "" or what failed it (the directory is then DIR.incomplete)
+  bool skipped = false;       // complete before this sweep started (resumed): not run again
+  double wallS = 0;           // wall time of the run [s] (0 when skipped or failed)
+};
+
 struct SweepOptions {
   int jobs = 1;                 // worker threads
   int shard = 1, shards = 1;    // run points with index % shards == shard - 1
   std::string out;              // sweep folder
   bool quiet = false;
+  // called for every point of this shard as it finishes (from its worker thread, one call at a time),
+  // and first for each point found complete (skipped); the Python package yields results through it
+  std::function<void(const SweepPointDone&)> onPoint;
+  // polled before each point starts and after every growth step: true stops the sweep (running points
+  // stop between growth steps and stay DIR.partial, no other point starts); the table of the points that
+  // completed is still written, and the result says interrupted
+  std::function<bool()> cancelled;
 };
 
 struct SweepResult {
   int ran = 0, skipped = 0, failed = 0;
+  bool interrupted = false;  // stopped by SweepOptions::cancelled
 };
 
 // runs the plan; progress and failures are reported through log (one line each); writes table.csv

@@ -352,4 +352,43 @@ Json theoryJson(const Theory& t) {
   return j;
 }
 
+CsvColumns readCsvColumns(const fs::path& path) {
+  std::ifstream in(path);
+  if (!in) throw SceneError(path.string() + ": cannot open (not a complete run directory?)");
+  CsvColumns t;
+  std::string line;
+  if (!std::getline(in, line) || line.empty()) throw SceneError(path.string() + ":1: no header");
+  auto cells = [](const std::string& l) {
+    std::vector<std::string> f;
+    std::stringstream ss(l);
+    std::string cell;
+    while (std::getline(ss, cell, ',')) f.push_back(cell);
+    if (!l.empty() && l.back() == ',') f.push_back("");
+    return f;
+  };
+  t.names = cells(line);
+  t.values.resize(t.names.size());
+  int lineNo = 1;
+  while (std::getline(in, line)) {
+    ++lineNo;
+    if (line.empty()) continue;
+    const std::vector<std::string> f = cells(line);
+    auto bad = [&](const std::string& why) {
+      throw SceneError(path.string() + ":" + std::to_string(lineNo) + ": " + why);
+    };
+    if (f.size() != t.names.size())
+      bad("expected " + std::to_string(t.names.size()) + " columns, found " + std::to_string(f.size()));
+    for (std::size_t c = 0; c < f.size(); ++c) {
+      double v = 0;
+      const char* b = f[c].data();
+      const char* e = b + f[c].size();
+      const auto r = std::from_chars(b, e, v);
+      if (f[c].empty() || r.ec != std::errc() || r.ptr != e)
+        bad(t.names[c] + ": expected a number (got \"" + printable(f[c]) + "\")");
+      t.values[c].push_back(v);
+    }
+  }
+  return t;
+}
+
 }  // namespace rootsim

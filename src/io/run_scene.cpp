@@ -137,6 +137,8 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     rd.write("summary.json", j.dump() + "\n");
     rd.write("result.csv", resultCsv(res));
     rd.commit();
+  } catch (const RunInterrupted&) {
+    throw;  // stopped on purpose (a progress callback threw it): DIR.partial stays, like a killed run
   } catch (const std::exception& e) {
     rd.fail(e.what());
     throw;

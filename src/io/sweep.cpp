@@ -229,31 +229,52 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
     std::string head;
     if (prev && std::getline(prev, head) && head == resultHeader(p.grows)) {
       ++res.skipped;
+      if (opt.onPoint) {
+        SweepPointDone d;
+        d.point = &p;
+        d.dir = (fs::path(opt.out) / p.dirName).string();
+        d.skipped = true;
+        opt.onPoint(d);
+      }
       continue;
     }
     pending.push_back(&p);
   }
   std::mutex mu;
   std::atomic<size_t> next{0};
+  std::atomic<bool> interrupted{false};
   const auto start = std::chrono::steady_clock::now();
   auto worker = [&]() {
     for (;;) {
+      if (opt.cancelled && opt.cancelled()) {
+        interrupted = true;
+        return;
+      }
       const size_t i = next++;
       if (i >= pending.size()) return;
       const SweepPoint& p = *pending[i];
       std::string msg;
       bool ok = true;
       double wall = 0;
+      const std::string dir = (fs::path(opt.out) / p.dirName).string();
+      std::function<void(const StepRecord&, int)> poll;
+      if (opt.cancelled)
+        poll = [&](const StepRecord& r, int) {
+          if (opt.cancelled()) throw RunInterrupted("sweep cancelled at growth step " + std::to_string(r.step));
+        };
       try {
         // a point not complete is redone: its earlier attempt (a run directory, never user files) is replaced
         RunDirOptions ro;
         ro.force = true;
-        wall = runSceneToDir(loadScene(plan.scenePath, p.overrides), (fs::path(opt.out) / p.dirName).string(), ro,
-                             nullptr);
+        wall = runSceneToDir(loadScene(plan.scenePath, p.overrides), dir, ro, poll);
+      } catch (const RunInterrupted&) {
+        interrupted = true;
+        return;
       } catch (const std::exception& e) {
         ok = false;
         msg = e.what();
       }
+      const std::string error = ok ? std::string() : msg;
       std::lock_guard<std::mutex> lock(mu);
       if (ok) {
         ++res.ran;
@@ -273,6 +294,14 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
                       el / done * (static_cast<double>(pending.size()) - done));
         log("[" + std::to_string(done) + "/" + std::to_string(pending.size()) + "] " + msg + eta);
       }
+      if (opt.onPoint) {
+        SweepPointDone d;
+        d.point = &p;
+        d.dir = dir;
+        d.error = error;
+        d.wallS = ok ? wall : 0.0;
+        opt.onPoint(d);
+      }
     }
   };
   std::vector<std::thread> pool;
@@ -280,6 +309,7 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
   for (int j = 0; j < jobs; ++j) pool.emplace_back(worker);
   for (auto& t : pool) t.join();
   writeSweepTable(plan, opt.out);
+  res.interrupted = interrupted;
   return res;
 }
 

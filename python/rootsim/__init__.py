@@ -1,0 +1,25 @@
+"""rootsim: growing plant roots as Cosserat rods (Porat et al., PNAS 2024), from Python.
+
+    import rootsim
+    r = rootsim.run("scenes/fig2a_alpha40.toml", set={"growth.steps": 100})
+    r.summary["pattern"]            # summary.json as a dict
+    r.timeseries["theta_tip_deg"]   # timeseries.csv's columns as numpy arrays (the same doubles)
+    r.frames[-1].x                  # trajectory snapshots: node positions [m], directors, radius
+
+- ``run(scene_or_path, set=..., out=..., progress=...)`` -> ``Run``; ``load_run(dir)``
+- ``Scene.load(path)``, ``scene.set(key, value)``, ``scene.to_toml()``, ``scene.check()``
+- ``sweep(...)`` yields points as they finish; ``render(run_dir, ...)`` is ``rootsim render``
+- ``Simulation(scene)``: ``step()``, ``state()`` (numpy views), ``set("tropism.beta", ...)``
+
+Errors are the command line's: ``SceneError`` (a ValueError: bad key, value, path or option; the
+message names file:line or the --set flag) and ``RunError`` (a RuntimeError: the run failed, naming
+the growth step and node). Ctrl-C raises KeyboardInterrupt between growth steps; an interrupted run
+directory stays ``DIR.partial/``. Built with the project (PYTHONPATH=build/python) for Debian's
+/usr/bin/python3.
+"""
+from ._api import (Frame, Run, RunError, Scene, SceneError, Simulation, State, Sweep, SweepPoint, load_run,
+                   render, run, sweep)
+from ._rootsim import __version__
+
+__all__ = ["Frame", "Run", "RunError", "Scene", "SceneError", "Simulation", "State", "Sweep", "SweepPoint",
+           "load_run", "render", "run", "sweep", "__version__"]

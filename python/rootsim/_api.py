@@ -1,0 +1,562 @@
+"""The user-facing API of the rootsim package (SPEC.md "Python"); the C++ work is done by _rootsim."""
+from __future__ import annotations
+
+import json
+import math
+import numbers
+import os
+import pathlib
+import re
+import tempfile
+from dataclasses import dataclass, field
+from functools import cached_property
+from typing import Any, Callable, Dict, Iterator, List, Mapping, Optional, Sequence, Union
+
+import numpy as np
+
+from . import _rootsim as _c
+
+SceneError = _c.SceneError
+RunError = _c.RunError
+SceneError.__module__ = "rootsim"
+RunError.__module__ = "rootsim"
+
+PathLike = Union[str, "os.PathLike[str]"]
+Value = Union[bool, int, float, str, Sequence[Any]]
+
+_BARE = re.compile(r"[A-Za-z0-9_.+-]+")
+
+
+def _value_text(key: str, v: Any) -> str:
+    """A Python value as the TOML text `--set key=...` takes."""
+    if isinstance(v, (bool, np.bool_)):
+        return "true" if v else "false"
+    if isinstance(v, numbers.Integral):
+        return str(int(v))
+    if isinstance(v, numbers.Real):
+        f = float(v)
+        if math.isnan(f):
+            return "nan"
+        if math.isinf(f):
+            return "inf" if f > 0 else "-inf"
+        return repr(f)  # the shortest text that reads back as the same double
+    if isinstance(v, str):
+        return v if _BARE.fullmatch(v) else json.dumps(v)  # bare words as on the command line
+    if isinstance(v, (list, tuple, np.ndarray)):
+        return "[" + ",".join(_value_text(key, x) for x in v) + "]"
+    raise TypeError(f"set[{key!r}]: expected a bool, number, string or list (got {type(v).__name__})")
+
+
+def _overrides(values: Optional[Mapping[str, Value]]) -> List[str]:
+    if values is None:
+        return []
+    if not isinstance(values, Mapping):
+        raise TypeError(f"set: expected a dict of scene keys to values (got {type(values).__name__})")
+    out = []
+    for k, v in values.items():
+        if not isinstance(k, str):
+            raise TypeError(f"set: keys are 'section.key' strings (got {k!r})")
+        out.append(f"{k}={_value_text(k, v)}")
+    return out
+
+
+# ---------------------------------------------------------------------------------------------------
+# scenes
+
+
+class Scene:
+    """A validated scene: a TOML file (or text) plus overrides, checked against the key schema.
+
+    Every change is validated at once: a bad key or value raises ``rootsim.SceneError`` (a ``ValueError``)
+    with the command line's message, e.g. ``my.toml:3: unknown key tropism.bta (did you mean
+    tropism.beta?)`` or ``--set plane.alpha_deg=120: plane.alpha_deg must be in [0, 90] (got 120)``.
+    """
+
+    def __init__(self, _scene: Any, _path: Optional[str], _text: Optional[str], _overrides: List[str],
+                 _source: str = ""):
+        self._scene = _scene
+        self._path = _path
+        self._text = _text  # for a scene from text: the text and the name it was given
+        self._source = _source
+        self._overrides = list(_overrides)
+
+    @classmethod
+    def load(cls, path: PathLike, set: Optional[Mapping[str, Value]] = None) -> "Scene":
+        """Reads and validates a scene file; ``set`` overrides keys ({"plane.alpha_deg": 60})."""
+        p = os.fspath(path)
+        ov = _overrides(set)
+        return cls(_c.load_scene(p, ov), p, None, ov)
+
+    @classmethod
+    def from_toml(cls, text: str, name: str = "scene", set: Optional[Mapping[str, Value]] = None) -> "Scene":
+        """A scene from TOML text; ``name`` plays the file's part in messages and names the run."""
+        ov = _overrides(set)
+        return cls(_c.parse_scene(text, name, ov), None, text, ov, name)
+
+    def _parse(self, overrides: List[str]) -> Any:
+        if self._path is not None:
+            return _c.load_scene(self._path, overrides)
+        return _c.parse_scene(self._text, self._source, overrides)
+
+    def set(self, key: str, value: Value) -> "Scene":
+        """Overrides one key (validated now, as ``--set key=value``); returns the scene itself."""
+        ov = self._overrides + _overrides({key: value})
+        self._scene = self._parse(ov)
+        self._overrides = ov
+        return self
+
+    def copy(self) -> "Scene":
+        return Scene(self._scene, self._path, self._text, self._overrides, self._source)
+
+    def to_toml(self) -> str:
+        """Every key with its value, defaults filled in: the scene.toml a run directory holds."""
+        return self._scene.resolved_toml
+
+    def check(self) -> Dict[str, Any]:
+        """Validates the scene again (from its file) and returns the theory's predictions for it
+        (MODEL.md section 9: the block ``rootsim check`` prints; empty for a mechanics-only scene)."""
+        self._scene = self._parse(self._overrides)
+        t = _c.theory_json(self._scene)
+        return {} if t is None else json.loads(t)
+
+    @property
+    def name(self) -> str:
+        """The scene's name (its file's stem): the default run directory's name."""
+        return self._scene.name
+
+    @property
+    def path(self) -> Optional[str]:
+        """The file it was read from (None for text)."""
+        return self._path
+
+    @property
+    def overrides(self) -> List[str]:
+        """The overrides applied, as ``key=value`` texts (what ``--set`` takes)."""
+        return list(self._overrides)
+
+    @property
+    def steps(self) -> int:
+        """Growth steps the scene runs (0 for a mechanics-only scene)."""
+        return self._scene.steps
+
+    def __repr__(self) -> str:
+        src = self._path if self._path is not None else "<text>"
+        return f"rootsim.Scene({src!r}, overrides={self._overrides!r})"
+
+
+def _scene_of(scene_or_path: Union[Scene, PathLike], set: Optional[Mapping[str, Value]]) -> Scene:
+    if isinstance(scene_or_path, Scene):
+        sc = scene_or_path.copy()
+        for k, v in (set or {}).items():
+            sc.set(k, v)
+        return sc
+    return Scene.load(scene_or_path, set)
+
+
+# ---------------------------------------------------------------------------------------------------
+# run directories
+
+
+@dataclass(frozen=True)
+class Frame:
+    """One snapshot of trajectory.csv (what ``rootsim render`` draws), SI units like ``Simulation.state``.
+
+    ``x`` node positions [m] (nodes x 3); ``d1``, ``d3`` element directors, lab frame, unit (elements x 3;
+    d2 = d3 x d1); ``radius`` element radius R/sqrt(lambda_e) [m] (elements); ``kappa0`` |intrinsic
+    curvature| per node [1/m] and ``plate_force`` the plate's normal force per node [N] (nodes), and
+    ``contact_force`` |plate|, |self|, |obstacle| contact force per node [N] (nodes x 3): None when the
+    trajectory predates them.
+    """
+
+    step: int
+    time_h: float
+    x: np.ndarray
+    d1: np.ndarray
+    d3: np.ndarray
+    radius: np.ndarray
+    kappa0: Optional[np.ndarray]
+    plate_force: Optional[np.ndarray]
+    contact_force: Optional[np.ndarray]
+
+
+class Run:
+    """A run directory and what it holds, read on first access through rootsim's own C++ readers.
+
+    - ``dir``: the directory (``pathlib.Path``)
+    - ``timeseries``: dict column name -> numpy float64 array, the columns of timeseries.csv (step,
+      time_h, length_mm, theta_tip_deg, Eb, Et, Wr, Tw, ...): the very doubles the file holds
+    - ``shape``: dict column name -> array, the final centreline of shape.csv (s_mm, x_mm, ..., radius_mm)
+    - ``frames``: list of ``Frame``, one per snapshot of trajectory.csv (SI units)
+    - ``summary``: summary.json as a dict; ``result``: the row of result.csv (a sweep table's columns)
+    - ``scene``: the resolved scene.toml as a ``Scene``
+
+    A run made with ``out=None`` lives in a temporary directory that is deleted when the Run object is
+    garbage-collected: keep the object (or pass ``out=``) as long as you need the files.
+    """
+
+    def __init__(self, dir: PathLike, _tmp: Optional[tempfile.TemporaryDirectory] = None):
+        self.dir = pathlib.Path(dir)
+        self._tmp = _tmp  # keeps a temporary run directory alive as long as this object
+
+    @cached_property
+    def timeseries(self) -> Dict[str, np.ndarray]:
+        return _c.read_csv(str(self.dir / "timeseries.csv"))
+
+    @cached_property
+    def shape(self) -> Dict[str, np.ndarray]:
+        return _c.read_csv(str(self.dir / "shape.csv"))
+
+    @cached_property
+    def frames(self) -> List[Frame]:
+        return [Frame(**f) for f in _c.read_trajectory(str(self.dir / "trajectory.csv"))]
+
+    @cached_property
+    def summary(self) -> Dict[str, Any]:
+        with open(self.dir / "summary.json", encoding="utf-8") as f:
+            return json.load(f)
+
+    @cached_property
+    def result(self) -> Dict[str, Any]:
+        return _c.read_result(str(self.dir / "result.csv"))
+
+    @cached_property
+    def scene(self) -> Scene:
+        # the resolved scene.toml, named as the run's scene (a file named scene.toml would be "scene")
+        text = (self.dir / "scene.toml").read_text(encoding="utf-8")
+        return Scene.from_toml(text, name=self.summary.get("scene", "scene"))
+
+    def render(self, **options: Any) -> List[pathlib.Path]:
+        """``rootsim.render(self.dir, **options)``."""
+        return render(self.dir, **options)
+
+    def __repr__(self) -> str:
+        return f"rootsim.Run({str(self.dir)!r})"
+
+
+def load_run(dir: PathLike) -> Run:
+    """Opens a complete run directory (written by ``rootsim run``, ``rootsim sweep`` or ``rootsim.run``).
+
+    Raises SceneError when ``dir`` is not one (an interrupted run is ``DIR.partial``, a failed one
+    ``DIR.incomplete`` with ERROR.txt)."""
+    d = pathlib.Path(dir)
+    if not (d / "scene.toml").is_file() or not (d / "summary.json").is_file():
+        why = "not a complete run directory (no scene.toml and summary.json)"
+        for suffix, what in ((".partial", "an interrupted run"), (".incomplete", "a failed run, see ERROR.txt")):
+            if pathlib.Path(str(d) + suffix).is_dir():
+                why += f"; {d}{suffix}/ is {what}"
+        raise SceneError(f"{d}: {why}")
+    return Run(d)
+
+
+def run(scene_or_path: Union[Scene, PathLike], set: Optional[Mapping[str, Value]] = None,
+        out: Optional[PathLike] = None, progress: Optional[Callable[[int, int], None]] = None,
+        force: bool = False) -> Run:
+    """Simulates a scene into a run directory, exactly as ``rootsim run SCENE --set ... --out OUT``.
+
+    scene_or_path: a scene file or a ``Scene``.
+    set: overrides, ``{"plane.alpha_deg": 60, "growth.steps": 100}`` (validated first, as ``--set``).
+    out: the run directory; written as ``OUT.partial/`` and renamed when complete. An existing run there
+        is replaced only with ``force=True`` (never a folder rootsim did not write). ``None``: a temporary
+        directory, deleted when the returned Run is garbage-collected (``run.dir`` tells where it is).
+    progress: called as ``progress(step, total)`` after every growth step (from the calling thread).
+        An exception it raises stops the run and propagates; the directory stays ``OUT.partial/``
+        (with ``out=None`` the temporary directory is removed: nothing is kept).
+
+    Returns a ``Run`` (``timeseries``, ``shape``, ``frames``, ``summary``, ``result``, ``dir``).
+    Raises SceneError (ValueError) for a bad scene, key, value or output path, before anything is
+    written; RunError (RuntimeError) when the run fails, naming the growth step and node (the directory
+    is then ``OUT.incomplete/`` with ERROR.txt); KeyboardInterrupt on Ctrl-C, after the growth step in
+    progress (the directory stays ``OUT.partial/``).
+
+    The GIL is released while simulating: several runs can go on in threads at once.
+
+    Example::
+
+        r = rootsim.run("scenes/fig2a_alpha40.toml", set={"growth.steps": 100})
+        r.summary["pattern"], r.timeseries["theta_tip_deg"][-1]
+    """
+    if progress is not None and not callable(progress):
+        raise TypeError(f"progress: expected a callable progress(step, total) (got {type(progress).__name__})")
+    scene = _scene_of(scene_or_path, set)
+    tmp = None
+    if out is None:
+        tmp = tempfile.TemporaryDirectory(prefix="rootsim-")
+        target = os.path.join(tmp.name, scene.name)
+    else:
+        target = os.fspath(out)
+    try:
+        _c.run_scene(scene._scene, target, bool(force), progress)
+    except BaseException:
+        if tmp is not None:
+            tmp.cleanup()
+        raise
+    return Run(_c.normalise_out_dir(target), tmp)
+
+
+# ---------------------------------------------------------------------------------------------------
+# sweeps
+
+
+@dataclass
+class SweepPoint:
+    """One finished point of a sweep: ``index`` in the grid, ``grid`` (key -> value text), ``dir`` its
+    run directory, ``error`` (None, or why it failed: the directory is then DIR.incomplete), ``skipped``
+    (complete before this sweep started), ``wall_s``. ``run`` opens it (``load_run``)."""
+
+    index: int
+    name: str
+    grid: Dict[str, str]
+    dir: pathlib.Path
+    error: Optional[str]
+    skipped: bool
+    wall_s: float
+    _tmp: Any = field(default=None, repr=False, compare=False)  # keeps a temporary sweep folder alive
+
+    @property
+    def ok(self) -> bool:
+        return self.error is None
+
+    @property
+    def run(self) -> Run:
+        if self.error is not None:
+            raise RunError(f"{self.name}: {self.error}")
+        r = load_run(self.dir)
+        r._tmp = self._tmp
+        return r
+
+
+class Sweep:
+    """A running sweep (``rootsim.sweep``): iterate it for the points as they finish.
+
+    ``out`` is the sweep folder, ``table`` its table.csv (written when the sweep ends), ``summary``
+    the counts (ran, skipped, failed, interrupted) once it is over; ``cancel()`` stops it (running points
+    stop between growth steps and stay DIR.partial). Also a context manager that cancels on exit.
+    """
+
+    def __init__(self, runner: Any, out: str, tmp: Any, keep: Any):
+        self._runner = runner
+        self.out = pathlib.Path(out)
+        self._tmp = tmp
+        self._keep = keep  # the generated sweep file's folder, alive while the sweep runs
+        self._over = False
+
+    def __iter__(self) -> "Sweep":
+        return self
+
+    def __next__(self) -> SweepPoint:
+        if self._over:
+            raise StopIteration
+        try:
+            d = self._runner.next()
+        except BaseException:
+            self.cancel()
+            raise
+        if d is None:
+            self._over = True
+            raise StopIteration
+        return SweepPoint(d["index"], d["name"], d["grid"], pathlib.Path(d["dir"]), d["error"], d["skipped"],
+                          d["wall_s"], self._tmp)
+
+    def cancel(self) -> None:
+        if not self._over:
+            self._over = True
+            self._runner.cancel()
+
+    @property
+    def table(self) -> pathlib.Path:
+        return self.out / "table.csv"
+
+    @property
+    def summary(self) -> Dict[str, Any]:
+        return self._runner.summary()
+
+    def __enter__(self) -> "Sweep":
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.cancel()
+
+
+def sweep(sweep_file: Optional[PathLike] = None, *, scene: Union[Scene, PathLike, None] = None,
+          grid: Optional[Mapping[str, Sequence[Value]]] = None, set: Optional[Mapping[str, Value]] = None,
+          out: Optional[PathLike] = None, jobs: int = 1, shard: Optional[str] = None) -> Sweep:
+    """Runs a grid of scenes, as ``rootsim sweep``, and yields each point as it finishes.
+
+    Either a sweep file (``rootsim.sweep("sweeps/fig3d_phase.toml", jobs=2)``) or the same in Python:
+    ``rootsim.sweep(scene="scenes/fig2a_alpha40.toml", grid={"plane.alpha_deg": [20, 60]},
+    set={"growth.steps": 200})`` (every combination of the grid, first key slowest; ``set`` fixed).
+    Every point is validated before any runs (SceneError naming the point and key).
+
+    out: the sweep folder (one run directory per point, table.csv); resumable: points already complete
+        there are not run again (they are yielded with ``skipped=True``). ``None``: a temporary folder,
+        deleted when the Sweep and every point taken from it are garbage-collected.
+    jobs: parallel runs (threads; the GIL is not held while simulating). shard: "K/N", as ``--shard``.
+
+    Returns a ``Sweep``: ``for p in rootsim.sweep(...): print(p.grid, p.run.summary["pattern"])``.
+    Ctrl-C while iterating stops the sweep (KeyboardInterrupt); leaving the loop early (break) does not:
+    call ``cancel()`` or use ``with rootsim.sweep(...) as s:``.
+    """
+    if (sweep_file is None) == (scene is None):
+        raise TypeError("sweep: give either a sweep file or scene= (with grid= and set=)")
+    if sweep_file is None and not grid:
+        raise TypeError("sweep: scene= needs grid= (a dict of key -> list of values)")
+    if sweep_file is not None and (grid is not None or set is not None):
+        raise TypeError("sweep: grid= and set= go with scene=; a sweep file has its own [grid] and [set]")
+    if int(jobs) < 1:
+        raise SceneError(f"jobs={jobs}: expected at least 1 parallel run")
+    k, n = (1, 1) if shard is None else _c.parse_shard(shard)
+    keep = None
+    if sweep_file is None:
+        # the same plan as a sweep file: written to a temporary folder and read by the C++ loader
+        keep = tempfile.TemporaryDirectory(prefix="rootsim-sweep-")
+        if isinstance(scene, Scene):
+            base = os.path.join(keep.name, scene.name + ".toml")
+            with open(base, "w", encoding="utf-8") as f:
+                f.write(scene.to_toml())
+        else:
+            base = os.path.abspath(os.fspath(scene))
+        lines = ["[sweep]", f"scene = {json.dumps(base)}", "[grid]"]
+        for key, values in grid.items():
+            if isinstance(values, (str, bytes)) or not isinstance(values, (Sequence, np.ndarray)):
+                raise TypeError(f"grid[{key!r}]: expected a list of values")
+            lines.append(f"{json.dumps(key)} = [{', '.join(_toml_literal(key, v) for v in values)}]")
+        lines.append("[set]")
+        for key, v in (set or {}).items():
+            lines.append(f"{json.dumps(key)} = {_toml_literal(key, v)}")
+        sweep_path = os.path.join(keep.name, "sweep.toml")
+        with open(sweep_path, "w", encoding="utf-8") as f:
+            f.write("\n".join(lines) + "\n")
+    else:
+        sweep_path = os.fspath(sweep_file)
+    tmp = None
+    if out is None:
+        tmp = tempfile.TemporaryDirectory(prefix="rootsim-")
+        out = os.path.join(tmp.name, "sweep")
+    runner = _c._SweepRunner(sweep_path, os.fspath(out), int(jobs), k, n)
+    return Sweep(runner, os.fspath(out), tmp, keep)
+
+
+def _toml_literal(key: str, v: Any) -> str:
+    """A TOML value literal (strings always quoted) for a generated sweep file."""
+    if isinstance(v, str):
+        return json.dumps(v)
+    if isinstance(v, (list, tuple, np.ndarray)):
+        return "[" + ", ".join(_toml_literal(key, x) for x in v) + "]"
+    return _value_text(key, v)
+
+
+# ---------------------------------------------------------------------------------------------------
+# pictures
+
+
+def render(run_dir: PathLike, *, mp4: Optional[PathLike] = None, png_dir: Optional[PathLike] = None,
+           final_png: Optional[PathLike] = None, view: str = "top", size: str = "auto", fps: int = 30,
+           crf: int = 18, whiskers: bool = False, transparent: bool = False, overlays: bool = True,
+           camera: str = "fit", field_mm: Optional[float] = None, inset: bool = False, color_by: str = "none",
+           plot: Union[str, Sequence[str], None] = None, shadows: bool = False, shader_dir: Optional[PathLike] = None,
+           quiet: bool = True) -> List[pathlib.Path]:
+    """Renders a saved run, as ``rootsim render RUN_DIR`` with the same options (the same C++ code).
+
+    Writes only what is asked for: ``mp4`` (H.264 movie), ``png_dir`` (every frame as PNG), ``final_png``
+    (the last snapshot, top view); with none of them, RUN_DIR/movie.mp4 and RUN_DIR/final_top.png.
+    view "top" | "3d"; size "WxH" (even) or "auto"; camera "fit" | "follow" (``field_mm`` wide);
+    ``inset``; color_by none|curvature|twist|kappa0|stretch|contact; plot: any of theta_tip, Eb, Et, Wr,
+    Tw (a list or "a,b"); ``shadows``; ``whiskers``; ``transparent`` (PNG frames only);
+    ``overlays=False`` is ``--no-overlays``. Returns the files and folders written.
+    Bad options raise SceneError with the command line's message; render failures RunError.
+    """
+    if not _c.have_render:
+        raise SceneError("render: this rootsim was built without the renderer (ROOTSIM_BUILD_RENDER=OFF)")
+    if plot is not None and not isinstance(plot, str):
+        plot = ",".join(plot)
+    s = lambda p: "" if p is None else os.fspath(p)  # noqa: E731
+    _c.render_run(os.fspath(run_dir), s(mp4), s(png_dir), s(final_png), view, size, int(fps), int(crf),
+                  bool(whiskers), bool(transparent), bool(overlays), camera,
+                  None if field_mm is None else float(field_mm), bool(inset), color_by, plot or "",
+                  bool(shadows), s(shader_dir), bool(quiet))
+    if mp4 is None and png_dir is None and final_png is None:
+        d = pathlib.Path(run_dir)
+        return [d / "movie.mp4", d / "final_top.png"]
+    return [pathlib.Path(p) for p in (mp4, png_dir, final_png) if p is not None]
+
+
+# ---------------------------------------------------------------------------------------------------
+# stepping
+
+
+@dataclass(frozen=True)
+class State:
+    """The rod's state (SI units), read-only numpy views into the simulation's memory (no copy).
+
+    ``positions`` node positions [m] (nodes x 3); ``velocities`` [m/s] (nodes x 3); ``directors``
+    element frames, ``directors[e, i]`` is d_{i+1} of element e in lab components (elements x 3 x 3);
+    ``rest_lengths`` [m] (elements); ``material_coordinates`` rest arc length of each node from the base
+    [m] (nodes); ``kappa0`` intrinsic curvature per rest length, material components [1/m]
+    (elements-1 x 3).
+
+    Lifetime: the views keep the Simulation alive, but they are valid only until its next ``step()``
+    (growth splits elements and reallocates); after that their contents are undefined. Take
+    ``sim.state(copy=True)`` (or ``np.array(view)``) to keep a state.
+    """
+
+    step: int
+    time_h: float
+    positions: np.ndarray
+    velocities: np.ndarray
+    directors: np.ndarray
+    rest_lengths: np.ndarray
+    material_coordinates: np.ndarray
+    kappa0: np.ndarray
+
+
+class Simulation:
+    """A simulation to step by hand (for coupling to other code): the loop ``rootsim run`` runs.
+
+    ``Simulation(scene)`` builds the initial rod and relaxes it (growth step 0); ``step(n)`` runs n
+    growth steps (grow, relax, observe; the GIL is released meanwhile, Ctrl-C raises KeyboardInterrupt
+    after a whole step); ``record()`` is the time-series row of the last step (timeseries.csv's columns
+    and units); ``state()`` the rod's arrays; ``snapshot()`` the ``Frame`` a trajectory would hold;
+    ``set("tropism.beta", 0.4)`` changes a tropism key between steps.
+
+    A run's time series holds the rows of steps 0, every ``output.every_steps`` and the last; stepping
+    the same scene gives the same numbers. One thread at a time per Simulation (separate Simulations
+    can step in separate threads: the GIL is released while they compute).
+    """
+
+    def __init__(self, scene: Union[Scene, PathLike], set: Optional[Mapping[str, Value]] = None):
+        self.scene = _scene_of(scene, set)
+        self._sim = _c._Simulation(self.scene._scene)
+
+    def step(self, n: int = 1) -> Dict[str, Any]:
+        """Runs n growth steps; returns the last one's time-series row (a dict, timeseries.csv's columns).
+        Raises RunError naming the step and node when relaxation fails."""
+        return self._sim.step(int(n))
+
+    def set(self, key: str, value: Value) -> None:
+        """Changes a ``tropism.*`` key (beta, gamma, sensing, twist_r_tau, circumnutation_*) from the next
+        growth step on, validated as ``--set`` (SceneError); the rest of the model is constant."""
+        self._sim.set(key, _value_text(key, value))
+        self.scene.set(key, value)
+
+    def record(self) -> Dict[str, Any]:
+        """The time-series row of the last step (step 0 after construction)."""
+        return self._sim.record()
+
+    def state(self, copy: bool = False) -> State:
+        """The rod's state: read-only views valid until the next ``step()`` (``copy=True``: copies)."""
+        s = self._sim.state()
+        if copy:
+            s = {k: (np.array(v) if isinstance(v, np.ndarray) else v) for k, v in s.items()}
+        return State(**s)
+
+    def snapshot(self) -> Frame:
+        """The snapshot of the current state, as a trajectory frame (copies)."""
+        return Frame(**self._sim.snapshot())
+
+    @property
+    def step_count(self) -> int:
+        """Growth steps done so far."""
+        return self._sim.step_count
+
+    def __repr__(self) -> str:
+        return f"rootsim.Simulation({self.scene.name!r}, step {self.step_count})"

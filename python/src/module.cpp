@@ -1,0 +1,490 @@
+// rootsim._rootsim: the C++ side of the Python package (issue 14). Thin: it calls the library the command
+// line calls (loadScene, runSceneToDir, the run-directory readers, runSweep, the `render` glue) and turns
+// its results into numpy arrays and dicts. The Python layer (rootsim/_api.py) adds the user-facing API.
+//
+// Threads: the GIL is released while simulating, sweeping and rendering; it is taken back between growth
+// steps to poll Python's signal handlers (Ctrl-C -> KeyboardInterrupt) and to call progress callbacks.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <condition_variable>
+#include <cstring>
+#include <deque>
+#include <filesystem>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include "rootsim/errors.hpp"
+#include "rootsim/outputs.hpp"
+#include "rootsim/relax.hpp"
+#include "rootsim/results.hpp"
+#include "rootsim/run_scene.hpp"
+#include "rootsim/scene.hpp"
+#include "rootsim/simulation.hpp"
+#include "rootsim/snapshot.hpp"
+#include "rootsim/sweep.hpp"
+#include "rootsim/theory.hpp"
+#include "rootsim/units.hpp"
+#include "rootsim/version.hpp"
+
+#ifdef ROOTSIM_HAVE_RENDER
+#include "render_glue.hpp"
+#endif
+
+namespace py = pybind11;
+namespace fs = std::filesystem;
+using namespace rootsim;
+
+namespace {
+
+// the Python exception classes (created once, alive as long as the interpreter: never released)
+PyObject* gSceneError = nullptr;  // rootsim.SceneError(ValueError): bad scene, key, value, flag or path
+PyObject* gRunError = nullptr;    // rootsim.RunError(RuntimeError): a run that started and failed
+
+// ---- numpy helpers ----
+
+// a (cols x 3) float64 copy of a 3 x cols Eigen matrix (column-major: the same memory layout)
+py::array_t<double> rows3(const Eigen::Matrix3Xd& m) {
+  py::array_t<double> a({static_cast<py::ssize_t>(m.cols()), py::ssize_t{3}});
+  if (m.size() > 0) std::memcpy(a.mutable_data(), m.data(), sizeof(double) * static_cast<size_t>(m.size()));
+  return a;
+}
+py::array_t<double> vec(const Eigen::VectorXd& v) {
+  py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
+  if (v.size() > 0) std::memcpy(a.mutable_data(), v.data(), sizeof(double) * static_cast<size_t>(v.size()));
+  return a;
+}
+// a read-only view into memory owned by `owner` (kept alive by the array)
+py::array view(const double* data, std::vector<py::ssize_t> shape, std::vector<py::ssize_t> strides, py::handle owner) {
+  py::array a(py::dtype::of<double>(), std::move(shape), std::move(strides), data, owner);
+  a.attr("setflags")(py::arg("write") = false);
+  return a;
+}
+
+// one snapshot as a dict of numpy arrays, SI units as in Snapshot (snapshot.hpp)
+py::dict snapshotDict(const Snapshot& s) {
+  py::dict d;
+  d["step"] = s.step;
+  d["time_h"] = s.timeH;
+  d["x"] = rows3(s.x);
+  d["d1"] = rows3(s.d1);
+  d["d3"] = rows3(s.d3);
+  d["radius"] = vec(s.radius);
+  d["kappa0"] = s.kappa0.size() ? py::object(vec(s.kappa0)) : py::object(py::none());
+  d["plate_force"] = s.plateForce.size() ? py::object(vec(s.plateForce)) : py::object(py::none());
+  d["contact_force"] = s.contactForce.size() ? py::object(rows3(s.contactForce)) : py::object(py::none());
+  return d;
+}
+
+// one time-series row: the columns and units of timeseries.csv (outputs.cpp TimeseriesWriter::add),
+// computed the same way, so the values are the doubles the file holds
+py::dict recordDict(const StepRecord& r) {
+  py::dict d;
+  d["step"] = r.step;
+  d["time_h"] = r.timeH;
+  d["length_mm"] = r.length / units::mm;
+  d["elements"] = r.elements;
+  d["theta_tip_deg"] = r.thetaTip / units::deg;
+  d["Eb"] = r.zone.Eb;
+  d["Et"] = r.zone.Et;
+  d["Wr"] = r.zone.Wr;
+  d["Tw"] = r.zone.Tw;
+  d["substeps"] = r.substeps;
+  d["residual_force_n"] = r.residualForce;
+  d["splits"] = r.splits;
+  d["unstable"] = r.unstable;
+  d["tip_x_mm"] = r.tip.x() / units::mm;
+  d["tip_y_mm"] = r.tip.y() / units::mm;
+  d["tip_z_mm"] = r.tip.z() / units::mm;
+  d["newton_iterations"] = r.iterations;
+  d["lowest_eigenvalue_n_per_m"] = r.lowestEigenvalue;
+  d["self_contacts"] = r.selfContacts;
+  d["min_self_distance_r"] = r.minSelfDistance;
+  d["obstacle_contacts"] = r.obstacleContacts;
+  d["slip_events"] = r.slipEvents;
+  d["frictional_work_j"] = r.frictionWork;
+  return d;
+}
+
+// ---- readers of a run directory (the library's; nothing parsed twice) ----
+
+py::dict readCsv(const std::string& path) {
+  CsvColumns t;
+  {
+    py::gil_scoped_release nogil;
+    t = readCsvColumns(path);
+  }
+  py::dict d;
+  for (size_t c = 0; c < t.names.size(); ++c) {
+    py::array_t<double> a(static_cast<py::ssize_t>(t.values[c].size()));
+    if (!t.values[c].empty()) std::memcpy(a.mutable_data(), t.values[c].data(), sizeof(double) * t.values[c].size());
+    d[py::str(t.names[c])] = a;
+  }
+  return d;
+}
+
+py::list readFrames(const std::string& path) {
+  std::vector<Snapshot> snaps;
+  {
+    py::gil_scoped_release nogil;
+    snaps = readTrajectory(path);
+  }
+  py::list l;
+  for (const Snapshot& s : snaps) l.append(snapshotDict(s));
+  return l;
+}
+
+py::dict readResultDict(const std::string& path) {
+  const RunResult r = readResult(path);
+  py::dict d;
+  for (const ResultColumn& c : resultColumns()) {
+    if (c.growthOnly && !r.grows) continue;
+    if (c.text) d[c.name] = r.*c.str;
+    else d[c.name] = r.*c.num;
+  }
+  return d;
+}
+
+// ---- Ctrl-C and progress callbacks between growth steps ----
+
+// the hook runSceneToDir calls after every growth step (GIL released while simulating): takes the GIL,
+// runs Python's signal handlers and the user's callback; a Python exception is kept and the run stopped
+// with RunInterrupted (DIR.partial stays), then raised again by rethrowIfKept
+class StepHook {
+ public:
+  explicit StepHook(py::object progress) : progress_(std::move(progress)) {}
+  void operator()(const StepRecord& r, int total) {
+    py::gil_scoped_acquire gil;
+    try {
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+      if (!progress_.is_none()) progress_(r.step, total);
+    } catch (py::error_already_set& e) {
+      kept_.emplace(std::move(e));
+      throw RunInterrupted("stopped at growth step " + std::to_string(r.step) + " of " + std::to_string(total));
+    }
+  }
+  void rethrowIfKept() {
+    if (kept_) {
+      py::error_already_set e = std::move(*kept_);
+      kept_.reset();
+      throw e;
+    }
+  }
+
+ private:
+  py::object progress_;
+  std::optional<py::error_already_set> kept_;
+};
+
+double runScene(const Scene& sc, const std::string& out, bool force, py::object progress) {
+  RunDirOptions ro;
+  ro.force = force;
+  // as the command line: the run directory may not be (or contain) the scene file or the working folder
+  if (!sc.path.empty()) ro.protect.push_back(fs::path(sc.path));
+  ro.protect.push_back(fs::current_path());
+  StepHook hook(std::move(progress));
+  try {
+    py::gil_scoped_release nogil;
+    return runSceneToDir(sc, normaliseOutDir(out).string(), ro, [&](const StepRecord& r, int n) { hook(r, n); });
+  } catch (const RunInterrupted&) {
+    hook.rethrowIfKept();
+    throw;
+  }
+}
+
+// ---- stepping ----
+
+class PySimulation {
+ public:
+  explicit PySimulation(const Scene& sc) : scene_(sc) {
+    py::gil_scoped_release nogil;
+    sim_.emplace(scene_.model);
+  }
+  // n growth steps; between steps the GIL is taken to poll Ctrl-C (KeyboardInterrupt after a whole step)
+  py::dict step(int n) {
+    if (n < 1) throw SceneError("step(n): n must be >= 1 (got " + std::to_string(n) + ")");
+    if (!scene_.model.growth.enabled) throw SceneError(scene_.model.name + ": growth.enabled = false: nothing to step");
+    for (int k = 0; k < n; ++k) {
+      {
+        py::gil_scoped_release nogil;
+        sim_->growthStep();
+      }
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    }
+    return recordDict(sim_->last());
+  }
+  // tropism.* keys between steps, validated by the scene schema (the same messages as --set)
+  void set(const std::string& key, const std::string& value) {
+    if (key.rfind("tropism.", 0) != 0)
+      throw SceneError("Simulation.set " + key + ": only tropism.* keys can change between growth steps (the rest "
+                       "of the model is constant; build a new Simulation)");
+    overrides_.push_back(key + "=" + value);
+    Scene changed;
+    try {
+      changed = parseScene(scene_.resolvedToml, scene_.path.empty() ? scene_.model.name : scene_.path, overrides_);
+    } catch (...) {
+      overrides_.pop_back();
+      throw;
+    }
+    sim_->setTropism(changed.model.tropism);
+  }
+  // state views (no copy): valid until the next step() (growth reallocates them)
+  py::dict state(py::handle self) const {
+    const RodState& s = sim_->state();
+    static_assert(sizeof(Mat3) == 9 * sizeof(double), "directors must be packed 3x3 doubles");
+    const auto n = static_cast<py::ssize_t>(s.elements()), D = static_cast<py::ssize_t>(sizeof(double));
+    py::dict d;
+    d["step"] = sim_->step();
+    d["time_h"] = s.time / units::hour;
+    d["positions"] = view(s.x.data(), {n + 1, 3}, {3 * D, D}, self);
+    d["velocities"] = view(s.v.data(), {n + 1, 3}, {3 * D, D}, self);
+    // Q[e] is column-major: Q(r, c) at r + 3c; directors[e, r] is d_{r+1} (row r of Q)
+    d["directors"] = view(n ? s.Q[0].data() : nullptr, {n, 3, 3}, {9 * D, D, 3 * D}, self);
+    d["rest_lengths"] = view(s.l0.data(), {n}, {D}, self);
+    d["material_coordinates"] = view(s.S.data(), {n + 1}, {D}, self);
+    d["kappa0"] = view(s.kappa0.data(), {std::max<py::ssize_t>(n - 1, 0), 3}, {3 * D, D}, self);
+    return d;
+  }
+  py::dict record() const { return recordDict(sim_->last()); }
+  py::dict snapshot() const { return snapshotDict(sim_->snapshot()); }
+  int stepCount() const { return sim_->step(); }
+  const Scene& scene() const { return scene_; }
+
+ private:
+  Scene scene_;
+  std::vector<std::string> overrides_;
+  std::optional<Simulation> sim_;
+};
+
+// ---- sweeps: runSweep on a thread of its own, results handed over as they finish ----
+
+class SweepRunner {
+ public:
+  SweepRunner(const std::string& sweepFile, const std::string& out, int jobs, int shard, int shards) {
+    plan_ = loadSweep(sweepFile);
+    opt_.jobs = jobs;
+    opt_.shard = shard;
+    opt_.shards = shards;
+    opt_.out = out;
+    opt_.quiet = true;
+    opt_.cancelled = [this] { return cancel_.load(); };
+    opt_.onPoint = [this](const SweepPointDone& d) {
+      std::lock_guard<std::mutex> lock(mu_);
+      done_.push_back(d);
+      cv_.notify_all();
+    };
+    thread_ = std::thread([this] {
+      try {
+        result_ = runSweep(plan_, opt_, nullptr);
+      } catch (...) {
+        error_ = std::current_exception();
+      }
+      std::lock_guard<std::mutex> lock(mu_);
+      finished_ = true;
+      cv_.notify_all();
+    });
+  }
+  ~SweepRunner() {
+    cancel_ = true;
+    if (thread_.joinable()) {
+      py::gil_scoped_release nogil;
+      thread_.join();
+    }
+  }
+  // the next finished point as a dict, or None when the sweep is over; Ctrl-C raises KeyboardInterrupt
+  py::object next() {
+    for (;;) {
+      std::optional<SweepPointDone> d;
+      bool over = false;
+      {
+        py::gil_scoped_release nogil;
+        std::unique_lock<std::mutex> lock(mu_);
+        cv_.wait_for(lock, std::chrono::milliseconds(100), [this] { return !done_.empty() || finished_; });
+        if (!done_.empty()) {
+          d = done_.front();
+          done_.pop_front();
+        } else {
+          over = finished_;
+        }
+      }
+      if (d) {
+        py::dict r;
+        r["index"] = d->point->index;
+        r["name"] = d->point->dirName;
+        py::dict grid;
+        for (const auto& [k, v] : d->point->grid) grid[py::str(k)] = v;
+        r["grid"] = grid;
+        r["dir"] = d->dir;
+        r["error"] = d->error.empty() ? py::object(py::none()) : py::object(py::str(d->error));
+        r["skipped"] = d->skipped;
+        r["wall_s"] = d->wallS;
+        return r;
+      }
+      if (over) {
+        join();
+        return py::none();
+      }
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    }
+  }
+  // stops the sweep (running points stop between growth steps and stay DIR.partial) and waits for it
+  void cancel() {
+    cancel_ = true;
+    join();
+  }
+  py::dict summary() {
+    {
+      std::lock_guard<std::mutex> lock(mu_);
+      if (!finished_) throw std::runtime_error("the sweep is still running: its summary comes when it is over");
+    }
+    py::dict d;
+    d["ran"] = result_.ran;
+    d["skipped"] = result_.skipped;
+    d["failed"] = result_.failed;
+    d["interrupted"] = result_.interrupted;
+    d["points"] = static_cast<int>(plan_.points.size());
+    return d;
+  }
+
+ private:
+  void join() {
+    if (thread_.joinable()) {
+      py::gil_scoped_release nogil;
+      thread_.join();
+    }
+    if (error_) {
+      std::exception_ptr e = error_;
+      error_ = nullptr;
+      std::rethrow_exception(e);
+    }
+  }
+  SweepPlan plan_;
+  SweepOptions opt_;
+  SweepResult result_;
+  std::exception_ptr error_;
+  std::atomic<bool> cancel_{false};
+  std::mutex mu_;
+  std::condition_variable cv_;
+  std::deque<SweepPointDone> done_;
+  bool finished_ = false;
+  std::thread thread_;
+};
+
+}  // namespace
+
+PYBIND11_MODULE(_rootsim, m) {
+  m.doc() = "rootsim's C++ core (use the `rootsim` package, not this module)";
+  m.attr("__version__") = kVersion;
+
+  gSceneError = PyErr_NewExceptionWithDoc(
+      "rootsim.SceneError",
+      "Bad input: a scene key or value, a sweep file, an output path, a render option. The message is the "
+      "command line's: file:line (or the --set flag), the key, what was expected and what was found.",
+      PyExc_ValueError, nullptr);
+  gRunError = PyErr_NewExceptionWithDoc(
+      "rootsim.RunError",
+      "A run that started and failed (no equilibrium, divergence, I/O, rendering); the message names the "
+      "growth step and the node or the failing call. The run directory is left as DIR.incomplete/.",
+      PyExc_RuntimeError, nullptr);
+  m.attr("SceneError") = py::handle(gSceneError);
+  m.attr("RunError") = py::handle(gRunError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const SceneError& e) {
+      PyErr_SetString(gSceneError, e.what());
+    } catch (const RunInterrupted& e) {
+      PyErr_SetString(PyExc_KeyboardInterrupt, e.what());
+    } catch (const RunError& e) {
+      PyErr_SetString(gRunError, e.what());
+    } catch (const RelaxError& e) {
+      PyErr_SetString(gRunError, e.what());
+    }
+  });
+
+  py::class_<Scene>(m, "_Scene")
+      .def_property_readonly("name", [](const Scene& s) { return s.model.name; })
+      .def_property_readonly("path", [](const Scene& s) { return s.path; })
+      .def_property_readonly("resolved_toml", [](const Scene& s) { return s.resolvedToml; })
+      .def_property_readonly("grows", [](const Scene& s) { return s.model.growth.enabled; })
+      .def_property_readonly("steps", [](const Scene& s) { return s.model.growth.enabled ? s.model.growth.steps : 0; })
+      .def_property_readonly("trajectory", [](const Scene& s) { return s.model.output.trajectory; });
+  m.def("load_scene", &loadScene, py::arg("path"), py::arg("overrides"));
+  m.def("parse_scene", &parseScene, py::arg("text"), py::arg("source_name"), py::arg("overrides"));
+  m.def("theory_json", [](const Scene& s) -> py::object {
+    if (!s.model.growth.enabled) return py::none();
+    return py::str(theoryJson(theoryFor(s.model)).dump());
+  });
+
+  m.def("run_scene", &runScene, py::arg("scene"), py::arg("out"), py::arg("force"), py::arg("progress"));
+  m.def("normalise_out_dir", [](const std::string& s) { return normaliseOutDir(s).string(); });
+  m.def("read_csv", &readCsv, py::arg("path"));
+  m.def("read_trajectory", &readFrames, py::arg("path"));
+  m.def("read_result", &readResultDict, py::arg("path"));
+  m.def("result_columns", [] {
+    py::list l;
+    for (const ResultColumn& c : resultColumns()) l.append(py::make_tuple(c.name, c.unit, c.growthOnly, c.text));
+    return l;
+  });
+
+  py::class_<PySimulation>(m, "_Simulation")
+      .def(py::init<const Scene&>(), py::arg("scene"))
+      .def("step", &PySimulation::step, py::arg("n"))
+      .def("set", &PySimulation::set, py::arg("key"), py::arg("value"))
+      .def("state", [](py::object self) { return self.cast<const PySimulation&>().state(self); })
+      .def("record", &PySimulation::record)
+      .def("snapshot", &PySimulation::snapshot)
+      .def_property_readonly("step_count", &PySimulation::stepCount)
+      .def_property_readonly("scene", &PySimulation::scene, py::return_value_policy::copy);
+
+  py::class_<SweepRunner>(m, "_SweepRunner")
+      .def(py::init<const std::string&, const std::string&, int, int, int>(), py::arg("sweep_file"), py::arg("out"),
+           py::arg("jobs"), py::arg("shard"), py::arg("shards"))
+      .def("next", &SweepRunner::next)
+      .def("cancel", &SweepRunner::cancel)
+      .def("summary", &SweepRunner::summary);
+  m.def("parse_shard", &parseShard, py::arg("text"));
+
+#ifdef ROOTSIM_HAVE_RENDER
+  m.attr("have_render") = true;
+  m.def(
+      "render_run",
+      [](const std::string& runDir, const std::string& mp4, const std::string& pngDir, const std::string& finalPng,
+         const std::string& view, const std::string& size, int fps, int crf, bool whiskers, bool transparent,
+         bool overlays, const std::string& camera, py::object fieldMm, bool inset, const std::string& colorBy,
+         const std::string& plot, bool shadows, const std::string& shaderDir, bool quiet) {
+        cli::RenderOptions o;
+        o.runDir = runDir;
+        o.mp4 = mp4;
+        o.pngDir = pngDir;
+        o.finalPng = finalPng;
+        o.view = view;
+        o.size = size;
+        o.fps = fps;
+        o.crf = crf;
+        o.whiskers = whiskers;
+        o.transparent = transparent;
+        o.noOverlays = !overlays;
+        o.look.camera = camera;
+        o.look.fieldGiven = !fieldMm.is_none();
+        if (o.look.fieldGiven) o.look.fieldMm = fieldMm.cast<double>();
+        o.look.inset = inset;
+        o.look.colorBy = colorBy;
+        o.look.plot = plot;
+        o.look.shadows = shadows;
+        o.shaderDir = shaderDir;
+        o.quiet = quiet;
+        py::gil_scoped_release nogil;
+        cli::renderRunCommand(o);
+      },
+      py::arg("run_dir"), py::arg("mp4"), py::arg("png_dir"), py::arg("final_png"), py::arg("view"), py::arg("size"),
+      py::arg("fps"), py::arg("crf"), py::arg("whiskers"), py::arg("transparent"), py::arg("overlays"),
+      py::arg("camera"), py::arg("field_mm"), py::arg("inset"), py::arg("color_by"), py::arg("plot"),
+      py::arg("shadows"), py::arg("shader_dir"), py::arg("quiet"));
+#else
+  m.attr("have_render") = false;
+#endif
+}

@@ -134,6 +134,9 @@ struct NewtonWorkspace {
   std::vector<Vec3> save;         // node positions (by block index) saved across a trial step
   std::vector<Mat3> saveQ;        // directors saved across a trial step
   int firstFreeNode = 0;          // the window of the last solve
+  bool factorsValid = false;      // lu holds the LU factors of the last relaxation's last Jacobian, for
+  int factorsDofs = 0;            //   this many unknowns from this first block: the next relaxation's
+  int factorsFirstBlock = 0;      //   first (chord) iteration uses them (relax_newton.cpp)
   int modeSize = 0;               // unknowns of the last mode (a warm start for the next one)
   int negative = 0;               // negative pivots of the symmetric stiffness: unstable directions
   double lowestEigenvalue = 0;    // eigenvalue of the scaled stiffness nearest zero (the lowest while

@@ -271,6 +271,10 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
   RelaxResult res;
   nw.firstFreeNode = firstFreeNode;
   int argF = 0, argM = 0;
+  // the previous relaxation's factors serve this one's first iteration when they are for the same
+  // unknowns (and banded: the sparse factors are rebuilt with the pattern)
+  bool reuse = nw.factorsValid && nw.factorsDofs == N && nw.factorsFirstBlock == ns.w.b0 && !nw.sparseActive;
+  bool fresh = false;  // a Jacobian of this relaxation has been computed
   ns.residual();
   for (;;) {
     if (ns.converged(res, argF, argM)) break;
@@ -286,15 +290,26 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
       return res;
     }
     ++res.iterations;
-    // the symmetric part is kept for the stability check: the Jacobian of the last iterate stands in for
-    // the converged state's (Newton's last step is below the equilibrium tolerance), which saves a
-    // Jacobian per growth step. (Reusing one factorisation over several iterations, simplified Newton,
-    // was measured: 9 % faster on fig2b, but its stale Jacobian misjudged stability after large steps.)
-    ns.jacobian(opt.stabilityCheck);
-    if (!ns.factorize()) {
-      std::ostringstream os;
-      os << "Newton solver: singular stiffness at iteration " << res.iterations << " (" << N << " unknowns)";
-      throw RelaxError(os.str());
+    // The first iteration of a growth step takes the factors of the previous step's last Jacobian when
+    // the unknowns are the same (a chord step: growth changed the stiffness little), every later one a
+    // fresh Jacobian. A typical step converges in two iterations, so this halves its Jacobians. Stability
+    // is judged only from a Jacobian of this step: the symmetric part of the last fresh one (the last
+    // iterate's, standing in for the converged state's, as Newton's last step is below the equilibrium
+    // tolerance), or one of the converged state. (Reusing one factorisation over all iterations,
+    // simplified Newton, misjudged stability after large steps: measured on the Euler test.)
+    const bool stale = res.iterations == 1 && reuse;
+    if (!stale) {
+      ns.jacobian(opt.stabilityCheck);
+      fresh = true;
+      nw.factorsValid = false;
+      if (!ns.factorize()) {
+        std::ostringstream os;
+        os << "Newton solver: singular stiffness at iteration " << res.iterations << " (" << N << " unknowns)";
+        throw RelaxError(os.str());
+      }
+      nw.factorsValid = !nw.sparseActive;
+      nw.factorsDofs = N;
+      nw.factorsFirstBlock = ns.w.b0;
     }
     std::copy(nw.r.begin(), nw.r.begin() + N, nw.delta.begin());
     ns.solve(nw.delta.data());
@@ -321,6 +336,7 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
         std::fprintf(stderr, "it %ld a %g |delta| %g |simplified| %g\n", res.iterations, a, norm0, norm1);
       if (std::isfinite(norm1) && norm1 <= (1.0 - 0.25 * a) * norm0) break;
       ns.restoreState();
+      if (stale && halvings >= 2) break;  // the chord direction is poor: take a fresh Jacobian instead
       if (++halvings > kMaxHalvings) {
         // no acceptable step along the Newton direction (K indefinite far from equilibrium): the
         // caller continues with the explicit relaxation from here
@@ -332,11 +348,26 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
       }
       a *= 0.5;
     }
+    if (stale && halvings >= 2) {
+      ns.residual();  // of the restored state
+      --res.iterations;
+      reuse = false;
+    }
   }
   res.converged = true;
   // stability from the factorisation of the converged state's stiffness
   if (opt.stabilityCheck) {
-    if (res.iterations == 0) ns.jacobian(true);  // already in equilibrium: no Jacobian of this state yet
+    if (!fresh) {
+      // in equilibrium already, or after a chord step only: no Jacobian of this step yet (its factors
+      // serve the next step's chord step)
+      ns.jacobian(true);
+      nw.factorsValid = false;
+      if (ns.factorize() && !nw.sparseActive) {
+        nw.factorsValid = true;
+        nw.factorsDofs = N;
+        nw.factorsFirstBlock = ns.w.b0;
+      }
+    }
     const bool factorised = ns.factorizeSymmetric();
     nw.negative = factorised ? ns.negativePivots(1e-10) : 1;
     // eigenvalue nearest zero (the lowest while stable) and its mode: inverse iteration

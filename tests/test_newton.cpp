@@ -152,7 +152,7 @@ TEST_CASE("Newton's factorisation tells Euler buckling, as the stability check d
   }
 }
 
-TEST_CASE("a window freezes the rest of the rod exactly") {
+TEST_CASE("a window freezes the positions of the rest of the rod exactly and leaves its twist free") {
   Cantilever c(30);
   c.env.tipForce = Vec3(0, 0, -1e-5);
   const RodState before = c.s;
@@ -160,6 +160,30 @@ TEST_CASE("a window freezes the rest of the rod exactly") {
   const RelaxResult r = relaxNewton(c.p, c.env, c.opt, c.s, c.ws, nw, 20);
   CHECK(r.converged);
   for (int i = 0; i < 20; ++i) CHECK(c.s.x.col(i) == before.x.col(i));  // node 20 is the first free one
-  for (int i = 0; i < 20; ++i) CHECK(c.s.Q[static_cast<size_t>(i)] == before.Q[static_cast<size_t>(i)]);
+  // mature elements may only turn about their own axis: d3 stays where it was
+  for (int i = 0; i < 20; ++i)
+    CHECK((c.s.Q[static_cast<size_t>(i)].row(2) - before.Q[static_cast<size_t>(i)].row(2)).norm() < 1e-12);
   CHECK(c.s.x.col(30) != before.x.col(30));
+}
+
+TEST_CASE("a window carries torsion through the frozen root: the tip twists by T L / C under a tip couple") {
+  // a clamped straight rod under a couple T about its axis: uniform twist rate T / C (C = B3), tip twist
+  // T L / C. With the window from node 20 of 30, the twist of elements 0-19 is solved for, not frozen.
+  for (int first : {0, 20}) {
+    Cantilever c(30);
+    const double C = c.p.bendStiffness().z();
+    const Vec3 axis = (c.s.x.col(30) - c.s.x.col(0)).normalized();
+    const double T = 1e-3 * C / c.L;  // tip twist 1e-3 rad
+    c.env.tipTorque = T * axis;
+    const Vec3 d1 = c.s.Q.back().row(0).transpose();
+    NewtonWorkspace nw;
+    const RelaxResult r = relaxNewton(c.p, c.env, c.opt, c.s, c.ws, nw, first);
+    CHECK(r.converged);
+    const Vec3 d1n = c.s.Q.back().row(0).transpose();
+    const double twist = std::atan2(d1.cross(d1n).dot(axis), d1.dot(d1n));
+    // the last element's d1 sits at the middle of the element: L - lbar / 2 of twisting length
+    const double lbar = c.L / 30;
+    INFO("window from node " << first << ": tip twist " << twist << " rad, T (L - lbar/2) / C = " << T * (c.L - 0.5 * lbar) / C);
+    CHECK(twist == doctest::Approx(T * (c.L - 0.5 * lbar) / C).epsilon(1e-3));
+  }
 }

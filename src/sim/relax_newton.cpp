@@ -37,13 +37,24 @@ constexpr int kColours = 2 * kRadius + 1;
 constexpr int kBand = 3 * kRadius + 2;    // dof half-bandwidth
 constexpr int kMaxHalvings = 30;
 
-// dof layout: block b = 2i is node i, b = 2i + 1 is element i; the unknowns are blocks [b0, 2n]
+// dof layout: block b = 2i is node i, b = 2i + 1 is element i; the unknowns are the twists (rotation
+// about d3) of the m elements before the window, then all of blocks [b0, 2n]. The frozen mature root
+// keeps its twist free: adhesion holds its nodes, nothing holds the rotation of its elements about their
+// axes, and that twist carries the clamp's torque (freezing it changed fig4a's skew by 1.3 degrees).
 struct Window {
   int n = 0, b0 = 0;
+  int m = 0;  // elements before the window (block 2e + 1 < b0): their twists are unknowns 0 .. m-1
   int blocks() const { return 2 * n + 1 - b0; }
-  int dofs() const { return 3 * blocks(); }
-  // the first element whose strains the free dofs' forces need (the one before the first free node)
-  int firstElement() const { return std::max(0, b0 / 2 - 1); }
+  int dofs() const { return m + 3 * blocks(); }
+  int dof(int b, int c) const { return m + 3 * (b - b0) + c; }  // unknown of block b >= b0, component c
+  // unknown of block b, component c, or -1 when frozen
+  int unknown(int b, int c) const {
+    if (b >= b0) return dof(b, c);
+    return (!isNode(b) && c == 2) ? b / 2 : -1;
+  }
+  // the first element whose strains the window's forces need (the one before the first free node, and
+  // those whose twist rows a window block's nudge reaches)
+  int firstElement() const { return std::max(0, b0 / 2 - 1 - (m > 0 ? kRadius / 2 + 1 : 0)); }
   static bool isNode(int b) { return b % 2 == 0; }
 };
 
@@ -52,6 +63,7 @@ Window windowOf(const Environment& env, const RodState& s, int firstFreeNode) {
   w.n = s.elements();
   w.b0 = std::clamp(2 * firstFreeNode, 0, 2 * w.n - 1);
   if (env.base == BaseCondition::Clamped && w.b0 == 0) w.b0 = 1;  // node 0 is held
+  w.m = w.b0 / 2;  // b0 is even whenever it is past the clamp (then b0 = 2 * firstFreeNode)
   return w;
 }
 
@@ -80,12 +92,17 @@ struct NewtonSolver {
 
   // forces of the current state; returns |F_scaled|^2 over the free dofs and fills nw.r
   double residual() {
-    computeForces(p, env, s, false, ws, w.firstElement());
+    computeForces(p, env, s, false, ws, w.m > 0 ? 0 : w.firstElement());
     double sum = 0;
+    for (int e = 0; e < w.m; ++e) {
+      const double f = ws.torque(2, e) / lbar;
+      nw.r[static_cast<size_t>(e)] = f;
+      sum += f * f;
+    }
     for (int b = w.b0; b <= 2 * w.n; ++b)
       for (int c = 0; c < 3; ++c) {
         const double f = scaledForce(ws, b, c, lbar);
-        nw.r[static_cast<size_t>(3 * (b - w.b0) + c)] = f;
+        nw.r[static_cast<size_t>(w.dof(b, c))] = f;
         sum += f * f;
       }
     return sum;
@@ -93,6 +110,11 @@ struct NewtonSolver {
 
   bool converged(RelaxResult& res, int& argF, int& argM) const {
     double maxF2 = 0, maxM2 = 0;
+    for (int e = 0; e < w.m; ++e) {
+      const double m2 = ws.torque(2, e) * ws.torque(2, e);
+      if (!std::isfinite(m2)) fail("couple on element", e, ws.torque.col(e), res.iterations);
+      if (m2 > maxM2) { maxM2 = m2; argM = e; }
+    }
     for (int b = w.b0; b <= 2 * w.n; ++b) {
       const int i = b / 2;
       if (Window::isNode(b)) {
@@ -128,12 +150,13 @@ struct NewtonSolver {
     // response into the rows of its own colour's blocks. So the passes leave self-contact out, and its
     // stiffness is added pair by pair below (each pair's force depends on its four nodes only).
     const ForcePieces pieces = env.selfContact.enabled ? ForcePieces::NoSelfContact : ForcePieces::All;
-    // one pass of central differences over blocks start, start + stride, ...
-    auto pass = [&](int start, int stride, int c) {
+    // one pass of central differences over blocks start, start + stride, ... up to `last`, forces
+    // evaluated exactly from element `first` on
+    auto pass = [&](int start, int stride, int last, int c, int first) {
       Vec3 u = Vec3::Zero();
       u[c] = h;
       auto blocks = [&](auto&& f) {
-        for (int b = start; b <= 2 * w.n; b += stride) f(b);
+        for (int b = start; b <= last; b += stride) f(b);
       };
       // central differences: forward differences leave an O(h) error in the stiff stretch/shear
       // entries that swamps the soft bending modes of a long rod (Newton then crawls)
@@ -142,22 +165,26 @@ struct NewtonSolver {
         else nw.saveQ[static_cast<size_t>(b / 2)] = s.Q[static_cast<size_t>(b / 2)];
         moveBlock(s, b, u, lbar);
       });
-      computeForces(p, env, s, false, ws, w.firstElement(), pieces);
+      computeForces(p, env, s, false, ws, first, pieces);
       blocks([&](int b) {
-        for (int rb = std::max(w.b0, b - kRadius); rb <= std::min(2 * w.n, b + kRadius); ++rb)
-          for (int rc = 0; rc < 3; ++rc) nw.r0[static_cast<size_t>(3 * (rb - w.b0) + rc)] = scaledForce(ws, rb, rc, lbar);
+        for (int rb = std::max(0, b - kRadius); rb <= std::min(2 * w.n, b + kRadius); ++rb)
+          for (int rc = 0; rc < 3; ++rc) {
+            const int row = w.unknown(rb, rc);
+            if (row >= 0) nw.r0[static_cast<size_t>(row)] = scaledForce(ws, rb, rc, lbar);
+          }
       });
       blocks([&](int b) {
         if (Window::isNode(b)) s.x.col(b / 2) = nw.save[static_cast<size_t>(b)];
         else s.Q[static_cast<size_t>(b / 2)] = nw.saveQ[static_cast<size_t>(b / 2)];
         moveBlock(s, b, -u, lbar);
       });
-      computeForces(p, env, s, false, ws, w.firstElement(), pieces);
+      computeForces(p, env, s, false, ws, first, pieces);
       blocks([&](int b) {
-        const int col = 3 * (b - w.b0) + c;
-        for (int rb = std::max(w.b0, b - kRadius); rb <= std::min(2 * w.n, b + kRadius); ++rb)
+        const int col = w.unknown(b, c);
+        for (int rb = std::max(0, b - kRadius); rb <= std::min(2 * w.n, b + kRadius); ++rb)
           for (int rc = 0; rc < 3; ++rc) {
-            const int row = 3 * (rb - w.b0) + rc;
+            const int row = w.unknown(rb, rc);
+            if (row < 0) continue;
             const double k = -(nw.r0[static_cast<size_t>(row)] - scaledForce(ws, rb, rc, lbar)) / (2.0 * h);
             if (k != 0.0) nw.lu.add(row, col, k);
           }
@@ -166,10 +193,14 @@ struct NewtonSolver {
       });
     };
     for (int colour = 0; colour < kColours; ++colour) {
-      const int first = w.b0 + ((colour - w.b0 % kColours) + kColours) % kColours;
-      if (first > 2 * w.n) continue;
-      for (int c = 0; c < 3; ++c) pass(first, kColours, c);
+      const int start = w.b0 + ((colour - w.b0 % kColours) + kColours) % kColours;
+      if (start > 2 * w.n) continue;
+      for (int c = 0; c < 3; ++c) pass(start, kColours, 2 * w.n, c, w.firstElement());
     }
+    // the mature twists: element blocks 2e + 1 < b0, every kColours-th element (their rows and the
+    // window's are kRadius blocks away at most), about d3 only; forces of the whole rod
+    for (int colour = 0; colour < kColours && colour < w.m; ++colour)
+      pass(2 * colour + 1, 2 * kColours, w.b0 - 1, 2, 0);
     // self-contact: each pair's 12 x 12 stiffness (node translations only: scaled units are SI there),
     // inside the band where the nodes are close enough, off it otherwise
     nw.offBand.clear();
@@ -180,11 +211,11 @@ struct NewtonSolver {
         for (int a = 0; a < 4; ++a)
           for (int bn = 0; bn < 4; ++bn) {
             const int rb = 2 * nodes[a], cb = 2 * nodes[bn];
-            if (rb < w.b0 || cb < w.b0) continue;  // frozen
+            if (rb < w.b0 || cb < w.b0) continue;  // frozen (nodes before the window)
             for (int rc = 0; rc < 3; ++rc)
               for (int cc = 0; cc < 3; ++cc) {
                 const double k = ps.K(3 * a + rc, 3 * bn + cc);
-                const int row = 3 * (rb - w.b0) + rc, col = 3 * (cb - w.b0) + cc;
+                const int row = w.dof(rb, rc), col = w.dof(cb, cc);
                 if (nw.lu.inBand(row, col)) nw.lu.add(row, col, k);
                 else nw.offBand.push_back({row, col, k});  // zeros too: a pattern that changes less
               }
@@ -218,12 +249,14 @@ struct NewtonSolver {
   }
 
   void saveState() {
+    for (int e = 0; e < w.m; ++e) nw.saveQ[static_cast<size_t>(e)] = s.Q[static_cast<size_t>(e)];
     for (int b = w.b0; b <= 2 * w.n; ++b) {
       if (Window::isNode(b)) nw.save[static_cast<size_t>(b)] = s.x.col(b / 2);
       else nw.saveQ[static_cast<size_t>(b / 2)] = s.Q[static_cast<size_t>(b / 2)];
     }
   }
   void restoreState() {
+    for (int e = 0; e < w.m; ++e) s.Q[static_cast<size_t>(e)] = nw.saveQ[static_cast<size_t>(e)];
     for (int b = w.b0; b <= 2 * w.n; ++b) {
       if (Window::isNode(b)) s.x.col(b / 2) = nw.save[static_cast<size_t>(b)];
       else s.Q[static_cast<size_t>(b / 2)] = nw.saveQ[static_cast<size_t>(b / 2)];
@@ -231,8 +264,9 @@ struct NewtonSolver {
   }
   // state = saved + a * delta (delta in scaled units)
   void applyStep(double a) {
+    for (int e = 0; e < w.m; ++e) moveBlock(s, 2 * e + 1, Vec3(0, 0, a * nw.delta[static_cast<size_t>(e)]), lbar);
     for (int b = w.b0; b <= 2 * w.n; ++b) {
-      const Vec3 u = a * Eigen::Map<const Vec3>(nw.delta.data() + 3 * (b - w.b0));
+      const Vec3 u = a * Eigen::Map<const Vec3>(nw.delta.data() + w.dof(b, 0));
       moveBlock(s, b, u, lbar);
     }
   }
@@ -418,8 +452,9 @@ Eigen::VectorXd NewtonWorkspace::unstableMode(const RodState& s, const Environme
   const double lbar = s.restLength() / n;
   Eigen::VectorXd m = Eigen::VectorXd::Zero(6 * n + 3);
   double big = 0;
+  for (int e = 0; e < w.m; ++e) m[3 * (2 * e + 1) + 2] = mode[static_cast<size_t>(e)] / lbar;
   for (int b = w.b0; b <= 2 * n; ++b) {
-    Vec3 u = Eigen::Map<const Vec3>(mode.data() + 3 * (b - w.b0));
+    Vec3 u = Eigen::Map<const Vec3>(mode.data() + w.dof(b, 0));
     if (!Window::isNode(b)) u /= lbar;
     else big = std::max(big, u.norm());
     m.segment<3>(3 * b) = u;

@@ -71,7 +71,8 @@ const StepRecord& Simulation::growthStep() {
 int Simulation::windowStart() const {
   // the active window (MODEL.md section 12): the growth zone, solver.window_mm of mature root behind
   // it, and the tip; the rest is adhered and frozen
-  if (m_.solver.window <= 0.0 || !m_.growth.enabled) return 0;
+  // (only where adhesion holds the mature root: a free organ or an unglued root has no frozen part)
+  if (m_.solver.window <= 0.0 || !m_.growth.enabled || !m_.env.adhesion || !m_.env.plane.enabled) return 0;
   const double from = growthZoneStart(m_, s_) - m_.solver.window;
   int first = 0;
   while (first < s_.elements() - 2 && s_.S[first] < from) ++first;

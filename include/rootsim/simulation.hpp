@@ -67,7 +67,7 @@ class Simulation {
   RelaxResult relaxStable(int step, int& unstable);
   RelaxResult relaxNewtonStable(int step, int& unstable);
   RelaxResult newtonOrExplain(int step);
-  int windowStart() const;
+  int windowStart();
   Model m_;
   RodState s_;
   RodState start_;              // newtonOrExplain's copy of the state before Newton (scratch)

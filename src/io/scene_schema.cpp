@@ -127,8 +127,8 @@ const std::vector<KeySpec>& schema() {
              "newton: quasi-static Newton with a banded Jacobian (MODEL.md section 12); dynamic: the paper's "
              "explicit damped relaxation"),
       real("solver", "window_mm", d.solver.window / mm, 0, false, 1e4, false,
-           "newton: solve only the nodes within this length behind the growth zone, and the zone (0: the whole "
-           "rod; a window freezes the mature root's twist: see README)"),
+           "newton: solve for the nodes within this length behind the growth zone, the zone, contacts and "
+           "the twist of the adhered mature root (0: the whole rod; see README)"),
       integer("solver", "newton_max_iterations", d.solver.newtonMaxIterations, 1, 100000,
               "Newton iterations before a growth step continues with the explicit relaxation (snaps)"),
       choice("solver", "mass", d.solver.mass == MassModel::Scaled ? "scaled" : "physical", {"scaled", "physical"},

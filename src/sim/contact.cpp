@@ -525,6 +525,15 @@ ContactObservables observeContacts(const RodParams& p, const Environment& env, c
   return o;
 }
 
+int firstNodeNearContact(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw) {
+  int first = s.nodes();
+  if (!env.selfContact.enabled) return first;
+  if (static_cast<int>(cw.bucketOf.size()) != s.elements()) cw.resize(s.elements());
+  updatePairs(p, s, cw);
+  for (const auto& [i, j] : cw.pairs) first = std::min(first, i);
+  return first;
+}
+
 void markSelfContactNodes(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw) {
   if (static_cast<int>(cw.bucketOf.size()) != s.elements()) cw.resize(s.elements());
   std::fill(cw.contactNode.begin(), cw.contactNode.end(), 0);

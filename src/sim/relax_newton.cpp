@@ -337,9 +337,12 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
       fresh = true;
       nw.factorsValid = false;
       if (!ns.factorize()) {
+        // exactly singular (a fold passed on the way to a snap): the caller relaxes explicitly
         std::ostringstream os;
         os << "Newton solver: singular stiffness at iteration " << res.iterations << " (" << N << " unknowns)";
-        throw RelaxError(os.str());
+        res.message = os.str();
+        res.stalled = true;
+        return res;
       }
       nw.factorsValid = !nw.sparseActive;
       nw.factorsDofs = N;

@@ -68,7 +68,7 @@ const StepRecord& Simulation::growthStep() {
   return rec_;
 }
 
-int Simulation::windowStart() const {
+int Simulation::windowStart() {
   // the active window (MODEL.md section 12): the growth zone, solver.window_mm of mature root behind
   // it, and the tip; the rest is adhered and frozen
   // (only where adhesion holds the mature root: a free organ or an unglued root has no frozen part)
@@ -76,7 +76,9 @@ int Simulation::windowStart() const {
   const double from = growthZoneStart(m_, s_) - m_.solver.window;
   int first = 0;
   while (first < s_.elements() - 2 && s_.S[first] < from) ++first;
-  return first;
+  // and back to the oldest part a coil touches (or nearly): frozen turns would not yield to the new ones
+  // (measured on the quick figure's coils: 10 % fewer turns with them frozen)
+  return std::min(first, firstNodeNearContact(m_.rod, m_.env, s_, ws_.contact));
 }
 
 RelaxResult Simulation::newtonOrExplain(int step) {

@@ -5,7 +5,7 @@ set -euo pipefail
 pkgs=(cmake ninja-build g++ pkg-config
       libeigen3-dev libcli11-dev doctest-dev libtomlplusplus-dev libbenchmark-dev
       libosmesa6-dev libglm-dev libstb-dev libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
-      libcairo2-dev fonts-dejavu-core python3
+      libcairo2-dev fonts-dejavu-core python3 zlib1g-dev
       clang libclang-rt-dev             # sanitizer + libFuzzer build (.ci/run, scripts/fuzz.sh)
       slurm-wlm munge)                  # tests/slurm/run.sh: a sweep through a single-node SLURM
 missing=()

@@ -219,9 +219,11 @@ std::vector<Snapshot> readTrajectoryBinary(const fs::path& path) {
     if ((fields & ~std::uint32_t{7}) != 0) bad("unknown fields " + std::to_string(fields));
     if (!std::isfinite(t)) bad("time_h: not a finite number");
     const std::size_t N = static_cast<std::size_t>(nodes);
+    // the record: its 24-byte head, 3N + 7(N - 1) doubles, and the optional node fields
     const std::size_t perNode = 10 + ((fields & kHasKappa0) ? 1 : 0) + ((fields & kHasPlateForce) ? 1 : 0) +
                                 ((fields & kHasContactForce) ? 3 : 0);
-    if (N > (b.size() - pos) / (perNode * sizeof(double))) bad("truncated (a snapshot of " + std::to_string(N) + " nodes)");
+    if (N > (b.size() - pos) / sizeof(double) || 24 + (perNode * N - 7) * sizeof(double) > b.size() - pos)
+      bad("truncated (a snapshot of " + std::to_string(N) + " nodes)");
     pos = start + 24;
     Snapshot s;
     s.step = step;
@@ -243,7 +245,8 @@ std::vector<Snapshot> readTrajectoryBinary(const fs::path& path) {
       }
     if (fields & kHasKappa0) {
       s.kappa0.resize(n + 1);
-      reals(s.kappa0.data(), N, 1.0 / units::mm, "kappa0_per_mm");
+      reals(s.kappa0.data(), N, 1.0, "kappa0_per_mm");
+      s.kappa0 /= units::mm;  // as the CSV reader converts it (a division, not a product by 1/mm)
     }
     if (fields & kHasPlateForce) {
       s.plateForce.resize(n + 1);

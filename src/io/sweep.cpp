@@ -245,9 +245,11 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
       bool ok = true;
       double wall = 0;
       try {
-        // a point not complete is redone: its earlier attempt (a run directory, never user files) is replaced
+        // a point not complete is continued from its checkpoint when it has one (a killed sweep), else
+        // redone: its earlier attempt (a run directory, never user files) is replaced
         RunDirOptions ro;
         ro.force = true;
+        ro.resume = true;
         wall = runSceneToDir(loadScene(plan.scenePath, p.overrides), (fs::path(opt.out) / p.dirName).string(), ro,
                              nullptr);
       } catch (const std::exception& e) {

@@ -202,8 +202,8 @@ TEST_CASE("rootsim render on a tiny run: movie.mp4 with one frame per snapshot, 
   const fs::path d = rtest::scratch("cli");
   const std::string runDir = (d / "run").string();
   const Result ran = run("run " + std::string(ROOTSIM_SOURCE_DIR) +
-                         "/scenes/fig2b_waving.toml --set growth.steps=40 --set output.every_steps=4 --quiet --out " +
-                         runDir);
+                         "/scenes/fig2b_waving.toml --set growth.steps=40 --set output.every_steps=4 "
+                         "--set output.trajectory_format=csv --quiet --out " + runDir);
   REQUIRE_MESSAGE(ran.code == 0, ran.out);
   // asked for explicitly: the run directory's own files, plus frames elsewhere
   const Result rendered = run("render " + runDir + " --size 320x180 --fps 10 --mp4 " + runDir + "/movie.mp4 --final-png " +

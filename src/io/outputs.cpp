@@ -192,15 +192,16 @@ std::vector<Snapshot> readTrajectoryBinary(const fs::path& path) {
   if (version != kTrajVersion) bad("version " + std::to_string(version) + " (this rootsim reads version 1)");
   std::vector<Snapshot> out;
   // every number finite, as the CSV reader demands; converted from the file's units as it does
-  auto reals = [&](double* dst, std::size_t n, double scale, const char* what) {
+  // (divide: as the CSV reader converts per-mm values, a division rather than a product by 1/mm)
+  auto reals = [&](double* dst, std::size_t n, double scale, const char* what, bool divide = false) {
     const std::size_t at = pos;
     take(dst, n * sizeof(double));
     for (std::size_t i = 0; i < n; ++i) {
+      dst[i] = divide ? dst[i] / scale : dst[i] * scale;
       if (!std::isfinite(dst[i])) {
         pos = at + i * sizeof(double);
         bad(std::string(what) + ": not a finite number");
       }
-      dst[i] *= scale;
     }
   };
   while (pos < b.size()) {
@@ -245,8 +246,7 @@ std::vector<Snapshot> readTrajectoryBinary(const fs::path& path) {
       }
     if (fields & kHasKappa0) {
       s.kappa0.resize(n + 1);
-      reals(s.kappa0.data(), N, 1.0, "kappa0_per_mm");
-      s.kappa0 /= units::mm;  // as the CSV reader converts it (a division, not a product by 1/mm)
+      reals(s.kappa0.data(), N, units::mm, "kappa0_per_mm", true);
     }
     if (fields & kHasPlateForce) {
       s.plateForce.resize(n + 1);

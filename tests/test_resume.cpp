@@ -124,7 +124,7 @@ TEST_CASE("a killed run resumed from its checkpoint writes the same bytes as an 
   }
 }
 
-TEST_CASE("a run killed twice, the second time while resuming, still ends with the same bytes") {
+TEST_CASE("a run killed twice (the second time while resuming) still ends with the same bytes") {
   const fs::path d = scratch("twice");
   const std::string args = "run " + kScene + kSets + " --out ";
   REQUIRE(run(args + (d / "a").string()).code == 0);
@@ -139,7 +139,7 @@ TEST_CASE("a run killed twice, the second time while resuming, still ends with t
   fs::remove_all(d);
 }
 
-TEST_CASE("--resume on a complete run says so and exits 0; on another scene's run it exits 2") {
+TEST_CASE("resume on a complete run says so and exits 0 and on another scene's complete run exits 2") {
   const fs::path d = scratch("complete");
   const std::string out = (d / "a").string();
   REQUIRE(run("run " + kScene + kSets + " --out " + out).code == 0);
@@ -155,7 +155,7 @@ TEST_CASE("--resume on a complete run says so and exits 0; on another scene's ru
   fs::remove_all(d);
 }
 
-TEST_CASE("--resume refuses an interrupted run of another scene with exit 2, and --force starts again") {
+TEST_CASE("resume refuses an interrupted run of another scene with exit 2 and with --force starts again") {
   const fs::path d = scratch("otherscene");
   const std::string out = (d / "b").string();
   CHECK(runKilled("run " + kScene + kSets + " --out " + out, "30:35").code == 137);
@@ -173,7 +173,7 @@ TEST_CASE("--resume refuses an interrupted run of another scene with exit 2, and
   fs::remove_all(d);
 }
 
-TEST_CASE("a corrupt or truncated checkpoint exits 2 naming it; --force discards it and starts again") {
+TEST_CASE("a corrupt or truncated checkpoint exits 2 naming it and --force discards it and starts again") {
   const fs::path d = scratch("corrupt");
   const std::string args = "run " + kScene + kSets + " --out ";
   REQUIRE(run(args + (d / "a").string()).code == 0);
@@ -293,7 +293,7 @@ std::vector<T> as(const std::string& bytes) {
 }
 }  // namespace
 
-TEST_CASE("ParaView files are zlib-compressed binary that decodes to the snapshot; trajectory.bin reads as the CSV") {
+TEST_CASE("ParaView files are zlib-compressed binary that decodes to the snapshot and trajectory.bin reads as the CSV") {
   const fs::path d = scratch("formats");
   const fs::path out = d / "r";
   REQUIRE(run("run " + kScene + kSets + " --out " + out.string()).code == 0);

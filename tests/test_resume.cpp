@@ -6,6 +6,8 @@
 // after growth step C, then _Exit(137) after step K, leaving DIR.partial as SIGKILL would (the files
 // written after the checkpoint included, so resuming has to cut them back).
 #include <doctest/doctest.h>
+#include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 #include <zlib.h>
 
@@ -122,6 +124,39 @@ TEST_CASE("a killed run resumed from its checkpoint writes the same bytes as an 
     checkSameRun(d / "a", d / "b");
     fs::remove_all(d);
   }
+}
+
+TEST_CASE("a run killed with SIGKILL once a checkpoint exists resumes to the same bytes") {
+  // the real thing, at whatever point of the step the signal lands (inside a checkpoint write included)
+  const fs::path d = scratch("sigkill");
+  const std::string sets = " --set growth.steps=1000 --set output.checkpoint_every_s=0.05 --quiet --out ";
+  REQUIRE(run("run " + kScene + sets + (d / "a").string()).code == 0);
+  const std::string out = (d / "b").string();
+  const pid_t pid = ::fork();
+  REQUIRE(pid >= 0);
+  if (pid == 0) {
+    ::execl(ROOTSIM_BINARY, ROOTSIM_BINARY, "run", kScene.c_str(), "--set", "growth.steps=1000", "--set",
+            "output.checkpoint_every_s=0.05", "--quiet", "--out", out.c_str(), static_cast<char*>(nullptr));
+    ::_exit(127);
+  }
+  // wait for the first checkpoint, let the run go on a little, kill it
+  int status = 0;
+  bool ended = false;
+  while (!fs::exists(d / "b.partial" / "checkpoint.bin") && !ended) {
+    ::usleep(2000);
+    ended = ::waitpid(pid, &status, WNOHANG) == pid;
+  }
+  ::usleep(30000);
+  if (!ended) {
+    ::kill(pid, SIGKILL);
+    ::waitpid(pid, &status, 0);
+  }
+  REQUIRE_MESSAGE(WIFSIGNALED(status), "the run ended before it could be killed");
+  CHECK(!fs::exists(d / "b"));
+  const Result r = run("run " + kScene + sets + out + " --resume");
+  REQUIRE_MESSAGE(r.code == 0, r.out);
+  checkSameRun(d / "a", d / "b");
+  fs::remove_all(d);
 }
 
 TEST_CASE("a run killed twice (the second time while resuming) still ends with the same bytes") {

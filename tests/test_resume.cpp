@@ -228,6 +228,15 @@ TEST_CASE("a corrupt or truncated checkpoint exits 2 naming it and --force disca
     CHECK(fs::exists(ck));  // nothing discarded without --force
     CHECK(!fs::exists(d / "b"));
   }
+  // a valid checkpoint, but a stream shorter than it says (the file was damaged): refused before
+  // anything is touched
+  { std::ofstream(ck, std::ios::binary) << good; }
+  fs::resize_file(d / "b.partial" / "timeseries.csv.tmp", 100);
+  const Result shortened = run(args + (d / "b").string() + " --resume");
+  CHECK(shortened.code == 2);
+  CHECK(shortened.out.find("timeseries.csv.tmp: missing or shorter") != std::string::npos);
+  CHECK(fs::exists(ck));
+  CHECK(!fs::exists(d / "b.incomplete"));
   const Result forced = run(args + (d / "b").string() + " --resume --force");
   REQUIRE_MESSAGE(forced.code == 0, forced.out);
   checkSameRun(d / "a", d / "b");

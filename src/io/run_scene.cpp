@@ -75,6 +75,23 @@ PartialRun resumePlan(const Scene& sc, const std::string& outDir, std::uint64_t 
     if (ck->sceneHash != hash)
       throw SceneError((work / kCheckpointFile).string() + ": written by another scene (scene hash differs); pass "
                        "--force to discard it and start again");
+    // the streamed files hold at least what the checkpoint saw (checked here, before anything is touched)
+    const Model& m = sc.model;
+    const bool traj = m.output.trajectory;
+    const std::pair<const char*, std::uint64_t> streams[] = {
+        {"timeseries.csv", ck->writers.timeseriesBytes},
+        {"trajectory.csv", traj && m.output.trajectoryFormat != TrajectoryFormat::Binary ? ck->writers.trajectoryBytes : 0},
+        {"trajectory.bin", traj && m.output.trajectoryFormat != TrajectoryFormat::Csv ? ck->writers.trajectoryBinaryBytes : 0}};
+    for (const auto& [name, bytes] : streams) {
+      if (bytes == 0) continue;
+      fs::path f = work / name;
+      f += ".tmp";
+      if (!fs::is_regular_file(f, ec)) f = work / name;  // killed after it was closed
+      const std::uintmax_t have = fs::is_regular_file(f, ec) ? fs::file_size(f, ec) : 0;
+      if (have < bytes)
+        throw SceneError(f.string() + ": missing or shorter (" + std::to_string(have) + " bytes) than its checkpoint says (" +
+                         std::to_string(bytes) + " bytes); pass --force to discard the interrupted run and start again");
+    }
   } catch (const SceneError&) {
     ck.reset();
     if (force) return PartialRun::Discard;

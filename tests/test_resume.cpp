@@ -72,7 +72,9 @@ void checkSameRun(const fs::path& a, const fs::path& b) {
   for (const auto& [k, v] : fa) namesA += k + " ";
   for (const auto& [k, v] : fb) namesB += k + " ";
   CHECK(namesA == namesB);
-  for (const auto& [k, v] : fa) {
+  for (const auto& kv : fa) {
+    const std::string& k = kv.first;
+    const std::string& v = kv.second;
     INFO(k);
     const auto it = fb.find(k);
     REQUIRE(it != fb.end());

@@ -39,7 +39,9 @@ struct Out {
     b.append(reinterpret_cast<const char*>(&v), sizeof v);
   }
   void count(std::size_t n) { pod(static_cast<std::uint64_t>(n)); }
-  void raw(const void* p, std::size_t bytes) { b.append(static_cast<const char*>(p), bytes); }
+  void raw(const void* p, std::size_t bytes) {
+    if (bytes > 0) b.append(static_cast<const char*>(p), bytes);  // an empty vector's data() may be null
+  }
   void mat(const Eigen::Matrix3Xd& m) {
     count(static_cast<std::size_t>(m.cols()));
     raw(m.data(), sizeof(double) * static_cast<std::size_t>(m.size()));
@@ -77,7 +79,7 @@ struct In {
   }
   void take(void* p, std::size_t bytes) {
     if (bytes > end - pos) bad("truncated");
-    std::memcpy(p, b.data() + pos, bytes);
+    if (bytes > 0) std::memcpy(p, b.data() + pos, bytes);  // an empty vector's data() may be null
     pos += bytes;
   }
   template <class T>

@@ -121,6 +121,7 @@ TEST_CASE("a killed run resumed from its checkpoint writes the same bytes as an 
     CHECK(fs::exists(d / "b.partial" / "vtk" / "step_000060.vtp"));
     const Result r = run(args + (d / "b").string() + " --resume");
     REQUIRE_MESSAGE(r.code == 0, r.out);
+    CHECK(r.out.find("resuming " + (d / "b").string() + " from the checkpoint of growth step 47 of 120") != std::string::npos);
     CHECK(!fs::exists(d / "b.partial"));
     CHECK(!fs::exists(d / "b" / "checkpoint.bin"));
     checkSameRun(d / "a", d / "b");
@@ -241,6 +242,7 @@ TEST_CASE("a corrupt or truncated checkpoint exits 2 naming it and --force disca
   CHECK(!fs::exists(d / "b.incomplete"));
   const Result forced = run(args + (d / "b").string() + " --resume --force");
   REQUIRE_MESSAGE(forced.code == 0, forced.out);
+  CHECK(forced.out.find("no usable checkpoint") != std::string::npos);
   checkSameRun(d / "a", d / "b");
   fs::remove_all(d);
 }

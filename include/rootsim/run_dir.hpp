@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -29,6 +30,8 @@ struct RunDirOptions {
   // continue an interrupted run (DIR.partial) from its checkpoint (runSceneToDir); with force, a
   // checkpoint that cannot be used (corrupt, another scene) is discarded and the run starts again
   bool resume = false;
+  // where a resumed run says what it did (continued from step K, or started again); may be empty
+  std::function<void(const std::string&)> note;
 };
 
 // what the RunDir constructor does with an interrupted run DIR.partial

@@ -120,6 +120,7 @@ int runCommand(const RunOptions& o) {
   RunDirOptions ro;
   ro.force = o.force;
   ro.resume = o.resume;
+  ro.note = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
   // the run directory may not be (or contain) the scene file or the folder we are working in
   ro.protect = {fs::path(o.scene), fs::current_path()};
   Progress pr(steps, o.quiet || steps == 0, sc.model.name);

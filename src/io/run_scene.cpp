@@ -135,6 +135,11 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
   const PartialRun partial =
       dirOptions.resume ? resumePlan(sc, outDir, hash, dirOptions.force, ck) : PartialRun::Refuse;
   RunDir rd(outDir, dirOptions, partial);
+  if (dirOptions.note && ck)
+    dirOptions.note("resuming " + rd.final().string() + " from the checkpoint of growth step " +
+                    std::to_string(ck->step) + " of " + std::to_string(m.growth.steps));
+  else if (dirOptions.note && partial == PartialRun::Discard)
+    dirOptions.note("no usable checkpoint in " + rd.work().string() + ": starting " + rd.final().string() + " again");
   const double t0 = now();
   const KillHook hook;
   try {

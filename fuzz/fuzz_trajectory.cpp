@@ -1,5 +1,5 @@
-// Fuzz harness: trajectory.csv -> readTrajectory (include/rootsim/outputs.hpp), what `rootsim render`
-// reads. Oracles: a refused file throws SceneError with a one-line message; an accepted file gives at
+// Fuzz harness: trajectory.csv or trajectory.bin (told apart by the first bytes) -> readTrajectory
+// (include/rootsim/outputs.hpp), what `rootsim render` reads. Oracles: a refused file throws SceneError with a one-line message; an accepted file gives at
 // least one frame, every frame with at least one element and only finite numbers (the renderer's
 // precondition).
 #include <unistd.h>

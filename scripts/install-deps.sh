@@ -5,11 +5,12 @@ set -euo pipefail
 pkgs=(cmake ninja-build g++ pkg-config
       libeigen3-dev libcli11-dev doctest-dev libtomlplusplus-dev libbenchmark-dev
       libosmesa6-dev libglm-dev libstb-dev libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
-      libcairo2-dev fonts-dejavu-core python3
+      libcairo2-dev fonts-dejavu-core python3 zlib1g-dev
       python3-dev pybind11-dev python3-pybind11 python3-numpy   # the Python package (python/)
       python3-pytest python3-matplotlib                         # its tests; examples/*.py
       clang libclang-rt-dev             # sanitizer + libFuzzer build (.ci/run, scripts/fuzz.sh)
-      slurm-wlm munge)                  # tests/slurm/run.sh: a sweep through a single-node SLURM
+      slurm-wlm munge                   # tests/slurm/run.sh: a sweep through a single-node SLURM
+      python3-vtk9)                     # tests/vtk_read.py: VTK's own reader reads the .vtp files
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -148,7 +148,7 @@ TEST_CASE("determinism: the same scene twice gives identical files") {
   const fs::path d = scratch("det");
   REQUIRE(run("run " + kSmall + " --out " + (d / "a").string()).code == 0);
   REQUIRE(run("run " + kSmall + " --out " + (d / "b").string()).code == 0);
-  for (const char* f : {"scene.toml", "timeseries.csv", "shape.csv", "trajectory.csv", "trajectory.pvd",
+  for (const char* f : {"scene.toml", "timeseries.csv", "shape.csv", "trajectory.bin", "trajectory.pvd",
                         "vtk/step_000030.vtp"}) {
     INFO(f);
     const std::string a = slurp(d / "a" / f), b = slurp(d / "b" / f);

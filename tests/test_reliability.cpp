@@ -129,7 +129,7 @@ TEST_CASE("a sweep whose run names would exceed 255 bytes runs with shortened na
 TEST_CASE("render on a trajectory with NaN or inf exits 2 naming file and line") {
   const fs::path d = scratch("nanrender");
   const Result r = run("run " + kScene + " --set growth.steps=20 --set output.every_steps=10 --set output.vtk=false "
-                       "--quiet --out " + (d / "out").string());
+                       "--set output.trajectory_format=csv --quiet --out " + (d / "out").string());
   REQUIRE(r.code == 0);
   const fs::path traj = d / "out" / "trajectory.csv";
   const std::string good = slurp(traj);
@@ -172,7 +172,7 @@ void checkWriteFailure(const Result& r, const fs::path& out, const std::string& 
   CAPTURE(r.out);
   CHECK(r.code == 1);
   const std::regex msg("rootsim: run failed: write error on " + out.string() +
-                       R"(\.partial/(trajectory\.csv|timeseries\.csv) \(disk full\?\): )" + why +
+                       R"(\.partial/(trajectory\.csv|trajectory\.bin|timeseries\.csv|checkpoint\.bin) \(disk full\?\): )" + why +
                        R"( \(at growth step (\d+) of 3000\)\n)");
   std::smatch m;
   REQUIRE(std::regex_search(r.out, m, msg));

@@ -27,6 +27,11 @@ class BandLU {
   bool factorize();
   // solves A x = b in place (after factorize())
   void solve(double* b) const;
+  // the raw storage (band and its LU factors, pivots), to carry factors across a checkpoint
+  const std::vector<double>& storage() const { return ab_; }
+  const std::vector<int>& pivots() const { return piv_; }
+  // restores what storage() and pivots() of a matrix of these sizes held; false when they do not fit
+  bool restore(int n, int kl, int ku, const std::vector<double>& ab, const std::vector<int>& piv);
 
  private:
   int n_ = 0, kl_ = 0, ku_ = 0, kv_ = 0, ld_ = 1;

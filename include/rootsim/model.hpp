@@ -36,10 +36,20 @@ struct AnalysisParams {
   double skewMinWaves = 2.0;       // a skew is judged only over at least this many full waves (MODEL.md section 8)
 };
 
+// how the trajectory is written (docs/outputs.md)
+enum class TrajectoryFormat {
+  Binary,  // trajectory.bin: raw little-endian doubles, about a third of the CSV, read back exactly
+  Csv,     // trajectory.csv: one text row per node and snapshot
+  Both     // both files
+};
+
 struct OutputParams {
   int everySteps = 10;             // snapshot and time-series row every this many growth steps
-  bool trajectory = true;          // write trajectory.csv (needed by `rootsim render`)
+  bool trajectory = true;          // write the trajectory (needed by `rootsim render`)
+  TrajectoryFormat trajectoryFormat = TrajectoryFormat::Binary;
   bool vtk = true;                 // write ParaView .vtp snapshots and trajectory.pvd
+  double checkpointEvery = 60.0;   // a growing run writes DIR.partial/checkpoint.bin after the first growth
+                                   // step at least this much wall time after the last one [s] (0: every step)
 };
 
 struct Model {

@@ -1,6 +1,7 @@
 #pragma once
 // Files of a run directory (SPEC.md "A run directory"): shape.csv, timeseries.csv, summary.json,
-// trajectory.csv and ParaView snapshots. Lab frame of MODEL.md section 3, millimetres and hours.
+// trajectory.csv / trajectory.bin and ParaView snapshots. Lab frame of MODEL.md section 3, millimetres and hours.
+#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <string>
@@ -28,8 +29,11 @@ std::string modesVtp(const RodState& s, const StiffnessModes& m);
 class TimeseriesWriter {
  public:
   explicit TimeseriesWriter(const std::filesystem::path& path);
+  // continues a killed run's file from the first `bytes` bytes (a checkpoint's position)
+  TimeseriesWriter(const std::filesystem::path& path, std::uintmax_t bytes);
   void add(const StepRecord& r);
   void close();
+  std::uintmax_t bytes() const { return f_.size(); }
 
  private:
   AtomicFile f_;
@@ -56,23 +60,60 @@ CsvColumns readCsvColumns(const std::filesystem::path& path);
 class TrajectoryWriter {
  public:
   explicit TrajectoryWriter(const std::filesystem::path& path);
+  // continues a killed run's file from the first `bytes` bytes, which hold `frames` frames
+  TrajectoryWriter(const std::filesystem::path& path, std::uintmax_t bytes, int frames);
   void add(const Snapshot& s);
   void close();
   int frames() const { return frames_; }
+  std::uintmax_t bytes() const { return f_.size(); }
 
  private:
   AtomicFile f_;
   int frames_ = 0;
 };
-// reads trajectory.csv; throws SceneError naming the file and line when it is malformed
+
+// the same snapshots as trajectory.bin, raw little-endian doubles (docs/outputs.md has the layout):
+//   file header   "RSTRAJ01" (8 bytes) | u32 version 1 | u32 0
+//   per snapshot  i32 frame | i32 step | i32 nodes N | u32 fields | f64 time_h
+//                 f64 x_mm[N][3] | f64 d1[N-1][3] | f64 d3[N-1][3] | f64 radius_mm[N-1]
+//                 then, when fields has bit 0: f64 kappa0_per_mm[N]; bit 1: f64 plate_force_n[N];
+//                 bit 2: f64 contact_force_n[N][3] (plate with friction, self, obstacles)
+// The values are the CSV's (same units), bit for bit: a binary and a CSV trajectory of one run read
+// back to the same snapshots.
+class TrajectoryBinaryWriter {
+ public:
+  explicit TrajectoryBinaryWriter(const std::filesystem::path& path);
+  TrajectoryBinaryWriter(const std::filesystem::path& path, std::uintmax_t bytes, int frames);
+  void add(const Snapshot& s);
+  void close();
+  int frames() const { return frames_; }
+  std::uintmax_t bytes() const { return f_.size(); }
+
+ private:
+  AtomicFile f_;
+  int frames_ = 0;
+  std::string buf_;   // one record, reused
+};
+
+// reads a trajectory: trajectory.csv or trajectory.bin, told apart by their first bytes; a path to a
+// trajectory.csv that does not exist reads the trajectory.bin beside it. Throws SceneError naming the
+// file and line (CSV) or byte offset (binary) when it is malformed
 std::vector<Snapshot> readTrajectory(const std::filesystem::path& path);
+// the trajectory file of a run directory: trajectory.bin when it exists, else trajectory.csv
+std::filesystem::path trajectoryPath(const std::filesystem::path& runDir);
 
 // ParaView: vtk/step_NNNNNN.vtp (polyline, per-element d1, d3, radius) and trajectory.pvd
+// (VTK XML PolyData, binary appended data compressed with zlib: compressor="vtkZLibDataCompressor",
+// header_type="UInt64"; ParaView and VTK's readers read it)
 class VtkSeriesWriter {
  public:
   explicit VtkSeriesWriter(const std::filesystem::path& runDir);
+  // continues a killed run's series with the entries it had written (a checkpoint's)
+  VtkSeriesWriter(const std::filesystem::path& runDir, std::vector<std::pair<double, std::string>> entries);
   void add(const Snapshot& s);
   void close();
+  // trajectory.pvd's entries so far: (time_h, file)
+  const std::vector<std::pair<double, std::string>>& entries() const { return entries_; }
 
  private:
   std::filesystem::path dir_;

@@ -7,8 +7,10 @@
 // (kRunMarker) written first, and an existing DIR, DIR.partial or DIR.incomplete is replaced only when it
 // holds that marker and nothing but files a run writes. Anything else is refused with a SceneError
 // (exit 2) before the run starts.
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -25,6 +27,18 @@ struct RunDirOptions {
   // paths the output must not contain or be (the scene file, the working directory): replacing an
   // ancestor of them would delete them
   std::vector<std::filesystem::path> protect;
+  // continue an interrupted run (DIR.partial) from its checkpoint (runSceneToDir); with force, a
+  // checkpoint that cannot be used (corrupt, another scene) is discarded and the run starts again
+  bool resume = false;
+  // where a resumed run says what it did (continued from step K, or started again); may be empty
+  std::function<void(const std::string&)> note;
+};
+
+// what the RunDir constructor does with an interrupted run DIR.partial
+enum class PartialRun {
+  Refuse,    // discard it with RunDirOptions::force, else refuse (SceneError)
+  Continue,  // keep writing into it (resuming from its checkpoint)
+  Discard    // remove it (a run directory, checked) and start again
 };
 
 // the --out path as the user meant it: "out/" -> "out", "./a/b/" -> "a/b"; throws SceneError for "",
@@ -37,7 +51,7 @@ std::string whyNotReplaceable(const std::filesystem::path& dir);
 class RunDir {
  public:
   // validates the output path (see above) and creates DIR.partial; throws SceneError (exit 2)
-  RunDir(const std::filesystem::path& dir, const RunDirOptions& opt);
+  RunDir(const std::filesystem::path& dir, const RunDirOptions& opt, PartialRun partial = PartialRun::Refuse);
   ~RunDir();
   RunDir(const RunDir&) = delete;
   RunDir& operator=(const RunDir&) = delete;
@@ -64,12 +78,17 @@ void writeFileAtomic(const std::filesystem::path& path, const std::string& conte
 class AtomicFile {
  public:
   explicit AtomicFile(std::filesystem::path path);
+  // continues a file a killed run was streaming (path.tmp, or path if it was already closed), cut back
+  // to its first `bytes` bytes (where a checkpoint saw it); throws SceneError when it is missing or shorter
+  AtomicFile(std::filesystem::path path, std::uintmax_t bytes);
   ~AtomicFile();
   std::ofstream& stream() { return out_; }
   // hands what was streamed to the system now; throws RunError naming the file when it cannot be written
   // (a full disk is noticed at the next flush, not at close() after the whole run)
   void flush();
   void close();
+  // bytes handed to the system so far (call after flush())
+  std::uintmax_t size() const;
 
  private:
   std::filesystem::path path_, tmp_;

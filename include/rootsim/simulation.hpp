@@ -1,6 +1,8 @@
 #pragma once
 // The run loop (STYLE.md "Data flow"): for each growth step grow -> relax -> observe. No I/O here.
+#include <array>
 #include <limits>
+#include <vector>
 
 #include "rootsim/analysis.hpp"
 #include "rootsim/model.hpp"
@@ -33,6 +35,35 @@ struct StepRecord {
   double frictionWork = 0;    // work done against friction so far [J], cumulative
 };
 
+// what a growth step carries to the next besides the rod state: counters, the unwrapped tip angle, the
+// last record, and the solvers' memory that changes their results (the Newton stability check's
+// inverse-iteration start vector, the self-contact Verlet list). A checkpoint (src/io/checkpoint.cpp)
+// saves it with the state; Simulation(model, state, carry) continues bit for bit where carry() left.
+struct SimulationCarry {
+  int step = 0;
+  long totalSubsteps = 0, totalIterations = 0;
+  double thetaUnwrapped = 0;            // [rad]
+  long slipEvents = 0;
+  double frictionWork = 0;              // [J]
+  StepRecord last;
+  // NewtonWorkspace: the warm start of the inverse iteration and what it knows about the last solve
+  std::vector<double> newtonMode;       // (at least newtonModeSize)
+  int newtonModeSize = 0, newtonFirstFreeNode = 0, newtonNegative = 0;
+  double newtonLowestEigenvalue = 0;    // [N/m]
+  // the last Jacobian's band LU factors, which the next relaxation's first (chord) iteration uses
+  bool newtonFactorsValid = false, newtonSparseActive = false;
+  int newtonFactorsDofs = 0, newtonFactorsFirstBlock = 0;
+  int newtonBandN = 0, newtonBandKl = 0, newtonBandKu = 0;
+  std::vector<double> newtonBand;       // BandLU::storage()
+  std::vector<int> newtonPivots;        // BandLU::pivots()
+  // the solver's self-contact Verlet list (ContactWorkspace)
+  std::vector<std::array<int, 2>> pairs;
+  Eigen::Matrix3Xd pairsBuiltX;         // (3 x builtElements+1) [m]
+  int pairsBuiltElements = -1;
+  double pairsBuiltRestLength = -1.0;   // [m]
+  long pairsBuilds = 0;
+};
+
 class Simulation {
  public:
   // builds the initial rod (MODEL.md section 3) and relaxes it once (no growth yet)
@@ -40,6 +71,9 @@ class Simulation {
   // continues from a state of an earlier simulation of a compatible model (its growth step `step`), as it
   // is: no relaxation (a restart, or the same root handed to another solver)
   Simulation(const Model& m, const RodState& s, int step);
+  // continues a simulation exactly where carry() of an earlier one with the same model and state left
+  // it (a checkpoint): the next growthStep() gives the same bits as it would have there
+  Simulation(const Model& m, const RodState& s, const SimulationCarry& carry);
 
   // one growth step: anchor mature nodes, grow rest lengths, update kappa0 (Eq. 17) and the twist
   // profile, split long elements, relax, commit the friction stick points; throws RelaxError naming
@@ -59,6 +93,7 @@ class Simulation {
   long totalSubsteps() const { return totalSubsteps_; }
   long totalIterations() const { return totalIterations_; }
   Snapshot snapshot() const;
+  SimulationCarry carry() const;
 
  private:
   void observe(const RelaxResult& res, int splits, int unstable);

@@ -159,7 +159,7 @@ def _scene_of(scene_or_path: Union[Scene, PathLike], set: Optional[Mapping[str, 
 
 @dataclass(frozen=True)
 class Frame:
-    """One snapshot of trajectory.csv (what ``rootsim render`` draws), SI units like ``Simulation.state``.
+    """One snapshot of the trajectory (trajectory.bin or trajectory.csv: what ``rootsim render`` draws), SI units like ``Simulation.state``.
 
     ``x`` node positions [m] (nodes x 3); ``d1``, ``d3`` element directors, lab frame, unit (elements x 3;
     d2 = d3 x d1); ``radius`` element radius R/sqrt(lambda_e) [m] (elements); ``kappa0`` |intrinsic
@@ -186,7 +186,7 @@ class Run:
     - ``timeseries``: dict column name -> numpy float64 array, the columns of timeseries.csv (step,
       time_h, length_mm, theta_tip_deg, Eb, Et, Wr, Tw, ...): the very doubles the file holds
     - ``shape``: dict column name -> array, the final centreline of shape.csv (s_mm, x_mm, ..., radius_mm)
-    - ``frames``: list of ``Frame``, one per snapshot of trajectory.csv (SI units)
+    - ``frames``: list of ``Frame``, one per snapshot of the trajectory (trajectory.bin or .csv; SI units)
     - ``summary``: summary.json as a dict; ``result``: the row of result.csv (a sweep table's columns)
     - ``scene``: the resolved scene.toml as a ``Scene``
 

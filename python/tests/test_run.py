@@ -46,7 +46,7 @@ def test_run_numbers_are_the_command_lines_to_the_last_bit(cli_run, tmp_path):
     for n in names:
         assert_bitwise_equal(r.shape[n], ref[n], f"shape {n}")
     # the files themselves are the same bytes (summary.json differs only in its wall time)
-    for f in ("timeseries.csv", "shape.csv", "trajectory.csv", "result.csv", "scene.toml"):
+    for f in ("timeseries.csv", "shape.csv", "trajectory.bin", "result.csv", "scene.toml"):
         assert (r.dir / f).read_bytes() == (cli_run / f).read_bytes(), f
     want = json.loads((cli_run / "summary.json").read_text())
     got = dict(r.summary)

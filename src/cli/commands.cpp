@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <iostream>
 #include <numbers>
 #include <tuple>
@@ -97,8 +98,29 @@ int runCommand(const RunOptions& o) {
     throw SceneError("--movie needs the trajectory, but output.trajectory = false (" +
                      std::string(sc.path) + "); drop one of them");
   const int steps = sc.model.growth.enabled ? sc.model.growth.steps : 0;
+  if (o.resume) {
+    // a complete run of this scene: nothing to continue; of another scene: refused
+    fs::path partial = out;
+    partial += ".partial";
+    std::error_code ec;
+    if (!fs::exists(fs::symlink_status(partial, ec)) && fs::exists(fs::symlink_status(out, ec))) {
+      if (std::string why = whyNotReplaceable(out); !why.empty()) throw SceneError("--out " + out.string() + ": " + why);
+      std::ifstream in(out / "scene.toml", std::ios::binary);
+      const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+      if (!in.is_open() || text != sc.resolvedToml)
+        throw SceneError("--resume: " + out.string() + " holds a complete run of another scene (its scene.toml differs from " +
+                         sc.path + " with these --set values)");
+      std::fprintf(stderr, "%s is complete: nothing to resume\n", out.string().c_str());
+#ifdef ROOTSIM_HAVE_RENDER
+      if (o.movie && !fs::exists(out / "movie.mp4", ec)) renderRunMovie(out, o.quiet, look);
+#endif
+      return 0;
+    }
+  }
   RunDirOptions ro;
   ro.force = o.force;
+  ro.resume = o.resume;
+  ro.note = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
   // the run directory may not be (or contain) the scene file or the folder we are working in
   ro.protect = {fs::path(o.scene), fs::current_path()};
   Progress pr(steps, o.quiet || steps == 0, sc.model.name);

@@ -24,6 +24,7 @@ struct RunOptions {
   bool movie = false;
   LookOptions look;       // the movie's camera, colours, plots (with movie)
   bool force = false;     // replace an earlier run directory at --out (never a folder rootsim did not write)
+  bool resume = false;    // continue DIR.partial from its checkpoint; a complete DIR is left as it is
   bool quiet = false;
 };
 int runCommand(const RunOptions& o);

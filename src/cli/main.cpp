@@ -39,6 +39,8 @@ int main(int argc, char** argv) {
   addLookOptions(cRun, run.look);
   cRun->add_flag("--force", run.force,
                  "replace an earlier run (or interrupted run) at --out; folders rootsim did not write are never touched");
+  cRun->add_flag("--resume", run.resume,
+                 "continue a killed run from its last checkpoint in DIR.partial (a complete DIR: nothing to do)");
   cRun->add_flag("--quiet", run.quiet, "no progress output");
 
   cli::CheckOptions check;

@@ -109,7 +109,7 @@ SceneInfo sceneInfoOf(const Model& m) {
 }
 
 std::vector<Snapshot> loadSnapshots(const fs::path& runDir) {
-  const fs::path traj = runDir / "trajectory.csv";
+  const fs::path traj = trajectoryPath(runDir);  // trajectory.bin, or trajectory.csv
   if (!fs::is_regular_file(traj))
     throw SceneError(traj.string() + ": not found (a run directory written with output.trajectory = true)");
   std::vector<Snapshot> snaps = readTrajectory(traj);
@@ -262,10 +262,10 @@ void applyLook(const MovieLook& look, const fs::path& runDir, const std::vector<
   job.view.shadows = look.shadows;
   const Snapshot& last = snaps.back();
   if (look.colourBy == ColourField::Kappa0 && last.kappa0.size() == 0)
-    throw SceneError("--color-by kappa0: " + (runDir / "trajectory.csv").string() +
+    throw SceneError("--color-by kappa0: " + trajectoryPath(runDir).string() +
                      " has no kappa0_per_mm column (written by an older rootsim; run the scene again)");
   if (look.colourBy == ColourField::Contact && last.plateForce.size() == 0)
-    throw SceneError("--color-by contact: " + (runDir / "trajectory.csv").string() +
+    throw SceneError("--color-by contact: " + trajectoryPath(runDir).string() +
                      " has no plate_force_n column (written by an older rootsim; run the scene again)");
   if (!look.plots.empty()) {
     const fs::path ts = runDir / "timeseries.csv";
@@ -473,9 +473,9 @@ int montageRunsCommand(const MontageOptions& o) {
     r.snaps = loadSnapshots(dirs[i]);
     r.label = labels[i];
     if (job.view.colourBy == ColourField::Kappa0 && r.snaps.back().kappa0.size() == 0)
-      throw SceneError("--color-by kappa0: " + (dirs[i] / "trajectory.csv").string() + " has no kappa0_per_mm column");
+      throw SceneError("--color-by kappa0: " + trajectoryPath(dirs[i]).string() + " has no kappa0_per_mm column");
     if (job.view.colourBy == ColourField::Contact && r.snaps.back().plateForce.size() == 0)
-      throw SceneError("--color-by contact: " + (dirs[i] / "trajectory.csv").string() + " has no plate_force_n column");
+      throw SceneError("--color-by contact: " + trajectoryPath(dirs[i]).string() + " has no plate_force_n column");
     runs.push_back(std::move(r));
   }
   renderMontage(runs, job, progressLines(o.quiet, "montage"));

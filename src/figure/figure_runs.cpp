@@ -71,7 +71,7 @@ double val(const RunResult& r, const std::string& k) { return r.number(k); }
 std::vector<Row> series(const Ctx& c, const Case& k) { return readCsv(c.runs() / dirOf(c, k) / "timeseries.csv"); }
 
 std::vector<Snapshot> trajectory(const Ctx& c, const Case& k) {
-  return readTrajectory(c.runs() / dirOf(c, k) / "trajectory.csv");
+  return readTrajectory(trajectoryPath(c.runs() / dirOf(c, k)));
 }
 
 }  // namespace rootsim::fig

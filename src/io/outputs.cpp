@@ -1,6 +1,9 @@
 #include "rootsim/outputs.hpp"
 
 #include <charconv>
+#include <cstring>
+#include <iterator>
+#include <zlib.h>
 #include <cmath>
 #include <system_error>
 #include <fstream>
@@ -110,6 +113,8 @@ TimeseriesWriter::TimeseriesWriter(const fs::path& path) : f_(path) {
                  "min_self_distance_r,obstacle_contacts,slip_events,frictional_work_j\n";
 }
 
+TimeseriesWriter::TimeseriesWriter(const fs::path& path, std::uintmax_t bytes) : f_(path, bytes) {}
+
 void TimeseriesWriter::add(const StepRecord& r) {
   auto& o = f_.stream();
   o << r.step << ',' << fmt(r.timeH) << ',' << fmt(r.length / units::mm) << ',' << r.elements << ','
@@ -128,6 +133,9 @@ TrajectoryWriter::TrajectoryWriter(const fs::path& path) : f_(path) {
   f_.stream() << "frame,step,time_h,node,x_mm,y_mm,z_mm,d1x,d1y,d1z,d3x,d3y,d3z,radius_mm,kappa0_per_mm,"
                  "plate_force_n,f_plate_total_n,f_self_n,f_obstacle_n\n";
 }
+
+TrajectoryWriter::TrajectoryWriter(const fs::path& path, std::uintmax_t bytes, int frames)
+    : f_(path, bytes), frames_(frames) {}
 
 void TrajectoryWriter::add(const Snapshot& s) {
   auto& o = f_.stream();
@@ -153,7 +161,166 @@ void TrajectoryWriter::add(const Snapshot& s) {
 
 void TrajectoryWriter::close() { f_.close(); }
 
+namespace {
+constexpr char kTrajMagic[8] = {'R', 'S', 'T', 'R', 'A', 'J', '0', '1'};
+constexpr std::uint32_t kTrajVersion = 1;
+constexpr std::uint32_t kHasKappa0 = 1, kHasPlateForce = 2, kHasContactForce = 4;
+template <class T>
+void putRaw(std::string& b, const T& v) {
+  b.append(reinterpret_cast<const char*>(&v), sizeof v);
+}
+
+// trajectory.bin (layout in outputs.hpp and docs/outputs.md)
+std::vector<Snapshot> readTrajectoryBinary(const fs::path& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw SceneError(path.string() + ": cannot open trajectory");
+  const std::string b((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  std::size_t pos = 0;
+  auto bad = [&](const std::string& why) {
+    throw SceneError(path.string() + ": byte " + std::to_string(pos) + ": " + why);
+  };
+  auto take = [&](void* p, std::size_t n) {
+    if (n > b.size() - pos) bad("truncated (the file ends inside a snapshot)");
+    std::memcpy(p, b.data() + pos, n);
+    pos += n;
+  };
+  if (b.size() < 16 || std::memcmp(b.data(), kTrajMagic, 8) != 0) bad("not a rootsim binary trajectory");
+  pos = 8;
+  std::uint32_t version = 0, reserved = 0;
+  take(&version, 4);
+  take(&reserved, 4);
+  if (version != kTrajVersion) bad("version " + std::to_string(version) + " (this rootsim reads version 1)");
+  std::vector<Snapshot> out;
+  // every number finite, as the CSV reader demands; converted from the file's units as it does
+  // (divide: as the CSV reader converts per-mm values, a division rather than a product by 1/mm)
+  auto reals = [&](double* dst, std::size_t n, double scale, const char* what, bool divide = false) {
+    const std::size_t at = pos;
+    take(dst, n * sizeof(double));
+    for (std::size_t i = 0; i < n; ++i) {
+      dst[i] = divide ? dst[i] / scale : dst[i] * scale;
+      if (!std::isfinite(dst[i])) {
+        pos = at + i * sizeof(double);
+        bad(std::string(what) + ": not a finite number");
+      }
+    }
+  };
+  while (pos < b.size()) {
+    const std::size_t start = pos;
+    std::int32_t frame = 0, step = 0, nodes = 0;
+    std::uint32_t fields = 0;
+    double t = 0;
+    take(&frame, 4);
+    take(&step, 4);
+    take(&nodes, 4);
+    take(&fields, 4);
+    take(&t, 8);
+    pos = start;
+    if (frame != static_cast<std::int32_t>(out.size())) bad("frame " + std::to_string(frame) + " out of order");
+    if (nodes < 2) bad("a snapshot of " + std::to_string(nodes) + " nodes (a rod needs two)");
+    if ((fields & ~std::uint32_t{7}) != 0) bad("unknown fields " + std::to_string(fields));
+    if (!std::isfinite(t)) bad("time_h: not a finite number");
+    const std::size_t N = static_cast<std::size_t>(nodes);
+    // the record: its 24-byte head, 3N + 7(N - 1) doubles, and the optional node fields
+    const std::size_t perNode = 10 + ((fields & kHasKappa0) ? 1 : 0) + ((fields & kHasPlateForce) ? 1 : 0) +
+                                ((fields & kHasContactForce) ? 3 : 0);
+    if (N > (b.size() - pos) / sizeof(double) || 24 + (perNode * N - 7) * sizeof(double) > b.size() - pos)
+      bad("truncated (a snapshot of " + std::to_string(N) + " nodes)");
+    pos = start + 24;
+    Snapshot s;
+    s.step = step;
+    s.timeH = t;
+    const auto n = static_cast<Eigen::Index>(N - 1);
+    s.x.resize(3, n + 1);
+    s.d1.resize(3, n);
+    s.d3.resize(3, n);
+    s.radius.resize(n);
+    reals(s.x.data(), 3 * N, units::mm, "x_mm");
+    reals(s.d1.data(), 3 * (N - 1), 1.0, "d1");
+    reals(s.d3.data(), 3 * (N - 1), 1.0, "d3");
+    const std::size_t rAt = pos;
+    reals(s.radius.data(), N - 1, units::mm, "radius_mm");
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (s.radius[i] <= 0) {
+        pos = rAt + static_cast<std::size_t>(i) * sizeof(double);
+        bad("radius_mm: must be > 0");
+      }
+    if (fields & kHasKappa0) {
+      s.kappa0.resize(n + 1);
+      reals(s.kappa0.data(), N, units::mm, "kappa0_per_mm", true);
+    }
+    if (fields & kHasPlateForce) {
+      s.plateForce.resize(n + 1);
+      reals(s.plateForce.data(), N, 1.0, "plate_force_n");
+    }
+    if (fields & kHasContactForce) {
+      s.contactForce.resize(3, n + 1);
+      reals(s.contactForce.data(), 3 * N, 1.0, "contact_force_n");
+    }
+    out.push_back(std::move(s));
+  }
+  if (out.empty()) throw SceneError(path.string() + ": no frames");
+  return out;
+}
+}  // namespace
+
+TrajectoryBinaryWriter::TrajectoryBinaryWriter(const fs::path& path) : f_(path) {
+  std::string h(kTrajMagic, 8);
+  putRaw(h, kTrajVersion);
+  putRaw(h, std::uint32_t{0});
+  f_.stream().write(h.data(), static_cast<std::streamsize>(h.size()));
+}
+
+TrajectoryBinaryWriter::TrajectoryBinaryWriter(const fs::path& path, std::uintmax_t bytes, int frames)
+    : f_(path, bytes), frames_(frames) {}
+
+void TrajectoryBinaryWriter::add(const Snapshot& s) {
+  const int n = s.elements();
+  const bool k0 = s.kappa0.size() == n + 1, pf = s.plateForce.size() == n + 1, cf = s.contactForce.cols() == n + 1;
+  std::string& b = buf_;
+  b.clear();
+  putRaw(b, static_cast<std::int32_t>(frames_));
+  putRaw(b, static_cast<std::int32_t>(s.step));
+  putRaw(b, static_cast<std::int32_t>(n + 1));
+  putRaw(b, static_cast<std::uint32_t>((k0 ? kHasKappa0 : 0) | (pf ? kHasPlateForce : 0) | (cf ? kHasContactForce : 0)));
+  putRaw(b, s.timeH);
+  // the CSV's values: lengths in mm, curvature per mm (x / mm is the double the CSV prints exactly)
+  for (int i = 0; i <= n; ++i)
+    for (int d = 0; d < 3; ++d) putRaw(b, s.x(d, i) / units::mm);
+  for (const auto* arr : {&s.d1, &s.d3})
+    for (int i = 0; i < n; ++i)
+      for (int d = 0; d < 3; ++d) putRaw(b, (*arr)(d, i));
+  for (int i = 0; i < n; ++i) putRaw(b, s.radius[i] / units::mm);
+  if (k0)
+    for (int i = 0; i <= n; ++i) putRaw(b, s.kappa0[i] * units::mm);
+  if (pf)
+    for (int i = 0; i <= n; ++i) putRaw(b, s.plateForce[i]);
+  if (cf)
+    for (int i = 0; i <= n; ++i)
+      for (int c = 0; c < 3; ++c) putRaw(b, s.contactForce(c, i));
+  f_.stream().write(b.data(), static_cast<std::streamsize>(b.size()));
+  ++frames_;
+  f_.flush();  // one frame per output step: a write failure stops the run here, not after the last step
+}
+
+void TrajectoryBinaryWriter::close() { f_.close(); }
+
+fs::path trajectoryPath(const fs::path& runDir) {
+  std::error_code ec;
+  if (fs::is_regular_file(runDir / "trajectory.bin", ec)) return runDir / "trajectory.bin";
+  return runDir / "trajectory.csv";
+}
+
 std::vector<Snapshot> readTrajectory(const fs::path& path) {
+  {
+    std::error_code ec;
+    // a caller asking for trajectory.csv of a run that wrote the binary sibling
+    if (!fs::exists(path, ec) && path.filename() == "trajectory.csv" &&
+        fs::is_regular_file(path.parent_path() / "trajectory.bin", ec))
+      return readTrajectoryBinary(path.parent_path() / "trajectory.bin");
+    std::ifstream probe(path, std::ios::binary);
+    char magic[8] = {};
+    if (probe && probe.read(magic, 8) && std::memcmp(magic, kTrajMagic, 8) == 0) return readTrajectoryBinary(path);
+  }
   std::ifstream in(path);
   if (!in) throw SceneError(path.string() + ": cannot open trajectory (is this a run directory written with "
                                             "output.trajectory = true?)");
@@ -279,22 +446,88 @@ VtkSeriesWriter::VtkSeriesWriter(const fs::path& runDir) : dir_(runDir) {
   if (ec) throw RunError("cannot create " + (dir_ / "vtk").string() + ": " + ec.message());
 }
 
+VtkSeriesWriter::VtkSeriesWriter(const fs::path& runDir, std::vector<std::pair<double, std::string>> entries)
+    : VtkSeriesWriter(runDir) {
+  entries_ = std::move(entries);
+}
+
+namespace {
+// VTK's appended binary data with zlib (vtkZLibDataCompressor, header_type UInt64): each array is a
+// header of UInt64s (number of blocks, uncompressed block size, uncompressed size of the last block or 0
+// when it is full, compressed size of each block) followed by the blocks, each compressed on its own
+constexpr std::size_t kVtkBlock = 32768;
+
+class VtkAppended {
+ public:
+  // compresses an array; returns its offset in the appended data (what a DataArray's offset= says)
+  std::size_t add(const void* data, std::size_t bytes) {
+    const std::size_t offset = data_.size();
+    const std::size_t blocks = (bytes + kVtkBlock - 1) / kVtkBlock;
+    std::vector<std::uint64_t> head{blocks, kVtkBlock, bytes % kVtkBlock};
+    std::string body;
+    const auto* p = static_cast<const unsigned char*>(data);
+    for (std::size_t k = 0; k < blocks; ++k) {
+      const std::size_t n = std::min(kVtkBlock, bytes - k * kVtkBlock);
+      uLongf len = compressBound(static_cast<uLong>(n));
+      zbuf_.resize(len);
+      if (compress2(zbuf_.data(), &len, p + k * kVtkBlock, static_cast<uLong>(n), Z_DEFAULT_COMPRESSION) != Z_OK)
+        throw RunError("zlib: cannot compress a ParaView array");
+      head.push_back(len);
+      body.append(reinterpret_cast<const char*>(zbuf_.data()), len);
+    }
+    data_.append(reinterpret_cast<const char*>(head.data()), head.size() * sizeof(std::uint64_t));
+    data_ += body;
+    return offset;
+  }
+  const std::string& data() const { return data_; }
+
+ private:
+  std::string data_;
+  std::vector<Bytef> zbuf_;
+};
+}  // namespace
+
 void VtkSeriesWriter::add(const Snapshot& s) {
   char name[64];
   std::snprintf(name, sizeof name, "vtk/step_%06d.vtp", s.step);
-  const int n = s.elements();
-  std::ostringstream o;
-  vtpPolyline(o, s.x);
-  o << "<CellData Scalars=\"radius_mm\">\n"
-    << "<DataArray type=\"Float64\" Name=\"radius_mm\" format=\"ascii\">\n";
-  for (int i = 0; i < n; ++i) o << fmt(s.radius[i] / units::mm) << '\n';
-  for (const auto* arr : {&s.d1, &s.d3}) {
-    o << "</DataArray>\n<DataArray type=\"Float64\" Name=\"" << (arr == &s.d1 ? "d1" : "d3")
-      << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-    for (int i = 0; i < n; ++i) o << fmt((*arr)(0, i)) << ' ' << fmt((*arr)(1, i)) << ' ' << fmt((*arr)(2, i)) << '\n';
+  const int n = s.elements(), nn = n + 1;
+  // the arrays, in ParaView's units (mm) and layout (components interleaved)
+  VtkAppended a;
+  std::vector<double> pts(static_cast<std::size_t>(3 * nn));
+  for (int i = 0; i < nn; ++i)
+    for (int d = 0; d < 3; ++d) pts[static_cast<std::size_t>(3 * i + d)] = s.x(d, i) / units::mm;
+  std::vector<std::int32_t> conn(static_cast<std::size_t>(2 * n)), offs(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    conn[static_cast<std::size_t>(2 * i)] = i;
+    conn[static_cast<std::size_t>(2 * i + 1)] = i + 1;
+    offs[static_cast<std::size_t>(i)] = 2 * (i + 1);
   }
-  o << "</DataArray>\n</CellData>\n</Piece>\n</PolyData>\n</VTKFile>\n";
-  writeFileAtomic(dir_ / name, o.str());
+  std::vector<double> rad(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) rad[static_cast<std::size_t>(i)] = s.radius[i] / units::mm;
+  const std::size_t oPts = a.add(pts.data(), pts.size() * sizeof(double));
+  const std::size_t oConn = a.add(conn.data(), conn.size() * sizeof(std::int32_t));
+  const std::size_t oOffs = a.add(offs.data(), offs.size() * sizeof(std::int32_t));
+  const std::size_t oRad = a.add(rad.data(), rad.size() * sizeof(double));
+  const std::size_t oD1 = a.add(s.d1.data(), static_cast<std::size_t>(s.d1.size()) * sizeof(double));
+  const std::size_t oD3 = a.add(s.d3.data(), static_cast<std::size_t>(s.d3.size()) * sizeof(double));
+  std::ostringstream o;
+  o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
+       "header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\">\n"
+    << "<PolyData>\n<Piece NumberOfPoints=\"" << nn << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << n
+    << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n<Points>\n"
+    << "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" offset=\"" << oPts << "\"/>\n"
+    << "</Points>\n<Lines>\n"
+    << "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"appended\" offset=\"" << oConn << "\"/>\n"
+    << "<DataArray type=\"Int32\" Name=\"offsets\" format=\"appended\" offset=\"" << oOffs << "\"/>\n"
+    << "</Lines>\n<CellData Scalars=\"radius_mm\">\n"
+    << "<DataArray type=\"Float64\" Name=\"radius_mm\" format=\"appended\" offset=\"" << oRad << "\"/>\n"
+    << "<DataArray type=\"Float64\" Name=\"d1\" NumberOfComponents=\"3\" format=\"appended\" offset=\"" << oD1 << "\"/>\n"
+    << "<DataArray type=\"Float64\" Name=\"d3\" NumberOfComponents=\"3\" format=\"appended\" offset=\"" << oD3 << "\"/>\n"
+    << "</CellData>\n</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_";
+  std::string text = o.str();
+  text += a.data();
+  text += "\n</AppendedData>\n</VTKFile>\n";
+  writeFileAtomic(dir_ / name, text);
   entries_.emplace_back(s.timeH, name);
 }
 

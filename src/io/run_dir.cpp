@@ -13,8 +13,8 @@ namespace rootsim {
 
 namespace {
 // every name a run (and `run --movie`) writes into its directory; anything else in it is the user's
-constexpr std::array<const char*, 16> kRunEntries = {
-    "modes.csv",      "modes.vtp",
+constexpr std::array<const char*, 17> kRunEntries = {
+    "modes.csv",      "modes.vtp",      "trajectory.bin",
     kRunMarker,       "scene.toml",     "timeseries.csv", "shape.csv",    "summary.json",
     "result.csv",     "trajectory.csv", "trajectory.pvd", "vtk",          "movie.mp4",
     "final_top.png",  "ERROR.txt",      "checkpoint.bin", "movie.mp4.partial"};
@@ -83,25 +83,32 @@ std::string whyNotReplaceable(const fs::path& dir) {
   return "";
 }
 
-RunDir::RunDir(const fs::path& dir, const RunDirOptions& opt) : final_(normaliseOutDir(dir.string())) {
+RunDir::RunDir(const fs::path& dir, const RunDirOptions& opt, PartialRun partial)
+    : final_(normaliseOutDir(dir.string())) {
   std::error_code ec;
   for (const auto& p : opt.protect)
     if (!p.empty() && contains(final_, p))
       throw SceneError("--out " + dir.string() + ": contains " + p.string() +
                        "; a run directory must be a folder of its own (e.g. runs/my_run)");
   work_ = sibling(final_, ".partial");
-  // an earlier complete run: replaced only with --force, and only if it is one
+  // an earlier complete run: replaced only with --force, and only if it is one (a resumed run was
+  // started with that permission)
   if (fs::exists(fs::symlink_status(final_, ec))) {
     if (std::string why = whyNotReplaceable(final_); !why.empty()) throw SceneError("--out " + dir.string() + ": " + why);
-    if (!opt.force)
+    if (!opt.force && partial != PartialRun::Continue)
       throw SceneError("--out " + dir.string() + ": holds an earlier run; pass --force to replace it");
+  }
+  if (partial == PartialRun::Continue) {
+    if (std::string why = whyNotReplaceable(work_); !why.empty()) throw SceneError("--out " + dir.string() + ": " + why);
+    return;
   }
   // an interrupted run (killed): discarded only with --force
   if (fs::exists(fs::symlink_status(work_, ec))) {
     if (std::string why = whyNotReplaceable(work_); !why.empty()) throw SceneError("--out " + dir.string() + ": " + why);
-    if (!opt.force)
+    if (!opt.force && partial != PartialRun::Discard)
       throw SceneError("--out " + dir.string() + ": " + work_.string() +
-                       " holds an interrupted run; pass --force to discard it and start again");
+                       " holds an interrupted run; pass --resume to continue it from its last checkpoint, or "
+                       "--force to discard it and start again");
     if (std::string why = removeRun(work_); !why.empty()) throw SceneError("--out " + dir.string() + ": " + why);
   }
   fs::create_directories(work_, ec);
@@ -176,6 +183,29 @@ AtomicFile::AtomicFile(fs::path path) : path_(std::move(path)) {
   tmp_ += ".tmp";
   out_.open(tmp_, std::ios::binary | std::ios::trunc);
   if (!out_) throw RunError("cannot open " + tmp_.string() + " for writing: " + std::strerror(errno));
+}
+
+AtomicFile::AtomicFile(fs::path path, std::uintmax_t bytes) : path_(std::move(path)) {
+  tmp_ = path_;
+  tmp_ += ".tmp";
+  std::error_code ec;
+  // a kill after the file was closed (renamed) and before the run was committed: continue it
+  if (!fs::exists(tmp_, ec) && fs::is_regular_file(path_, ec)) fs::rename(path_, tmp_, ec);
+  const std::uintmax_t have = fs::is_regular_file(tmp_, ec) ? fs::file_size(tmp_, ec) : 0;
+  if (ec || !fs::is_regular_file(tmp_) || have < bytes)
+    throw SceneError(tmp_.string() + ": missing or shorter (" + std::to_string(have) + " bytes) than the checkpoint says (" +
+                     std::to_string(bytes) + " bytes); rerun with --force to discard the interrupted run");
+  fs::resize_file(tmp_, bytes, ec);
+  if (ec) throw RunError("cannot truncate " + tmp_.string() + ": " + ec.message());
+  out_.open(tmp_, std::ios::binary | std::ios::app);
+  if (!out_) throw RunError("cannot open " + tmp_.string() + " for appending: " + std::strerror(errno));
+}
+
+std::uintmax_t AtomicFile::size() const {
+  std::error_code ec;
+  const std::uintmax_t n = fs::file_size(tmp_, ec);
+  if (ec) throw RunError("cannot read the size of " + tmp_.string() + ": " + ec.message());
+  return n;
 }
 
 AtomicFile::~AtomicFile() {

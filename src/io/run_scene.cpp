@@ -1,5 +1,8 @@
 // One scene -> one run directory (used by `rootsim run` and by sweeps).
 #include <chrono>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -7,6 +10,7 @@
 
 #include <optional>
 
+#include "rootsim/checkpoint.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/outputs.hpp"
 #include "rootsim/results.hpp"
@@ -45,36 +49,178 @@ struct SnapWatch {
 
 }  // namespace
 
+namespace {
+// what to do with an interrupted run DIR.partial when resuming: continue it from its checkpoint (ck
+// filled), discard it (killed before its first checkpoint: nothing to lose), or refuse (another scene,
+// a corrupt checkpoint; with force those are discarded too)
+PartialRun resumePlan(const Scene& sc, const std::string& outDir, std::uint64_t hash, bool force,
+                      std::optional<RunCheckpoint>& ck) {
+  fs::path work = normaliseOutDir(outDir);
+  work += ".partial";
+  std::error_code ec;
+  if (!fs::exists(fs::symlink_status(work, ec))) return PartialRun::Refuse;  // nothing to resume: a new run
+  if (std::string why = whyNotReplaceable(work); !why.empty()) throw SceneError("--out " + outDir + ": " + why);
+  // the first file a run writes is its resolved scene
+  std::ifstream in(work / "scene.toml", std::ios::binary);
+  if (!in) return PartialRun::Discard;
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (text != sc.resolvedToml) {
+    if (force) return PartialRun::Discard;
+    throw SceneError("--resume: " + work.string() + " was written by another scene (its scene.toml differs from " +
+                     sc.path + " with these --set values); pass --force to discard it and start again");
+  }
+  if (!fs::exists(work / kCheckpointFile, ec)) return PartialRun::Discard;  // killed before the first one
+  try {
+    ck = readCheckpoint(work / kCheckpointFile);
+    if (ck->sceneHash != hash)
+      throw SceneError((work / kCheckpointFile).string() + ": written by another scene (scene hash differs); pass "
+                       "--force to discard it and start again");
+    // the streamed files hold at least what the checkpoint saw (checked here, before anything is touched)
+    const Model& m = sc.model;
+    const bool traj = m.output.trajectory;
+    const std::pair<const char*, std::uint64_t> streams[] = {
+        {"timeseries.csv", ck->writers.timeseriesBytes},
+        {"trajectory.csv", traj && m.output.trajectoryFormat != TrajectoryFormat::Binary ? ck->writers.trajectoryBytes : 0},
+        {"trajectory.bin", traj && m.output.trajectoryFormat != TrajectoryFormat::Csv ? ck->writers.trajectoryBinaryBytes : 0}};
+    for (const auto& [name, bytes] : streams) {
+      if (bytes == 0) continue;
+      fs::path f = work / name;
+      f += ".tmp";
+      if (!fs::is_regular_file(f, ec)) f = work / name;  // killed after it was closed
+      const std::uintmax_t have = fs::is_regular_file(f, ec) ? fs::file_size(f, ec) : 0;
+      if (have < bytes)
+        throw SceneError(f.string() + ": missing or shorter (" + std::to_string(have) + " bytes) than its checkpoint says (" +
+                         std::to_string(bytes) + " bytes); pass --force to discard the interrupted run and start again");
+    }
+  } catch (const SceneError&) {
+    ck.reset();
+    if (force) return PartialRun::Discard;
+    throw;
+  }
+  return PartialRun::Continue;
+}
+
+// leftovers of atomic writes a kill interrupted (the streams being continued excepted)
+void removeStaleTemps(const fs::path& work) {
+  std::error_code ec;
+  for (const fs::path& dir : {work, work / "vtk"}) {
+    if (!fs::is_directory(dir, ec)) continue;
+    std::vector<fs::path> stale;
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+      const std::string name = e.path().filename().string();
+      if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0 && name != "timeseries.csv.tmp" &&
+          name != "trajectory.csv.tmp" && name != "trajectory.bin.tmp")
+        stale.push_back(e.path());
+    }
+    for (const auto& f : stale) fs::remove(f, ec);
+  }
+}
+
+// test hook (tests/test_resume.cpp): ROOTSIM_TEST_KILL="C:K" writes a checkpoint after growth step C and
+// ends the process after step K (K >= C) with _Exit, as a kill would: nothing flushed, nothing renamed
+struct KillHook {
+  int checkpointAt = -1, killAt = -1;
+  KillHook() {
+    if (const char* e = std::getenv("ROOTSIM_TEST_KILL"))
+      if (std::sscanf(e, "%d:%d", &checkpointAt, &killAt) != 2) checkpointAt = killAt = -1;
+  }
+};
+}  // namespace
+
 double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOptions& dirOptions,
                      const std::function<void(const StepRecord&, int total)>& progress) {
   const Model& m = sc.model;
-  RunDir rd(outDir, dirOptions);
+  const std::uint64_t hash = sceneHash(sc.resolvedToml);
+  std::optional<RunCheckpoint> ck;
+  const PartialRun partial =
+      dirOptions.resume ? resumePlan(sc, outDir, hash, dirOptions.force, ck) : PartialRun::Refuse;
+  RunDir rd(outDir, dirOptions, partial);
+  if (dirOptions.note && ck)
+    dirOptions.note("resuming " + rd.final().string() + " from the checkpoint of growth step " +
+                    std::to_string(ck->step) + " of " + std::to_string(m.growth.steps));
+  else if (dirOptions.note && partial == PartialRun::Discard)
+    dirOptions.note("no usable checkpoint in " + rd.work().string() + ": starting " + rd.final().string() + " again");
   const double t0 = now();
+  const KillHook hook;
   try {
-    rd.write("scene.toml", sc.resolvedToml);
-    Simulation sim(m);
     const fs::path w = rd.work();
-    TimeseriesWriter ts(w / "timeseries.csv");
+    const bool traj = m.output.trajectory;
+    const bool csv = traj && m.output.trajectoryFormat != TrajectoryFormat::Binary;
+    const bool bin = traj && m.output.trajectoryFormat != TrajectoryFormat::Csv;
+    std::unique_ptr<Simulation> simp;
+    std::unique_ptr<TimeseriesWriter> ts;
     std::unique_ptr<TrajectoryWriter> tr;
+    std::unique_ptr<TrajectoryBinaryWriter> tb;
     std::unique_ptr<VtkSeriesWriter> vtk;
-    if (m.output.trajectory) tr = std::make_unique<TrajectoryWriter>(w / "trajectory.csv");
-    if (m.output.vtk) vtk = std::make_unique<VtkSeriesWriter>(w);
+    SnapWatch snap;
+    long maxSub = 0;
+    int maxSelfContacts = 0;
+    double minSelfDistance = NAN;  // NaN: never within 3R
+    double wallBefore = 0;         // wall time of earlier attempts (resumed) [s]
+    int first = 1;                 // the first growth step this process runs
+    if (ck) {
+      // resumed: the state, the solvers' memory and the writers where the checkpoint saw them
+      removeStaleTemps(w);
+      simp = std::make_unique<Simulation>(m, ck->state, ck->carry);
+      const WriterPositions& p = ck->writers;
+      ts = std::make_unique<TimeseriesWriter>(w / "timeseries.csv", p.timeseriesBytes);
+      if (csv) tr = std::make_unique<TrajectoryWriter>(w / "trajectory.csv", p.trajectoryBytes, p.trajectoryFrames);
+      if (bin) tb = std::make_unique<TrajectoryBinaryWriter>(w / "trajectory.bin", p.trajectoryBinaryBytes, p.trajectoryFrames);
+      if (m.output.vtk) vtk = std::make_unique<VtkSeriesWriter>(w, p.vtkEntries);
+      const RunAccumulators& a = ck->acc;
+      snap.first = a.snapFirst;
+      snap.vertical = a.snapVertical;
+      snap.prevTheta = a.snapPrevTheta;
+      snap.prevTime = a.snapPrevTime;
+      maxSub = a.maxSubsteps;
+      maxSelfContacts = a.maxSelfContacts;
+      minSelfDistance = a.minSelfDistance;
+      wallBefore = a.wallBefore;
+      first = ck->step + 1;
+    } else {
+      rd.write("scene.toml", sc.resolvedToml);
+      simp = std::make_unique<Simulation>(m);
+      ts = std::make_unique<TimeseriesWriter>(w / "timeseries.csv");
+      if (csv) tr = std::make_unique<TrajectoryWriter>(w / "trajectory.csv");
+      if (bin) tb = std::make_unique<TrajectoryBinaryWriter>(w / "trajectory.bin");
+      if (m.output.vtk) vtk = std::make_unique<VtkSeriesWriter>(w);
+    }
+    Simulation& sim = *simp;
     auto record = [&]() {
-      ts.add(sim.last());
-      if (tr || vtk) {
+      ts->add(sim.last());
+      if (tr || tb || vtk) {
         const Snapshot sn = sim.snapshot();
         if (tr) tr->add(sn);
+        if (tb) tb->add(sn);
         if (vtk) vtk->add(sn);
       }
     };
-    record();
-    SnapWatch snap;
-    snap.see(sim.last());  // the initial state: only remembered, as the step before the first
-    long maxSub = sim.last().substeps;
-    int maxSelfContacts = sim.last().selfContacts;
-    double minSelfDistance = sim.last().minSelfDistance;  // NaN: never within 3R
+    if (!ck) {
+      record();
+      snap.see(sim.last());  // the initial state: only remembered, as the step before the first
+      maxSub = sim.last().substeps;
+      maxSelfContacts = sim.last().selfContacts;
+      minSelfDistance = sim.last().minSelfDistance;
+    }
+    // a checkpoint: everything carried to the next step, and where the files stand (each add() flushed)
+    auto checkpoint = [&](int k) {
+      RunCheckpoint c;
+      c.sceneHash = hash;
+      c.step = k;
+      c.state = sim.state();
+      c.carry = sim.carry();
+      c.acc = {snap.first, snap.vertical, snap.prevTheta, snap.prevTime, maxSub, maxSelfContacts, minSelfDistance,
+               wallBefore + (now() - t0)};
+      c.writers.timeseriesBytes = ts->bytes();
+      if (tr) c.writers.trajectoryBytes = tr->bytes();
+      if (tb) c.writers.trajectoryBinaryBytes = tb->bytes();
+      c.writers.trajectoryFrames = tr ? tr->frames() : (tb ? tb->frames() : 0);
+      if (vtk) c.writers.vtkEntries = vtk->entries();
+      writeCheckpoint(w / kCheckpointFile, c);
+    };
+    double lastCheckpoint = now();
     const int steps = m.growth.enabled ? m.growth.steps : 0;
-    for (int k = 1; k <= steps; ++k) {
+    for (int k = first; k <= steps; ++k) {
       const StepRecord& r = sim.growthStep();
       maxSub = std::max(maxSub, r.substeps);
       maxSelfContacts = std::max(maxSelfContacts, r.selfContacts);
@@ -82,17 +228,28 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
       snap.see(r);
       try {
         if (k % m.output.everySteps == 0 || k == steps) record();
+        const bool due = hook.checkpointAt >= 0 ? k == hook.checkpointAt
+                                                : now() - lastCheckpoint >= m.output.checkpointEvery;
+        if (k < steps && due) {
+          checkpoint(k);
+          lastCheckpoint = now();
+        }
       } catch (const RunError& e) {
         throw RunError(std::string(e.what()) + " (at growth step " + std::to_string(k) + " of " +
                        std::to_string(steps) + ")");
       }
+      if (k == hook.killAt) std::_Exit(137);
       if (progress) progress(r, steps);
     }
-    ts.close();
+    ts->close();
     if (tr) tr->close();
+    if (tb) tb->close();
     if (vtk) vtk->close();
+    // the finished run holds no checkpoint: it is the same as a run never interrupted
+    std::error_code ec;
+    fs::remove(w / kCheckpointFile, ec);
     rd.write("shape.csv", shapeCsv(m, sim.state(), sim.strains()));
-    const double wall = now() - t0;
+    const double wall = wallBefore + (now() - t0);
 
     // summary.json and the one-row result.csv (what sweep tables are made of)
     const StepRecord& r = sim.last();
@@ -137,13 +294,13 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     rd.write("summary.json", j.dump() + "\n");
     rd.write("result.csv", resultCsv(res));
     rd.commit();
+    return wall;
   } catch (const RunInterrupted&) {
     throw;  // stopped on purpose (a progress callback threw it): DIR.partial stays, like a killed run
   } catch (const std::exception& e) {
     rd.fail(e.what());
     throw;
   }
-  return now() - t0;
 }
 
 }  // namespace rootsim

@@ -158,8 +158,18 @@ const std::vector<KeySpec>& schema() {
       real("analysis", "skew_min_waves", d.analysis.skewMinWaves, 0, false, 1e4, false,
            "a waving root is called skewing only over at least this many full waves"),
       integer("output", "every_steps", d.output.everySteps, 1, 1e9, "snapshot and time-series row every N growth steps"),
-      boolean("output", "trajectory", d.output.trajectory, "write trajectory.csv (what `rootsim render` reads)"),
-      boolean("output", "vtk", d.output.vtk, "write ParaView snapshots (vtk/*.vtp + trajectory.pvd)"),
+      boolean("output", "trajectory", d.output.trajectory,
+              "write the trajectory (what `rootsim render` reads; format: output.trajectory_format)"),
+      choice("output", "trajectory_format",
+             d.output.trajectoryFormat == TrajectoryFormat::Binary ? "binary"
+             : d.output.trajectoryFormat == TrajectoryFormat::Csv  ? "csv"
+                                                                    : "both",
+             {"binary", "csv", "both"},
+             "binary: trajectory.bin (raw doubles, docs/outputs.md); csv: trajectory.csv (text); both: the two"),
+      boolean("output", "vtk", d.output.vtk, "write ParaView snapshots (vtk/*.vtp, zlib-compressed binary, + trajectory.pvd)"),
+      real("output", "checkpoint_every_s", d.output.checkpointEvery, 0, false, 1e6, false,
+           "wall time between checkpoints of a growing run (DIR.partial/checkpoint.bin, for --resume) [s]; "
+           "0: after every growth step"),
   };
   return keys;
 }
@@ -315,6 +325,10 @@ Model buildModel(const Values& v, const std::string& name) {
   m.output.everySteps = static_cast<int>(num("output.every_steps"));
   m.output.trajectory = flag("output.trajectory");
   m.output.vtk = flag("output.vtk");
+  m.output.trajectoryFormat = str("output.trajectory_format") == "csv"    ? TrajectoryFormat::Csv
+                              : str("output.trajectory_format") == "both" ? TrajectoryFormat::Both
+                                                                          : TrajectoryFormat::Binary;
+  m.output.checkpointEvery = num("output.checkpoint_every_s");
   completeModel(m);
 
   // relations between keys

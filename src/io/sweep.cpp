@@ -263,9 +263,11 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
           if (opt.cancelled()) throw RunInterrupted("sweep cancelled at growth step " + std::to_string(r.step));
         };
       try {
-        // a point not complete is redone: its earlier attempt (a run directory, never user files) is replaced
+        // a point not complete is continued from its checkpoint when it has one (a killed sweep), else
+        // redone: its earlier attempt (a run directory, never user files) is replaced
         RunDirOptions ro;
         ro.force = true;
+        ro.resume = true;
         wall = runSceneToDir(loadScene(plan.scenePath, p.overrides), dir, ro, poll);
       } catch (const RunInterrupted&) {
         interrupted = true;

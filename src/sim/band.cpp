@@ -131,6 +131,18 @@ void BandLDLT::solve(double* b) const {
   }
 }
 
+bool BandLU::restore(int n, int kl, int ku, const std::vector<double>& ab, const std::vector<int>& piv) {
+  if (n < 1 || kl < 0 || ku < 0) return false;
+  const size_t ld = static_cast<size_t>(2 * kl + ku + 1);
+  if (ab.size() != ld * static_cast<size_t>(n) || piv.size() != static_cast<size_t>(n)) return false;
+  for (int p : piv)
+    if (p < 0 || p >= n) return false;
+  reset(n, kl, ku);
+  std::copy(ab.begin(), ab.end(), ab_.begin());
+  std::copy(piv.begin(), piv.end(), piv_.begin());
+  return true;
+}
+
 struct SparseStiffness::Impl {
   using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
   Matrix a, sym;

@@ -1,5 +1,6 @@
 #include "rootsim/simulation.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <sstream>
@@ -46,6 +47,74 @@ Simulation::Simulation(const Model& m, const RodState& s, int step) : m_(m), s_(
   ws_.resize(s_.elements());
   thetaUnwrapped_ = tipAngle(m_, s_);  // the tip angle's earlier turns are not known here
   observe(RelaxResult{}, 0, 0);
+}
+
+Simulation::Simulation(const Model& m, const RodState& s, const SimulationCarry& c)
+    : Simulation(m, s, c.step) {
+  // the restart constructor recomputed the strains of the state (what observe() left in the
+  // workspace); the rest comes from the carry
+  totalSubsteps_ = c.totalSubsteps;
+  totalIterations_ = c.totalIterations;
+  thetaUnwrapped_ = c.thetaUnwrapped;
+  slipEvents_ = c.slipEvents;
+  frictionWork_ = c.frictionWork;
+  rec_ = c.last;
+  nw_.reserve(s_.elements());
+  if (nw_.mode.size() < c.newtonMode.size()) nw_.mode.resize(c.newtonMode.size());
+  std::copy(c.newtonMode.begin(), c.newtonMode.end(), nw_.mode.begin());
+  nw_.modeSize = c.newtonModeSize;
+  nw_.firstFreeNode = c.newtonFirstFreeNode;
+  nw_.negative = c.newtonNegative;
+  nw_.lowestEigenvalue = c.newtonLowestEigenvalue;
+  nw_.sparseActive = c.newtonSparseActive;
+  nw_.factorsValid = c.newtonFactorsValid &&
+                     nw_.lu.restore(c.newtonBandN, c.newtonBandKl, c.newtonBandKu, c.newtonBand, c.newtonPivots);
+  nw_.factorsDofs = c.newtonFactorsDofs;
+  nw_.factorsFirstBlock = c.newtonFactorsFirstBlock;
+  ContactWorkspace& cw = ws_.contact;
+  if (c.pairsBuiltElements == s_.elements() && c.pairsBuiltX.cols() == s_.nodes()) {
+    cw.pairs.assign(c.pairs.begin(), c.pairs.end());
+    cw.xBuilt = c.pairsBuiltX;
+    cw.builtElements = c.pairsBuiltElements;
+    cw.builtRestLength = c.pairsBuiltRestLength;
+  }
+  cw.builds = c.pairsBuilds;
+}
+
+SimulationCarry Simulation::carry() const {
+  SimulationCarry c;
+  c.step = step_;
+  c.totalSubsteps = totalSubsteps_;
+  c.totalIterations = totalIterations_;
+  c.thetaUnwrapped = thetaUnwrapped_;
+  c.slipEvents = slipEvents_;
+  c.frictionWork = frictionWork_;
+  c.last = rec_;
+  c.newtonMode = nw_.mode;
+  c.newtonModeSize = nw_.modeSize;
+  c.newtonFirstFreeNode = nw_.firstFreeNode;
+  c.newtonNegative = nw_.negative;
+  c.newtonLowestEigenvalue = nw_.lowestEigenvalue;
+  c.newtonSparseActive = nw_.sparseActive;
+  c.newtonFactorsValid = nw_.factorsValid;
+  c.newtonFactorsDofs = nw_.factorsDofs;
+  c.newtonFactorsFirstBlock = nw_.factorsFirstBlock;
+  if (nw_.factorsValid) {
+    c.newtonBandN = nw_.lu.size();
+    c.newtonBandKl = nw_.lu.kl();
+    c.newtonBandKu = nw_.lu.ku();
+    c.newtonBand = nw_.lu.storage();
+    c.newtonPivots = nw_.lu.pivots();
+  }
+  const ContactWorkspace& cw = ws_.contact;
+  if (cw.builtElements >= 0 && cw.xBuilt.cols() == cw.builtElements + 1) {
+    c.pairs = cw.pairs;
+    c.pairsBuiltX = cw.xBuilt;
+    c.pairsBuiltElements = cw.builtElements;
+    c.pairsBuiltRestLength = cw.builtRestLength;
+  }
+  c.pairsBuilds = cw.builds;
+  return c;
 }
 
 const StepRecord& Simulation::growthStep() {

@@ -202,8 +202,8 @@ TEST_CASE("rootsim render on a tiny run: movie.mp4 with one frame per snapshot, 
   const fs::path d = rtest::scratch("cli");
   const std::string runDir = (d / "run").string();
   const Result ran = run("run " + std::string(ROOTSIM_SOURCE_DIR) +
-                         "/scenes/fig2b_waving.toml --set growth.steps=40 --set output.every_steps=4 --quiet --out " +
-                         runDir);
+                         "/scenes/fig2b_waving.toml --set growth.steps=40 --set output.every_steps=4 "
+                         "--set output.trajectory_format=csv --quiet --out " + runDir);
   REQUIRE_MESSAGE(ran.code == 0, ran.out);
   // asked for explicitly: the run directory's own files, plus frames elsewhere
   const Result rendered = run("render " + runDir + " --size 320x180 --fps 10 --mp4 " + runDir + "/movie.mp4 --final-png " +
@@ -398,4 +398,39 @@ TEST_CASE("movie looks on the command line (follow, colour, plots, inset, shadow
                         (d / "k4.png").string());
   REQUIRE_MESSAGE(k4.code == 0, k4.out);
   CHECK(readPng((d / "k4.png").string()).width == 3840);
+}
+
+TEST_CASE("render reads trajectory.bin and draws the same frames as from trajectory.csv") {
+  const fs::path d = rtest::scratch("binframes");
+  const std::string both = (d / "both").string();
+  const Result ran = run("run " + std::string(ROOTSIM_SOURCE_DIR) +
+                         "/scenes/fig2b_waving.toml --set growth.steps=40 --set output.every_steps=8 "
+                         "--set output.trajectory_format=both --set output.vtk=false --quiet --out " + both);
+  REQUIRE_MESSAGE(ran.code == 0, ran.out);
+  // one copy with only the CSV, one with only the binary file
+  fs::copy(both, d / "csv", fs::copy_options::recursive);
+  fs::copy(both, d / "bin", fs::copy_options::recursive);
+  fs::remove(d / "csv" / "trajectory.bin");
+  fs::remove(d / "bin" / "trajectory.csv");
+  for (const char* which : {"csv", "bin"}) {
+    const Result r = run("render " + (d / which).string() + " --size 320x180 --color-by kappa0 --quiet --png-dir " +
+                         (d / (std::string("frames_") + which)).string());
+    REQUIRE_MESSAGE(r.code == 0, r.out);
+  }
+  int frames = 0;
+  for (const auto& e : fs::directory_iterator(d / "frames_csv")) {
+    CAPTURE(e.path().filename().string());
+    auto slurp = [](const fs::path& p) {
+      std::ifstream in(p, std::ios::binary);
+      std::stringstream s;
+      s << in.rdbuf();
+      return s.str();
+    };
+    const std::string a = slurp(e.path()), b = slurp(d / "frames_bin" / e.path().filename());
+    CHECK(!a.empty());
+    CHECK((a == b));
+    ++frames;
+  }
+  CHECK(frames == 6);
+  fs::remove_all(d);
 }

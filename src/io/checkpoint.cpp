@@ -1,0 +1,355 @@
+// Checkpoint files (include/rootsim/checkpoint.hpp): raw little-endian bytes, written and read in one
+// fixed order by the Out / In helpers below.
+#include "rootsim/checkpoint.hpp"
+
+#include <bit>
+#include <cstring>
+#include <fstream>
+#include <iterator>
+#include <type_traits>
+
+#include "rootsim/errors.hpp"
+#include "rootsim/run_dir.hpp"
+
+namespace fs = std::filesystem;
+
+namespace rootsim {
+
+static_assert(std::endian::native == std::endian::little, "checkpoints are written as little-endian raw bytes");
+
+namespace {
+
+constexpr char kMagic[8] = {'R', 'S', 'C', 'H', 'K', 'P', 'T', '\0'};
+constexpr std::size_t kHeaderBytes = 40;
+// no array in a checkpoint is longer than this (elements are capped far below by the scene limits)
+constexpr std::uint64_t kMaxCount = std::uint64_t{1} << 28;
+
+std::uint64_t fnv1a(const char* p, std::size_t n) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (std::size_t i = 0; i < n; ++i) h = (h ^ static_cast<unsigned char>(p[i])) * 1099511628211ull;
+  return h;
+}
+
+// appends raw values
+struct Out {
+  std::string b;
+  template <class T>
+  void pod(const T& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    b.append(reinterpret_cast<const char*>(&v), sizeof v);
+  }
+  void count(std::size_t n) { pod(static_cast<std::uint64_t>(n)); }
+  void raw(const void* p, std::size_t bytes) {
+    if (bytes > 0) b.append(static_cast<const char*>(p), bytes);  // an empty vector's data() may be null
+  }
+  void mat(const Eigen::Matrix3Xd& m) {
+    count(static_cast<std::size_t>(m.cols()));
+    raw(m.data(), sizeof(double) * static_cast<std::size_t>(m.size()));
+  }
+  void vec(const Eigen::VectorXd& v) {
+    count(static_cast<std::size_t>(v.size()));
+    raw(v.data(), sizeof(double) * static_cast<std::size_t>(v.size()));
+  }
+  template <class T>
+  void list(const std::vector<T>& v) {
+    static_assert(std::is_trivially_copyable_v<T>);
+    count(v.size());
+    raw(v.data(), sizeof(T) * v.size());
+  }
+  // Eigen's fixed-size matrices are plain column-major doubles (not trivially copyable for the compiler)
+  void mats(const std::vector<Mat3>& v) {
+    count(v.size());
+    for (const Mat3& q : v) raw(q.data(), 9 * sizeof(double));
+  }
+  void str(const std::string& s) {
+    count(s.size());
+    raw(s.data(), s.size());
+  }
+};
+
+// reads raw values, every length checked against what is left
+struct In {
+  const std::string& b;
+  std::size_t pos;
+  std::size_t end;
+  std::string file;
+  [[noreturn]] void bad(const std::string& why) const {
+    throw SceneError(file + ": corrupt checkpoint (" + why + " at byte " + std::to_string(pos) +
+                     "); rerun with --force to discard it and start again");
+  }
+  void take(void* p, std::size_t bytes) {
+    if (bytes > end - pos) bad("truncated");
+    if (bytes > 0) std::memcpy(p, b.data() + pos, bytes);  // an empty vector's data() may be null
+    pos += bytes;
+  }
+  template <class T>
+  T pod() {
+    T v;
+    take(&v, sizeof v);
+    return v;
+  }
+  std::size_t count(std::size_t elemBytes) {
+    const auto n = pod<std::uint64_t>();
+    if (n > kMaxCount || n * elemBytes > end - pos) bad("array length " + std::to_string(n) + " out of range");
+    return static_cast<std::size_t>(n);
+  }
+  void mat(Eigen::Matrix3Xd& m) {
+    const std::size_t n = count(3 * sizeof(double));
+    m.resize(3, static_cast<Eigen::Index>(n));
+    take(m.data(), 3 * sizeof(double) * n);
+  }
+  void vec(Eigen::VectorXd& v) {
+    const std::size_t n = count(sizeof(double));
+    v.resize(static_cast<Eigen::Index>(n));
+    take(v.data(), sizeof(double) * n);
+  }
+  template <class T>
+  void list(std::vector<T>& v) {
+    const std::size_t n = count(sizeof(T));
+    v.resize(n);
+    take(v.data(), sizeof(T) * n);
+  }
+  void mats(std::vector<Mat3>& v) {
+    const std::size_t n = count(9 * sizeof(double));
+    v.resize(n);
+    for (Mat3& q : v) take(q.data(), 9 * sizeof(double));
+  }
+  void str(std::string& s) {
+    const std::size_t n = count(1);
+    s.assign(b.data() + pos, n);
+    pos += n;
+  }
+};
+
+// StepRecord field by field (no padding bytes in the file)
+void putRecord(Out& o, const StepRecord& r) {
+  o.pod(r.step);
+  o.pod(r.timeH);
+  o.pod(r.length);
+  o.pod(r.elements);
+  o.pod(r.thetaTip);
+  o.pod(r.zone);
+  o.pod(r.substeps);
+  o.pod(r.iterations);
+  o.pod(r.lowestEigenvalue);
+  o.pod(r.residualForce);
+  o.pod(r.splits);
+  o.pod(r.unstable);
+  o.raw(r.tip.data(), 3 * sizeof(double));
+  o.pod(r.selfContacts);
+  o.pod(r.minSelfDistance);
+  o.pod(r.obstacleContacts);
+  o.pod(r.slipEvents);
+  o.pod(r.frictionWork);
+}
+void getRecord(In& in, StepRecord& r) {
+  r.step = in.pod<int>();
+  r.timeH = in.pod<double>();
+  r.length = in.pod<double>();
+  r.elements = in.pod<int>();
+  r.thetaTip = in.pod<double>();
+  r.zone = in.pod<ZoneObservables>();
+  r.substeps = in.pod<long>();
+  r.iterations = in.pod<long>();
+  r.lowestEigenvalue = in.pod<double>();
+  r.residualForce = in.pod<double>();
+  r.splits = in.pod<int>();
+  r.unstable = in.pod<int>();
+  in.take(r.tip.data(), 3 * sizeof(double));
+  r.selfContacts = in.pod<int>();
+  r.minSelfDistance = in.pod<double>();
+  r.obstacleContacts = in.pod<int>();
+  r.slipEvents = in.pod<long>();
+  r.frictionWork = in.pod<double>();
+}
+
+}  // namespace
+
+std::uint64_t sceneHash(const std::string& resolvedToml) { return fnv1a(resolvedToml.data(), resolvedToml.size()); }
+
+void writeCheckpoint(const fs::path& path, const RunCheckpoint& c) {
+  static_assert(std::is_trivially_copyable_v<ZoneObservables>);
+  Out o;
+  // the rod state
+  const RodState& s = c.state;
+  o.mat(s.x);
+  o.mat(s.v);
+  o.mats(s.Q);
+  o.mat(s.w);
+  o.vec(s.l0);
+  o.vec(s.S);
+  o.mat(s.kappa0);
+  o.mat(s.anchor);
+  o.list(s.anchored);
+  o.mat(s.plateStick);
+  o.list(s.hasPlateStick);
+  o.mat(s.obstacleStick);
+  o.list(s.hasObstacleStick);
+  o.raw(s.clampFrame.data(), 9 * sizeof(double));
+  o.pod(s.time);
+  // the simulation's carry
+  const SimulationCarry& k = c.carry;
+  o.pod(k.step);
+  o.pod(k.totalSubsteps);
+  o.pod(k.totalIterations);
+  o.pod(k.thetaUnwrapped);
+  o.pod(k.slipEvents);
+  o.pod(k.frictionWork);
+  putRecord(o, k.last);
+  o.list(k.newtonMode);
+  o.pod(k.newtonModeSize);
+  o.pod(k.newtonFirstFreeNode);
+  o.pod(k.newtonNegative);
+  o.pod(k.newtonLowestEigenvalue);
+  o.pod(static_cast<std::uint8_t>(k.newtonFactorsValid));
+  o.pod(static_cast<std::uint8_t>(k.newtonSparseActive));
+  o.pod(k.newtonFactorsDofs);
+  o.pod(k.newtonFactorsFirstBlock);
+  o.pod(k.newtonBandN);
+  o.pod(k.newtonBandKl);
+  o.pod(k.newtonBandKu);
+  o.list(k.newtonBand);
+  o.list(k.newtonPivots);
+  o.list(k.pairs);
+  o.mat(k.pairsBuiltX);
+  o.pod(k.pairsBuiltElements);
+  o.pod(k.pairsBuiltRestLength);
+  o.pod(k.pairsBuilds);
+  // the run's accumulators
+  const RunAccumulators& a = c.acc;
+  for (double v : {a.snapFirst, a.snapVertical, a.snapPrevTheta, a.snapPrevTime}) o.pod(v);
+  o.pod(a.maxSubsteps);
+  o.pod(a.maxSelfContacts);
+  o.pod(a.minSelfDistance);
+  o.pod(a.wallBefore);
+  // the writers
+  o.pod(c.writers.timeseriesBytes);
+  o.pod(c.writers.trajectoryBytes);
+  o.pod(c.writers.trajectoryBinaryBytes);
+  o.pod(c.writers.trajectoryFrames);
+  o.count(c.writers.vtkEntries.size());
+  for (const auto& [t, f] : c.writers.vtkEntries) {
+    o.pod(t);
+    o.str(f);
+  }
+
+  Out h;
+  h.raw(kMagic, sizeof kMagic);
+  h.pod(kCheckpointVersion);
+  h.pod(std::uint32_t{0});
+  h.pod(c.sceneHash);
+  h.pod(static_cast<std::int32_t>(c.step));
+  h.pod(std::uint32_t{0});
+  h.pod(static_cast<std::uint64_t>(o.b.size()));
+  h.b += o.b;
+  h.pod(fnv1a(o.b.data(), o.b.size()));
+  writeFileAtomic(path, h.b);
+}
+
+RunCheckpoint readCheckpoint(const fs::path& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw SceneError(path.string() + ": cannot open the checkpoint");
+  const std::string b((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+  In in{b, 0, b.size(), path.string()};
+  if (b.size() < kHeaderBytes + 8 || std::memcmp(b.data(), kMagic, sizeof kMagic) != 0)
+    in.bad("not a rootsim checkpoint, or truncated");
+  in.pos = sizeof kMagic;
+  const auto version = in.pod<std::uint32_t>();
+  if (version != kCheckpointVersion)
+    in.bad("version " + std::to_string(version) + ", this rootsim reads version " + std::to_string(kCheckpointVersion));
+  in.pod<std::uint32_t>();
+  RunCheckpoint c;
+  c.sceneHash = in.pod<std::uint64_t>();
+  c.step = in.pod<std::int32_t>();
+  in.pod<std::uint32_t>();
+  const auto payload = in.pod<std::uint64_t>();
+  if (payload != b.size() - kHeaderBytes - 8) in.bad("length " + std::to_string(b.size()) + " does not match its header");
+  std::uint64_t sum = 0;
+  std::memcpy(&sum, b.data() + b.size() - 8, 8);
+  if (sum != fnv1a(b.data() + kHeaderBytes, payload)) in.bad("checksum mismatch");
+  in.end = b.size() - 8;
+
+  RodState& s = c.state;
+  in.mat(s.x);
+  in.mat(s.v);
+  in.mats(s.Q);
+  in.mat(s.w);
+  in.vec(s.l0);
+  in.vec(s.S);
+  in.mat(s.kappa0);
+  in.mat(s.anchor);
+  in.list(s.anchored);
+  in.mat(s.plateStick);
+  in.list(s.hasPlateStick);
+  in.mat(s.obstacleStick);
+  in.list(s.hasObstacleStick);
+  in.take(s.clampFrame.data(), 9 * sizeof(double));
+  s.time = in.pod<double>();
+  // the fields must agree on the element count (a checksum collision aside, a writer bug)
+  const long n = s.l0.size();
+  if (n < 1 || s.x.cols() != n + 1 || s.v.cols() != n + 1 || static_cast<long>(s.Q.size()) != n || s.w.cols() != n ||
+      s.S.size() != n + 1 || s.kappa0.cols() != std::max(n - 1, 0L) || s.anchor.cols() != n + 1 ||
+      static_cast<long>(s.anchored.size()) != n + 1 || s.plateStick.cols() != n + 1 ||
+      static_cast<long>(s.hasPlateStick.size()) != n + 1 || s.obstacleStick.cols() != n + 1 ||
+      static_cast<long>(s.hasObstacleStick.size()) != n + 1)
+    in.bad("rod state fields disagree on the element count");
+  SimulationCarry& k = c.carry;
+  k.step = in.pod<int>();
+  k.totalSubsteps = in.pod<long>();
+  k.totalIterations = in.pod<long>();
+  k.thetaUnwrapped = in.pod<double>();
+  k.slipEvents = in.pod<long>();
+  k.frictionWork = in.pod<double>();
+  getRecord(in, k.last);
+  in.list(k.newtonMode);
+  k.newtonModeSize = in.pod<int>();
+  k.newtonFirstFreeNode = in.pod<int>();
+  k.newtonNegative = in.pod<int>();
+  k.newtonLowestEigenvalue = in.pod<double>();
+  k.newtonFactorsValid = in.pod<std::uint8_t>() != 0;
+  k.newtonSparseActive = in.pod<std::uint8_t>() != 0;
+  k.newtonFactorsDofs = in.pod<int>();
+  k.newtonFactorsFirstBlock = in.pod<int>();
+  k.newtonBandN = in.pod<int>();
+  k.newtonBandKl = in.pod<int>();
+  k.newtonBandKu = in.pod<int>();
+  in.list(k.newtonBand);
+  in.list(k.newtonPivots);
+  in.list(k.pairs);
+  in.mat(k.pairsBuiltX);
+  k.pairsBuiltElements = in.pod<int>();
+  k.pairsBuiltRestLength = in.pod<double>();
+  k.pairsBuilds = in.pod<long>();
+  if (k.step != c.step || k.newtonModeSize < 0 || static_cast<std::size_t>(k.newtonModeSize) > k.newtonMode.size())
+    in.bad("inconsistent solver state");
+  for (const auto& [i, j] : k.pairs)
+    if (i < 0 || j < 0 || i >= n || j >= n) in.bad("contact pair out of range");
+  if (k.newtonFactorsValid &&
+      (k.newtonBandN < 1 || k.newtonBandKl < 0 || k.newtonBandKu < 0 ||
+       k.newtonBand.size() != static_cast<std::size_t>(2 * k.newtonBandKl + k.newtonBandKu + 1) *
+                                  static_cast<std::size_t>(k.newtonBandN) ||
+       k.newtonPivots.size() != static_cast<std::size_t>(k.newtonBandN)))
+    in.bad("inconsistent Newton factors");
+  RunAccumulators& a = c.acc;
+  for (double* v : {&a.snapFirst, &a.snapVertical, &a.snapPrevTheta, &a.snapPrevTime}) *v = in.pod<double>();
+  a.maxSubsteps = in.pod<long>();
+  a.maxSelfContacts = in.pod<int>();
+  a.minSelfDistance = in.pod<double>();
+  a.wallBefore = in.pod<double>();
+  c.writers.timeseriesBytes = in.pod<std::uint64_t>();
+  c.writers.trajectoryBytes = in.pod<std::uint64_t>();
+  c.writers.trajectoryBinaryBytes = in.pod<std::uint64_t>();
+  c.writers.trajectoryFrames = in.pod<int>();
+  const std::size_t entries = in.count(sizeof(double) + 8);
+  for (std::size_t i = 0; i < entries; ++i) {
+    const auto t = in.pod<double>();
+    std::string name;
+    in.str(name);
+    if (name.rfind("vtk/step_", 0) != 0 || name.find("..") != std::string::npos) in.bad("bad ParaView entry");
+    c.writers.vtkEntries.emplace_back(t, std::move(name));
+  }
+  if (in.pos != in.end) in.bad("trailing bytes");
+  return c;
+}
+
+}  // namespace rootsim

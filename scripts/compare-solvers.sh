@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Runs each scene with both solvers back to back (dynamic = the paper's explicit relaxation, newton =
 # the quasi-static solver with its active window) and writes OUT/agreement.md and OUT/agreement.csv:
-# pattern, first sideways snap, wavelength, amplitude, skew, and the CPU time of each run.
+# pattern, first sideways snap, wavelength, amplitude, skew, and the CPU time of each run; and
+# OUT/theta_tip.png, the theta_tip histories of both solvers overlaid.
 # Usage: scripts/compare-solvers.sh OUT_DIR [SCENE...]   (default: fig2b, fig2a alpha 0..90, fig4a)
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
@@ -66,4 +67,37 @@ with open(os.path.join(out, 'agreement.md'), 'w') as f:
                 f"{f3(r['amplitude_dynamic_mm'])} / {f3(r['amplitude_newton_mm'])} ({f3(r['amplitude_diff_pct'])}) | "
                 f"{f3(r['skew_dynamic_deg'])} / {f3(r['skew_newton_deg'])} | {f3(r['cpu_dynamic_s'])} / {f3(r['cpu_newton_s'])} ({f3(r['speedup'])}) |\n")
 print(open(os.path.join(out, 'agreement.md')).read())
+PY
+# theta_tip histories of both solvers, one panel per scene (docs/img/solver_theta_tip.png is this plot);
+# a root that snapped the other way with one solver is drawn mirrored (-theta), and says so
+/usr/bin/python3 - "$out" "${scenes[@]}" <<'PY'
+import csv, math, os, sys
+import matplotlib
+matplotlib.use('Agg')
+import matplotlib.pyplot as plt
+out, scenes = sys.argv[1], sys.argv[2:]
+def series(d):
+    rows = list(csv.DictReader(open(os.path.join(d, 'timeseries.csv'))))
+    return [float(r['time_h']) for r in rows], [float(r['theta_tip_deg']) for r in rows]
+cols = 4
+rws = math.ceil(len(scenes) / cols)
+fig, axes = plt.subplots(rws, cols, figsize=(3.2 * cols, 2.4 * rws), squeeze=False)
+for ax, sc in zip(axes.flat, scenes):
+    name = os.path.basename(sc)[:-5]
+    td, yd = series(os.path.join(out, f'{name}_dynamic'))
+    tn, yn = series(os.path.join(out, f'{name}_newton'))
+    # the mirror image is the same root: compare with the newton curve flipped when that fits better
+    mirrored = sum(abs(a + b) for a, b in zip(yd, yn)) < sum(abs(a - b) for a, b in zip(yd, yn))
+    if mirrored: yn = [-v for v in yn]
+    ax.plot(td, yd, color='tab:blue', lw=2.2, label='dynamic')
+    ax.plot(tn, yn, color='tab:orange', lw=1.0, ls='--', label='newton' + (' (mirrored)' if mirrored else ''))
+    ax.set_title(name, fontsize=9)
+    ax.tick_params(labelsize=7)
+    ax.legend(fontsize=6, loc='best')
+for ax in list(axes.flat)[len(scenes):]: ax.axis('off')
+for ax in axes[-1]: ax.set_xlabel('time [h]', fontsize=8)
+for ax in axes[:, 0]: ax.set_ylabel('θ_tip [°]', fontsize=8)
+fig.tight_layout()
+fig.savefig(os.path.join(out, 'theta_tip.png'), dpi=90)
+print('wrote', os.path.join(out, 'theta_tip.png'))
 PY

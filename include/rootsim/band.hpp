@@ -83,14 +83,16 @@ class SparseStiffness {
   void assemble(const BandLU& band, const std::vector<OffBandEntry>& extra);
   void resetPattern();
   int size() const;
+  // the Newton step: LDL^T of the symmetric part refined against A, or A's LU where that fails (below)
   bool factorizeLU();          // false when singular
-  void solveLU(double* b) const;
+  void solveLU(double* b);
   bool factorizeSymmetric();   // LDL^T of (A + A^T) / 2; false when a pivot is zero or not finite
   int negativePivots(double relTol) const;  // as BandLDLT::negativePivots
   void solveSymmetric(double* b) const;
   long luAnalyses() const;     // symbolic analyses done so far (tests and benchmarks)
 
  private:
+  bool factorizeTrueLU();
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

@@ -110,7 +110,7 @@ int runCommand(const RunOptions& o) {
   });
   if (steps > 0) pr.finish(std::to_string(steps) + " steps");
 #ifdef ROOTSIM_HAVE_RENDER
-  if (o.movie) renderRunMovie(out, o.quiet, look);
+  if (o.movie) renderRunMovie(out, sc.model, o.quiet, look);
 #endif
   if (!o.quiet) std::fprintf(stderr, "wrote %s\n", out.string().c_str());
   return 0;

@@ -266,7 +266,8 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
         // a point not complete is redone: its earlier attempt (a run directory, never user files) is replaced
         RunDirOptions ro;
         ro.force = true;
-        wall = runSceneToDir(loadScene(plan.scenePath, p.overrides), dir, ro, poll);
+        wall = p.scene ? runSceneToDir(*p.scene, dir, ro, poll)
+                       : runSceneToDir(loadScene(plan.scenePath, p.overrides), dir, ro, poll);
       } catch (const RunInterrupted&) {
         interrupted = true;
         return;

@@ -112,6 +112,8 @@ const std::vector<Variant>& variants() {
          m.tropism.gamma = 0.05;
        },
        {"plane.alpha_deg=65", "tropism.beta=0.2", "tropism.gamma=0.05"}},
+      // 7.5 * deg / deg is not 7.5: the getter still reads 7.5 (the figure's alpha = 7.5 runs)
+      {"alpha 7.5", [](Model& m) { m.env.plane.alpha = 7.5 * deg; }, {"plane.alpha_deg=7.5"}},
       {"twist and apical sensing",
        [](Model& m) {
          m.env.plane.alpha = 37.5 * deg;

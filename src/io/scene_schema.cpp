@@ -3,6 +3,8 @@
 #include <charconv>
 #include <cmath>
 #include <sstream>
+#include <type_traits>
+#include <utility>
 
 #include "rootsim/errors.hpp"
 #include "rootsim/scene.hpp"

@@ -27,5 +27,12 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
 std::string readSceneFile(const std::string& path, const std::string& kind = "scene file");
 Scene parseScene(const std::string& text, const std::string& sourceName,
                  const std::vector<std::string>& overrides = {});
+// the scene of a model built in code (the figure cases), without text: every key read from the model
+// through the schema, checked like a scene file's (ranges, relations, obstacles clear of the root), and
+// the resolved text a run directory holds, the same text a scene file with these values resolves to.
+// The scene's model is what that text loads to: the model's fields the schema maps (bitwise, when
+// each is a scene value times its unit, as every model built from scene values is), its obstacles, and
+// defaults for the rest. Throws SceneError naming the key ("model NAME: tropism.beta must be ...")
+Scene sceneOf(const Model& model);
 
 }  // namespace rootsim

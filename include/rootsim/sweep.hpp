@@ -13,6 +13,7 @@
 //   "growth.steps" = 600
 #include <cstdint>
 #include <functional>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -31,10 +32,12 @@ struct SweepPoint {
   std::string dirName;                          // run directory name inside the sweep folder (<= 200
                                                 // bytes: long names end in a hash of the full name)
   bool grows = true;                            // growth run (else mechanics only: another result header)
+  std::optional<Scene> scene;                   // a typed scene (sceneOf a model: the figure cases), run
+                                                // instead of the plan's base scene and overrides
 };
 
 struct SweepPlan {
-  std::string scenePath;                        // base scene
+  std::string scenePath;                        // base scene ("" when every point has its scene)
   std::vector<std::string> gridKeys;
   std::vector<SweepPoint> points;
 };

@@ -112,7 +112,7 @@ int runCommand(const RunOptions& o) {
                          sc.path + " with these --set values)");
       std::fprintf(stderr, "%s is complete: nothing to resume\n", out.string().c_str());
 #ifdef ROOTSIM_HAVE_RENDER
-      if (o.movie && !fs::exists(out / "movie.mp4", ec)) renderRunMovie(out, o.quiet, look);
+      if (o.movie && !fs::exists(out / "movie.mp4", ec)) renderRunMovie(out, sc.model, o.quiet, look);
 #endif
       return 0;
     }
@@ -132,7 +132,7 @@ int runCommand(const RunOptions& o) {
   });
   if (steps > 0) pr.finish(std::to_string(steps) + " steps");
 #ifdef ROOTSIM_HAVE_RENDER
-  if (o.movie) renderRunMovie(out, o.quiet, look);
+  if (o.movie) renderRunMovie(out, sc.model, o.quiet, look);
 #endif
   if (!o.quiet) std::fprintf(stderr, "wrote %s\n", out.string().c_str());
   return 0;

@@ -356,8 +356,8 @@ int renderRunCommand(const RenderOptions& o) {
   return 0;
 }
 
-void renderRunMovie(const fs::path& runDir, bool quiet, const MovieLook& look) {
-  const SceneInfo info = sceneInfoOf(loadScene((runDir / "scene.toml").string()).model);
+void renderRunMovie(const fs::path& runDir, const Model& model, bool quiet, const MovieLook& look) {
+  const SceneInfo info = sceneInfoOf(model);
   MovieJob job;
   job.mp4 = (runDir / "movie.mp4").string();
   const std::vector<Snapshot> snaps = loadSnapshots(runDir);

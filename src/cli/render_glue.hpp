@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "rootsim/camera.hpp"
 #include "rootsim/colour_map.hpp"
+#include "rootsim/model.hpp"
 #include "rootsim/snapshot.hpp"
 
 namespace rootsim::cli {
@@ -30,8 +31,9 @@ void checkFieldAgainstPlate(const MovieLook& look, double plateMm);
 int renderRunCommand(const RenderOptions& o);
 
 // `rootsim run --movie`: after the run, RUN_DIR/movie.mp4 (top view, size auto, 30 fps, crf 18, with
-// the look's camera, colours and plots) and RUN_DIR/final_top.png from RUN_DIR/trajectory.csv
-void renderRunMovie(const std::filesystem::path& runDir, bool quiet, const MovieLook& look);
+// the look's camera, colours and plots) and RUN_DIR/final_top.png from RUN_DIR/trajectory.csv; model is
+// the run's (the scene `run` parsed: scene.toml is not read again)
+void renderRunMovie(const std::filesystem::path& runDir, const Model& model, bool quiet, const MovieLook& look);
 
 // `rootsim montage RUN_DIR...`
 int montageRunsCommand(const MontageOptions& o);

@@ -273,7 +273,7 @@ std::string fig2a(const Ctx& c) {
              num(std::round(val(r, "theta_max_deg"))) + " |\n";
   }
   saveFigure(f, (fs::path(c.opt.out) / "fig2a").string());
-  const Theory t = theoryFor(modelOf(cases[0]));
+  const Theory t = theoryFor(modelOf(c, cases[0]));
   c.claims->push_back({"Fig. 2A: α = 0 grows straight", "straight", "straight", straight0 ? "straight" : "not straight",
                        "pattern", straight0});
   // the transition angles: bracketed by the grid above, then bisected to a quarter of the phase step
@@ -367,7 +367,7 @@ std::string fig2b(const Ctx& c) {
   }
   saveFigure(f, (fs::path(c.opt.out) / "fig2b").string());
   const RunResult r = result(c, w);
-  const Theory t = theoryFor(modelOf(w));
+  const Theory t = theoryFor(modelOf(c, w));
   const double lam = val(r, "wavelength_mm"), A = val(r, "amplitude_mm");
   c.claims->push_back({"Fig. 2B: the root waves (α = 40°, β = 0.2)", "waving", "waving", r.pattern, "pattern",
                        r.pattern == "waving"});
@@ -387,21 +387,17 @@ std::string fig2cde(const Ctx& c) {
   runCases(c, fig2Runs(c));
   const std::vector<double>& betas = kFreeBetas;
   const std::vector<Case> frees = freeOrgans();
-  const auto sw = series(c, w), sf = series(c, fr);
-  std::vector<double> t, th, eb, et, wr, tw, tf, thf;
-  for (const auto& r : sw) {
-    t.push_back(val(r, "time_h"));
-    th.push_back(val(r, "theta_tip_deg"));
-    eb.push_back(val(r, "Eb") * 1e9);
-    et.push_back(val(r, "Et") * 1e9);
-    wr.push_back(val(r, "Wr"));
-    tw.push_back(val(r, "Tw"));
-  }
-  for (const auto& r : sf) {
-    tf.push_back(val(r, "time_h"));
-    thf.push_back(val(r, "theta_tip_deg"));
-  }
-  const Theory theo = theoryFor(modelOf(w));
+  const CsvColumns sw = series(c, w), sf = series(c, fr);
+  const std::vector<double>& t = column(sw, "time_h");
+  const std::vector<double>& th = column(sw, "theta_tip_deg");
+  const std::vector<double>& wr = column(sw, "Wr");
+  const std::vector<double>& tw = column(sw, "Tw");
+  const std::vector<double>& tf = column(sf, "time_h");
+  const std::vector<double>& thf = column(sf, "theta_tip_deg");
+  std::vector<double> eb, et;  // [nJ]
+  for (double e : column(sw, "Eb")) eb.push_back(e * 1e9);
+  for (double e : column(sw, "Et")) et.push_back(e * 1e9);
+  const Theory theo = theoryFor(modelOf(c, w));
   Figure f;
   f.width = 1100;
   f.height = 1050;
@@ -442,7 +438,7 @@ std::string fig2cde(const Ctx& c) {
   double late = 0;  // the waving root's swing in the last third
   for (size_t i = 2 * th.size() / 3; i < th.size(); ++i) late = std::max(late, std::abs(th[i]));
   const double T0h = theo.T0 / units::hour;
-  const Model mw = modelOf(w);
+  const Model mw = modelOf(c, w);
   const double vtipMmH = mw.growth.rate * mw.growth.zoneLength * units::hour / units::mm;  // v_tip [mm/h]
   c.claims->push_back({"Eq. 7: first sideways snap at the turning time T0 (α = 40°, β = 0.2)", fmt3(T0h) + " h", "≈ T0",
                        fmt3(snap) + " h (ratio " + fmt3(snap / T0h) + ")", kScaleTol, within(snap / T0h, kScaleLo, kScaleHi)});

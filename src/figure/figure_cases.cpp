@@ -1,5 +1,7 @@
 #include "figure_cases.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <sstream>
 
 #include "rootsim/units.hpp"
@@ -18,29 +20,25 @@ std::string dirOf(const Ctx& c, const Case& k) {
          num(k.lengthMm);
 }
 
-std::vector<std::string> setsOf(const Ctx& c, const Case& k) {
-  const int steps = static_cast<int>(std::lround((k.lengthMm - 1.1) / (0.2 * c.dt())));
-  std::vector<std::string> s = {
-      "plane.alpha_deg=" + num(k.alpha),     "tropism.beta=" + num(k.beta),
-      "tropism.gamma=" + num(k.gamma),       "tropism.twist_r_tau=" + num(k.rTau),
-      "root.element_length_mm=" + num(c.h()), "growth.step_h=" + num(c.dt()),
-      "growth.steps=" + std::to_string(steps), "output.vtk=false",
-      "output.every_steps=" + std::to_string(std::max(1, static_cast<int>(std::lround(0.5 / c.dt()))))};
-  if (k.apical) s.push_back("tropism.sensing=apical");
-  if (k.free) {
-    s.push_back("plane.enabled=false");
-    s.push_back("adhesion.enabled=false");
-  }
-  return s;
-}
-
-Model modelOf(const Case& k) {
-  Model m;
+Model modelOf(const Ctx& c, const Case& k) {
+  Model m = defaultModel();
+  m.name = kFigureSceneName;
   m.env.plane.alpha = k.alpha * units::deg;
   m.tropism.beta = k.beta;
   m.tropism.gamma = k.gamma;
   m.tropism.rTau = k.rTau;
   m.tropism.sensing = k.apical ? Sensing::Apical : Sensing::Local;
+  if (k.free) {
+    m.env.plane.enabled = false;
+    m.env.adhesion = false;
+  }
+  m.initial.elementLength = c.h() * units::mm;
+  m.growth.stepTime = c.dt() * units::hour;
+  // from the initial 1.1 mm at v_tip = 0.2 mm/h (the default growth zone and rate)
+  m.growth.steps = static_cast<int>(std::lround((k.lengthMm - 1.1) / (0.2 * c.dt())));
+  m.output.vtk = false;
+  m.output.everySteps = std::max(1, static_cast<int>(std::lround(0.5 / c.dt())));  // every half hour
+  completeModel(m);
   return m;
 }
 

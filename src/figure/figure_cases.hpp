@@ -1,6 +1,6 @@
 #pragma once
 // The cases of the figure panels: one simulated root each (its parameters and length), the context a
-// panel runs in, and the claims it reports; how a case becomes a run (its directory and overrides).
+// panel runs in, and the claims it reports; how a case becomes a run (its directory and its model).
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -42,10 +42,12 @@ struct Ctx {
 std::string num(double v);
 // the run directory of a case inside ctx's runs folder (the same case, the same directory: resumable)
 std::string dirOf(const Ctx& c, const Case& k);
-// the scene overrides that make the case from the default scene
-std::vector<std::string> setsOf(const Ctx& c, const Case& k);
-// the model of a case (for its theory values)
-Model modelOf(const Case& k);
+// the scene name of every figure run (result.csv's scene column, summary.json, scene.toml's header:
+// figure runs were runs of an empty base.toml, and their outputs keep the name)
+inline constexpr const char* kFigureSceneName = "base";
+// the model a case runs with: the default model (MODEL.md section 2) with the case's parameters, the
+// context's element length and growth step, growth steps to reach the case's length, no VTK output
+Model modelOf(const Ctx& c, const Case& k);
 // what a picture of the case shows beside the root
 SceneInfo infoOf(const Case& k);
 

@@ -222,19 +222,19 @@ void checkObstacleClearance(const Model& m, const std::vector<ParsedObstacle>& o
   }
 }
 
-std::string obstaclesToml(const std::vector<ParsedObstacle>& obs) {
+std::string obstaclesToml(const std::vector<Obstacle>& obs) {
   std::ostringstream os;
   auto pt = [](const Eigen::Vector2d& p) {
     return "[" + formatNumber(p.x() / units::mm, false) + ", " + formatNumber(p.y() / units::mm, false) + "]";
   };
-  for (const ParsedObstacle& po : obs) {
+  for (const Obstacle& o : obs) {
     os << "\n[[obstacle]]\n";
-    if (po.o.shape == Obstacle::Shape::Peg) {
-      os << "shape = \"peg\"\ncenter_mm = " << pt(po.o.from) << "\nradius_mm = "
-         << formatNumber(po.o.radius / units::mm, false) << "\n";
+    if (o.shape == Obstacle::Shape::Peg) {
+      os << "shape = \"peg\"\ncenter_mm = " << pt(o.from) << "\nradius_mm = "
+         << formatNumber(o.radius / units::mm, false) << "\n";
     } else {
-      os << "shape = \"wall\"\nfrom_mm = " << pt(po.o.from) << "\nto_mm = " << pt(po.o.to)
-         << "\nthickness_mm = " << formatNumber(2.0 * po.o.radius / units::mm, false) << "\n";
+      os << "shape = \"wall\"\nfrom_mm = " << pt(o.from) << "\nto_mm = " << pt(o.to)
+         << "\nthickness_mm = " << formatNumber(2.0 * o.radius / units::mm, false) << "\n";
     }
   }
   return os.str();
@@ -334,7 +334,30 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
   checkObstacleClearance(sc.model, obstacles);
   for (const ParsedObstacle& po : obstacles) sc.model.env.obstacles.push_back(po.o);
   sc.path = sourceName;
-  sc.resolvedToml = resolvedToml(values, name) + obstaclesToml(obstacles);
+  sc.resolvedToml = resolvedToml(values, name) + obstaclesToml(sc.model.env.obstacles);
+  return sc;
+}
+
+Scene sceneOf(const Model& model) {
+  const std::string origin = "model " + printable(model.name);
+  const Values values = valuesOf(model, origin);
+  for (const KeySpec& k : schema())
+    if (const std::string why = checkValue(k, values.at(k.full())); !why.empty())
+      throw SceneError(origin + ": " + k.full() + " " + why);
+  Scene sc;
+  sc.model = buildModel(values, model.name);
+  std::vector<ParsedObstacle> obstacles;
+  for (const Obstacle& o : model.env.obstacles) {
+    ParsedObstacle po;
+    po.o = o;
+    po.where = "obstacle[" + std::to_string(obstacles.size() + 1) + "]";
+    po.origin = po.placeOrigin = origin;
+    po.placeKey = o.shape == Obstacle::Shape::Peg ? "center_mm" : "from_mm";
+    obstacles.push_back(po);
+  }
+  checkObstacleClearance(sc.model, obstacles);
+  sc.model.env.obstacles = model.env.obstacles;
+  sc.resolvedToml = resolvedToml(values, model.name) + obstaclesToml(sc.model.env.obstacles);
   return sc;
 }
 

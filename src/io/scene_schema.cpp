@@ -3,6 +3,8 @@
 #include <charconv>
 #include <cmath>
 #include <sstream>
+#include <type_traits>
+#include <utility>
 
 #include "rootsim/errors.hpp"
 #include "rootsim/scene.hpp"
@@ -22,40 +24,162 @@ const char* typeName(KeyType t) {
 
 namespace {
 constexpr double kInf = 1e300;
-KeySpec make(const char* sec, const char* key, KeyType type) {
+
+// a key's unit: the model's SI value is the scene value times factor (or divided by it, per = true:
+// rates per hour), computed exactly as written here, in the one place both directions live
+struct Unit {
+  double factor = 1;
+  bool per = false;
+};
+constexpr Unit kOne{};
+constexpr Unit kMm{units::mm};
+constexpr Unit kHour{units::hour};
+constexpr Unit kPerHour{units::hour, true};
+constexpr Unit kDeg{units::deg};
+constexpr Unit kMpa{units::mpa};
+
+double toSi(double v, Unit u) { return u.per ? v / u.factor : v * u.factor; }
+
+std::size_t textLength(double x) {
+  char buf[64];
+  return static_cast<std::size_t>(std::to_chars(buf, buf + sizeof buf, x).ptr - buf);
+}
+
+// the scene value of an SI value x: of the doubles within 4 ulps of the plain conversion, the one whose
+// toSi gives x back bitwise, with the shortest text (so 40 * deg reads back as 40, not
+// 40.00000000000001, and loading the text gives x again); the plain conversion when none does (x is
+// not the product of any double and the factor: a model that no scene file can hold exactly)
+double fromSi(double x, Unit u) {
+  if (u.factor == 1.0) return x;
+  const double q = u.per ? x * u.factor : x / u.factor;
+  if (!std::isfinite(q)) return q;
+  double best = q;
+  std::size_t bestLen = 0;
+  bool found = false;
+  auto consider = [&](double y) {
+    if (toSi(y, u) != x) return;
+    const std::size_t len = textLength(y);
+    if (!found || len < bestLen) best = y, bestLen = len, found = true;
+  };
+  // nearest to q first, so a tie in length goes to the closer value
+  consider(q);
+  double up = q, down = q;
+  for (int i = 0; i < 4; ++i) {
+    up = std::nextafter(up, kInf);
+    down = std::nextafter(down, -kInf);
+    consider(up);
+    consider(down);
+  }
+  return best;
+}
+
+KeySpec make(const char* sec, const char* key, KeyType type, const char* doc) {
   KeySpec k;
   k.section = sec;
   k.key = key;
   k.type = type;
-  return k;
-}
-KeySpec real(const char* sec, const char* key, double def, double lo, bool loOpen, double hi, bool hiOpen,
-             const char* doc) {
-  KeySpec k = make(sec, key, KeyType::Real);
-  k.defNum = def; k.lo = lo; k.loOpen = loOpen; k.hi = hi; k.hiOpen = hiOpen; k.doc = doc;
-  return k;
-}
-KeySpec integer(const char* sec, const char* key, double def, double lo, double hi, const char* doc) {
-  KeySpec k = make(sec, key, KeyType::Integer);
-  k.defNum = def; k.lo = lo; k.hi = hi; k.doc = doc;
-  return k;
-}
-KeySpec boolean(const char* sec, const char* key, bool def, const char* doc) {
-  KeySpec k = make(sec, key, KeyType::Boolean);
-  k.defBool = def; k.doc = doc;
-  return k;
-}
-KeySpec choice(const char* sec, const char* key, const char* def, std::vector<std::string> choices,
-               const char* doc) {
-  KeySpec k = make(sec, key, KeyType::String);
-  k.defStr = def; k.choices = std::move(choices); k.doc = doc;
-  return k;
-}
-KeySpec vec3(const char* sec, const char* key, const Vec3& def, const char* doc) {
-  KeySpec k = make(sec, key, KeyType::Vector3);
-  k.defVec = {def.x(), def.y(), def.z()};
   k.doc = doc;
   return k;
+}
+
+// the keys by type: each names its field of the model (a function returning a reference to it, called
+// with a Model& to set and a const Model& to get); the default is the field of defaultModel()
+template <class Field>
+KeySpec real(const char* sec, const char* key, Field field, Unit u, double lo, bool loOpen, double hi, bool hiOpen,
+             const char* doc) {
+  KeySpec k = make(sec, key, KeyType::Real, doc);
+  k.lo = lo; k.loOpen = loOpen; k.hi = hi; k.hiOpen = hiOpen;
+  k.set = [field, u](Model& m, const Value& v) { field(m) = toSi(v.num, u); };
+  k.get = [field, u](const Model& m) {
+    Value v;
+    v.num = fromSi(field(m), u);
+    return v;
+  };
+  return k;
+}
+template <class Field>
+KeySpec integer(const char* sec, const char* key, Field field, double lo, double hi, const char* doc) {
+  KeySpec k = make(sec, key, KeyType::Integer, doc);
+  k.lo = lo; k.hi = hi;
+  k.set = [field](Model& m, const Value& v) {
+    auto& f = field(m);
+    f = static_cast<std::remove_reference_t<decltype(f)>>(v.num);
+  };
+  k.get = [field](const Model& m) {
+    Value v;
+    v.type = KeyType::Integer;
+    v.num = static_cast<double>(field(m));
+    return v;
+  };
+  return k;
+}
+template <class Field>
+KeySpec boolean(const char* sec, const char* key, Field field, const char* doc) {
+  KeySpec k = make(sec, key, KeyType::Boolean, doc);
+  k.set = [field](Model& m, const Value& v) { field(m) = v.b; };
+  k.get = [field](const Model& m) {
+    Value v;
+    v.type = KeyType::Boolean;
+    v.b = field(m);
+    return v;
+  };
+  return k;
+}
+// a string key naming one of an enum's values
+template <class Field, class E>
+KeySpec choice(const char* sec, const char* key, Field field, std::vector<std::pair<std::string, E>> names,
+               const char* doc) {
+  KeySpec k = make(sec, key, KeyType::String, doc);
+  for (const auto& n : names) k.choices.push_back(n.first);
+  k.set = [field, names](Model& m, const Value& v) {
+    for (const auto& [text, e] : names)
+      if (text == v.str) field(m) = e;
+  };
+  k.get = [field, names](const Model& m) {
+    Value v;
+    v.type = KeyType::String;
+    for (const auto& [text, e] : names)
+      if (field(m) == e) v.str = text;
+    return v;
+  };
+  return k;
+}
+template <class Field>
+KeySpec vec3(const char* sec, const char* key, Field field, const char* doc) {
+  KeySpec k = make(sec, key, KeyType::Vector3, doc);
+  k.set = [field](Model& m, const Value& v) { field(m) = Vec3(v.vec[0], v.vec[1], v.vec[2]); };
+  k.get = [field](const Model& m) {
+    Value v;
+    v.type = KeyType::Vector3;
+    const Vec3& x = field(m);
+    v.vec = {x.x(), x.y(), x.z()};
+    return v;
+  };
+  return k;
+}
+// load.gravity: on is the standard acceleration straight down, off is none
+KeySpec gravity(const char* doc) {
+  KeySpec k = make("load", "gravity", KeyType::Boolean, doc);
+  k.set = [](Model& m, const Value& v) { m.env.gravity = v.b ? Vec3(0, 0, -9.81) : Vec3::Zero(); };
+  k.get = [](const Model& m) {
+    Value v;
+    v.type = KeyType::Boolean;
+    v.b = m.env.gravity.squaredNorm() > 0;
+    return v;
+  };
+  return k;
+}
+// each key's default: its getter applied to defaultModel()
+std::vector<KeySpec> withDefaults(std::vector<KeySpec> keys) {
+  const Model d = defaultModel();
+  for (KeySpec& k : keys) {
+    const Value v = k.get(d);
+    k.defNum = v.num;
+    k.defBool = v.b;
+    k.defStr = v.str;
+    k.defVec = v.vec;
+  }
+  return keys;
 }
 }  // namespace
 
@@ -66,113 +190,119 @@ const std::vector<std::string>& sections() {
   return s;
 }
 
-// every key, its unit, range and meaning; its default is read from defaultModel() (the one source of
-// defaults, include/rootsim/model.hpp), converted to the key's unit.
+// every key, its field of the model, its unit, range and meaning; its default is read from
+// defaultModel() (the one source of defaults, include/rootsim/model.hpp) through its getter.
 // Ranges (each key's doc in `rootsim check` and scene.toml ends with it). Upper bounds are physical
 // sanity, a generous factor beyond anything a root (or any plant organ) has: radius <= 100 mm, E <= 1e6
 // MPa (diamond), growth rate <= 10 /h, step <= 10 h, growth zone <= 1 m, gains <= 100 (the paper uses
 // < 2), |R tau| <= 10, springs <= 1e6 N/m. Beyond them a run diverges or exhausts the sub-step cap
 // after minutes instead of being refused up front (issue 15). The number of elements is capped
 // separately (kMaxElements, buildModel).
+// FIELD(rod.radius): the field as a reference, for a Model& (set) and a const Model& (get)
+#define FIELD(path) [](auto& m) -> auto& { return m.path; }
 const std::vector<KeySpec>& schema() {
-  using units::mm;
-  using units::hour;
-  static const Model d = defaultModel();
-  static const std::vector<KeySpec> keys = {
-      real("root", "radius_mm", d.rod.radius / mm, 0, true, 100, false, "root radius R [mm]"),
-      real("root", "initial_length_mm", d.initial.length / mm, 0, true, 1e4, false, "initial length L0 [mm]"),
-      real("root", "youngs_modulus_mpa", d.rod.youngs / units::mpa, 0, true, 1e6, false, "Young's modulus E [MPa]"),
-      real("root", "element_length_mm", d.initial.elementLength / mm, 0, true, 1e3, false,
+  static const std::vector<KeySpec> keys = withDefaults({
+      real("root", "radius_mm", FIELD(rod.radius), kMm, 0, true, 100, false, "root radius R [mm]"),
+      real("root", "initial_length_mm", FIELD(initial.length), kMm, 0, true, 1e4, false, "initial length L0 [mm]"),
+      real("root", "youngs_modulus_mpa", FIELD(rod.youngs), kMpa, 0, true, 1e6, false, "Young's modulus E [MPa]"),
+      real("root", "element_length_mm", FIELD(initial.elementLength), kMm, 0, true, 1e3, false,
            "target element length h [mm]; elements longer than growth.split_factor * h are split"),
-      real("root", "density_kg_per_m3", d.rod.density, 0, true, 1e5, false,
+      real("root", "density_kg_per_m3", FIELD(rod.density), kOne, 0, true, 1e5, false,
            "density [kg/m^3] (physical-mass relaxation and weight only)"),
-      boolean("growth", "enabled", d.growth.enabled, "grow (false: mechanics only, one relaxation under [load])"),
-      real("growth", "growth_zone_mm", d.growth.zoneLength / mm, 0, true, 1e3, false, "growth-zone length Lgz [mm]"),
-      real("growth", "rate_per_h", d.growth.rate * hour, 0, true, 10, false, "relative growth rate in the zone [1/h]"),
-      integer("growth", "steps", d.growth.steps, 0, 1e7, "number of growth steps"),
-      real("growth", "step_h", d.growth.stepTime / hour, 0, true, 10, false, "growth step [h]"),
-      real("growth", "split_factor", d.growth.splitFactor, 1.2, false, 10, false,
+      boolean("growth", "enabled", FIELD(growth.enabled), "grow (false: mechanics only, one relaxation under [load])"),
+      real("growth", "growth_zone_mm", FIELD(growth.zoneLength), kMm, 0, true, 1e3, false, "growth-zone length Lgz [mm]"),
+      real("growth", "rate_per_h", FIELD(growth.rate), kPerHour, 0, true, 10, false, "relative growth rate in the zone [1/h]"),
+      integer("growth", "steps", FIELD(growth.steps), 0, 1e7, "number of growth steps"),
+      real("growth", "step_h", FIELD(growth.stepTime), kHour, 0, true, 10, false, "growth step [h]"),
+      real("growth", "split_factor", FIELD(growth.splitFactor), kOne, 1.2, false, 10, false,
            "split an element when it grows past this many target lengths h"),
-      real("tropism", "beta", d.tropism.beta, 0, false, 100, false, "gravitropic gain beta"),
-      real("tropism", "gamma", d.tropism.gamma, 0, false, 100, false, "proprioceptive gain gamma"),
-      choice("tropism", "sensing", d.tropism.sensing == Sensing::Local ? "local" : "apical", {"local", "apical"}, "where gravity is sensed"),
-      real("tropism", "twist_r_tau", d.tropism.rTau, -10, false, 10, false, "intrinsic twist R*tau (dimensionless)"),
-      real("tropism", "circumnutation_gain", d.tropism.cnGain, 0, false, 100, false, "circumnutation gain lambda_cn"),
-      real("tropism", "circumnutation_period_h", d.tropism.cnPeriod / hour, 0, true, 1e4, false, "circumnutation period [h]"),
-      boolean("plane", "enabled", d.env.plane.enabled, "the tilted plate is present"),
-      real("plane", "alpha_deg", d.env.plane.alpha / units::deg, 0, false, 90, false,
+      real("tropism", "beta", FIELD(tropism.beta), kOne, 0, false, 100, false, "gravitropic gain beta"),
+      real("tropism", "gamma", FIELD(tropism.gamma), kOne, 0, false, 100, false, "proprioceptive gain gamma"),
+      choice("tropism", "sensing", FIELD(tropism.sensing),
+             std::vector<std::pair<std::string, Sensing>>{{"local", Sensing::Local}, {"apical", Sensing::Apical}},
+             "where gravity is sensed"),
+      real("tropism", "twist_r_tau", FIELD(tropism.rTau), kOne, -10, false, 10, false, "intrinsic twist R*tau (dimensionless)"),
+      real("tropism", "circumnutation_gain", FIELD(tropism.cnGain), kOne, 0, false, 100, false, "circumnutation gain lambda_cn"),
+      real("tropism", "circumnutation_period_h", FIELD(tropism.cnPeriod), kHour, 0, true, 1e4, false, "circumnutation period [h]"),
+      boolean("plane", "enabled", FIELD(env.plane.enabled), "the tilted plate is present"),
+      real("plane", "alpha_deg", FIELD(env.plane.alpha), kDeg, 0, false, 90, false,
            "plate tilt from the vertical [deg]; also sets the start direction when the plate is off"),
       // the default deviates from the paper's 100 N/m: see Plane::k (environment.hpp)
-      real("plane", "k_n_per_m", d.env.plane.k, 0, false, 1e6, false,
+      real("plane", "k_n_per_m", FIELD(env.plane.k), kOne, 0, false, 1e6, false,
            "contact penalty spring per element [N/m] (paper: 100; see README)"),
-      real("plane", "damping_kg_per_s", d.env.plane.c, 0, false, 1e3, false,
+      real("plane", "damping_kg_per_s", FIELD(env.plane.c), kOne, 0, false, 1e3, false,
            "contact normal damping per element [kg/s] (physical-mass relaxation only)"),
-      boolean("adhesion", "enabled", d.env.adhesion, "pin material that leaves the growth zone"),
-      real("adhesion", "k_n_per_m", d.env.kAdhesion, 0, false, 1e6, false, "adhesion spring [N/m]"),
-      boolean("self_contact", "enabled", d.env.selfContact.enabled,
+      boolean("adhesion", "enabled", FIELD(env.adhesion), "pin material that leaves the growth zone"),
+      real("adhesion", "k_n_per_m", FIELD(env.kAdhesion), kOne, 0, false, 1e6, false, "adhesion spring [N/m]"),
+      boolean("self_contact", "enabled", FIELD(env.selfContact.enabled),
               "the root cannot pass through itself: elements repel when closer than 2R (MODEL.md section 11)"),
-      real("self_contact", "k_n_per_m", d.env.selfContact.k, 0, true, 1e6, false,
+      real("self_contact", "k_n_per_m", FIELD(env.selfContact.k), kOne, 0, true, 1e6, false,
            "self-contact penalty spring per element pair [N/m] (damping: plane.damping_kg_per_s)"),
-      boolean("friction", "enabled", d.env.friction.enabled,
+      boolean("friction", "enabled", FIELD(env.friction.enabled),
               "Coulomb friction on the plate and obstacles, with stick points (MODEL.md section 11)"),
-      real("friction", "mu_static", d.env.friction.muStatic, 0, false, 100, false,
+      real("friction", "mu_static", FIELD(env.friction.muStatic), kOne, 0, false, 100, false,
            "static friction coefficient across the root's axis"),
-      real("friction", "mu_kinetic", d.env.friction.muKinetic, 0, false, 100, false,
+      real("friction", "mu_kinetic", FIELD(env.friction.muKinetic), kOne, 0, false, 100, false,
            "kinetic friction coefficient across the root's axis (at most mu_static)"),
-      real("friction", "axial_ratio", d.env.friction.axialRatio, 0, false, 100, false,
+      real("friction", "axial_ratio", FIELD(env.friction.axialRatio), kOne, 0, false, 100, false,
            "friction along the root's in-plane axis / across it (root hairs anchor sideways: < 1)"),
-      real("friction", "slip_weakening_mm", d.env.friction.slipWeakening / mm, 0, false, 1e3, false,
+      real("friction", "slip_weakening_mm", FIELD(env.friction.slipWeakening), kMm, 0, false, 1e3, false,
            "slip over which friction falls from mu_static to mu_kinetic [mm] (0: at once; see README)"),
-      choice("solver", "kind", d.solver.kind == SolverKind::Newton ? "newton" : "dynamic", {"newton", "dynamic"},
+      choice("solver", "kind", FIELD(solver.kind),
+             std::vector<std::pair<std::string, SolverKind>>{{"newton", SolverKind::Newton}, {"dynamic", SolverKind::Dynamic}},
              "newton: quasi-static Newton with a banded Jacobian (MODEL.md section 12); dynamic: the paper's "
              "explicit damped relaxation"),
-      real("solver", "window_mm", d.solver.window / mm, 0, false, 1e4, false,
+      real("solver", "window_mm", FIELD(solver.window), kMm, 0, false, 1e4, false,
            "newton: solve for the nodes within this length behind the growth zone, the zone, contacts and "
            "the twist of the adhered mature root (0: the whole rod; see README)"),
-      integer("solver", "newton_max_iterations", d.solver.newtonMaxIterations, 1, 100000,
+      integer("solver", "newton_max_iterations", FIELD(solver.newtonMaxIterations), 1, 100000,
               "Newton iterations before a growth step continues with the explicit relaxation (snaps)"),
-      choice("solver", "mass", d.solver.mass == MassModel::Scaled ? "scaled" : "physical", {"scaled", "physical"},
+      choice("solver", "mass", FIELD(solver.mass),
+             std::vector<std::pair<std::string, MassModel>>{{"scaled", MassModel::Scaled}, {"physical", MassModel::Physical}},
              "scaled: per-dof fictitious masses (fast); physical: density and dt from the stiffest spring"),
-      choice("solver", "damping", d.solver.damping == Damping::Fire ? "fire" : "viscous", {"fire", "viscous"}, "FIRE or viscous damping of the pseudo-dynamics"),
-      real("solver", "damping_per_s", d.solver.viscousRate, 0, true, 1e9, false, "viscous damping rate [1/s] (damping = \"viscous\")"),
-      real("solver", "force_tol", d.solver.forceTol, 0, true, 1, false,
+      choice("solver", "damping", FIELD(solver.damping),
+             std::vector<std::pair<std::string, Damping>>{{"fire", Damping::Fire}, {"viscous", Damping::Viscous}},
+             "FIRE or viscous damping of the pseudo-dynamics"),
+      real("solver", "damping_per_s", FIELD(solver.viscousRate), kOne, 0, true, 1e9, false, "viscous damping rate [1/s] (damping = \"viscous\")"),
+      real("solver", "force_tol", FIELD(solver.forceTol), kOne, 0, true, 1, false,
            "equilibrium: residual force < force_tol * B1/Lref^2 and couple < force_tol * B1/Lref "
            "(Lref = growth zone, or the rod when not growing)"),
-      real("solver", "speed_tol", d.solver.speedTol, 0, true, 1, false,
+      real("solver", "speed_tol", FIELD(solver.speedTol), kOne, 0, true, 1, false,
            "equilibrium: node displacement per sub-step < speed_tol * R, rotation < speed_tol rad"),
-      boolean("solver", "stability_check", d.solver.stabilityCheck,
+      boolean("solver", "stability_check", FIELD(solver.stabilityCheck),
               "check each growth step's equilibrium (inertia of the stiffness matrix) and leave saddle "
               "points along their unstable mode"),
-      integer("solver", "max_substeps", static_cast<double>(d.solver.maxSubsteps), 1, 1e12, "sub-step cap per relaxation; hitting it is an error"),
-      integer("solver", "seed", static_cast<double>(d.initial.seed), 0, 9.007199254740992e15, "seed of the initial lateral perturbation"),
-      real("solver", "perturbation", d.initial.perturbation, 0, false, 1, false, "initial lateral perturbation amplitude / R"),
-      vec3("load", "tip_force_n", d.env.tipForce, "dead load on the tip node, lab frame [N]"),
-      vec3("load", "tip_torque_nm", d.env.tipTorque, "couple on the tip element, lab frame [N m]"),
-      choice("load", "base", d.env.base == BaseCondition::Clamped ? "clamped" : "free", {"clamped", "free"}, "base boundary condition"),
-      boolean("load", "gravity", d.env.gravity.squaredNorm() > 0, "weight of the root (negligible for real roots)"),
-      real("analysis", "skew_threshold_deg", d.analysis.skewThresholdDeg, 0, false, 90, false, "|<theta>| above this is skewing [deg]"),
-      real("analysis", "coil_turn_deg", d.analysis.coilTurnDeg, 0, true, 3600, false,
+      integer("solver", "max_substeps", FIELD(solver.maxSubsteps), 1, 1e12, "sub-step cap per relaxation; hitting it is an error"),
+      integer("solver", "seed", FIELD(initial.seed), 0, 9.007199254740992e15, "seed of the initial lateral perturbation"),
+      real("solver", "perturbation", FIELD(initial.perturbation), kOne, 0, false, 1, false, "initial lateral perturbation amplitude / R"),
+      vec3("load", "tip_force_n", FIELD(env.tipForce), "dead load on the tip node, lab frame [N]"),
+      vec3("load", "tip_torque_nm", FIELD(env.tipTorque), "couple on the tip element, lab frame [N m]"),
+      choice("load", "base", FIELD(env.base),
+             std::vector<std::pair<std::string, BaseCondition>>{{"clamped", BaseCondition::Clamped}, {"free", BaseCondition::Free}},
+             "base boundary condition"),
+      gravity("weight of the root (negligible for real roots)"),
+      real("analysis", "skew_threshold_deg", FIELD(analysis.skewThresholdDeg), kOne, 0, false, 90, false, "|<theta>| above this is skewing [deg]"),
+      real("analysis", "coil_turn_deg", FIELD(analysis.coilTurnDeg), kOne, 0, true, 3600, false,
            "planar tangent turning through more than this is coiling [deg]"),
-      real("analysis", "wave_min_amplitude_r", d.analysis.waveMinAmplitude, 0, false, 1e3, false,
+      real("analysis", "wave_min_amplitude_r", FIELD(analysis.waveMinAmplitude), kOne, 0, false, 1e3, false,
            "hysteresis of the lateral turning points in R (a lateral peak-to-peak below it counts as straight)"),
-      real("analysis", "skew_min_waves", d.analysis.skewMinWaves, 0, false, 1e4, false,
+      real("analysis", "skew_min_waves", FIELD(analysis.skewMinWaves), kOne, 0, false, 1e4, false,
            "a waving root is called skewing only over at least this many full waves"),
-      integer("output", "every_steps", d.output.everySteps, 1, 1e9, "snapshot and time-series row every N growth steps"),
-      boolean("output", "trajectory", d.output.trajectory,
+      integer("output", "every_steps", FIELD(output.everySteps), 1, 1e9, "snapshot and time-series row every N growth steps"),
+      boolean("output", "trajectory", FIELD(output.trajectory),
               "write the trajectory (what `rootsim render` reads; format: output.trajectory_format)"),
-      choice("output", "trajectory_format",
-             d.output.trajectoryFormat == TrajectoryFormat::Binary ? "binary"
-             : d.output.trajectoryFormat == TrajectoryFormat::Csv  ? "csv"
-                                                                    : "both",
-             {"binary", "csv", "both"},
+      choice("output", "trajectory_format", FIELD(output.trajectoryFormat),
+             std::vector<std::pair<std::string, TrajectoryFormat>>{
+                 {"binary", TrajectoryFormat::Binary}, {"csv", TrajectoryFormat::Csv}, {"both", TrajectoryFormat::Both}},
              "binary: trajectory.bin (raw doubles, docs/outputs.md); csv: trajectory.csv (text); both: the two"),
-      boolean("output", "vtk", d.output.vtk, "write ParaView snapshots (vtk/*.vtp, zlib-compressed binary, + trajectory.pvd)"),
-      real("output", "checkpoint_every_s", d.output.checkpointEvery, 0, false, 1e6, false,
+      boolean("output", "vtk", FIELD(output.vtk), "write ParaView snapshots (vtk/*.vtp, zlib-compressed binary, + trajectory.pvd)"),
+      real("output", "checkpoint_every_s", FIELD(output.checkpointEvery), kOne, 0, false, 1e6, false,
            "wall time between checkpoints of a growing run (DIR.partial/checkpoint.bin, for --resume) [s]; "
            "0: after every growth step"),
-  };
+  });
   return keys;
 }
+#undef FIELD
 
 Value defaultValue(const KeySpec& k) {
   Value v;
@@ -265,70 +395,9 @@ namespace {
 
 Model buildModel(const Values& v, const std::string& name) {
   auto num = [&](const char* k) { return v.at(k).num; };
-  auto flag = [&](const char* k) { return v.at(k).b; };
-  auto str = [&](const char* k) { return v.at(k).str; };
-  auto vec = [&](const char* k) { const auto& a = v.at(k).vec; return Vec3(a[0], a[1], a[2]); };
-  using units::mm;
-  using units::hour;
   Model m = defaultModel();
   m.name = name;
-  m.rod.radius = num("root.radius_mm") * mm;
-  m.rod.youngs = num("root.youngs_modulus_mpa") * units::mpa;
-  m.rod.density = num("root.density_kg_per_m3");
-  m.initial.length = num("root.initial_length_mm") * mm;
-  m.initial.elementLength = num("root.element_length_mm") * mm;
-  m.initial.perturbation = num("solver.perturbation");
-  m.initial.seed = static_cast<std::uint64_t>(num("solver.seed"));
-  m.growth.enabled = flag("growth.enabled");
-  m.growth.zoneLength = num("growth.growth_zone_mm") * mm;
-  m.growth.rate = num("growth.rate_per_h") / hour;
-  m.growth.steps = static_cast<int>(num("growth.steps"));
-  m.growth.stepTime = num("growth.step_h") * hour;
-  m.growth.splitFactor = num("growth.split_factor");
-  m.tropism.beta = num("tropism.beta");
-  m.tropism.gamma = num("tropism.gamma");
-  m.tropism.sensing = str("tropism.sensing") == "apical" ? Sensing::Apical : Sensing::Local;
-  m.tropism.rTau = num("tropism.twist_r_tau");
-  m.tropism.cnGain = num("tropism.circumnutation_gain");
-  m.tropism.cnPeriod = num("tropism.circumnutation_period_h") * hour;
-  m.env.plane.enabled = flag("plane.enabled");
-  m.env.plane.alpha = num("plane.alpha_deg") * units::deg;
-  m.env.plane.k = num("plane.k_n_per_m");
-  m.env.plane.c = num("plane.damping_kg_per_s");
-  m.env.selfContact.enabled = flag("self_contact.enabled");
-  m.env.selfContact.k = num("self_contact.k_n_per_m");
-  m.env.friction.enabled = flag("friction.enabled");
-  m.env.friction.muStatic = num("friction.mu_static");
-  m.env.friction.muKinetic = num("friction.mu_kinetic");
-  m.env.friction.axialRatio = num("friction.axial_ratio");
-  m.env.friction.slipWeakening = num("friction.slip_weakening_mm") * mm;
-  m.env.adhesion = flag("adhesion.enabled");
-  m.env.kAdhesion = num("adhesion.k_n_per_m");
-  m.env.tipForce = vec("load.tip_force_n");
-  m.env.tipTorque = vec("load.tip_torque_nm");
-  m.env.base = str("load.base") == "free" ? BaseCondition::Free : BaseCondition::Clamped;
-  m.env.gravity = flag("load.gravity") ? Vec3(0, 0, -9.81) : Vec3::Zero();
-  m.solver.kind = str("solver.kind") == "newton" ? SolverKind::Newton : SolverKind::Dynamic;
-  m.solver.window = num("solver.window_mm") * mm;
-  m.solver.newtonMaxIterations = static_cast<int>(num("solver.newton_max_iterations"));
-  m.solver.mass = str("solver.mass") == "physical" ? MassModel::Physical : MassModel::Scaled;
-  m.solver.damping = str("solver.damping") == "viscous" ? Damping::Viscous : Damping::Fire;
-  m.solver.viscousRate = num("solver.damping_per_s");
-  m.solver.forceTol = num("solver.force_tol");
-  m.solver.speedTol = num("solver.speed_tol");
-  m.solver.maxSubsteps = static_cast<long>(num("solver.max_substeps"));
-  m.solver.stabilityCheck = flag("solver.stability_check");
-  m.analysis.skewThresholdDeg = num("analysis.skew_threshold_deg");
-  m.analysis.coilTurnDeg = num("analysis.coil_turn_deg");
-  m.analysis.waveMinAmplitude = num("analysis.wave_min_amplitude_r");
-  m.analysis.skewMinWaves = num("analysis.skew_min_waves");
-  m.output.everySteps = static_cast<int>(num("output.every_steps"));
-  m.output.trajectory = flag("output.trajectory");
-  m.output.vtk = flag("output.vtk");
-  m.output.trajectoryFormat = str("output.trajectory_format") == "csv"    ? TrajectoryFormat::Csv
-                              : str("output.trajectory_format") == "both" ? TrajectoryFormat::Both
-                                                                          : TrajectoryFormat::Binary;
-  m.output.checkpointEvery = num("output.checkpoint_every_s");
+  for (const KeySpec& k : schema()) k.set(m, v.at(k.full()));
   completeModel(m);
 
   // relations between keys
@@ -405,6 +474,16 @@ std::string tomlText(const KeySpec& k, const Value& x) {
              formatNumber(x.vec[2], false) + "]";
   }
   return "";
+}
+
+Values valuesOf(const Model& m, const std::string& origin) {
+  Values values;
+  for (const KeySpec& k : schema()) {
+    Value x = k.get(m);
+    x.origin = origin;
+    values[k.full()] = x;
+  }
+  return values;
 }
 
 std::string resolvedToml(const Values& v, const std::string& name) {

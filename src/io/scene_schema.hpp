@@ -1,6 +1,7 @@
 #pragma once
 // internal: the table of every scene key, and the values a scene resolves to
 #include <array>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -11,6 +12,15 @@ namespace rootsim::detail {
 
 enum class KeyType { Real, Integer, Boolean, String, Vector3 };
 const char* typeName(KeyType t);
+
+struct Value {
+  KeyType type = KeyType::Real;
+  double num = 0;
+  bool b = false;
+  std::string str;
+  std::array<double, 3> vec{0, 0, 0};
+  std::string origin;  // "file:line" or "--set" or "default"
+};
 
 struct KeySpec {
   std::string section, key;
@@ -23,20 +33,16 @@ struct KeySpec {
   bool loOpen = false, hiOpen = false;   // exclusive bounds
   std::vector<std::string> choices;      // allowed strings
   std::string doc;                       // meaning and unit
+  // the key's field of the model, both ways (the one place that knows key <-> field and the unit):
+  // set writes a checked value into the model; get reads the field back as the value that set turns
+  // into the same field, bitwise (scene_schema.cpp, fromSi), so model -> values -> model is exact
+  std::function<void(Model&, const Value&)> set;
+  std::function<Value(const Model&)> get;
   std::string full() const { return section + "." + key; }
 };
 
 const std::vector<KeySpec>& schema();
 const std::vector<std::string>& sections();
-
-struct Value {
-  KeyType type = KeyType::Real;
-  double num = 0;
-  bool b = false;
-  std::string str;
-  std::array<double, 3> vec{0, 0, 0};
-  std::string origin;  // "file:line" or "--set" or "default"
-};
 
 using Values = std::map<std::string, Value>;  // by "section.key"
 
@@ -47,6 +53,8 @@ std::string checkValue(const KeySpec& k, const Value& v);
 std::string rangeText(const KeySpec& k);
 // builds the model and checks relations between keys; throws SceneError with the origin of a key
 Model buildModel(const Values& v, const std::string& name);
+// every key's value read from a model (each with the given origin, for error messages)
+Values valuesOf(const Model& m, const std::string& origin);
 // a value in TOML syntax
 std::string tomlText(const KeySpec& k, const Value& v);
 std::string resolvedToml(const Values& v, const std::string& name);

@@ -268,7 +268,8 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
         RunDirOptions ro;
         ro.force = true;
         ro.resume = true;
-        wall = runSceneToDir(loadScene(plan.scenePath, p.overrides), dir, ro, poll);
+        wall = p.scene ? runSceneToDir(*p.scene, dir, ro, poll)
+                       : runSceneToDir(loadScene(plan.scenePath, p.overrides), dir, ro, poll);
       } catch (const RunInterrupted&) {
         interrupted = true;
         return;

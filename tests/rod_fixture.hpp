@@ -1,8 +1,11 @@
 #pragma once
 // shared set-up for mechanics tests: a horizontal cantilever (alpha = 90 deg, plane off) along -y,
 // d1 = x, d2 = z, d3 = -y, clamped at the origin side
+#include <Eigen/Dense>
+
 #include "rootsim/initial.hpp"
 #include "rootsim/relax.hpp"
+#include "rootsim/rotation.hpp"
 
 namespace rootsim::test {
 
@@ -30,5 +33,48 @@ struct Cantilever {
   Vec3 tip() const { return s.x.col(s.nodes() - 1) - s.x.col(0); }
   RelaxResult relax() { return rootsim::relax(p, env, opt, s, ws); }
 };
+
+
+// K = -dF/du of state s over the blocks from b0 on, one dof at a time by central differences, dense, in
+// the Newton solver's scaled units (rotations times the mean element length, couples over it)
+inline Eigen::MatrixXd oneDofStiffness(const RodParams& p, const Environment& env, const RodState& s,
+                                      RelaxWorkspace& ws, int b0) {
+  const int n = s.elements(), N = 3 * (2 * n + 1 - b0);
+  const double lbar = s.restLength() / n, h = 1e-6 * lbar;
+  auto forces = [&](const RodState& st) {
+    computeForces(p, env, st, false, ws);
+    Eigen::VectorXd f(N);
+    for (int b = b0; b <= 2 * n; ++b)
+      for (int c = 0; c < 3; ++c) f[3 * (b - b0) + c] = b % 2 == 0 ? ws.force(c, b / 2) : ws.torque(c, b / 2) / lbar;
+    return f;
+  };
+  Eigen::MatrixXd K(N, N);
+  for (int cb = b0; cb <= 2 * n; ++cb)
+    for (int cc = 0; cc < 3; ++cc) {
+      RodState plus = s, minus = s;
+      Vec3 u = Vec3::Zero();
+      u[cc] = h;
+      if (cb % 2 == 0) {
+        plus.x.col(cb / 2) += u;
+        minus.x.col(cb / 2) -= u;
+      } else {
+        rotateInPlace(-u / lbar, plus.Q[static_cast<size_t>(cb / 2)]);
+        rotateInPlace(u / lbar, minus.Q[static_cast<size_t>(cb / 2)]);
+      }
+      K.col(3 * (cb - b0) + cc) = -(forces(plus) - forces(minus)) / (2 * h);
+    }
+  return K;
+}
+
+// the Jacobian of assembleStiffness as a dense matrix: its band and its off-band (self-contact) entries
+inline Eigen::MatrixXd assembledStiffness(const NewtonWorkspace& nw) {
+  const int N = nw.lu.size();
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(N, N);
+  for (int j = 0; j < N; ++j)
+    for (int i = 0; i < N; ++i)
+      if (nw.lu.inBand(i, j)) K(i, j) = nw.lu.at(i, j);
+  for (const OffBandEntry& e : nw.offBand) K(e.row, e.col) += e.value;
+  return K;
+}
 
 }  // namespace rootsim::test

@@ -4,6 +4,7 @@
 #include <chrono>
 
 #include "run_rootsim.hpp"
+#include "test_files.hpp"
 
 #include <array>
 #include <cstdio>
@@ -21,20 +22,10 @@ namespace {
 using rootsim::test::Result;
 using rootsim::test::run;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using rootsim::test::slurp;
 
 // a fresh scratch folder per test
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("rootsim_cli_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("cli", name); }
 
 // runs rootsim with dir as the working directory
 Result runIn(const fs::path& dir, const std::string& args) {

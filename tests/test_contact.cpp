@@ -488,12 +488,7 @@ TEST_CASE("self-contact with the Newton solver: a coil in contact under a new lo
   CHECK(nw.negative == checkStability(b.p, b.env, b.s, b.ws).negative);
   NewtonWorkspace dense;
   assembleStiffness(b.p, b.env, b.opt, b.s, b.ws, dense, 0);
-  const int N = dense.lu.size();
-  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(N, N);
-  for (int j = 0; j < N; ++j)
-    for (int i = 0; i < N; ++i)
-      if (dense.lu.inBand(i, j)) K(i, j) = dense.lu.at(i, j);
-  for (const OffBandEntry& e : dense.offBand) K(e.row, e.col) += e.value;
+  const Eigen::MatrixXd K = test::assembledStiffness(dense);
   const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(0.5 * (K + K.transpose())).eigenvalues();
   Eigen::Index nearest = 0;
   ev.cwiseAbs().minCoeff(&nearest);
@@ -510,37 +505,8 @@ TEST_CASE("self-contact: Newton's Jacobian, band and off-band entries, equals on
   NewtonWorkspace nw;
   assembleStiffness(c.p, c.env, c.opt, c.s, c.ws, nw, 0);
   REQUIRE(!nw.offBand.empty());
-  const int n = c.s.elements(), b0 = 1;  // clamped: node 0 is not free
-  const int N = 3 * (2 * n + 1 - b0);
-  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(N, N);
-  for (int j = 0; j < N; ++j)
-    for (int i = 0; i < N; ++i)
-      if (nw.lu.inBand(i, j)) K(i, j) = nw.lu.at(i, j);
-  for (const OffBandEntry& e : nw.offBand) K(e.row, e.col) += e.value;
-  const double lbar = c.s.restLength() / n, h = 1e-6 * lbar;
-  auto forces = [&](const RodState& st) {
-    computeForces(c.p, c.env, st, false, c.ws);
-    Eigen::VectorXd f(N);
-    for (int b = b0; b <= 2 * n; ++b)
-      for (int comp = 0; comp < 3; ++comp)
-        f[3 * (b - b0) + comp] = b % 2 == 0 ? c.ws.force(comp, b / 2) : c.ws.torque(comp, b / 2) / lbar;
-    return f;
-  };
-  Eigen::MatrixXd ref(N, N);
-  for (int cb = b0; cb <= 2 * n; ++cb)
-    for (int cc = 0; cc < 3; ++cc) {
-      RodState plus = c.s, minus = c.s;
-      Vec3 u = Vec3::Zero();
-      u[cc] = h;
-      if (cb % 2 == 0) {
-        plus.x.col(cb / 2) += u;
-        minus.x.col(cb / 2) -= u;
-      } else {
-        rotateInPlace(-u / lbar, plus.Q[static_cast<size_t>(cb / 2)]);
-        rotateInPlace(u / lbar, minus.Q[static_cast<size_t>(cb / 2)]);
-      }
-      ref.col(3 * (cb - b0) + cc) = -(forces(plus) - forces(minus)) / (2 * h);
-    }
+  const Eigen::MatrixXd K = test::assembledStiffness(nw);
+  const Eigen::MatrixXd ref = test::oneDofStiffness(c.p, c.env, c.s, c.ws, 1);  // clamped: node 0 is held
   // the far (off-band) couplings are there and right, and nothing is lost anywhere else
   double farRef = 0;
   for (const OffBandEntry& e : nw.offBand) farRef = std::max(farRef, std::abs(ref(e.row, e.col)));

@@ -12,16 +12,12 @@
 
 #include "rootsim/figure.hpp"
 #include "rootsim/plot.hpp"
+#include "test_files.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using rootsim::test::slurp;
 // fraction of pixels that are not (near) white; also returns the size
 double inkFraction(const fs::path& png, int* width = nullptr, int* height = nullptr) {
   cairo_surface_t* s = cairo_image_surface_create_from_png(png.c_str());

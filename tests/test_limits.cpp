@@ -13,6 +13,7 @@
 #include "rootsim/outputs.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/sweep.hpp"
+#include "test_files.hpp"
 
 using namespace rootsim;
 namespace fs = std::filesystem;
@@ -27,12 +28,7 @@ std::string errorOf(const std::string& text, const std::vector<std::string>& set
   return "(no error)";
 }
 
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("rootsim_limits_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("limits", name); }
 
 std::string sweepError(const fs::path& file) {
   try {

@@ -12,6 +12,7 @@
 #include <string>
 
 #include "run_rootsim.hpp"
+#include "test_files.hpp"
 
 namespace fs = std::filesystem;
 
@@ -19,19 +20,9 @@ namespace {
 using rootsim::test::Result;
 using rootsim::test::run;
 
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("rootsim_rel_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("rel", name); }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using rootsim::test::slurp;
 
 int lines(const std::string& s) {
   int n = 0;

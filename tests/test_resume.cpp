@@ -26,6 +26,7 @@
 #include "rootsim/outputs.hpp"
 #include "rootsim/units.hpp"
 #include "run_rootsim.hpp"
+#include "test_files.hpp"
 
 namespace fs = std::filesystem;
 
@@ -33,19 +34,9 @@ namespace {
 using rootsim::test::Result;
 using rootsim::test::run;
 
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("rootsim_resume_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("resume", name); }
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using rootsim::test::slurp;
 
 // summary.json without its wall time (the one field that may differ)
 std::string stripWall(std::string s) {

@@ -65,12 +65,14 @@ struct OffBandEntry {
 };
 
 // a band matrix plus a few off-band entries (self-contact couples nodes far apart along the rod: MODEL.md
-// section 12), factorised as a sparse matrix: LU with COLAMD ordering (Eigen's SparseLU) for the Newton
-// step, and LDL^T of its symmetric part with AMD ordering (Eigen's SimplicialLDLT, no pivoting: the
-// negative pivots count the negative eigenvalues, as BandLDLT's) for the stability check. Each symbolic
-// analysis is reused while the sparsity pattern stays the same (the whole band is structurally nonzero,
-// so the pattern changes only with the size and the contacts). Unlike the band classes this allocates
-// while assembling and factorising: it serves only the steps with self-contact. A copy starts empty.
+// section 12), factorised as a sparse matrix: LU by KLU (SuiteSparse; threshold partial pivoting, AMD
+// ordering) for the Newton step, and LDL^T of its symmetric part with AMD ordering (Eigen's
+// SimplicialLDLT, no pivoting: the negative pivots count the negative eigenvalues, as BandLDLT's) for the
+// stability check. Each symbolic analysis is reused while the sparsity pattern stays the same (the whole
+// band is structurally nonzero, so the pattern changes only with the size and the contacts); after the
+// first LU of a relaxation, later ones keep its pivot sequence (KLU's refactorisation) unless a pivot
+// became small. Unlike the band classes this allocates while assembling and factorising: it serves only
+// the steps with self-contact. A copy starts empty.
 class SparseStiffness {
  public:
   SparseStiffness();
@@ -81,18 +83,17 @@ class SparseStiffness {
   // off-band places of earlier calls (as zeros) until resetPattern() or a change of size, so that one
   // symbolic analysis serves a whole relaxation while contacts come and go.
   void assemble(const BandLU& band, const std::vector<OffBandEntry>& extra);
-  void resetPattern();
+  void resetPattern();          // also: the next factorizeLU chooses its pivots anew
   int size() const;
-  // the Newton step: LDL^T of the symmetric part refined against A, or A's LU where that fails (below)
+  // the Newton step: A's LU (KLU)
   bool factorizeLU();          // false when singular
-  void solveLU(double* b);
+  void solveLU(double* b);     // after a successful factorizeLU
   bool factorizeSymmetric();   // LDL^T of (A + A^T) / 2; false when a pivot is zero or not finite
   int negativePivots(double relTol) const;  // as BandLDLT::negativePivots
   void solveSymmetric(double* b) const;
   long luAnalyses() const;     // symbolic analyses done so far (tests and benchmarks)
 
  private:
-  bool factorizeTrueLU();
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

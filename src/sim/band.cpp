@@ -3,7 +3,7 @@
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
+#include <klu.h>
 
 #include <algorithm>
 #include <limits>
@@ -148,19 +148,30 @@ struct SparseStiffness::Impl {
   using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
   Matrix a, sym;
   std::vector<Eigen::Triplet<double, int>> triplets;
-  Eigen::SparseLU<Matrix, Eigen::COLAMDOrdering<int>> lu;
   Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
+  // KLU (SuiteSparse) for A itself: a symbolic analysis per pattern, a full factorisation (partial
+  // pivoting) at the first Newton iteration of a relaxation, refactorisations with the same pivots after
+  klu_common common{};
+  klu_symbolic* symbolic = nullptr;
+  klu_numeric* numeric = nullptr;
+  bool freshPivots = true;  // the next factorizeLU chooses its pivots anew (set by resetPattern)
   // the patterns the symbolic analyses were made for (column starts, row indices)
   std::vector<int> luOuter, luInner, symOuter, symInner;
   long luAnalyses = 0;
-  // the Newton step's solves: the symmetric part's LDL^T refined against A (refine), or A's own LU once
-  // the refinement failed in this relaxation (preferLU; reset by resetPattern)
-  bool symReady = false, luReady = false, preferLU = false;
-  Eigen::VectorXd rhs, x, res;  // refinement scratch
+  bool symReady = false, luReady = false;
   // off-band places seen since resetPattern(), kept (as zeros when absent) so that the pattern, and
   // with it the symbolic analysis, stays the same over the iterations of one relaxation
   std::vector<std::pair<int, int>> structural;  // (col, row), sorted
   int structuralSize = -1;
+
+  Impl() { klu_defaults(&common); }
+  ~Impl() { freeKlu(); }
+  Impl(const Impl&) = delete;
+  Impl& operator=(const Impl&) = delete;
+  void freeKlu() {
+    if (numeric) klu_free_numeric(&numeric, &common);
+    if (symbolic) klu_free_symbolic(&symbolic, &common);
+  }
 
   // true (and the pattern remembered) when m's pattern differs from the one saved
   static bool patternChanged(const Matrix& m, std::vector<int>& outer, std::vector<int>& inner) {
@@ -192,15 +203,22 @@ void SparseStiffness::assemble(const BandLU& band, const std::vector<OffBandEntr
     m.structural.clear();
     m.structuralSize = n;
   }
+  // new off-band places: looked up in the sorted list, appended, then sorted and merged in once (one
+  // insertion at a time was quadratic in the contact pairs: 10 % of a coiling run)
+  const size_t known = m.structural.size();
   for (const OffBandEntry& e : extra) {
     ROOTSIM_ASSERT(e.row >= 0 && e.row < n && e.col >= 0 && e.col < n && !band.inBand(e.row, e.col),
                    "an off-band entry inside the matrix");
     const std::pair<int, int> place{e.col, e.row};
-    const auto it = std::lower_bound(m.structural.begin(), m.structural.end(), place);
-    if (it == m.structural.end() || *it != place) {
-      m.structural.insert(it, place);
-      changed = true;
-    }
+    if (!std::binary_search(m.structural.begin(), m.structural.begin() + static_cast<std::ptrdiff_t>(known), place))
+      m.structural.push_back(place);
+  }
+  if (m.structural.size() > known) {
+    const auto mid = m.structural.begin() + static_cast<std::ptrdiff_t>(known);
+    std::sort(mid, m.structural.end());
+    m.structural.erase(std::unique(mid, m.structural.end()), m.structural.end());
+    std::inplace_merge(m.structural.begin(), mid, m.structural.end());
+    changed = true;
   }
   if (changed) {
     // the pattern: the whole band and the off-band places (built only when they change)
@@ -229,67 +247,48 @@ void SparseStiffness::assemble(const BandLU& band, const std::vector<OffBandEntr
 }
 
 void SparseStiffness::resetPattern() {
-  impl_->preferLU = false;
+  impl_->freshPivots = true;
   impl_->structural.clear();
   impl_->structuralSize = -1;  // the next assemble() rebuilds the pattern
 }
 
 int SparseStiffness::size() const { return static_cast<int>(impl_->a.rows()); }
 
-namespace {
-constexpr int kMaxRefinements = 12;
-constexpr double kRefineTol = 1e-8;  // relative residual of a refined solve (an inexact Newton step
-                                     // this close converges like the exact one to the tolerances here)
-}  // namespace
-
-bool SparseStiffness::factorizeTrueLU() {
-  Impl& m = *impl_;
-  if (Impl::patternChanged(m.a, m.luOuter, m.luInner)) {
-    m.lu.analyzePattern(m.a);
-    ++m.luAnalyses;
-  }
-  m.lu.factorize(m.a);
-  m.luReady = m.lu.info() == Eigen::Success;
-  return m.luReady;
-}
-
 bool SparseStiffness::factorizeLU() {
-  // The Jacobian is symmetric at an equilibrium and nearly so near one: solve with the LDL^T of its
-  // symmetric part (which the stability check needs anyway, and which costs a few per cent of Eigen's
-  // general SparseLU on these matrices: measured 2 % vs 70 % of a coiling run) and refine against A
-  // itself; where the refinement does not converge (far from equilibrium, or an indefinite symmetric
-  // part), A's own LU takes over for the rest of the relaxation
   Impl& m = *impl_;
-  if (!m.preferLU && factorizeSymmetric()) return true;
-  m.preferLU = true;
-  return factorizeTrueLU();
+  m.luReady = false;
+  const int n = static_cast<int>(m.a.rows());
+  int* ap = m.a.outerIndexPtr();
+  int* ai = m.a.innerIndexPtr();
+  double* ax = m.a.valuePtr();
+  if (Impl::patternChanged(m.a, m.luOuter, m.luInner) || !m.symbolic) {
+    m.freeKlu();
+    m.symbolic = klu_analyze(n, ap, ai, &m.common);
+    ++m.luAnalyses;
+    if (!m.symbolic) return false;
+    m.freshPivots = true;
+  }
+  if (!m.freshPivots && m.numeric) {
+    // the same pivot sequence as the relaxation's first factorisation: no search, no allocation; a
+    // pivot that became small (rcond) calls for a new search
+    if (klu_refactor(ap, ai, ax, m.symbolic, m.numeric, &m.common) && klu_rcond(m.symbolic, m.numeric, &m.common) &&
+        m.common.rcond > 1e-12) {
+      m.luReady = true;
+      return true;
+    }
+  }
+  if (m.numeric) klu_free_numeric(&m.numeric, &m.common);
+  m.numeric = klu_factor(ap, ai, ax, m.symbolic, &m.common);
+  if (!m.numeric || m.common.status != KLU_OK) return false;
+  m.freshPivots = false;
+  m.luReady = true;
+  return true;
 }
 
 void SparseStiffness::solveLU(double* b) {
   Impl& m = *impl_;
-  const int n = size();
-  Eigen::Map<Eigen::VectorXd> out(b, n);
-  if (!m.preferLU) {
-    m.rhs = out;
-    m.x = m.ldlt.solve(m.rhs);
-    const double target = kRefineTol * m.rhs.norm();
-    for (int k = 0; k <= kMaxRefinements; ++k) {
-      m.res.noalias() = m.rhs - m.a * m.x;
-      if (m.res.norm() <= target && m.x.allFinite()) {
-        out = m.x;
-        return;
-      }
-      if (k < kMaxRefinements) m.x += m.ldlt.solve(m.res);
-    }
-    m.preferLU = true;  // the symmetric part does not carry A here: LU from now on
-    if (!factorizeTrueLU()) {
-      out.setConstant(std::numeric_limits<double>::quiet_NaN());  // singular: the caller's step fails
-      return;
-    }
-    out = m.lu.solve(m.rhs).eval();
-    return;
-  }
-  out = m.lu.solve(out).eval();
+  ROOTSIM_ASSERT(m.luReady, "solveLU after a successful factorizeLU");
+  klu_solve(m.symbolic, m.numeric, size(), 1, b, &m.common);
 }
 
 bool SparseStiffness::factorizeSymmetric() {

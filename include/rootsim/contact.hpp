@@ -40,11 +40,13 @@ struct ContactWorkspace {
   // apart along the rod), found with a spatial hash of element midpoints; rebuilt when a node has moved
   // more than skin/2 since the list was built, or when the element count or the rod's rest length
   // changed (growth)
-  std::vector<std::array<int, 2>> pairs;  // candidate element pairs (i < j)
+  std::vector<std::array<int, 2>> pairs;  // candidate element pairs (i < j), sorted
   std::vector<int> bucketStart;           // spatial hash: first slot of each bucket (buckets + 1)
   std::vector<int> bucketOf;              // bucket of each element (n)
   std::vector<int> slots;                 // elements sorted by bucket (n)
   Eigen::Matrix3Xd xBuilt;                // node positions when the list was built (3 x n+1)
+  Eigen::Matrix3Xd mid;                   // scratch of a build: element midpoints (3 x n)
+  Eigen::VectorXd halfLength;             // scratch of a build: element half-lengths (n)
   int builtElements = -1;                 // element count when the list was built (-1: never)
   double builtRestLength = -1.0;          // rest length when the list was built [m]
   long builds = 0;                        // how often the list was built (for tests and benchmarks)
@@ -53,7 +55,13 @@ struct ContactWorkspace {
   std::vector<PairStiffness> stiffness;   // selfContactStiffness: one per pair in contact (grows once)
 
   void resize(int n);
-  void invalidate() { builtElements = -1; }
+  // the list built before the current one (undoing a trial state makes it serve again)
+  std::vector<std::array<int, 2>> pairsBefore;
+  Eigen::Matrix3Xd xBuiltBefore;
+  int builtElementsBefore = -1;
+  double builtRestLengthBefore = -1.0;
+
+  void invalidate() { builtElements = builtElementsBefore = -1; }
 };
 
 // obstacles: each element against each obstacle (a 2-D segment-segment distance in the plate: the

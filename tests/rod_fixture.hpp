@@ -1,6 +1,8 @@
 #pragma once
 // shared set-up for mechanics tests: a horizontal cantilever (alpha = 90 deg, plane off) along -y,
 // d1 = x, d2 = z, d3 = -y, clamped at the origin side
+#include <array>
+#include <vector>
 #include <Eigen/Dense>
 
 #include "rootsim/initial.hpp"
@@ -35,35 +37,47 @@ struct Cantilever {
 };
 
 
-// K = -dF/du of state s over the blocks from b0 on, one dof at a time by central differences, dense, in
-// the Newton solver's scaled units (rotations times the mean element length, couples over it)
+// K = -dF/du of state s over the given unknowns (block b: node b / 2 when even, element b / 2 when odd;
+// component c), one dof at a time by central differences, dense, in the Newton solver's scaled units
+// (rotations times the mean element length, couples over it)
 inline Eigen::MatrixXd oneDofStiffness(const RodParams& p, const Environment& env, const RodState& s,
-                                      RelaxWorkspace& ws, int b0) {
-  const int n = s.elements(), N = 3 * (2 * n + 1 - b0);
+                                      RelaxWorkspace& ws, const std::vector<std::array<int, 2>>& unknowns) {
+  const int n = s.elements(), N = static_cast<int>(unknowns.size());
   const double lbar = s.restLength() / n, h = 1e-6 * lbar;
   auto forces = [&](const RodState& st) {
     computeForces(p, env, st, false, ws);
     Eigen::VectorXd f(N);
-    for (int b = b0; b <= 2 * n; ++b)
-      for (int c = 0; c < 3; ++c) f[3 * (b - b0) + c] = b % 2 == 0 ? ws.force(c, b / 2) : ws.torque(c, b / 2) / lbar;
+    for (int k = 0; k < N; ++k) {
+      const auto [b, c] = unknowns[static_cast<size_t>(k)];
+      f[k] = b % 2 == 0 ? ws.force(c, b / 2) : ws.torque(c, b / 2) / lbar;
+    }
     return f;
   };
   Eigen::MatrixXd K(N, N);
-  for (int cb = b0; cb <= 2 * n; ++cb)
-    for (int cc = 0; cc < 3; ++cc) {
-      RodState plus = s, minus = s;
-      Vec3 u = Vec3::Zero();
-      u[cc] = h;
-      if (cb % 2 == 0) {
-        plus.x.col(cb / 2) += u;
-        minus.x.col(cb / 2) -= u;
-      } else {
-        rotateInPlace(-u / lbar, plus.Q[static_cast<size_t>(cb / 2)]);
-        rotateInPlace(u / lbar, minus.Q[static_cast<size_t>(cb / 2)]);
-      }
-      K.col(3 * (cb - b0) + cc) = -(forces(plus) - forces(minus)) / (2 * h);
+  for (int k = 0; k < N; ++k) {
+    const auto [cb, cc] = unknowns[static_cast<size_t>(k)];
+    RodState plus = s, minus = s;
+    Vec3 u = Vec3::Zero();
+    u[cc] = h;
+    if (cb % 2 == 0) {
+      plus.x.col(cb / 2) += u;
+      minus.x.col(cb / 2) -= u;
+    } else {
+      rotateInPlace(-u / lbar, plus.Q[static_cast<size_t>(cb / 2)]);
+      rotateInPlace(u / lbar, minus.Q[static_cast<size_t>(cb / 2)]);
     }
+    K.col(k) = -(forces(plus) - forces(minus)) / (2 * h);
+  }
   return K;
+}
+
+// the same over all blocks from b0 on
+inline Eigen::MatrixXd oneDofStiffness(const RodParams& p, const Environment& env, const RodState& s,
+                                      RelaxWorkspace& ws, int b0) {
+  std::vector<std::array<int, 2>> unknowns;
+  for (int b = b0; b <= 2 * s.elements(); ++b)
+    for (int c = 0; c < 3; ++c) unknowns.push_back({b, c});
+  return oneDofStiffness(p, env, s, ws, unknowns);
 }
 
 // the Jacobian of assembleStiffness as a dense matrix: its band and its off-band (self-contact) entries

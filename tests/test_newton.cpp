@@ -85,6 +85,37 @@ TEST_CASE("the coloured band Jacobian equals one-dof-at-a-time central differenc
   CHECK(worst <= 1e-6 * scale);
 }
 
+TEST_CASE("with a window, the coloured Jacobian (the mature twists' rows and columns too) equals one-dof-at-a-time central differences") {
+  Cantilever c(30);
+  c.env.plane.enabled = true;
+  c.env.plane.alpha = 0.7;
+  c.env.adhesion = true;
+  for (int i = 0; i < 16; ++i) c.s.anchored[static_cast<size_t>(i)] = 1;
+  c.env.tipForce = Vec3(2e-5, 1e-5, -3e-5);
+  for (int i = 1; i < c.s.nodes(); ++i) c.s.x.col(i) += 1e-4 * Vec3(std::sin(0.7 * i), 0.3 * std::cos(i), 0.2 * i / 30.0);
+  for (int i = 0; i < c.s.elements(); ++i) rotateInPlace(Vec3(0.02 * i, -0.01 * i, 0.03 + 0.01 * std::sin(i)), c.s.Q[static_cast<size_t>(i)]);
+  const int first = 13;  // the window: nodes 13.. and elements 13..; the twists of elements 0..12
+  NewtonWorkspace nw;
+  assembleStiffness(c.p, c.env, c.opt, c.s, c.ws, nw, first);
+  std::vector<std::array<int, 2>> unknowns;
+  for (int e = 0; e < first; ++e) unknowns.push_back({2 * e + 1, 2});
+  for (int b = 2 * first; b <= 2 * c.s.elements(); ++b)
+    for (int k = 0; k < 3; ++k) unknowns.push_back({b, k});
+  const Eigen::MatrixXd ref = rootsim::test::oneDofStiffness(c.p, c.env, c.s, c.ws, unknowns);
+  const Eigen::MatrixXd K = rootsim::test::assembledStiffness(nw);
+  REQUIRE(K.rows() == ref.rows());
+  const double worst = (K - ref).cwiseAbs().maxCoeff();
+  const double scale = ref.cwiseAbs().maxCoeff();
+  // the twist block alone (small entries beside the stretch ones): compared on its own scale
+  const int m = first;
+  const double twistWorst = (K.topLeftCorner(m, m) - ref.topLeftCorner(m, m)).cwiseAbs().maxCoeff();
+  const double twistScale = ref.topLeftCorner(m, m).cwiseAbs().maxCoeff();
+  INFO("largest entry " << scale << ", largest difference " << worst << "; twist block " << twistScale << " / " << twistWorst);
+  CHECK(worst <= 1e-6 * scale);
+  CHECK(twistScale > 0.0);
+  CHECK(twistWorst <= 1e-6 * twistScale);
+}
+
 TEST_CASE("Newton finds the explicit solver's cantilever equilibria (small and large load)") {
   for (double load : {1e-6, 1e-4}) {
     Cantilever a(40), b(40);

@@ -35,6 +35,8 @@ namespace {
 constexpr int kRadius = 4;                // blocks whose forces a block's dofs change, each side
 constexpr int kColours = 2 * kRadius + 1;
 constexpr int kBand = 3 * kRadius + 2;    // dof half-bandwidth
+constexpr int kTwistRadius = 2;           // blocks whose forces the twist of an element changes, each side
+constexpr int kTwistColours = kTwistRadius + 1;  // in elements (a pass nudges every third element)
 constexpr int kMaxHalvings = 30;
 // Newton crawls towards a snap: the Newton direction of a stiffness near a fold points far off (measured:
 // 67 mm on a 15 mm coiling root) and the line search keeps a few per cent of it. After this many
@@ -159,7 +161,7 @@ struct NewtonSolver {
     const ForcePieces pieces = env.selfContact.enabled ? ForcePieces::NoSelfContact : ForcePieces::All;
     // one pass of central differences over blocks start, start + stride, ... up to `last`, forces
     // evaluated exactly from element `first` on
-    auto pass = [&](int start, int stride, int last, int c, int first) {
+    auto pass = [&](int start, int stride, int last, int c, int first, int radius) {
       Vec3 u = Vec3::Zero();
       u[c] = h;
       auto blocks = [&](auto&& f) {
@@ -174,7 +176,7 @@ struct NewtonSolver {
       });
       computeForces(p, env, s, false, ws, first, pieces);
       blocks([&](int b) {
-        for (int rb = std::max(0, b - kRadius); rb <= std::min(2 * w.n, b + kRadius); ++rb)
+        for (int rb = std::max(0, b - radius); rb <= std::min(2 * w.n, b + radius); ++rb)
           for (int rc = 0; rc < 3; ++rc) {
             const int row = w.unknown(rb, rc);
             if (row >= 0) nw.r0[static_cast<size_t>(row)] = scaledForce(ws, rb, rc, lbar);
@@ -188,7 +190,7 @@ struct NewtonSolver {
       computeForces(p, env, s, false, ws, first, pieces);
       blocks([&](int b) {
         const int col = w.unknown(b, c);
-        for (int rb = std::max(0, b - kRadius); rb <= std::min(2 * w.n, b + kRadius); ++rb)
+        for (int rb = std::max(0, b - radius); rb <= std::min(2 * w.n, b + radius); ++rb)
           for (int rc = 0; rc < 3; ++rc) {
             const int row = w.unknown(rb, rc);
             if (row < 0) continue;
@@ -202,12 +204,14 @@ struct NewtonSolver {
     for (int colour = 0; colour < kColours; ++colour) {
       const int start = w.b0 + ((colour - w.b0 % kColours) + kColours) % kColours;
       if (start > 2 * w.n) continue;
-      for (int c = 0; c < 3; ++c) pass(start, kColours, 2 * w.n, c, w.firstElement());
+      for (int c = 0; c < 3; ++c) pass(start, kColours, 2 * w.n, c, w.firstElement(), kRadius);
     }
-    // the mature twists: element blocks 2e + 1 < b0, every kColours-th element (their rows and the
-    // window's are kRadius blocks away at most), about d3 only; forces of the whole rod
-    for (int colour = 0; colour < kColours && colour < w.m; ++colour)
-      pass(2 * colour + 1, 2 * kColours, w.b0 - 1, 2, 0);
+    // the mature twists: element blocks 2e + 1 < b0, about d3 only, forces of the whole rod. Turning
+    // element e about its own axis changes its shear and the curvatures at its two ends only (its
+    // tangent stays: the nodes do not move), so it acts on blocks 2e - 1 .. 2e + 3 (kTwistRadius) and
+    // every third element can be nudged in one pass: 3 passes of the whole rod, not 9
+    for (int colour = 0; colour < kTwistColours && colour < w.m; ++colour)
+      pass(2 * colour + 1, 2 * kTwistColours, w.b0 - 1, 2, 0, kTwistRadius);
     // self-contact: each pair's 12 x 12 stiffness (node translations only: scaled units are SI there),
     // inside the band where the nodes are close enough, off it otherwise
     nw.offBand.clear();

@@ -323,10 +323,12 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
   bool fresh = false;  // a Jacobian of this relaxation has been computed
   int crawl = 0;       // iterations in a row damped to at most kCrawl
   bool chordNext = false;  // the next iteration reuses the factors of this one
+  long chords = 0;         // iterations that did so
   ns.residual();
   for (;;) {
     if (ns.converged(res, argF, argM)) break;
-    if (res.iterations >= opt.newtonMaxIterations) {
+    if (res.iterations - chords >= opt.newtonMaxIterations) {  // chord steps are not counted: they follow
+                                                               // a fresh step each and cost no Jacobian
       // a snap: the equilibrium sought is far away (the straight branch lost); Newton wanders there, the
       // explicit relaxation gets there. The caller continues explicitly from here.
       std::ostringstream os;
@@ -345,7 +347,8 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
     // iterate's, standing in for the converged state's, as Newton's last step is below the equilibrium
     // tolerance), or one of the converged state. (Reusing one factorisation over all iterations,
     // simplified Newton, misjudged stability after large steps: measured on the Euler test.)
-    const bool stale = (res.iterations == 1 && reuse) || chordNext;
+    const bool chordStep = chordNext;
+    const bool stale = (res.iterations == 1 && reuse) || chordStep;
     if (!stale) {
       ns.jacobian(opt.stabilityCheck);
       fresh = true;
@@ -362,7 +365,8 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
       nw.factorsDofs = N;
       nw.factorsFirstBlock = ns.w.b0;
     }
-    if (chordNext) {
+    if (chordStep) {
+      ++chords;
       // the simplified Newton correction of the last trial is this chord step (same factors, same state)
       std::copy(nw.r0.begin(), nw.r0.begin() + N, nw.delta.begin());
     } else {
@@ -408,6 +412,7 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
     if (stale && halvings >= 2) {
       ns.residual();  // of the restored state
       --res.iterations;
+      if (chordStep) --chords;  // the failed step is not counted at all
       reuse = false;
       continue;
     }

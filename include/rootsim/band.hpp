@@ -73,6 +73,15 @@ struct OffBandEntry {
 // first LU of a relaxation, later ones keep its pivot sequence (KLU's refactorisation) unless a pivot
 // became small. Unlike the band classes this allocates while assembling and factorising: it serves only
 // the steps with self-contact. A copy starts empty.
+// what SparseStiffness carries from one relaxation to the next (a checkpoint holds it, so that a resumed
+// run factorises exactly as the uninterrupted one): the size and off-band places of the pattern, and the
+// matrix whose full LU chose the pivots that later factorisations reuse (empty: none)
+struct SparseMemory {
+  int n = -1, kl = 0, ku = 0;      // n < 0: nothing
+  std::vector<int> places;         // (column, row) pairs, sorted
+  std::vector<double> pivotValues;  // the pattern's values, column by column
+};
+
 class SparseStiffness {
  public:
   SparseStiffness();
@@ -84,6 +93,11 @@ class SparseStiffness {
   // symbolic analysis serves a whole relaxation while contacts come and go.
   void assemble(const BandLU& band, const std::vector<OffBandEntry>& extra);
   void resetPattern();          // also: the next factorizeLU chooses its pivots anew
+  // a relaxation of n unknowns begins: the pattern and the pivots of the last one serve it when it had
+  // the same size (places only accumulate), else resetPattern
+  void beginRelaxation(int n);
+  SparseMemory memory() const;
+  bool restore(const SparseMemory& mem);  // false (and reset) when mem is inconsistent
   int size() const;
   // the Newton step: A's LU (KLU)
   bool factorizeLU();          // false when singular

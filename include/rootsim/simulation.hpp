@@ -56,6 +56,7 @@ struct SimulationCarry {
   int newtonBandN = 0, newtonBandKl = 0, newtonBandKu = 0;
   std::vector<double> newtonBand;       // BandLU::storage()
   std::vector<int> newtonPivots;        // BandLU::pivots()
+  SparseMemory newtonSparse;            // the sparse Jacobian's pattern and pivots (self-contact)
   // the solver's self-contact Verlet list (ContactWorkspace)
   std::vector<std::array<int, 2>> pairs;
   Eigen::Matrix3Xd pairsBuiltX;         // (3 x builtElements+1) [m]

@@ -210,6 +210,11 @@ void writeCheckpoint(const fs::path& path, const RunCheckpoint& c) {
   o.pod(k.newtonBandKu);
   o.list(k.newtonBand);
   o.list(k.newtonPivots);
+  o.pod(k.newtonSparse.n);
+  o.pod(k.newtonSparse.kl);
+  o.pod(k.newtonSparse.ku);
+  o.list(k.newtonSparse.places);
+  o.list(k.newtonSparse.pivotValues);
   o.list(k.pairs);
   o.mat(k.pairsBuiltX);
   o.pod(k.pairsBuiltElements);
@@ -315,6 +320,11 @@ RunCheckpoint readCheckpoint(const fs::path& path) {
   k.newtonBandKu = in.pod<int>();
   in.list(k.newtonBand);
   in.list(k.newtonPivots);
+  k.newtonSparse.n = in.pod<int>();
+  k.newtonSparse.kl = in.pod<int>();
+  k.newtonSparse.ku = in.pod<int>();
+  in.list(k.newtonSparse.places);
+  in.list(k.newtonSparse.pivotValues);
   in.list(k.pairs);
   in.mat(k.pairsBuiltX);
   k.pairsBuiltElements = in.pod<int>();

@@ -155,6 +155,12 @@ struct SparseStiffness::Impl {
   klu_symbolic* symbolic = nullptr;
   klu_numeric* numeric = nullptr;
   bool freshPivots = true;  // the next factorizeLU chooses its pivots anew (set by resetPattern)
+  // the matrix of the last full factorisation (its pivots serve the refactorisations after it), and the
+  // number of off-band places its pattern had: what a checkpoint needs to rebuild the same factors
+  std::vector<double> pivotValues;
+  bool checkGrowth = false;  // the pivots come from an earlier relaxation: check their growth once
+  size_t pivotPlaces = 0;
+  int bandKl = 0, bandKu = 0;
   // the patterns the symbolic analyses were made for (column starts, row indices)
   std::vector<int> luOuter, luInner, symOuter, symInner;
   long luAnalyses = 0;
@@ -171,6 +177,16 @@ struct SparseStiffness::Impl {
   void freeKlu() {
     if (numeric) klu_free_numeric(&numeric, &common);
     if (symbolic) klu_free_symbolic(&symbolic, &common);
+  }
+
+  // a's pattern: the whole band and the off-band places
+  void buildPattern(int n) {
+    triplets.clear();
+    for (int j = 0; j < n; ++j)
+      for (int i = std::max(0, j - bandKu); i <= std::min(n - 1, j + bandKl); ++i) triplets.emplace_back(i, j, 0.0);
+    for (const auto& [col, row] : structural) triplets.emplace_back(row, col, 0.0);
+    a.resize(n, n);
+    a.setFromTriplets(triplets.begin(), triplets.end());
   }
 
   // true (and the pattern remembered) when m's pattern differs from the one saved
@@ -220,14 +236,10 @@ void SparseStiffness::assemble(const BandLU& band, const std::vector<OffBandEntr
     std::inplace_merge(m.structural.begin(), mid, m.structural.end());
     changed = true;
   }
-  if (changed) {
-    // the pattern: the whole band and the off-band places (built only when they change)
-    m.triplets.clear();
-    for (int j = 0; j < n; ++j)
-      for (int i = std::max(0, j - ku); i <= std::min(n - 1, j + kl); ++i) m.triplets.emplace_back(i, j, 0.0);
-    for (const auto& [col, row] : m.structural) m.triplets.emplace_back(row, col, 0.0);
-    m.a.resize(n, n);
-    m.a.setFromTriplets(m.triplets.begin(), m.triplets.end());
+  if (changed || m.bandKl != kl || m.bandKu != ku) {
+    m.bandKl = kl;
+    m.bandKu = ku;
+    m.buildPattern(n);  // only when the places change
   }
   // the values: each column's band rows are contiguous in its row list
   double* val = m.a.valuePtr();
@@ -248,8 +260,54 @@ void SparseStiffness::assemble(const BandLU& band, const std::vector<OffBandEntr
 
 void SparseStiffness::resetPattern() {
   impl_->freshPivots = true;
+  impl_->pivotValues.clear();
   impl_->structural.clear();
   impl_->structuralSize = -1;  // the next assemble() rebuilds the pattern
+}
+
+void SparseStiffness::beginRelaxation(int n) {
+  if (impl_->structuralSize != n) resetPattern();
+  impl_->checkGrowth = true;
+}
+
+SparseMemory SparseStiffness::memory() const {
+  const Impl& m = *impl_;
+  SparseMemory mem;
+  if (m.structuralSize < 0) return mem;
+  mem.n = m.structuralSize;
+  mem.kl = m.bandKl;
+  mem.ku = m.bandKu;
+  for (const auto& [col, row] : m.structural) {
+    mem.places.push_back(col);
+    mem.places.push_back(row);
+  }
+  if (!m.freshPivots && m.numeric && m.pivotPlaces == m.structural.size()) mem.pivotValues = m.pivotValues;
+  return mem;
+}
+
+bool SparseStiffness::restore(const SparseMemory& mem) {
+  resetPattern();
+  Impl& m = *impl_;
+  if (mem.n < 0) return true;
+  const int n = mem.n;
+  if (n < 1 || mem.kl < 0 || mem.ku < 0 || mem.places.size() % 2 != 0) return false;
+  m.structural.clear();
+  for (size_t k = 0; k < mem.places.size(); k += 2) {
+    const int col = mem.places[k], row = mem.places[k + 1];
+    if (col < 0 || col >= n || row < 0 || row >= n || (row - col <= mem.kl && col - row <= mem.ku)) return false;
+    if (!m.structural.empty() && !(m.structural.back() < std::pair<int, int>{col, row})) return false;  // sorted
+    m.structural.emplace_back(col, row);
+  }
+  m.structuralSize = n;
+  m.bandKl = mem.kl;
+  m.bandKu = mem.ku;
+  m.buildPattern(n);
+  if (mem.pivotValues.empty()) return true;
+  if (static_cast<long>(mem.pivotValues.size()) != static_cast<long>(m.a.nonZeros())) return false;
+  // the factors the checkpointed run had: the same matrix through the same analysis and factorisation
+  std::copy(mem.pivotValues.begin(), mem.pivotValues.end(), m.a.valuePtr());
+  if (!factorizeLU()) return false;
+  return true;
 }
 
 int SparseStiffness::size() const { return static_cast<int>(impl_->a.rows()); }
@@ -269,10 +327,13 @@ bool SparseStiffness::factorizeLU() {
     m.freshPivots = true;
   }
   if (!m.freshPivots && m.numeric) {
-    // the same pivot sequence as the relaxation's first factorisation: no search, no allocation; a
-    // pivot that became small (rcond) calls for a new search
+    // the pivot sequence of the last full factorisation (of this relaxation or an earlier one with the
+    // same unknowns and places): no search, no allocation; a pivot that became small (rcond) or grew
+    // (rgrowth) calls for a new search
     if (klu_refactor(ap, ai, ax, m.symbolic, m.numeric, &m.common) && klu_rcond(m.symbolic, m.numeric, &m.common) &&
-        m.common.rcond > 1e-12) {
+        m.common.rcond > 1e-12 &&
+        (!m.checkGrowth || (klu_rgrowth(ap, ai, ax, m.symbolic, m.numeric, &m.common) && m.common.rgrowth > 1e-8))) {
+      m.checkGrowth = false;
       m.luReady = true;
       return true;
     }
@@ -280,6 +341,8 @@ bool SparseStiffness::factorizeLU() {
   if (m.numeric) klu_free_numeric(&m.numeric, &m.common);
   m.numeric = klu_factor(ap, ai, ax, m.symbolic, &m.common);
   if (!m.numeric || m.common.status != KLU_OK) return false;
+  m.pivotValues.assign(ax, ax + m.a.nonZeros());
+  m.pivotPlaces = m.structural.size();
   m.freshPivots = false;
   m.luReady = true;
   return true;

@@ -69,6 +69,7 @@ Simulation::Simulation(const Model& m, const RodState& s, const SimulationCarry&
   nw_.sparseActive = c.newtonSparseActive;
   nw_.factorsValid = c.newtonFactorsValid &&
                      nw_.lu.restore(c.newtonBandN, c.newtonBandKl, c.newtonBandKu, c.newtonBand, c.newtonPivots);
+  if (!nw_.sparse.restore(c.newtonSparse)) nw_.sparse.resetPattern();
   nw_.factorsDofs = c.newtonFactorsDofs;
   nw_.factorsFirstBlock = c.newtonFactorsFirstBlock;
   ContactWorkspace& cw = ws_.contact;
@@ -106,6 +107,7 @@ SimulationCarry Simulation::carry() const {
     c.newtonBand = nw_.lu.storage();
     c.newtonPivots = nw_.lu.pivots();
   }
+  c.newtonSparse = nw_.sparse.memory();
   const ContactWorkspace& cw = ws_.contact;
   if (cw.builtElements >= 0 && cw.xBuilt.cols() == cw.builtElements + 1) {
     c.pairs = cw.pairs;

@@ -4,11 +4,13 @@
 // updated by the exponential map, Q <- exp(-[dtheta]x) Q, the same convention as the explicit solver's
 // drift). Residual: the explicit solver's forces and couples, from computeForces() (one code path for
 // the physics, so the two solvers cannot drift apart). Jacobian K = -dF/du by coloured finite
-// differences: a dof of block b (node or element) changes the forces of blocks b-4 .. b+4 only, so nine
-// colours x three components x two (central differences) = 54 force evaluations give the whole band; rotations are scaled by the
-// mean element length (u = lbar theta, couples / lbar) so that the blocks have comparable units. The
-// band (half-bandwidth 14) is factorised by BandLU with partial pivoting: K is not symmetric away from
-// equilibrium. Newton steps are damped by Deuflhard's natural monotonicity test (below).
+// differences: a dof of block b (node or element) changes the forces of blocks b-3 .. b+3 only (a node
+// moves its two elements: their shear and the dilatation of the three Voronoi couples around them, which
+// act on the elements i-2 .. i+1; an element's rotation changes its shear and its two curvatures), so
+// seven colours x three components x two (central differences) = 42 force evaluations give the whole
+// band; rotations are scaled by the mean element length (u = lbar theta, couples / lbar) so that the
+// blocks have comparable units. The band (half-bandwidth 11) is factorised by BandLU with partial
+// pivoting: K is not symmetric away from equilibrium. Newton steps are damped by Deuflhard's natural monotonicity test (below).
 //
 // Active window: only the blocks from `firstFreeNode` to the tip are unknowns; the rest is frozen
 // exactly (adhered mature material, held by stiff springs, barely moves). The equilibrium criterion is
@@ -32,7 +34,7 @@ namespace rootsim {
 
 namespace {
 
-constexpr int kRadius = 4;                // blocks whose forces a block's dofs change, each side
+constexpr int kRadius = 3;                // blocks whose forces a block's dofs change, each side
 constexpr int kColours = 2 * kRadius + 1;
 constexpr int kBand = 3 * kRadius + 2;    // dof half-bandwidth
 constexpr int kTwistRadius = 2;           // blocks whose forces the twist of an element changes, each side

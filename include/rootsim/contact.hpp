@@ -37,13 +37,12 @@ struct ContactWorkspace {
   Eigen::Matrix3Xd obstacleNormal;  // sum of the obstacle contact normals per node, lab (3 x n+1)
 
   // self-contact broad phase: a Verlet list of element pairs that are within 2R + skin (and far enough
-  // apart along the rod), found with a spatial hash of element midpoints; rebuilt when a node has moved
+  // apart along the rod), found by sorting element midpoints along one axis; rebuilt when a node has moved
   // more than skin/2 since the list was built, or when the element count or the rod's rest length
   // changed (growth)
   std::vector<std::array<int, 2>> pairs;  // candidate element pairs (i < j), sorted
-  std::vector<int> bucketStart;           // spatial hash: first slot of each bucket (buckets + 1)
-  std::vector<int> bucketOf;              // bucket of each element (n)
-  std::vector<int> slots;                 // elements sorted by bucket (n)
+  std::vector<int> order;                 // scratch of a build: elements sorted along the sweep axis (n)
+  Eigen::VectorXd key;                    // scratch of a build: midpoint coordinate on that axis (n)
   Eigen::Matrix3Xd xBuilt;                // node positions when the list was built (3 x n+1)
   Eigen::Matrix3Xd mid;                   // scratch of a build: element midpoints (3 x n)
   Eigen::VectorXd halfLength;             // scratch of a build: element half-lengths (n)

@@ -35,6 +35,22 @@ TEST_CASE("curvature sign: directors turning about d2 along s give kappa2 > 0 (d
   }
 }
 
+TEST_CASE("curvature equals the rotation vector of Q_j Q_{j+1}^T / D0 at small, moderate and large bends") {
+  // relativeRotation's series branch (|theta| < 13 deg) and its atan2 branch against rotationToVector
+  Cantilever c(2);
+  c.ws.resize(c.s.elements());
+  const Vec3 axis = Vec3(0.3, -0.5, 0.8).normalized();
+  for (double theta : {1e-6, 1e-3, 0.05, 0.1, 0.2, 0.2249, 0.2251, 0.3, 1.0, 2.5}) {
+    CAPTURE(theta);
+    c.s.Q[1] = Eigen::AngleAxisd(-theta, axis).toRotationMatrix() * c.s.Q[0];  // Q_0 Q_1^T = exp(theta axis)
+    computeStrains(c.p, c.s, c.ws.strains);
+    const Vec3 ref = rotationToVector(c.s.Q[0] * c.s.Q[1].transpose()) / c.ws.strains.D0[0];
+    const Vec3 got = c.ws.strains.kappa.col(0);
+    CHECK((got - ref).norm() <= 1e-14 * theta / c.ws.strains.D0[0]);
+    CHECK(got.norm() * c.ws.strains.D0[0] == doctest::Approx(theta).epsilon(1e-14));
+  }
+}
+
 TEST_CASE("frame invariance: a rigidly rotated, deformed rod gives rotated forces and equal couples") {
   Cantilever a(16);
   // deform: random-ish node displacements and director rotations

@@ -59,6 +59,8 @@ struct RelaxResult {
   bool converged = false;         // Newton: reached the equilibrium criterion
   bool stalled = false;           // Newton: no acceptable step, or the iteration cap (the caller relaxes
                                   // explicitly); message says which
+  bool crawled = false;           // Newton: stalled because its steps were damped to a crawl (the caller
+                                  // relaxes explicitly from where Newton started)
   std::string message;
   double residualForce = 0;       // max over free nodes [N]
   double residualTorque = 0;      // max over free elements [N m]

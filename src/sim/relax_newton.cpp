@@ -433,6 +433,7 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
          << " or less of the Newton step (iteration " << res.iterations << ")";
       res.message = os.str();
       res.stalled = true;
+      res.crawled = true;
       return res;
     }
   }

@@ -171,7 +171,7 @@ RelaxResult Simulation::newtonOrExplain(int step) {
   // more than the solver's length scale: measured 30 mm in one coiling snap, after which the explicit
   // relaxation slid away), the explicit relaxation starts again from where Newton started.
   const double Lref = m_.solver.lengthScale > 0.0 ? m_.solver.lengthScale : s_.restLength();
-  if ((s_.x - start_.x).colwise().norm().maxCoeff() > Lref) s_ = start_;
+  if (r.crawled || (s_.x - start_.x).colwise().norm().maxCoeff() > Lref) s_ = start_;
   const RelaxResult d = relaxOrExplain(m_, s_, ws_, step);
   const long its = r.iterations;
   r = newton();

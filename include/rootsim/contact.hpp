@@ -54,13 +54,7 @@ struct ContactWorkspace {
   std::vector<PairStiffness> stiffness;   // selfContactStiffness: one per pair in contact (grows once)
 
   void resize(int n);
-  // the list built before the current one (undoing a trial state makes it serve again)
-  std::vector<std::array<int, 2>> pairsBefore;
-  Eigen::Matrix3Xd xBuiltBefore;
-  int builtElementsBefore = -1;
-  double builtRestLengthBefore = -1.0;
-
-  void invalidate() { builtElements = builtElementsBefore = -1; }
+  void invalidate() { builtElements = -1; }
 };
 
 // obstacles: each element against each obstacle (a 2-D segment-segment distance in the plate: the

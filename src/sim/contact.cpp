@@ -147,14 +147,6 @@ void updatePairs(const RodParams& p, const RodState& s, ContactWorkspace& cw) {
   const int n = s.elements();
   const double skin = kSkinRadii * p.radius;
   if (listServes(s, skin, cw.xBuilt, cw.builtElements, cw.builtRestLength)) return;
-  // the list before serves again after a trial state was undone (a Newton line search tries a step
-  // and restores the state: one rebuild at each end of every rejected step, 90 % of the rebuilds on a
-  // coiling run, without this second list)
-  std::swap(cw.pairs, cw.pairsBefore);
-  std::swap(cw.xBuilt, cw.xBuiltBefore);
-  std::swap(cw.builtElements, cw.builtElementsBefore);
-  std::swap(cw.builtRestLength, cw.builtRestLengthBefore);
-  if (listServes(s, skin, cw.xBuilt, cw.builtElements, cw.builtRestLength)) return;
   ROOTSIM_ASSERT(static_cast<int>(cw.order.size()) == n, "a contact workspace sized for the rod");
   ++cw.builds;
   const double reach = 2.0 * p.radius + skin;
@@ -300,7 +292,6 @@ void ContactWorkspace::resize(int n) {
   // room for 16 candidates per element: a tight coil lists a handful (the turns on either side); more
   // would need several turns stacked on one element, and the list then grows once (an allocation)
   pairs.reserve(16 * static_cast<size_t>(n) + 64);
-  pairsBefore.reserve(16 * static_cast<size_t>(n) + 64);
   xBuilt.resize(3, n + 1);
   contactNode.assign(static_cast<size_t>(n + 1), 0);
   elementFlag.assign(static_cast<size_t>(n), 0);

@@ -6,6 +6,8 @@
 #include <Eigen/Dense>
 #include <cmath>
 #include <numbers>
+#include <utility>
+#include <vector>
 
 #include "rod_fixture.hpp"
 #include "rootsim/band.hpp"
@@ -64,6 +66,67 @@ TEST_CASE("band LDL^T counts the negative eigenvalues of a symmetric indefinite 
   Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0), x = b;
   f.solve(x.data());
   CHECK((A * x - b).norm() <= 1e-9 * b.norm());
+}
+
+TEST_CASE("sparse LU (KLU): band plus off-band entries solved as a dense LU does, and a restored memory refactorises to the same bits") {
+  const int n = 120, k = 11;
+  // a band matrix plus far couplings, as self-contact makes them, in two versions (two Newton iterations)
+  auto matrix = [&](double shift, BandLU& band, std::vector<OffBandEntry>& extra, Eigen::MatrixXd& dense) {
+    dense = bandMatrix(n, k, k, false);
+    dense.diagonal().array() += shift;
+    band.reset(n, k, k);
+    for (int j = 0; j < n; ++j)
+      for (int i = std::max(0, j - k); i <= std::min(n - 1, j + k); ++i) band.add(i, j, dense(i, j));
+    extra.clear();
+    for (int a = 0; a < 6; ++a) {
+      const int i = 3 + 7 * a, j = i + 30 + 9 * a;  // j <= 113 < n
+      const double v = 0.3 * std::cos(a + shift);
+      for (const auto& [r, c] : {std::pair{i, j}, std::pair{j, i}}) {
+        extra.push_back({r, c, v});
+        dense(r, c) += v;
+      }
+    }
+  };
+  BandLU band;
+  std::vector<OffBandEntry> extra;
+  Eigen::MatrixXd A;
+  Eigen::VectorXd b(n);
+  for (int i = 0; i < n; ++i) b[i] = std::cos(0.3 * i);
+  SparseStiffness one;
+  one.beginRelaxation(n);
+  matrix(0.0, band, extra, A);
+  one.assemble(band, extra);
+  REQUIRE(one.factorizeLU());
+  Eigen::VectorXd x = b;
+  one.solveLU(x.data());
+  CHECK((A * x - b).norm() <= 1e-10 * b.norm());
+  // a checkpoint here; the next iteration's matrix refactorised with the first one's pivots, by the
+  // original and by a copy restored from the memory
+  const SparseMemory mem = one.memory();
+  CHECK(mem.n == n);
+  CHECK(!mem.pivotValues.empty());
+  SparseStiffness two;
+  REQUIRE(two.restore(mem));
+  matrix(0.1, band, extra, A);
+  Eigen::VectorXd x1 = b, x2 = b;
+  for (SparseStiffness* f : {&one, &two}) {
+    f->beginRelaxation(n);
+    f->assemble(band, extra);
+    REQUIRE(f->factorizeLU());
+  }
+  one.solveLU(x1.data());
+  two.solveLU(x2.data());
+  CHECK((A * x1 - b).norm() <= 1e-10 * b.norm());
+  CHECK(x1 == x2);  // bit for bit
+  CHECK(two.luAnalyses() == 1);  // the restore's analysis served the refactorisation
+  // the symmetric part's inertia, as a dense eigensolver counts it
+  REQUIRE(one.factorizeSymmetric());
+  const Eigen::MatrixXd S = 0.5 * (A + A.transpose());
+  const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(S).eigenvalues();
+  int neg = 0;
+  for (int i = 0; i < n; ++i) neg += ev[i] < 0;
+  CHECK(neg > 0);
+  CHECK(one.negativePivots(1e-12) == neg);
 }
 
 TEST_CASE("the coloured band Jacobian equals one-dof-at-a-time central differences") {

@@ -34,9 +34,14 @@ class BandLU {
   bool restore(int n, int kl, int ku, const std::vector<double>& ab, const std::vector<int>& piv);
 
  private:
+  void scanProfile();
   int n_ = 0, kl_ = 0, ku_ = 0, kv_ = 0, ld_ = 1;
   std::vector<double> ab_;
   std::vector<int> piv_;
+  // the factors' profile, so that a solve skips their structural zeros (the Newton solver's frozen
+  // twists form a tridiagonal chain inside the band): the last nonzero multiplier of column j (offset
+  // below the diagonal) and the first nonzero row of U's column j
+  std::vector<int> lastL_, firstU_;
 };
 
 // symmetric band matrix (half-bandwidth k, lower band stored) and its LDL^T factorisation without
@@ -56,6 +61,9 @@ class BandLDLT {
  private:
   int n_ = 0, k_ = 0;
   std::vector<double> a_;  // column j holds A(j..j+k, j); after factorize(): D on the diagonal, L below
+  // the envelope: row i's first nonzero column (the factorisation fills nothing before it), and the
+  // last row whose envelope reaches column j; factorisation and solves skip what lies outside
+  std::vector<int> first_, last_;
 };
 
 // an entry of a band matrix outside its band

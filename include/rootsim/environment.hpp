@@ -99,17 +99,18 @@ struct ContactWorkspace;  // contact.hpp
 
 // The outside forces, one piece each (MODEL.md section 6). Forces are lab components on nodes
 // (3 x n+1), torques material components on elements (3 x n); each piece adds to what is there, for
-// the elements (nodes) from `first` on (a solver that moves only those).
+// the elements (nodes) from `first` on and before `end` (end < 0: to the tip), for a solver that moves
+// only those.
 
 // plate contact, per element: one-sided penalty on the surface gap, plus normal damping (damping: only
 // meaningful with physical masses)
 void addPlaneContact(const RodParams& p, const Plane& plane, const RodState& s, bool damping,
-                     Eigen::Matrix3Xd& force, int first = 0);
+                     Eigen::Matrix3Xd& force, int first = 0, int end = -1);
 // adhesion springs of stiffness k [N/m] pin anchored nodes; directors stay free
-void addAdhesion(double k, const RodState& s, Eigen::Matrix3Xd& force, int first = 0);
+void addAdhesion(double k, const RodState& s, Eigen::Matrix3Xd& force, int first = 0, int end = -1);
 // weight, lumped to nodes; gravity [m/s^2]
 void addWeight(const RodParams& p, const Vec3& gravity, const RodState& s, Eigen::Matrix3Xd& force,
-               int first = 0);
+               int first = 0, int end = -1);
 // dead force on the last node, lab-fixed couple on the last element
 void addTipLoads(const Environment& env, const RodState& s, Eigen::Matrix3Xd& force, Eigen::Matrix3Xd& torque);
 
@@ -117,12 +118,22 @@ void addTipLoads(const Environment& env, const RodState& s, Eigen::Matrix3Xd& fo
 // passes, which take the self-contact stiffness pair by pair: relax_newton.cpp)
 enum class ForcePieces { All, NoSelfContact };
 
+// the part of the rod a force evaluation covers, for a solver that moves only part of it: strains and
+// internal forces of the elements [first, end) (end < 0: to the tip), the node-wise outside forces
+// (plate, adhesion, weight) from element `outsideFrom` (>= first) on: the Newton solver's frozen nodes
+// before its window need their elements' couples but none of their forces. The contact pieces act on
+// the whole rod. Near the span's ends forces and couples are inexact (computeInternalForces); callers
+// read only those inside.
+struct ForceSpan {
+  int first = 0, end = -1, outsideFrom = 0;
+};
+
 // all of the above that env switches on, the contact pieces of contact.hpp (obstacles, self-contact,
 // friction; cw is their scratch memory, sized by ContactWorkspace::resize) and the clamp's couple on
 // element 0, in this order
 void addExternalForces(const RodParams& p, const Environment& env, const RodState& s,
                        const RodStrains& k, bool planeDamping, ContactWorkspace& cw,
-                       Eigen::Matrix3Xd& force, Eigen::Matrix3Xd& torque, int first = 0,
+                       Eigen::Matrix3Xd& force, Eigen::Matrix3Xd& torque, ForceSpan span = {},
                        ForcePieces pieces = ForcePieces::All);
 
 // normal force of the plate on each node (n+1) [N]: addPlaneContact without its

@@ -179,5 +179,8 @@ RelaxResult relax(const RodParams& p, const Environment& env, const SolverOption
 // solver's window; pieces: ForcePieces::NoSelfContact leaves self-contact out (environment.hpp)
 void computeForces(const RodParams& p, const Environment& env, const RodState& s, bool planeDamping,
                    RelaxWorkspace& ws, int first = 0, ForcePieces pieces = ForcePieces::All);
+// the same over a part of the rod (environment.hpp: ForceSpan)
+void computeForces(const RodParams& p, const Environment& env, const RodState& s, bool planeDamping,
+                   RelaxWorkspace& ws, ForceSpan span, ForcePieces pieces = ForcePieces::All);
 
 }  // namespace rootsim

@@ -78,14 +78,16 @@ struct RodStrains {
 // strains and stresses of the rod (MODEL.md section 4; paper Eqs. 24-25 with the incompressibility
 // rescaling S -> S/e, B -> B/e^2, kappa -> kappa/e)
 // (first > 0: only elements and Voronoi domains from `first` on, for a solver that moves only those;
-// what lies before is left as it was)
-void computeStrains(const RodParams& p, const RodState& s, RodStrains& k, int first = 0);
+// end >= 0: only those before element `end` (Voronoi domains before end - 1); what lies outside is left
+// as it was)
+void computeStrains(const RodParams& p, const RodState& s, RodStrains& k, int first = 0, int end = -1);
 
 // internal forces on nodes (lab) and couples on elements (material), from computed strains;
 // force (3 x n+1) and torque (3 x n) are overwritten (from node and element `first` on; node `first`
-// then lacks the force of element first - 1, and element `first` the couple of Voronoi first - 1)
+// then lacks the force of element first - 1, and element `first` the couple of Voronoi first - 1;
+// end >= 0: up to node and element `end` - 1, element end - 1 then lacking the couple of Voronoi end - 1)
 void computeInternalForces(const RodState& s, const RodStrains& k, Eigen::Matrix3Xd& force,
-                           Eigen::Matrix3Xd& torque, int first = 0);
+                           Eigen::Matrix3Xd& torque, int first = 0, int end = -1);
 
 // radius of element i, shrinking with dilatation as R / sqrt(e) [m]
 inline double elementRadius(const RodParams& p, double e) { return p.radius / std::sqrt(e); }

@@ -23,6 +23,23 @@ void BandLU::reset(int n, int kl, int ku) {
   ld_ = 2 * kl + ku + 1;
   ab_.assign(static_cast<size_t>(ld_) * static_cast<size_t>(n), 0.0);  // reuses the capacity
   piv_.assign(static_cast<size_t>(n), 0);
+  lastL_.assign(static_cast<size_t>(n), 0);
+  firstU_.assign(static_cast<size_t>(n), 0);
+}
+
+void BandLU::scanProfile() {
+  for (int j = 0; j < n_; ++j) {
+    const double* col = ab_.data() + static_cast<size_t>(j) * ld_ + kv_;  // col[i] = L(j + i, j)
+    int last = 0;
+    for (int i = 1; i <= std::min(kl_, n_ - 1 - j); ++i)
+      if (col[i] != 0.0) last = i;
+    lastL_[static_cast<size_t>(j)] = last;
+    const double* u = ab_.data() + static_cast<size_t>(j) * ld_ + kv_ - j;  // u[i] = U(i, j)
+    int first = j;
+    for (int i = std::max(0, j - kv_); i < j; ++i)
+      if (u[i] != 0.0) { first = i; break; }
+    firstU_[static_cast<size_t>(j)] = first;
+  }
 }
 
 bool BandLU::factorize() {
@@ -31,6 +48,7 @@ bool BandLU::factorize() {
   double* ab = ab_.data();
   const int ld = ld_, kv = kv_;
   int ju = 0;
+  for (int j = 0; j < n_; ++j) firstU_[static_cast<size_t>(j)] = j;
   for (int j = 0; j < n_; ++j) {
     const int km = std::min(kl_, n_ - 1 - j);
     double* col = ab + static_cast<size_t>(j) * ld + kv;  // col[i] = A(j + i, j)
@@ -44,15 +62,23 @@ bool BandLU::factorize() {
     if (jp != 0)
       for (int c = j; c <= ju; ++c)
         std::swap(ab[kv + j - c + static_cast<size_t>(c) * ld], ab[kv + j + jp - c + static_cast<size_t>(c) * ld]);
+    int last = 0;
     if (km > 0) {
       const double inv = 1.0 / col[0];
-      for (int i = 1; i <= km; ++i) col[i] *= inv;
-      for (int c = j + 1; c <= ju; ++c) {
-        double* cc = ab + static_cast<size_t>(c) * ld + kv + j - c;  // cc[i] = A(j + i, c)
-        const double u = cc[0];
-        if (u != 0.0)
-          for (int i = 1; i <= km; ++i) cc[i] -= col[i] * u;
+      for (int i = 1; i <= km; ++i) {
+        col[i] *= inv;
+        if (col[i] != 0.0) last = i;
       }
+    }
+    lastL_[static_cast<size_t>(j)] = last;
+    // row j of U is final now: its nonzeros set the first rows of U's columns (the update below
+    // skips a zero multiplier or a zero U(j, c): exact zeros, the same result as the full loop)
+    for (int c = j + 1; c <= ju; ++c) {
+      double* cc = ab + static_cast<size_t>(c) * ld + kv + j - c;  // cc[i] = A(j + i, c)
+      const double u = cc[0];
+      if (u == 0.0) continue;
+      if (firstU_[static_cast<size_t>(c)] > j) firstU_[static_cast<size_t>(c)] = j;
+      for (int i = 1; i <= last; ++i) cc[i] -= col[i] * u;
     }
   }
   return true;
@@ -67,14 +93,14 @@ void BandLU::solve(double* b) const {
     const int l = piv_[static_cast<size_t>(j)];
     if (l != j) std::swap(b[l], b[j]);
     const double* col = ab + static_cast<size_t>(j) * ld + kv;
-    for (int i = 1; i <= km; ++i) b[j + i] -= col[i] * b[j];
+    for (int i = 1; i <= std::min(km, lastL_[static_cast<size_t>(j)]); ++i) b[j + i] -= col[i] * b[j];
   }
   // U x = y (U has kl + ku super-diagonals after the interchanges)
   for (int j = n_ - 1; j >= 0; --j) {
     const double* col = ab + static_cast<size_t>(j) * ld + kv - j;  // col[i] = A(i, j)
     b[j] /= col[j];
     const double bj = b[j];
-    for (int i = std::max(0, j - kv); i < j; ++i) b[i] -= col[i] * bj;
+    for (int i = std::max(firstU_[static_cast<size_t>(j)], j - kv); i < j; ++i) b[i] -= col[i] * bj;
   }
 }
 
@@ -83,15 +109,30 @@ void BandLDLT::reset(int n, int k) {
   n_ = n;
   k_ = k;
   a_.assign(static_cast<size_t>(k + 1) * static_cast<size_t>(n), 0.0);
+  first_.assign(static_cast<size_t>(n), 0);
+  last_.assign(static_cast<size_t>(n), 0);
 }
 
 bool BandLDLT::factorize() {
-  // column by column: D_j = A_jj - sum_m L_jm^2 D_m, L_ij = (A_ij - sum_m L_im L_jm D_m) / D_j
+  // column by column: D_j = A_jj - sum_m L_jm^2 D_m, L_ij = (A_ij - sum_m L_im L_jm D_m) / D_j, the sums
+  // over the columns m inside both rows' envelopes (L_im = 0 before row i's first nonzero: the
+  // factorisation fills only inside the envelope, so the skipped terms are exact zeros)
   const int K = k_ + 1;
   double* a = a_.data();
+  int* first = first_.data();
+  int* last = last_.data();
+  for (int i = 0; i < n_; ++i) {
+    int f = i;
+    for (int m = std::max(0, i - k_); m < i; ++m)
+      if (a[(i - m) + static_cast<size_t>(m) * K] != 0.0) { f = m; break; }
+    first[i] = f;
+    last[i] = i;
+  }
+  for (int i = 0; i < n_; ++i)
+    for (int m = first[i]; m < i; ++m) last[m] = std::max(last[m], i);
   double w[64];  // w[m - j0] = L_jm D_m for the columns m in [j0, j) that reach row j
   for (int j = 0; j < n_; ++j) {
-    const int j0 = std::max(0, j - k_);
+    const int j0 = first[j];
     double d = a[static_cast<size_t>(j) * K];
     for (int m = j0; m < j; ++m) {
       const double l = a[(j - m) + static_cast<size_t>(m) * K];
@@ -100,10 +141,10 @@ bool BandLDLT::factorize() {
     }
     if (!(std::abs(d) > 0.0) || !std::isfinite(d)) return false;
     a[static_cast<size_t>(j) * K] = d;
-    const int iMax = std::min(n_ - 1, j + k_);
-    for (int i = j + 1; i <= iMax; ++i) {
+    for (int i = j + 1; i <= last[j]; ++i) {
+      if (first[i] > j) continue;  // L_ij = 0: outside row i's envelope
       double s = a[(i - j) + static_cast<size_t>(j) * K];
-      for (int m = std::max(j0, i - k_); m < j; ++m) s -= a[(i - m) + static_cast<size_t>(m) * K] * w[m - j0];
+      for (int m = std::max(j0, first[i]); m < j; ++m) s -= a[(i - m) + static_cast<size_t>(m) * K] * w[m - j0];
       a[(i - j) + static_cast<size_t>(j) * K] = s / d;
     }
   }
@@ -121,13 +162,14 @@ int BandLDLT::negativePivots(double relTol) const {
 void BandLDLT::solve(double* b) const {
   const int K = k_ + 1;
   const double* a = a_.data();
+  // inside the envelope only (outside it L is zero)
   for (int j = 0; j < n_; ++j) {
-    const int iMax = std::min(n_ - 1, j + k_);
+    const int iMax = last_[static_cast<size_t>(j)];
     for (int i = j + 1; i <= iMax; ++i) b[i] -= a[(i - j) + static_cast<size_t>(j) * K] * b[j];
   }
   for (int j = 0; j < n_; ++j) b[j] /= a[static_cast<size_t>(j) * K];
   for (int j = n_ - 1; j >= 0; --j) {
-    const int iMax = std::min(n_ - 1, j + k_);
+    const int iMax = last_[static_cast<size_t>(j)];
     for (int i = j + 1; i <= iMax; ++i) b[j] -= a[(i - j) + static_cast<size_t>(j) * K] * b[i];
   }
 }
@@ -141,6 +183,7 @@ bool BandLU::restore(int n, int kl, int ku, const std::vector<double>& ab, const
   reset(n, kl, ku);
   std::copy(ab.begin(), ab.end(), ab_.begin());
   std::copy(piv.begin(), piv.end(), piv_.begin());
+  scanProfile();
   return true;
 }
 

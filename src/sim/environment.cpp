@@ -1,5 +1,6 @@
 #include "rootsim/environment.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -56,12 +57,12 @@ ClampCouple clampCouple(const RodParams& p, const RodState& s, double e0) {
 }
 
 void addPlaneContact(const RodParams& p, const Plane& plane, const RodState& s, bool damping,
-                     Eigen::Matrix3Xd& force, int first) {
+                     Eigen::Matrix3Xd& force, int first, int end) {
   // one-sided penalty on the surface gap (r_mid . n - R, with the rest radius as MODEL.md writes it: a
   // gap using R / sqrt(e) would make the contact force depend on stretching without an energy behind
   // it, which shows up as a spurious unstable direction of the stiffness matrix) plus normal damping,
   // shared by the element's two nodes
-  const int n = s.elements();
+  const int n = end >= 0 ? std::min(end, s.elements()) : s.elements();
   const Vec3 nh = plane.normal();
   for (int i = first; i < n; ++i) {
     const Vec3 mid = 0.5 * (s.x.col(i) + s.x.col(i + 1));
@@ -83,14 +84,17 @@ Eigen::VectorXd plateNormalForce(const RodParams& p, const Plane& plane, const R
   return (plane.normal().transpose() * force).transpose();
 }
 
-void addAdhesion(double k, const RodState& s, Eigen::Matrix3Xd& force, int first) {
-  for (int i = first; i < s.nodes(); ++i)
+void addAdhesion(double k, const RodState& s, Eigen::Matrix3Xd& force, int first, int end) {
+  const int n = end >= 0 ? std::min(end, s.nodes()) : s.nodes();
+  for (int i = first; i < n; ++i)
     if (s.anchored[static_cast<size_t>(i)]) force.col(i) += k * (s.anchor.col(i) - s.x.col(i));
 }
 
-void addWeight(const RodParams& p, const Vec3& gravity, const RodState& s, Eigen::Matrix3Xd& force, int first) {
+void addWeight(const RodParams& p, const Vec3& gravity, const RodState& s, Eigen::Matrix3Xd& force, int first,
+               int end) {
   const double rhoA = p.density * units::pi * p.radius * p.radius;
-  for (int i = first; i < s.elements(); ++i) {
+  const int n = end >= 0 ? std::min(end, s.elements()) : s.elements();
+  for (int i = first; i < n; ++i) {
     const Vec3 w = 0.5 * rhoA * s.l0[i] * gravity;
     force.col(i) += w;
     force.col(i + 1) += w;
@@ -105,17 +109,18 @@ void addTipLoads(const Environment& env, const RodState& s, Eigen::Matrix3Xd& fo
 
 void addExternalForces(const RodParams& p, const Environment& env, const RodState& s,
                        const RodStrains& k, bool planeDamping, ContactWorkspace& cw,
-                       Eigen::Matrix3Xd& force, Eigen::Matrix3Xd& torque, int first, ForcePieces pieces) {
+                       Eigen::Matrix3Xd& force, Eigen::Matrix3Xd& torque, ForceSpan span, ForcePieces pieces) {
   // the contact pieces of contact.cpp act on the whole rod (contacts may couple any two nodes); on
-  // nodes before `first` their forces are exact too
-  if (env.plane.enabled) addPlaneContact(p, env.plane, s, planeDamping, force, first);
+  // nodes outside the span their forces are exact too
+  const int from = std::max(span.first, span.outsideFrom);
+  if (env.plane.enabled) addPlaneContact(p, env.plane, s, planeDamping, force, from, span.end);
   if (!env.obstacles.empty()) addObstacleContact(p, env, s, planeDamping, cw, force);
   if (env.selfContact.enabled && pieces == ForcePieces::All) addSelfContact(p, env, s, planeDamping, cw, force);
   if (env.friction.enabled) addFriction(p, env, s, cw, force);
-  if (env.adhesion) addAdhesion(env.kAdhesion, s, force, first);
-  if (env.gravity.squaredNorm() > 0.0) addWeight(p, env.gravity, s, force, first);
-  if (env.base == BaseCondition::Clamped && first == 0) torque.col(0) += clampCouple(p, s, k.e[0]).torque;
-  addTipLoads(env, s, force, torque);
+  if (env.adhesion) addAdhesion(env.kAdhesion, s, force, from, span.end);
+  if (env.gravity.squaredNorm() > 0.0) addWeight(p, env.gravity, s, force, from, span.end);
+  if (env.base == BaseCondition::Clamped && span.first == 0) torque.col(0) += clampCouple(p, s, k.e[0]).torque;
+  if (span.end < 0 || span.end >= s.elements()) addTipLoads(env, s, force, torque);
 }
 
 void holdClampedBase(const Environment& env, Eigen::Matrix3Xd& force) {

@@ -67,6 +67,15 @@ struct Window {
   // the first element whose strains the window's forces need (the one before the first free node, and
   // those whose twist rows a window block's nudge reaches)
   int firstElement() const { return std::max(0, b0 / 2 - 1 - (m > 0 ? kRadius / 2 + 1 : 0)); }
+  // the first element whose outside (node) forces the window's rows need: the element before the first
+  // free node (its plate contact acts on that node); the frozen nodes before it are never read
+  int outsideFrom() const { return std::max(0, b0 / 2 - 1); }
+  // the span of a force evaluation for the residual: the twists of the frozen elements are unknowns,
+  // so their couples are needed (strains from element 0), but not the forces on the frozen nodes
+  ForceSpan residualSpan() const {
+    const int f = m > 0 ? 0 : firstElement();
+    return ForceSpan{f, -1, std::max(f, outsideFrom())};
+  }
   static bool isNode(int b) { return b % 2 == 0; }
 };
 
@@ -104,7 +113,7 @@ struct NewtonSolver {
 
   // forces of the current state; returns |F_scaled|^2 over the free dofs and fills nw.r
   double residual() {
-    computeForces(p, env, s, false, ws, w.m > 0 ? 0 : w.firstElement());
+    computeForces(p, env, s, false, ws, w.residualSpan());
     double sum = 0;
     for (int e = 0; e < w.m; ++e) {
       const double f = ws.torque(2, e) / lbar;
@@ -164,7 +173,7 @@ struct NewtonSolver {
     const ForcePieces pieces = env.selfContact.enabled ? ForcePieces::NoSelfContact : ForcePieces::All;
     // one pass of central differences over blocks start, start + stride, ... up to `last`, forces
     // evaluated exactly from element `first` on
-    auto pass = [&](int start, int stride, int last, int c, int first, int radius) {
+    auto pass = [&](int start, int stride, int last, int c, ForceSpan span, int radius) {
       Vec3 u = Vec3::Zero();
       u[c] = h;
       auto blocks = [&](auto&& f) {
@@ -177,7 +186,7 @@ struct NewtonSolver {
         else nw.saveQ[static_cast<size_t>(b / 2)] = s.Q[static_cast<size_t>(b / 2)];
         moveBlock(s, b, u, lbar);
       });
-      computeForces(p, env, s, false, ws, first, pieces);
+      computeForces(p, env, s, false, ws, span, pieces);
       blocks([&](int b) {
         for (int rb = std::max(0, b - radius); rb <= std::min(2 * w.n, b + radius); ++rb)
           for (int rc = 0; rc < 3; ++rc) {
@@ -190,7 +199,7 @@ struct NewtonSolver {
         else s.Q[static_cast<size_t>(b / 2)] = nw.saveQ[static_cast<size_t>(b / 2)];
         moveBlock(s, b, -u, lbar);
       });
-      computeForces(p, env, s, false, ws, first, pieces);
+      computeForces(p, env, s, false, ws, span, pieces);
       blocks([&](int b) {
         const int col = w.unknown(b, c);
         for (int rb = std::max(0, b - radius); rb <= std::min(2 * w.n, b + radius); ++rb)
@@ -207,14 +216,20 @@ struct NewtonSolver {
     for (int colour = 0; colour < kColours; ++colour) {
       const int start = w.b0 + ((colour - w.b0 % kColours) + kColours) % kColours;
       if (start > 2 * w.n) continue;
-      for (int c = 0; c < 3; ++c) pass(start, kColours, 2 * w.n, c, w.firstElement(), kRadius);
+      for (int c = 0; c < 3; ++c)
+        pass(start, kColours, 2 * w.n, c, ForceSpan{w.firstElement(), -1, w.firstElement()}, kRadius);
     }
     // the mature twists: element blocks 2e + 1 < b0, about d3 only, forces of the whole rod. Turning
     // element e about its own axis changes its shear and the curvatures at its two ends only (its
     // tangent stays: the nodes do not move), so it acts on blocks 2e - 1 .. 2e + 3 (kTwistRadius) and
-    // every third element can be nudged in one pass: 3 passes of the whole rod, not 9
+    // every third element can be nudged in one pass: 3 passes of the frozen part, not 9. Their rows
+    // reach block b0 + 1 (the first free element, whose couple needs the strains of the element after
+    // it), so the passes evaluate the elements before b0 / 2 + 3 only, and no outside forces on the
+    // frozen nodes (never read): a long root's passes then cost what its frozen part does, not the
+    // whole rod
+    const ForceSpan frozen{0, std::min(w.n, w.b0 / 2 + 3), w.outsideFrom()};
     for (int colour = 0; colour < kTwistColours && colour < w.m; ++colour)
-      pass(2 * colour + 1, 2 * kTwistColours, w.b0 - 1, 2, 0, kTwistRadius);
+      pass(2 * colour + 1, 2 * kTwistColours, w.b0 - 1, 2, frozen, kTwistRadius);
     // self-contact: each pair's 12 x 12 stiffness (node translations only: scaled units are SI there),
     // inside the band where the nodes are close enough, off it otherwise
     nw.offBand.clear();

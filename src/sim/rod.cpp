@@ -1,5 +1,6 @@
 #include "rootsim/rod.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -77,8 +78,8 @@ inline Vec3 relativeRotation(const Mat3& A, const Mat3& B) {
 
 }  // namespace
 
-void computeStrains(const RodParams& p, const RodState& s, RodStrains& k, int first) {
-  const int n = s.elements();
+void computeStrains(const RodParams& p, const RodState& s, RodStrains& k, int first, int end) {
+  const int n = end >= 0 ? std::min(end, s.elements()) : s.elements();
   const Vec3 Sd = p.shearStiffness();
   const Vec3 Bd = p.bendStiffness();
   // elements: length, dilatation, tangent, shear strain, internal force (Eq. 24, S -> S/e)
@@ -117,12 +118,12 @@ void computeStrains(const RodParams& p, const RodState& s, RodStrains& k, int fi
 }
 
 void computeInternalForces(const RodState& s, const RodStrains& k, Eigen::Matrix3Xd& force,
-                           Eigen::Matrix3Xd& torque, int first) {
-  const int n = s.elements();
+                           Eigen::Matrix3Xd& torque, int first, int end) {
+  const int n = end >= 0 ? std::min(end, s.elements()) : s.elements();
   // nodes: difference of element internal forces (Eq. 22, discrete)
   force.col(first) = k.nLab.col(first);
   for (int i = first + 1; i < n; ++i) force.col(i) = k.nLab.col(i) - k.nLab.col(i - 1);
-  force.col(n) = -k.nLab.col(n - 1);
+  if (n == s.elements()) force.col(n) = -k.nLab.col(n - 1);
   // elements (Eq. 23, discrete, material frame): difference of Voronoi couples, the averaged
   // kappa x m term, and the shear couple (Q t) x n l
   for (int i = first; i < n; ++i) {

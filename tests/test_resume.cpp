@@ -99,6 +99,9 @@ TEST_CASE("a killed run resumed from its checkpoint writes the same bytes as an 
                            Variant{"friction", src + "friction_waving.toml"},
                            Variant{"obstacle", src + "obstacle_peg.toml"},
                            Variant{"window", kScene + " --set solver.window_mm=1"},
+                           // a long frozen part at the checkpoint (4 mm, ~80 elements): the frozen
+                           // twists' kept stiffness carried over it
+                           Variant{"frozen", kScene + " --set solver.window_mm=1 --set growth.step_h=0.5"},
                            // a coil in self-contact from step 30 on: the sparse Jacobian's pattern and
                            // pivots carried over the checkpoint
                            Variant{"coil", src + "fig2a_alpha90.toml --set tropism.beta=1 --set growth.step_h=0.2"}}) {

@@ -20,7 +20,11 @@ class BandLU {
   int kl() const { return kl_; }
   int ku() const { return ku_; }
   // A(i, j) += v; only inside the band (|i - j| within kl, ku)
-  void add(int i, int j, double v) { ab_[static_cast<size_t>(kv_ + i - j + j * ld_)] += v; }
+  void add(int i, int j, double v) {
+    ab_[static_cast<size_t>(kv_ + i - j + j * ld_)] += v;
+    if (i > colLast_[static_cast<size_t>(j)]) colLast_[static_cast<size_t>(j)] = i;
+    if (j > rowLast_[static_cast<size_t>(i)]) rowLast_[static_cast<size_t>(i)] = j;
+  }
   double at(int i, int j) const { return ab_[static_cast<size_t>(kv_ + i - j + j * ld_)]; }
   bool inBand(int i, int j) const { return i - j <= kl_ && j - i <= ku_; }
   // factorises in place; false when a pivot is exactly zero (singular)
@@ -42,6 +46,9 @@ class BandLU {
   // twists form a tridiagonal chain inside the band): the last nonzero multiplier of column j (offset
   // below the diagonal) and the first nonzero row of U's column j
   std::vector<int> lastL_, firstU_;
+  // the structure add() built (and the fill the factorisation adds to it): the last row of column j
+  // and the last column of row i that may be nonzero; factorize() skips what lies beyond
+  std::vector<int> colLast_, rowLast_;
 };
 
 // symmetric band matrix (half-bandwidth k, lower band stored) and its LDL^T factorisation without

@@ -93,8 +93,11 @@ struct RelaxWorkspace {
 // arguments, which must outlive it
 class DynamicRelaxation {
  public:
+  // firstFreeNode > 0: only the nodes and elements from there on move (the rest, twists included,
+  // stays exactly), and the equilibrium criterion covers those only: the Newton solver's fallback
+  // relaxes its window so (the explicit solver proper relaxes the whole rod)
   DynamicRelaxation(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
-                    RelaxWorkspace& ws);
+                    RelaxWorkspace& ws, int firstFreeNode = 0);
   // one sub-step; true when the state is in equilibrium (velocities are then zeroed); throws
   // RelaxError when a force or couple is not finite, or when a node slides without bound (no static
   // equilibrium: it moved more than kSlideLengths * Lref within the relaxation). Allocates nothing.
@@ -105,7 +108,7 @@ class DynamicRelaxation {
  private:
   // the pieces of one sub-step, in the order step() runs them (relax_dynamic.cpp's header lists it)
   struct FirePowers { double P = 0, vm2 = 0, fm2 = 0; };
-  static void drift(RodState& s, double h);
+  void drift(double h);
   bool inEquilibrium();
   void checkSliding() const;
   FirePowers firePowers() const;
@@ -121,6 +124,9 @@ class DynamicRelaxation {
   double ftol2_ = 0, mtol2_ = 0, xtol_ = 0, rtol_ = 0;
   double dtMax_ = 0, dt_ = 0, pendingDrift_ = 0, alpha_ = 0, viscousFactor_ = 1, slideLimit_ = 0;
   int npos_ = 0, argF_ = 0, argM_ = 0;
+  int free_ = 0;     // the first node and element that move
+  ForceSpan span_;   // what computeForces evaluates: from the element before free_ (its force and
+                     // plate contact act on node free_, its Voronoi couple on element free_)
   RelaxResult res_;
 };
 
@@ -141,6 +147,11 @@ struct NewtonWorkspace {
   bool factorsValid = false;      // lu holds the LU factors of the last relaxation's last Jacobian, for
   int factorsDofs = 0;            //   this many unknowns from this first block: the next relaxation's
   int factorsFirstBlock = 0;      //   first (chord) iteration uses them (relax_newton.cpp)
+  // the frozen twists' stiffness, a tridiagonal chain (relax_newton.cpp): per element e < matureValid,
+  // K(e-1, e), K(e, e), K(e+1, e) [N m / rad], differenced at an earlier state; the relaxations since
+  // the whole chain was last differenced
+  std::vector<double> matureK;
+  int matureValid = 0, matureAge = 0;
   int modeSize = 0;               // unknowns of the last mode (a warm start for the next one)
   int negative = 0;               // negative pivots of the symmetric stiffness: unstable directions
   double lowestEigenvalue = 0;    // eigenvalue of the scaled stiffness nearest zero (the lowest while
@@ -172,7 +183,7 @@ inline constexpr double kSlideLengths = 3.0;
 
 // relaxes the rod to equilibrium under env; throws RelaxError on divergence or on hitting the cap
 RelaxResult relax(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
-                  RelaxWorkspace& ws);
+                  RelaxWorkspace& ws, int firstFreeNode = 0);
 
 // evaluates all forces of state s into ws.force / ws.torque (used by both solvers, the stability check
 // and tests); first > 0: exact only on the nodes and elements after `first` (rod.hpp), for the Newton

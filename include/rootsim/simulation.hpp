@@ -57,6 +57,8 @@ struct SimulationCarry {
   std::vector<double> newtonBand;       // BandLU::storage()
   std::vector<int> newtonPivots;        // BandLU::pivots()
   SparseMemory newtonSparse;            // the sparse Jacobian's pattern and pivots (self-contact)
+  std::vector<double> newtonMatureK;    // the frozen twists' kept stiffness (NewtonWorkspace::matureK)
+  int newtonMatureValid = 0, newtonMatureAge = 0;
   // the solver's self-contact Verlet list (ContactWorkspace)
   std::vector<std::array<int, 2>> pairs;
   Eigen::Matrix3Xd pairsBuiltX;         // (3 x builtElements+1) [m]

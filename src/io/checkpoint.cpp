@@ -215,6 +215,9 @@ void writeCheckpoint(const fs::path& path, const RunCheckpoint& c) {
   o.pod(k.newtonSparse.ku);
   o.list(k.newtonSparse.places);
   o.list(k.newtonSparse.pivotValues);
+  o.list(k.newtonMatureK);
+  o.pod(k.newtonMatureValid);
+  o.pod(k.newtonMatureAge);
   o.list(k.pairs);
   o.mat(k.pairsBuiltX);
   o.pod(k.pairsBuiltElements);
@@ -325,12 +328,16 @@ RunCheckpoint readCheckpoint(const fs::path& path) {
   k.newtonSparse.ku = in.pod<int>();
   in.list(k.newtonSparse.places);
   in.list(k.newtonSparse.pivotValues);
+  in.list(k.newtonMatureK);
+  k.newtonMatureValid = in.pod<int>();
+  k.newtonMatureAge = in.pod<int>();
   in.list(k.pairs);
   in.mat(k.pairsBuiltX);
   k.pairsBuiltElements = in.pod<int>();
   k.pairsBuiltRestLength = in.pod<double>();
   k.pairsBuilds = in.pod<long>();
-  if (k.step != c.step || k.newtonModeSize < 0 || static_cast<std::size_t>(k.newtonModeSize) > k.newtonMode.size())
+  if (k.step != c.step || k.newtonModeSize < 0 || static_cast<std::size_t>(k.newtonModeSize) > k.newtonMode.size() ||
+      k.newtonMatureValid < 0 || 3 * static_cast<std::size_t>(k.newtonMatureValid) > k.newtonMatureK.size())
     in.bad("inconsistent solver state");
   for (const auto& [i, j] : k.pairs)
     if (i < 0 || j < 0 || i >= n || j >= n) in.bad("contact pair out of range");

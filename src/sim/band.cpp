@@ -25,6 +25,9 @@ void BandLU::reset(int n, int kl, int ku) {
   piv_.assign(static_cast<size_t>(n), 0);
   lastL_.assign(static_cast<size_t>(n), 0);
   firstU_.assign(static_cast<size_t>(n), 0);
+  colLast_.resize(static_cast<size_t>(n));
+  rowLast_.resize(static_cast<size_t>(n));
+  for (int j = 0; j < n; ++j) colLast_[static_cast<size_t>(j)] = rowLast_[static_cast<size_t>(j)] = j;
 }
 
 void BandLU::scanProfile() {
@@ -45,12 +48,18 @@ void BandLU::scanProfile() {
 bool BandLU::factorize() {
   // column j: pick the largest of A(j..j+km, j) as pivot, swap its row up across the columns the
   // interchanges can reach (ju), scale the multipliers, update the trailing band
+  // Only the structure add() built is visited (colLast_, rowLast_, grown by the fill of each step):
+  // the skipped entries are exact zeros, so the factors are those of the full band algorithm; the
+  // Newton solver's frozen twists, a tridiagonal chain inside the band, then cost a few operations
+  // per row instead of a full band's.
   double* ab = ab_.data();
   const int ld = ld_, kv = kv_;
+  int* colLast = colLast_.data();
+  int* rowLast = rowLast_.data();
   int ju = 0;
   for (int j = 0; j < n_; ++j) firstU_[static_cast<size_t>(j)] = j;
   for (int j = 0; j < n_; ++j) {
-    const int km = std::min(kl_, n_ - 1 - j);
+    const int km = std::min({kl_, n_ - 1 - j, colLast[j] - j});  // rows below j that may be nonzero
     double* col = ab + static_cast<size_t>(j) * ld + kv;  // col[i] = A(j + i, j)
     int jp = 0;
     double best = std::abs(col[0]);
@@ -59,9 +68,13 @@ bool BandLU::factorize() {
     piv_[static_cast<size_t>(j)] = j + jp;
     if (!(best > 0.0) || !std::isfinite(best)) return false;
     ju = std::max(ju, std::min(j + ku_ + jp, n_ - 1));
-    if (jp != 0)
-      for (int c = j; c <= ju; ++c)
+    if (jp != 0) {
+      for (int c = j; c <= ju; ++c) {
         std::swap(ab[kv + j - c + static_cast<size_t>(c) * ld], ab[kv + j + jp - c + static_cast<size_t>(c) * ld]);
+        colLast[c] = std::max(colLast[c], j + jp);
+      }
+      std::swap(rowLast[j], rowLast[j + jp]);
+    }
     int last = 0;
     if (km > 0) {
       const double inv = 1.0 / col[0];
@@ -73,13 +86,19 @@ bool BandLU::factorize() {
     lastL_[static_cast<size_t>(j)] = last;
     // row j of U is final now: its nonzeros set the first rows of U's columns (the update below
     // skips a zero multiplier or a zero U(j, c): exact zeros, the same result as the full loop)
-    for (int c = j + 1; c <= ju; ++c) {
+    const int cEnd = std::min(ju, rowLast[j]);  // pivot row j's last possibly nonzero column
+    for (int c = j + 1; c <= cEnd; ++c) {
       double* cc = ab + static_cast<size_t>(c) * ld + kv + j - c;  // cc[i] = A(j + i, c)
       const double u = cc[0];
       if (u == 0.0) continue;
       if (firstU_[static_cast<size_t>(c)] > j) firstU_[static_cast<size_t>(c)] = j;
       for (int i = 1; i <= last; ++i) cc[i] -= col[i] * u;
+      colLast[c] = std::max(colLast[c], j + last);
     }
+    // the rows that took a multiple of row j now reach as far as it does
+    if (cEnd > j)
+      for (int i = 1; i <= last; ++i)
+        if (col[i] != 0.0) rowLast[j + i] = std::max(rowLast[j + i], cEnd);
   }
   return true;
 }

@@ -168,10 +168,15 @@ void computeForces(const RodParams& p, const Environment& env, const RodState& s
 }
 
 DynamicRelaxation::DynamicRelaxation(const RodParams& p, const Environment& env,
-                                     const SolverOptions& opt, RodState& s, RelaxWorkspace& ws)
+                                     const SolverOptions& opt, RodState& s, RelaxWorkspace& ws,
+                                     int firstFreeNode)
     : p_(p), env_(env), opt_(opt), s_(s), ws_(ws) {
   const int n = s.elements();
   if (n < 2) throw RelaxError("relaxation needs at least 2 elements");
+  ROOTSIM_ASSERT(firstFreeNode >= 0 && firstFreeNode <= n, "a window inside the rod");
+  free_ = std::min(firstFreeNode, n - 1);
+  const int first = std::max(0, free_ - 1);
+  span_ = ForceSpan{first, -1, first};
   if (ws.force.cols() != n + 1) ws.resize(n);
   reorthonormalise(s);
   s.v.setZero();
@@ -195,9 +200,9 @@ DynamicRelaxation::DynamicRelaxation(const RodParams& p, const Environment& env,
 
 bool DynamicRelaxation::step() {
   ++res_.substeps;
-  if (pendingDrift_ > 0.0) drift(s_, pendingDrift_ + 0.5 * dt_);  // 1. (and 9. of the previous sub-step)
+  if (pendingDrift_ > 0.0) drift(pendingDrift_ + 0.5 * dt_);        // 1. (and 9. of the previous sub-step)
   pendingDrift_ = 0.0;
-  computeForces(p_, env_, s_, opt_.mass == MassModel::Physical, ws_);  // 2. - 5.
+  computeForces(p_, env_, s_, opt_.mass == MassModel::Physical, ws_, span_);  // 2. - 5.
   if (inEquilibrium()) {                                               // 6.
     s_.v.setZero();
     s_.w.setZero();
@@ -215,9 +220,10 @@ bool DynamicRelaxation::step() {
   return false;
 }
 
-void DynamicRelaxation::drift(RodState& s, double h) {
-  for (int i = 0; i < s.nodes(); ++i) s.x.col(i) += h * s.v.col(i);
-  for (int i = 0; i < s.elements(); ++i) rotateInPlace(-h * Vec3(s.w.col(i)), s.Q[static_cast<size_t>(i)]);
+void DynamicRelaxation::drift(double h) {
+  RodState& s = s_;
+  for (int i = free_; i < s.nodes(); ++i) s.x.col(i) += h * s.v.col(i);
+  for (int i = free_; i < s.elements(); ++i) rotateInPlace(-h * Vec3(s.w.col(i)), s.Q[static_cast<size_t>(i)]);
 }
 
 bool DynamicRelaxation::inEquilibrium() {
@@ -225,13 +231,13 @@ bool DynamicRelaxation::inEquilibrium() {
   const RelaxWorkspace& ws = ws_;
   const int n = s.elements();
   double maxF2 = 0, maxM2 = 0, maxV2 = 0, maxW2 = 0;
-  for (int i = 0; i <= n; ++i) {
+  for (int i = free_; i <= n; ++i) {
     const double f2 = ws.force.col(i).squaredNorm();
     if (!std::isfinite(f2)) failNonFinite(res_.substeps, "force on node", i, ws.force.col(i));
     if (f2 > maxF2) { maxF2 = f2; argF_ = i; }
     maxV2 = std::max(maxV2, s.v.col(i).squaredNorm());
   }
-  for (int i = 0; i < n; ++i) {
+  for (int i = free_; i < n; ++i) {
     const double m2 = ws.torque.col(i).squaredNorm();
     if (!std::isfinite(m2)) failNonFinite(res_.substeps, "couple on element", i, ws.torque.col(i));
     if (m2 > maxM2) { maxM2 = m2; argM_ = i; }
@@ -248,7 +254,7 @@ bool DynamicRelaxation::inEquilibrium() {
 void DynamicRelaxation::checkSliding() const {
   double far2 = 0;
   int arg = 0;
-  for (int i = 0; i < s_.nodes(); ++i) {
+  for (int i = free_; i < s_.nodes(); ++i) {
     const double d2 = (s_.x.col(i) - ws_.xStart.col(i)).squaredNorm();
     if (d2 > far2) { far2 = d2; arg = i; }
   }
@@ -266,12 +272,12 @@ DynamicRelaxation::FirePowers DynamicRelaxation::firePowers() const {
   const RodState& s = s_;
   const RelaxWorkspace& ws = ws_;
   FirePowers pw;
-  for (int i = 0; i < s.nodes(); ++i) {
+  for (int i = free_; i < s.nodes(); ++i) {
     pw.P += ws.force.col(i).dot(s.v.col(i));
     pw.vm2 += ws.mass[i] * s.v.col(i).squaredNorm();
     pw.fm2 += ws.invMass[i] * ws.force.col(i).squaredNorm();
   }
-  for (int i = 0; i < s.elements(); ++i) {
+  for (int i = free_; i < s.elements(); ++i) {
     pw.P += ws.torque.col(i).dot(s.w.col(i));
     pw.vm2 += ws.inertia.col(i).dot(s.w.col(i).cwiseAbs2());
     pw.fm2 += ws.invInertia.col(i).dot(ws.torque.col(i).cwiseAbs2());
@@ -307,8 +313,8 @@ void DynamicRelaxation::fireKick(FirePowers pw) {
   const double vm2Kicked = std::max(0.0, pw.vm2 + 2.0 * dt * pw.P + dt * dt * pw.fm2);
   const double c = pw.fm2 > 0.0 ? alpha_ * std::sqrt(vm2Kicked / pw.fm2) : 0.0;
   const double keep = 1.0 - alpha_, gain = keep * dt + c;
-  for (int i = 0; i < s.nodes(); ++i) s.v.col(i) = keep * s.v.col(i) + (gain * ws.invMass[i]) * ws.force.col(i);
-  for (int i = 0; i < s.elements(); ++i)
+  for (int i = free_; i < s.nodes(); ++i) s.v.col(i) = keep * s.v.col(i) + (gain * ws.invMass[i]) * ws.force.col(i);
+  for (int i = free_; i < s.elements(); ++i)
     s.w.col(i) = keep * s.w.col(i) + gain * ws.torque.col(i).cwiseProduct(ws.invInertia.col(i));
 }
 
@@ -316,9 +322,9 @@ void DynamicRelaxation::viscousKick() {
   RodState& s = s_;
   const RelaxWorkspace& ws = ws_;
   const double dt = dt_;
-  for (int i = 0; i < s.nodes(); ++i)
+  for (int i = free_; i < s.nodes(); ++i)
     s.v.col(i) = viscousFactor_ * (s.v.col(i) + (dt * ws.invMass[i]) * ws.force.col(i));
-  for (int i = 0; i < s.elements(); ++i)
+  for (int i = free_; i < s.elements(); ++i)
     s.w.col(i) = viscousFactor_ * (s.w.col(i) + dt * ws.torque.col(i).cwiseProduct(ws.invInertia.col(i)));
 }
 
@@ -332,8 +338,8 @@ std::string DynamicRelaxation::describeFailure() const {
 }
 
 RelaxResult relax(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
-                  RelaxWorkspace& ws) {
-  DynamicRelaxation r(p, env, opt, s, ws);
+                  RelaxWorkspace& ws, int firstFreeNode) {
+  DynamicRelaxation r(p, env, opt, s, ws, firstFreeNode);
   while (r.result().substeps < opt.maxSubsteps)
     if (r.step()) return r.result();
   throw RelaxError(r.describeFailure());

@@ -95,6 +95,10 @@ struct SparseMemory {
   int n = -1, kl = 0, ku = 0;      // n < 0: nothing
   std::vector<int> places;         // (column, row) pairs, sorted
   std::vector<double> pivotValues;  // the pattern's values, column by column
+  // the matrix of the last factorisation when it was a refactorisation with those pivots (empty: the
+  // last was the full one): restored too, so that a resumed run's first Newton step reuses the same
+  // factors as the uninterrupted run's
+  std::vector<double> lastValues;
 };
 
 class SparseStiffness {
@@ -116,7 +120,9 @@ class SparseStiffness {
   int size() const;
   // the Newton step: A's LU (KLU)
   bool factorizeLU();          // false when singular
-  void solveLU(double* b);     // after a successful factorizeLU
+  void solveLU(double* b);     // after a successful factorizeLU (and until the next assemble, or
+                               // across beginRelaxation of the same size: a chord step)
+  bool hasFactors() const;     // factors to solve with
   bool factorizeSymmetric();   // LDL^T of (A + A^T) / 2; false when a pivot is zero or not finite
   int negativePivots(double relTol) const;  // as BandLDLT::negativePivots
   void solveSymmetric(double* b) const;

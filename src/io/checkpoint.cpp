@@ -215,6 +215,7 @@ void writeCheckpoint(const fs::path& path, const RunCheckpoint& c) {
   o.pod(k.newtonSparse.ku);
   o.list(k.newtonSparse.places);
   o.list(k.newtonSparse.pivotValues);
+  o.list(k.newtonSparse.lastValues);
   o.list(k.newtonMatureK);
   o.pod(k.newtonMatureValid);
   o.pod(k.newtonMatureAge);
@@ -328,6 +329,7 @@ RunCheckpoint readCheckpoint(const fs::path& path) {
   k.newtonSparse.ku = in.pod<int>();
   in.list(k.newtonSparse.places);
   in.list(k.newtonSparse.pivotValues);
+  in.list(k.newtonSparse.lastValues);
   in.list(k.newtonMatureK);
   k.newtonMatureValid = in.pod<int>();
   k.newtonMatureAge = in.pod<int>();
@@ -341,7 +343,7 @@ RunCheckpoint readCheckpoint(const fs::path& path) {
     in.bad("inconsistent solver state");
   for (const auto& [i, j] : k.pairs)
     if (i < 0 || j < 0 || i >= n || j >= n) in.bad("contact pair out of range");
-  if (k.newtonFactorsValid &&
+  if (k.newtonFactorsValid && !k.newtonSparseActive &&
       (k.newtonBandN < 1 || k.newtonBandKl < 0 || k.newtonBandKu < 0 ||
        k.newtonBand.size() != static_cast<std::size_t>(2 * k.newtonBandKl + k.newtonBandKu + 1) *
                                   static_cast<std::size_t>(k.newtonBandN) ||

@@ -222,6 +222,8 @@ struct SparseStiffness::Impl {
   std::vector<double> pivotValues;
   bool checkGrowth = false;  // the pivots come from an earlier relaxation: check their growth once
   size_t pivotPlaces = 0;
+  std::vector<double> lastValues;  // the matrix of the last refactorisation (SparseMemory::lastValues)
+  bool lastFull = true;             // the last factorisation was the full one
   int bandKl = 0, bandKu = 0;
   // the patterns the symbolic analyses were made for (column starts, row indices)
   std::vector<int> luOuter, luInner, symOuter, symInner;
@@ -343,7 +345,10 @@ SparseMemory SparseStiffness::memory() const {
     mem.places.push_back(col);
     mem.places.push_back(row);
   }
-  if (!m.freshPivots && m.numeric && m.pivotPlaces == m.structural.size()) mem.pivotValues = m.pivotValues;
+  if (!m.freshPivots && m.numeric && m.pivotPlaces == m.structural.size()) {
+    mem.pivotValues = m.pivotValues;
+    if (!m.lastFull) mem.lastValues = m.lastValues;
+  }
   return mem;
 }
 
@@ -369,8 +374,18 @@ bool SparseStiffness::restore(const SparseMemory& mem) {
   // the factors the checkpointed run had: the same matrix through the same analysis and factorisation
   std::copy(mem.pivotValues.begin(), mem.pivotValues.end(), m.a.valuePtr());
   if (!factorizeLU()) return false;
+  if (mem.lastValues.empty()) return true;
+  // and the refactorisation that followed, with those pivots (it succeeded in the checkpointed run)
+  if (mem.lastValues.size() != mem.pivotValues.size()) return false;
+  std::copy(mem.lastValues.begin(), mem.lastValues.end(), m.a.valuePtr());
+  if (!klu_refactor(m.a.outerIndexPtr(), m.a.innerIndexPtr(), m.a.valuePtr(), m.symbolic, m.numeric, &m.common))
+    return false;
+  m.lastValues = mem.lastValues;
+  m.lastFull = false;
   return true;
 }
+
+bool SparseStiffness::hasFactors() const { return impl_->luReady && impl_->numeric != nullptr; }
 
 int SparseStiffness::size() const { return static_cast<int>(impl_->a.rows()); }
 
@@ -397,6 +412,8 @@ bool SparseStiffness::factorizeLU() {
         (!m.checkGrowth || (klu_rgrowth(ap, ai, ax, m.symbolic, m.numeric, &m.common) && m.common.rgrowth > 1e-8))) {
       m.checkGrowth = false;
       m.luReady = true;
+      m.lastValues.assign(ax, ax + m.a.nonZeros());
+      m.lastFull = false;
       return true;
     }
   }
@@ -407,6 +424,7 @@ bool SparseStiffness::factorizeLU() {
   m.pivotPlaces = m.structural.size();
   m.freshPivots = false;
   m.luReady = true;
+  m.lastFull = true;
   return true;
 }
 

@@ -67,9 +67,13 @@ Simulation::Simulation(const Model& m, const RodState& s, const SimulationCarry&
   nw_.negative = c.newtonNegative;
   nw_.lowestEigenvalue = c.newtonLowestEigenvalue;
   nw_.sparseActive = c.newtonSparseActive;
+  const bool sparseRestored = nw_.sparse.restore(c.newtonSparse);
+  if (!sparseRestored) nw_.sparse.resetPattern();
+  // the last Jacobian's factors: sparse (restored with the pattern) or banded
   nw_.factorsValid = c.newtonFactorsValid &&
-                     nw_.lu.restore(c.newtonBandN, c.newtonBandKl, c.newtonBandKu, c.newtonBand, c.newtonPivots);
-  if (!nw_.sparse.restore(c.newtonSparse)) nw_.sparse.resetPattern();
+                     (c.newtonSparseActive ? sparseRestored && nw_.sparse.hasFactors()
+                                           : nw_.lu.restore(c.newtonBandN, c.newtonBandKl, c.newtonBandKu,
+                                                            c.newtonBand, c.newtonPivots));
   nw_.factorsDofs = c.newtonFactorsDofs;
   nw_.matureK = c.newtonMatureK;
   nw_.matureValid = c.newtonMatureValid;
@@ -106,7 +110,7 @@ SimulationCarry Simulation::carry() const {
   c.newtonMatureK = nw_.matureK;
   c.newtonMatureValid = nw_.matureValid;
   c.newtonMatureAge = nw_.matureAge;
-  if (nw_.factorsValid) {
+  if (nw_.factorsValid && !nw_.sparseActive) {
     c.newtonBandN = nw_.lu.size();
     c.newtonBandKl = nw_.lu.kl();
     c.newtonBandKu = nw_.lu.ku();

@@ -244,7 +244,14 @@ struct SparseStiffness::Impl {
   }
 
   // a's pattern: the whole band and the off-band places
+  // where assemble() writes: the first band value of each column, and each off-band entry's value of
+  // the last call (valid while the pattern and the entries' places stay: within a relaxation the
+  // contact pairs, and with them the entries' order, rarely change)
+  std::vector<int> bandStart, extraKey, extraIndex;
+  bool placesKnown = false;
+
   void buildPattern(int n) {
+    placesKnown = false;
     triplets.clear();
     for (int j = 0; j < n; ++j)
       for (int i = std::max(0, j - bandKu); i <= std::min(n - 1, j + bandKl); ++i) triplets.emplace_back(i, j, 0.0);
@@ -278,6 +285,26 @@ SparseStiffness& SparseStiffness::operator=(const SparseStiffness& o) {
 void SparseStiffness::assemble(const BandLU& band, const std::vector<OffBandEntry>& extra) {
   Impl& m = *impl_;
   const int n = band.size(), kl = band.kl(), ku = band.ku();
+  bool same = m.placesKnown && m.structuralSize == n && m.a.rows() == n && m.bandKl == kl && m.bandKu == ku &&
+              m.extraKey.size() == 2 * extra.size();
+  for (size_t e = 0; same && e < extra.size(); ++e)
+    same = m.extraKey[2 * e] == extra[e].row && m.extraKey[2 * e + 1] == extra[e].col;
+  if (!same) locate(band, extra);
+  // the values
+  double* val = m.a.valuePtr();
+  std::fill(val, val + m.a.nonZeros(), 0.0);
+  for (int j = 0; j < n; ++j) {
+    const int i0 = std::max(0, j - ku), i1 = std::min(n - 1, j + kl);
+    double* v = val + m.bandStart[static_cast<size_t>(j)] - i0;
+    for (int i = i0; i <= i1; ++i) v[i] = band.at(i, j);
+  }
+  for (size_t e = 0; e < extra.size(); ++e) val[m.extraIndex[e]] += extra[e].value;
+  m.symReady = m.luReady = false;
+}
+
+void SparseStiffness::locate(const BandLU& band, const std::vector<OffBandEntry>& extra) {
+  Impl& m = *impl_;
+  const int n = band.size(), kl = band.kl(), ku = band.ku();
   bool changed = m.structuralSize != n || m.a.rows() != n;
   if (m.structuralSize != n) {
     m.structural.clear();
@@ -305,21 +332,22 @@ void SparseStiffness::assemble(const BandLU& band, const std::vector<OffBandEntr
     m.bandKu = ku;
     m.buildPattern(n);  // only when the places change
   }
-  // the values: each column's band rows are contiguous in its row list
-  double* val = m.a.valuePtr();
+  // each column's band rows are contiguous in its row list
   const int* outer = m.a.outerIndexPtr();
   const int* inner = m.a.innerIndexPtr();
-  std::fill(val, val + m.a.nonZeros(), 0.0);
-  for (int j = 0; j < n; ++j) {
-    const int i0 = std::max(0, j - ku), i1 = std::min(n - 1, j + kl);
-    const int k0 = static_cast<int>(std::lower_bound(inner + outer[j], inner + outer[j + 1], i0) - inner);
-    for (int i = i0; i <= i1; ++i) val[k0 + (i - i0)] = band.at(i, j);
+  m.bandStart.resize(static_cast<size_t>(n));
+  for (int j = 0; j < n; ++j)
+    m.bandStart[static_cast<size_t>(j)] =
+        static_cast<int>(std::lower_bound(inner + outer[j], inner + outer[j + 1], std::max(0, j - ku)) - inner);
+  m.extraKey.resize(2 * extra.size());
+  m.extraIndex.resize(extra.size());
+  for (size_t e = 0; e < extra.size(); ++e) {
+    const int* k = std::lower_bound(inner + outer[extra[e].col], inner + outer[extra[e].col + 1], extra[e].row);
+    m.extraIndex[e] = static_cast<int>(k - inner);
+    m.extraKey[2 * e] = extra[e].row;
+    m.extraKey[2 * e + 1] = extra[e].col;
   }
-  for (const OffBandEntry& e : extra) {
-    const int* k = std::lower_bound(inner + outer[e.col], inner + outer[e.col + 1], e.row);
-    val[k - inner] += e.value;
-  }
-  m.symReady = m.luReady = false;
+  m.placesKnown = true;
 }
 
 void SparseStiffness::resetPattern() {

@@ -249,9 +249,14 @@ struct SparseStiffness::Impl {
   // contact pairs, and with them the entries' order, rarely change)
   std::vector<int> bandStart, extraKey, extraIndex;
   bool placesKnown = false;
+  // the pattern is structurally symmetric (the band, and each contact pair's places both ways): the
+  // symmetric part is (a + a^T) / 2 on a's own pattern, the transposed value of place k at transposed[k]
+  std::vector<int> transposed;
+  bool transposedKnown = false, patternSymmetric = true;
 
   void buildPattern(int n) {
     placesKnown = false;
+    transposedKnown = false;
     triplets.clear();
     for (int j = 0; j < n; ++j)
       for (int i = std::max(0, j - bandKu); i <= std::min(n - 1, j + bandKl); ++i) triplets.emplace_back(i, j, 0.0);
@@ -465,8 +470,32 @@ void SparseStiffness::solveLU(double* b) {
 bool SparseStiffness::factorizeSymmetric() {
   Impl& m = *impl_;
   if (m.symReady) return true;
-  m.sym = Impl::Matrix(m.a.transpose());
-  m.sym = 0.5 * (m.sym + m.a);
+  if (!m.transposedKnown) {
+    m.sym = m.a;  // the pattern (allocates only when the pattern changed)
+    const int* outer = m.a.outerIndexPtr();
+    const int* inner = m.a.innerIndexPtr();
+    m.transposed.resize(static_cast<size_t>(m.a.nonZeros()));
+    m.patternSymmetric = true;
+    for (int j = 0; j < m.a.outerSize() && m.patternSymmetric; ++j)
+      for (int k = outer[j]; k < outer[j + 1]; ++k) {
+        const int i = inner[k];
+        const int* t = std::lower_bound(inner + outer[i], inner + outer[i + 1], j);
+        if (t == inner + outer[i + 1] || *t != j) {
+          m.patternSymmetric = false;
+          break;
+        }
+        m.transposed[static_cast<size_t>(k)] = static_cast<int>(t - inner);
+      }
+    m.transposedKnown = true;
+  }
+  if (m.patternSymmetric) {
+    const double* av = m.a.valuePtr();
+    double* sv = m.sym.valuePtr();
+    for (Eigen::Index k = 0; k < m.a.nonZeros(); ++k) sv[k] = 0.5 * (av[m.transposed[static_cast<size_t>(k)]] + av[k]);
+  } else {  // (not made by the Newton solver, whose places come in pairs)
+    m.sym = Impl::Matrix(m.a.transpose());
+    m.sym = 0.5 * (m.sym + m.a);
+  }
   if (Impl::patternChanged(m.sym, m.symOuter, m.symInner)) m.ldlt.analyzePattern(m.sym);
   m.ldlt.factorize(m.sym);
   if (m.ldlt.info() != Eigen::Success) return false;

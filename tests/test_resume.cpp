@@ -102,10 +102,12 @@ TEST_CASE("a killed run resumed from its checkpoint writes the same bytes as an 
                            // a long frozen part at the checkpoint (4 mm, ~80 elements): the frozen
                            // twists' kept stiffness carried over it
                            Variant{"frozen", kScene + " --set solver.window_mm=1 --set growth.step_h=0.5"},
-                           // a coil in self-contact from step 30 on: the sparse Jacobian's pattern and
-                           // pivots carried over the checkpoint
+                           // a coil in self-contact from step 30 on: the sparse Jacobian's pattern,
+                           // pivots and last factors (the next step's chord step) carried over the
+                           // checkpoint
                            Variant{"coil", src + "fig2a_alpha90.toml --set tropism.beta=1 --set growth.step_h=0.2"}}) {
-    CAPTURE(v.name);
+    const std::string variant = v.name;
+    CAPTURE(variant);
     const fs::path d = scratch(std::string("same_") + v.name);
     const std::string args = "run " + v.scene + kSets + " --out ";
     REQUIRE(run(args + (d / "a").string()).code == 0);

@@ -6,6 +6,7 @@
 #include "run_rootsim.hpp"
 #include "test_files.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -122,6 +123,41 @@ TEST_CASE("a run that fails exits 1 and keeps its partial output marked incomple
   CHECK(!fs::exists(d / "out"));
   CHECK(fs::exists(d / "out.incomplete" / "ERROR.txt"));
   CHECK(fs::exists(d / "out.incomplete" / "scene.toml"));
+}
+
+TEST_CASE("a run that fails at a growth step keeps its time series, trajectory and ParaView files up to the last output before it") {
+  const fs::path d = scratch("failstep");
+  // the explicit solver capped at 200 sub-steps: the first steps settle, the first snap does not
+  const Result r = run("run " + std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2b_waving.toml --set root.element_length_mm=0.1 "
+                       "--set growth.steps=200 --set growth.step_h=0.1 --set solver.kind=dynamic --set solver.max_substeps=200 "
+                       "--set output.every_steps=5 --quiet --out " + (d / "out").string());
+  REQUIRE(r.code == 1);
+  const fs::path inc = d / "out.incomplete";
+  const std::string err = slurp(inc / "ERROR.txt");
+  int failed = -1;
+  REQUIRE(std::sscanf(err.c_str(), "growth step %d", &failed) == 1);
+  REQUIRE(failed > 5);
+  // whole rows, one every 5 steps from 0 to the last output step before the failing one
+  std::istringstream ts(slurp(inc / "timeseries.csv"));
+  std::string line, header;
+  std::getline(ts, header);
+  const auto fields = [](const std::string& l) { return std::count(l.begin(), l.end(), ',') + 1; };
+  int rows = 0, last = -1;
+  while (std::getline(ts, line)) {
+    CHECK(fields(line) == fields(header));
+    last = std::stoi(line.substr(0, line.find(',')));
+    CHECK(last == 5 * rows);
+    ++rows;
+  }
+  CHECK(last == 5 * ((failed - 1) / 5));
+  CHECK(!fs::exists(inc / "timeseries.csv.tmp"));
+  // the trajectory and the ParaView index hold the same frames
+  CHECK(fs::file_size(inc / "trajectory.bin") > 0);
+  const std::string pvd = slurp(inc / "trajectory.pvd");
+  int frames = 0;
+  for (size_t p = pvd.find("<DataSet"); p != std::string::npos; p = pvd.find("<DataSet", p + 1)) ++frames;
+  CHECK(frames == rows);
+  CHECK(fs::exists(inc / "vtk" / "step_000000.vtp"));
 }
 
 TEST_CASE("a Newton run that cannot reach equilibrium fails with the step and the solver's message") {

@@ -220,26 +220,50 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     };
     double lastCheckpoint = now();
     const int steps = m.growth.enabled ? m.growth.steps : 0;
-    for (int k = first; k <= steps; ++k) {
-      const StepRecord& r = sim.growthStep();
-      maxSub = std::max(maxSub, r.substeps);
-      maxSelfContacts = std::max(maxSelfContacts, r.selfContacts);
-      if (std::isnan(minSelfDistance) || r.minSelfDistance < minSelfDistance) minSelfDistance = r.minSelfDistance;
-      snap.see(r);
-      try {
-        if (k % m.output.everySteps == 0 || k == steps) record();
-        const bool due = hook.checkpointAt >= 0 ? k == hook.checkpointAt
-                                                : now() - lastCheckpoint >= m.output.checkpointEvery;
-        if (k < steps && due) {
-          checkpoint(k);
-          lastCheckpoint = now();
+    // A run that fails keeps what its writers hold, closed so that the files are whole and readable: the
+    // time series and trajectory up to the last output step before the failure, the ParaView series. The
+    // directory becomes DIR.incomplete with ERROR.txt (RunDir::fail), which marks it. (A stop on purpose
+    // leaves DIR.partial as a kill does, its files where the checkpoint expects them.)
+    auto keepPartial = [&] {
+      auto quietly = [](auto&& close) {
+        try {
+          close();
+        } catch (const std::exception&) {
+          // a writer that cannot close (the disk that failed the run) keeps nothing; the others still do
         }
-      } catch (const RunError& e) {
-        throw RunError(std::string(e.what()) + " (at growth step " + std::to_string(k) + " of " +
-                       std::to_string(steps) + ")");
+      };
+      quietly([&] { ts->close(); });
+      if (tr) quietly([&] { tr->close(); });
+      if (tb) quietly([&] { tb->close(); });
+      if (vtk) quietly([&] { vtk->close(); });
+    };
+    try {
+      for (int k = first; k <= steps; ++k) {
+        const StepRecord& r = sim.growthStep();
+        maxSub = std::max(maxSub, r.substeps);
+        maxSelfContacts = std::max(maxSelfContacts, r.selfContacts);
+        if (std::isnan(minSelfDistance) || r.minSelfDistance < minSelfDistance) minSelfDistance = r.minSelfDistance;
+        snap.see(r);
+        try {
+          if (k % m.output.everySteps == 0 || k == steps) record();
+          const bool due = hook.checkpointAt >= 0 ? k == hook.checkpointAt
+                                                  : now() - lastCheckpoint >= m.output.checkpointEvery;
+          if (k < steps && due) {
+            checkpoint(k);
+            lastCheckpoint = now();
+          }
+        } catch (const RunError& e) {
+          throw RunError(std::string(e.what()) + " (at growth step " + std::to_string(k) + " of " +
+                         std::to_string(steps) + ")");
+        }
+        if (k == hook.killAt) std::_Exit(137);
+        if (progress) progress(r, steps);
       }
-      if (k == hook.killAt) std::_Exit(137);
-      if (progress) progress(r, steps);
+    } catch (const RunInterrupted&) {
+      throw;
+    } catch (const std::exception&) {
+      keepPartial();
+      throw;
     }
     ts->close();
     if (tr) tr->close();

@@ -230,7 +230,7 @@ struct NewtonSolver {
       for (int c = 0; c < 3; ++c)
         pass(start, kColours, 2 * w.n, c, ForceSpan{w.firstElement(), -1, w.firstElement()}, kRadius);
     }
-    // the mature twists: element blocks 2e + 1 < b0, about d3 only, forces of the whole rod. Turning
+    // the mature twists: element blocks 2e + 1 < b0, about d3 only. Turning
     // element e about its own axis changes its shear and the curvatures at its two ends only (its
     // tangent stays: the nodes do not move), so it acts on blocks 2e - 1 .. 2e + 3 (kTwistRadius) and
     // every third element can be nudged in one pass: 3 passes of the frozen part, not 9. Their rows

@@ -310,6 +310,39 @@ void SparseStiffness::assemble(const BandLU& band, const std::vector<OffBandEntr
 void SparseStiffness::locate(const BandLU& band, const std::vector<OffBandEntry>& extra) {
   Impl& m = *impl_;
   const int n = band.size(), kl = band.kl(), ku = band.ku();
+  // the entries' value positions in the current pattern; an entry it lacks means new places
+  auto findAll = [&]() {
+    const int* outer = m.a.outerIndexPtr();
+    const int* inner = m.a.innerIndexPtr();
+    m.extraIndex.resize(extra.size());
+    for (size_t e = 0; e < extra.size(); ++e) {
+      const int* end = inner + outer[extra[e].col + 1];
+      const int* k = std::lower_bound(inner + outer[extra[e].col], end, extra[e].row);
+      if (k == end || *k != extra[e].row) return false;
+      m.extraIndex[e] = static_cast<int>(k - inner);
+    }
+    return true;
+  };
+  const bool samePattern = m.structuralSize == n && m.a.rows() == n && m.bandKl == kl && m.bandKu == ku;
+  if (!samePattern || !findAll()) mergePlaces(band, extra);
+  // each column's band rows are contiguous in its row list
+  const int* outer = m.a.outerIndexPtr();
+  const int* inner = m.a.innerIndexPtr();
+  m.bandStart.resize(static_cast<size_t>(n));
+  for (int j = 0; j < n; ++j)
+    m.bandStart[static_cast<size_t>(j)] =
+        static_cast<int>(std::lower_bound(inner + outer[j], inner + outer[j + 1], std::max(0, j - ku)) - inner);
+  m.extraKey.resize(2 * extra.size());
+  for (size_t e = 0; e < extra.size(); ++e) {
+    m.extraKey[2 * e] = extra[e].row;
+    m.extraKey[2 * e + 1] = extra[e].col;
+  }
+  m.placesKnown = true;
+}
+
+void SparseStiffness::mergePlaces(const BandLU& band, const std::vector<OffBandEntry>& extra) {
+  Impl& m = *impl_;
+  const int n = band.size(), kl = band.kl(), ku = band.ku();
   bool changed = m.structuralSize != n || m.a.rows() != n;
   if (m.structuralSize != n) {
     m.structural.clear();
@@ -337,22 +370,12 @@ void SparseStiffness::locate(const BandLU& band, const std::vector<OffBandEntry>
     m.bandKu = ku;
     m.buildPattern(n);  // only when the places change
   }
-  // each column's band rows are contiguous in its row list
   const int* outer = m.a.outerIndexPtr();
   const int* inner = m.a.innerIndexPtr();
-  m.bandStart.resize(static_cast<size_t>(n));
-  for (int j = 0; j < n; ++j)
-    m.bandStart[static_cast<size_t>(j)] =
-        static_cast<int>(std::lower_bound(inner + outer[j], inner + outer[j + 1], std::max(0, j - ku)) - inner);
-  m.extraKey.resize(2 * extra.size());
   m.extraIndex.resize(extra.size());
-  for (size_t e = 0; e < extra.size(); ++e) {
-    const int* k = std::lower_bound(inner + outer[extra[e].col], inner + outer[extra[e].col + 1], extra[e].row);
-    m.extraIndex[e] = static_cast<int>(k - inner);
-    m.extraKey[2 * e] = extra[e].row;
-    m.extraKey[2 * e + 1] = extra[e].col;
-  }
-  m.placesKnown = true;
+  for (size_t e = 0; e < extra.size(); ++e)
+    m.extraIndex[e] = static_cast<int>(
+        std::lower_bound(inner + outer[extra[e].col], inner + outer[extra[e].col + 1], extra[e].row) - inner);
 }
 
 void SparseStiffness::resetPattern() {

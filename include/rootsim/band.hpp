@@ -129,10 +129,6 @@ class SparseStiffness {
   long luAnalyses() const;     // symbolic analyses done so far (tests and benchmarks)
 
  private:
-  // the pattern's places for band and extra (new places merged in, the pattern rebuilt when they
-  // change), and where assemble() writes each value
-  void locate(const BandLU& band, const std::vector<OffBandEntry>& extra);
-  void mergePlaces(const BandLU& band, const std::vector<OffBandEntry>& extra);  // new places into the pattern
   struct Impl;
   std::unique_ptr<Impl> impl_;
 };

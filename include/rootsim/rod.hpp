@@ -89,6 +89,9 @@ void computeStrains(const RodParams& p, const RodState& s, RodStrains& k, int fi
 void computeInternalForces(const RodState& s, const RodStrains& k, Eigen::Matrix3Xd& force,
                            Eigen::Matrix3Xd& torque, int first = 0, int end = -1);
 
+// where a loop over `count` elements or nodes stops for a span ending at `end` (end < 0: at the tip)
+inline int spanEnd(int end, int count) { return end >= 0 && end < count ? end : count; }
+
 // radius of element i, shrinking with dilatation as R / sqrt(e) [m]
 inline double elementRadius(const RodParams& p, double e) { return p.radius / std::sqrt(e); }
 

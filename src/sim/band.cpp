@@ -243,26 +243,74 @@ struct SparseStiffness::Impl {
     if (symbolic) klu_free_symbolic(&symbolic, &common);
   }
 
-  // a's pattern: the whole band and the off-band places
-  // where assemble() writes: the first band value of each column, and each off-band entry's value of
-  // the last call (valid while the pattern and the entries' places stay: within a relaxation the
-  // contact pairs, and with them the entries' order, rarely change)
-  std::vector<int> bandStart, extraKey, extraIndex;
-  bool placesKnown = false;
-  // the pattern is structurally symmetric (the band, and each contact pair's places both ways): the
-  // symmetric part is (a + a^T) / 2 on a's own pattern, the transposed value of place k at transposed[k]
-  std::vector<int> transposed;
-  bool transposedKnown = false, patternSymmetric = true;
+  // a's pattern: the whole band and the off-band places, each place with its mirror (so the pattern is
+  // structurally symmetric and the symmetric part (a + a^T) / 2 lives on it too; the Newton solver's
+  // places come in mirrored pairs anyway), and what derives from it: the first band value of each
+  // column, the value place of each value's transpose, and sym's pattern
+  std::vector<int> bandStart, transposed;
+  std::vector<int> extraIndex;  // the value places of the last assemble()'s off-band entries
 
   void buildPattern(int n) {
-    placesKnown = false;
-    transposedKnown = false;
     triplets.clear();
     for (int j = 0; j < n; ++j)
       for (int i = std::max(0, j - bandKu); i <= std::min(n - 1, j + bandKl); ++i) triplets.emplace_back(i, j, 0.0);
-    for (const auto& [col, row] : structural) triplets.emplace_back(row, col, 0.0);
+    for (const auto& [col, row] : structural) {
+      triplets.emplace_back(row, col, 0.0);
+      triplets.emplace_back(col, row, 0.0);
+    }
     a.resize(n, n);
     a.setFromTriplets(triplets.begin(), triplets.end());
+    const int* outer = a.outerIndexPtr();
+    const int* inner = a.innerIndexPtr();
+    bandStart.resize(static_cast<size_t>(n));
+    for (int j = 0; j < n; ++j)
+      bandStart[static_cast<size_t>(j)] =
+          static_cast<int>(std::lower_bound(inner + outer[j], inner + outer[j + 1], std::max(0, j - bandKu)) - inner);
+    transposed.resize(static_cast<size_t>(a.nonZeros()));
+    for (int j = 0; j < n; ++j)
+      for (int k = outer[j]; k < outer[j + 1]; ++k)
+        transposed[static_cast<size_t>(k)] =
+            static_cast<int>(std::lower_bound(inner + outer[inner[k]], inner + outer[inner[k] + 1], j) - inner);
+    sym = a;
+  }
+
+  // the value places of the off-band entries in the current pattern; false when it lacks one
+  bool locate(const std::vector<OffBandEntry>& extra) {
+    const int* outer = a.outerIndexPtr();
+    const int* inner = a.innerIndexPtr();
+    extraIndex.resize(extra.size());
+    for (size_t e = 0; e < extra.size(); ++e) {
+      const int* end = inner + outer[extra[e].col + 1];
+      const int* k = std::lower_bound(inner + outer[extra[e].col], end, extra[e].row);
+      if (k == end || *k != extra[e].row) return false;
+      extraIndex[e] = static_cast<int>(k - inner);
+    }
+    return true;
+  }
+
+  // the entries' new places merged into the pattern, which is rebuilt (a new size starts it afresh)
+  void mergePlaces(int n, int kl, int ku, const std::vector<OffBandEntry>& extra) {
+    if (structuralSize != n) {
+      structural.clear();
+      structuralSize = n;
+    }
+    // looked up in the sorted list, appended, then sorted and merged in once (one insertion at a time
+    // was quadratic in the contact pairs: 10 % of a coiling run)
+    const size_t known = structural.size();
+    for (const OffBandEntry& e : extra) {
+      ROOTSIM_ASSERT(e.row >= 0 && e.row < n && e.col >= 0 && e.col < n && (e.row - e.col > kl || e.col - e.row > ku),
+                     "an off-band entry inside the matrix");
+      const std::pair<int, int> place{e.col, e.row};
+      if (!std::binary_search(structural.begin(), structural.begin() + static_cast<std::ptrdiff_t>(known), place))
+        structural.push_back(place);
+    }
+    const auto mid = structural.begin() + static_cast<std::ptrdiff_t>(known);
+    std::sort(mid, structural.end());
+    structural.erase(std::unique(mid, structural.end()), structural.end());
+    std::inplace_merge(structural.begin(), mid, structural.end());
+    bandKl = kl;
+    bandKu = ku;
+    buildPattern(n);
   }
 
   // true (and the pattern remembered) when m's pattern differs from the one saved
@@ -290,11 +338,13 @@ SparseStiffness& SparseStiffness::operator=(const SparseStiffness& o) {
 void SparseStiffness::assemble(const BandLU& band, const std::vector<OffBandEntry>& extra) {
   Impl& m = *impl_;
   const int n = band.size(), kl = band.kl(), ku = band.ku();
-  bool same = m.placesKnown && m.structuralSize == n && m.a.rows() == n && m.bandKl == kl && m.bandKu == ku &&
-              m.extraKey.size() == 2 * extra.size();
-  for (size_t e = 0; same && e < extra.size(); ++e)
-    same = m.extraKey[2 * e] == extra[e].row && m.extraKey[2 * e + 1] == extra[e].col;
-  if (!same) locate(band, extra);
+  const bool samePattern = m.structuralSize == n && m.a.rows() == n && m.bandKl == kl && m.bandKu == ku;
+  if (!samePattern || !m.locate(extra)) {
+    m.mergePlaces(n, kl, ku, extra);
+    const bool found = m.locate(extra);
+    ROOTSIM_ASSERT(found, "every off-band entry has its place once merged in");
+    (void)found;
+  }
   // the values
   double* val = m.a.valuePtr();
   std::fill(val, val + m.a.nonZeros(), 0.0);
@@ -305,77 +355,6 @@ void SparseStiffness::assemble(const BandLU& band, const std::vector<OffBandEntr
   }
   for (size_t e = 0; e < extra.size(); ++e) val[m.extraIndex[e]] += extra[e].value;
   m.symReady = m.luReady = false;
-}
-
-void SparseStiffness::locate(const BandLU& band, const std::vector<OffBandEntry>& extra) {
-  Impl& m = *impl_;
-  const int n = band.size(), kl = band.kl(), ku = band.ku();
-  // the entries' value positions in the current pattern; an entry it lacks means new places
-  auto findAll = [&]() {
-    const int* outer = m.a.outerIndexPtr();
-    const int* inner = m.a.innerIndexPtr();
-    m.extraIndex.resize(extra.size());
-    for (size_t e = 0; e < extra.size(); ++e) {
-      const int* end = inner + outer[extra[e].col + 1];
-      const int* k = std::lower_bound(inner + outer[extra[e].col], end, extra[e].row);
-      if (k == end || *k != extra[e].row) return false;
-      m.extraIndex[e] = static_cast<int>(k - inner);
-    }
-    return true;
-  };
-  const bool samePattern = m.structuralSize == n && m.a.rows() == n && m.bandKl == kl && m.bandKu == ku;
-  if (!samePattern || !findAll()) mergePlaces(band, extra);
-  // each column's band rows are contiguous in its row list
-  const int* outer = m.a.outerIndexPtr();
-  const int* inner = m.a.innerIndexPtr();
-  m.bandStart.resize(static_cast<size_t>(n));
-  for (int j = 0; j < n; ++j)
-    m.bandStart[static_cast<size_t>(j)] =
-        static_cast<int>(std::lower_bound(inner + outer[j], inner + outer[j + 1], std::max(0, j - ku)) - inner);
-  m.extraKey.resize(2 * extra.size());
-  for (size_t e = 0; e < extra.size(); ++e) {
-    m.extraKey[2 * e] = extra[e].row;
-    m.extraKey[2 * e + 1] = extra[e].col;
-  }
-  m.placesKnown = true;
-}
-
-void SparseStiffness::mergePlaces(const BandLU& band, const std::vector<OffBandEntry>& extra) {
-  Impl& m = *impl_;
-  const int n = band.size(), kl = band.kl(), ku = band.ku();
-  bool changed = m.structuralSize != n || m.a.rows() != n;
-  if (m.structuralSize != n) {
-    m.structural.clear();
-    m.structuralSize = n;
-  }
-  // new off-band places: looked up in the sorted list, appended, then sorted and merged in once (one
-  // insertion at a time was quadratic in the contact pairs: 10 % of a coiling run)
-  const size_t known = m.structural.size();
-  for (const OffBandEntry& e : extra) {
-    ROOTSIM_ASSERT(e.row >= 0 && e.row < n && e.col >= 0 && e.col < n && !band.inBand(e.row, e.col),
-                   "an off-band entry inside the matrix");
-    const std::pair<int, int> place{e.col, e.row};
-    if (!std::binary_search(m.structural.begin(), m.structural.begin() + static_cast<std::ptrdiff_t>(known), place))
-      m.structural.push_back(place);
-  }
-  if (m.structural.size() > known) {
-    const auto mid = m.structural.begin() + static_cast<std::ptrdiff_t>(known);
-    std::sort(mid, m.structural.end());
-    m.structural.erase(std::unique(mid, m.structural.end()), m.structural.end());
-    std::inplace_merge(m.structural.begin(), mid, m.structural.end());
-    changed = true;
-  }
-  if (changed || m.bandKl != kl || m.bandKu != ku) {
-    m.bandKl = kl;
-    m.bandKu = ku;
-    m.buildPattern(n);  // only when the places change
-  }
-  const int* outer = m.a.outerIndexPtr();
-  const int* inner = m.a.innerIndexPtr();
-  m.extraIndex.resize(extra.size());
-  for (size_t e = 0; e < extra.size(); ++e)
-    m.extraIndex[e] = static_cast<int>(
-        std::lower_bound(inner + outer[extra[e].col], inner + outer[extra[e].col + 1], extra[e].row) - inner);
 }
 
 void SparseStiffness::resetPattern() {
@@ -493,32 +472,9 @@ void SparseStiffness::solveLU(double* b) {
 bool SparseStiffness::factorizeSymmetric() {
   Impl& m = *impl_;
   if (m.symReady) return true;
-  if (!m.transposedKnown) {
-    m.sym = m.a;  // the pattern (allocates only when the pattern changed)
-    const int* outer = m.a.outerIndexPtr();
-    const int* inner = m.a.innerIndexPtr();
-    m.transposed.resize(static_cast<size_t>(m.a.nonZeros()));
-    m.patternSymmetric = true;
-    for (int j = 0; j < m.a.outerSize() && m.patternSymmetric; ++j)
-      for (int k = outer[j]; k < outer[j + 1]; ++k) {
-        const int i = inner[k];
-        const int* t = std::lower_bound(inner + outer[i], inner + outer[i + 1], j);
-        if (t == inner + outer[i + 1] || *t != j) {
-          m.patternSymmetric = false;
-          break;
-        }
-        m.transposed[static_cast<size_t>(k)] = static_cast<int>(t - inner);
-      }
-    m.transposedKnown = true;
-  }
-  if (m.patternSymmetric) {
-    const double* av = m.a.valuePtr();
-    double* sv = m.sym.valuePtr();
-    for (Eigen::Index k = 0; k < m.a.nonZeros(); ++k) sv[k] = 0.5 * (av[m.transposed[static_cast<size_t>(k)]] + av[k]);
-  } else {  // (not made by the Newton solver, whose places come in pairs)
-    m.sym = Impl::Matrix(m.a.transpose());
-    m.sym = 0.5 * (m.sym + m.a);
-  }
+  const double* av = m.a.valuePtr();
+  double* sv = m.sym.valuePtr();
+  for (Eigen::Index k = 0; k < m.a.nonZeros(); ++k) sv[k] = 0.5 * (av[m.transposed[static_cast<size_t>(k)]] + av[k]);
   if (Impl::patternChanged(m.sym, m.symOuter, m.symInner)) m.ldlt.analyzePattern(m.sym);
   m.ldlt.factorize(m.sym);
   if (m.ldlt.info() != Eigen::Success) return false;

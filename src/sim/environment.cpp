@@ -62,7 +62,7 @@ void addPlaneContact(const RodParams& p, const Plane& plane, const RodState& s, 
   // gap using R / sqrt(e) would make the contact force depend on stretching without an energy behind
   // it, which shows up as a spurious unstable direction of the stiffness matrix) plus normal damping,
   // shared by the element's two nodes
-  const int n = end >= 0 ? std::min(end, s.elements()) : s.elements();
+  const int n = spanEnd(end, s.elements());
   const Vec3 nh = plane.normal();
   for (int i = first; i < n; ++i) {
     const Vec3 mid = 0.5 * (s.x.col(i) + s.x.col(i + 1));
@@ -85,7 +85,7 @@ Eigen::VectorXd plateNormalForce(const RodParams& p, const Plane& plane, const R
 }
 
 void addAdhesion(double k, const RodState& s, Eigen::Matrix3Xd& force, int first, int end) {
-  const int n = end >= 0 ? std::min(end, s.nodes()) : s.nodes();
+  const int n = spanEnd(end, s.nodes());
   for (int i = first; i < n; ++i)
     if (s.anchored[static_cast<size_t>(i)]) force.col(i) += k * (s.anchor.col(i) - s.x.col(i));
 }
@@ -93,7 +93,7 @@ void addAdhesion(double k, const RodState& s, Eigen::Matrix3Xd& force, int first
 void addWeight(const RodParams& p, const Vec3& gravity, const RodState& s, Eigen::Matrix3Xd& force, int first,
                int end) {
   const double rhoA = p.density * units::pi * p.radius * p.radius;
-  const int n = end >= 0 ? std::min(end, s.elements()) : s.elements();
+  const int n = spanEnd(end, s.elements());
   for (int i = first; i < n; ++i) {
     const Vec3 w = 0.5 * rhoA * s.l0[i] * gravity;
     force.col(i) += w;

@@ -233,14 +233,12 @@ struct NewtonSolver {
     // the mature twists: element blocks 2e + 1 < b0, about d3 only. Turning
     // element e about its own axis changes its shear and the curvatures at its two ends only (its
     // tangent stays: the nodes do not move), so it acts on blocks 2e - 1 .. 2e + 3 (kTwistRadius) and
-    // every third element can be nudged in one pass: 3 passes of the frozen part, not 9. Their rows
-    // reach block b0 + 1 (the first free element, whose couple needs the strains of the element after
-    // it), so the passes evaluate the elements before b0 / 2 + 3 only, and no outside forces on the
-    // frozen nodes (never read): a long root's passes then cost what its frozen part does, not the
-    // whole rod
-    // The columns of elements before `keep` come from nw.matureK (kMatureRefresh); their rows are
-    // frozen twists only (element e acts on e - 1 .. e + 1 < m - 1). The passes then start at `keep`,
-    // evaluating from element keep - 2 (the couple on keep - 1 needs the Voronoi domain before it).
+    // every third element can be nudged in one pass: 3 passes, not 9. The columns of the elements
+    // before `keep` come from nw.matureK (kMatureRefresh); their rows are frozen twists only (element e
+    // acts on e - 1 .. e + 1 < m - 1). The passes start at `keep` and evaluate from element keep - 2 (the
+    // couple on keep - 1 needs the Voronoi domain before it) to b0 / 2 + 3 (their rows reach block
+    // b0 + 1, the first free element, whose couple needs the strains of the element after it), with no
+    // outside forces on the frozen nodes (never read): they cost what the newly frozen part does.
     const int keep = keepMature ? std::max(0, std::min(nw.matureValid, w.m - kMatureFresh)) : 0;
     const double l2 = lbar * lbar;  // K [N m / rad] = scaled K * lbar^2
     for (int e = 0; e < keep; ++e)

@@ -79,7 +79,7 @@ inline Vec3 relativeRotation(const Mat3& A, const Mat3& B) {
 }  // namespace
 
 void computeStrains(const RodParams& p, const RodState& s, RodStrains& k, int first, int end) {
-  const int n = end >= 0 ? std::min(end, s.elements()) : s.elements();
+  const int n = spanEnd(end, s.elements());
   const Vec3 Sd = p.shearStiffness();
   const Vec3 Bd = p.bendStiffness();
   // elements: length, dilatation, tangent, shear strain, internal force (Eq. 24, S -> S/e)
@@ -119,7 +119,7 @@ void computeStrains(const RodParams& p, const RodState& s, RodStrains& k, int fi
 
 void computeInternalForces(const RodState& s, const RodStrains& k, Eigen::Matrix3Xd& force,
                            Eigen::Matrix3Xd& torque, int first, int end) {
-  const int n = end >= 0 ? std::min(end, s.elements()) : s.elements();
+  const int n = spanEnd(end, s.elements());
   // nodes: difference of element internal forces (Eq. 22, discrete)
   force.col(first) = k.nLab.col(first);
   for (int i = first + 1; i < n; ++i) force.col(i) = k.nLab.col(i) - k.nLab.col(i - 1);

@@ -246,7 +246,7 @@ struct SparseStiffness::Impl {
   // a's pattern: the whole band and the off-band places, each place with its mirror (so the pattern is
   // structurally symmetric and the symmetric part (a + a^T) / 2 lives on it too; the Newton solver's
   // places come in mirrored pairs anyway), and what derives from it: the first band value of each
-  // column, the value place of each value's transpose, and sym's pattern
+  // column, and (deriveSymmetricPattern) the value place of each value's transpose and sym's pattern
   std::vector<int> bandStart, transposed;
   std::vector<int> extraIndex;  // the value places of the last assemble()'s off-band entries
 
@@ -266,8 +266,16 @@ struct SparseStiffness::Impl {
     for (int j = 0; j < n; ++j)
       bandStart[static_cast<size_t>(j)] =
           static_cast<int>(std::lower_bound(inner + outer[j], inner + outer[j + 1], std::max(0, j - bandKu)) - inner);
+    transposed.clear();  // derived when the symmetric part is first asked for (not every pattern is)
+  }
+
+  // transposed[] and sym's pattern, once per pattern
+  void deriveSymmetricPattern() {
+    if (!transposed.empty()) return;
+    const int* outer = a.outerIndexPtr();
+    const int* inner = a.innerIndexPtr();
     transposed.resize(static_cast<size_t>(a.nonZeros()));
-    for (int j = 0; j < n; ++j)
+    for (int j = 0; j < a.outerSize(); ++j)
       for (int k = outer[j]; k < outer[j + 1]; ++k)
         transposed[static_cast<size_t>(k)] =
             static_cast<int>(std::lower_bound(inner + outer[inner[k]], inner + outer[inner[k] + 1], j) - inner);
@@ -472,6 +480,7 @@ void SparseStiffness::solveLU(double* b) {
 bool SparseStiffness::factorizeSymmetric() {
   Impl& m = *impl_;
   if (m.symReady) return true;
+  m.deriveSymmetricPattern();
   const double* av = m.a.valuePtr();
   double* sv = m.sym.valuePtr();
   for (Eigen::Index k = 0; k < m.a.nonZeros(); ++k) sv[k] = 0.5 * (av[m.transposed[static_cast<size_t>(k)]] + av[k]);

@@ -42,6 +42,9 @@ struct SolverOptions {
   // near the growth zone), at 0.75x the cost on fig2b; only where adhesion holds the mature root
   double window = 6e-3;
   int newtonMaxIterations = 30;   // Newton iterations before a relaxation continues explicitly
+  // Newton's Jacobian in closed form (stiffness.hpp) wherever it covers the forces in play; false:
+  // coloured central differences of the forces everywhere (tests compare the two)
+  bool closedFormStiffness = true;
   MassModel mass = MassModel::Scaled;
   Damping damping = Damping::Fire;
   double viscousRate = 2e4;       // nu for Damping::Viscous [1/s]

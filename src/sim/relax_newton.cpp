@@ -3,8 +3,10 @@
 // Unknowns: node positions and one incremental rotation per element (material components; directors
 // updated by the exponential map, Q <- exp(-[dtheta]x) Q, the same convention as the explicit solver's
 // drift). Residual: the explicit solver's forces and couples, from computeForces() (one code path for
-// the physics, so the two solvers cannot drift apart). Jacobian K = -dF/du by coloured finite
-// differences: a dof of block b (node or element) changes the forces of blocks b-3 .. b+3 only (a node
+// the physics, so the two solvers cannot drift apart). Jacobian K = -dF/du in closed form
+// (stiffness.hpp: the derivative of that same force code, checked against differences of it in
+// tests/test_newton.cpp) wherever it covers the forces in play; with obstacles or friction, by coloured
+// finite differences: a dof of block b (node or element) changes the forces of blocks b-3 .. b+3 only (a node
 // moves its two elements: their shear and the dilatation of the three Voronoi couples around them, which
 // act on the elements i-2 .. i+1; an element's rotation changes its shear and its two curvatures), so
 // seven colours x three components x two (central differences) = 42 force evaluations give the whole
@@ -29,6 +31,7 @@
 #include "rootsim/contact.hpp"
 #include "rootsim/relax.hpp"
 #include "rootsim/rotation.hpp"
+#include "rootsim/stiffness.hpp"
 
 namespace rootsim {
 
@@ -108,6 +111,33 @@ void moveBlock(RodState& s, int b, const Vec3& u, double lbar) {
   else rotateInPlace(-(u / lbar), s.Q[static_cast<size_t>(b / 2)]);
 }
 
+// the closed-form stiffness's blocks into the band, scaled (rotations times lbar, couples over it) and
+// only where row and column are unknowns of the window
+class BandSink final : public StiffnessSink {
+ public:
+  BandSink(const Window& w, BandLU& lu, double lbar) : w_(w), lu_(lu), il_(1.0 / lbar) {}
+  void add(int rb, int cb, const Mat3& k) override {
+    const double scale = (Window::isNode(rb) ? 1.0 : il_) * (Window::isNode(cb) ? 1.0 : il_);
+    for (int cc = 0; cc < 3; ++cc) {
+      const int col = w_.unknown(cb, cc);
+      if (col < 0) continue;
+      for (int rc = 0; rc < 3; ++rc) {
+        const int row = w_.unknown(rb, rc);
+        if (row >= 0 && k(rc, cc) != 0.0) lu_.add(row, col, scale * k(rc, cc));
+      }
+    }
+  }
+  void addTwist(int re, int ce, double k) override {
+    const int row = w_.unknown(2 * re + 1, 2), col = w_.unknown(2 * ce + 1, 2);
+    if (row >= 0 && col >= 0 && k != 0.0) lu_.add(row, col, k * il_ * il_);
+  }
+
+ private:
+  const Window& w_;
+  BandLU& lu_;
+  double il_;
+};
+
 }  // namespace
 
 namespace {
@@ -170,14 +200,9 @@ struct NewtonSolver {
     throw RelaxError(os.str());
   }
 
-  // K = -dF/du over the free dofs into nw.lu (and, when sym, its symmetric part into nw.ldlt); the
-  // forces of the current state must be in nw.r. With self-contact, the couplings of nodes far apart
-  // along the rod go to nw.offBand and the whole matrix to nw.sparse (nw.sparseActive). keepMature:
-  // the frozen twists' columns kept from earlier Jacobians may serve (kMatureRefresh).
-  void jacobian(bool sym, bool keepMature) {
-    const int N = w.dofs();
-    nw.lu.reset(N, kBand, kBand);
-    const double h = 1e-6 * lbar;  // [m], and h / lbar [rad]
+  // the band by coloured central differences of computeForces (all pieces but self-contact), the
+  // frozen twists' columns partly kept from earlier Jacobians (keepMature, kMatureRefresh)
+  void differenced(double h, bool keepMature) {
     // self-contact couples nodes far apart along the rod: a coloured pass would read a far partner's
     // response into the rows of its own colour's blocks. So the passes leave self-contact out, and its
     // stiffness is added pair by pair below (each pair's force depends on its four nodes only).
@@ -253,6 +278,25 @@ struct NewtonSolver {
         nw.matureK[3 * static_cast<size_t>(e) + static_cast<size_t>(r - e + 1)] = nw.lu.at(r, e) * l2;
     if (keep == 0) nw.matureAge = 0;
     nw.matureValid = valid;
+  }
+
+  // K = -dF/du over the free dofs into nw.lu (and, when sym, its symmetric part into nw.ldlt); the
+  // forces of the current state must be in nw.r. With self-contact, the couplings of nodes far apart
+  // along the rod go to nw.offBand and the whole matrix to nw.sparse (nw.sparseActive). keepMature:
+  // the frozen twists' columns kept from earlier Jacobians may serve (kMatureRefresh).
+  void jacobian(bool sym, bool keepMature) {
+    const int N = w.dofs();
+    nw.lu.reset(N, kBand, kBand);
+    const double h = 1e-6 * lbar;  // [m], and h / lbar [rad]
+    if (opt.closedFormStiffness && stiffnessInClosedForm(env)) {
+      // in closed form (stiffness.hpp), from the strains residual() left in ws: measured on fig2b, the
+      // differenced band below was 47 % of the run
+      BandSink sink(w, nw.lu, lbar);
+      addStiffness(p, env, s, ws.strains, w.b0 / 2, sink);
+      nw.matureValid = 0;  // the differenced chain is not kept meanwhile
+    } else {
+      differenced(h, keepMature);
+    }
     // self-contact: each pair's 12 x 12 stiffness (node translations only: scaled units are SI there),
     // inside the band where the nodes are close enough, off it otherwise
     nw.offBand.clear();

@@ -25,6 +25,21 @@ class BandLU {
     if (i > colLast_[static_cast<size_t>(j)]) colLast_[static_cast<size_t>(j)] = i;
     if (j > rowLast_[static_cast<size_t>(i)]) rowLast_[static_cast<size_t>(i)] = j;
   }
+  // A(i0 + r, j0 + c) += s * k(r, c) for a 3 x 3 block inside the band (its zeros join the structure:
+  // the factors are the same, as factorize() then only multiplies by them)
+  template <class Block>
+  void addBlock(int i0, int j0, double s, const Block& k) {
+    for (int c = 0; c < 3; ++c) {
+      double* col = ab_.data() + static_cast<size_t>(kv_ + i0 - (j0 + c) + (j0 + c) * ld_);
+      for (int r = 0; r < 3; ++r) col[r] += s * k(r, c);
+      int& last = colLast_[static_cast<size_t>(j0 + c)];
+      if (i0 + 2 > last) last = i0 + 2;
+    }
+    for (int r = 0; r < 3; ++r) {
+      int& last = rowLast_[static_cast<size_t>(i0 + r)];
+      if (j0 + 2 > last) last = j0 + 2;
+    }
+  }
   double at(int i, int j) const { return ab_[static_cast<size_t>(kv_ + i - j + j * ld_)]; }
   bool inBand(int i, int j) const { return i - j <= kl_ && j - i <= ku_; }
   // factorises in place; false when a pivot is exactly zero (singular)

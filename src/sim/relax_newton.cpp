@@ -118,6 +118,10 @@ class BandSink final : public StiffnessSink {
   BandSink(const Window& w, BandLU& lu, double lbar) : w_(w), lu_(lu), il_(1.0 / lbar) {}
   void add(int rb, int cb, const Mat3& k) override {
     const double scale = (Window::isNode(rb) ? 1.0 : il_) * (Window::isNode(cb) ? 1.0 : il_);
+    if (rb >= w_.b0 && cb >= w_.b0) {  // inside the window: the whole block (most of them)
+      lu_.addBlock(w_.dof(rb, 0), w_.dof(cb, 0), scale, k);
+      return;
+    }
     for (int cc = 0; cc < 3; ++cc) {
       const int col = w_.unknown(cb, cc);
       if (col < 0) continue;

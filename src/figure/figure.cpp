@@ -613,7 +613,8 @@ std::string fig3b(const Ctx& c) {
 
 // a phase diagram over alpha (a grid of c.alphaStep() degrees) and beta Lgz / R, against Eqs. 12-13
 // (Fig. 3D: gamma = 0.1, local sensing; the SI's variants: gamma = 1, apical sensing)
-std::string phaseDiagram(const Ctx& c, const std::string& name, const std::string& variant, double gamma, bool apical) {
+// the cells of a phase diagram (phaseDiagram below)
+std::vector<Case> phaseCases(const Ctx& c, double gamma, bool apical) {
   // quick: the SI's variants on one column only, beta Lgz / R = 5 (CI time: the fixture must stay
   // under 2 minutes on a shared 2-core machine)
   const bool variantOfSi = gamma != 0.1 || apical;
@@ -629,6 +630,11 @@ std::string phaseDiagram(const Ctx& c, const std::string& name, const std::strin
       k.apical = apical;
       cs.push_back(k);
     }
+  return cs;
+}
+
+std::string phaseDiagram(const Ctx& c, const std::string& name, const std::string& variant, double gamma, bool apical) {
+  const std::vector<Case> cs = phaseCases(c, gamma, apical);
   runCases(c, cs);
   const double step = c.alphaStep();
   std::map<std::string, std::pair<std::vector<double>, std::vector<double>>> byPattern;
@@ -880,6 +886,15 @@ std::string makeFigure(const std::string& name, const FigureOptions& opt,
         "is within ±25 %; a ratio the paper says is 1 within 0.75 … 1.33; a transition angle within the phase "
         "diagram's step in α (" +
         num(c.alphaStep()) + "° here).\n\n";
+    // the runs of the big panels in one batch, dearest first (runCases), so that both jobs stay busy
+    // to its end; each figure then finds its runs done
+    {
+      std::vector<Case> batch = fig2Runs(c);
+      for (const Case& k : scalingCases(c)) batch.push_back(k);
+      for (const auto& [gamma, apical] : {std::pair{0.1, false}, std::pair{1.0, false}, std::pair{0.1, true}})
+        for (const Case& k : phaseCases(c, gamma, apical)) batch.push_back(k);
+      runCases(c, batch);
+    }
     std::string sections;
     for (const auto& n : figureNames()) {
       if (log && !opt.quiet) log("figure " + n);

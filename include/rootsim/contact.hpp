@@ -68,10 +68,12 @@ void addSelfContact(const RodParams& p, const Environment& env, const RodState& 
                     ContactWorkspace& cw, Eigen::Matrix3Xd& force);
 inline constexpr double kSelfExclusionRadii = 3.0;
 
-// the lowest node of any element pair that self-contact watches (closer than 2R + a skin of R; nodes()
-// when there is none): the Newton solver's window reaches back to it (MODEL.md section 12: contacts are
-// among the unknowns), so that old turns a coil presses on can yield
-int firstNodeNearContact(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw);
+// the lowest node of the element pairs that self-contact watches (closer than 2R + a skin of R) and whose
+// younger element reaches node `from` or beyond (nodes() when there is none): the Newton solver's window
+// reaches back to it (MODEL.md section 12: contacts are among the unknowns), so that the old turns the
+// window's part of a coil presses on can yield
+int firstNodeNearContact(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw,
+                         int from = 0);
 
 // the stiffness of every self-contact pair in contact (gap < 0) into cw.stiffness, by central differences
 // of the pair's force with step h [m] (the closest points and the normal move with the nodes). The Newton

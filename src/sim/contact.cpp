@@ -519,13 +519,15 @@ ContactObservables observeContacts(const RodParams& p, const Environment& env, c
   return o;
 }
 
-int firstNodeNearContact(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw) {
+int firstNodeNearContact(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw,
+                         int from) {
   int first = s.nodes();
   if (!env.selfContact.enabled) return first;
   if (static_cast<int>(cw.order.size()) != s.elements()) cw.resize(s.elements());
   cw.invalidate();  // the pairs within 2R + skin of this very state (not of when the list was built)
   updatePairs(p, s, cw);
-  for (const auto& [i, j] : cw.pairs) first = std::min(first, i);
+  for (const auto& [i, j] : cw.pairs)
+    if (j + 1 >= from) first = std::min(first, i);  // i < j: the younger element reaches node `from`
   return first;
 }
 

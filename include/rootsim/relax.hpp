@@ -143,7 +143,8 @@ struct NewtonWorkspace {
   std::vector<OffBandEntry> offBand;
   SparseStiffness sparse;
   bool sparseActive = false;
-  std::vector<double> r, r0, delta, mode;  // scaled residual, base residual, Newton step, inverse iterate
+  std::vector<double> r, r0, delta, mode;  // scaled residual, base residual, Newton step, softest mode
+  std::vector<double> lanczos;    // the Lanczos basis of the eigenvalue nearest zero (relax_newton.cpp)
   std::vector<Vec3> save;         // node positions (by block index) saved across a trial step
   std::vector<Mat3> saveQ;        // directors saved across a trial step
   int firstFreeNode = 0;          // the window of the last solve

@@ -46,7 +46,7 @@ struct SimulationCarry {
   long slipEvents = 0;
   double frictionWork = 0;              // [J]
   StepRecord last;
-  // NewtonWorkspace: the warm start of the inverse iteration and what it knows about the last solve
+  // NewtonWorkspace: the warm start of the eigenvalue search and what it knows about the last solve
   std::vector<double> newtonMode;       // (at least newtonModeSize)
   int newtonModeSize = 0, newtonFirstFreeNode = 0, newtonNegative = 0;
   double newtonLowestEigenvalue = 0;    // [N/m]

@@ -19,9 +19,10 @@
 // the explicit solver's, over the free dofs.
 //
 // Stability (MODEL.md section 12): at the converged state the symmetric part of K is factorised as
-// LDL^T; its negative pivots are the unstable directions (Sylvester), and inverse iteration with the
+// LDL^T; its negative pivots are the unstable directions (Sylvester), and Lanczos with the
 // same factors gives the eigenvalue nearest zero and its mode.
 #include <algorithm>
+#include <Eigen/Eigenvalues>
 #include <cmath>
 #include <sstream>
 #include <cstdio>
@@ -61,6 +62,10 @@ constexpr int kMatureFresh = 3;
 constexpr int kMatureRefresh = 128;
 constexpr int kMatureTrust = 8;
 constexpr double kCrawl = 1.0 / 32.0;
+// Lanczos for the eigenvalue nearest zero: at most this many solves, and done when the Ritz pair's
+// residual is below kLanczosTol of its value (the value's error is then of the order of its square)
+constexpr int kMaxLanczos = 16;
+constexpr double kLanczosTol = 1e-5;
 
 // dof layout: block b = 2i is node i, b = 2i + 1 is element i; the unknowns are the twists (rotation
 // about d3) of the m elements before the window, then all of blocks [b0, 2n]. The frozen mature root
@@ -348,6 +353,54 @@ struct NewtonSolver {
     else nw.ldlt.solve(b);
   }
 
+  // the eigenvalue of the symmetric stiffness nearest zero, from the LDL^T factors of the last
+  // factorizeSymmetric(), and its vector into nw.mode (unit length; it starts from what nw.mode holds):
+  // Lanczos on the inverse, whose extreme Ritz value converges where inverse iteration crawls through
+  // a coil's cluster of soft modes (measured: 8-13 solves a step for inverse iteration to settle
+  // to 1e-8, against kMaxLanczos at most here). Full reorthogonalisation: the basis is short.
+  double nearestEigenvalue() {
+    const int N = w.dofs();
+    using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxLanczos, 1>;
+    using SmallMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxLanczos, kMaxLanczos>;
+    auto q = [&](int j) { return Eigen::Map<Eigen::VectorXd>(nw.lanczos.data() + static_cast<size_t>(j) * N, N); };
+    Eigen::Map<Eigen::VectorXd> mode(nw.mode.data(), N);
+    q(0) = mode / mode.norm();
+    SmallVector alpha(kMaxLanczos), beta(kMaxLanczos);
+    Eigen::SelfAdjointEigenSolver<SmallMatrix> tri;
+    double theta = 0.0;
+    int k = 0;
+    for (int j = 0; j < kMaxLanczos; ++j) {
+      auto wj = q(j + 1);
+      wj = q(j);
+      solveSymmetric(wj.data());
+      alpha[j] = q(j).dot(wj);
+      wj -= alpha[j] * q(j);
+      if (j > 0) wj -= beta[j - 1] * q(j - 1);
+      for (int i = 0; i <= j; ++i) wj -= q(i).dot(wj) * q(i);
+      beta[j] = wj.norm();
+      k = j + 1;
+      const SmallVector d = alpha.head(k), e = beta.head(std::max(k - 1, 0));
+      tri.computeFromTridiagonal(d, e, Eigen::ComputeEigenvectors);
+      // the Ritz value of largest magnitude: 1 / (the eigenvalue of K nearest zero)
+      const auto& ritz = tri.eigenvalues();
+      const int top = std::abs(ritz[0]) >= std::abs(ritz[k - 1]) ? 0 : k - 1;
+      theta = ritz[top];
+      const double residual = beta[j] * std::abs(tri.eigenvectors()(k - 1, top));
+      if (residual <= kLanczosTol * std::abs(theta) || beta[j] <= 1e-300) {
+        mode.setZero();
+        for (int i = 0; i < k; ++i) mode += tri.eigenvectors()(i, top) * q(i);
+        break;
+      }
+      wj /= beta[j];
+      if (k == kMaxLanczos) {
+        mode.setZero();
+        for (int i = 0; i < k; ++i) mode += tri.eigenvectors()(i, top) * q(i);
+      }
+    }
+    mode.normalize();
+    return theta != 0.0 ? 1.0 / theta : 0.0;
+  }
+
   void saveState() {
     for (int e = 0; e < w.m; ++e) nw.saveQ[static_cast<size_t>(e)] = s.Q[static_cast<size_t>(e)];
     for (int b = w.b0; b <= 2 * w.n; ++b) {
@@ -381,6 +434,7 @@ void NewtonWorkspace::reserve(int elements) {
     r0.resize(3 * nb);
     delta.resize(3 * nb);
     mode.resize(3 * nb);
+    lanczos.resize(static_cast<size_t>(kMaxLanczos + 1) * 3 * nb);
   }
   if (save.size() < nb) save.resize(nb);
   if (saveQ.size() < static_cast<size_t>(elements)) saveQ.resize(static_cast<size_t>(elements));
@@ -549,37 +603,14 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
     }
     const bool factorised = ns.factorizeSymmetric();
     nw.negative = factorised ? ns.negativePivots(1e-10) : 1;
-    // eigenvalue nearest zero (the lowest while stable) and its mode: inverse iteration, warm started
-    // from the last growth step's mode when the unknowns are the same, otherwise from a deterministic
-    // vector, until the estimate changes by less than kEigenTol (measured on fig2b: 3 iterations from a
-    // warm start, 5 from a cold one; a fixed 4 and 20 before)
+    // eigenvalue nearest zero (the lowest while stable) and its mode, warm started from the last growth
+    // step's mode when the unknowns are the same, otherwise from a deterministic vector
     double* v = nw.mode.data();
     const bool warm = nw.modeSize == N;
     if (!warm)
       for (int i = 0; i < N; ++i) v[i] = std::sin(1.0 + 12.9898 * i);
     nw.modeSize = N;
-    double lambda = 0.0;
-    if (factorised) {
-      constexpr double kEigenTol = 1e-8;
-      double previous = 0.0;
-      for (int it = 0; it < 20; ++it) {
-        double norm = 0;
-        for (int i = 0; i < N; ++i) norm += v[i] * v[i];
-        norm = std::sqrt(norm);
-        for (int i = 0; i < N; ++i) v[i] /= norm;
-        std::copy(v, v + N, nw.delta.begin());
-        ns.solveSymmetric(v);
-        double dot = 0;
-        for (int i = 0; i < N; ++i) dot += v[i] * nw.delta[static_cast<size_t>(i)];
-        lambda = dot != 0.0 ? 1.0 / dot : 0.0;  // Rayleigh-like estimate from v_old . K^-1 v_old
-        if (it > 0 && std::abs(lambda - previous) <= kEigenTol * std::abs(lambda)) break;
-        previous = lambda;
-      }
-      double norm = 0;
-      for (int i = 0; i < N; ++i) norm += v[i] * v[i];
-      norm = std::sqrt(norm);
-      for (int i = 0; i < N; ++i) v[i] /= norm;
-    }
+    const double lambda = factorised ? ns.nearestEigenvalue() : 0.0;
     nw.lowestEigenvalue = lambda;
   }
   return res;

@@ -98,14 +98,16 @@ struct OffBandEntry {
 // section 12), factorised as a sparse matrix: LU by KLU (SuiteSparse; threshold partial pivoting, AMD
 // ordering) for the Newton step, and LDL^T of its symmetric part with AMD ordering (Eigen's
 // SimplicialLDLT, no pivoting: the negative pivots count the negative eigenvalues, as BandLDLT's) for the
-// stability check. Each symbolic analysis is reused while the sparsity pattern stays the same (the whole
-// band is structurally nonzero, so the pattern changes only with the size and the contacts); after the
-// first LU of a relaxation, later ones keep its pivot sequence (KLU's refactorisation) unless a pivot
-// became small. Unlike the band classes this allocates while assembling and factorising: it serves only
+// stability check. The pattern holds the places where the band or the off-band entries held a nonzero
+// since the size last changed (a quarter of the rod's band is structurally zero; factorising those zeros
+// doubled KLU's work), so it changes with the size, the contacts, and the rare band entry that turns
+// nonzero; each symbolic analysis is reused while it stays the same, and after the first LU of a
+// relaxation, later ones keep its pivot sequence (KLU's refactorisation) unless a pivot became small. Unlike the band classes this allocates while assembling and factorising: it serves only
 // the steps with self-contact. A copy starts empty.
 // what SparseStiffness carries from one relaxation to the next (a checkpoint holds it, so that a resumed
-// run factorises exactly as the uninterrupted one): the size and off-band places of the pattern, and the
-// matrix whose full LU chose the pivots that later factorisations reuse (empty: none)
+// run factorises exactly as the uninterrupted one): the size and places of the pattern (band and
+// off-band; the diagonal is always there), and the matrix whose full LU chose the pivots that later
+// factorisations reuse (empty: none)
 struct SparseMemory {
   int n = -1, kl = 0, ku = 0;      // n < 0: nothing
   std::vector<int> places;         // (column, row) pairs, sorted
@@ -123,8 +125,8 @@ class SparseStiffness {
   SparseStiffness(const SparseStiffness&);
   SparseStiffness& operator=(const SparseStiffness&);
   // A = band (not yet factorised) + extra (entries at the same place are summed). The pattern keeps the
-  // off-band places of earlier calls (as zeros) until resetPattern() or a change of size, so that one
-  // symbolic analysis serves a whole relaxation while contacts come and go.
+  // places of earlier calls (as zeros) until resetPattern() or a change of size, so that one symbolic
+  // analysis serves a whole relaxation while contacts come and go.
   void assemble(const BandLU& band, const std::vector<OffBandEntry>& extra);
   void resetPattern();          // also: the next factorizeLU chooses its pivots anew
   // a relaxation of n unknowns begins: the pattern and the pivots of the last one serve it when it had

@@ -22,7 +22,7 @@
 namespace rootsim {
 
 inline constexpr const char* kCheckpointFile = "checkpoint.bin";
-inline constexpr std::uint32_t kCheckpointVersion = 4;
+inline constexpr std::uint32_t kCheckpointVersion = 5;
 
 // FNV-1a 64 of a text (the resolved scene): the same on every machine
 std::uint64_t sceneHash(const std::string& resolvedToml);

@@ -116,6 +116,24 @@ double scaledForce(const RelaxWorkspace& ws, int b, int c, double lbar) {
   return Window::isNode(b) ? ws.force(c, b / 2) : ws.torque(c, b / 2) / lbar;
 }
 
+// what moveBlock does to an element for a twist alone (u = (0, 0, lbar theta)): d1 and d2 turn by
+// theta about d3, without the general exponential map (the frozen part's twists move at every trial
+// step; a series below |theta| = 1e-2, exact to round-off there)
+void twistInPlace(double theta, Mat3& Q) {
+  const double t2 = theta * theta;
+  double c, sn;
+  if (t2 < 1e-4) {
+    c = 1.0 - t2 * (0.5 - t2 * (1.0 / 24.0 - t2 / 720.0));
+    sn = theta * (1.0 - t2 * (1.0 / 6.0 - t2 * (1.0 / 120.0 - t2 / 5040.0)));
+  } else {
+    c = std::cos(theta);
+    sn = std::sin(theta);
+  }
+  const Eigen::RowVector3d d1 = Q.row(0), d2 = Q.row(1);
+  Q.row(0) = c * d1 + sn * d2;
+  Q.row(1) = c * d2 - sn * d1;
+}
+
 void moveBlock(RodState& s, int b, const Vec3& u, double lbar) {
   if (Window::isNode(b)) s.x.col(b / 2) += u;
   else rotateInPlace(-(u / lbar), s.Q[static_cast<size_t>(b / 2)]);
@@ -337,8 +355,9 @@ struct NewtonSolver {
       nw.sparse.assemble(nw.lu, nw.offBand);  // keeps its own copy: the symmetric part is taken from it
     } else if (sym) {
       nw.ldlt.reset(N, kBand);
+      // the frozen twists couple to their neighbours only (a tridiagonal chain up to the window)
       for (int j = 0; j < N; ++j)
-        for (int i = j; i <= std::min(N - 1, j + kBand); ++i)
+        for (int i = j; i <= std::min(N - 1, j < w.m - kRadius ? j + 1 : j + kBand); ++i)
           nw.ldlt.addLower(i, j, 0.5 * (nw.lu.at(i, j) + nw.lu.at(j, i)));
     }
   }
@@ -422,7 +441,7 @@ struct NewtonSolver {
   }
   // state = saved + a * delta (delta in scaled units)
   void applyStep(double a) {
-    for (int e = 0; e < w.m; ++e) moveBlock(s, 2 * e + 1, Vec3(0, 0, a * nw.delta[static_cast<size_t>(e)]), lbar);
+    for (int e = 0; e < w.m; ++e) twistInPlace(a * nw.delta[static_cast<size_t>(e)] / lbar, s.Q[static_cast<size_t>(e)]);
     for (int b = w.b0; b <= 2 * w.n; ++b) {
       const Vec3 u = a * Eigen::Map<const Vec3>(nw.delta.data() + w.dof(b, 0));
       moveBlock(s, b, u, lbar);

@@ -24,19 +24,16 @@ Mat3 skew(const Vec3& v) {
   return m;
 }
 
-// Jl^-1(phi) = I - [phi]x / 2 + c [phi]x^2, c = 1/t^2 - (1 + cos t) / (2 t sin t); a series below t^2 =
-// 0.1 (the next term, t^8 / 47 900 160, is below 3e-12 of c there)
+// Jl^-1(phi) = I - [phi]x / 2 + c [phi]x^2 with c(t^2) = 1/t^2 - (1 + cos t) / (2 t sin t); a series
+// below t^2 = 0.1 (the next term, t^8 / 47 900 160, is below 3e-12 of c there)
+double inverseJacobianCoefficient(double t2) {
+  if (t2 < 0.1) return 1.0 / 12.0 + t2 * (1.0 / 720.0 + t2 * (1.0 / 30240.0 + t2 / 1209600.0));
+  const double t = std::sqrt(t2);
+  return 1.0 / t2 - (1.0 + std::cos(t)) / (2.0 * t * std::sin(t));
+}
 Mat3 inverseLeftJacobian(const Vec3& phi) {
-  const double t2 = phi.squaredNorm();
-  double c;
-  if (t2 < 0.1) {
-    c = 1.0 / 12.0 + t2 * (1.0 / 720.0 + t2 * (1.0 / 30240.0 + t2 / 1209600.0));
-  } else {
-    const double t = std::sqrt(t2);
-    c = 1.0 / t2 - (1.0 + std::cos(t)) / (2.0 * t * std::sin(t));
-  }
   const Mat3 K = skew(phi);
-  return Mat3::Identity() - 0.5 * K + c * (K * K);
+  return Mat3::Identity() - 0.5 * K + inverseJacobianCoefficient(phi.squaredNorm()) * (K * K);
 }
 
 // a Voronoi-like couple m(phi, ev) = B (phi / (D0 ev) - kappa0) / ev^2 acting as s m + phi x m / 2 on an
@@ -101,20 +98,27 @@ void addStiffness(const RodParams& p, const Environment& env, const RodState& s,
     const Vec3 phi = Vec3(k.kappa.col(j)) * D0;
     const Vec3 m = k.m.col(j);
     const Vec3 dmdphi = Bd * (g * g * g / D0);
+    if (j + 2 < firstFreeNode) {
+      // every node frozen: the twists alone, the (2, 2) entries of the blocks below written out (this
+      // loop runs over the whole frozen root at every Jacobian): row 2 of dPhi = P diag(dm/dphi) - [m]x / 2
+      // (P = side I + [phi]x / 2), and column 2 of Jl and of Jl^T, e3 -/+ phi x e3 / 2 + c phi x (phi x e3)
+      const double t2 = phi.squaredNorm(), c = inverseJacobianCoefficient(t2);
+      const Vec3 even(c * phi.x() * phi.z(), c * phi.y() * phi.z(), 1.0 + c * (phi.z() * phi.z() - t2));
+      const Vec3 odd(0.5 * phi.y(), -0.5 * phi.x(), 0.0);
+      const Vec3 cl = even - odd, cr = even + odd;
+      const double r0 = 0.5 * (m.y() - phi.y() * dmdphi.x()), r1 = 0.5 * (phi.x() * dmdphi.y() - m.x());
+      const Vec3 before(r0, r1, dmdphi.z()), after(r0, r1, -dmdphi.z());
+      sink.addTwist(j, j, before.dot(cl));
+      sink.addTwist(j, j + 1, -before.dot(cr));
+      sink.addTwist(j + 1, j, after.dot(cl));
+      sink.addTwist(j + 1, j + 1, -after.dot(cr));
+      continue;
+    }
     const Vec3 dmdev = Bd.cwiseProduct(-3.0 * g * g * g * g / D0 * phi + 2.0 * g * g * g * Vec3(s.kappa0.col(j)));
     const CoupleDerivative before = coupleDerivative(1.0, phi, m, dmdphi, dmdev);
     const CoupleDerivative after = coupleDerivative(-1.0, phi, m, dmdphi, dmdev);
     const Mat3 Jl = inverseLeftJacobian(phi);  // dphi/dtheta_j = -Jl, dphi/dtheta_{j+1} = Jl^T
     const int E1 = 2 * j + 1, E2 = 2 * j + 3;
-    if (j + 2 < firstFreeNode) {
-      // every node frozen: the twists alone
-      const Vec3 cl = Jl.col(2), cr = Jl.row(2).transpose();
-      sink.addTwist(j, j, before.dPhi.row(2).dot(cl));
-      sink.addTwist(j, j + 1, -before.dPhi.row(2).dot(cr));
-      sink.addTwist(j + 1, j, after.dPhi.row(2).dot(cl));
-      sink.addTwist(j + 1, j + 1, -after.dPhi.row(2).dot(cr));
-      continue;
-    }
     sink.add(E1, E1, before.dPhi * Jl);
     sink.add(E1, E2, -before.dPhi * Jl.transpose());
     sink.add(E2, E1, after.dPhi * Jl);

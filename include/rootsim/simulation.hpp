@@ -37,7 +37,7 @@ struct StepRecord {
 
 // what a growth step carries to the next besides the rod state: counters, the unwrapped tip angle, the
 // last record, and the solvers' memory that changes their results (the Newton stability check's
-// inverse-iteration start vector, the self-contact Verlet list). A checkpoint (src/io/checkpoint.cpp)
+// softest-mode start vector, the self-contact Verlet list). A checkpoint (src/io/checkpoint.cpp)
 // saves it with the state; Simulation(model, state, carry) continues bit for bit where carry() left.
 struct SimulationCarry {
   int step = 0;

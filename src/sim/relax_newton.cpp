@@ -654,7 +654,7 @@ void assembleStiffness(const RodParams& p, const Environment& env, const SolverO
 }
 
 Eigen::VectorXd NewtonWorkspace::unstableMode(const RodState& s, const Environment& env) const {
-  // the inverse-iteration vector, embedded in the full dof vector (per node 3 translations [m], per
+  // the Lanczos Ritz vector, embedded in the full dof vector (per node 3 translations [m], per
   // element 3 rotations [rad]) and scaled so that its largest translation is 1, as checkStability's
   const int n = s.elements();
   const Window w = windowOf(env, s, firstFreeNode);

@@ -392,7 +392,7 @@ struct NewtonSolver {
     SmallVector alpha(kMaxLanczos), beta(kMaxLanczos);
     Eigen::SelfAdjointEigenSolver<SmallMatrix> tri;
     double theta = 0.0;
-    int k = 0;
+    int k = 0, top = 0;
     for (int j = 0; j < kMaxLanczos; ++j) {
       auto wj = q(j + 1);
       wj = q(j);
@@ -407,20 +407,15 @@ struct NewtonSolver {
       tri.computeFromTridiagonal(d, e, Eigen::ComputeEigenvectors);
       // the Ritz value of largest magnitude: 1 / (the eigenvalue of K nearest zero)
       const auto& ritz = tri.eigenvalues();
-      const int top = std::abs(ritz[0]) >= std::abs(ritz[k - 1]) ? 0 : k - 1;
+      top = std::abs(ritz[0]) >= std::abs(ritz[k - 1]) ? 0 : k - 1;
       theta = ritz[top];
       const double residual = beta[j] * std::abs(tri.eigenvectors()(k - 1, top));
-      if (residual <= kLanczosTol * std::abs(theta) || beta[j] <= 1e-300) {
-        mode.setZero();
-        for (int i = 0; i < k; ++i) mode += tri.eigenvectors()(i, top) * q(i);
-        break;
-      }
+      if (residual <= kLanczosTol * std::abs(theta) || beta[j] <= 1e-300) break;
       wj /= beta[j];
-      if (k == kMaxLanczos) {
-        mode.setZero();
-        for (int i = 0; i < k; ++i) mode += tri.eigenvectors()(i, top) * q(i);
-      }
     }
+    // the Ritz vector
+    mode.setZero();
+    for (int i = 0; i < k; ++i) mode += tri.eigenvectors()(i, top) * q(i);
     mode.normalize();
     return theta != 0.0 ? 1.0 / theta : 0.0;
   }

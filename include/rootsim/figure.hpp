@@ -24,6 +24,7 @@ struct FigureOptions {
   bool quick = false;   // coarsened runs (0.1 mm elements, 0.1 h steps, shorter growth, 15 deg phase grid): for CI
   std::string out = "figures";
   int jobs = 2;         // parallel simulations
+  bool force = false;   // replace panels (and rerun figure runs of other scenes) rootsim wrote earlier in out
   bool quiet = false;
   TileRenderer renderTile;  // if empty, roots are drawn as centreline strokes of width 2R
 };

@@ -1,18 +1,21 @@
 #pragma once
-// A run directory written atomically (SPEC.md): files go into DIR.partial/, each through a temporary
-// file and a rename; commit() renames DIR.partial to DIR, fail() keeps what was written as
-// DIR.incomplete/ with ERROR.txt. A killed run leaves only DIR.partial/.
+// A run directory written atomically: files go into DIR.partial/, each through a temporary file and a
+// rename; commit() renames DIR.partial to DIR, fail() keeps what was written as DIR.incomplete/ with
+// ERROR.txt. A killed run leaves only DIR.partial/.
 //
-// rootsim never deletes or overwrites what it did not write: every run directory carries a marker file
-// (kRunMarker) written first, and an existing DIR, DIR.partial or DIR.incomplete is replaced only when it
-// holds that marker and nothing but files a run writes. Anything else is refused with a SceneError
-// (exit 2) before the run starts.
+// The write rule (write_rule.hpp) decides what may be replaced: every run directory carries a marker
+// file (kRunMarker) written first, and an existing DIR, DIR.partial or DIR.incomplete is replaced only
+// with --force and only when it holds that marker and nothing but files a run writes. Anything else is
+// refused with a SceneError (exit 2) before the run starts. DIR is locked (OutputLock) from the
+// constructor until commit() or fail(): a second process is refused naming the first one's PID.
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <string>
 #include <vector>
+
+#include "rootsim/write_rule.hpp"
 
 namespace rootsim {
 
@@ -42,11 +45,12 @@ enum class PartialRun {
 };
 
 // the --out path as the user meant it: "out/" -> "out", "./a/b/" -> "a/b"; throws SceneError for "",
-// ".", "..", "/" and paths ending in ".."
+// ".", "..", "/", paths ending in "..", rootsim's working names and names too long (checkOutputName)
 std::filesystem::path normaliseOutDir(const std::string& text);
 
-// "" when dir is a run directory rootsim may replace, else why not (the first foreign entry)
-std::string whyNotReplaceable(const std::filesystem::path& dir);
+// "" when the finished run directory holds every file its marker lists, each with the size the run
+// wrote, else what is missing or cut short
+std::string whyNotWhole(const std::filesystem::path& dir);
 
 class RunDir {
  public:
@@ -68,6 +72,7 @@ class RunDir {
 
  private:
   std::filesystem::path final_, work_;
+  OutputLock lock_;
   bool done_ = false;
 };
 

@@ -12,6 +12,7 @@
 //   [set]                              # fixed overrides for every point
 //   "growth.steps" = 600
 #include <cstdint>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <string>
@@ -32,6 +33,7 @@ struct SweepPoint {
   std::string dirName;                          // run directory name inside the sweep folder (<= 200
                                                 // bytes: long names end in a hash of the full name)
   bool grows = true;                            // growth run (else mechanics only: another result header)
+  std::string resolvedToml;                     // the point's resolved scene (what its scene.toml must hold)
   std::optional<Scene> scene;                   // a typed scene (sceneOf a model: the figure cases), run
                                                 // instead of the plan's base scene and overrides
 };
@@ -59,6 +61,11 @@ struct SweepOptions {
   int shard = 1, shards = 1;    // run points with index % shards == shard - 1
   std::string out;              // sweep folder
   bool quiet = false;
+  // rerun points whose run directory holds another scene (the base scene or [set] changed), is not
+  // whole, or failed before; without it such points stop the sweep before it starts (stale) or stay
+  // failed (failed before)
+  bool force = false;
+  std::vector<std::filesystem::path> inputs;  // files the sweep reads (never inside --out)
   // called for every point of this shard as it finishes (from its worker thread, one call at a time),
   // and first for each point found complete (skipped); the Python package yields results through it
   std::function<void(const SweepPointDone&)> onPoint;

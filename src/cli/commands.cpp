@@ -23,6 +23,7 @@
 #include "rootsim/sweep.hpp"
 #include "rootsim/theory.hpp"
 #include "rootsim/version.hpp"
+#include "rootsim/write_rule.hpp"
 
 #ifdef ROOTSIM_HAVE_RENDER
 #include "render_glue.hpp"
@@ -98,13 +99,15 @@ int runCommand(const RunOptions& o) {
     throw SceneError("--movie needs the trajectory, but output.trajectory = false (" +
                      std::string(sc.path) + "); drop one of them");
   const int steps = sc.model.growth.enabled ? sc.model.growth.steps : 0;
+  // the run directory is locked from here to the end (the movie too): a second process is refused
+  const OutputLock lock(out, "--out");
   if (o.resume) {
     // a complete run of this scene: nothing to continue; of another scene: refused
     fs::path partial = out;
     partial += ".partial";
     std::error_code ec;
     if (!fs::exists(fs::symlink_status(partial, ec)) && fs::exists(fs::symlink_status(out, ec))) {
-      if (std::string why = whyNotReplaceable(out); !why.empty()) throw SceneError("--out " + out.string() + ": " + why);
+      if (std::string why = whyNotOurs(out, runFolder()); !why.empty()) throw SceneError("--out " + out.string() + ": " + why);
       std::ifstream in(out / "scene.toml", std::ios::binary);
       const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
       if (!in.is_open() || text != sc.resolvedToml)
@@ -145,6 +148,8 @@ int sweepCommand(const SweepCliOptions& o) {
   if (!o.shard.empty()) std::tie(so.shard, so.shards) = parseShard(o.shard);
   so.out = o.out.empty() ? (fs::path("runs") / fs::path(o.sweep).stem()).string() : o.out;
   so.quiet = o.quiet;
+  so.force = o.force;
+  so.inputs = {fs::path(o.sweep), fs::path(plan.scenePath)};
   if (!o.quiet)
     std::fprintf(stderr, "sweep %s: %zu points, shard %d/%d, %d jobs -> %s\n", o.sweep.c_str(), plan.points.size(),
                  so.shard, so.shards, so.jobs, so.out.c_str());
@@ -191,6 +196,7 @@ int figureCommand(const FigureCliOptions& o) {
   fo.quick = o.quick;
   fo.out = o.out;
   fo.jobs = o.jobs;
+  fo.force = o.force;
   fo.quiet = o.quiet;
   const double t0 = now();
   makeFigure(o.name, fo, [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
@@ -202,7 +208,14 @@ int modesCommand(const ModesOptions& o) {
   const fs::path dir = normaliseOutDir(o.runDir);
   if (!fs::is_regular_file(dir / "scene.toml") || !fs::is_regular_file(dir / "summary.json"))
     throw SceneError(o.runDir + ": not a complete run directory (no scene.toml and summary.json)");
-  if (const std::string why = whyNotReplaceable(dir); !why.empty()) throw SceneError(o.runDir + ": " + why);
+  if (const std::string why = whyNotOurs(dir, runFolder()); !why.empty()) throw SceneError(o.runDir + ": " + why);
+  // the run directory receives modes.csv and modes.vtp, nothing else; it is locked while they are written
+  const OutputLock lock(dir, "modes");
+  WriteRule rule;
+  rule.force = o.force;
+  rule.inputs = {WriteInput{dir, {"modes.csv", "modes.vtp"}}};
+  claimFile(dir / "modes.csv", rule, "modes");
+  claimFile(dir / "modes.vtp", rule, "modes");
   // the final state is not stored; the run is repeated from its resolved scene (same scene, same bytes)
   const Scene sc = loadScene((dir / "scene.toml").string());
   Simulation sim(sc.model);

@@ -50,6 +50,7 @@ struct RenderOptions {
   bool transparent = false;  // PNG frames without the plate (alpha 0 outside the root)
   bool noOverlays = false;   // no time, scale bar or parameters
   LookOptions look;
+  bool force = false;        // replace outputs rootsim wrote earlier (never a user's file)
   std::string shaderDir;     // development: load tube/plane shaders from here instead of the built-in copies
   bool quiet = false;
 };
@@ -58,6 +59,7 @@ int renderCommand(const RenderOptions& o);
 struct ModesOptions {
   std::string runDir;
   int count = 6;          // modes to write
+  bool force = false;     // replace modes.csv / modes.vtp written earlier
   bool quiet = false;
 };
 int modesCommand(const ModesOptions& o);
@@ -73,6 +75,7 @@ struct MontageOptions {
   int crf = 18;
   std::string colorBy = "none";
   bool shadows = false;
+  bool force = false;        // replace outputs rootsim wrote earlier (never a user's file)
   bool quiet = false;
 };
 int montageCommand(const MontageOptions& o);
@@ -82,6 +85,7 @@ struct SweepCliOptions {
   int jobs = 1;
   std::string shard;      // "K/N"
   std::string out;        // default runs/<sweep name>
+  bool force = false;     // rerun points written with another scene, or that failed before
   bool quiet = false;
 };
 int sweepCommand(const SweepCliOptions& o);
@@ -91,6 +95,7 @@ struct FigureCliOptions {
   bool quick = false;
   std::string out = "figures";
   int jobs = 2;
+  bool force = false;     // replace panels rootsim wrote earlier in --out
   bool quiet = false;
 };
 int figureCommand(const FigureCliOptions& o);

@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
   cCheck->add_option("--set", check.sets, "override a scene key: section.key=value (repeatable)");
 
   cli::RenderOptions render;
-  CLI::App* cRender = app.add_subcommand("render", "render a saved run (trajectory.csv) to MP4 / PNG frames");
+  CLI::App* cRender = app.add_subcommand("render", "render a saved run (its trajectory) to MP4 / PNG frames");
   cRender->add_option("run_dir", render.runDir, "run directory")->required();
   cRender->add_option("--mp4", render.mp4, "movie file (with no output flag: RUN_DIR/movie.mp4 + RUN_DIR/final_top.png)");
   cRender->add_option("--png-dir", render.pngDir, "write every frame as PNG into this folder");
@@ -64,12 +64,14 @@ int main(int argc, char** argv) {
   cRender->add_option("--shader-dir", render.shaderDir,
                       "development: load tube/plane .vert/.frag from DIR instead of the built-in shaders");
   addLookOptions(cRender, render.look);
+  cRender->add_flag("--force", render.force, "replace outputs rootsim wrote earlier (never a file rootsim did not write)");
   cRender->add_flag("--quiet", render.quiet, "no progress output");
 
   cli::ModesOptions modes;
   CLI::App* cModes = app.add_subcommand("modes", "the softest stiffness modes of a run's final state (modes.csv, modes.vtp)");
   cModes->add_option("run_dir", modes.runDir, "run directory")->required();
   cModes->add_option("--count", modes.count, "number of modes (default 6)")->check(CLI::Range(1, 1000));
+  cModes->add_flag("--force", modes.force, "replace modes.csv and modes.vtp written earlier");
   cModes->add_flag("--quiet", modes.quiet, "no progress output");
 
   cli::MontageOptions montage;
@@ -84,6 +86,7 @@ int main(int argc, char** argv) {
   cMontage->add_option("--crf", montage.crf, "H.264 quality, 0 (lossless) .. 51")->check(CLI::Range(0, 51));
   cMontage->add_option("--color-by", montage.colorBy, "colour the tubes: curvature, twist, kappa0, stretch or contact");
   cMontage->add_flag("--shadows", montage.shadows, "cast the roots' shadows on the plate");
+  cMontage->add_flag("--force", montage.force, "replace outputs rootsim wrote earlier (never a file rootsim did not write)");
   cMontage->add_flag("--quiet", montage.quiet, "no progress output");
 
   cli::SweepCliOptions sweep;
@@ -92,6 +95,7 @@ int main(int argc, char** argv) {
   cSweep->add_option("-j,--jobs", sweep.jobs, "parallel runs")->check(CLI::Range(1, 1024));
   cSweep->add_option("--shard", sweep.shard, "K/N: run only points with index % N == K-1 (for clusters)");
   cSweep->add_option("--out", sweep.out, "sweep folder (default: runs/<sweep name>)");
+  cSweep->add_flag("--force", sweep.force, "rerun points run with another scene or that failed before");
   cSweep->add_flag("--quiet", sweep.quiet, "no progress output");
 
   cli::FigureCliOptions figure;
@@ -100,6 +104,7 @@ int main(int argc, char** argv) {
   cFigure->add_flag("--quick", figure.quick, "coarsened runs (for CI)");
   cFigure->add_option("--out", figure.out, "output folder (default: figures)");
   cFigure->add_option("-j,--jobs", figure.jobs, "parallel simulations")->check(CLI::Range(1, 1024));
+  cFigure->add_flag("--force", figure.force, "replace panels rootsim wrote earlier in --out");
   cFigure->add_flag("--quiet", figure.quiet, "no progress output");
 
   try {
@@ -108,6 +113,16 @@ int main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? 0 : 2;
   }
+  // a path option given an empty value ("--out ''") is refused, never taken for its default
+  for (CLI::App* sub : app.get_subcommands())
+    for (const CLI::Option* opt : sub->get_options())
+      if (opt->count() > 0 && opt->get_type_size() != 0)
+        for (const std::string& v : opt->results())
+          if (v.empty()) {
+            std::fprintf(stderr, "rootsim: error: %s: empty value (give a path or value, or leave the option out)\n",
+                         opt->get_name().c_str());
+            return 2;
+          }
   // a --field-mm without a follow window to size is refused (render_glue.cpp), not ignored
   run.look.fieldGiven = cRun->get_option("--field-mm")->count() > 0;
   render.look.fieldGiven = cRender->get_option("--field-mm")->count() > 0;

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <fstream>
 #include <map>
+#include <optional>
 #include <numbers>
 #include <set>
 #include <sstream>
@@ -19,6 +20,7 @@
 #include "rootsim/renderer.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/units.hpp"
+#include "rootsim/write_rule.hpp"
 
 namespace fs = std::filesystem;
 
@@ -117,6 +119,43 @@ std::vector<Snapshot> loadSnapshots(const fs::path& runDir) {
   return snaps;
 }
 
+// the outputs of render and montage, checked by the write rule and locked until they are written
+struct Outputs {
+  std::vector<OutputLock> locks;
+};
+
+Outputs claimOutputs(const std::string& mp4, const fs::path& png, const std::string& pngDir, const WriteRule& rule) {
+  Outputs o;
+  std::vector<std::pair<const char*, fs::path>> all;
+  if (!mp4.empty()) all.emplace_back("--mp4", mp4);
+  if (!png.empty()) all.emplace_back("--final-png", png);
+  if (!pngDir.empty()) all.emplace_back("--png-dir", pngDir);
+  // no output may be another, or lie inside the frame folder (replaced whole)
+  for (std::size_t i = 0; i < all.size(); ++i)
+    for (std::size_t j = 0; j < all.size(); ++j) {
+      if (i == j) continue;
+      const fs::path a = fs::absolute(all[i].second).lexically_normal(), b = fs::absolute(all[j].second).lexically_normal();
+      const auto rel = a.lexically_relative(b);
+      if (a == b || (std::string(all[j].first) == "--png-dir" && !rel.empty() && *rel.begin() != ".."))
+        throw SceneError(std::string(all[i].first) + " " + all[i].second.string() + ": the same path as, or inside, " +
+                         all[j].first + " " + all[j].second.string());
+    }
+  for (const auto& [flag, path] : all) {
+    // locked first, then checked: a second process cannot slip in between
+    if (std::string(flag) == "--png-dir") {
+      checkOutputName(path.string(), flag);
+      claimFolder(path, framesFolder(), rule, flag, true);
+      continue;  // StagedFolder locks it when the frames are written
+    }
+    checkOutputName(path.string(), flag);
+    const fs::path dir = fs::absolute(path).parent_path();
+    if (!fs::is_directory(dir)) throw SceneError(std::string(flag) + " " + path.string() + ": folder " + dir.string() + " not found");
+    o.locks.emplace_back(path, flag);
+    claimFile(path, rule, flag);
+  }
+  return o;
+}
+
 // stderr progress: one line per ~10 % of the frames
 MovieProgress progressLines(bool quiet, const std::string& what) {
   if (quiet) return {};
@@ -149,7 +188,6 @@ void renderRun(const std::vector<Snapshot>& snaps, const SceneInfo& info, MovieJ
   if (!same && !finalTop.empty()) writeFinalTop(snaps, info, job.view, finalTop);
   if (!quiet) {
     if (!job.mp4.empty()) std::fprintf(stderr, "wrote %s\n", job.mp4.c_str());
-    if (!job.pngDir.empty()) std::fprintf(stderr, "wrote %zu frames to %s\n", snaps.size(), job.pngDir.c_str());
     if (!finalTop.empty()) std::fprintf(stderr, "wrote %s\n", finalTop.string().c_str());
   }
 }
@@ -318,13 +356,11 @@ int renderRunCommand(const RenderOptions& o) {
   const bool asked = !o.mp4.empty() || !o.pngDir.empty() || !o.finalPng.empty();
   job.mp4 = asked ? o.mp4 : (runDir / "movie.mp4").string();
   const fs::path finalTop = asked ? fs::path(o.finalPng) : runDir / "final_top.png";
-  auto checkFolder = [](const char* flag, const fs::path& file) {
-    const fs::path dir = fs::absolute(file).parent_path();
-    if (!fs::is_directory(dir)) throw SceneError(std::string(flag) + " " + file.string() + ": folder " + dir.string() + " not found");
-  };
-  if (!job.mp4.empty()) checkFolder("--mp4", job.mp4);
-  if (!finalTop.empty()) checkFolder("--final-png", finalTop);
-  job.pngDir = o.pngDir;
+  // the write rule: the run directory is read and receives only its own movie.mp4 and final_top.png
+  WriteRule rule;
+  rule.force = o.force;
+  rule.inputs = {WriteInput{runDir, {"movie.mp4", "final_top.png"}}};
+  const Outputs outs = claimOutputs(job.mp4, finalTop, o.pngDir, rule);
   job.view.whiskers = o.whiskers;
   if (o.transparent) {
     // PNG frames only: MP4 has no alpha channel
@@ -352,7 +388,17 @@ int renderRunCommand(const RenderOptions& o) {
   applyLook(look, runDir, snaps, job);
   checkFieldAgainstPlate(look, fitPlateMm(snaps, info, job));
 
+  // every check passed: the frame folder is made now (DIR.partial, renamed to DIR when all are written)
+  std::optional<StagedFolder> frames;
+  if (!o.pngDir.empty()) {
+    frames.emplace(o.pngDir, framesFolder(), rule, "--png-dir");
+    job.pngDir = frames->work().string();
+  }
   renderRun(snaps, info, job, finalTop, o.quiet);
+  if (frames) {
+    frames->commit();
+    if (!o.quiet) std::fprintf(stderr, "wrote %zu frames to %s\n", snaps.size(), frames->final().c_str());
+  }
   return 0;
 }
 
@@ -449,12 +495,12 @@ int montageRunsCommand(const MontageOptions& o) {
   if (!parseColourField(o.colorBy, job.view.colourBy))
     throw SceneError("--color-by " + o.colorBy + ": expected one of " + colourFieldNames());
   job.view.shadows = o.shadows;
-  if (!o.mp4.empty()) {
-    const fs::path dir = fs::absolute(fs::path(o.mp4)).parent_path();
-    if (!fs::is_directory(dir)) throw SceneError("--mp4 " + o.mp4 + ": folder " + dir.string() + " not found");
-    job.mp4 = o.mp4;
-  }
-  job.pngDir = o.pngDir;
+  // the write rule: the run directories are read, never written
+  WriteRule rule;
+  rule.force = o.force;
+  for (const fs::path& d : dirs) rule.inputs.push_back(WriteInput{d, {}});
+  const Outputs outs = claimOutputs(o.mp4, fs::path(), o.pngDir, rule);
+  job.mp4 = o.mp4;
   std::vector<std::string> labels;
   if (!o.labels.empty()) {
     labels = splitList(o.labels);
@@ -478,10 +524,16 @@ int montageRunsCommand(const MontageOptions& o) {
       throw SceneError("--color-by contact: " + trajectoryPath(dirs[i]).string() + " has no plate_force_n column");
     runs.push_back(std::move(r));
   }
+  std::optional<StagedFolder> frames;
+  if (!o.pngDir.empty()) {
+    frames.emplace(o.pngDir, framesFolder(), rule, "--png-dir");
+    job.pngDir = frames->work().string();
+  }
   renderMontage(runs, job, progressLines(o.quiet, "montage"));
+  if (frames) frames->commit();
   if (!o.quiet) {
     if (!job.mp4.empty()) std::fprintf(stderr, "wrote %s\n", job.mp4.c_str());
-    if (!job.pngDir.empty()) std::fprintf(stderr, "wrote frames to %s\n", job.pngDir.c_str());
+    if (frames) std::fprintf(stderr, "wrote frames to %s\n", frames->final().c_str());
   }
   return 0;
 }

@@ -15,6 +15,7 @@
 
 #include "rootsim/environment.hpp"
 #include "rootsim/errors.hpp"
+#include "rootsim/write_rule.hpp"
 #include "rootsim/outputs.hpp"
 #include "rootsim/model.hpp"
 #include "rootsim/plot.hpp"
@@ -847,6 +848,22 @@ std::string makeOne(const std::string& name, const Ctx& c) {
 
 }  // namespace
 
+namespace {
+// a figure folder: marker .rootsim-figures, the panels (PNG, SVG), report.md and the runs/ sweep folder
+bool isFigureEntry(const fs::path& dir, const std::string& name) {
+  if (name == ".rootsim-figures" || name == "report.md" || name == "report.md.tmp") return true;
+  if (name == "runs") return whyNotOurs(dir / name, sweepFolder()).empty();
+  for (const auto& n : figureNames())
+    for (const char* ext : {".png", ".svg", ".png.tmp", ".svg.tmp"})
+      if (name == n + ext) return true;
+  return false;
+}
+const FolderSpec& figuresFolder() {
+  static const FolderSpec s{".rootsim-figures", "rootsim figure folder", isFigureEntry};
+  return s;
+}
+}  // namespace
+
 const std::vector<std::string>& figureNames() {
   static const std::vector<std::string> n = {"fig2a",        "fig2b", "fig2cde", "fig3a", "fig3b",
                                                 "fig3d",        "fig3d_gamma1",    "fig3d_apical", "fig4a",
@@ -863,9 +880,23 @@ std::string makeFigure(const std::string& name, const FigureOptions& opt,
     for (const auto& n : names) list += " " + n;
     throw SceneError("figure " + name + ": unknown figure (expected all or one of:" + list + ")");
   }
+  // the write rule: a new folder or rootsim's figure folder; panels written before are replaced only
+  // with --force; locked while this process writes it
+  const fs::path out = checkOutputName(opt.out, "--out");
+  const OutputLock lock(out, "--out");
+  WriteRule rule;
+  rule.force = opt.force;
+  rule.inputs.push_back(workingFolder());
+  claimFolder(out, figuresFolder(), rule, "--out", false);
+  std::vector<std::string> writes;
+  for (const auto& n : names)
+    if (name == "all" || name == n) writes.insert(writes.end(), {n + ".png", n + ".svg"});
+  if (name == "all") writes.push_back("report.md");
   std::error_code ec;
-  fs::create_directories(opt.out, ec);
-  if (ec) throw SceneError("--out " + opt.out + ": cannot create: " + ec.message());
+  for (const std::string& f : writes)
+    if (fs::exists(fs::symlink_status(out / f, ec)) && !opt.force)
+      throw SceneError("--out " + out.string() + ": holds " + f + " from an earlier `rootsim figure`; pass --force to replace it");
+  createOwnFolder(out, figuresFolder());
   std::vector<Claim> claims;
   Ctx c{opt, log, &claims};
   if (name == "all") {

@@ -49,6 +49,7 @@ void runCases(const Ctx& c, const std::vector<Case>& given) {
   SweepOptions so;
   so.jobs = c.opt.jobs;
   so.out = c.runs().string();
+  so.force = c.opt.force;
   const SweepResult r = runSweep(plan, so, c.opt.quiet ? std::function<void(const std::string&)>() : c.log);
   if (r.failed > 0) throw RunError(std::to_string(r.failed) + " figure run(s) failed; see " + c.runs().string());
 }

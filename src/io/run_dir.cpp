@@ -1,128 +1,113 @@
 #include "rootsim/run_dir.hpp"
 
-#include <array>
+#include <algorithm>
 #include <cerrno>
 #include <cstring>
 
 #include "rootsim/errors.hpp"
 #include "rootsim/version.hpp"
+#include "rootsim/write_rule.hpp"
 
 namespace fs = std::filesystem;
 
 namespace rootsim {
 
 namespace {
-// every name a run (and `run --movie`) writes into its directory; anything else in it is the user's
-constexpr std::array<const char*, 17> kRunEntries = {
-    "modes.csv",      "modes.vtp",      "trajectory.bin",
-    kRunMarker,       "scene.toml",     "timeseries.csv", "shape.csv",    "summary.json",
-    "result.csv",     "trajectory.csv", "trajectory.pvd", "vtk",          "movie.mp4",
-    "final_top.png",  "ERROR.txt",      "checkpoint.bin", "movie.mp4.partial"};
-
-bool isRunEntry(const std::string& name) {
-  for (const char* e : kRunEntries)
-    if (name == e) return true;
-  // leftovers of an atomic write interrupted by a kill: "<run entry>.tmp"
-  const auto tmp = name.rfind(".tmp");
-  if (tmp != std::string::npos && tmp + 4 == name.size()) return isRunEntry(name.substr(0, tmp));
-  return false;
-}
-
-// is `inner` the same path as `outer` or inside it (both made absolute and normal)?
-bool contains(const fs::path& outer, const fs::path& inner) {
-  std::error_code ec;
-  const fs::path o = fs::weakly_canonical(fs::absolute(outer, ec), ec);
-  const fs::path i = fs::weakly_canonical(fs::absolute(inner, ec), ec);
-  auto oi = o.begin(), ii = i.begin();
-  for (; oi != o.end(); ++oi, ++ii) {
-    if (oi->empty()) continue;  // trailing separator
-    if (ii == i.end() || *oi != *ii) return false;
-  }
-  return true;
-}
-
-// removes a run directory we are allowed to remove; "" or why not
-std::string removeRun(const fs::path& dir) {
-  if (std::string why = whyNotReplaceable(dir); !why.empty()) return why;
-  std::error_code ec;
-  fs::remove_all(dir, ec);
-  return ec ? "cannot remove " + dir.string() + ": " + ec.message() : "";
-}
-
 fs::path sibling(const fs::path& dir, const char* suffix) {
   fs::path p = dir;
   p += suffix;
   return p;
 }
-}  // namespace
 
-fs::path normaliseOutDir(const std::string& text) {
-  if (text.empty()) throw SceneError("--out: empty output directory name");
-  fs::path p = fs::path(text).lexically_normal();
-  // "out/" normalises to "out/" (an empty last component): drop it
-  if (!p.empty() && p.filename().empty()) p = p.parent_path();
-  const std::string s = p.string();
-  if (s.empty() || s == "." || s == ".." || p == p.root_path() || p.filename() == "..")
-    throw SceneError("--out " + text + ": not a run directory name (give a new folder, e.g. runs/my_run)");
-  return p;
+// removes a run directory we are allowed to remove; "" or why not
+std::string removeRun(const fs::path& dir) {
+  if (std::string why = whyNotOurs(dir, runFolder()); !why.empty()) return why;
+  std::error_code ec;
+  fs::remove_all(dir, ec);
+  return ec ? "cannot remove " + dir.string() + ": " + ec.message() : "";
 }
 
-std::string whyNotReplaceable(const fs::path& dir) {
+// the marker's list of a finished run: "file <path inside the run> <bytes>" per regular file
+std::string fileList(const fs::path& dir) {
+  std::vector<std::pair<std::string, std::uintmax_t>> files;
   std::error_code ec;
-  if (!fs::is_directory(fs::symlink_status(dir, ec)))
-    return dir.string() + " exists and is not a directory";
-  if (!fs::is_regular_file(fs::symlink_status(dir / kRunMarker, ec)))
-    return dir.string() + " exists and is not a rootsim run directory (no " + std::string(kRunMarker) +
-           "); rootsim never replaces folders it did not write: choose another --out";
-  for (const auto& e : fs::directory_iterator(dir, ec)) {
-    const std::string name = e.path().filename().string();
-    if (!isRunEntry(name))
-      return dir.string() + " holds " + name + ", which no rootsim run writes; move it away or choose another --out";
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    if (!it->is_regular_file(ec)) continue;
+    const std::string rel = fs::relative(it->path(), dir, ec).generic_string();
+    if (rel == kRunMarker) continue;
+    files.emplace_back(rel, it->file_size(ec));
   }
-  if (ec) return "cannot list " + dir.string() + ": " + ec.message();
+  std::sort(files.begin(), files.end());
+  std::string s;
+  for (const auto& [name, bytes] : files) s += "file " + name + " " + std::to_string(bytes) + "\n";
+  return s;
+}
+}  // namespace
+
+fs::path normaliseOutDir(const std::string& text) { return checkOutputName(text, "--out"); }
+
+std::string whyNotWhole(const fs::path& dir) {
+  std::ifstream in(dir / kRunMarker);
+  if (!in) return dir.string() + ": no " + std::string(kRunMarker);
+  std::string line;
+  int listed = 0;
+  while (std::getline(in, line)) {
+    if (line.rfind("file ", 0) != 0) continue;
+    const auto sp = line.rfind(' ');
+    const std::string name = line.substr(5, sp - 5);
+    std::uintmax_t bytes = 0;
+    try {
+      bytes = std::stoull(line.substr(sp + 1));
+    } catch (const std::exception&) {
+      return (dir / kRunMarker).string() + ": malformed line '" + printable(line) + "'";
+    }
+    std::error_code ec;
+    const fs::path f = dir / name;
+    if (!fs::is_regular_file(fs::symlink_status(f, ec))) return f.string() + " is missing";
+    const std::uintmax_t have = fs::file_size(f, ec);
+    if (ec || have != bytes)
+      return f.string() + " holds " + std::to_string(have) + " bytes, not the " + std::to_string(bytes) + " its run wrote";
+    ++listed;
+  }
+  if (listed == 0) return dir.string() + ": its marker lists no files (written by an older rootsim, or not finished)";
   return "";
 }
 
 RunDir::RunDir(const fs::path& dir, const RunDirOptions& opt, PartialRun partial)
     : final_(normaliseOutDir(dir.string())) {
   std::error_code ec;
-  for (const auto& p : opt.protect)
-    if (!p.empty() && contains(final_, p))
-      throw SceneError("--out " + dir.string() + ": contains " + p.string() +
-                       "; a run directory must be a folder of its own (e.g. runs/my_run)");
+  // held until the run is committed or failed: a second process on this run directory is refused
+  lock_ = OutputLock(final_, "--out");
+  WriteRule rule;
+  rule.force = opt.force;
+  for (const auto& p : opt.protect) rule.inputs.push_back(WriteInput{p, {}, false});
+  claimFolder(final_, runFolder(), rule, "--out", false);
   work_ = sibling(final_, ".partial");
-  // an earlier complete run: replaced only with --force, and only if it is one (a resumed run was
-  // started with that permission)
-  if (fs::exists(fs::symlink_status(final_, ec))) {
-    if (std::string why = whyNotReplaceable(final_); !why.empty()) throw SceneError("--out " + dir.string() + ": " + why);
-    if (!opt.force && partial != PartialRun::Continue)
-      throw SceneError("--out " + dir.string() + ": holds an earlier run; pass --force to replace it");
+  // an earlier complete run: replaced only with --force (a resumed run was started with that permission)
+  if (fs::exists(fs::symlink_status(final_, ec)) && !opt.force && partial != PartialRun::Continue)
+    throw SceneError("--out " + dir.string() + ": holds an earlier run; pass --force to replace it");
+  // a failed run: kept (its ERROR.txt says why) unless --force
+  const fs::path inc = sibling(final_, ".incomplete");
+  if (fs::exists(fs::symlink_status(inc, ec))) {
+    if (std::string why = whyNotOurs(inc, runFolder()); !why.empty()) throw SceneError("--out " + dir.string() + ": " + why);
+    if (!opt.force)
+      throw SceneError("--out " + dir.string() + ": " + inc.string() +
+                       " holds a failed run (its ERROR.txt says why); pass --force to replace it, or choose another --out");
   }
   if (partial == PartialRun::Continue) {
-    if (std::string why = whyNotReplaceable(work_); !why.empty()) throw SceneError("--out " + dir.string() + ": " + why);
+    if (std::string why = whyNotOurs(work_, runFolder()); !why.empty()) throw SceneError("--out " + dir.string() + ": " + why);
     return;
   }
   // an interrupted run (killed): discarded only with --force
   if (fs::exists(fs::symlink_status(work_, ec))) {
-    if (std::string why = whyNotReplaceable(work_); !why.empty()) throw SceneError("--out " + dir.string() + ": " + why);
+    if (std::string why = whyNotOurs(work_, runFolder()); !why.empty()) throw SceneError("--out " + dir.string() + ": " + why);
     if (!opt.force && partial != PartialRun::Discard)
       throw SceneError("--out " + dir.string() + ": " + work_.string() +
                        " holds an interrupted run; pass --resume to continue it from its last checkpoint, or "
                        "--force to discard it and start again");
     if (std::string why = removeRun(work_); !why.empty()) throw SceneError("--out " + dir.string() + ": " + why);
   }
-  fs::create_directories(work_, ec);
-  if (ec) throw SceneError("--out " + dir.string() + ": cannot create " + work_.string() + ": " + ec.message());
-  // the marker first: from now on this folder is recognisably ours; writing it also probes that the
-  // folder is writable now rather than at the end of a long run
-  std::ofstream m(work_ / kRunMarker, std::ios::binary);
-  m << "rootsim run directory " << kVersion << "\n";
-  m.close();
-  if (!m) {
-    fs::remove(work_ / kRunMarker, ec);
-    fs::remove(work_, ec);
-    throw SceneError("--out " + dir.string() + ": cannot write into " + work_.string());
-  }
+  createOwnFolder(work_, runFolder());
 }
 
 RunDir::~RunDir() = default;
@@ -130,30 +115,16 @@ RunDir::~RunDir() = default;
 void RunDir::write(const std::string& name, const std::string& content) { writeFileAtomic(work_ / name, content); }
 
 void RunDir::commit() {
+  // the marker lists every file and its size: a sweep counts a point complete only when they are whole
+  writeFileAtomic(work_ / kRunMarker, std::string("rootsim run directory ") + kVersion + "\n" + fileList(work_));
+  // an earlier run at DIR (checked replaceable when we started) is moved aside, replaced, then removed
+  replaceFolder(work_, final_, runFolder());
+  // a failed attempt of an earlier run is obsolete once this one is complete (--force was given)
   std::error_code ec;
-  // an earlier run at DIR (checked replaceable when we started; checked again): moved aside, replaced,
-  // then removed, so a failure in between never leaves neither
-  fs::path old;
-  if (fs::exists(fs::symlink_status(final_, ec))) {
-    if (std::string why = whyNotReplaceable(final_); !why.empty()) throw RunError("cannot replace: " + why);
-    old = sibling(final_, ".replaced");
-    if (fs::exists(fs::symlink_status(old, ec))) {
-      if (std::string why = removeRun(old); !why.empty()) throw RunError("cannot replace " + final_.string() + ": " + why);
-    }
-    fs::rename(final_, old, ec);
-    if (ec) throw RunError("cannot move " + final_.string() + " aside: " + ec.message());
-  }
-  fs::rename(work_, final_, ec);
-  if (ec) {
-    const std::string msg = "cannot rename " + work_.string() + " to " + final_.string() + ": " + ec.message();
-    if (!old.empty()) fs::rename(old, final_, ec);
-    throw RunError(msg);
-  }
-  if (!old.empty()) removeRun(old);
-  // a failed attempt of an earlier run is obsolete once this one is complete
   const fs::path inc = sibling(final_, ".incomplete");
   if (fs::exists(fs::symlink_status(inc, ec))) removeRun(inc);
   done_ = true;
+  lock_.release();
 }
 
 void RunDir::fail(const std::string& error) {
@@ -170,6 +141,7 @@ void RunDir::fail(const std::string& error) {
   }
   fs::rename(work_, inc, ec);
   done_ = true;
+  lock_.release();
 }
 
 void writeFileAtomic(const fs::path& path, const std::string& content) {

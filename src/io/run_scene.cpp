@@ -59,7 +59,7 @@ PartialRun resumePlan(const Scene& sc, const std::string& outDir, std::uint64_t 
   work += ".partial";
   std::error_code ec;
   if (!fs::exists(fs::symlink_status(work, ec))) return PartialRun::Refuse;  // nothing to resume: a new run
-  if (std::string why = whyNotReplaceable(work); !why.empty()) throw SceneError("--out " + outDir + ": " + why);
+  if (std::string why = whyNotOurs(work, runFolder()); !why.empty()) throw SceneError("--out " + outDir + ": " + why);
   // the first file a run writes is its resolved scene
   std::ifstream in(work / "scene.toml", std::ios::binary);
   if (!in) return PartialRun::Discard;
@@ -69,7 +69,14 @@ PartialRun resumePlan(const Scene& sc, const std::string& outDir, std::uint64_t 
     throw SceneError("--resume: " + work.string() + " was written by another scene (its scene.toml differs from " +
                      sc.path + " with these --set values); pass --force to discard it and start again");
   }
-  if (!fs::exists(work / kCheckpointFile, ec)) return PartialRun::Discard;  // killed before the first one
+  if (!fs::exists(work / kCheckpointFile, ec)) {
+    // killed before its first checkpoint: nothing to lose. But a run that finished there (its
+    // summary.json written: renamed by hand, or a commit that failed) is never discarded without --force
+    if (!force && fs::exists(work / "summary.json", ec))
+      throw SceneError("--resume: " + work.string() + " holds a finished run without a checkpoint (it has summary.json); "
+                       "move it away, or pass --force to discard it and start again");
+    return PartialRun::Discard;
+  }
   try {
     ck = readCheckpoint(work / kCheckpointFile);
     if (ck->sceneHash != hash)

@@ -6,6 +6,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <mutex>
 #include <sstream>
 #include <thread>
@@ -17,6 +18,7 @@
 #include "rootsim/errors.hpp"
 #include "rootsim/results.hpp"
 #include "rootsim/run_dir.hpp"
+#include "rootsim/write_rule.hpp"
 #include "rootsim/scene.hpp"
 #include "toml_guard.hpp"
 
@@ -85,7 +87,7 @@ SweepPlan loadSweep(const std::string& path) {
   {
     // a sweep file is a few lines of TOML: like a scene, a regular file of at most 1 MiB
     text = readSceneFile(path, "sweep file");
-    if (const std::string bad = detail::nonAsciiOutsideComments(text); !bad.empty())
+    if (const std::string bad = detail::screenToml(text); !bad.empty())
       throw SceneError(printable(path) + ":" + bad);
   }
   toml::table root;
@@ -175,7 +177,9 @@ SweepPlan loadSweep(const std::string& path) {
     p.overrides.insert(p.overrides.end(), fixed.begin(), fixed.end());
     // validate now: a typo in the grid fails before any run starts
     try {
-      p.grows = parseScene(baseText, plan.scenePath, p.overrides).model.growth.enabled;
+      const Scene point = parseScene(baseText, plan.scenePath, p.overrides);
+      p.grows = point.model.growth.enabled;
+      p.resolvedToml = point.resolvedToml;
     } catch (const SceneError& e) {
       throw SceneError(path + ": point " + std::to_string(i) + ": " + e.what());
     }
@@ -214,31 +218,108 @@ void writeSweepTable(const SweepPlan& plan, const std::string& out) {
   }
 }
 
+namespace {
+// what a sweep finds at a point before it starts
+enum class PointState { Fresh, Complete, Stale, FailedBefore };
+
+// a point is complete only if its run directory is whole (every file its marker lists, at the size its
+// run wrote), holds the current result columns, and was run with the point's current scene; an
+// interrupted attempt (DIR.partial) of the same scene is continued, one of another scene is stale
+PointState stateOf(const SweepPoint& p, const fs::path& dir, std::string& why) {
+  std::error_code ec;
+  const std::string& want = p.scene ? p.scene->resolvedToml : p.resolvedToml;
+  auto sceneOf = [](const fs::path& d) {
+    std::ifstream in(d / "scene.toml", std::ios::binary);
+    return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  };
+  if (fs::exists(fs::symlink_status(dir, ec))) {
+    if (std::string bad = whyNotOurs(dir, runFolder()); !bad.empty()) throw SceneError(bad);
+    std::ifstream prev(dir / "result.csv");
+    std::string head;
+    if (!prev || !std::getline(prev, head) || head != resultHeader(p.grows)) {
+      why = "its result.csv has other columns (written by another rootsim version)";
+      return PointState::Stale;
+    }
+    if (sceneOf(dir) != want) {
+      why = "its scene.toml differs from the point's scene now (the base scene or [set] changed)";
+      return PointState::Stale;
+    }
+    if (why = whyNotWhole(dir); !why.empty()) return PointState::Stale;
+    return PointState::Complete;
+  }
+  fs::path part = dir, inc = dir;
+  part += ".partial";
+  inc += ".incomplete";
+  if (fs::exists(fs::symlink_status(inc, ec))) {
+    why = "it failed before (see " + (inc / "ERROR.txt").string() + ")";
+    return PointState::FailedBefore;
+  }
+  if (fs::exists(fs::symlink_status(part, ec)) && fs::exists(part / "scene.toml", ec) && sceneOf(part) != want) {
+    why = "its interrupted run " + part.string() + " holds another scene";
+    return PointState::Stale;
+  }
+  return PointState::Fresh;
+}
+}  // namespace
+
 SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
                      const std::function<void(const std::string&)>& log) {
-  std::error_code ec;
-  fs::create_directories(opt.out, ec);
-  if (ec) throw SceneError("--out " + opt.out + ": cannot create: " + ec.message());
+  // the write rule: a new folder, or a sweep folder of rootsim's holding nothing foreign; never the
+  // working folder, the sweep file's or the base scene's folder, nor inside them
+  WriteRule rule;
+  rule.force = opt.force;
+  rule.inputs.push_back(workingFolder());
+  for (const fs::path& in : opt.inputs) rule.inputs.push_back(WriteInput{in, {}, false});
+  const fs::path out = checkOutputName(opt.out, "--out");
+  claimFolder(out, sweepFolder(), rule, "--out", false);
+  createOwnFolder(out, sweepFolder());
+  // the shards of a job array share the folder; one shard started twice is refused (each point's run
+  // directory is locked as well, so overlapping shardings never write one point twice)
+  const OutputLock shardLock(out / ("shard-" + std::to_string(opt.shard) + "-of-" + std::to_string(opt.shards)),
+                             "--out " + out.string() + " shard");
   std::vector<const SweepPoint*> pending;
   SweepResult res;
+  int stale = 0;
+  std::string firstStale;
+  std::vector<std::pair<const SweepPoint*, std::string>> failedEarlier;
   for (const auto& p : plan.points) {
     if (p.index % opt.shards != opt.shard - 1) continue;
-    // resumable: a point is done when its result.csv exists with the current header (a run written by
-    // an older rootsim with other columns is redone)
-    std::ifstream prev(fs::path(opt.out) / p.dirName / "result.csv");
-    std::string head;
-    if (prev && std::getline(prev, head) && head == resultHeader(p.grows)) {
+    const fs::path dir = out / p.dirName;
+    std::string why;
+    const PointState st = stateOf(p, dir, why);
+    if (st == PointState::Complete) {
       ++res.skipped;
       if (opt.onPoint) {
         SweepPointDone d;
         d.point = &p;
-        d.dir = (fs::path(opt.out) / p.dirName).string();
+        d.dir = dir.string();
         d.skipped = true;
         opt.onPoint(d);
       }
       continue;
     }
+    if (st == PointState::Stale) {
+      if (stale++ == 0) firstStale = p.dirName + ": " + why;
+    } else if (st == PointState::FailedBefore && !opt.force) {
+      failedEarlier.emplace_back(&p, why);
+      continue;
+    }
     pending.push_back(&p);
+  }
+  if (stale > 0 && !opt.force)
+    throw SceneError("--out " + out.string() + ": " + std::to_string(stale) + " point(s) hold runs that cannot be kept (not whole, or not the sweep's scene now; first: " +
+                     firstStale + "); pass --force to rerun them");
+  if (stale > 0 && log) log(std::to_string(stale) + " point(s) rerun: their runs could not be kept (first: " + firstStale + ")");
+  for (const auto& [p, why] : failedEarlier) {
+    ++res.failed;
+    if (log) log(p->dirName + ": FAILED earlier: " + why + "; pass --force to rerun it");
+    if (opt.onPoint) {
+      SweepPointDone d;
+      d.point = p;
+      d.dir = (out / p->dirName).string();
+      d.error = "failed earlier: " + why;
+      opt.onPoint(d);
+    }
   }
   std::mutex mu;
   std::atomic<size_t> next{0};
@@ -256,7 +337,7 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
       std::string msg;
       bool ok = true;
       double wall = 0;
-      const std::string dir = (fs::path(opt.out) / p.dirName).string();
+      const std::string dir = (out / p.dirName).string();
       std::function<void(const StepRecord&, int)> poll;
       if (opt.cancelled)
         poll = [&](const StepRecord& r, int) {
@@ -266,7 +347,7 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
         // a point not complete is continued from its checkpoint when it has one (a killed sweep), else
         // redone: its earlier attempt (a run directory, never user files) is replaced
         RunDirOptions ro;
-        ro.force = true;
+        ro.force = opt.force;
         ro.resume = true;
         wall = p.scene ? runSceneToDir(*p.scene, dir, ro, poll)
                        : runSceneToDir(loadScene(plan.scenePath, p.overrides), dir, ro, poll);
@@ -290,7 +371,7 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
       }
       if (log) {
         // progress over the whole sweep: done / to do, elapsed and an estimate of what is left
-        const int done = res.ran + res.failed;
+        const int done = res.ran + res.failed - static_cast<int>(failedEarlier.size());
         const double el = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         char eta[96];
         std::snprintf(eta, sizeof eta, " [%3.0f %%, %.0f s elapsed, ~%.0f s left]", 100.0 * done / pending.size(), el,

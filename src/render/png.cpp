@@ -1,5 +1,6 @@
 // PNG files through stb (libstb ships the compiled implementation: no STB_*_IMPLEMENTATION here)
 #include "rootsim/png.hpp"
+#include "rootsim/signature.hpp"
 
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -11,6 +12,8 @@
 #include <mutex>
 #include <system_error>
 #include <thread>
+#include <cstdint>
+#include <string>
 
 #include <unistd.h>
 
@@ -33,11 +36,45 @@ struct FileSink {
   bool failed = false;
 };
 
+// CRC-32 of a PNG chunk (ISO 3309, the polynomial PNG specifies)
+std::uint32_t crc32(const unsigned char* p, std::size_t n, std::uint32_t c = 0xffffffffu) {
+  for (std::size_t i = 0; i < n; ++i) {
+    c ^= p[i];
+    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
+  }
+  return c;
+}
+
+// the tEXt chunk "Software" = rootsim's signature: the write rule (write_rule.hpp) replaces a PNG at a
+// user's path only when it carries it
+std::string signatureChunk() {
+  const std::string body = std::string("tEXt") + "Software" + '\0' + outputSignatureText();
+  std::string chunk;
+  const std::uint32_t len = static_cast<std::uint32_t>(body.size() - 4);
+  for (int k = 3; k >= 0; --k) chunk += static_cast<char>((len >> (8 * k)) & 0xff);
+  chunk += body;
+  const std::uint32_t crc = crc32(reinterpret_cast<const unsigned char*>(body.data()), body.size()) ^ 0xffffffffu;
+  for (int k = 3; k >= 0; --k) chunk += static_cast<char>((crc >> (8 * k)) & 0xff);
+  return chunk;
+}
+
+// stb hands over the whole PNG in one call: written with the signature chunk after IHDR (the PNG
+// signature, 8 bytes, and the IHDR chunk, 25 bytes)
 void writeToFile(void* ctx, void* data, int size) {
   auto* sink = static_cast<FileSink*>(ctx);
   if (sink->failed || size <= 0) return;
-  if (std::fwrite(data, 1, static_cast<std::size_t>(size), sink->f) != static_cast<std::size_t>(size))
-    sink->failed = true;
+  constexpr int kHead = 8 + 25;
+  static const std::string chunk = signatureChunk();
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  const bool split = size > kHead;
+  const std::size_t first = split ? kHead : static_cast<std::size_t>(size);
+  bool ok = std::fwrite(bytes, 1, first, sink->f) == first;
+  if (split) {
+    ok = ok && std::fwrite(chunk.data(), 1, chunk.size(), sink->f) == chunk.size();
+    const std::size_t rest = static_cast<std::size_t>(size) - first;
+    ok = ok && std::fwrite(bytes + first, 1, rest, sink->f) == rest;
+  }
+  if (!ok) sink->failed = true;
 }
 
 // a temporary name beside path, unique per process and thread

@@ -1,5 +1,6 @@
 // H.264 MP4 through libavcodec (libx264) and libavformat; RGBA -> yuv420p BT.709 with swscale
 #include "rootsim/video.hpp"
+#include "rootsim/signature.hpp"
 
 extern "C" {
 #include <libavcodec/avcodec.h>
@@ -97,6 +98,9 @@ struct VideoWriter::Impl {
     stream->time_base = enc->time_base;
     stream->avg_frame_rate = enc->framerate;
 
+    // rootsim's signature in the "comment" tag: the write rule (write_rule.hpp) replaces an MP4 at a
+    // user's path only when it carries it
+    av_dict_set(&fmt->metadata, "comment", outputSignatureText(), 0);
     check(avio_open(&fmt->pb, partial.c_str(), AVIO_FLAG_WRITE), "avio_open(" + partial + ")");
     ioOpen = true;
     check(avformat_write_header(fmt, nullptr), "avformat_write_header(" + partial + ")");

@@ -6,10 +6,14 @@
     r.timeseries["theta_tip_deg"]   # timeseries.csv's columns as numpy arrays (the same doubles)
     r.frames[-1].x                  # trajectory snapshots: node positions [m], directors, radius
 
+Units: SI (m, m/s, 1/m, N) in the arrays of ``Frame`` and ``State``; time-series rows and CSV columns
+have the files' units, named in the column (``length_mm``, ``time_h``, ``theta_tip_deg``, ...).
+
 - ``run(scene_or_path, set=..., out=..., progress=...)`` -> ``Run``; ``load_run(dir)``
 - ``Scene.load(path)``, ``scene.set(key, value)``, ``scene.to_toml()``, ``scene.check()``
 - ``sweep(...)`` yields points as they finish; ``render(run_dir, ...)`` is ``rootsim render``
-- ``Simulation(scene)``: ``step()``, ``state()`` (numpy views), ``set("tropism.beta", ...)``
+- ``Simulation(scene)``: ``step(n)``, ``state()`` (numpy copies, SI units), ``set("tropism.beta", ...)``;
+  one Simulation may be shared by threads: its calls are serialised
 
 Errors are the command line's: ``SceneError`` (a ValueError: bad key, value, path or option; the
 message names file:line or the --set flag) and ``RunError`` (a RuntimeError: the run failed, naming

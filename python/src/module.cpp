@@ -4,10 +4,12 @@
 //
 // Threads: the GIL is released while simulating, sweeping and rendering; it is taken back between growth
 // steps to poll Python's signal handlers (Ctrl-C -> KeyboardInterrupt) and to call progress callbacks.
+// A _Simulation serialises calls from several threads with a mutex of its own (PySimulation).
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstring>
@@ -16,6 +18,7 @@
 #include <mutex>
 #include <optional>
 #include <thread>
+#include <utility>
 
 #include "rootsim/errors.hpp"
 #include "rootsim/outputs.hpp"
@@ -57,13 +60,6 @@ py::array_t<double> vec(const Eigen::VectorXd& v) {
   if (v.size() > 0) std::memcpy(a.mutable_data(), v.data(), sizeof(double) * static_cast<size_t>(v.size()));
   return a;
 }
-// a read-only view into memory owned by `owner` (kept alive by the array)
-py::array view(const double* data, std::vector<py::ssize_t> shape, std::vector<py::ssize_t> strides, py::handle owner) {
-  py::array a(py::dtype::of<double>(), std::move(shape), std::move(strides), data, owner);
-  a.attr("setflags")(py::arg("write") = false);
-  return a;
-}
-
 // one snapshot as a dict of numpy arrays, SI units as in Snapshot (snapshot.hpp)
 py::dict snapshotDict(const Snapshot& s) {
   py::dict d;
@@ -197,17 +193,33 @@ double runScene(const Scene& sc, const std::string& out, bool force, py::object 
 
 // ---- stepping ----
 
+// One C++ Simulation per Python object, used by one thread at a time: every method takes the object's
+// mutex first, so concurrent calls from several threads are serialised (they run one after the other,
+// never interleaved). The mutex is waited for with the GIL released (a thread inside step() takes the
+// GIL back between growth steps: waiting with it held would deadlock). A call made by the thread that
+// already holds the mutex (a signal handler or progress code running between growth steps of the
+// same object) raises RuntimeError instead of deadlocking.
 class PySimulation {
  public:
   explicit PySimulation(const Scene& sc) : scene_(sc) {
     py::gil_scoped_release nogil;
     sim_.emplace(scene_.model);
   }
-  // n growth steps; between steps the GIL is taken to poll Ctrl-C (KeyboardInterrupt after a whole step)
-  py::dict step(int n) {
-    if (n < 1) throw SceneError("step(n): n must be >= 1 (got " + std::to_string(n) + ")");
-    if (!scene_.model.growth.enabled) throw SceneError(scene_.model.name + ": growth.enabled = false: nothing to step");
-    for (int k = 0; k < n; ++k) {
+  // n growth steps; between steps the GIL is taken to poll Ctrl-C (KeyboardInterrupt after a whole step).
+  // Refused (nothing run) beyond growth.steps: the scene's validation bounds the root's element count
+  // (kMaxElements) only up to growth.steps; and before each step whose splits could pass kMaxElements.
+  py::dict step(long long n) {
+    Lock lock = acquire();
+    if (n < 1) throw py::value_error("step(n): n must be a positive integer (got " + std::to_string(n) + ")");
+    const GrowthParams& g = scene_.model.growth;
+    if (!g.enabled) throw SceneError(scene_.model.name + ": growth.enabled = false: nothing to step");
+    const long long left = static_cast<long long>(g.steps) - sim_->step();
+    if (n > left)
+      throw py::value_error("step(" + std::to_string(n) + "): only " + std::to_string(std::max(left, 0LL)) +
+                            " growth steps left of growth.steps = " + std::to_string(g.steps) + " (at step " +
+                            std::to_string(sim_->step()) + "; build a Simulation with a larger growth.steps)");
+    for (long long k = 0; k < n; ++k) {
+      checkElementCap(n, k);
       {
         py::gil_scoped_release nogil;
         sim_->growthStep();
@@ -218,6 +230,7 @@ class PySimulation {
   }
   // tropism.* keys between steps, validated by the scene schema (the same messages as --set)
   void set(const std::string& key, const std::string& value) {
+    Lock lock = acquire();
     if (key.rfind("tropism.", 0) != 0)
       throw SceneError("Simulation.set " + key + ": only tropism.* keys can change between growth steps (the rest "
                        "of the model is constant; build a new Simulation)");
@@ -231,32 +244,103 @@ class PySimulation {
     }
     sim_->setTropism(changed.model.tropism);
   }
-  // state views (no copy): valid until the next step() (growth reallocates them)
-  py::dict state(py::handle self) const {
+  // the state as copies (owned, C-contiguous numpy arrays): they stay valid whatever the Simulation does
+  // next (growth reallocates its arrays when it splits elements)
+  py::dict state() {
+    Lock lock = acquire();
     const RodState& s = sim_->state();
     static_assert(sizeof(Mat3) == 9 * sizeof(double), "directors must be packed 3x3 doubles");
-    const auto n = static_cast<py::ssize_t>(s.elements()), D = static_cast<py::ssize_t>(sizeof(double));
+    const auto n = static_cast<py::ssize_t>(s.elements());
     py::dict d;
     d["step"] = sim_->step();
     d["time_h"] = s.time / units::hour;
-    d["positions"] = view(s.x.data(), {n + 1, 3}, {3 * D, D}, self);
-    d["velocities"] = view(s.v.data(), {n + 1, 3}, {3 * D, D}, self);
+    d["positions"] = rows3(s.x);
+    d["velocities"] = rows3(s.v);
     // Q[e] is column-major: Q(r, c) at r + 3c; directors[e, r] is d_{r+1} (row r of Q)
-    d["directors"] = view(n ? s.Q[0].data() : nullptr, {n, 3, 3}, {9 * D, D, 3 * D}, self);
-    d["rest_lengths"] = view(s.l0.data(), {n}, {D}, self);
-    d["material_coordinates"] = view(s.S.data(), {n + 1}, {D}, self);
-    d["kappa0"] = view(s.kappa0.data(), {std::max<py::ssize_t>(n - 1, 0), 3}, {3 * D, D}, self);
+    py::array_t<double> q({n, py::ssize_t{3}, py::ssize_t{3}});
+    double* out = q.mutable_data();
+    for (py::ssize_t e = 0; e < n; ++e) {
+      const double* Q = s.Q[static_cast<size_t>(e)].data();
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) out[9 * e + 3 * r + c] = Q[r + 3 * c];
+    }
+    d["directors"] = q;
+    d["rest_lengths"] = vec(s.l0);
+    d["material_coordinates"] = vec(s.S);
+    d["kappa0"] = rows3(s.kappa0);  // (elements - 1) x 3
     return d;
   }
-  py::dict record() const { return recordDict(sim_->last()); }
-  py::dict snapshot() const { return snapshotDict(sim_->snapshot()); }
-  int stepCount() const { return sim_->step(); }
-  const Scene& scene() const { return scene_; }
+  py::dict record() {
+    Lock lock = acquire();
+    return recordDict(sim_->last());
+  }
+  py::dict snapshot() {
+    Lock lock = acquire();
+    return snapshotDict(sim_->snapshot());
+  }
+  int stepCount() {
+    Lock lock = acquire();
+    return sim_->step();
+  }
+  // growth steps left before growth.steps (0 for a mechanics-only scene)
+  int stepsLeft() {
+    Lock lock = acquire();
+    return scene_.model.growth.enabled ? std::max(scene_.model.growth.steps - sim_->step(), 0) : 0;
+  }
+  const Scene& scene() const { return scene_; }  // constant after construction: no lock
 
  private:
+  // the object's mutex, owned by this call; releases it (and forgets the owner) when it goes
+  class Lock {
+   public:
+    explicit Lock(PySimulation& p) : p_(&p) {}
+    Lock(Lock&& o) noexcept : p_(std::exchange(o.p_, nullptr)) {}
+    Lock(const Lock&) = delete;
+    Lock& operator=(const Lock&) = delete;
+    Lock& operator=(Lock&&) = delete;
+    ~Lock() {
+      if (p_) {
+        p_->owner_.store(std::thread::id{});
+        p_->mu_.unlock();
+      }
+    }
+
+   private:
+    PySimulation* p_;
+  };
+  Lock acquire() {
+    if (owner_.load() == std::this_thread::get_id())
+      throw std::runtime_error("Simulation is busy in this thread: a call from inside its own step() (a signal "
+                               "handler or callback between growth steps); call it after step() returns");
+    if (!mu_.try_lock()) {
+      py::gil_scoped_release nogil;  // another thread is in a call: wait for it without the GIL
+      mu_.lock();
+    }
+    owner_.store(std::this_thread::get_id());
+    return Lock(*this);
+  }
+  // before growth step k (0-based) of step(n): an element splits at most once per step, and only when
+  // its rest length, grown by at most the factor 1 + rate * dt, passes growth.split_factor * h
+  void checkElementCap(long long n, long long k) const {
+    const RodState& s = sim_->state();
+    const GrowthParams& g = scene_.model.growth;
+    const double limit = g.splitFactor * scene_.model.initial.elementLength, grow = 1.0 + g.rate * g.stepTime;
+    long long could = 0;
+    for (int i = 0; i < s.elements(); ++i)
+      if (s.l0[i] * grow > limit) ++could;
+    if (static_cast<double>(s.elements() + could) > kMaxElements)
+      throw std::runtime_error("step(" + std::to_string(n) + "): stopped after " + std::to_string(k) +
+                               " of them, at growth step " + std::to_string(sim_->step()) + ": the rod has " +
+                               std::to_string(s.elements()) + " elements and the next step could split " +
+                               std::to_string(could) + " more, past the cap of " +
+                               std::to_string(static_cast<long long>(kMaxElements)) + " elements");
+  }
+
   Scene scene_;
   std::vector<std::string> overrides_;
   std::optional<Simulation> sim_;
+  std::mutex mu_;
+  std::atomic<std::thread::id> owner_{};
 };
 
 // ---- sweeps: runSweep on a thread of its own, results handed over as they finish ----
@@ -434,10 +518,11 @@ PYBIND11_MODULE(_rootsim, m) {
       .def(py::init<const Scene&>(), py::arg("scene"))
       .def("step", &PySimulation::step, py::arg("n"))
       .def("set", &PySimulation::set, py::arg("key"), py::arg("value"))
-      .def("state", [](py::object self) { return self.cast<const PySimulation&>().state(self); })
+      .def("state", &PySimulation::state)
       .def("record", &PySimulation::record)
       .def("snapshot", &PySimulation::snapshot)
       .def_property_readonly("step_count", &PySimulation::stepCount)
+      .def_property_readonly("steps_left", &PySimulation::stepsLeft)
       .def_property_readonly("scene", &PySimulation::scene, py::return_value_policy::copy);
 
   py::class_<SweepRunner>(m, "_SweepRunner")

@@ -1,4 +1,7 @@
-"""rootsim.Simulation: stepping by hand gives the run's numbers; state views; tropism changes."""
+"""rootsim.Simulation: stepping by hand gives the run's numbers; state copies; tropism changes; the step
+count argument and the end of growth; one Simulation used from several threads."""
+import signal
+import threading
 import tomllib
 
 import numpy as np
@@ -46,10 +49,9 @@ def test_state_views_shapes_and_contents():
     assert st.positions.shape == (n + 1, 3) and st.velocities.shape == (n + 1, 3)
     assert st.directors.shape == (n, 3, 3) and st.rest_lengths.shape == (n,)
     assert st.material_coordinates.shape == (n + 1,) and st.kappa0.shape == (n - 1, 3)
-    # views, not copies, and read-only
-    assert not st.positions.flags.owndata and not st.positions.flags.writeable
-    with pytest.raises(ValueError):
-        st.positions[0, 0] = 1.0
+    # copies: owned, C-contiguous float64 arrays
+    for a in (st.positions, st.velocities, st.directors, st.rest_lengths, st.material_coordinates, st.kappa0):
+        assert a.dtype == np.float64 and a.flags.owndata and a.flags.c_contiguous
     # the positions are the snapshot's node positions; directors orthonormal and d1, d3 the snapshot's
     snap = sim.snapshot()
     assert np.array_equal(st.positions, snap.x)
@@ -59,7 +61,7 @@ def test_state_views_shapes_and_contents():
     # rest lengths add up to the recorded length; S is their running sum
     assert st.rest_lengths.sum() * 1e3 == pytest.approx(sim.record()["length_mm"], rel=1e-13)
     np.testing.assert_allclose(np.diff(st.material_coordinates), st.rest_lengths, rtol=1e-12)
-    # a copy survives stepping
+    # state(copy=True) is still accepted (the arrays are always copies)
     kept = sim.state(copy=True)
     sim.step(1)
     assert kept.positions.flags.owndata and kept.step == 30
@@ -109,3 +111,112 @@ def test_mechanics_only_scene_has_no_steps():
     assert sim.step_count == 0 and sim.record()["step"] == 0
     with pytest.raises(ValueError, match="nothing to step"):
         sim.step()
+
+
+def test_state_arrays_keep_their_values_across_steps():
+    # growth splits elements and reallocates the rod's arrays: a view would then read freed memory
+    sim = rootsim.Simulation(SCENE, set=STEPS)
+    sim.step(10)
+    st = sim.state()
+    at_the_time = {k: np.array(v, copy=True) for k, v in vars(st).items() if isinstance(v, np.ndarray)}
+    n0 = sim.record()["elements"]
+    sim.step(60)
+    assert sim.record()["elements"] > n0  # elements were split: the arrays were reallocated
+    for name, values in at_the_time.items():
+        assert np.array_equal(getattr(st, name), values), name
+    assert st.positions.shape == (n0 + 1, 3) and np.abs(st.positions).max() < 0.1  # a 30 mm root, in m
+    # and the arrays are the caller's: writing them changes nothing in the simulation
+    st.positions[:] = 0.0
+    assert np.array_equal(sim.state().positions, sim.snapshot().x) and sim.state().positions.any()
+
+
+def test_step_takes_a_positive_int_only():
+    sim = rootsim.Simulation(SCENE, set=STEPS)
+    for bad in (1.5, 2.0, "2", True, False, None, [1]):
+        with pytest.raises(TypeError, match=r"step\(n\): n must be a positive int"):
+            sim.step(bad)
+    for bad in (0, -1, -(2**70)):
+        with pytest.raises(ValueError, match=r"step\(n\): n must be a positive int"):
+            sim.step(bad)
+    assert sim.step_count == 0
+    sim.step(np.int64(2))  # numpy integers are ints
+    sim.step()
+    assert sim.step_count == 3
+
+
+def test_step_stops_at_growth_steps():
+    sim = rootsim.Simulation(SCENE, set={"growth.steps": 3})
+    assert sim.steps_left == 3
+    sim.step(2)
+    with pytest.raises(ValueError, match=r"^step\(5\): only 1 growth steps left of growth.steps = 3 "):
+        sim.step(5)
+    assert sim.step_count == 2  # refused before any step ran
+    sim.step(1)
+    assert sim.steps_left == 0
+    with pytest.raises(ValueError, match=r"^step\(1\): only 0 growth steps left of growth.steps = 3 "):
+        sim.step()
+    with pytest.raises(ValueError, match=r"only 0 growth steps left"):
+        sim.step(2**40)
+    assert sim.step_count == 3 and sim.record()["step"] == 3
+
+
+def test_two_threads_stepping_one_simulation_are_serialised():
+    sim = rootsim.Simulation(SCENE, set={"growth.steps": 100})
+    errors, seen = [], []
+
+    def stepper():
+        try:
+            for _ in range(50):
+                r = sim.step(1)
+                assert 1 <= r["step"] <= 100
+        except BaseException as e:  # noqa: BLE001 (reported below)
+            errors.append(e)
+
+    def reader():
+        try:
+            while any(t.is_alive() for t in steppers):
+                st = sim.state()
+                assert st.positions.shape[0] == st.rest_lengths.shape[0] + 1
+                seen.append(st.step)
+                sim.record(), sim.snapshot(), sim.step_count
+        except BaseException as e:  # noqa: BLE001
+            errors.append(e)
+
+    steppers = [threading.Thread(target=stepper) for _ in range(2)]
+    for t in steppers:
+        t.start()
+    watcher = threading.Thread(target=reader)
+    watcher.start()
+    for t in steppers + [watcher]:
+        t.join()
+    assert errors == []
+    assert sim.step_count == 100 and sim.steps_left == 0
+    assert seen == sorted(seen)  # the reader saw whole steps, in order
+    # the same root as 100 steps in one thread, to the last bit
+    one = rootsim.Simulation(SCENE, set={"growth.steps": 100})
+    one.step(100)
+    assert same(sim.record(), one.record())
+    assert np.array_equal(sim.state().positions, one.state().positions)
+
+
+def test_a_call_from_inside_its_own_step_is_refused_not_deadlocked():
+    # a signal handler runs between growth steps, in the thread that holds the Simulation
+    sim = rootsim.Simulation(SCENE, set=STEPS)
+    seen = []
+
+    def handler(signum, frame):
+        try:
+            sim.record()
+        except RuntimeError as e:
+            seen.append(str(e))
+
+    old = signal.signal(signal.SIGALRM, handler)
+    try:
+        signal.setitimer(signal.ITIMER_REAL, 0.0005, 0.0005)  # every 0.5 ms, during steps of ~0.2-2 ms
+        sim.step(190)
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, old)
+    assert sim.step_count == 190
+    assert seen and all(m.startswith("Simulation is busy in this thread") for m in seen)
+    assert sim.record()["step"] == 190  # and usable again once step() has returned

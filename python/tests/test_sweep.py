@@ -13,9 +13,10 @@ def test_grid_sweep_yields_every_point_and_matches_single_runs(tmp_path):
                       set={"growth.steps": 60}, out=tmp_path / "sw", jobs=2)
     points = sorted(s, key=lambda p: p.index)
     assert [p.index for p in points] == [0, 1]
-    # the grid values as the sweep's table has them (TOML text; floats with 17 digits)
-    assert [{k: float(v) for k, v in p.grid.items()} for p in points] == [{"plane.alpha_deg": 20, "tropism.beta": 0.2},
-                                                                          {"plane.alpha_deg": 80, "tropism.beta": 0.2}]
+    # the grid values typed as given (TOML integers and floats), not their text
+    assert [p.grid for p in points] == [{"plane.alpha_deg": 20, "tropism.beta": 0.2},
+                                        {"plane.alpha_deg": 80, "tropism.beta": 0.2}]
+    assert all(type(p.grid["plane.alpha_deg"]) is int and type(p.grid["tropism.beta"]) is float for p in points)
     assert all(p.ok and not p.skipped for p in points)
     assert s.summary == {"ran": 2, "skipped": 0, "failed": 0, "interrupted": False, "points": 2}
     assert s.table.is_file() and len(s.table.read_text().splitlines()) == 3
@@ -58,3 +59,31 @@ def test_cancelled_sweep_stops(tmp_path):
         pass  # leaving the block cancels: the running point stops between growth steps
     assert s.summary["interrupted"] and s.summary["ran"] < 6
     assert not any((tmp_path / "c").glob("*.incomplete"))
+
+
+def test_grid_values_are_typed_as_the_sweep_files_toml_values(tmp_path):
+    f = tmp_path / "typed.toml"
+    f.write_text(f'[sweep]\nscene = "{SCENE}"\n[grid]\n"tropism.beta" = [0.1, 0.25]\n'
+                 '"tropism.sensing" = ["local", "apical"]\n"plane.alpha_deg" = [30]\n'
+                 '[set]\n"growth.steps" = 2\n')
+    points = sorted(rootsim.sweep(f, out=tmp_path / "sw", jobs=2), key=lambda p: p.index)
+    assert [p.grid for p in points] == [
+        {"tropism.beta": 0.1, "tropism.sensing": "local", "plane.alpha_deg": 30},
+        {"tropism.beta": 0.1, "tropism.sensing": "apical", "plane.alpha_deg": 30},
+        {"tropism.beta": 0.25, "tropism.sensing": "local", "plane.alpha_deg": 30},
+        {"tropism.beta": 0.25, "tropism.sensing": "apical", "plane.alpha_deg": 30}]
+    for p in points:
+        assert type(p.grid["tropism.beta"]) is float and type(p.grid["plane.alpha_deg"]) is int
+        assert p.run.result["beta"] == p.grid["tropism.beta"]
+
+
+def test_grid_value_text_is_read_as_a_number_when_the_file_cannot_say():
+    from rootsim._api import _typed_grid
+
+    text = {"a": "20", "b": "0.20000000000000001", "c": "true", "d": "apical", "e": "1e-05", "f": "[1,2.5]"}
+    got = _typed_grid(0, text, None)
+    assert got == {"a": 20, "b": 0.2, "c": True, "d": "apical", "e": 1e-5, "f": [1, 2.5]}
+    assert [type(got[k]) for k in "abcde"] == [int, float, bool, str, float]
+    # a typed array that disagrees with the text (the file changed since) gives way to the text
+    assert _typed_grid(0, {"a": "20"}, {"a": [30]}) == {"a": 20}
+    assert _typed_grid(1, {"a": "20", "b": "x"}, {"a": [20], "b": ["w", "x"]}) == {"a": 20, "b": "x"}

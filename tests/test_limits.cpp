@@ -10,6 +10,7 @@
 #include <set>
 #include <string>
 
+#include "rootsim/number_text.hpp"
 #include "rootsim/outputs.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/sweep.hpp"
@@ -53,7 +54,7 @@ TEST_CASE("every physical key has an upper bound named in the error and in the k
       {"tropism.twist_r_tau", "in [-10, 10]"},   {"tropism.circumnutation_gain", "in [0, 100]"},
       {"tropism.circumnutation_period_h", "in (0, 10000]"}, {"plane.k_n_per_m", "in [0, 1e+06]"},
       {"plane.damping_kg_per_s", "in [0, 1000]"}, {"adhesion.k_n_per_m", "in [0, 1e+06]"},
-      {"solver.damping_per_s", "in (0, 1e+09]"}, {"analysis.wave_min_amplitude_r", "in [0, 1000]"},
+      {"solver.damping_per_s", "in (0, 1e+09]"}, {"analysis.wave_min_amplitude_r", "in [0.001, 1000]"},
   };
   const std::string resolved = parseScene("", "scenes/t.toml").resolvedToml;
   for (const auto& kr : keys) {
@@ -162,7 +163,7 @@ TEST_CASE("sweep run-directory names stay short and unique and deterministic") {
   CHECK(names.size() == 2);
   // short names are unchanged
   const SweepPlan s = loadSweep(std::string(ROOTSIM_SOURCE_DIR) + "/sweeps/fig3a_scaling.toml");
-  CHECK(s.points[0].dirName == "run_0000_alpha_deg=20_beta=0.050000000000000003");
+  CHECK(s.points[0].dirName == "run_0000_alpha_deg=20_beta=0.05");
   fs::remove_all(d);
 }
 
@@ -227,4 +228,127 @@ TEST_CASE("non-ASCII text is accepted in comments only (toml++ 3.3 has undefined
   CHECK(errorOf("[tropism]\nsensing = \"a#\xc3\xa9\"\n").find("scenes/t.toml:2: non-ASCII") == 0);
   CHECK(errorOf("", {"tropism.beta=0.1 \xcd\x88"}) ==
         "--set tropism.beta=0.1 \xcd\x88: non-ASCII characters are not allowed (scene values are ASCII)");
+}
+
+TEST_CASE("deep nesting and long keys are refused before toml++ parses them (its recursion overflowed the stack)") {
+  // a dotted key of 35 000 parts (80 kB) crashed toml++ with SIGSEGV; refused naming file:line and the limit
+  std::string deep = "[root]\nradius_mm = 0.1\na";
+  for (int i = 0; i < 40000; ++i) deep += ".a";
+  CHECK(errorOf(deep + " = 1\n") ==
+        "scenes/t.toml:3: a key nested more than 64 levels deep (its dotted parts, with those of its [table] header "
+        "and of the inline tables around it; at most 64)");
+  // the same in a [table] header, and counted with the header's parts
+  std::string header = "[a";
+  for (int i = 0; i < 64; ++i) header += ".b";
+  CHECK(errorOf(header + "]\n").find("scenes/t.toml:1: a key nested more than 64 levels deep") == 0);
+  std::string in63 = "[t.u]\nk";
+  for (int i = 0; i < 62; ++i) in63 += ".b";  // 2 + 63 parts
+  CHECK(errorOf(in63 + " = 1\n").find("scenes/t.toml:2: a key nested more than 64 levels deep") == 0);
+  // 64 levels pass the screen (and are then refused as an unknown section by the schema)
+  std::string at64 = "[t]\nk";
+  for (int i = 0; i < 62; ++i) at64 += ".b";
+  CHECK(errorOf(at64 + " = 1\n").find("scenes/t.toml:1: unknown section [t]") == 0);
+  // inline arrays and tables
+  const std::string arrays = "[load]\ntip_force_n = " + std::string(100000, '[') + std::string(100000, ']') + "\n";
+  CHECK(errorOf(arrays) == "scenes/t.toml:2: arrays or inline tables nested more than 64 levels deep (with the dotted "
+                           "parts of the keys around them; at most 64)");
+  std::string tables = "[load]\ntip_force_n = ";
+  for (int i = 0; i < 30000; ++i) tables += "{a = ";
+  tables += "1" + std::string(30000, '}') + "\n";
+  CHECK(errorOf(tables).find("scenes/t.toml:2: a") == 0);
+  CHECK(errorOf(tables).find("nested more than 64 levels deep") != std::string::npos);
+  // strings and comments hold brackets freely; a multi-line array counts its lines
+  CHECK(errorOf("# [[[[[[[[\n[tropism]\nsensing = \"[[[[{{{{.a.a\" # {{{{\n") .find("sensing must be one of") != std::string::npos);
+  CHECK(errorOf("[load]\ntip_force_n = [\n  0,\n  0,\n  " + std::string(70, '[') + "\n") .find("scenes/t.toml:5: arrays") == 0);
+  // a key of more than 1024 bytes, bare or quoted
+  CHECK(errorOf("[root]\n" + std::string(1025, 'k') + " = 1\n") ==
+        "scenes/t.toml:2: a key longer than 1024 bytes (at most 1024)");
+  CHECK(errorOf("[root]\n\"" + std::string(1030, 'k') + "\" = 1\n").find("scenes/t.toml:2: a key longer than 1024") == 0);
+  CHECK(errorOf("[root]\n" + std::string(1024, 'k') + " = 1\n").find("unknown key root.kkk") != std::string::npos);
+  // --set values and sweep files go through the same screen
+  CHECK(errorOf("", {"load.tip_force_n=" + std::string(70, '[') + std::string(70, ']')}) ==
+        "--set load.tip_force_n=" + std::string(70, '[') + std::string(70, ']') +
+            ": arrays or inline tables nested more than 64 levels deep (with the dotted parts of the keys around "
+            "them; at most 64)");
+  const fs::path d = scratch("deep");
+  { std::ofstream(d / "deep.toml") << "[sweep]\nscene = \"x.toml\"\n" << deep.substr(deep.rfind('\n') + 1) << " = 1\n"; }
+  CHECK(sweepError(d / "deep.toml").find((d / "deep.toml").string() + ":3: a key nested more than 64 levels deep") == 0);
+  fs::remove_all(d);
+}
+
+TEST_CASE("numbers are written in the shortest form that reads back exactly") {
+  CHECK(shortestNumber(0.3) == "0.3");
+  CHECK(shortestNumber(35.7) == "35.7");
+  CHECK(shortestNumber(0.1 + 0.2) == "0.30000000000000004");  // not 0.3: another double
+  CHECK(shortestNumber(2) == "2.0");
+  CHECK(shortestNumber(-0.0) == "-0.0");
+  CHECK(shortestNumber(1e-7) == "1e-07");
+  CHECK(shortestNumber(1e300) == "1e+300");
+  const fs::path d = scratch("numbers");
+  {
+    std::ofstream(d / "s.toml") << "[sweep]\nscene = \"" << ROOTSIM_SOURCE_DIR << "/scenes/cantilever_tip_load.toml\"\n"
+                                << "[grid]\n\"plane.alpha_deg\" = [35.7, 40.0]\n\"tropism.twist_r_tau\" = [0.3]\n"
+                                << "\"load.tip_force_n\" = [[0, 0.1, -2.5e-5]]\n";
+  }
+  // (grid keys in the order toml++ gives them: sorted)
+  const SweepPlan p = loadSweep((d / "s.toml").string());
+  REQUIRE(p.points.size() == 2);
+  CHECK(p.points[0].dirName == "run_0000_tip_force_n=_0_0.1_-2.5e-05__alpha_deg=35.7_twist_r_tau=0.3");
+  CHECK(p.points[1].dirName == "run_0001_tip_force_n=_0_0.1_-2.5e-05__alpha_deg=40.0_twist_r_tau=0.3");
+  REQUIRE(p.points[0].grid.size() == 3);
+  CHECK(p.points[0].grid[1].second == "35.7");  // table.csv's grid column
+  CHECK(p.points[0].grid[0].second == "[0,0.1,-2.5e-05]");
+  CHECK(p.points[0].overrides[2] == "tropism.twist_r_tau=0.3");
+  // the resolved scene writes the value as given
+  CHECK(p.points[0].resolvedToml.find("\nalpha_deg = 35.7 ") != std::string::npos);
+  fs::remove_all(d);
+}
+
+TEST_CASE("integers beyond 2^53 and numbers that underflow are refused with the key's range") {
+  // 9007199254740993 became ...992 as a double
+  CHECK(errorOf("", {"solver.seed=9007199254740993"}) ==
+        "--set solver.seed=9007199254740993: solver.seed must be in [0, 9007199254740992] (got 9007199254740993, more "
+        "than a double holds exactly)");
+  CHECK(errorOf("[solver]\nseed = 9223372036854775807\n").find("scenes/t.toml:2: solver.seed must be in [0, 9007199254740992]") == 0);
+  CHECK(errorOf("", {"solver.seed=9007199254740992"}) == "(no error)");
+  // 1e-400 became 0 (while 1e400 is refused)
+  CHECK(errorOf("", {"tropism.beta=1e-400"}) ==
+        "--set tropism.beta=1e-400: tropism.beta must be in [0, 100] (got 1e-400, which a double holds only as 0.0: "
+        "non-zero magnitudes below 2.2250738585072014e-308 underflow)");
+  CHECK(errorOf("[tropism]\nbeta = 4e-320\n").find("scenes/t.toml:2: tropism.beta must be in [0, 100] (got 4e-320, which a double holds only as 4e-320") == 0);
+  CHECK(errorOf("[load]\ntip_force_n = [0, 0, -1.5e-999]\n").find("scenes/t.toml:2: load.tip_force_n must be an array of 3 numbers: element 3 of 3 (got -1.5e-999") == 0);
+  // zeros as written are zeros
+  CHECK(errorOf("[tropism]\nbeta = 0.0e-400\ngamma = 0e5\n") == "(no error)");
+  CHECK(errorOf("", {"tropism.beta=-0.0"}) == "(no error)");
+  // an analysis threshold of 0 called rounding noise a wave (amplitude 1.4e-26 mm) or a skew
+  CHECK(errorOf("", {"analysis.wave_min_amplitude_r=0"}) ==
+        "--set analysis.wave_min_amplitude_r=0: analysis.wave_min_amplitude_r must be in [0.001, 1000] (got 0)");
+  CHECK(errorOf("", {"analysis.skew_threshold_deg=0"}) ==
+        "--set analysis.skew_threshold_deg=0: analysis.skew_threshold_deg must be in [0.001, 90] (got 0)");
+  CHECK(errorOf("", {"analysis.wave_min_amplitude_r=0.001", "analysis.skew_threshold_deg=0.001"}) == "(no error)");
+}
+
+TEST_CASE("an array element of the wrong type is named and a sweep point's error names its grid line") {
+  CHECK(errorOf("[load]\ntip_force_n = [0, 0, \"a\"]\n") ==
+        "scenes/t.toml:2: load.tip_force_n must be an array of 3 numbers: element 3 of 3 must be a number (got the "
+        "string \"a\")");
+  CHECK(errorOf("", {"load.tip_force_n=[true,0,0]"}) ==
+        "--set load.tip_force_n=[true,0,0]: load.tip_force_n must be an array of 3 numbers: element 1 of 3 must be a "
+        "number (got true)");
+  CHECK(errorOf("[load]\ntip_force_n = [0, 0]\n") ==
+        "scenes/t.toml:2: load.tip_force_n must be an array of 3 numbers (got an array of 2)");
+  const fs::path d = scratch("pointline");
+  {
+    std::ofstream(d / "s.toml") << "[sweep]\nscene = \"" << ROOTSIM_SOURCE_DIR << "/scenes/fig2b_waving.toml\"\n"
+                                << "[grid]\n\"tropism.beta\" = [0.1, 0.2]\n\n\"plane.alpha_deg\" = [30, 95]\n"
+                                << "[set]\n\"growth.steps\" = 10\n";
+  }
+  CHECK(sweepError(d / "s.toml") == (d / "s.toml").string() +
+                                        ":6: point 2: --set plane.alpha_deg=95: plane.alpha_deg must be in [0, 90] (got 95)");
+  {
+    std::ofstream(d / "s.toml") << "[sweep]\nscene = \"" << ROOTSIM_SOURCE_DIR << "/scenes/fig2b_waving.toml\"\n"
+                                << "[grid]\n\"tropism.beta\" = [0.1, 0.2]\n[set]\n\"root.radius_mm\" = -1\n";
+  }
+  CHECK(sweepError(d / "s.toml").find((d / "s.toml").string() + ":6: point 0: --set root.radius_mm=-1: ") == 0);
+  fs::remove_all(d);
 }

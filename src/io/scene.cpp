@@ -1,7 +1,10 @@
 // Scene files: TOML (toml++) -> validated values -> Model. Every error names file:line and the key.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -61,20 +64,56 @@ std::string describeNode(const toml::node& n) {
   return os.str();
 }
 
-// converts a TOML node to a value of the key's type, or returns the reason it cannot
-std::string convert(const KeySpec& k, const toml::node& n, Value& out) {
+// the text of the number a node was parsed from (src: the text toml++ parsed), "" when not found
+std::string numberText(const std::string& src, const toml::source_position& p) {
+  std::size_t pos = 0;
+  for (std::uint32_t l = 1; l < p.line; ++l) {
+    pos = src.find('\n', pos);
+    if (pos == std::string::npos) return "";
+    ++pos;
+  }
+  pos += p.column > 0 ? p.column - 1 : 0;  // the text is ASCII (toml_guard.hpp): columns are bytes
+  std::size_t e = pos;
+  while (e < src.size() && (std::isalnum(static_cast<unsigned char>(src[e])) || std::strchr("+-._", src[e]))) ++e;
+  return pos < src.size() ? src.substr(pos, e - pos) : "";
+}
+
+// a float written non-zero that a double holds only as 0 or as a subnormal (1e-400 reads as 0, while
+// 1e400 is refused as infinite): "" when n is not one, else why ("(got 1e-400, which ...)")
+std::string underflowed(const toml::node& n, const std::string& src) {
+  if (!n.is_floating_point()) return "";
+  const double d = *n.value<double>();
+  if (!std::isfinite(d) || std::isnormal(d)) return "";
+  const std::string text = numberText(src, n.source().begin);
+  if (d == 0 && text.substr(0, text.find_first_of("eE")).find_first_of("123456789") == std::string::npos) return "";
+  return "(got " + (text.empty() ? formatNumber(d, false) : printable(text)) + ", which a double holds only as " +
+         formatNumber(d, false) + ": non-zero magnitudes below 2.2250738585072014e-308 underflow)";
+}
+
+// converts a TOML node to a value of the key's type, or returns the reason it cannot; src is the text
+// toml++ parsed n from (for the digits of a number that underflowed)
+std::string convert(const KeySpec& k, const toml::node& n, Value& out, const std::string& src) {
   out = defaultValue(k);
   auto wrongType = [&] { return "must be " + std::string(typeName(k.type)) + " (got " + describeNode(n) + ")"; };
+  const std::string range = rangeText(k);
   switch (k.type) {
     case KeyType::Real:
       if (n.is_floating_point()) out.num = *n.value<double>();
       else if (n.is_integer()) out.num = static_cast<double>(*n.value<int64_t>());
       else return wrongType();
+      if (const std::string u = underflowed(n, src); !u.empty()) return "must be " + range + " " + u;
       return "";
-    case KeyType::Integer:
+    case KeyType::Integer: {
       if (!n.is_integer()) return wrongType();
-      out.num = static_cast<double>(*n.value<int64_t>());
+      const std::int64_t i = *n.value<int64_t>();
+      out.num = static_cast<double>(i);
+      // values are doubles: an integer beyond 2^53 that one would round (9007199254740993 to ...992) is
+      // refused with the key's range rather than silently changed (2^63 itself is beyond every key)
+      if (out.num >= 9223372036854775808.0 || static_cast<std::int64_t>(out.num) != i)
+        return "must be " + (range.empty() ? std::string("an integer of magnitude at most 2^53") : range) +
+               " (got " + std::to_string(i) + ", more than a double holds exactly)";
       return "";
+    }
     case KeyType::Boolean:
       if (!n.is_boolean()) return wrongType();
       out.b = *n.value<bool>();
@@ -88,9 +127,12 @@ std::string convert(const KeySpec& k, const toml::node& n, Value& out) {
       if (!a || a->size() != 3) return wrongType();
       for (size_t i = 0; i < 3; ++i) {
         const toml::node& e = *a->get(i);
+        const std::string element = "element " + std::to_string(i + 1) + " of 3";
         if (e.is_floating_point()) out.vec[i] = *e.value<double>();
         else if (e.is_integer()) out.vec[i] = static_cast<double>(*e.value<int64_t>());
-        else return wrongType();
+        else return "must be " + std::string(typeName(k.type)) + ": " + element + " must be a number (got " + describeNode(e) + ")";
+        if (const std::string u = underflowed(e, src); !u.empty())
+          return "must be " + std::string(typeName(k.type)) + ": " + element + " " + u;
       }
       return "";
     }
@@ -261,13 +303,17 @@ void applyOverride(const std::string& ovRaw, Values& values) {
   }
   if (!nonAsciiOutsideComments(text).empty())
     throw SceneError("--set " + ov + ": non-ASCII characters are not allowed (scene values are ASCII)");
+  // the value is parsed as the TOML line "v = <value>": bounded like a file's text (toml_guard.hpp)
+  if (const std::string bad = nestingBeyondLimits("v = " + text); !bad.empty())
+    throw SceneError("--set " + ov + ":" + bad.substr(bad.find(':') + 1));
   Value v;
   std::string why;
   try {
-    const toml::table t = toml::parse("v = " + text);
+    const std::string line = "v = " + text;
+    const toml::table t = toml::parse(line);
     if (t.size() != 1 || !t.get("v"))
       throw SceneError("--set " + ov + ": expected one value after '=' (got \"" + text + "\")");
-    why = convert(*k, *t.get("v"), v);
+    why = convert(*k, *t.get("v"), v, line);
   } catch (const toml::parse_error&) {
     // a bare word is a string ("--set tropism.sensing=apical")
     if (k->type != KeyType::String)
@@ -285,7 +331,8 @@ void applyOverride(const std::string& ovRaw, Values& values) {
 
 Scene parseScene(const std::string& text, const std::string& sourceName,
                  const std::vector<std::string>& overrides) {
-  if (const std::string bad = nonAsciiOutsideComments(text); !bad.empty())
+  // non-ASCII text, nesting and key lengths are screened before toml++ sees the text (toml_guard.hpp)
+  if (const std::string bad = screenToml(text); !bad.empty())
     throw SceneError(printable(sourceName) + ":" + bad);
   toml::table root;
   try {
@@ -320,7 +367,7 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
       const std::string loc = where(sourceName, kkey.source());
       if (!k) throw SceneError(loc + ": unknown key " + printable(section) + "." + printable(key) + suggestKey(section, key));
       Value v;
-      std::string why = convert(*k, knode, v);
+      std::string why = convert(*k, knode, v, text);
       if (why.empty()) why = checkValue(*k, v);
       if (!why.empty()) throw SceneError(loc + ": " + k->full() + " " + why);
       v.origin = loc;

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "rootsim/errors.hpp"
+#include "rootsim/number_text.hpp"
 #include "rootsim/scene.hpp"
 
 namespace rootsim::detail {
@@ -281,10 +282,12 @@ const std::vector<KeySpec>& schema() {
              std::vector<std::pair<std::string, BaseCondition>>{{"clamped", BaseCondition::Clamped}, {"free", BaseCondition::Free}},
              "base boundary condition"),
       gravity("weight of the root (negligible for real roots)"),
-      real("analysis", "skew_threshold_deg", FIELD(analysis.skewThresholdDeg), kOne, 0, false, 90, false, "|<theta>| above this is skewing [deg]"),
+      // the thresholds of the shape analysis are positive: at 0 rounding noise of a straight root (a swing of
+      // 1e-26 mm, a mean angle of 1e-15 deg) was called waving or skewing
+      real("analysis", "skew_threshold_deg", FIELD(analysis.skewThresholdDeg), kOne, 1e-3, false, 90, false, "|<theta>| above this is skewing [deg]"),
       real("analysis", "coil_turn_deg", FIELD(analysis.coilTurnDeg), kOne, 0, true, 3600, false,
            "planar tangent turning through more than this is coiling [deg]"),
-      real("analysis", "wave_min_amplitude_r", FIELD(analysis.waveMinAmplitude), kOne, 0, false, 1e3, false,
+      real("analysis", "wave_min_amplitude_r", FIELD(analysis.waveMinAmplitude), kOne, 1e-3, false, 1e3, false,
            "hysteresis of the lateral turning points in R (a lateral peak-to-peak below it counts as straight)"),
       real("analysis", "skew_min_waves", FIELD(analysis.skewMinWaves), kOne, 0, false, 1e4, false,
            "a waving root is called skewing only over at least this many full waves"),
@@ -317,11 +320,7 @@ Value defaultValue(const KeySpec& k) {
 
 std::string formatNumber(double x, bool integer) {
   if (integer) return std::to_string(static_cast<long long>(x));
-  char buf[64];
-  auto r = std::to_chars(buf, buf + sizeof buf, x);
-  std::string s(buf, r.ptr);
-  if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-  return s;
+  return shortestNumber(x);
 }
 
 namespace {

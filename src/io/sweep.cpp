@@ -16,6 +16,7 @@
 #include <toml++/toml.h>
 
 #include "rootsim/errors.hpp"
+#include "rootsim/number_text.hpp"
 #include "rootsim/results.hpp"
 #include "rootsim/run_dir.hpp"
 #include "rootsim/write_rule.hpp"
@@ -35,14 +36,8 @@ std::string valueText(const toml::node& n, const std::string& loc) {
   if (n.is_string()) return *n.value<std::string>();
   if (n.is_integer()) return std::to_string(*n.value<int64_t>());
   if (n.is_boolean()) return *n.value<bool>() ? "true" : "false";
-  if (n.is_floating_point()) {
-    std::ostringstream os;
-    os.precision(17);
-    os << *n.value<double>();
-    std::string s = os.str();
-    if (s.find_first_of(".eEn") == std::string::npos) s += ".0";
-    return s;
-  }
+  // the shortest text that reads back as the same double (0.3, not 0.29999999999999999)
+  if (n.is_floating_point()) return shortestNumber(*n.value<double>());
   if (n.is_array()) {
     std::string s = "[";
     const auto& a = *n.as_array();
@@ -115,6 +110,17 @@ SweepPlan loadSweep(const std::string& path) {
   const fs::path base = fs::path(path).parent_path() / *sw->get("scene")->value<std::string>();
   plan.scenePath = base.string();
   std::vector<std::string> fixed;
+  // the line of each [set] and [grid] key, for a point's error: the key it names (its --set origin
+  // first), else the first key it mentions
+  std::vector<std::pair<std::string, std::uint32_t>> keyLines;
+  auto lineOf = [&](const std::string& why) -> std::string {
+    for (const char* prefix : {"--set ", ""})
+      for (const auto& [key, line] : keyLines)
+        if (why.find(prefix + key + (*prefix ? "=" : "")) != std::string::npos ||
+            (*prefix && why.find(prefix + key + ":") != std::string::npos))
+          return ":" + std::to_string(line);
+    return "";
+  };
   const toml::table* st = root["set"].as_table();
   const toml::table* gt = root["grid"].as_table();
   if (st)
@@ -124,6 +130,7 @@ SweepPlan loadSweep(const std::string& path) {
         throw SceneError(where(path, k.source()) + ": set." + printable(std::string(k.str())) +
                          " is also a grid key; give it in [grid] or in [set], not both");
       fixed.push_back(std::string(k.str()) + "=" + valueText(node, where(path, k.source())));
+      keyLines.emplace_back(std::string(k.str()), k.source().begin.line);
     }
   std::vector<std::vector<std::string>> values;
   // every combination, first key slowest: counted before anything is expanded (a grid of 40^4 points
@@ -145,6 +152,7 @@ SweepPlan loadSweep(const std::string& path) {
     for (auto&& [k, node] : *gt) {
       const std::string loc = where(path, k.source());
       plan.gridKeys.emplace_back(k.str());
+      keyLines.emplace_back(std::string(k.str()), k.source().begin.line);
       values.emplace_back();
       for (const auto& v : *node.as_array()) values.back().push_back(valueText(v, loc));
     }
@@ -181,7 +189,7 @@ SweepPlan loadSweep(const std::string& path) {
       p.grows = point.model.growth.enabled;
       p.resolvedToml = point.resolvedToml;
     } catch (const SceneError& e) {
-      throw SceneError(path + ": point " + std::to_string(i) + ": " + e.what());
+      throw SceneError(path + lineOf(e.what()) + ": point " + std::to_string(i) + ": " + e.what());
     }
     plan.points.push_back(std::move(p));
   }

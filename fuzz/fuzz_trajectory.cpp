@@ -1,7 +1,7 @@
 // Fuzz harness: trajectory.csv or trajectory.bin (told apart by the first bytes) -> readTrajectory
 // (include/rootsim/outputs.hpp), what `rootsim render` reads. Oracles: a refused file throws SceneError with a one-line message; an accepted file gives at
-// least one frame, every frame with at least one element and only finite numbers (the renderer's
-// precondition).
+// least one frame, every frame with at least one element and only finite numbers, positions and radii
+// within the trajectory bounds (the renderer's precondition).
 #include <unistd.h>
 
 #include <cmath>
@@ -14,6 +14,7 @@
 #include "fuzz_check.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/outputs.hpp"
+#include "rootsim/units.hpp"
 
 namespace fs = std::filesystem;
 
@@ -49,7 +50,11 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     if (!s.x.allFinite() || !s.d1.allFinite() || !s.d3.allFinite() || !std::isfinite(s.timeH))
       rootsim::fuzz::fail("accepted frame with non-finite values");
     for (int i = 0; i < s.elements(); ++i)
-      if (!std::isfinite(s.radius[i])) rootsim::fuzz::fail("accepted frame with a non-finite radius");
+      if (!std::isfinite(s.radius[i]) || s.radius[i] > rootsim::kMaxTrajectoryRadiusMm * rootsim::units::mm)
+        rootsim::fuzz::fail("accepted frame with a non-finite or too large radius");
+    // the bounds the renderer relies on (a 1e7 mm coordinate made it grow past 4 GB)
+    if (s.x.cwiseAbs().maxCoeff() > rootsim::kMaxTrajectoryCoordMm * rootsim::units::mm)
+      rootsim::fuzz::fail("accepted frame with a coordinate beyond the trajectory bounds");
   }
   return 0;
 }

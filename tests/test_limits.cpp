@@ -276,6 +276,34 @@ TEST_CASE("deep nesting and long keys are refused before toml++ parses them (its
   fs::remove_all(d);
 }
 
+TEST_CASE("a trajectory with a huge coordinate or radius is refused naming file line frame and node") {
+  const fs::path d = scratch("trajbound");
+  const std::string head = "frame,step,time_h,node,x_mm,y_mm,z_mm,d1x,d1y,d1z,d3x,d3y,d3z,radius_mm\n";
+  const std::string good = "0,0,0,0,0,0,0.1,1,0,0,0,-0.6,-0.8,0.1\n0,0,0,1,0,-0.3,-0.3,,,,,,,\n";
+  const std::pair<std::string, std::string> cases[] = {
+      {good + "1,5,1,0,0,0,0.1,1,0,0,0,-0.6,-0.8,0.1\n1,5,1,1,0,-1e7,-0.3,,,,,,,\n",
+       ":5: frame 1, node 1: y_mm = -1e+07 is outside -10000 .. 10000 mm (positions are bounded to |x|, |y|, |z| <= 10 m)"},
+      {"0,0,0,0,10000.5,0,0.1,1,0,0,0,-0.6,-0.8,0.1\n0,0,0,1,0,-0.3,-0.3,,,,,,,\n", ":2: frame 0, node 0: x_mm = 10000.5 is outside"},
+      {"0,0,0,0,0,0,0.1,1,0,0,0,-0.6,-0.8,200\n0,0,0,1,0,-0.3,-0.3,,,,,,,\n",
+       ":2: frame 0, node 0: radius_mm = 200 is above 100 mm (radii are bounded to 0.1 m)"},
+  };
+  for (const auto& [rows, expected] : cases) {
+    CAPTURE(expected);
+    { std::ofstream(d / "trajectory.csv") << head << rows; }
+    std::string e = "(no error)";
+    try {
+      readTrajectory(d / "trajectory.csv");
+    } catch (const SceneError& x) {
+      e = x.what();
+    }
+    CHECK(e.find((d / "trajectory.csv").string() + expected) == 0);
+  }
+  // at the bounds: accepted
+  { std::ofstream(d / "trajectory.csv") << head << "0,0,0,0,-10000,0,0.1,1,0,0,0,-0.6,-0.8,100\n0,0,0,1,0,10000,-0.3,,,,,,,\n"; }
+  CHECK(readTrajectory(d / "trajectory.csv").size() == 1);
+  fs::remove_all(d);
+}
+
 TEST_CASE("numbers are written in the shortest form that reads back exactly") {
   CHECK(shortestNumber(0.3) == "0.3");
   CHECK(shortestNumber(35.7) == "35.7");

@@ -11,6 +11,7 @@
 #include <unistd.h>
 #include <zlib.h>
 
+#include <chrono>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -427,5 +428,76 @@ TEST_CASE("a truncated or corrupt trajectory.bin is refused naming the file and 
   std::memcpy(nan.data() + 16 + 24, &q, 8);  // the first x of the first frame
   refused(nan, "x_mm: not a finite number");
   refused(std::string("RSTRAJ01\x02\0\0\0\0\0\0\0", 16), "version");
+  fs::remove_all(d);
+}
+
+namespace {
+// FNV-1a 64, the checkpoint's checksum (include/rootsim/checkpoint.hpp)
+std::uint64_t fnv1a(const std::string& s, std::size_t from, std::size_t to) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (std::size_t i = from; i < to; ++i) h = (h ^ static_cast<unsigned char>(s[i])) * 1099511628211ull;
+  return h;
+}
+}  // namespace
+
+TEST_CASE("a forged checkpoint with a recomputed checksum and an impossible frame count is refused naming the field") {
+  const fs::path d = scratch("forged");
+  // no ParaView entries: the payload ends with the trajectory frame count (i32) and the entry count (u64)
+  const std::string args = "run " + kScene + kSets + " --set output.vtk=false --out ";
+  CHECK(runKilled(args + (d / "b").string(), "40:45").code == 137);
+  const fs::path ck = d / "b.partial" / "checkpoint.bin";
+  const std::string good = slurp(ck);
+  REQUIRE(good.size() > 100);
+  const std::size_t framesAt = good.size() - 8 - 8 - 4;
+  std::int32_t frames = 0;
+  std::memcpy(&frames, good.data() + framesAt, 4);
+  REQUIRE(frames == 5);  // steps 0, 10, 20, 30, 40
+  auto forged = [&](std::int32_t f) {
+    std::string b = good;
+    std::memcpy(b.data() + framesAt, &f, 4);
+    const std::uint64_t sum = fnv1a(b, 40, b.size() - 8);
+    std::memcpy(b.data() + b.size() - 8, &sum, 8);
+    return b;
+  };
+  const std::pair<std::int32_t, std::string> cases[] = {
+      {-5, "trajectory frame count -5 out of range (0 .. 41: at most one per growth step up to 40, and the initial one)"},
+      {2000000000, "trajectory frame count 2000000000 out of range (0 .. 41"},
+      {4, "trajectory frame count 4 disagrees with"},
+  };
+  for (const auto& [f, why] : cases) {
+    CAPTURE(f);
+    { std::ofstream(ck, std::ios::binary) << forged(f); }
+    const Result r = run(args + (d / "b").string() + " --resume");
+    INFO(r.out);
+    CHECK(r.code == 2);
+    CHECK(r.out.find(ck.string() + ": corrupt checkpoint (" + why) != std::string::npos);
+    CHECK(r.out.find("--force") != std::string::npos);
+    CHECK(fs::exists(ck));
+    CHECK(!fs::exists(d / "b"));
+  }
+  // the genuine one still resumes
+  { std::ofstream(ck, std::ios::binary) << good; }
+  const Result ok = run(args + (d / "b").string() + " --resume");
+  CHECK_MESSAGE(ok.code == 0, ok.out);
+  fs::remove_all(d);
+}
+
+TEST_CASE("a trajectory.bin with one huge finite coordinate is refused by render quickly (it grew past 4 GB)") {
+  const fs::path d = scratch("hugebin");
+  const fs::path out = d / "r";
+  REQUIRE(run("run " + kScene + " --set growth.steps=20 --set output.vtk=false --quiet --out " + out.string()).code == 0);
+  std::string b = slurp(out / "trajectory.bin");
+  const double huge = 1e7;  // mm
+  std::memcpy(b.data() + 16 + 24 + 8, &huge, 8);  // y of node 0 of the first frame
+  { std::ofstream(out / "trajectory.bin", std::ios::binary) << b; }
+  const auto t0 = std::chrono::steady_clock::now();
+  const Result r = run("render " + out.string() + " --final-png " + (d / "x.png").string() + " --quiet");
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  CHECK(r.code == 2);
+  CHECK(r.out.find((out / "trajectory.bin").string() + ": byte 48: frame 0, node 0: y_mm = 1e+07 is outside -10000 .. "
+                                                      "10000 mm (positions are bounded to |x|, |y|, |z| <= 10 m)") !=
+        std::string::npos);
+  CHECK(s < 20);
+  CHECK(!fs::exists(d / "x.png"));
   fs::remove_all(d);
 }

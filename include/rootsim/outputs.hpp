@@ -95,9 +95,16 @@ class TrajectoryBinaryWriter {
   std::string buf_;   // one record, reused
 };
 
+// what readTrajectory accepts of a node's position and an element's radius: |x|, |y|, |z| <= 10 m and
+// 0 < radius <= 0.1 m (the scene's own bound on root.radius_mm). The renderer sizes its frame, plate
+// and grid from them: a single finite 1e7 mm coordinate made `rootsim render` grow past 4 GB.
+inline constexpr double kMaxTrajectoryCoordMm = 1e4;
+inline constexpr double kMaxTrajectoryRadiusMm = 100;
+
 // reads a trajectory: trajectory.csv or trajectory.bin, told apart by their first bytes; a path to a
 // trajectory.csv that does not exist reads the trajectory.bin beside it. Throws SceneError naming the
-// file and line (CSV) or byte offset (binary) when it is malformed
+// file and line (CSV) or byte offset (binary) when it is malformed, and the frame and node when a
+// position or radius is outside the bounds above
 std::vector<Snapshot> readTrajectory(const std::filesystem::path& path);
 // the trajectory file of a run directory: trajectory.bin when it exists, else trajectory.csv
 std::filesystem::path trajectoryPath(const std::filesystem::path& runDir);

@@ -2,7 +2,9 @@
 // fixed order by the Out / In helpers below.
 #include "rootsim/checkpoint.hpp"
 
+#include <algorithm>
 #include <bit>
+#include <cmath>
 #include <cstring>
 #include <fstream>
 #include <iterator>
@@ -161,6 +163,126 @@ void getRecord(In& in, StepRecord& r) {
   r.obstacleContacts = in.pod<int>();
   r.slipEvents = in.pod<long>();
   r.frictionWork = in.pod<double>();
+}
+
+// A checkpoint whose checksum matches may still be forged or written by a bug: every count and
+// position is checked against its range and against the run's own files it describes (a negative
+// frame count resumed to other output). Files shorter than the checkpoint says are left to the caller
+// (resuming refuses them naming the file).
+[[noreturn]] void refuse(const fs::path& path, const std::string& field, const std::string& why) {
+  throw SceneError(path.string() + ": corrupt checkpoint (" + field + " " + why +
+                   "); rerun with --force to discard it and start again");
+}
+
+// the first `bytes` bytes of the run's stream `name` (name.tmp while the run is going, else name);
+// false when the file holds fewer
+bool streamPrefix(const fs::path& dir, const std::string& name, std::uint64_t bytes, std::string& out) {
+  std::error_code ec;
+  fs::path f = dir / (name + ".tmp");
+  if (!fs::is_regular_file(f, ec)) f = dir / name;
+  if (!fs::is_regular_file(f, ec) || fs::file_size(f, ec) < bytes || ec) return false;
+  std::ifstream in(f, std::ios::binary);
+  out.assign(static_cast<std::size_t>(bytes), '\0');
+  return static_cast<bool>(in.read(out.data(), static_cast<std::streamsize>(bytes)));
+}
+
+// the number of whole snapshots in the first bytes of a trajectory.bin (layout in outputs.hpp), or -1
+// when they do not end at a snapshot's end
+long binaryFrames(const std::string& b) {
+  if (b.size() < 16) return -1;
+  std::size_t pos = 16;
+  long frames = 0;
+  while (pos < b.size()) {
+    if (b.size() - pos < 24) return -1;
+    std::int32_t nodes = 0;
+    std::uint32_t fields = 0;
+    std::memcpy(&nodes, b.data() + pos + 8, 4);
+    std::memcpy(&fields, b.data() + pos + 12, 4);
+    if (nodes < 2 || (fields & ~7u) != 0) return -1;
+    const std::uint64_t perNode = 10 + (fields & 1u ? 1 : 0) + (fields & 2u ? 1 : 0) + (fields & 4u ? 3 : 0);
+    const std::uint64_t size = 24 + (perNode * static_cast<std::uint64_t>(nodes) - 7) * sizeof(double);
+    if (size > b.size() - pos) return -1;
+    pos += static_cast<std::size_t>(size);
+    ++frames;
+  }
+  return frames;
+}
+
+// the first field of the last line of a text that ends with a newline ("" when it does not)
+std::string lastRowFirstField(const std::string& t) {
+  if (t.empty() || t.back() != '\n') return "";
+  const std::size_t start = t.rfind('\n', t.size() - 2);
+  const std::size_t from = start == std::string::npos ? 0 : start + 1;
+  return t.substr(from, t.find(',', from) == std::string::npos ? std::string::npos : t.find(',', from) - from);
+}
+
+void checkRanges(const RunCheckpoint& c, long elements, const fs::path& path) {
+  auto num = [](auto v) { return std::to_string(v); };
+  const SimulationCarry& k = c.carry;
+  const RunAccumulators& a = c.acc;
+  const WriterPositions& w = c.writers;
+  // a checkpoint is written after a growth step (1, 2, ...): every output step so far left at most one
+  // snapshot (and time-series row), the initial state's included
+  if (c.step < 1) refuse(path, "growth step", num(c.step) + " out of range (>= 1)");
+  const long maxFrames = static_cast<long>(c.step) + 1;
+  if (!(std::isfinite(c.state.time) && c.state.time >= 0))
+    refuse(path, "rod time", "out of range (finite, >= 0)");
+  for (const auto& [name, v] : {std::pair<const char*, long>{"total substeps", k.totalSubsteps},
+                                {"total iterations", k.totalIterations},
+                                {"slip events", k.slipEvents},
+                                {"contact list builds", k.pairsBuilds},
+                                {"max substeps", a.maxSubsteps},
+                                {"max self-contacts", a.maxSelfContacts},
+                                {"Newton negative eigenvalues", k.newtonNegative},
+                                {"Newton factors dofs", k.newtonFactorsDofs},
+                                {"Newton factors first block", k.newtonFactorsFirstBlock},
+                                {"Newton first free node", k.newtonFirstFreeNode},
+                                {"Newton mature age", k.newtonMatureAge},
+                                {"sparse lower bandwidth", k.newtonSparse.kl},
+                                {"sparse upper bandwidth", k.newtonSparse.ku}})
+    if (v < 0) refuse(path, name, num(v) + " out of range (>= 0)");
+  if (k.newtonFirstFreeNode > elements + 1)
+    refuse(path, "Newton first free node", num(k.newtonFirstFreeNode) + " out of range (0 .. " + num(elements + 1) + ")");
+  if (k.newtonSparse.n < -1)  // -1: no sparse pattern
+    refuse(path, "sparse pattern size", num(k.newtonSparse.n) + " out of range (>= -1)");
+  if (k.pairsBuiltElements < -1)  // -1: no contact list built
+    refuse(path, "contact list elements", num(k.pairsBuiltElements) + " out of range (>= -1)");
+  if (!(std::isfinite(a.wallBefore) && a.wallBefore >= 0))
+    refuse(path, "earlier wall time", "out of range (finite, >= 0 s)");
+  if (w.trajectoryFrames < 0 || w.trajectoryFrames > maxFrames)
+    refuse(path, "trajectory frame count", num(w.trajectoryFrames) + " out of range (0 .. " + num(maxFrames) +
+                                               ": at most one per growth step up to " + num(c.step) + ", and the initial one)");
+  if (static_cast<long>(w.vtkEntries.size()) > maxFrames)
+    refuse(path, "ParaView entry count", num(w.vtkEntries.size()) + " out of range (0 .. " + num(maxFrames) + ")");
+  for (const auto& [t, name] : w.vtkEntries)
+    if (!(std::isfinite(t) && t >= 0)) refuse(path, "ParaView entry time", "out of range (finite, >= 0 h)");
+  // the run's own files agree (where they hold what the checkpoint says: shorter ones are refused by
+  // the caller, naming the file)
+  const fs::path dir = path.parent_path();
+  const bool trajectory = w.trajectoryBytes > 0 || w.trajectoryBinaryBytes > 0;
+  if (!trajectory && w.trajectoryFrames != 0)
+    refuse(path, "trajectory frame count", num(w.trajectoryFrames) + " with no trajectory written (must be 0)");
+  std::string t;
+  if (w.trajectoryBinaryBytes > 0 && streamPrefix(dir, "trajectory.bin", w.trajectoryBinaryBytes, t))
+    if (binaryFrames(t) != w.trajectoryFrames)
+      refuse(path, "trajectory frame count", num(w.trajectoryFrames) + " disagrees with trajectory.bin (" +
+                                                 num(binaryFrames(t)) + " whole frames in its first " +
+                                                 num(w.trajectoryBinaryBytes) + " bytes)");
+  if (w.trajectoryBytes > 0 && streamPrefix(dir, "trajectory.csv", w.trajectoryBytes, t))
+    if (lastRowFirstField(t) != (w.trajectoryFrames > 0 ? num(w.trajectoryFrames - 1) : std::string("frame")))
+      refuse(path, "trajectory frame count", num(w.trajectoryFrames) + " disagrees with trajectory.csv (its first " +
+                                                 num(w.trajectoryBytes) + " bytes end in frame " +
+                                                 printable(lastRowFirstField(t)) + ")");
+  if (w.timeseriesBytes > 0 && streamPrefix(dir, "timeseries.csv", w.timeseriesBytes, t)) {
+    const long rows = static_cast<long>(std::count(t.begin(), t.end(), '\n')) - 1;
+    const std::string last = lastRowFirstField(t);
+    if (last.empty() || rows < 1 || rows > maxFrames || (trajectory && rows != w.trajectoryFrames))
+      refuse(path, "time-series position",
+             num(w.timeseriesBytes) + (trajectory ? " does not end after row " + num(w.trajectoryFrames) +
+                                                        " of timeseries.csv (one row per trajectory frame)"
+                                                  : " does not end after one of the first " + num(maxFrames) +
+                                                        " rows of timeseries.csv"));
+  }
 }
 
 }  // namespace
@@ -368,6 +490,7 @@ RunCheckpoint readCheckpoint(const fs::path& path) {
     c.writers.vtkEntries.emplace_back(t, std::move(name));
   }
   if (in.pos != in.end) in.bad("trailing bytes");
+  checkRanges(c, static_cast<long>(n), path);
   return c;
 }
 

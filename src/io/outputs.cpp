@@ -170,6 +170,15 @@ void putRaw(std::string& b, const T& v) {
   b.append(reinterpret_cast<const char*>(&v), sizeof v);
 }
 
+// the refusals of a position or radius beyond the trajectory bounds (outputs.hpp)
+std::string trajectoryCoordBound(char axis, double v) {
+  return std::string(1, axis) + "_mm = " + fmt(v) + " is outside -" + fmt(kMaxTrajectoryCoordMm) + " .. " +
+         fmt(kMaxTrajectoryCoordMm) + " mm (positions are bounded to |x|, |y|, |z| <= 10 m)";
+}
+std::string trajectoryRadiusBound(double r) {
+  return "radius_mm = " + fmt(r) + " is above " + fmt(kMaxTrajectoryRadiusMm) + " mm (radii are bounded to 0.1 m)";
+}
+
 // trajectory.bin (layout in outputs.hpp and docs/outputs.md)
 std::vector<Snapshot> readTrajectoryBinary(const fs::path& path) {
   std::ifstream f(path, std::ios::binary);
@@ -243,6 +252,20 @@ std::vector<Snapshot> readTrajectoryBinary(const fs::path& path) {
       if (s.radius[i] <= 0) {
         pos = rAt + static_cast<std::size_t>(i) * sizeof(double);
         bad("radius_mm: must be > 0");
+      }
+    // bounded before anything is sized from them (kMaxTrajectoryCoordMm, kMaxTrajectoryRadiusMm)
+    for (Eigen::Index i = 0; i <= n; ++i)
+      for (int d = 0; d < 3; ++d) {
+        const double v = s.x(d, i) / units::mm;
+        if (std::abs(v) > kMaxTrajectoryCoordMm) {
+          pos = start + 24 + static_cast<std::size_t>(3 * i + d) * sizeof(double);
+          bad("frame " + std::to_string(frame) + ", node " + std::to_string(i) + ": " + trajectoryCoordBound("xyz"[d], v));
+        }
+      }
+    for (Eigen::Index i = 0; i < n; ++i)
+      if (const double r = s.radius[i] / units::mm; r > kMaxTrajectoryRadiusMm) {
+        pos = rAt + static_cast<std::size_t>(i) * sizeof(double);
+        bad("frame " + std::to_string(frame) + ", node " + std::to_string(i) + ": " + trajectoryRadiusBound(r));
       }
     if (fields & kHasKappa0) {
       s.kappa0.resize(n + 1);
@@ -411,10 +434,17 @@ std::vector<Snapshot> readTrajectory(const fs::path& path) {
     r.t = real(2);
     r.node = integer(3);
     for (int d = 0; d < 3; ++d) r.v[d] = real(static_cast<size_t>(4 + d));
+    // bounded before anything is sized from them (kMaxTrajectoryCoordMm, kMaxTrajectoryRadiusMm)
+    for (int d = 0; d < 3; ++d)
+      if (std::abs(r.v[d]) > kMaxTrajectoryCoordMm)
+        bad("frame " + std::to_string(r.frame) + ", node " + std::to_string(r.node) + ": " +
+            trajectoryCoordBound("xyz"[d], r.v[d]));
     r.hasElem = !f[7].empty();
     if (r.hasElem) {
       for (int d = 0; d < 7; ++d) r.v[3 + d] = real(static_cast<size_t>(7 + d));
       if (r.v[9] <= 0) bad("radius_mm: must be > 0 (got " + f[13] + ")");
+      if (r.v[9] > kMaxTrajectoryRadiusMm)
+        bad("frame " + std::to_string(r.frame) + ", node " + std::to_string(r.node) + ": " + trajectoryRadiusBound(r.v[9]));
     } else {
       for (size_t c = 8; c < 14; ++c)
         if (!f[c].empty()) bad("the element columns of a frame's last node must all be empty");

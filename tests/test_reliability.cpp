@@ -203,3 +203,35 @@ TEST_CASE("an injected write failure (file size limit) stops the run with exit 1
   CHECK(slurp(d / "out.incomplete" / "ERROR.txt").find("write error on") == 0);
   fs::remove_all(d);
 }
+
+TEST_CASE("a free 2 mm rod under its weight on a plate at 80 deg slides at mu_s = 0.01 and without friction, stays at mu_s = 0.5") {
+  // physical gravity and the default tolerances, both solvers: the downhill pull (3e-9 N per node) is far
+  // below B1/Lref^2 * force_tol (9.8e-8 N), which once let the rod "converge" unmoved in a few sub-steps
+  const fs::path d = scratch("incline80");
+  {
+    std::ofstream(d / "incline.toml") << "[root]\ninitial_length_mm = 2\n[growth]\nenabled = false\n[plane]\n"
+                                         "alpha_deg = 80\n[adhesion]\nenabled = false\n[load]\nbase = \"free\"\n"
+                                         "gravity = true\n[friction]\nenabled = true\nmu_static = 0.01\n"
+                                         "mu_kinetic = 0.008\n";
+  }
+  const std::string scene = (d / "incline.toml").string();
+  // cot(80 deg) = 0.176
+  for (const char* k : {"dynamic", "newton"}) {
+    const std::string kind = k;
+    INFO(kind);
+    const std::string set = " --set solver.kind=" + kind + " --quiet --out ";
+    for (const char* f : {"friction.enabled=true", "friction.enabled=false"}) {
+      const std::string friction = f;
+      INFO(friction);
+      const Result r = run("run " + scene + " --set " + friction + set + (d / (kind + friction)).string());
+      CHECK(r.code == 1);
+      CHECK(std::regex_search(r.out, std::regex(R"(node \d+ slides: no static equilibrium)")));
+      CHECK(r.out.find("did not reach equilibrium in") == std::string::npos);  // the slide check, not the cap
+    }
+    const Result s = run("run " + scene + " --set friction.mu_static=0.5 --set friction.mu_kinetic=0.4" + set +
+                         (d / kind).string());
+    CHECK(s.code == 0);
+    CHECK(fs::exists(d / kind / "summary.json"));
+  }
+  fs::remove_all(d);
+}

@@ -49,7 +49,9 @@ struct SolverOptions {
   Damping damping = Damping::Fire;
   double viscousRate = 2e4;       // nu for Damping::Viscous [1/s]
   double cfl = 0.9;               // fraction of the stability limit used for dt (physical masses)
-  double forceTol = 1e-4;         // residual force / (B1/Lref^2), residual torque / (B1/Lref)
+  double forceTol = 1e-4;         // residual force and couple relative to the load scale of
+                                  // equilibriumTolerance (below): B1/Lref^2 and B1/Lref, or the applied
+                                  // loads where they are smaller
   double speedTol = 1e-5;         // max node displacement per sub-step / R, and rotation per sub-step [rad]
   long maxSubsteps = 2000000;     // cap per relaxation; hitting it is an error
   double lengthScale = 0.0;       // Lref [m]; 0 means the rod's rest length (set by completeModel)
@@ -179,6 +181,33 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
 // 3b + c - 3 b0 for block b (node i: b = 2i, element i: b = 2i + 1), b0 the first free block
 void assembleStiffness(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
                        RelaxWorkspace& ws, NewtonWorkspace& nw, int firstFreeNode);
+
+// The equilibrium tolerance of both solvers (tolerance.cpp): the largest residual force on a free node
+// and couple on a free element that count as equilibrium. With F the load scale,
+//   force = forceTol * F,   couple = forceTol * F * Lref,
+//   F = B1/Lref^2                              without applied loads, or when they are at least that,
+//   F = max(A, kResolvableLoad * B1/Lref^2)    when the applied loads A are smaller,
+// A the largest applied load per node (appliedLoadScale: the weight lumped to a free node, the tip
+// force, the tip couple / Lref). B1/Lref^2 is the scale of the forces that growth and tropism make
+// (intrinsic curvature over the growth zone Lref); a residual below 1e-4 of it resolves them, but a load
+// far below it is not seen at all: a free 2 mm rod's weight pulls each node down a plate at 80 degrees
+// with 3e-9 N against a tolerance of 9.8e-8 N, so the rod "converged" unmoved. Contact (plate, self,
+// obstacles), friction and adhesion are reactions: in equilibrium they are bounded by the elastic and
+// applied loads, so they set no scale of their own; taken as a floor of the tolerance, a penalty's
+// overshoot away from equilibrium would loosen it (circular), taken as a bound, a grazing contact would
+// make it vanish.
+struct EquilibriumTolerance {
+  double force = 0;   // [N]
+  double couple = 0;  // [N m]
+};
+EquilibriumTolerance equilibriumTolerance(const RodParams& p, const Environment& env, const SolverOptions& opt,
+                                          const RodState& s, int firstFreeNode = 0);
+// A [N]: the largest of the tip force, the tip couple / Lref and the weight on nodes firstFreeNode.. n
+double appliedLoadScale(const RodParams& p, const Environment& env, const RodState& s, double Lref,
+                        int firstFreeNode = 0);
+// loads below this fraction of B1/Lref^2 are resolved only to it: the force evaluation's round-off
+// (stretch stiffness EA/l times the last bit of a node position) is ~1e-11 B1/Lref^2 for the paper's root
+inline constexpr double kResolvableLoad = 1e-6;
 
 // a node that moves more than this many Lref within one relaxation is sliding away: no static
 // equilibrium (MODEL.md section 11). A clamped rod's node moves at most twice its arc length; a growing

@@ -181,11 +181,11 @@ DynamicRelaxation::DynamicRelaxation(const RodParams& p, const Environment& env,
   reorthonormalise(s);
   s.v.setZero();
   s.w.setZero();
-  // tolerances from the rod's own scale: B1 / Lref^2 for forces, B1 / Lref for couples
-  const double B1 = p.bendStiffness().x();
+  // tolerances relative to the rod's elastic scale and the applied loads (relax.hpp: equilibriumTolerance)
   const double Lref = opt.lengthScale > 0.0 ? opt.lengthScale : s.restLength();
-  ftol2_ = std::pow(opt.forceTol * B1 / (Lref * Lref), 2);
-  mtol2_ = std::pow(opt.forceTol * B1 / Lref, 2);
+  const EquilibriumTolerance tol = equilibriumTolerance(p, env, opt, s, free_);
+  ftol2_ = std::pow(tol.force, 2);
+  mtol2_ = std::pow(tol.couple, 2);
   xtol_ = opt.speedTol * p.radius;  // displacement per sub-step [m]
   rtol_ = opt.speedTol;             // rotation per sub-step [rad]
   dtMax_ = setMasses(p, env, opt, s, ws);

@@ -473,10 +473,10 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
   // the sparse pattern and pivots carry over while the unknowns stay as many (a checkpoint holds them:
   // same bytes on resume); measured on a coiling root: 1653 -> 359 symbolic analyses and full LUs
   nw.sparse.beginRelaxation(ns.w.dofs());
-  const double B1 = p.bendStiffness().x();
-  const double Lref = opt.lengthScale > 0.0 ? opt.lengthScale : s.restLength();
-  ns.ftol = opt.forceTol * B1 / (Lref * Lref);
-  ns.mtol = opt.forceTol * B1 / Lref;
+  // the explicit solver's tolerances (relax.hpp: equilibriumTolerance), over the window's nodes
+  const EquilibriumTolerance tol = equilibriumTolerance(p, env, opt, s, firstFreeNode);
+  ns.ftol = tol.force;
+  ns.mtol = tol.couple;
   const int N = ns.w.dofs();
   RelaxResult res;
   nw.firstFreeNode = firstFreeNode;

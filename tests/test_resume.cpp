@@ -46,13 +46,22 @@ std::string stripWall(std::string s) {
   return s;
 }
 
+// the run marker without its line for summary.json (whose size follows the wall time)
+std::string stripSummarySize(std::string s) {
+  const auto p = s.find("file summary.json ");
+  if (p != std::string::npos) s.erase(p, s.find('\n', p) + 1 - p);
+  return s;
+}
+
 // every file below dir (relative path -> bytes)
 std::map<std::string, std::string> files(const fs::path& dir) {
   std::map<std::string, std::string> out;
   for (const auto& e : fs::recursive_directory_iterator(dir))
     if (e.is_regular_file()) {
       const std::string rel = fs::relative(e.path(), dir).string();
-      out[rel] = rel == "summary.json" ? stripWall(slurp(e.path())) : slurp(e.path());
+      out[rel] = rel == "summary.json"   ? stripWall(slurp(e.path()))
+                 : rel == ".rootsim-run" ? stripSummarySize(slurp(e.path()))
+                                         : slurp(e.path());
     }
   return out;
 }

@@ -1,0 +1,410 @@
+// The write rule (write_rule.hpp) through every command that writes, as a careless or hostile user
+// would meet it: the run's own data, a user's file, a device, a FIFO, a symbolic link, a user's folder,
+// the working folder, rootsim's own earlier output with and without --force, a second process, a killed
+// one. Each case runs the rootsim binary; the cases that draw pictures are in render/test_write_render.cpp.
+#include <doctest/doctest.h>
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/mount.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "run_rootsim.hpp"
+#include "test_files.hpp"
+
+namespace fs = std::filesystem;
+
+namespace {
+using rootsim::test::Result;
+using rootsim::test::run;
+using rootsim::test::slurp;
+
+fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("write", name); }
+
+const std::string kScene = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2b_waving.toml";
+// a run of a few seconds' hundredths: 10 growth steps, coarse elements
+const std::string kShort = " --set growth.steps=10 --set root.element_length_mm=0.1 --quiet";
+
+std::string q(const fs::path& p) { return "'" + p.string() + "'"; }
+
+// a small finished run directory
+fs::path makeRun(const fs::path& d, const std::string& name = "r") {
+  const fs::path r = d / name;
+  const Result res = run("run " + kScene + kShort + " --out " + q(r));
+  REQUIRE(res.code == 0);
+  return r;
+}
+
+// every file below dir with its bytes
+std::vector<std::pair<std::string, std::string>> snapshot(const fs::path& dir) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& e : fs::recursive_directory_iterator(dir))
+    if (e.is_regular_file()) out.emplace_back(fs::relative(e.path(), dir).string(), slurp(e.path()));
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+// this process holds the lock of an output path, as a second rootsim process would
+struct HeldLock {
+  int fd = -1;
+  explicit HeldLock(const fs::path& out) {
+    const fs::path a = fs::absolute(out).lexically_normal();
+    const fs::path file = a.parent_path() / ("." + a.filename().string() + ".rootsim-lock");
+    fs::create_directories(file.parent_path());
+    fd = ::open(file.c_str(), O_RDWR | O_CREAT, 0644);
+    REQUIRE(fd >= 0);
+    REQUIRE(::flock(fd, LOCK_EX | LOCK_NB) == 0);
+    const std::string text = "rootsim lock " + std::to_string(::getpid()) + "\n";
+    REQUIRE(::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size()));
+  }
+  ~HeldLock() { ::close(fd); }
+};
+
+void checkRefused(const Result& r, const std::string& what) {
+  INFO(r.out);
+  CHECK(r.code == 2);
+  CHECK(r.out.find(what) != std::string::npos);
+}
+
+const std::string kSweep = R"([sweep]
+scene = "base.toml"
+[grid]
+"plane.alpha_deg" = [35.7, 40.0]
+[set]
+"growth.steps" = 10
+"root.element_length_mm" = 0.1
+)";
+
+// a sweep file beside a copy of the base scene
+fs::path makeSweep(const fs::path& d) {
+  fs::copy_file(kScene, d / "base.toml", fs::copy_options::overwrite_existing);
+  std::ofstream(d / "sweep.toml") << kSweep;
+  return d / "sweep.toml";
+}
+}  // namespace
+
+TEST_CASE("render and montage never write over a run's own data, nor into or onto a run directory they read") {
+  const fs::path d = scratch("own_data");
+  const fs::path r = makeRun(d), r2 = makeRun(d, "r2");
+  const auto before = snapshot(r);
+  for (const char* f : {"trajectory.bin", "scene.toml", "summary.json", ".rootsim-run", "vtk/step_000000.vtp"}) {
+    INFO(f);
+    checkRefused(run("render " + q(r) + " --quiet --mp4 " + q(r / f)), "which this command reads");
+    checkRefused(run("render " + q(r) + " --quiet --final-png " + q(r / f)), "which this command reads");
+    checkRefused(run("montage " + q(r) + " " + q(r2) + " --quiet --mp4 " + q(r / f)), "which this command reads");
+  }
+  // the run directory itself, and a frame folder inside it
+  checkRefused(run("render " + q(r) + " --quiet --mp4 " + q(r)), "is " + r.string());
+  checkRefused(run("render " + q(r) + " --quiet --png-dir " + q(r / "frames")), "which this command reads");
+  CHECK(snapshot(r) == before);
+  CHECK(!fs::exists(fs::path(r.string() + ".partial")));
+  CHECK(!fs::exists(r / "frames"));
+  fs::remove_all(d);
+}
+
+TEST_CASE("a user's file, a device, a FIFO or a symbolic link as an output: refused, untouched") {
+  const fs::path d = scratch("foreign_file");
+  const fs::path r = makeRun(d);
+  std::ofstream(d / "notes.txt") << "my notes\n";
+  REQUIRE(::mkfifo((d / "fifo").c_str(), 0644) == 0);
+  fs::create_symlink(d / "notes.txt", d / "link.mp4");
+  for (const std::string flag : {"--mp4", "--final-png"}) {
+    INFO(flag);
+    checkRefused(run("render " + q(r) + " --quiet " + flag + " " + q(d / "notes.txt")), "was not written by rootsim");
+    checkRefused(run("render " + q(r) + " --quiet " + flag + " " + q(d / "fifo")), "is a FIFO");
+    checkRefused(run("render " + q(r) + " --quiet " + flag + " " + q(d / "link.mp4")), "is a symbolic link");
+    checkRefused(run("render " + q(r) + " --quiet " + flag + " /dev/null --force"), "is a device");
+  }
+  checkRefused(run("montage " + q(r) + " --quiet --force --mp4 " + q(d / "notes.txt")), "was not written by rootsim");
+  checkRefused(run("montage " + q(r) + " --quiet --mp4 " + q(d / "fifo")), "is a FIFO");
+  // --force never makes a user's file rootsim's
+  checkRefused(run("render " + q(r) + " --quiet --force --mp4 " + q(d / "notes.txt")), "was not written by rootsim");
+  CHECK(slurp(d / "notes.txt") == "my notes\n");
+  CHECK(fs::is_fifo(d / "fifo"));
+  CHECK(fs::is_symlink(d / "link.mp4"));
+  struct stat st {};
+  REQUIRE(::stat("/dev/null", &st) == 0);
+  CHECK(S_ISCHR(st.st_mode));
+  fs::remove_all(d);
+}
+
+TEST_CASE("--png-dir: a user's folder, the root folder, a folder holding a user's frame are refused") {
+  const fs::path d = scratch("foreign_frames");
+  const fs::path r = makeRun(d);
+  fs::create_directories(d / "mine");
+  std::ofstream(d / "mine" / "frame_00003.png") << "my picture";
+  for (const char* cmd : {"render", "montage"}) {
+    INFO(cmd);
+    checkRefused(run(std::string(cmd) + " " + q(r) + " --quiet --force --png-dir " + q(d / "mine")), "not a rootsim frame folder");
+    checkRefused(run(std::string(cmd) + " " + q(r) + " --quiet --force --png-dir /"), "not a name of its own");
+  }
+  CHECK(slurp(d / "mine" / "frame_00003.png") == "my picture");
+  CHECK(!fs::exists("/frame_00000.png"));
+  // a folder of rootsim's frames with a user's file added is no longer rootsim's alone
+  fs::create_directories(d / "frames");
+  std::ofstream(d / "frames" / ".rootsim-frames") << "rootsim rootsim frame folder\n";
+  std::ofstream(d / "frames" / "notes.txt") << "mine";
+  checkRefused(run("render " + q(r) + " --quiet --force --png-dir " + q(d / "frames")), "holds notes.txt");
+  CHECK(slurp(d / "frames" / "notes.txt") == "mine");
+  fs::remove_all(d);
+}
+
+TEST_CASE("run: rootsim's working names, empty and too long --out names are refused with their reason") {
+  const fs::path d = scratch("names");
+  for (const char* suffix : {".partial", ".incomplete", ".replaced", ".tmp"})
+    checkRefused(run("run " + kScene + kShort + " --out " + q(d / (std::string("X") + suffix))), "rootsim's working names");
+  checkRefused(run("run " + kScene + kShort + " --out ''"), "--out: empty value");
+  checkRefused(run("sweep " + q(makeSweep(d)) + " --quiet --out ''"), "--out: empty value");
+  checkRefused(run("figure fig2b --quick --quiet --out ''"), "--out: empty value");
+  // 256 bytes: the message says so (it once said "contains ../base.toml")
+  checkRefused(run("run " + kScene + kShort + " --out " + q(d / std::string(256, 'a'))), "its last part is 256 bytes");
+  // 246 bytes: no room for DIR.incomplete; a failing run once stayed DIR.partial without a word
+  const Result r = run("run " + kScene + kShort + " --set solver.max_substeps=1 --set solver.kind=dynamic --out " +
+                       q(d / std::string(246, 'b')));
+  checkRefused(r, "at most 241");
+  for (const auto& e : fs::directory_iterator(d)) CHECK(e.path().filename().string().rfind("bbb", 0) != 0);
+  fs::remove_all(d);
+}
+
+TEST_CASE("run --resume never deletes a finished run left at DIR.partial, nor a failed DIR.incomplete without --force") {
+  const fs::path d = scratch("keep");
+  // a finished run moved to X.partial by hand (a kill between its last write and the rename looks the same)
+  const fs::path x = makeRun(d, "X");
+  fs::rename(x, d / "X.partial");
+  const auto before = snapshot(d / "X.partial");
+  checkRefused(run("run " + kScene + kShort + " --resume --out " + q(d / "X")), "holds a finished run without a checkpoint");
+  CHECK(snapshot(d / "X.partial") == before);
+  CHECK(!fs::exists(d / "X"));
+  // a failed run: Z.incomplete with its ERROR.txt
+  const Result fail = run("run " + kScene + kShort + " --set solver.kind=dynamic --set solver.max_substeps=1 --out " + q(d / "Z"));
+  REQUIRE(fail.code == 1);
+  REQUIRE(fs::exists(d / "Z.incomplete" / "ERROR.txt"));
+  const std::string error = slurp(d / "Z.incomplete" / "ERROR.txt");
+  checkRefused(run("run " + kScene + kShort + " --out " + q(d / "Z")), "holds a failed run");
+  CHECK(slurp(d / "Z.incomplete" / "ERROR.txt") == error);
+  // with --force the new run replaces it
+  CHECK(run("run " + kScene + kShort + " --force --out " + q(d / "Z")).code == 0);
+  CHECK(fs::exists(d / "Z" / "summary.json"));
+  CHECK(!fs::exists(d / "Z.incomplete"));
+  fs::remove_all(d);
+}
+
+TEST_CASE("a second process on a run, sweep or figure folder being written is refused naming the holder's PID") {
+  const fs::path d = scratch("locked");
+  const std::string pid = "PID " + std::to_string(::getpid());
+  {
+    const HeldLock lock(d / "C");
+    checkRefused(run("run " + kScene + kShort + " --out " + q(d / "C")), pid);
+    checkRefused(run("run " + kScene + kShort + " --resume --out " + q(d / "C")), pid);
+    checkRefused(run("run " + kScene + kShort + " --force --out " + q(d / "C")), pid);
+    CHECK(!fs::exists(d / "C"));
+    CHECK(!fs::exists(d / "C.partial"));
+  }
+  const fs::path r = makeRun(d);
+  {
+    const HeldLock lock(d / "m.mp4");
+    checkRefused(run("render " + q(r) + " --quiet --mp4 " + q(d / "m.mp4")), pid);
+  }
+  {
+    const HeldLock lock(r);
+    checkRefused(run("modes " + q(r) + " --quiet"), pid);
+  }
+  {
+    const HeldLock lock(d / "figs");
+    checkRefused(run("figure fig2b --quick --quiet --out " + q(d / "figs")), pid);
+  }
+  const fs::path sw = makeSweep(d);
+  REQUIRE(run("sweep " + q(sw) + " --quiet --out " + q(d / "S") + " --shard 1/2").code == 0);
+  {
+    // one shard is locked: the same shard again is refused, another shard runs
+    const HeldLock lock(d / "S" / "shard-2-of-2");
+    checkRefused(run("sweep " + q(sw) + " --quiet --out " + q(d / "S") + " --shard 2/2"), pid);
+  }
+  fs::remove_all(d);
+}
+
+TEST_CASE("a killed holder never blocks: its lock file left behind is taken over and removed") {
+  const fs::path d = scratch("stale_lock");
+  // what a SIGKILLed rootsim leaves: the lock file with its (now dead) PID, no lock held
+  std::ofstream(d / ".C.rootsim-lock") << "rootsim lock 999999\n";
+  const Result r = run("run " + kScene + kShort + " --out " + q(d / "C"));
+  INFO(r.out);
+  CHECK(r.code == 0);
+  CHECK(fs::exists(d / "C" / "summary.json"));
+  CHECK(!fs::exists(d / ".C.rootsim-lock"));
+  fs::remove_all(d);
+}
+
+TEST_CASE("two real processes on one run directory: the second is refused, the first completes whole") {
+  const fs::path d = scratch("two_runs");
+  // a run of a few seconds (the explicit solver), in the background
+  const std::string slow = " --set growth.steps=300 --set solver.kind=dynamic --quiet --out " + q(d / "C");
+  const std::string cmd = std::string(ROOTSIM_BINARY) + " run " + kScene + slow + " > " + q(d / "first.log") +
+                          " 2>&1; echo $? > " + q(d / "first.rc");
+  REQUIRE(std::system(("(" + cmd + ") &").c_str()) == 0);
+  for (int i = 0; i < 500 && !fs::exists(d / "C.partial" / "scene.toml"); ++i) ::usleep(10000);
+  REQUIRE(fs::exists(d / "C.partial"));
+  for (const char* extra : {" --resume", " --force"}) {
+    const Result second = run("run " + kScene + slow + extra);
+    // the first must still be running for the check to mean anything
+    REQUIRE_MESSAGE(!fs::exists(d / "first.rc"), "the first run ended before the second looked: make it longer");
+    checkRefused(second, "being written by another rootsim process");
+  }
+  for (int i = 0; i < 6000 && !fs::exists(d / "first.rc"); ++i) ::usleep(10000);
+  CHECK(slurp(d / "first.rc") == "0\n");
+  CHECK(fs::exists(d / "C" / "summary.json"));
+  CHECK(!fs::exists(d / "C.partial"));
+  fs::remove_all(d);
+}
+
+TEST_CASE("sweep: a user's folder, the working folder and its parent are refused; rootsim's own folder resumes") {
+  const fs::path d = scratch("sweep_out");
+  const fs::path sw = makeSweep(d);
+  fs::create_directories(d / "myproj");
+  std::ofstream(d / "myproj" / "table.csv") << "my,table\n";
+  checkRefused(run("sweep " + q(sw) + " --quiet --out " + q(d / "myproj")), "not a rootsim sweep folder");
+  CHECK(slurp(d / "myproj" / "table.csv") == "my,table\n");
+  checkRefused(run("--version >/dev/null; cd " + q(d) + " && " + ROOTSIM_BINARY + " sweep sweep.toml --quiet --out ."), "not a name of its own");
+  checkRefused(run("--version >/dev/null; cd " + q(d / "myproj") + " && " + ROOTSIM_BINARY + " sweep ../sweep.toml --quiet --out .."), "not a name of its own");
+  // the folder holding the sweep file itself, by its name
+  checkRefused(run("sweep " + q(sw) + " --quiet --out " + q(d)), "contains");
+  for (const auto& e : fs::directory_iterator(d)) CHECK(e.path().filename().string().rfind("run_", 0) != 0);
+  CHECK(!fs::exists(d / "table.csv"));
+  // its own folder: the second sweep finds both points complete
+  REQUIRE(run("sweep " + q(sw) + " --quiet --out " + q(d / "S")).code == 0);
+  const Result again = run("sweep " + q(sw) + " --out " + q(d / "S"));
+  CHECK(again.code == 0);
+  CHECK(again.out.find("0 ran, 2 already complete") != std::string::npos);
+  fs::remove_all(d);
+}
+
+TEST_CASE("sweep: a changed base scene or a damaged point is not taken as complete; --force reruns them") {
+  const fs::path d = scratch("sweep_stale");
+  const fs::path sw = makeSweep(d);
+  REQUIRE(run("sweep " + q(sw) + " --quiet --out " + q(d / "S")).code == 0);
+  const std::string table = slurp(d / "S" / "table.csv");
+  // the base scene changes (beta 0.2 -> 0.3): both points are stale
+  std::string base = slurp(d / "base.toml");
+  const auto at = base.find("\nbeta = 0.2");
+  REQUIRE(at != std::string::npos);
+  base.replace(at, 11, "\nbeta = 0.3");
+  std::ofstream(d / "base.toml") << base;
+  checkRefused(run("sweep " + q(sw) + " --quiet --out " + q(d / "S")), "2 point(s) hold runs that cannot be kept");
+  CHECK(slurp(d / "S" / "table.csv") == table);
+  const Result forced = run("sweep " + q(sw) + " --out " + q(d / "S") + " --force");
+  CHECK(forced.code == 0);
+  CHECK(forced.out.find("2 point(s) rerun") != std::string::npos);
+  CHECK(forced.out.find("2 ran, 0 already complete") != std::string::npos);
+  CHECK(slurp(d / "S" / "table.csv") != table);
+  // a point whose time series was cut short (a second process, a full disk) is not complete
+  fs::path point;
+  for (const auto& e : fs::directory_iterator(d / "S"))
+    if (e.path().filename().string().rfind("run_0000", 0) == 0) point = e.path();
+  REQUIRE(!point.empty());
+  fs::resize_file(point / "timeseries.csv", 100);
+  checkRefused(run("sweep " + q(sw) + " --quiet --out " + q(d / "S")), "timeseries.csv holds 100 bytes");
+  CHECK(run("sweep " + q(sw) + " --quiet --force --out " + q(d / "S")).code == 0);
+  CHECK(fs::file_size(point / "timeseries.csv") > 100);
+  fs::remove_all(d);
+}
+
+TEST_CASE("the same sweep started twice into one folder: the second is refused, the first ends whole") {
+  const fs::path d = scratch("sweep_twice");
+  fs::copy_file(kScene, d / "base.toml");
+  // four points of a few seconds each (the explicit solver)
+  std::ofstream(d / "sweep.toml") << "[sweep]\nscene = \"base.toml\"\n[grid]\n\"plane.alpha_deg\" = [30.0, 35.0, 40.0, 45.0]\n"
+                                     "[set]\n\"growth.steps\" = 150\n\"solver.kind\" = \"dynamic\"\n";
+  const std::string args = " sweep " + q(d / "sweep.toml") + " --quiet --out " + q(d / "S");
+  REQUIRE(std::system(("(" + std::string(ROOTSIM_BINARY) + args + " > " + q(d / "first.log") + " 2>&1; echo $? > " +
+                       q(d / "first.rc") + ") &").c_str()) == 0);
+  // until the first sweep's first point is being written
+  auto started = [&] {
+    std::error_code ec;
+    for (const auto& e : fs::directory_iterator(d / "S", ec))
+      if (e.path().extension() == ".partial") return true;
+    return false;
+  };
+  for (int i = 0; i < 1000 && !started(); ++i) ::usleep(10000);
+  const Result second = run(args);
+  REQUIRE_MESSAGE(!fs::exists(d / "first.rc"), "the first sweep ended before the second looked: make it longer");
+  checkRefused(second, "being written by another rootsim process");
+  for (int i = 0; i < 12000 && !fs::exists(d / "first.rc"); ++i) ::usleep(10000);
+  CHECK(slurp(d / "first.rc") == "0\n");
+  const Result rerun = run(" sweep " + q(d / "sweep.toml") + " --out " + q(d / "S"));
+  CHECK(rerun.code == 0);
+  CHECK(rerun.out.find("0 ran, 4 already complete") != std::string::npos);
+  fs::remove_all(d);
+}
+
+TEST_CASE("figure: a user's folder or a user's panel file is refused; rootsim's panels are replaced only with --force") {
+  const fs::path d = scratch("figure_out");
+  fs::create_directories(d / "figs");
+  std::ofstream(d / "figs" / "fig2b.png") << "my figure";
+  checkRefused(run("figure fig2b --quick --quiet --out " + q(d / "figs")), "not a rootsim figure folder");
+  fs::create_directories(d / "figs2");
+  std::ofstream(d / "figs2" / "report.md") << "my report";
+  checkRefused(run("figure all --quick --quiet --force --out " + q(d / "figs2")), "not a rootsim figure folder");
+  CHECK(slurp(d / "figs" / "fig2b.png") == "my figure");
+  CHECK(slurp(d / "figs2" / "report.md") == "my report");
+  checkRefused(run("--version >/dev/null; cd " + q(d) + " && " + ROOTSIM_BINARY + " figure fig2b --quick --quiet --out ."), "not a name of its own");
+  fs::remove_all(d);
+}
+
+TEST_CASE("modes replaces its own modes.csv only with --force") {
+  const fs::path d = scratch("modes_again");
+  const fs::path r = makeRun(d);
+  REQUIRE(run("modes " + q(r) + " --quiet").code == 0);
+  const std::string csv = slurp(r / "modes.csv");
+  checkRefused(run("modes " + q(r) + " --quiet"), "pass --force to replace it");
+  CHECK(run("modes " + q(r) + " --quiet --force").code == 0);
+  CHECK(slurp(r / "modes.csv") == csv);
+  fs::remove_all(d);
+}
+
+TEST_CASE("a read-only earlier run is replaced whole with --force (no run.replaced left behind)") {
+  const fs::path d = scratch("readonly");
+  // as an ordinary user: root may remove read-only files anyway, which would hide the defect
+  fs::permissions(d, fs::perms::all);
+  const std::string asUser = "setpriv --reuid=65534 --regid=65534 --clear-groups ";
+  if (::geteuid() == 0 && std::system("command -v setpriv >/dev/null") != 0) FAIL("setpriv (util-linux) is needed");
+  const std::string prefix = ::geteuid() == 0 ? asUser : "";
+  const std::string rs = std::string(ROOTSIM_BINARY) + " run " + kScene + kShort + " --out " + q(d / "run");
+  REQUIRE(run("--version >/dev/null; " + prefix + rs).code == 0);
+  REQUIRE(run("--version >/dev/null; " + prefix + "chmod -R a-w " + q(d / "run")).code == 0);
+  const Result r = run("--version >/dev/null; " + prefix + rs + " --force");
+  INFO(r.out);
+  CHECK(r.code == 0);
+  CHECK(fs::exists(d / "run" / "summary.json"));
+  CHECK(!fs::exists(d / "run.replaced"));
+  std::system(("chmod -R u+w " + q(d)).c_str());
+  fs::remove_all(d);
+}
+
+TEST_CASE("a full disk before the run starts is a failed run (exit 1), not bad input") {
+  const fs::path d = scratch("full_before");
+  const fs::path mnt = d / "mnt";
+  fs::create_directories(mnt);
+  if (::geteuid() != 0 || ::mount("tmpfs", mnt.c_str(), "tmpfs", 0, "size=64k") != 0)
+    FAIL("mounting a 64 KiB tmpfs needs root (CI runs as root)");
+  // fill it
+  {
+    std::ofstream f(mnt / "fill", std::ios::binary);
+    const std::string block(4096, 'x');
+    for (int i = 0; i < 64 && f; ++i) f << block;
+  }
+  const Result r = run("run " + kScene + kShort + " --out " + q(mnt / "out"));
+  INFO(r.out);
+  CHECK(r.code == 1);
+  CHECK(r.out.find("No space left on device") != std::string::npos);
+  CHECK(!fs::exists(mnt / "out"));
+  ::umount(mnt.c_str());
+  fs::remove_all(d);
+}

@@ -658,9 +658,9 @@ class Simulation:
         """The rod's state now, as copies (SI units): arrays that stay as they are after later steps.
 
         ``copy`` is accepted for compatibility: the arrays are always copies (views into the rod's memory
-        would dangle after the next ``step()``, which reallocates it). Copying is cheap: 14 us for the
-        fig2b root of 42 elements, 29 us for its 452 elements after 3000 steps, against 0.7-1.4 ms for
-        one of its growth steps."""
+        would dangle after the next ``step()``, which reallocates it). Copying is cheap: 14-17 us for the
+        fig2b root of 42 elements, 18-29 us for its 452 elements after 3000 steps, against 0.7-1.4 ms
+        for one of its growth steps."""
         return State(**self._sim.state())
 
     def snapshot(self) -> Frame:

@@ -356,11 +356,6 @@ int renderRunCommand(const RenderOptions& o) {
   const bool asked = !o.mp4.empty() || !o.pngDir.empty() || !o.finalPng.empty();
   job.mp4 = asked ? o.mp4 : (runDir / "movie.mp4").string();
   const fs::path finalTop = asked ? fs::path(o.finalPng) : runDir / "final_top.png";
-  // the write rule: the run directory is read and receives only its own movie.mp4 and final_top.png
-  WriteRule rule;
-  rule.force = o.force;
-  rule.inputs = {WriteInput{runDir, {"movie.mp4", "final_top.png"}}};
-  const Outputs outs = claimOutputs(job.mp4, finalTop, o.pngDir, rule);
   job.view.whiskers = o.whiskers;
   if (o.transparent) {
     // PNG frames only: MP4 has no alpha channel
@@ -387,6 +382,12 @@ int renderRunCommand(const RenderOptions& o) {
   if (autoSized) std::tie(job.view.width, job.view.height) = autoSizeFor(snaps, info, look);
   applyLook(look, runDir, snaps, job);
   checkFieldAgainstPlate(look, fitPlateMm(snaps, info, job));
+  // the write rule, once the flags and the run are known good: the run directory is read and receives
+  // only its own movie.mp4 and final_top.png
+  WriteRule rule;
+  rule.force = o.force;
+  rule.inputs = {WriteInput{runDir, {"movie.mp4", "final_top.png"}}};
+  const Outputs outs = claimOutputs(job.mp4, finalTop, o.pngDir, rule);
 
   // every check passed: the frame folder is made now (DIR.partial, renamed to DIR when all are written)
   std::optional<StagedFolder> frames;
@@ -495,11 +496,6 @@ int montageRunsCommand(const MontageOptions& o) {
   if (!parseColourField(o.colorBy, job.view.colourBy))
     throw SceneError("--color-by " + o.colorBy + ": expected one of " + colourFieldNames());
   job.view.shadows = o.shadows;
-  // the write rule: the run directories are read, never written
-  WriteRule rule;
-  rule.force = o.force;
-  for (const fs::path& d : dirs) rule.inputs.push_back(WriteInput{d, {}});
-  const Outputs outs = claimOutputs(o.mp4, fs::path(), o.pngDir, rule);
   job.mp4 = o.mp4;
   std::vector<std::string> labels;
   if (!o.labels.empty()) {
@@ -524,6 +520,11 @@ int montageRunsCommand(const MontageOptions& o) {
       throw SceneError("--color-by contact: " + trajectoryPath(dirs[i]).string() + " has no plate_force_n column");
     runs.push_back(std::move(r));
   }
+  // the write rule, once the flags and the runs are known good: the run directories are read, never written
+  WriteRule rule;
+  rule.force = o.force;
+  for (const fs::path& d : dirs) rule.inputs.push_back(WriteInput{d, {}});
+  const Outputs outs = claimOutputs(o.mp4, fs::path(), o.pngDir, rule);
   std::optional<StagedFolder> frames;
   if (!o.pngDir.empty()) {
     frames.emplace(o.pngDir, framesFolder(), rule, "--png-dir");

@@ -419,6 +419,7 @@ TEST_CASE("render reads trajectory.bin and draws the same frames as from traject
   }
   int frames = 0;
   for (const auto& e : fs::directory_iterator(d / "frames_csv")) {
+    if (e.path().extension() != ".png") continue;  // the folder's marker, .rootsim-frames
     CAPTURE(e.path().filename().string());
     auto slurp = [](const fs::path& p) {
       std::ifstream in(p, std::ios::binary);

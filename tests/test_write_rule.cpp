@@ -265,7 +265,7 @@ TEST_CASE("two real processes on one run directory: the second is refused, the f
   fs::remove_all(d);
 }
 
-TEST_CASE("sweep: a user's folder, the working folder and its parent are refused; rootsim's own folder resumes") {
+TEST_CASE("sweep: a user's folder, the working folder and its parent are refused - rootsim's own folder resumes") {
   const fs::path d = scratch("sweep_out");
   const fs::path sw = makeSweep(d);
   fs::create_directories(d / "myproj");
@@ -286,7 +286,7 @@ TEST_CASE("sweep: a user's folder, the working folder and its parent are refused
   fs::remove_all(d);
 }
 
-TEST_CASE("sweep: a changed base scene or a damaged point is not taken as complete; --force reruns them") {
+TEST_CASE("sweep: a changed base scene or a damaged point is not taken as complete - --force reruns them") {
   const fs::path d = scratch("sweep_stale");
   const fs::path sw = makeSweep(d);
   REQUIRE(run("sweep " + q(sw) + " --quiet --out " + q(d / "S")).code == 0);
@@ -344,7 +344,7 @@ TEST_CASE("the same sweep started twice into one folder: the second is refused, 
   fs::remove_all(d);
 }
 
-TEST_CASE("figure: a user's folder or a user's panel file is refused; rootsim's panels are replaced only with --force") {
+TEST_CASE("figure: a user's folder or a user's panel file is refused - rootsim's panels are replaced only with --force") {
   const fs::path d = scratch("figure_out");
   fs::create_directories(d / "figs");
   std::ofstream(d / "figs" / "fig2b.png") << "my figure";

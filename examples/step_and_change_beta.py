@@ -36,7 +36,7 @@ for k in range(1, STEPS + 1):
     for name, sim in (("kept", kept), ("changed", changed)):
         rows[name].append(sim.step())
         if k % 100 == 0:
-            # the state as numpy views (no copy; valid until the next step): the tip in mm
+            # the state as numpy copies (they stay valid after later steps): the tip in mm
             tips[name].append(np.array(sim.state().positions[-1]) * 1e3)
 for name in rows:
     print(f"{name:8s}: theta_tip = {rows[name][-1]['theta_tip_deg']:7.2f} deg after {STEPS} steps, "

@@ -382,7 +382,7 @@ class Sweep:
 
 def sweep(sweep_file: Optional[PathLike] = None, *, scene: Union[Scene, PathLike, None] = None,
           grid: Optional[Mapping[str, Sequence[Value]]] = None, set: Optional[Mapping[str, Value]] = None,
-          out: Optional[PathLike] = None, jobs: int = 1, shard: Optional[str] = None) -> Sweep:
+          out: Optional[PathLike] = None, jobs: int = 1, shard: Optional[str] = None, force: bool = False) -> Sweep:
     """Runs a grid of scenes, as ``rootsim sweep``, and yields each point as it finishes.
 
     Either a sweep file (``rootsim.sweep("sweeps/fig3d_phase.toml", jobs=2)``) or the same in Python:
@@ -436,7 +436,7 @@ def sweep(sweep_file: Optional[PathLike] = None, *, scene: Union[Scene, PathLike
         tmp = tempfile.TemporaryDirectory(prefix="rootsim-")
         out = os.path.join(tmp.name, "sweep")
     grid_arrays = _grid_arrays(sweep_path)  # read before the C++ reads it
-    runner = _c._SweepRunner(sweep_path, os.fspath(out), int(jobs), k, n)
+    runner = _c._SweepRunner(sweep_path, os.fspath(out), int(jobs), k, n, bool(force))
     return Sweep(runner, os.fspath(out), tmp, keep, grid_arrays)
 
 
@@ -541,7 +541,7 @@ def render(run_dir: PathLike, *, mp4: Optional[PathLike] = None, png_dir: Option
            crf: int = 18, whiskers: bool = False, transparent: bool = False, overlays: bool = True,
            camera: str = "fit", field_mm: Optional[float] = None, inset: bool = False, color_by: str = "none",
            plot: Union[str, Sequence[str], None] = None, shadows: bool = False, shader_dir: Optional[PathLike] = None,
-           quiet: bool = True) -> List[pathlib.Path]:
+           force: bool = False, quiet: bool = True) -> List[pathlib.Path]:
     """Renders a saved run, as ``rootsim render RUN_DIR`` with the same options (the same C++ code).
 
     Writes only what is asked for: ``mp4`` (H.264 movie), ``png_dir`` (every frame as PNG), ``final_png``
@@ -549,7 +549,8 @@ def render(run_dir: PathLike, *, mp4: Optional[PathLike] = None, png_dir: Option
     view "top" | "3d"; size "WxH" (even) or "auto"; camera "fit" | "follow" (``field_mm`` wide);
     ``inset``; color_by none|curvature|twist|kappa0|stretch|contact; plot: any of theta_tip, Eb, Et, Wr,
     Tw (a list or "a,b"); ``shadows``; ``whiskers``; ``transparent`` (PNG frames only);
-    ``overlays=False`` is ``--no-overlays``. Returns the files and folders written.
+    ``overlays=False`` is ``--no-overlays``. An output that exists is replaced only if rootsim wrote it
+    and ``force=True`` (the command line's write rule). Returns the files and folders written.
     Bad options raise SceneError with the command line's message; render failures RunError.
     """
     if not _c.have_render:
@@ -557,10 +558,11 @@ def render(run_dir: PathLike, *, mp4: Optional[PathLike] = None, png_dir: Option
     if plot is not None and not isinstance(plot, str):
         plot = ",".join(plot)
     s = lambda p: "" if p is None else os.fspath(p)  # noqa: E731
-    _c.render_run(os.fspath(run_dir), s(mp4), s(png_dir), s(final_png), view, size, int(fps), int(crf),
-                  bool(whiskers), bool(transparent), bool(overlays), camera,
-                  None if field_mm is None else float(field_mm), bool(inset), color_by, plot or "",
-                  bool(shadows), s(shader_dir), bool(quiet))
+    _c.render_run(os.fspath(run_dir), dict(
+        mp4=s(mp4), png_dir=s(png_dir), final_png=s(final_png), view=view, size=size, fps=int(fps), crf=int(crf),
+        whiskers=bool(whiskers), transparent=bool(transparent), overlays=bool(overlays), camera=camera,
+        field_mm=None if field_mm is None else float(field_mm), inset=bool(inset), color_by=color_by,
+        plot=plot or "", shadows=bool(shadows), shader_dir=s(shader_dir), force=bool(force), quiet=bool(quiet)))
     if mp4 is None and png_dir is None and final_png is None:
         d = pathlib.Path(run_dir)
         return [d / "movie.mp4", d / "final_top.png"]

@@ -347,8 +347,10 @@ class PySimulation {
 
 class SweepRunner {
  public:
-  SweepRunner(const std::string& sweepFile, const std::string& out, int jobs, int shard, int shards) {
+  SweepRunner(const std::string& sweepFile, const std::string& out, int jobs, int shard, int shards, bool force) {
     plan_ = loadSweep(sweepFile);
+    opt_.force = force;
+    opt_.inputs = {sweepFile, plan_.scenePath};
     opt_.jobs = jobs;
     opt_.shard = shard;
     opt_.shards = shards;
@@ -526,8 +528,8 @@ PYBIND11_MODULE(_rootsim, m) {
       .def_property_readonly("scene", &PySimulation::scene, py::return_value_policy::copy);
 
   py::class_<SweepRunner>(m, "_SweepRunner")
-      .def(py::init<const std::string&, const std::string&, int, int, int>(), py::arg("sweep_file"), py::arg("out"),
-           py::arg("jobs"), py::arg("shard"), py::arg("shards"))
+      .def(py::init<const std::string&, const std::string&, int, int, int, bool>(), py::arg("sweep_file"),
+           py::arg("out"), py::arg("jobs"), py::arg("shard"), py::arg("shards"), py::arg("force"))
       .def("next", &SweepRunner::next)
       .def("cancel", &SweepRunner::cancel)
       .def("summary", &SweepRunner::summary);
@@ -537,38 +539,45 @@ PYBIND11_MODULE(_rootsim, m) {
   m.attr("have_render") = true;
   m.def(
       "render_run",
-      [](const std::string& runDir, const std::string& mp4, const std::string& pngDir, const std::string& finalPng,
-         const std::string& view, const std::string& size, int fps, int crf, bool whiskers, bool transparent,
-         bool overlays, const std::string& camera, py::object fieldMm, bool inset, const std::string& colorBy,
-         const std::string& plot, bool shadows, const std::string& shaderDir, bool quiet) {
+      // the options by name (rootsim.render's keywords, as the command line's flags): an unknown name or
+      // a value of the wrong type is a SceneError
+      [](const std::string& runDir, const py::dict& options) {
         cli::RenderOptions o;
         o.runDir = runDir;
-        o.mp4 = mp4;
-        o.pngDir = pngDir;
-        o.finalPng = finalPng;
-        o.view = view;
-        o.size = size;
-        o.fps = fps;
-        o.crf = crf;
-        o.whiskers = whiskers;
-        o.transparent = transparent;
-        o.noOverlays = !overlays;
-        o.look.camera = camera;
-        o.look.fieldGiven = !fieldMm.is_none();
-        if (o.look.fieldGiven) o.look.fieldMm = fieldMm.cast<double>();
-        o.look.inset = inset;
-        o.look.colorBy = colorBy;
-        o.look.plot = plot;
-        o.look.shadows = shadows;
-        o.shaderDir = shaderDir;
-        o.quiet = quiet;
+        for (const auto& [k, v] : options) {
+          const std::string key = py::str(k);
+          auto text = [&] { return v.is_none() ? std::string() : std::string(py::str(v)); };
+          try {
+            if (key == "mp4") o.mp4 = text();
+            else if (key == "png_dir") o.pngDir = text();
+            else if (key == "final_png") o.finalPng = text();
+            else if (key == "view") o.view = v.cast<std::string>();
+            else if (key == "size") o.size = v.cast<std::string>();
+            else if (key == "fps") o.fps = v.cast<int>();
+            else if (key == "crf") o.crf = v.cast<int>();
+            else if (key == "whiskers") o.whiskers = v.cast<bool>();
+            else if (key == "transparent") o.transparent = v.cast<bool>();
+            else if (key == "overlays") o.noOverlays = !v.cast<bool>();
+            else if (key == "camera") o.look.camera = v.cast<std::string>();
+            else if (key == "field_mm") {
+              o.look.fieldGiven = !v.is_none();
+              if (o.look.fieldGiven) o.look.fieldMm = v.cast<double>();
+            } else if (key == "inset") o.look.inset = v.cast<bool>();
+            else if (key == "color_by") o.look.colorBy = v.cast<std::string>();
+            else if (key == "plot") o.look.plot = text();
+            else if (key == "shadows") o.look.shadows = v.cast<bool>();
+            else if (key == "shader_dir") o.shaderDir = text();
+            else if (key == "force") o.force = v.cast<bool>();
+            else if (key == "quiet") o.quiet = v.cast<bool>();
+            else throw SceneError("render: unknown option " + key);
+          } catch (const py::cast_error&) {
+            throw SceneError("render: option " + key + " has the wrong type");
+          }
+        }
         py::gil_scoped_release nogil;
         cli::renderRunCommand(o);
       },
-      py::arg("run_dir"), py::arg("mp4"), py::arg("png_dir"), py::arg("final_png"), py::arg("view"), py::arg("size"),
-      py::arg("fps"), py::arg("crf"), py::arg("whiskers"), py::arg("transparent"), py::arg("overlays"),
-      py::arg("camera"), py::arg("field_mm"), py::arg("inset"), py::arg("color_by"), py::arg("plot"),
-      py::arg("shadows"), py::arg("shader_dir"), py::arg("quiet"));
+      py::arg("run_dir"), py::arg("options"));
 #else
   m.attr("have_render") = false;
 #endif

@@ -38,3 +38,28 @@ def test_bad_options_have_the_command_lines_messages(run_dir, tmp_path):
         with pytest.raises(ValueError) as e:
             rootsim.render(run_dir, final_png=tmp_path / "x.png", **kwargs)
         assert r.stderr.strip().splitlines()[-1] == "rootsim: error: " + str(e.value)
+
+
+def test_the_write_rule_holds_in_python(run_dir, tmp_path):
+    # a user's file is never replaced, force or not; rootsim's own picture only with force=True
+    mine = tmp_path / "mine.png"
+    mine.write_bytes(b"my picture")
+    for force in (False, True):
+        with pytest.raises(ValueError, match="was not written by rootsim"):
+            rootsim.render(run_dir, final_png=mine, size="128x128", force=force)
+    assert mine.read_bytes() == b"my picture"
+    ours = tmp_path / "ours.png"
+    rootsim.render(run_dir, final_png=ours, size="128x128")
+    with pytest.raises(ValueError, match="pass --force to replace it"):
+        rootsim.render(run_dir, final_png=ours, size="128x128")
+    rootsim.render(run_dir, final_png=ours, size="128x128", force=True)
+    # the run's own data is an input, never an output
+    before = (run_dir / "trajectory.bin").read_bytes()
+    with pytest.raises(ValueError, match="which this command reads"):
+        rootsim.render(run_dir, mp4=run_dir / "trajectory.bin", force=True)
+    assert (run_dir / "trajectory.bin").read_bytes() == before
+
+
+def test_render_options_are_named_not_positional(run_dir, tmp_path):
+    with pytest.raises(ValueError, match="unknown option colour"):
+        rootsim._rootsim.render_run(str(run_dir), {"final_png": str(tmp_path / "x.png"), "colour": "twist"})

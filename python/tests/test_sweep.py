@@ -87,3 +87,20 @@ def test_grid_value_text_is_read_as_a_number_when_the_file_cannot_say():
     # a typed array that disagrees with the text (the file changed since) gives way to the text
     assert _typed_grid(0, {"a": "20"}, {"a": [30]}) == {"a": 20}
     assert _typed_grid(1, {"a": "20", "b": "x"}, {"a": [20], "b": ["w", "x"]}) == {"a": 20, "b": "x"}
+
+
+def test_the_write_rule_holds_for_python_sweeps(tmp_path):
+    mine = tmp_path / "myproj"
+    mine.mkdir()
+    (mine / "table.csv").write_text("my,table\n")
+    with pytest.raises(ValueError, match="not a rootsim sweep folder"):
+        list(rootsim.sweep(scene=SCENE, grid={"plane.alpha_deg": [20]}, set={"growth.steps": 20}, out=mine))
+    assert (mine / "table.csv").read_text() == "my,table\n"
+    out = tmp_path / "sw"
+    assert len(list(rootsim.sweep(scene=SCENE, grid={"plane.alpha_deg": [20]}, set={"growth.steps": 20}, out=out))) == 1
+    # the same folder with another fixed value: the point is stale, rerun only with force=True
+    with pytest.raises(ValueError, match="1 point\\(s\\) hold runs that cannot be kept"):
+        list(rootsim.sweep(scene=SCENE, grid={"plane.alpha_deg": [20]}, set={"growth.steps": 30}, out=out))
+    points = list(rootsim.sweep(scene=SCENE, grid={"plane.alpha_deg": [20]}, set={"growth.steps": 30}, out=out,
+                                force=True))
+    assert [p.run.summary["steps"] for p in points] == [30]

@@ -11,7 +11,8 @@ pkgs=(cmake ninja-build g++ pkg-config
       python3-pytest python3-matplotlib                         # its tests; examples/*.py
       clang libclang-rt-dev             # sanitizer + libFuzzer build (.ci/run, scripts/fuzz.sh)
       slurm-wlm munge                   # tests/slurm/run.sh: a sweep through a single-node SLURM
-      python3-vtk9)                     # tests/vtk_read.py: VTK's own reader reads the .vtp files
+      python3-vtk9                      # tests/vtk_read.py: VTK's own reader reads the .vtp files
+      mkdocs)                           # the docs site (ctest docs_site_builds)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

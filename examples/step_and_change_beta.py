@@ -42,7 +42,7 @@ for name in rows:
     print(f"{name:8s}: theta_tip = {rows[name][-1]['theta_tip_deg']:7.2f} deg after {STEPS} steps, "
           f"tip at {np.round(tips[name][-1], 3)} mm (lab frame)")
 
-# %% θ_tip(t) and the final centrelines (lab frame, MODEL.md section 3)
+# %% θ_tip(t) and the final centrelines (lab frame, docs/model.md, Frames and signs)
 fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4))
 for name, label in (("kept", "β = 0.2 throughout"), ("changed", "β = 0.2 → 1 at 10 h")):
     t = [r["time_h"] for r in rows[name]]

@@ -94,7 +94,8 @@ TEST_CASE("a tilted sine of 6 waves skews by its tilt, and the mirror image the 
   CHECK(r.skewJudged);
   CHECK(r.pattern == "skewing");
   CHECK(q.pattern == "skewing");
-  // the root leans toward +lateral: counter-clockwise from downhill seen from above (MODEL.md section 3)
+  // the root leans toward +lateral: counter-clockwise from downhill seen from above (docs/model.md, Frames
+  // and signs)
   CHECK(r.skew == doctest::Approx(tilt).epsilon(0.01));
   CHECK(q.skew == doctest::Approx(-tilt).epsilon(0.01));
   // same-side peaks stay one wavelength apart along downhill

@@ -1,5 +1,5 @@
-// contact beyond the paper (src/sim/contact.cpp, MODEL.md section 11): self-contact, Coulomb friction
-// with stick-slip, obstacles, against closed forms and invariants
+// contact beyond the paper (src/sim/contact.cpp, docs/model.md, Contact and friction): self-contact, Coulomb
+// friction with stick-slip, obstacles, against closed forms and invariants
 #include <doctest/doctest.h>
 
 #include <Eigen/Dense>

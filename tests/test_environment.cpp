@@ -10,7 +10,7 @@
 using namespace rootsim;
 using rootsim::test::Cantilever;
 
-TEST_CASE("plate frame: right-handed orthonormal, MODEL.md section 3 vectors, exact at 0 and 90 deg") {
+TEST_CASE("plate frame: right-handed orthonormal, docs/model.md frame vectors, exact at 0 and 90 deg") {
   for (double deg : {0.0, 10.0, 40.0, 80.0, 90.0}) {
     INFO(deg);
     const PlateFrame f = PlateFrame::tilted(deg * units::deg);
@@ -20,7 +20,7 @@ TEST_CASE("plate frame: right-handed orthonormal, MODEL.md section 3 vectors, ex
     CHECK(f.lateral == Vec3::UnitX());
     // d1 = lateral, d2 = normal, d3 = downhill is right-handed (the initial directors)
     CHECK((f.lateral.cross(f.normal) - f.downhill).norm() < 1e-15);
-    // gravity makes -sin(alpha) with the normal (MODEL.md section 3)
+    // gravity makes -sin(alpha) with the normal (docs/model.md, Frames and signs)
     CHECK(Vec3(0, 0, -1).dot(f.normal) == doctest::Approx(-std::sin(a)));
   }
   // no round-off at the axis angles: cos(pi/2) would be 6e-17

@@ -1,5 +1,5 @@
-// Validation of the rod core and the dynamic relaxation against closed-form mechanics (MODEL.md
-// section 4). Each case runs at two resolutions; with ROOTSIM_PRINT_RESIDUALS=1 the errors and the
+// Validation of the rod core and the dynamic relaxation against closed-form mechanics (docs/model.md,
+// Rod mechanics). Each case runs at two resolutions; with ROOTSIM_PRINT_RESIDUALS=1 the errors and the
 // observed convergence order are printed.
 #include <doctest/doctest.h>
 

@@ -21,7 +21,7 @@ std::string errorOf(const std::string& text, const std::vector<std::string>& set
 }
 }  // namespace
 
-TEST_CASE("defaults are the paper's values (MODEL.md section 2)") {
+TEST_CASE("defaults are the paper's values (docs/model.md, Experiment and parameters)") {
   const Scene s = parseScene("", "scenes/empty.toml");
   CHECK(s.model.rod.radius == doctest::Approx(1e-4));
   CHECK(s.model.initial.length == doctest::Approx(1.1e-3));
@@ -80,7 +80,7 @@ TEST_CASE("missing and unreadable files") {
   }
 }
 
-TEST_CASE("theory: worked values of MODEL.md section 9") {
+TEST_CASE("theory: worked values of docs/model.md, Theory") {
   auto at = [](double gain) {
     Model m;
     m.tropism.beta = gain * m.rod.radius / m.growth.zoneLength;
@@ -96,7 +96,7 @@ TEST_CASE("theory: worked values of MODEL.md section 9") {
   CHECK(b.T0 / 3600 == doctest::Approx(7.85).epsilon(0.005));
 }
 
-// --- contact keys (MODEL.md section 11): [self_contact], [friction], [[obstacle]] ---
+// --- contact keys (docs/model.md, Contact and friction): [self_contact], [friction], [[obstacle]] ---
 
 TEST_CASE("contact keys: defaults, and obstacles that round-trip through the resolved scene") {
   const Scene d = parseScene("", "scenes/empty.toml");

@@ -1,13 +1,13 @@
 #pragma once
-// Observables (MODEL.md section 8).
+// Observables (docs/model.md, Observables).
 #include <string>
 
 #include "rootsim/model.hpp"
 
 namespace rootsim {
 
-// planar tip angle theta_tip (MODEL.md section 3) [rad], in (-pi, pi]; without a plate (free organ)
-// the angle of the tip from gravity in the vertical plane of motion, about +x (starts at -alpha)
+// planar tip angle theta_tip (docs/model.md, Frames and signs) [rad], in (-pi, pi]; without a plate (free
+// organ) the angle of the tip from gravity in the vertical plane of motion, about +x (starts at -alpha)
 double tipAngle(const Model& m, const RodState& s);
 // signed planar angle of a lab direction against downhill, counter-clockwise seen from the normal [rad]
 double planarAngle(const Plane& plane, const Vec3& t);
@@ -27,8 +27,8 @@ struct ZoneObservables {
 };
 ZoneObservables observeZone(const Model& m, const RodState& s, const RodStrains& k);
 
-// the final shape on the plate (MODEL.md section 8). Waves are read from the turning points ("peaks") of
-// the lateral displacement of the mature part along the rod, found with a hysteresis of
+// the final shape on the plate (docs/model.md, Observables). Waves are read from the turning points ("peaks")
+// of the lateral displacement of the mature part along the rod, found with a hysteresis of
 // analysis.wave_min_amplitude_r * R so numerical ripples are not peaks; consecutive peaks alternate sides.
 struct ShapeAnalysis {
   std::string pattern;        // straight | waving | coiling | skewing

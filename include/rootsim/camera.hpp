@@ -1,6 +1,6 @@
 #pragma once
-// Cameras of a movie (SPEC.md "Cameras and colours"): `fit` frames the whole root for the whole movie
-// (frameFor); `follow` is a window fieldMm wide that follows the growth zone. No GL here.
+// Cameras of a movie (docs/cli.md; docs/rendering.md, "Cameras and frames"): `fit` frames the whole root for
+// the whole movie (frameFor); `follow` is a window fieldMm wide that follows the growth zone. No GL here.
 #include <Eigen/Core>
 #include <vector>
 

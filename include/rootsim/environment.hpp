@@ -1,6 +1,6 @@
 #pragma once
 // Everything that acts on the rod from outside: the tilted plane, adhesion springs, the clamped base,
-// tip loads (MODEL.md sections 3 and 6).
+// tip loads (docs/model.md, Frames and signs, and Environment).
 #include <vector>
 
 #include "rootsim/rod.hpp"
@@ -8,8 +8,8 @@
 
 namespace rootsim {
 
-// The frame of a plate tilted by alpha from the vertical (MODEL.md section 3): the one place it is
-// computed; the physics, the renderer and the figure panels all use it. Plate coordinates are taken
+// The frame of a plate tilted by alpha from the vertical (docs/model.md, Frames and signs): the one place it
+// is computed; the physics, the renderer and the figure panels all use it. Plate coordinates are taken
 // from the origin, which is where the base node's foot lies (the base node sits at R n).
 struct PlateFrame {
   Vec3 normal = Vec3(0, -1, 0);    // unit normal (0, -cos a, sin a), pointing to the side the root lies on
@@ -31,7 +31,7 @@ struct PlateFrame {
 struct Plane {
   bool enabled = true;
   double alpha = 40.0 * units::deg;  // tilt from the vertical [rad]
-  // normal penalty spring, per element [N/m]. MODEL.md/paper: 100 N/m. Measured here (fig2b scene,
+  // normal penalty spring, per element [N/m]. The paper: 100 N/m. Measured here (fig2b scene,
   // 700 steps): with 100 N/m the tip, pressed into the plate by gravitropism, sinks 0.17-0.34 R into it;
   // 1000 N/m keeps it below 0.03 R with the same waves (lambda 2.34 vs 2.35 mm) and the same cost.
   double k = 1000.0;
@@ -44,11 +44,12 @@ struct Plane {
 
 enum class BaseCondition { Clamped, Free };
 
-// contact of the rod with itself (MODEL.md section 11): capsules of the rest radius R, penalty along the
-// line between the closest points of two elements that are not neighbours along the rod
+// contact of the rod with itself (docs/model.md, Contact and friction): capsules of the rest radius R,
+// penalty along the line between the closest points of two elements that are not neighbours along the rod
 struct SelfContact {
   bool enabled = true;
-  // penalty spring per element pair [N/m]; damping is the plate's c (MODEL.md: the plate's law).
+  // penalty spring per element pair [N/m]; damping is the plate's c (the plate's law:
+  // docs/model.md, Contact and friction).
   // Measured (fig2a alpha = 90, 0.1 mm elements, 900 steps): with 1000 N/m the coil's turns squeeze to
   // 1.75 R apart, with 1e4 N/m they stay 1.96 R apart; but 1e4 N/m jammed the explicit relaxation of the
   // quick figure's alpha = 90 root (residual at the tip, 2e6 sub-steps; 1000 and 3000 N/m pass), so the
@@ -56,8 +57,8 @@ struct SelfContact {
   double k = 1000.0;
 };
 
-// Coulomb friction on the plate and on obstacles (MODEL.md section 11): incremental stick points,
-// return mapping on slip, mu along the rod's in-plane axis = axialRatio * mu across it
+// Coulomb friction on the plate and on obstacles (docs/model.md, Contact and friction): incremental stick
+// points, return mapping on slip, mu along the rod's in-plane axis = axialRatio * mu across it
 struct Friction {
   bool enabled = false;
   double muStatic = 0.0;       // static coefficient across the rod's axis
@@ -68,10 +69,10 @@ struct Friction {
   double slipWeakening = 1e-7;
 };
 
-// a rigid obstacle on the plate, infinitely tall along the plate normal (MODEL.md section 11): the set
-// of plate points within `radius` of the segment from-to. A peg has from == to (a cylinder); a wall is
-// a segment with rounded ends of radius thickness/2. Plate coordinates (lateral, downhill) are taken
-// from the foot of the base node (PlateFrame's origin).
+// a rigid obstacle on the plate, infinitely tall along the plate normal (docs/model.md, Contact and
+// friction): the set of plate points within `radius` of the segment from-to. A peg has from == to (a
+// cylinder); a wall is a segment with rounded ends of radius thickness/2. Plate coordinates (lateral,
+// downhill) are taken from the foot of the base node (PlateFrame's origin).
 struct Obstacle {
   enum class Shape { Peg, Wall };
   Shape shape = Shape::Peg;
@@ -97,7 +98,7 @@ struct Environment {
 
 struct ContactWorkspace;  // contact.hpp
 
-// The outside forces, one piece each (MODEL.md section 6). Forces are lab components on nodes
+// The outside forces, one piece each (docs/model.md, Environment). Forces are lab components on nodes
 // (3 x n+1), torques material components on elements (3 x n); each piece adds to what is there, for
 // the elements (nodes) from `first` on and before `end` (end < 0: to the tip), for a solver that moves
 // only those.

@@ -1,5 +1,5 @@
 #pragma once
-// The two kinds of failure a user sees (SPEC.md): bad input exits 2, a failed run exits 1.
+// The two kinds of failure a user sees (docs/cli.md): bad input exits 2, a failed run exits 1.
 #include <cstdio>
 #include <stdexcept>
 #include <string>

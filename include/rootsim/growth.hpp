@@ -1,5 +1,5 @@
 #pragma once
-// Growth of the root (MODEL.md section 5): the growth zone, rest-length growth, remeshing by splitting,
+// Growth of the root (docs/model.md, Growth): the growth zone, rest-length growth, remeshing by splitting,
 // the intrinsic-curvature law (paper Eqs. 17-19), the intrinsic twist profile (Eqs. 20-21), and the
 // adhesion of material that leaves the zone (section 6).
 #include "rootsim/model.hpp"

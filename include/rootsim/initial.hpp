@@ -1,5 +1,5 @@
 #pragma once
-// Initial state (MODEL.md section 3): straight, lying on the plane, pointing downhill.
+// Initial state (docs/model.md, Frames and signs): straight, lying on the plane, pointing downhill.
 #include <cstdint>
 
 #include "rootsim/environment.hpp"
@@ -9,7 +9,8 @@ namespace rootsim {
 struct InitialShape {
   double length = 1.1e-3;         // L0 [m]
   double elementLength = 5e-5;    // target element length h [m]; n = ceil(L0 / h), at least 2
-  double perturbation = 1e-6;     // lateral node displacement amplitude / R (seeded, MODEL.md section 6)
+  double perturbation = 1e-6;     // lateral node displacement amplitude / R (seeded; docs/model.md,
+                                  // Environment)
   std::uint64_t seed = 1;         // seed of the perturbation
 };
 

@@ -1,5 +1,6 @@
 #pragma once
-// The constant description of a simulation, built from a scene (MODEL.md section 2). SI units inside.
+// The constant description of a simulation, built from a scene (docs/model.md, Experiment and
+// parameters). SI units inside.
 #include <string>
 
 #include "rootsim/initial.hpp"
@@ -33,7 +34,8 @@ struct AnalysisParams {
   double coilTurnDeg = 180.0;      // planar tangent turning through more than this is "coiling" [deg]
   double waveMinAmplitude = 0.5;   // hysteresis of the lateral turning points, in R: a swing smaller than
                                    // this is not a peak (so a root whose lateral peak-to-peak stays below it is "straight")
-  double skewMinWaves = 2.0;       // a skew is judged only over at least this many full waves (MODEL.md section 8)
+  double skewMinWaves = 2.0;       // a skew is judged only over at least this many full waves
+                                   // (docs/model.md, Observables)
 };
 
 // how the trajectory is written (docs/outputs.md)
@@ -64,8 +66,8 @@ struct Model {
   OutputParams output;
 };
 
-// The defaults: the paper's parameters (MODEL.md section 2) and rootsim's numerical choices. They are
-// written once, as the member initialisers of the parameter structs (this header, rod.hpp,
+// The defaults: the paper's parameters (docs/model.md, Experiment and parameters) and rootsim's numerical
+// choices. They are written once, as the member initialisers of the parameter structs (this header, rod.hpp,
 // environment.hpp, relax.hpp, initial.hpp); defaultModel() is the way to read them, and the scene
 // schema takes every key's default from it.
 Model defaultModel();

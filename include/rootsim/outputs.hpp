@@ -1,6 +1,7 @@
 #pragma once
-// Files of a run directory (SPEC.md "A run directory"): shape.csv, timeseries.csv, summary.json,
-// trajectory.csv / trajectory.bin and ParaView snapshots. Lab frame of MODEL.md section 3, millimetres and hours.
+// Files of a run directory (docs/cli.md, "Run directory"; docs/outputs.md): shape.csv, timeseries.csv,
+// summary.json, trajectory.csv / trajectory.bin and ParaView snapshots. Lab frame of docs/model.md, Frames
+// and signs; millimetres and hours.
 #include <cstdint>
 #include <filesystem>
 #include <memory>

@@ -2,7 +2,7 @@
 // State -> abstract render scene (no GL here; STYLE.md "Data flow"). The scene is what the GL renderer
 // draws and nothing more: triangle meshes, a plate with a grid, a camera, lights, overlay items.
 //
-// Plate coordinates [mm], used throughout the scene (MODEL.md section 3):
+// Plate coordinates [mm], used throughout the scene (docs/model.md, Frames and signs):
 //   u = x . p           lateral, to the right in the top view
 //   v = -g_par . p      uphill, so downhill points down the top view
 //   w = n . p           height above the plate, towards the viewer of the top view

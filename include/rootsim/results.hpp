@@ -21,7 +21,7 @@ struct RunResult {
   double skewDeg = NAN, maxKappaPerMm = NAN, thetaMinDeg = NAN, thetaMaxDeg = NAN;
   double snapOrTurningH = NAN;     // first sideways snap on a plate; time to reach the vertical without [h]
   double alphaDeg = NAN, beta = NAN, gamma = NAN, rTau = NAN;
-  // theory (MODEL.md section 9)
+  // theory (docs/model.md, Theory)
   double effectiveGain = NAN, T0h = NAN, maxKappaEq8PerMm = NAN, wavelengthEq9Mm = NAN, amplitudeEq10Mm = NAN,
          alphaSToWEq12Deg = NAN, alphaWToCEq13Deg = NAN, omegaT0 = NAN;
 

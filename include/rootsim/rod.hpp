@@ -1,6 +1,6 @@
 #pragma once
-// Discrete Cosserat rod (MODEL.md section 4; Gazzola et al. 2018, "Forward and inverse problems in the
-// mechanics of soft filaments", the scheme PyElastica implements).
+// Discrete Cosserat rod (docs/model.md, Rod mechanics; Gazzola et al. 2018, "Forward and inverse problems in
+// the mechanics of soft filaments", the scheme PyElastica implements).
 //
 //   nodes 0..n           positions x, velocities v                      (3 x n+1)
 //   elements 0..n-1      directors Q (rows d1, d2, d3), angular velocity w (material frame), rest length l0
@@ -41,8 +41,8 @@ struct RodState {
   Eigen::Matrix3Xd kappa0;   // intrinsic curvature per unit rest length, material comps [1/m] (3 x n-1)
   Eigen::Matrix3Xd anchor;   // adhesion anchor of each node [m]               (3 x n+1)
   std::vector<std::uint8_t> anchored;  // 1 if the node is pinned to its anchor   (n+1)
-  // friction history (MODEL.md section 11), committed once per growth step by commitFriction: the
-  // stick point of each node on the plate and on an obstacle [m] (3 x n+1), valid where the flag is 1
+  // friction history (docs/model.md, Contact and friction), committed once per growth step by commitFriction:
+  // the stick point of each node on the plate and on an obstacle [m] (3 x n+1), valid where the flag is 1
   Eigen::Matrix3Xd plateStick;
   std::vector<std::uint8_t> hasPlateStick;     // (n+1)
   Eigen::Matrix3Xd obstacleStick;
@@ -75,7 +75,7 @@ struct RodStrains {
   void resize(int n);
 };
 
-// strains and stresses of the rod (MODEL.md section 4; paper Eqs. 24-25 with the incompressibility
+// strains and stresses of the rod (docs/model.md, Rod mechanics; paper Eqs. 24-25 with the incompressibility
 // rescaling S -> S/e, B -> B/e^2, kappa -> kappa/e)
 // (first > 0: only elements and Voronoi domains from `first` on, for a solver that moves only those;
 // end >= 0: only those before element `end` (Voronoi domains before end - 1); what lies outside is left
@@ -95,7 +95,7 @@ inline int spanEnd(int end, int count) { return end >= 0 && end < count ? end : 
 // radius of element i, shrinking with dilatation as R / sqrt(e) [m]
 inline double elementRadius(const RodParams& p, double e) { return p.radius / std::sqrt(e); }
 
-// elastic energies (no factor 1/2, MODEL.md section 8) over Voronoi domains whose material coordinate
+// elastic energies (no factor 1/2, docs/model.md, Observables) over Voronoi domains whose material coordinate
 // lies in [Sfrom, Sto]: bending and twisting [J]
 struct GrowthZoneEnergy { double bend = 0, twist = 0; };
 GrowthZoneEnergy zoneEnergy(const RodParams& p, const RodState& s, const RodStrains& k, double Sfrom,

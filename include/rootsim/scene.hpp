@@ -1,5 +1,5 @@
 #pragma once
-// Scene files (TOML, SPEC.md): parsing, validation against the key schema, overrides, and the fully
+// Scene files (TOML, docs/cli.md): parsing, validation against the key schema, overrides, and the fully
 // resolved scene text written into every run directory.
 #include <string>
 #include <vector>

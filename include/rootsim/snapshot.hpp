@@ -1,7 +1,7 @@
 #pragma once
 // What a picture needs of one moment of a run: the rod's shape and material frame, in the lab frame of
-// MODEL.md section 3. Saved in the run directory's trajectory and handed to the renderer; carries no
-// solver state.
+// docs/model.md, Frames and signs. Saved in the run directory's trajectory and handed to the renderer;
+// carries no solver state.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -40,7 +40,7 @@ struct SceneInfo {
   double rTau = 0.0;           // intrinsic twist R tau
   double radius = 1e-4;        // rest radius R [m]
   bool plate = true;           // draw the plate (false for a free organ)
-  // obstacles on the plate (MODEL.md section 11), in the top view's plate coordinates [mm]:
+  // obstacles on the plate (docs/model.md, Contact and friction), in the top view's plate coordinates [mm]:
   // u lateral, v uphill (PlateFrame::toPlateMm); a peg has from == to
   struct ObstacleShape {
     bool peg = true;

@@ -1,6 +1,6 @@
 #pragma once
-// Stability of a relaxed equilibrium (MODEL.md section 7, second bullet): the inertia of the stiffness
-// matrix K = -dF/du, found by finite differences on the banded structure of the discrete rod and an
+// Stability of a relaxed equilibrium (docs/model.md, Relaxation, "Stability check"): the inertia of the
+// stiffness matrix K = -dF/du, found by finite differences on the banded structure of the discrete rod and an
 // LDL^T factorisation; and the unstable direction, to follow it when the equilibrium is a saddle.
 #include <Eigen/Core>
 #include <vector>

@@ -1,5 +1,5 @@
 #pragma once
-// Parameter sweeps (SPEC.md `rootsim sweep`): a base scene, a grid of overrides, one run directory per
+// Parameter sweeps (docs/cli.md, `rootsim sweep`): a base scene, a grid of overrides, one run directory per
 // grid point, resumable (completed runs are skipped), shardable (--shard K/N runs every N-th point),
 // and a table of results (table.csv) built from every completed run.
 //

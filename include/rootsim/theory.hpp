@@ -1,5 +1,5 @@
 #pragma once
-// Scaling laws of the paper (MODEL.md section 9), printed beside every measurement.
+// Scaling laws of the paper (docs/model.md, Theory), printed beside every measurement.
 #include "rootsim/model.hpp"
 
 namespace rootsim {
@@ -9,7 +9,8 @@ struct Theory {
   double T0;                // turning time, Eq. 7 [s]
   double maxKappa;          // max curvature of the final shape, Eq. 8 [1/m]
   double wavelength;        // lambda = 2 T0 v_tip, Eq. 9 [m]
-  double amplitude;         // A = T0 v_tip tan(alpha) / 2, Eq. 10 [m]; compared with the measured peak-to-peak A (MODEL.md section 8)
+  double amplitude;         // A = T0 v_tip tan(alpha) / 2, Eq. 10 [m]; compared with the measured
+                            // peak-to-peak A (docs/model.md, Observables)
   double alphaStraightToWave;  // Eq. 12 [rad] (NaN if no solution)
   double alphaWaveToCoil;      // Eq. 13 [rad]
   double omega;             // apex twist rate tau eps0 Lgz, Eq. 5 [rad/s]

@@ -1,7 +1,7 @@
 #pragma once
 // The units rootsim talks to users in, as factors to SI (the only units inside the physics):
 //   SI = value * units::mm;   value = SI / units::mm.
-// Scene keys, CSV columns and pictures use millimetres, hours, degrees and MPa (SPEC.md); nothing
+// Scene keys, CSV columns and pictures use millimetres, hours, degrees and MPa (docs/cli.md); nothing
 // else writes 1e-3, 3600 or pi/180.
 #include <numbers>
 

@@ -1,4 +1,4 @@
-"""The user-facing API of the rootsim package (SPEC.md "Python"); the C++ work is done by _rootsim."""
+"""The user-facing API of the rootsim package (docs/python.md); the C++ work is done by _rootsim."""
 from __future__ import annotations
 
 import json
@@ -114,7 +114,7 @@ class Scene:
 
     def check(self) -> Dict[str, Any]:
         """Validates the scene again (from its file) and returns the theory's predictions for it
-        (MODEL.md section 9: the block ``rootsim check`` prints; empty for a mechanics-only scene)."""
+        (docs/model.md, Theory: the block ``rootsim check`` prints; empty for a mechanics-only scene)."""
         self._scene = self._parse(self._overrides)
         t = _c.theory_json(self._scene)
         return {} if t is None else json.loads(t)

@@ -247,7 +247,7 @@ int modesCommand(const ModesOptions& o) {
 
 int checkCommand(const CheckOptions& o) {
   const Scene sc = loadScene(o.scene, o.sets);
-  std::cout << sc.resolvedToml << "\n# theory (MODEL.md section 9)\n";
+  std::cout << sc.resolvedToml << "\n# theory (docs/model.md, Theory)\n";
   if (sc.model.growth.enabled) {
     std::cout << theoryJson(theoryFor(sc.model)).dump() << "\n";
   } else {

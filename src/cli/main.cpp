@@ -1,5 +1,5 @@
 // rootsim command line (CLI11 only here): parse, call the library, turn exceptions into exit codes
-// 0 success, 1 run failed, 2 bad usage or bad scene (SPEC.md).
+// 0 success, 1 run failed, 2 bad usage or bad scene (docs/cli.md).
 #include <CLI/CLI.hpp>
 
 #include <cstdio>

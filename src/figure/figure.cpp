@@ -1,4 +1,4 @@
-// The paper's figure panels (MODEL.md section 10): each panel names its cases (figure_cases.hpp), runs
+// The paper's figure panels (docs/model.md, Paper cases): each panel names its cases (figure_cases.hpp), runs
 // them (figure_runs.hpp), then plots them beside theory and adds its claims to the report.
 #include "rootsim/figure.hpp"
 
@@ -488,8 +488,8 @@ std::string fig2cde(const Ctx& c) {
                        std::string(kScaleTol) + " of the exponent", within(slope / -0.6, kScaleLo, kScaleHi),
                        "The local exponent steepens with the gain: " + fmt3(eLo) + " between β = " + num(betas[0]) +
                            " and " + num(betas[1]) + ", " + fmt3(eHi) + " between β = " + num(betas[betas.size() - 2]) +
-                           " and " + num(betas.back()) + ". This model, as MODEL.md specifies it, does not reproduce the "
-                           "paper's fitted −3/5; not refitted."});
+                           " and " + num(betas.back()) + ". This model, as docs/model.md specifies it, does not reproduce "
+                           "the paper's fitted −3/5; not refitted."});
   // Fig. 2C: "both profiles present oscillations with a similar period": the mean time between crossings
   // of theta_tip = 0 (half a period), for the waving root after its first snap and for the free organ
   const double halfW = meanSpacing(zeroCrossings(t, th, snap)), halfF = meanSpacing(zeroCrossings(tf, thf, 0));
@@ -607,8 +607,8 @@ std::string fig3b(const Ctx& c) {
                         "(opposite) peaks, the peak-to-peak excursion, as the paper's Fig. 3B caption measures it "
                         "(\"distances between neighboring peaks ... normal to the downhill direction\"); A/2 is listed "
                         "beside it. The paper's triangle argument for Eq. 10 would call that excursion 2A; with A/2 in "
-                        "place of A, λ / (4 A cot α) would double. This is the paper's own inconsistency (MODEL.md section "
-                        "8); the caption's definition is the one its Fig. 3B plots.",
+                        "place of A, λ / (4 A cot α) would double. This is the paper's own inconsistency (docs/model.md, "
+                        "Observables); the caption's definition is the one its Fig. 3B plots.",
             table);
 }
 
@@ -906,10 +906,11 @@ std::string makeFigure(const std::string& name, const FigureOptions& opt,
                      "grid in α, so transition angles are held to 15°)"
                    : "`: 0.05 mm elements, 0.05 h steps; phase diagrams on a 5° grid in α") +
         ". Simulations are in `runs/` (one run directory each).\n\n"
-        "Definitions (MODEL.md section 8): the waves are read from the turning points of the lateral displacement of "
-        "the mature part (hysteresis 0.5 R). λ is the mean downhill distance between successive peaks on the same "
-        "side; A is the mean lateral distance between neighbouring opposite peaks — the peak-to-peak excursion, as "
-        "the paper's Fig. 3B caption measures it (`amplitude_mm`; half of it is `amplitude_half_mm`). The paper's "
+        "Definitions (docs/model.md, Observables): the waves are read from the turning points of the lateral "
+        "displacement of the mature part (hysteresis 0.5 R). λ is the mean downhill distance between successive "
+        "peaks on the same side; A is the mean lateral distance between neighbouring opposite peaks — the "
+        "peak-to-peak excursion, as the paper's Fig. 3B caption measures it (`amplitude_mm`; half of it is "
+        "`amplitude_half_mm`). The paper's "
         "triangle argument for Eq. 10 would call that excursion 2A: the paper is inconsistent, and its Fig. 3B plots "
         "the caption's A. A root with lateral peaks but fewer than two full waves is waving: its mean angle is "
         "biased by its incomplete wave, so a skew is judged only without waves or over at least two full waves.\n\n"

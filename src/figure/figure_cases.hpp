@@ -17,7 +17,7 @@ struct Case {
   double alpha = 40, beta = 0.1, gamma = 0.1, rTau = 0;
   bool free = false;        // free organ: no plate, no adhesion
   double lengthMm = 10;     // grown to this length
-  bool apical = false;      // apical gravisensing (MODEL.md section 5) instead of local
+  bool apical = false;      // apical gravisensing (docs/model.md, Growth) instead of local
 };
 
 // one claim of the paper with its theory value, the paper's value and the measured value
@@ -45,8 +45,9 @@ std::string dirOf(const Ctx& c, const Case& k);
 // the scene name of every figure run (result.csv's scene column, summary.json, scene.toml's header:
 // figure runs were runs of an empty base.toml, and their outputs keep the name)
 inline constexpr const char* kFigureSceneName = "base";
-// the model a case runs with: the default model (MODEL.md section 2) with the case's parameters, the
-// context's element length and growth step, growth steps to reach the case's length, no VTK output
+// the model a case runs with: the default model (docs/model.md, Experiment and parameters) with the case's
+// parameters, the context's element length and growth step, growth steps to reach the case's length, no VTK
+// output
 Model modelOf(const Ctx& c, const Case& k);
 // what a picture of the case shows beside the root
 SceneInfo infoOf(const Case& k);

@@ -91,7 +91,7 @@ RunResult makeResult(const Model& m, const Simulation& sim, const ShapeAnalysis*
   const Theory t = theoryFor(m);
   r.pattern = a->pattern;
   // a wavelength needs two peaks on one side (three turning points), an amplitude two opposite peaks;
-  // A is the peak-to-peak excursion (MODEL.md section 8), half of it beside it
+  // A is the peak-to-peak excursion (docs/model.md, Observables), half of it beside it
   r.wavelengthMm = a->peaks >= 3 ? a->wavelength / units::mm : NAN;
   r.amplitudeMm = a->peaks >= 2 ? a->amplitude / units::mm : NAN;
   r.amplitudeHalfMm = a->peaks >= 2 ? a->amplitudeHalf / units::mm : NAN;

@@ -293,7 +293,7 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     Json tip;
     tip.num("x_mm", r.tip.x() / units::mm).num("y_mm", r.tip.y() / units::mm).num("z_mm", r.tip.z() / units::mm);
     j.object("tip", tip);
-    // contact (MODEL.md section 11): zero when self-contact, friction and obstacles are off
+    // contact (docs/model.md, Contact and friction): zero when self-contact, friction and obstacles are off
     Json contact;
     contact.integer("self_contacts", r.selfContacts)
         .integer("max_self_contacts", maxSelfContacts)

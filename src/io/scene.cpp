@@ -144,8 +144,8 @@ std::string where(const std::string& source, const toml::source_region& r) {
   return printable(source) + ":" + std::to_string(r.begin.line);
 }
 
-// [[obstacle]] tables (MODEL.md section 11): one per obstacle, checked key by key like the sections;
-// the first table is obstacle[1] in messages
+// [[obstacle]] tables (docs/model.md, Contact and friction): one per obstacle, checked key by key like the
+// sections; the first table is obstacle[1] in messages
 struct ParsedObstacle {
   Obstacle o;
   std::string origin;     // file:line of the table's shape key (or its first key)

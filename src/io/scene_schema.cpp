@@ -236,11 +236,13 @@ const std::vector<KeySpec>& schema() {
       boolean("adhesion", "enabled", FIELD(env.adhesion), "pin material that leaves the growth zone"),
       real("adhesion", "k_n_per_m", FIELD(env.kAdhesion), kOne, 0, false, 1e6, false, "adhesion spring [N/m]"),
       boolean("self_contact", "enabled", FIELD(env.selfContact.enabled),
-              "the root cannot pass through itself: elements repel when closer than 2R (MODEL.md section 11)"),
+              "the root cannot pass through itself: elements repel when closer than 2R (docs/model.md, Contact "
+              "and friction)"),
       real("self_contact", "k_n_per_m", FIELD(env.selfContact.k), kOne, 0, true, 1e6, false,
            "self-contact penalty spring per element pair [N/m] (damping: plane.damping_kg_per_s)"),
       boolean("friction", "enabled", FIELD(env.friction.enabled),
-              "Coulomb friction on the plate and obstacles, with stick points (MODEL.md section 11)"),
+              "Coulomb friction on the plate and obstacles, with stick points (docs/model.md, Contact and "
+              "friction)"),
       real("friction", "mu_static", FIELD(env.friction.muStatic), kOne, 0, false, 100, false,
            "static friction coefficient across the root's axis"),
       real("friction", "mu_kinetic", FIELD(env.friction.muKinetic), kOne, 0, false, 100, false,
@@ -251,8 +253,8 @@ const std::vector<KeySpec>& schema() {
            "slip over which friction falls from mu_static to mu_kinetic [mm] (0: at once; see README)"),
       choice("solver", "kind", FIELD(solver.kind),
              std::vector<std::pair<std::string, SolverKind>>{{"newton", SolverKind::Newton}, {"dynamic", SolverKind::Dynamic}},
-             "newton: quasi-static Newton with a banded Jacobian (MODEL.md section 12); dynamic: the paper's "
-             "explicit damped relaxation"),
+             "newton: quasi-static Newton with a banded Jacobian (docs/model.md, Newton solver); dynamic: the "
+             "paper's explicit damped relaxation"),
       real("solver", "window_mm", FIELD(solver.window), kMm, 0, false, 1e4, false,
            "newton: solve for the nodes within this length behind the growth zone, the zone, contacts and "
            "the twist of the adhered mature root (0: the whole rod; see README)"),

@@ -1,6 +1,6 @@
 // abstract render scene -> pixels with OSMesa (llvmpipe), offscreen, core profile 4.5.
 // Draws into its own 4x multisampled framebuffer, resolves with a blit, reads back with glReadPixels
-// (RENDER-NOTES.md: this works at any size, independent of the OSMesa buffer).
+// (docs/rendering.md, Pitfalls: this works at any size, independent of the OSMesa buffer).
 #include "rootsim/renderer.hpp"
 
 #include <GL/osmesa.h>

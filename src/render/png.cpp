@@ -22,7 +22,7 @@ namespace rootsim {
 namespace {
 
 // stb's PNG settings are globals: set them once. Level 1 with the "sub" filter writes a 1080p frame
-// about 3x faster than stb's defaults (RENDER-NOTES.md) at a slightly larger file.
+// about 3x faster than stb's defaults (docs/rendering.md, Pitfalls) at a slightly larger file.
 void configureStb() {
   static std::once_flag once;
   std::call_once(once, [] {

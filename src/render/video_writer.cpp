@@ -56,7 +56,7 @@ struct VideoWriter::Impl {
       throw RenderError("video " + path + ": fps must be in 1..1000 (got " + std::to_string(o.fps) + ")");
     if (o.crf < 0 || o.crf > 51)
       throw RenderError("video " + path + ": crf must be in 0..51 (got " + std::to_string(o.crf) + ")");
-    // x264 prints INFO statistics to stderr otherwise (RENDER-NOTES.md)
+    // x264 prints INFO statistics to stderr otherwise (docs/rendering.md, Pitfalls)
     static std::once_flag quiet;
     std::call_once(quiet, [] { av_log_set_level(AV_LOG_ERROR); });
     try {

@@ -172,7 +172,7 @@ ShapeAnalysis analyseShape(const Model& m, const RodState& s) {
     for (size_t k = 2; k < np; ++k) sum += std::abs(W(k) - W(k - 2));
     a.wavelength = sum / static_cast<double>(np - 2);
   }
-  // pattern (MODEL.md section 8): a skew is judged only without waves or over enough whole waves
+  // pattern (docs/model.md, Observables): a skew is judged only without waves or over enough whole waves
   const bool wavy = np >= 2;
   a.skewJudged = !wavy || a.waves >= m.analysis.skewMinWaves;
   const double turn = a.thetaMax - a.thetaMin;

@@ -1,5 +1,5 @@
-// Contact beyond the paper (MODEL.md section 11): self-contact, obstacles, Coulomb friction. contact.hpp
-// states the conventions; each piece below is called from addExternalForces (environment.cpp).
+// Contact beyond the paper (docs/model.md, Contact and friction): self-contact, obstacles, Coulomb friction.
+// contact.hpp states the conventions; each piece below is called from addExternalForces (environment.cpp).
 #include "rootsim/contact.hpp"
 
 #include <algorithm>
@@ -45,11 +45,12 @@ Vec3 nodeAxis(const RodState& s, int i, const Vec3& nh) {
 //
 // The sliding coefficient weakens from mu_s to mu_k over the slip distance ell beyond the static limit,
 // mu = mu_k + (mu_s - mu_k) exp(-slip / ell) (a slip-weakening law, Ida 1972; Palmer & Rice 1973).
-// Deviation from MODEL.md section 11, which drops to mu_k at once: within one relaxation the force is
-// a function of the displacement from the committed stick point, and with an abrupt drop a node that
-// overshoots the static limit by a round-off during the pseudo-dynamics lands on the kinetic branch and,
-// where mu_k N is less than the load, slides away although a sticking equilibrium exists (measured: a
-// free rod on a plate tilted by 60 deg with mu_s = 1.06 cot(alpha) slid). ell = 0 gives the abrupt drop.
+// Deviation from a plain Coulomb law, which drops to mu_k at once (docs/model.md, Deviations): within one
+// relaxation the force is a function of the displacement from the committed stick point, and with an abrupt
+// drop a node that overshoots the static limit by a round-off during the pseudo-dynamics lands on the kinetic
+// branch and, where mu_k N is less than the load, slides away although a sticking equilibrium exists
+// (measured: a free rod on a plate tilted by 60 deg with mu_s = 1.06 cot(alpha) slid). ell = 0 gives the
+// abrupt drop.
 Vec3 coulomb(const Vec3& u, const Vec3& a, double kt, double N, const Friction& fr, bool& slips) {
   const Vec3 ft = -kt * u;
   const double fa = ft.dot(a);

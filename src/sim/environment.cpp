@@ -43,7 +43,7 @@ ClampCouple clampCouple(const RodParams& p, const RodState& s, double e0) {
   // centre, l0/2 from the base node, and make every deflection first-order in l0 (measured: 5.9 % and
   // 3.0 % Timoshenko errors at 25 and 50 elements). Instead the clamp frame sits at s = 0 and couples
   // to element 0 through a half Voronoi domain, as interior elements couple to each other; the scheme
-  // then stays second order. (MODEL.md section 6 says "directors of the first element"; this is the
+  // then stays second order. (docs/model.md, Environment says "directors of the first element"; this is the
   // same clamp moved to the base node.)
   ROOTSIM_ASSERT(s.elements() >= 1 && s.l0[0] > 0.0 && e0 > 0.0, "a clamped rod with a first element of positive length");
   const double D0 = 0.5 * s.l0[0];
@@ -58,7 +58,7 @@ ClampCouple clampCouple(const RodParams& p, const RodState& s, double e0) {
 
 void addPlaneContact(const RodParams& p, const Plane& plane, const RodState& s, bool damping,
                      Eigen::Matrix3Xd& force, int first, int end) {
-  // one-sided penalty on the surface gap (r_mid . n - R, with the rest radius as MODEL.md writes it: a
+  // one-sided penalty on the surface gap (r_mid . n - R, with the rest radius, docs/model.md, Environment: a
   // gap using R / sqrt(e) would make the contact force depend on stretching without an energy behind
   // it, which shows up as a spurious unstable direction of the stiffness matrix) plus normal damping,
   // shared by the element's two nodes

@@ -1,4 +1,4 @@
-// Explicit damped relaxation (MODEL.md section 7, first bullet). relax.hpp declares both this and
+// Explicit damped relaxation (docs/model.md, Relaxation). relax.hpp declares both this and
 // the stability helpers that share its workspace; this file holds the explicit solver only.
 //
 // One sub-step, in this fixed order (position Verlet, as ref. 37 / PyElastica), each a short function:

@@ -1,4 +1,4 @@
-// Quasi-static Newton solver (MODEL.md section 12).
+// Quasi-static Newton solver (docs/model.md, Newton solver).
 //
 // Unknowns: node positions and one incremental rotation per element (material components; directors
 // updated by the exponential map, Q <- exp(-[dtheta]x) Q, the same convention as the explicit solver's
@@ -18,7 +18,7 @@
 // exactly (adhered mature material, held by stiff springs, barely moves). The equilibrium criterion is
 // the explicit solver's, over the free dofs.
 //
-// Stability (MODEL.md section 12): at the converged state the symmetric part of K is factorised as
+// Stability (docs/model.md, Newton solver): at the converged state the symmetric part of K is factorised as
 // LDL^T; its negative pivots are the unstable directions (Sylvester), and Lanczos with the
 // same factors gives the eigenvalue nearest zero and its mode.
 #include <algorithm>

@@ -1,6 +1,6 @@
 #pragma once
-// shared helpers of the renderer tests: synthetic rods in the frame of MODEL.md section 3, colour
-// classes of the tube's material, scratch folders, and an MP4 read back with libavformat
+// shared helpers of the renderer tests: synthetic rods in the frame of docs/model.md (Frames and signs),
+// colour classes of the tube's material, scratch folders, and an MP4 read back with libavformat
 #include <Eigen/Geometry>
 #include <cmath>
 #include <cstdint>

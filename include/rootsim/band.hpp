@@ -1,5 +1,5 @@
 #pragma once
-// Banded linear algebra for the rod's stiffness (MODEL.md section 12): every element couples only to
+// Banded linear algebra for the rod's stiffness (docs/model.md, Newton solver): every element couples only to
 // its neighbours, so the stiffness of the discrete rod, with node and element blocks interleaved, is a
 // band matrix of half-bandwidth ~14. Storage is allocated by reserve() and reused: factorising and
 // solving allocate nothing.
@@ -94,9 +94,9 @@ struct OffBandEntry {
   double value = 0;
 };
 
-// a band matrix plus a few off-band entries (self-contact couples nodes far apart along the rod: MODEL.md
-// section 12), factorised as a sparse matrix: LU by KLU (SuiteSparse; threshold partial pivoting, AMD
-// ordering) for the Newton step, and LDL^T of its symmetric part with AMD ordering (Eigen's
+// a band matrix plus a few off-band entries (self-contact couples nodes far apart along the rod:
+// docs/model.md, Newton solver), factorised as a sparse matrix: LU by KLU (SuiteSparse; threshold partial
+// pivoting, AMD ordering) for the Newton step, and LDL^T of its symmetric part with AMD ordering (Eigen's
 // SimplicialLDLT, no pivoting: the negative pivots count the negative eigenvalues, as BandLDLT's) for the
 // stability check. The pattern holds the places where the band or the off-band entries held a nonzero
 // since the size last changed (a quarter of the rod's band is structurally zero; factorising those zeros

@@ -1,6 +1,6 @@
 #pragma once
-// Contact beyond the paper (MODEL.md section 11): the rod against itself, against rigid obstacles on
-// the plate, and Coulomb friction on the plate and the obstacles. Each is a force piece that
+// Contact beyond the paper (docs/model.md, Contact and friction): the rod against itself, against rigid
+// obstacles on the plate, and Coulomb friction on the plate and the obstacles. Each is a force piece that
 // addExternalForces (environment.cpp) calls, so every solver that evaluates computeForces shares them.
 //
 // Conventions, as the plate's (environment.cpp): penalty springs act on the surface gap computed with
@@ -70,8 +70,8 @@ inline constexpr double kSelfExclusionRadii = 3.0;
 
 // the lowest node of the element pairs that self-contact watches (closer than 2R + a skin of R) and whose
 // younger element reaches node `from` or beyond (nodes() when there is none): the Newton solver's window
-// reaches back to it (MODEL.md section 12: contacts are among the unknowns), so that the old turns the
-// window's part of a coil presses on can yield
+// reaches back to it (docs/model.md, Newton solver: contacts are among the unknowns), so that the old turns
+// the window's part of a coil presses on can yield
 int firstNodeNearContact(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw,
                          int from = 0);
 
@@ -130,9 +130,9 @@ void closestSegmentPoints(const Vec3& a0, const Vec3& a1, const Vec3& b0, const 
 // blends smoothly (smoothstep in sin^2) into the middle of a's part facing b, and the point on b is its
 // projection. The force then acts along the line between the two points (no net moment) and is a
 // continuous function of the nodes, so that a static equilibrium exists where turns of a coil lie side
-// by side (with the closest points the residual jumps there and neither solver settles; MODEL.md section
-// 11 names the closest points, this is the deviation). The distance between the points is at least the
-// closest distance.
+// by side (with the closest points the residual jumps there and neither solver settles; the
+// paper's law names the closest points, this is the deviation: docs/model.md, Deviations). The distance
+// between the points is at least the closest distance.
 void contactSegmentPoints(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, double& sa,
                           double& sb);
 inline constexpr double kParallelSin2 = 0.030153689607045803;  // sin^2(10 degrees)

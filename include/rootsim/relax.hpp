@@ -1,6 +1,6 @@
 #pragma once
-// Mechanical relaxation to equilibrium (MODEL.md section 7): the options and result of every solver, the
-// explicit solver (DynamicRelaxation, relax_dynamic.cpp) and the force evaluation it shares with the
+// Mechanical relaxation to equilibrium (docs/model.md, Relaxation): the options and result of every solver,
+// the explicit solver (DynamicRelaxation, relax_dynamic.cpp) and the force evaluation it shares with the
 // stability check (stability.cpp). One header for the concept "relaxation"; one source per solver.
 #include "rootsim/contact.hpp"
 #include <stdexcept>
@@ -168,8 +168,8 @@ struct NewtonWorkspace {
   Eigen::VectorXd unstableMode(const RodState& s, const Environment& env) const;
 };
 
-// Newton's method on the discrete equilibrium (MODEL.md section 12) for the nodes firstFreeNode..n and
-// the elements from there on; the rest stays exactly where it is. With opt.stabilityCheck, also the
+// Newton's method on the discrete equilibrium (docs/model.md, Newton solver) for the nodes firstFreeNode..n
+// and the elements from there on; the rest stays exactly where it is. With opt.stabilityCheck, also the
 // inertia of the converged state's stiffness (nw.negative, nw.lowestEigenvalue). Returns stalled when
 // no acceptable step is found or opt.newtonMaxIterations is reached (the state is then where Newton
 // left it); throws RelaxError on divergence or a singular stiffness.
@@ -210,8 +210,8 @@ double appliedLoadScale(const RodParams& p, const Environment& env, const RodSta
 inline constexpr double kResolvableLoad = 1e-6;
 
 // a node that moves more than this many Lref within one relaxation is sliding away: no static
-// equilibrium (MODEL.md section 11). A clamped rod's node moves at most twice its arc length; a growing
-// root's snap moves its tip by less than the growth zone (Lref).
+// equilibrium (docs/model.md, Contact and friction). A clamped rod's node moves at most twice its arc length;
+// a growing root's snap moves its tip by less than the growth zone (Lref).
 inline constexpr double kSlideLengths = 3.0;
 
 // relaxes the rod to equilibrium under env; throws RelaxError on divergence or on hitting the cap

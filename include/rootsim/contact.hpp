@@ -130,8 +130,8 @@ void closestSegmentPoints(const Vec3& a0, const Vec3& a1, const Vec3& b0, const 
 // blends smoothly (smoothstep in sin^2) into the middle of a's part facing b, and the point on b is its
 // projection. The force then acts along the line between the two points (no net moment) and is a
 // continuous function of the nodes, so that a static equilibrium exists where turns of a coil lie side
-// by side (with the closest points the residual jumps there and neither solver settles; the
-// paper's law names the closest points, this is the deviation: docs/model.md, Deviations). The distance
+// by side (with the closest points the residual jumps there and neither solver settles; the plain
+// penalty law names the closest points, this is the deviation: docs/model.md, Deviations). The distance
 // between the points is at least the closest distance.
 void contactSegmentPoints(const Vec3& a0, const Vec3& a1, const Vec3& b0, const Vec3& b1, double& sa,
                           double& sb);

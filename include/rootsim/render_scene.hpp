@@ -1,6 +1,6 @@
 #pragma once
-// State -> abstract render scene (no GL here; STYLE.md "Data flow"). The scene is what the GL renderer
-// draws and nothing more: triangle meshes, a plate with a grid, a camera, lights, overlay items.
+// State -> abstract render scene (no GL here; docs/architecture.md, "Data flow"). The scene is what the GL
+// renderer draws and nothing more: triangle meshes, a plate with a grid, a camera, lights, overlay items.
 //
 // Plate coordinates [mm], used throughout the scene (docs/model.md, Frames and signs):
 //   u = x . p           lateral, to the right in the top view

@@ -1,6 +1,7 @@
 // Validation of the rod core and the dynamic relaxation against closed-form mechanics (docs/model.md,
 // Rod mechanics). Each case runs at two resolutions; with ROOTSIM_PRINT_RESIDUALS=1 the errors and the
-// observed convergence order are printed.
+// observed convergence order are printed (ROOTSIM_PRINT_RESIDUALS=1) and, for the second-order
+// schemes, asserted.
 #include <doctest/doctest.h>
 
 #include <cmath>
@@ -41,7 +42,8 @@ TEST_CASE("cantilever, small tip load: Timoshenko deflection (bending + shear) w
     ROOTSIM_CHECK_REL("Timoshenko tip deflection", got, want, 0.01);
   }
   printOrder("Timoshenko tip deflection", ns[0], err[0], ns[1], err[1]);
-  CHECK(err[1] < err[0]);
+  // second order in the element length (measured 2.06 and 1.94)
+  CHECK(order(err[0], err[1], ns[0], ns[1]) >= 1.9);
 }
 
 TEST_CASE("explicit relaxation of a window: the frozen part stays, the free part is a cantilever clamped at the window's start") {
@@ -72,7 +74,8 @@ TEST_CASE("explicit relaxation of a window: the frozen part stays, the free part
     ROOTSIM_CHECK_REL("Timoshenko deflection of the window", got, want, 0.01);
   }
   printOrder("window: Timoshenko deflection", ns[0], err[0], ns[1], err[1]);
-  CHECK(err[1] < err[0]);
+  // second order in the element length (measured 2.06 and 1.94)
+  CHECK(order(err[0], err[1], ns[0], ns[1]) >= 1.9);
 }
 
 TEST_CASE("cantilever, large tip load: elastica solution (shooting) within 1%") {
@@ -93,6 +96,8 @@ TEST_CASE("cantilever, large tip load: elastica solution (shooting) within 1%") 
     err[r] = relError(gotEta, ref.eta);
   }
   printOrder("elastica tip deflection", ns[0], err[0], ns[1], err[1]);
+  // converges, but below second order (measured 1.35 between 25 and 50 elements, against the shooting
+  // reference); the cause is not established, so only the decrease is asserted
   CHECK(err[1] < err[0]);
 }
 
@@ -125,7 +130,7 @@ TEST_CASE("end moment: the rod rolls into the exact circular arc, up to a full c
       ROOTSIM_CHECK_REL("arc curvature kappa2 = M/B2", kmid, k, 1e-4);
     }
     printOrder(turns == 1.0 ? "full circle, max node error" : "arc, max node error", ns[0], err[0], ns[1], err[1]);
-    CHECK(err[1] < err[0]);
+    CHECK(order(err[0], err[1], ns[0], ns[1]) >= 1.9);  // second order (measured 2.00)
   }
 }
 

@@ -2,6 +2,7 @@
 // the rule: README "Equilibrium, the paper's way" and "Contact beyond the paper".
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "rootsim/relax.hpp"
 #include "rootsim/units.hpp"
@@ -41,9 +42,16 @@ EquilibriumTolerance equilibriumTolerance(const RodParams& p, const Environment&
   }
   // applied loads below the elastic scale: the residual must be small against them, or a rod that they
   // move (a free rod sliding under its weight) passes as in equilibrium before it has moved
-  const double scale = std::max(applied, kResolvableLoad * elastic);
-  t.force = opt.forceTol * scale;
-  t.couple = opt.forceTol * scale * Lref;
+  // (but not below what the force evaluation resolves, unless forceTol * B1/Lref^2 asks for that anyway):
+  // its round-off is the stretch stiffness EA/l times the last bit of a node position
+  const int n = s.elements();
+  double kmax = 0.0;
+  for (int i = 0; i < n; ++i) kmax = std::max(kmax, 1.0 / s.l0[i]);
+  kmax *= p.shearStiffness().maxCoeff();
+  const double roundOff = std::numeric_limits<double>::epsilon() * kmax * s.x.colwise().norm().maxCoeff();
+  const double floor = std::min(opt.forceTol * elastic, kResolvableResidual * roundOff);
+  t.force = std::max(opt.forceTol * applied, floor);
+  t.couple = std::max(opt.forceTol * applied * Lref, std::min(opt.forceTol * B1 / Lref, floor * Lref));
   return t;
 }
 

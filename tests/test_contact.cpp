@@ -301,7 +301,7 @@ TEST_CASE("incline: a free rod under its weight sticks iff mu_s >= cot(alpha), 5
         c.env.friction.muStatic = factor * cot;
         c.env.friction.muKinetic = 0.8 * factor * cot;
         // sliding is reported by the slide check ("node i slides: no static equilibrium", checked in
-        // sticks()), not by the sub-step cap; how long it takes is measured (README), not asserted
+        // sticks()), not by the sub-step cap; how long it takes is measured (docs/contact.md), not asserted
         const bool stuck = sticks(c);
         CHECK(stuck == (factor > 1.0));
       }

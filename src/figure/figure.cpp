@@ -479,7 +479,7 @@ std::string fig2cde(const Ctx& c) {
                        "turning time / T0 drifts with β from " + fmt3(Tf.front()) + " (β = " + num(betas.front()) +
                        ") to " + fmt3(Tf.back()) + " (β = " + num(betas.back()) + "; table under fig2cde), so no O(1) "
                        "prefactor makes Eq. 7 hold for all β. The crossing time is interpolated between growth steps; "
-                       "README (Claims) lists the full-resolution runs (γ = 0 and a horizontal start included) that "
+                       "docs/claims.md lists the full-resolution runs (γ = 0 and a horizontal start included) that "
                        "give the same picture."});
   c.claims->push_back({"Eq. 7: the free organ's turning time ∝ (β Lgz/R)^(−3/5) (β = 0.05 … 1)", "exponent −0.6",
                        "−3/5 (fit to the paper's free-organ runs, SI 5)",
@@ -729,7 +729,7 @@ std::string phaseDiagram(const Ctx& c, const std::string& name, const std::strin
                        farMiss == 0,
                        "Eqs. 12-13 were derived for γ = 0 and local sensing; the paper reports no qualitative difference "
                        "for γ = 1 and apical sensing (SI 7). The cells are listed under the " + name + " panel (≠ marks a "
-                       "disagreement); README (Claims) lists full-resolution runs of the cells the quick report gets "
+                       "disagreement); docs/claims.md lists full-resolution runs of the cells the quick report gets "
                        "wrong, which tell a resolution effect from a property of the model."});
   return md(c, name, "Simulated pattern (symbols) over tilt (" + num(step) + "° grid) and effective gain (" + variant +
                          "), on the regions predicted by Eqs. 12 and 13 (derived for γ = 0 and local sensing).",

@@ -230,7 +230,7 @@ const std::vector<KeySpec>& schema() {
            "plate tilt from the vertical [deg]; also sets the start direction when the plate is off"),
       // the default deviates from the paper's 100 N/m: see Plane::k (environment.hpp)
       real("plane", "k_n_per_m", FIELD(env.plane.k), kOne, 0, false, 1e6, false,
-           "contact penalty spring per element [N/m] (paper: 100; see README)"),
+           "contact penalty spring per element [N/m] (paper: 100; see docs/model.md, Environment)"),
       real("plane", "damping_kg_per_s", FIELD(env.plane.c), kOne, 0, false, 1e3, false,
            "contact normal damping per element [kg/s] (physical-mass relaxation only)"),
       boolean("adhesion", "enabled", FIELD(env.adhesion), "pin material that leaves the growth zone"),
@@ -250,14 +250,14 @@ const std::vector<KeySpec>& schema() {
       real("friction", "axial_ratio", FIELD(env.friction.axialRatio), kOne, 0, false, 100, false,
            "friction along the root's in-plane axis / across it (root hairs anchor sideways: < 1)"),
       real("friction", "slip_weakening_mm", FIELD(env.friction.slipWeakening), kMm, 0, false, 1e3, false,
-           "slip over which friction falls from mu_static to mu_kinetic [mm] (0: at once; see README)"),
+           "slip over which friction falls from mu_static to mu_kinetic [mm] (0: at once; see docs/contact.md)"),
       choice("solver", "kind", FIELD(solver.kind),
              std::vector<std::pair<std::string, SolverKind>>{{"newton", SolverKind::Newton}, {"dynamic", SolverKind::Dynamic}},
              "newton: quasi-static Newton with a banded Jacobian (docs/model.md, Newton solver); dynamic: the "
              "paper's explicit damped relaxation"),
       real("solver", "window_mm", FIELD(solver.window), kMm, 0, false, 1e4, false,
            "newton: solve for the nodes within this length behind the growth zone, the zone, contacts and "
-           "the twist of the adhered mature root (0: the whole rod; see README)"),
+           "the twist of the adhered mature root (0: the whole rod; see docs/numerics.md)"),
       integer("solver", "newton_max_iterations", FIELD(solver.newtonMaxIterations), 1, 100000,
               "Newton iterations before a growth step continues with the explicit relaxation (snaps)"),
       choice("solver", "mass", FIELD(solver.mass),

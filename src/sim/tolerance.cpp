@@ -1,5 +1,5 @@
 // The equilibrium tolerance of both solvers (relax.hpp: equilibriumTolerance). The rule and why it is
-// the rule: README "Equilibrium, the paper's way" and "Contact beyond the paper".
+// the rule: docs/model.md, Relaxation (the equilibrium tolerance), and docs/contact.md.
 #include <algorithm>
 #include <cmath>
 #include <limits>

@@ -99,7 +99,7 @@ echo "slurm: single-node cluster $host up ($cpus CPUs)"
 
 start=$(date +%s)
 out="$work/cluster"
-# the job array: task K runs shard K/4 (what README's SLURM section shows)
+# the job array: task K runs shard K/4 (what docs/cli.md's SLURM example shows)
 sbatch --wait --array=1-4 --output="$work/job_%A_%a.log" --chdir="$work" \
   --wrap "$rootsim sweep $sweep --shard \${SLURM_ARRAY_TASK_ID}/4 --out $out --quiet" >"$work/sbatch.log" 2>&1 || {
   echo "FAIL: sbatch --wait failed"; cat "$work/sbatch.log" "$work"/job_*.log; exit 1; }

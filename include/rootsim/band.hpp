@@ -7,6 +7,8 @@
 #include <memory>
 #include <vector>
 
+#include "rootsim/fields.hpp"
+
 namespace rootsim {
 
 // general band matrix with kl sub- and ku super-diagonals and its LU factorisation with partial
@@ -116,6 +118,11 @@ struct SparseMemory {
   // last was the full one): restored too, so that a resumed run's first Newton step reuses the same
   // factors as the uninterrupted run's
   std::vector<double> lastValues;
+  static constexpr auto fields() {
+    using M = SparseMemory;
+    return std::tuple{field("n", &M::n), field("kl", &M::kl), field("ku", &M::ku), field("places", &M::places),
+                      field("pivotValues", &M::pivotValues), field("lastValues", &M::lastValues)};
+  }
 };
 
 class SparseStiffness {
@@ -148,6 +155,17 @@ class SparseStiffness {
  private:
   struct Impl;
   std::unique_ptr<Impl> impl_;
+};
+// a carry (fields.hpp) holds a SparseStiffness as its memory (a copy of one starts empty)
+template <>
+struct Carried<SparseStiffness> {
+  using type = SparseMemory;
+  static SparseMemory save(const SparseStiffness& s) { return s.memory(); }
+  static bool restore(SparseStiffness& s, const SparseMemory& m) {
+    if (s.restore(m)) return true;
+    s.resetPattern();
+    return false;
+  }
 };
 
 }  // namespace rootsim

@@ -6,7 +6,10 @@
 //   header (40 bytes)  magic "RSCHKPT\0" (8) | u32 version | u32 reserved 0 | u64 scene hash (FNV-1a of
 //                      the resolved scene.toml) | i32 growth step | u32 reserved 0 | u64 payload bytes
 //   payload            the rod state, SimulationCarry, the run's accumulators and the output writers'
-//                      positions (checkpoint.cpp writes and reads them in one order)
+//                      positions: each struct's field list (fields.hpp) in order, a field as its raw
+//                      bytes (bool: 1 byte; an array or matrix: u64 length (columns), then its values;
+//                      a string: u64 length, then its bytes; a BandLU: i32 n, kl, ku, then its storage
+//                      and pivots as arrays; a SparseStiffness: its SparseMemory)
 //   trailer (8 bytes)  u64 FNV-1a of the payload: a torn or corrupt file is recognised
 //
 // The file is written atomically (checkpoint.bin.tmp, then rename): a kill leaves the previous one.
@@ -16,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "rootsim/fields.hpp"
 #include "rootsim/rod.hpp"
 #include "rootsim/simulation.hpp"
 
@@ -34,6 +38,13 @@ struct RunAccumulators {
   int maxSelfContacts = 0;
   double minSelfDistance = 0;      // [R] (NaN: never within 3R)
   double wallBefore = 0;           // wall time of the earlier attempts [s]
+  static constexpr auto fields() {
+    using A = RunAccumulators;
+    return std::tuple{field("snapFirst", &A::snapFirst), field("snapVertical", &A::snapVertical),
+                      field("snapPrevTheta", &A::snapPrevTheta), field("snapPrevTime", &A::snapPrevTime),
+                      field("maxSubsteps", &A::maxSubsteps), field("maxSelfContacts", &A::maxSelfContacts),
+                      field("minSelfDistance", &A::minSelfDistance), field("wallBefore", &A::wallBefore)};
+  }
 };
 
 // where the output files stood at the checkpoint
@@ -43,6 +54,27 @@ struct WriterPositions {
   std::uint64_t trajectoryBinaryBytes = 0;  // trajectory.bin (0 when not written)
   int trajectoryFrames = 0;
   std::vector<std::pair<double, std::string>> vtkEntries;  // trajectory.pvd's entries so far (time_h, file)
+  static constexpr auto fields() {
+    using W = WriterPositions;
+    return std::tuple{field("timeseriesBytes", &W::timeseriesBytes), field("trajectoryBytes", &W::trajectoryBytes),
+                      field("trajectoryBinaryBytes", &W::trajectoryBinaryBytes),
+                      field("trajectoryFrames", &W::trajectoryFrames), field("vtkEntries", &W::vtkEntries)};
+  }
+};
+
+// the rod state's field list (fields.hpp), in the checkpoint's order: all of it persists (the friction
+// stick points included)
+template <>
+struct FieldsOf<RodState> {
+  static constexpr auto list() {
+    using R = RodState;
+    return std::tuple{field("x", &R::x), field("v", &R::v), field("Q", &R::Q), field("w", &R::w),
+                      field("l0", &R::l0), field("S", &R::S), field("kappa0", &R::kappa0),
+                      field("anchor", &R::anchor), field("anchored", &R::anchored),
+                      field("plateStick", &R::plateStick), field("hasPlateStick", &R::hasPlateStick),
+                      field("obstacleStick", &R::obstacleStick), field("hasObstacleStick", &R::hasObstacleStick),
+                      field("clampFrame", &R::clampFrame), field("time", &R::time)};
+  }
 };
 
 struct RunCheckpoint {
@@ -59,5 +91,11 @@ void writeCheckpoint(const std::filesystem::path& path, const RunCheckpoint& c);
 // reads and checks a checkpoint (magic, version, length, checksum, sizes); throws SceneError naming the
 // file and what is wrong with it
 RunCheckpoint readCheckpoint(const std::filesystem::path& path);
+
+// the dotted name of the first field (through the field lists) whose bytes differ, e.g.
+// "carry.newton.matureK"; "" when every field is the same bit for bit (tests)
+std::string checkpointDifference(const RunCheckpoint& a, const RunCheckpoint& b);
+std::string carryDifference(const SimulationCarry& a, const SimulationCarry& b);
+std::string stateDifference(const RodState& a, const RodState& b);
 
 }  // namespace rootsim

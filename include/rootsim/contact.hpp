@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "rootsim/environment.hpp"
+#include "rootsim/fields.hpp"
 
 namespace rootsim {
 
@@ -55,6 +56,12 @@ struct ContactWorkspace {
 
   void resize(int n);
   void invalidate() { builtElements = -1; }
+  // what the next relaxation depends on (the Verlet list), in the checkpoint's order (fields.hpp)
+  static constexpr auto fields() {
+    using W = ContactWorkspace;
+    return std::tuple{field("pairs", &W::pairs), field("xBuilt", &W::xBuilt), field("builtElements", &W::builtElements),
+                      field("builtRestLength", &W::builtRestLength), field("builds", &W::builds)};
+  }
 };
 
 // obstacles: each element against each obstacle (a 2-D segment-segment distance in the plate: the

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "rootsim/analysis.hpp"
+#include "rootsim/fields.hpp"
 #include "rootsim/model.hpp"
 #include "rootsim/snapshot.hpp"
 
@@ -26,50 +27,66 @@ struct StepRecord {
   int splits = 0;             // elements split in this step
   int unstable = 0;           // unstable equilibria found (and left along their unstable mode) in this step
   Vec3 tip = Vec3::Zero();    // tip position, lab [m]
-  // contact (MODEL.md section 11; all zero when the features are off)
+  // contact (docs/model.md, "Contact and friction"; all zero when the features are off)
   int selfContacts = 0;       // element pairs in self-contact
   double minSelfDistance = std::numeric_limits<double>::quiet_NaN();  // closest approach of non-
                               // neighbouring elements / R (NaN: none within 3R, or self-contact off)
   int obstacleContacts = 0;   // elements touching an obstacle
   long slipEvents = 0;        // node slips committed so far (friction), cumulative
   double frictionWork = 0;    // work done against friction so far [J], cumulative
+  static constexpr auto fields() {
+    using R = StepRecord;
+    return std::tuple{field("step", &R::step), field("timeH", &R::timeH), field("length", &R::length),
+                      field("elements", &R::elements), field("thetaTip", &R::thetaTip), field("zone", &R::zone),
+                      field("substeps", &R::substeps), field("iterations", &R::iterations),
+                      field("lowestEigenvalue", &R::lowestEigenvalue), field("residualForce", &R::residualForce),
+                      field("splits", &R::splits), field("unstable", &R::unstable), field("tip", &R::tip),
+                      field("selfContacts", &R::selfContacts), field("minSelfDistance", &R::minSelfDistance),
+                      field("obstacleContacts", &R::obstacleContacts), field("slipEvents", &R::slipEvents),
+                      field("frictionWork", &R::frictionWork)};
+  }
 };
 
-// what a growth step carries to the next besides the rod state: counters, the unwrapped tip angle, the
-// last record, and the solvers' memory that changes their results (the Newton stability check's
-// softest-mode start vector, the self-contact Verlet list). A checkpoint (src/io/checkpoint.cpp)
-// saves it with the state; Simulation(model, state, carry) continues bit for bit where carry() left.
-struct SimulationCarry {
+// what a growth step carries to the next besides the rod state and the solvers' memory: counters, the
+// unwrapped tip angle, the last record
+struct SimulationProgress {
   int step = 0;
   long totalSubsteps = 0, totalIterations = 0;
   double thetaUnwrapped = 0;            // [rad]
   long slipEvents = 0;
   double frictionWork = 0;              // [J]
   StepRecord last;
-  // NewtonWorkspace: the warm start of the eigenvalue search and what it knows about the last solve
-  std::vector<double> newtonMode;       // (at least newtonModeSize)
-  int newtonModeSize = 0, newtonFirstFreeNode = 0, newtonNegative = 0;
-  double newtonLowestEigenvalue = 0;    // [N/m]
-  // the last Jacobian's band LU factors, which the next relaxation's first (chord) iteration uses
-  bool newtonFactorsValid = false, newtonSparseActive = false;
-  int newtonFactorsDofs = 0, newtonFactorsFirstBlock = 0;
-  int newtonBandN = 0, newtonBandKl = 0, newtonBandKu = 0;
-  std::vector<double> newtonBand;       // BandLU::storage()
-  std::vector<int> newtonPivots;        // BandLU::pivots()
-  SparseMemory newtonSparse;            // the sparse Jacobian's pattern and pivots (self-contact)
-  std::vector<double> newtonMatureK;    // the frozen twists' kept stiffness (NewtonWorkspace::matureK)
-  int newtonMatureValid = 0, newtonMatureAge = 0;
-  // the solver's self-contact Verlet list (ContactWorkspace)
-  std::vector<std::array<int, 2>> pairs;
-  Eigen::Matrix3Xd pairsBuiltX;         // (3 x builtElements+1) [m]
-  int pairsBuiltElements = -1;
-  double pairsBuiltRestLength = -1.0;   // [m]
-  long pairsBuilds = 0;
+  static constexpr auto fields() {
+    using P = SimulationProgress;
+    return std::tuple{field("step", &P::step), field("totalSubsteps", &P::totalSubsteps),
+                      field("totalIterations", &P::totalIterations), field("thetaUnwrapped", &P::thetaUnwrapped),
+                      field("slipEvents", &P::slipEvents), field("frictionWork", &P::frictionWork),
+                      field("last", &P::last)};
+  }
+};
+
+// what a growth step carries to the next besides the rod state: the progress and the solvers' memory
+// that changes their results (NewtonWorkspace::fields: the stability check's softest-mode start vector,
+// the last Jacobian's factors, the frozen twists' stiffness; ContactWorkspace::fields: the self-contact
+// Verlet list). A checkpoint (src/io/checkpoint.cpp) saves it with the state; Simulation(model, state,
+// carry) continues bit for bit where carry() left. Every part is a field list (fields.hpp): a new
+// persistent member of a workspace is one line in its list, and carry(), the restoring constructor and
+// the checkpoint follow.
+struct SimulationCarry {
+  SimulationProgress progress;
+  // the banded factors (lu) only while they are valid and in use (else an empty BandLU)
+  Memory<NewtonWorkspace> newton;
+  // the list only while it describes the rod as it was built (else a fresh workspace's: builds aside)
+  Memory<ContactWorkspace> contact;
+  static constexpr auto fields() {
+    using C = SimulationCarry;
+    return std::tuple{field("progress", &C::progress), field("newton", &C::newton), field("contact", &C::contact)};
+  }
 };
 
 class Simulation {
  public:
-  // builds the initial rod (MODEL.md section 3) and relaxes it once (no growth yet)
+  // builds the initial rod (docs/model.md, "Frames and signs": the initial rod) and relaxes it once (no growth yet)
   explicit Simulation(const Model& m);
   // continues from a state of an earlier simulation of a compatible model (its growth step `step`), as it
   // is: no relaxation (a restart, or the same root handed to another solver)
@@ -91,10 +108,10 @@ class Simulation {
   const Model& model() const { return m_; }
   const RodState& state() const { return s_; }
   const RodStrains& strains() const { return ws_.strains; }
-  const StepRecord& last() const { return rec_; }
-  int step() const { return step_; }
-  long totalSubsteps() const { return totalSubsteps_; }
-  long totalIterations() const { return totalIterations_; }
+  const StepRecord& last() const { return p_.last; }
+  int step() const { return p_.step; }
+  long totalSubsteps() const { return p_.totalSubsteps; }
+  long totalIterations() const { return p_.totalIterations; }
   Snapshot snapshot() const;
   SimulationCarry carry() const;
 
@@ -111,14 +128,8 @@ class Simulation {
   RodState start_;              // newtonOrExplain's copy of the state before Newton (scratch)
   RelaxWorkspace ws_;
   NewtonWorkspace nw_;
-  int step_ = 0;
-  long totalSubsteps_ = 0;
-  long totalIterations_ = 0;
-  double thetaUnwrapped_ = 0;
+  SimulationProgress p_;
   ContactWorkspace observed_;   // contact counts' own scratch (the solver's list stays untouched)
-  long slipEvents_ = 0;
-  double frictionWork_ = 0;
-  StepRecord rec_;
 };
 
 }  // namespace rootsim

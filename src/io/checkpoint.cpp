@@ -123,46 +123,117 @@ struct In {
   }
 };
 
-// StepRecord field by field (no padding bytes in the file)
-void putRecord(Out& o, const StepRecord& r) {
-  o.pod(r.step);
-  o.pod(r.timeH);
-  o.pod(r.length);
-  o.pod(r.elements);
-  o.pod(r.thetaTip);
-  o.pod(r.zone);
-  o.pod(r.substeps);
-  o.pod(r.iterations);
-  o.pod(r.lowestEigenvalue);
-  o.pod(r.residualForce);
-  o.pod(r.splits);
-  o.pod(r.unstable);
-  o.raw(r.tip.data(), 3 * sizeof(double));
-  o.pod(r.selfContacts);
-  o.pod(r.minSelfDistance);
-  o.pod(r.obstacleContacts);
-  o.pod(r.slipEvents);
-  o.pod(r.frictionWork);
+template <class T>
+struct IsVector : std::false_type {};
+template <class T>
+struct IsVector<std::vector<T>> : std::true_type {};
+template <class T>
+struct IsMemory : std::false_type {};
+template <class S>
+struct IsMemory<Memory<S>> : std::true_type {};
+using VtkEntries = std::vector<std::pair<double, std::string>>;
+
+// one field as its bytes (checkpoint.hpp: the payload); a struct with a field list field by field (no
+// padding bytes in the file)
+template <class T>
+void put(Out& o, const T& v) {
+  if constexpr (HasFields<T>) {
+    visitFields(v, [&](const char*, const auto& f) { put(o, f); });
+  } else if constexpr (IsMemory<T>::value) {
+    forEachCarried(v, [&](const auto&, const auto& f) { put(o, f); });
+  } else if constexpr (std::is_same_v<T, bool>) {
+    o.pod(static_cast<std::uint8_t>(v));
+  } else if constexpr (std::is_same_v<T, Eigen::Matrix3Xd>) {
+    o.mat(v);
+  } else if constexpr (std::is_same_v<T, Eigen::VectorXd>) {
+    o.vec(v);
+  } else if constexpr (std::is_same_v<T, Vec3> || std::is_same_v<T, Mat3>) {
+    o.raw(v.data(), sizeof(double) * T::SizeAtCompileTime);
+  } else if constexpr (std::is_same_v<T, std::vector<Mat3>>) {
+    o.mats(v);
+  } else if constexpr (std::is_same_v<T, VtkEntries>) {
+    o.count(v.size());
+    for (const auto& [t, f] : v) {
+      o.pod(t);
+      o.str(f);
+    }
+  } else if constexpr (IsVector<T>::value) {
+    o.list(v);
+  } else if constexpr (std::is_same_v<T, BandLU>) {
+    o.pod(v.size());
+    o.pod(v.kl());
+    o.pod(v.ku());
+    o.list(v.storage());
+    o.list(v.pivots());
+  } else {
+    static_assert(std::is_trivially_copyable_v<T> && !std::is_pointer_v<T>, "a field the checkpoint cannot write");
+    o.pod(v);
+  }
 }
-void getRecord(In& in, StepRecord& r) {
-  r.step = in.pod<int>();
-  r.timeH = in.pod<double>();
-  r.length = in.pod<double>();
-  r.elements = in.pod<int>();
-  r.thetaTip = in.pod<double>();
-  r.zone = in.pod<ZoneObservables>();
-  r.substeps = in.pod<long>();
-  r.iterations = in.pod<long>();
-  r.lowestEigenvalue = in.pod<double>();
-  r.residualForce = in.pod<double>();
-  r.splits = in.pod<int>();
-  r.unstable = in.pod<int>();
-  in.take(r.tip.data(), 3 * sizeof(double));
-  r.selfContacts = in.pod<int>();
-  r.minSelfDistance = in.pod<double>();
-  r.obstacleContacts = in.pod<int>();
-  r.slipEvents = in.pod<long>();
-  r.frictionWork = in.pod<double>();
+
+template <class T>
+void get(In& in, T& v) {
+  if constexpr (HasFields<T>) {
+    visitFields(v, [&](const char*, auto& f) { get(in, f); });
+  } else if constexpr (IsMemory<T>::value) {
+    forEachCarried(v, [&](const auto&, auto& f) { get(in, f); });
+  } else if constexpr (std::is_same_v<T, bool>) {
+    v = in.pod<std::uint8_t>() != 0;
+  } else if constexpr (std::is_same_v<T, Eigen::Matrix3Xd>) {
+    in.mat(v);
+  } else if constexpr (std::is_same_v<T, Eigen::VectorXd>) {
+    in.vec(v);
+  } else if constexpr (std::is_same_v<T, Vec3> || std::is_same_v<T, Mat3>) {
+    in.take(v.data(), sizeof(double) * T::SizeAtCompileTime);
+  } else if constexpr (std::is_same_v<T, std::vector<Mat3>>) {
+    in.mats(v);
+  } else if constexpr (std::is_same_v<T, VtkEntries>) {
+    const std::size_t entries = in.count(sizeof(double) + 8);
+    v.clear();
+    for (std::size_t i = 0; i < entries; ++i) {
+      const auto t = in.pod<double>();
+      std::string name;
+      in.str(name);
+      if (name.rfind("vtk/step_", 0) != 0 || name.find("..") != std::string::npos) in.bad("bad ParaView entry");
+      v.emplace_back(t, std::move(name));
+    }
+  } else if constexpr (IsVector<T>::value) {
+    in.list(v);
+  } else if constexpr (std::is_same_v<T, BandLU>) {
+    const int n = in.pod<int>(), kl = in.pod<int>(), ku = in.pod<int>();
+    std::vector<double> ab;
+    std::vector<int> piv;
+    in.list(ab);
+    in.list(piv);
+    v = BandLU{};
+    // none (n = 0, nothing stored), or factors that fit
+    if ((n != 0 || kl != 0 || ku != 0 || !ab.empty() || !piv.empty()) && !v.restore(n, kl, ku, ab, piv))
+      in.bad("inconsistent Newton factors");
+  } else {
+    static_assert(std::is_trivially_copyable_v<T> && !std::is_pointer_v<T>, "a field the checkpoint cannot read");
+    v = in.pod<T>();
+  }
+}
+
+// the first field whose bytes differ (through the same field lists), as a dotted name
+template <class T>
+std::string difference(const T& a, const T& b, const std::string& name) {
+  std::string d;
+  if constexpr (HasFields<T>) {
+    forEachField<T>([&](const auto& f) {
+      if (d.empty()) d = difference(a.*f.member, b.*f.member, name + "." + f.name);
+    });
+  } else if constexpr (IsMemory<T>::value) {
+    forEachCarried(a, b, [&](const auto& f, const auto& va, const auto& vb) {
+      if (d.empty()) d = difference(va, vb, name + "." + f.name);
+    });
+  } else {
+    Out oa, ob;
+    put(oa, a);
+    put(ob, b);
+    if (oa.b != ob.b) d = name;
+  }
+  return d;
 }
 
 // A checkpoint whose checksum matches may still be forged or written by a bug: every count and
@@ -218,7 +289,10 @@ std::string lastRowFirstField(const std::string& t) {
 
 void checkRanges(const RunCheckpoint& c, long elements, const fs::path& path) {
   auto num = [](auto v) { return std::to_string(v); };
-  const SimulationCarry& k = c.carry;
+  const SimulationProgress& k = c.carry.progress;
+  const Memory<NewtonWorkspace>& nw = c.carry.newton;
+  const Memory<ContactWorkspace>& cw = c.carry.contact;
+  const SparseMemory& sparse = get<&NewtonWorkspace::sparse>(nw);
   const RunAccumulators& a = c.acc;
   const WriterPositions& w = c.writers;
   // a checkpoint is written after a growth step (1, 2, ...): every output step so far left at most one
@@ -230,23 +304,23 @@ void checkRanges(const RunCheckpoint& c, long elements, const fs::path& path) {
   for (const auto& [name, v] : {std::pair<const char*, long>{"total substeps", k.totalSubsteps},
                                 {"total iterations", k.totalIterations},
                                 {"slip events", k.slipEvents},
-                                {"contact list builds", k.pairsBuilds},
+                                {"contact list builds", get<&ContactWorkspace::builds>(cw)},
                                 {"max substeps", a.maxSubsteps},
                                 {"max self-contacts", a.maxSelfContacts},
-                                {"Newton negative eigenvalues", k.newtonNegative},
-                                {"Newton factors dofs", k.newtonFactorsDofs},
-                                {"Newton factors first block", k.newtonFactorsFirstBlock},
-                                {"Newton first free node", k.newtonFirstFreeNode},
-                                {"Newton mature age", k.newtonMatureAge},
-                                {"sparse lower bandwidth", k.newtonSparse.kl},
-                                {"sparse upper bandwidth", k.newtonSparse.ku}})
+                                {"Newton negative eigenvalues", get<&NewtonWorkspace::negative>(nw)},
+                                {"Newton factors dofs", get<&NewtonWorkspace::factorsDofs>(nw)},
+                                {"Newton factors first block", get<&NewtonWorkspace::factorsFirstBlock>(nw)},
+                                {"Newton first free node", get<&NewtonWorkspace::firstFreeNode>(nw)},
+                                {"Newton mature age", get<&NewtonWorkspace::matureAge>(nw)},
+                                {"sparse lower bandwidth", sparse.kl},
+                                {"sparse upper bandwidth", sparse.ku}})
     if (v < 0) refuse(path, name, num(v) + " out of range (>= 0)");
-  if (k.newtonFirstFreeNode > elements + 1)
-    refuse(path, "Newton first free node", num(k.newtonFirstFreeNode) + " out of range (0 .. " + num(elements + 1) + ")");
-  if (k.newtonSparse.n < -1)  // -1: no sparse pattern
-    refuse(path, "sparse pattern size", num(k.newtonSparse.n) + " out of range (>= -1)");
-  if (k.pairsBuiltElements < -1)  // -1: no contact list built
-    refuse(path, "contact list elements", num(k.pairsBuiltElements) + " out of range (>= -1)");
+  if (get<&NewtonWorkspace::firstFreeNode>(nw) > elements + 1)
+    refuse(path, "Newton first free node", num(get<&NewtonWorkspace::firstFreeNode>(nw)) + " out of range (0 .. " + num(elements + 1) + ")");
+  if (sparse.n < -1)  // -1: no sparse pattern
+    refuse(path, "sparse pattern size", num(sparse.n) + " out of range (>= -1)");
+  if (get<&ContactWorkspace::builtElements>(cw) < -1)  // -1: no contact list built
+    refuse(path, "contact list elements", num(get<&ContactWorkspace::builtElements>(cw)) + " out of range (>= -1)");
   if (!(std::isfinite(a.wallBefore) && a.wallBefore >= 0))
     refuse(path, "earlier wall time", "out of range (finite, >= 0 s)");
   if (w.trajectoryFrames < 0 || w.trajectoryFrames > maxFrames)
@@ -292,77 +366,10 @@ std::uint64_t sceneHash(const std::string& resolvedToml) { return fnv1a(resolved
 void writeCheckpoint(const fs::path& path, const RunCheckpoint& c) {
   static_assert(std::is_trivially_copyable_v<ZoneObservables>);
   Out o;
-  // the rod state
-  const RodState& s = c.state;
-  o.mat(s.x);
-  o.mat(s.v);
-  o.mats(s.Q);
-  o.mat(s.w);
-  o.vec(s.l0);
-  o.vec(s.S);
-  o.mat(s.kappa0);
-  o.mat(s.anchor);
-  o.list(s.anchored);
-  o.mat(s.plateStick);
-  o.list(s.hasPlateStick);
-  o.mat(s.obstacleStick);
-  o.list(s.hasObstacleStick);
-  o.raw(s.clampFrame.data(), 9 * sizeof(double));
-  o.pod(s.time);
-  // the simulation's carry
-  const SimulationCarry& k = c.carry;
-  o.pod(k.step);
-  o.pod(k.totalSubsteps);
-  o.pod(k.totalIterations);
-  o.pod(k.thetaUnwrapped);
-  o.pod(k.slipEvents);
-  o.pod(k.frictionWork);
-  putRecord(o, k.last);
-  o.list(k.newtonMode);
-  o.pod(k.newtonModeSize);
-  o.pod(k.newtonFirstFreeNode);
-  o.pod(k.newtonNegative);
-  o.pod(k.newtonLowestEigenvalue);
-  o.pod(static_cast<std::uint8_t>(k.newtonFactorsValid));
-  o.pod(static_cast<std::uint8_t>(k.newtonSparseActive));
-  o.pod(k.newtonFactorsDofs);
-  o.pod(k.newtonFactorsFirstBlock);
-  o.pod(k.newtonBandN);
-  o.pod(k.newtonBandKl);
-  o.pod(k.newtonBandKu);
-  o.list(k.newtonBand);
-  o.list(k.newtonPivots);
-  o.pod(k.newtonSparse.n);
-  o.pod(k.newtonSparse.kl);
-  o.pod(k.newtonSparse.ku);
-  o.list(k.newtonSparse.places);
-  o.list(k.newtonSparse.pivotValues);
-  o.list(k.newtonSparse.lastValues);
-  o.list(k.newtonMatureK);
-  o.pod(k.newtonMatureValid);
-  o.pod(k.newtonMatureAge);
-  o.list(k.pairs);
-  o.mat(k.pairsBuiltX);
-  o.pod(k.pairsBuiltElements);
-  o.pod(k.pairsBuiltRestLength);
-  o.pod(k.pairsBuilds);
-  // the run's accumulators
-  const RunAccumulators& a = c.acc;
-  for (double v : {a.snapFirst, a.snapVertical, a.snapPrevTheta, a.snapPrevTime}) o.pod(v);
-  o.pod(a.maxSubsteps);
-  o.pod(a.maxSelfContacts);
-  o.pod(a.minSelfDistance);
-  o.pod(a.wallBefore);
-  // the writers
-  o.pod(c.writers.timeseriesBytes);
-  o.pod(c.writers.trajectoryBytes);
-  o.pod(c.writers.trajectoryBinaryBytes);
-  o.pod(c.writers.trajectoryFrames);
-  o.count(c.writers.vtkEntries.size());
-  for (const auto& [t, f] : c.writers.vtkEntries) {
-    o.pod(t);
-    o.str(f);
-  }
+  put(o, c.state);
+  put(o, c.carry);
+  put(o, c.acc);
+  put(o, c.writers);
 
   Out h;
   h.raw(kMagic, sizeof kMagic);
@@ -401,21 +408,7 @@ RunCheckpoint readCheckpoint(const fs::path& path) {
   in.end = b.size() - 8;
 
   RodState& s = c.state;
-  in.mat(s.x);
-  in.mat(s.v);
-  in.mats(s.Q);
-  in.mat(s.w);
-  in.vec(s.l0);
-  in.vec(s.S);
-  in.mat(s.kappa0);
-  in.mat(s.anchor);
-  in.list(s.anchored);
-  in.mat(s.plateStick);
-  in.list(s.hasPlateStick);
-  in.mat(s.obstacleStick);
-  in.list(s.hasObstacleStick);
-  in.take(s.clampFrame.data(), 9 * sizeof(double));
-  s.time = in.pod<double>();
+  get(in, s);
   // the fields must agree on the element count (a checksum collision aside, a writer bug)
   const long n = s.l0.size();
   if (n < 1 || s.x.cols() != n + 1 || s.v.cols() != n + 1 || static_cast<long>(s.Q.size()) != n || s.w.cols() != n ||
@@ -425,73 +418,42 @@ RunCheckpoint readCheckpoint(const fs::path& path) {
       static_cast<long>(s.hasObstacleStick.size()) != n + 1)
     in.bad("rod state fields disagree on the element count");
   SimulationCarry& k = c.carry;
-  k.step = in.pod<int>();
-  k.totalSubsteps = in.pod<long>();
-  k.totalIterations = in.pod<long>();
-  k.thetaUnwrapped = in.pod<double>();
-  k.slipEvents = in.pod<long>();
-  k.frictionWork = in.pod<double>();
-  getRecord(in, k.last);
-  in.list(k.newtonMode);
-  k.newtonModeSize = in.pod<int>();
-  k.newtonFirstFreeNode = in.pod<int>();
-  k.newtonNegative = in.pod<int>();
-  k.newtonLowestEigenvalue = in.pod<double>();
-  k.newtonFactorsValid = in.pod<std::uint8_t>() != 0;
-  k.newtonSparseActive = in.pod<std::uint8_t>() != 0;
-  k.newtonFactorsDofs = in.pod<int>();
-  k.newtonFactorsFirstBlock = in.pod<int>();
-  k.newtonBandN = in.pod<int>();
-  k.newtonBandKl = in.pod<int>();
-  k.newtonBandKu = in.pod<int>();
-  in.list(k.newtonBand);
-  in.list(k.newtonPivots);
-  k.newtonSparse.n = in.pod<int>();
-  k.newtonSparse.kl = in.pod<int>();
-  k.newtonSparse.ku = in.pod<int>();
-  in.list(k.newtonSparse.places);
-  in.list(k.newtonSparse.pivotValues);
-  in.list(k.newtonSparse.lastValues);
-  in.list(k.newtonMatureK);
-  k.newtonMatureValid = in.pod<int>();
-  k.newtonMatureAge = in.pod<int>();
-  in.list(k.pairs);
-  in.mat(k.pairsBuiltX);
-  k.pairsBuiltElements = in.pod<int>();
-  k.pairsBuiltRestLength = in.pod<double>();
-  k.pairsBuilds = in.pod<long>();
-  if (k.step != c.step || k.newtonModeSize < 0 || static_cast<std::size_t>(k.newtonModeSize) > k.newtonMode.size() ||
-      k.newtonMatureValid < 0 || 3 * static_cast<std::size_t>(k.newtonMatureValid) > k.newtonMatureK.size())
+  get(in, k);
+  const Memory<NewtonWorkspace>& nw = k.newton;
+  const auto& mode = get<&NewtonWorkspace::mode>(nw);
+  const int modeSize = get<&NewtonWorkspace::modeSize>(nw);
+  const auto& matureK = get<&NewtonWorkspace::matureK>(nw);
+  const int matureValid = get<&NewtonWorkspace::matureValid>(nw);
+  if (k.progress.step != c.step || modeSize < 0 || static_cast<std::size_t>(modeSize) > mode.size() ||
+      matureValid < 0 || 3 * static_cast<std::size_t>(matureValid) > matureK.size())
     in.bad("inconsistent solver state");
-  for (const auto& [i, j] : k.pairs)
+  for (const auto& [i, j] : get<&ContactWorkspace::pairs>(k.contact))
     if (i < 0 || j < 0 || i >= n || j >= n) in.bad("contact pair out of range");
-  if (k.newtonFactorsValid && !k.newtonSparseActive &&
-      (k.newtonBandN < 1 || k.newtonBandKl < 0 || k.newtonBandKu < 0 ||
-       k.newtonBand.size() != static_cast<std::size_t>(2 * k.newtonBandKl + k.newtonBandKu + 1) *
-                                  static_cast<std::size_t>(k.newtonBandN) ||
-       k.newtonPivots.size() != static_cast<std::size_t>(k.newtonBandN)))
+  // banded factors in use are there (get() checked that stored ones fit)
+  if (get<&NewtonWorkspace::factorsValid>(nw) && !get<&NewtonWorkspace::sparseActive>(nw) &&
+      get<&NewtonWorkspace::lu>(nw).size() < 1)
     in.bad("inconsistent Newton factors");
-  RunAccumulators& a = c.acc;
-  for (double* v : {&a.snapFirst, &a.snapVertical, &a.snapPrevTheta, &a.snapPrevTime}) *v = in.pod<double>();
-  a.maxSubsteps = in.pod<long>();
-  a.maxSelfContacts = in.pod<int>();
-  a.minSelfDistance = in.pod<double>();
-  a.wallBefore = in.pod<double>();
-  c.writers.timeseriesBytes = in.pod<std::uint64_t>();
-  c.writers.trajectoryBytes = in.pod<std::uint64_t>();
-  c.writers.trajectoryBinaryBytes = in.pod<std::uint64_t>();
-  c.writers.trajectoryFrames = in.pod<int>();
-  const std::size_t entries = in.count(sizeof(double) + 8);
-  for (std::size_t i = 0; i < entries; ++i) {
-    const auto t = in.pod<double>();
-    std::string name;
-    in.str(name);
-    if (name.rfind("vtk/step_", 0) != 0 || name.find("..") != std::string::npos) in.bad("bad ParaView entry");
-    c.writers.vtkEntries.emplace_back(t, std::move(name));
-  }
+  get(in, c.acc);
+  get(in, c.writers);
   if (in.pos != in.end) in.bad("trailing bytes");
   checkRanges(c, static_cast<long>(n), path);
   return c;
 }
+
+}  // namespace rootsim
+
+namespace rootsim {
+
+std::string checkpointDifference(const RunCheckpoint& a, const RunCheckpoint& b) {
+  if (a.sceneHash != b.sceneHash) return "sceneHash";
+  if (a.step != b.step) return "step";
+  std::string d = difference(a.state, b.state, "state");
+  if (d.empty()) d = difference(a.carry, b.carry, "carry");
+  if (d.empty()) d = difference(a.acc, b.acc, "acc");
+  if (d.empty()) d = difference(a.writers, b.writers, "writers");
+  return d;
+}
+std::string carryDifference(const SimulationCarry& a, const SimulationCarry& b) { return difference(a, b, "carry"); }
+std::string stateDifference(const RodState& a, const RodState& b) { return difference(a, b, "state"); }
 
 }  // namespace rootsim

@@ -38,99 +38,53 @@ Simulation::Simulation(const Model& m) : m_(m) {
   int unstable = 0;
   const RelaxResult r = relaxStable(0, unstable);
   commitStep();
-  totalSubsteps_ = r.substeps;
-  totalIterations_ = r.iterations;
+  p_.totalSubsteps = r.substeps;
+  p_.totalIterations = r.iterations;
   observe(r, 0, unstable);
 }
 
-Simulation::Simulation(const Model& m, const RodState& s, int step) : m_(m), s_(s), step_(step) {
+Simulation::Simulation(const Model& m, const RodState& s, int step) : m_(m), s_(s) {
+  p_.step = step;
   ws_.resize(s_.elements());
-  thetaUnwrapped_ = tipAngle(m_, s_);  // the tip angle's earlier turns are not known here
+  p_.thetaUnwrapped = tipAngle(m_, s_);  // the tip angle's earlier turns are not known here
   observe(RelaxResult{}, 0, 0);
 }
 
 Simulation::Simulation(const Model& m, const RodState& s, const SimulationCarry& c)
-    : Simulation(m, s, c.step) {
+    : Simulation(m, s, c.progress.step) {
   // the restart constructor recomputed the strains of the state (what observe() left in the
-  // workspace); the rest comes from the carry
-  totalSubsteps_ = c.totalSubsteps;
-  totalIterations_ = c.totalIterations;
-  thetaUnwrapped_ = c.thetaUnwrapped;
-  slipEvents_ = c.slipEvents;
-  frictionWork_ = c.frictionWork;
-  rec_ = c.last;
+  // workspace); the rest comes from the carry, field list by field list (fields.hpp)
+  p_ = c.progress;
   nw_.reserve(s_.elements());
-  if (nw_.mode.size() < c.newtonMode.size()) nw_.mode.resize(c.newtonMode.size());
-  std::copy(c.newtonMode.begin(), c.newtonMode.end(), nw_.mode.begin());
-  nw_.modeSize = c.newtonModeSize;
-  nw_.firstFreeNode = c.newtonFirstFreeNode;
-  nw_.negative = c.newtonNegative;
-  nw_.lowestEigenvalue = c.newtonLowestEigenvalue;
-  nw_.sparseActive = c.newtonSparseActive;
-  const bool sparseRestored = nw_.sparse.restore(c.newtonSparse);
-  if (!sparseRestored) nw_.sparse.resetPattern();
+  const bool restored = restore(nw_, c.newton);  // false: the sparse memory did not fit (then reset)
   // the last Jacobian's factors: sparse (restored with the pattern) or banded
-  nw_.factorsValid = c.newtonFactorsValid &&
-                     (c.newtonSparseActive ? sparseRestored && nw_.sparse.hasFactors()
-                                           : nw_.lu.restore(c.newtonBandN, c.newtonBandKl, c.newtonBandKu,
-                                                            c.newtonBand, c.newtonPivots));
-  nw_.factorsDofs = c.newtonFactorsDofs;
-  nw_.matureK = c.newtonMatureK;
-  nw_.matureValid = c.newtonMatureValid;
-  nw_.matureAge = c.newtonMatureAge;
-  nw_.factorsFirstBlock = c.newtonFactorsFirstBlock;
+  nw_.factorsValid = nw_.factorsValid && (nw_.sparseActive ? restored && nw_.sparse.hasFactors() : nw_.lu.size() > 0);
   ContactWorkspace& cw = ws_.contact;
-  if (c.pairsBuiltElements == s_.elements() && c.pairsBuiltX.cols() == s_.nodes()) {
-    cw.pairs.assign(c.pairs.begin(), c.pairs.end());
-    cw.xBuilt = c.pairsBuiltX;
-    cw.builtElements = c.pairsBuiltElements;
-    cw.builtRestLength = c.pairsBuiltRestLength;
-  }
-  cw.builds = c.pairsBuilds;
+  if (get<&ContactWorkspace::builtElements>(c.contact) == s_.elements() &&
+      get<&ContactWorkspace::xBuilt>(c.contact).cols() == s_.nodes())
+    restore(cw, c.contact);
+  else
+    cw.builds = get<&ContactWorkspace::builds>(c.contact);
 }
 
 SimulationCarry Simulation::carry() const {
   SimulationCarry c;
-  c.step = step_;
-  c.totalSubsteps = totalSubsteps_;
-  c.totalIterations = totalIterations_;
-  c.thetaUnwrapped = thetaUnwrapped_;
-  c.slipEvents = slipEvents_;
-  c.frictionWork = frictionWork_;
-  c.last = rec_;
-  c.newtonMode = nw_.mode;
-  c.newtonModeSize = nw_.modeSize;
-  c.newtonFirstFreeNode = nw_.firstFreeNode;
-  c.newtonNegative = nw_.negative;
-  c.newtonLowestEigenvalue = nw_.lowestEigenvalue;
-  c.newtonSparseActive = nw_.sparseActive;
-  c.newtonFactorsValid = nw_.factorsValid;
-  c.newtonFactorsDofs = nw_.factorsDofs;
-  c.newtonFactorsFirstBlock = nw_.factorsFirstBlock;
-  c.newtonMatureK = nw_.matureK;
-  c.newtonMatureValid = nw_.matureValid;
-  c.newtonMatureAge = nw_.matureAge;
-  if (nw_.factorsValid && !nw_.sparseActive) {
-    c.newtonBandN = nw_.lu.size();
-    c.newtonBandKl = nw_.lu.kl();
-    c.newtonBandKu = nw_.lu.ku();
-    c.newtonBand = nw_.lu.storage();
-    c.newtonPivots = nw_.lu.pivots();
-  }
-  c.newtonSparse = nw_.sparse.memory();
+  c.progress = p_;
+  c.newton = save(nw_);
+  // the banded factors only where the next relaxation uses them (a checkpoint stays small)
+  if (!(nw_.factorsValid && !nw_.sparseActive)) get<&NewtonWorkspace::lu>(c.newton) = BandLU{};
   const ContactWorkspace& cw = ws_.contact;
   if (cw.builtElements >= 0 && cw.xBuilt.cols() == cw.builtElements + 1) {
-    c.pairs = cw.pairs;
-    c.pairsBuiltX = cw.xBuilt;
-    c.pairsBuiltElements = cw.builtElements;
-    c.pairsBuiltRestLength = cw.builtRestLength;
+    c.contact = save(cw);
+  } else {
+    c.contact = save(ContactWorkspace{});
+    get<&ContactWorkspace::builds>(c.contact) = cw.builds;
   }
-  c.pairsBuilds = cw.builds;
   return c;
 }
 
 const StepRecord& Simulation::growthStep() {
-  ++step_;
+  ++p_.step;
   const double dt = m_.growth.stepTime;
   // the kappa0 law reads the relaxed state of the previous step
   const RodStrains& k = ws_.strains;
@@ -141,16 +95,16 @@ const StepRecord& Simulation::growthStep() {
   applyTwistProfile(m_, s_);
   const int splits = splitLongElements(m_, s_);
   int unstable = 0;
-  const RelaxResult r = relaxStable(step_, unstable);
+  const RelaxResult r = relaxStable(p_.step, unstable);
   commitStep();
-  totalSubsteps_ += r.substeps;
-  totalIterations_ += r.iterations;
+  p_.totalSubsteps += r.substeps;
+  p_.totalIterations += r.iterations;
   observe(r, splits, unstable);
-  return rec_;
+  return p_.last;
 }
 
 int Simulation::windowStart() {
-  // the active window (MODEL.md section 12): the growth zone, solver.window_mm of mature root behind
+  // the active window (docs/model.md, "Newton solver"): the growth zone, solver.window_mm of mature root behind
   // it, and the tip; the rest is adhered and frozen
   // (only where adhesion holds the mature root: a free organ or an unglued root has no frozen part)
   if (m_.solver.window <= 0.0 || !m_.growth.enabled || !m_.env.adhesion || !m_.env.plane.enabled) return 0;
@@ -218,8 +172,8 @@ RelaxResult Simulation::newtonOrExplain(int step) {
 void Simulation::commitStep() {
   // friction is incremental: the stick points move once per growth step, at its equilibrium
   const FrictionCommit c = commitFriction(m_.rod, m_.env, s_, ws_.contact);
-  slipEvents_ += c.slips;
-  frictionWork_ += c.work;
+  p_.slipEvents += c.slips;
+  p_.frictionWork += c.work;
 }
 
 RelaxResult Simulation::relaxStable(int step, int& unstable) {
@@ -278,14 +232,14 @@ void Simulation::observe(const RelaxResult& res, int splits, int unstable) {
   // ws_.strains holds the strains of the relaxed state (computed at the last sub-step)
   computeStrains(m_.rod, s_, ws_.strains);
   StepRecord r;
-  r.step = step_;
+  r.step = p_.step;
   r.timeH = s_.time / units::hour;
   r.length = s_.restLength();
   r.elements = s_.elements();
   const double th = tipAngle(m_, s_);
-  if (step_ == 0) thetaUnwrapped_ = th;
-  else thetaUnwrapped_ += std::remainder(th - thetaUnwrapped_, 2.0 * std::numbers::pi);
-  r.thetaTip = thetaUnwrapped_;
+  if (p_.step == 0) p_.thetaUnwrapped = th;
+  else p_.thetaUnwrapped += std::remainder(th - p_.thetaUnwrapped, 2.0 * std::numbers::pi);
+  r.thetaTip = p_.thetaUnwrapped;
   if (m_.growth.enabled) r.zone = observeZone(m_, s_, ws_.strains);
   r.substeps = res.substeps;
   r.iterations = res.iterations;
@@ -300,13 +254,13 @@ void Simulation::observe(const RelaxResult& res, int splits, int unstable) {
     r.minSelfDistance = c.minSelfDistance;
     r.obstacleContacts = c.obstacleContacts;
   }
-  r.slipEvents = slipEvents_;
-  r.frictionWork = frictionWork_;
-  rec_ = r;
+  r.slipEvents = p_.slipEvents;
+  r.frictionWork = p_.frictionWork;
+  p_.last = r;
 }
 
 Snapshot Simulation::snapshot() const {
-  Snapshot sn = makeSnapshot(m_.rod, s_, ws_.strains, step_);
+  Snapshot sn = makeSnapshot(m_.rod, s_, ws_.strains, p_.step);
   sn.timeH = s_.time / units::hour;
   sn.plateForce = plateNormalForce(m_.rod, m_.env.plane, s_);
   sn.contactForce = observeContacts(m_.rod, m_.env, s_).perNode;

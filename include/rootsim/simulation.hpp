@@ -1,5 +1,5 @@
 #pragma once
-// The run loop (STYLE.md "Data flow"): for each growth step grow -> relax -> observe. No I/O here.
+// The run loop (docs/architecture.md, Data flow): for each growth step grow -> relax -> observe. No I/O here.
 #include <array>
 #include <limits>
 #include <vector>

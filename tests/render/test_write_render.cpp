@@ -5,54 +5,30 @@
 #include <doctest/doctest.h>
 #include <unistd.h>
 
-#include <array>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <string>
-#include <sys/wait.h>
+
+#include "../run_rootsim.hpp"
+#include "../test_files.hpp"
 
 namespace fs = std::filesystem;
 
 namespace {
 
-struct Result {
-  int code;
-  std::string out;
-};
+using rootsim::test::Result;
+using rootsim::test::slurp;
 
-Result rootsim(const std::string& args) {
-  const std::string cmd = std::string(ROOTSIM_BINARY) + " " + args + " 2>&1";
-  FILE* p = popen(cmd.c_str(), "r");
-  REQUIRE(p != nullptr);
-  std::string out;
-  std::array<char, 4096> buf;
-  while (size_t n = fread(buf.data(), 1, buf.size(), p)) out.append(buf.data(), n);
-  const int st = pclose(p);
-  return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
-}
+using rootsim::test::run;
 
-std::string slurp(const fs::path& p) {
-  std::ifstream in(p, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-fs::path scratch(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("rootsim_write_render_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(d);
-  fs::create_directories(d);
-  return d;
-}
+fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("write_render", name); }
 
 const std::string kScene = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2b_waving.toml";
 
 // a run of `steps` growth steps with a snapshot every 10: steps / 10 + 1 frames
 fs::path makeRun(const fs::path& d, const std::string& name, int steps) {
   const fs::path r = d / name;
-  const Result res = rootsim("run " + kScene + " --set growth.steps=" + std::to_string(steps) +
+  const Result res = run("run " + kScene + " --set growth.steps=" + std::to_string(steps) +
                              " --set root.element_length_mm=0.1 --set output.every_steps=10 --quiet --out " + r.string());
   REQUIRE(res.code == 0);
   return r;
@@ -69,7 +45,7 @@ int frames(const fs::path& dir) {
 TEST_CASE("every PNG and MP4 rootsim writes carries its signature (what lets --force replace it later)") {
   const fs::path d = scratch("signature");
   const fs::path r = makeRun(d, "r", 20);
-  REQUIRE(rootsim("render " + r.string() + " --quiet --size 128x128 --mp4 " + (d / "m.mp4").string() + " --final-png " +
+  REQUIRE(run("render " + r.string() + " --quiet --size 128x128 --mp4 " + (d / "m.mp4").string() + " --final-png " +
                   (d / "p.png").string()).code == 0);
   CHECK(slurp(d / "m.mp4").find("rootsim-output rootsim ") != std::string::npos);
   // PNG: the tEXt chunk right after IHDR (8-byte signature + 25-byte IHDR chunk)
@@ -85,22 +61,22 @@ TEST_CASE("render and montage: a movie or picture rootsim wrote is replaced only
   const fs::path d = scratch("again");
   const fs::path r = makeRun(d, "r", 20);
   const std::string out = " --quiet --size 128x128 --mp4 " + (d / "m.mp4").string() + " --final-png " + (d / "p.png").string();
-  REQUIRE(rootsim("render " + r.string() + out).code == 0);
+  REQUIRE(run("render " + r.string() + out).code == 0);
   const std::string mp4 = slurp(d / "m.mp4");
-  Result again = rootsim("render " + r.string() + out);
+  Result again = run("render " + r.string() + out);
   CHECK(again.code == 2);
   CHECK(again.out.find("written by rootsim earlier); pass --force") != std::string::npos);
-  again = rootsim("render " + r.string() + out + " --force");
+  again = run("render " + r.string() + out + " --force");
   CHECK(again.code == 0);
   CHECK(slurp(d / "m.mp4") == mp4);  // same run, same bytes
   // montage over the same movie
-  CHECK(rootsim("montage " + r.string() + " --quiet --size 128x128 --mp4 " + (d / "m.mp4").string()).code == 2);
-  CHECK(rootsim("montage " + r.string() + " --quiet --size 128x128 --force --mp4 " + (d / "m.mp4").string()).code == 0);
+  CHECK(run("montage " + r.string() + " --quiet --size 128x128 --mp4 " + (d / "m.mp4").string()).code == 2);
+  CHECK(run("montage " + r.string() + " --quiet --size 128x128 --force --mp4 " + (d / "m.mp4").string()).code == 0);
   // the run directory's own movie and picture (render RUN with no output flag): the same rule
-  REQUIRE(rootsim("render " + r.string() + " --quiet --size 128x128").code == 0);
+  REQUIRE(run("render " + r.string() + " --quiet --size 128x128").code == 0);
   CHECK(fs::exists(r / "movie.mp4"));
-  CHECK(rootsim("render " + r.string() + " --quiet --size 128x128").code == 2);
-  CHECK(rootsim("render " + r.string() + " --quiet --size 128x128 --force").code == 0);
+  CHECK(run("render " + r.string() + " --quiet --size 128x128").code == 2);
+  CHECK(run("render " + r.string() + " --quiet --size 128x128 --force").code == 0);
   fs::remove_all(d);
 }
 
@@ -108,19 +84,19 @@ TEST_CASE("--png-dir: rootsim's earlier frames are replaced whole (21 old frames
   const fs::path d = scratch("frames");
   const fs::path longRun = makeRun(d, "long", 200), shortRun = makeRun(d, "short", 50);
   const fs::path f = d / "frames";
-  REQUIRE(rootsim("render " + longRun.string() + " --quiet --size 128x128 --png-dir " + f.string()).code == 0);
+  REQUIRE(run("render " + longRun.string() + " --quiet --size 128x128 --png-dir " + f.string()).code == 0);
   CHECK(frames(f) == 21);
   CHECK(fs::exists(f / ".rootsim-frames"));
-  const Result refused = rootsim("render " + shortRun.string() + " --quiet --size 128x128 --png-dir " + f.string());
+  const Result refused = run("render " + shortRun.string() + " --quiet --size 128x128 --png-dir " + f.string());
   CHECK(refused.code == 2);
   CHECK(frames(f) == 21);
-  REQUIRE(rootsim("render " + shortRun.string() + " --quiet --size 128x128 --force --png-dir " + f.string()).code == 0);
+  REQUIRE(run("render " + shortRun.string() + " --quiet --size 128x128 --force --png-dir " + f.string()).code == 0);
   CHECK(frames(f) == 6);
   CHECK(!fs::exists(f / "frame_00006.png"));
   CHECK(!fs::exists(fs::path(f.string() + ".partial")));
   CHECK(!fs::exists(fs::path(f.string() + ".replaced")));
   // montage writes frame folders the same way
-  REQUIRE(rootsim("montage " + longRun.string() + " " + shortRun.string() + " --quiet --size 128x128 --force --png-dir " +
+  REQUIRE(run("montage " + longRun.string() + " " + shortRun.string() + " --quiet --size 128x128 --force --png-dir " +
                   f.string()).code == 0);
   CHECK(frames(f) == 21);
   fs::remove_all(d);
@@ -129,16 +105,16 @@ TEST_CASE("--png-dir: rootsim's earlier frames are replaced whole (21 old frames
 TEST_CASE("figure: its own panels are replaced only with --force") {
   const fs::path d = scratch("figure");
   const std::string args = "figure fig2b --quick --quiet --out " + (d / "figs").string();
-  REQUIRE(rootsim(args).code == 0);
+  REQUIRE(run(args).code == 0);
   CHECK(fs::exists(d / "figs" / "fig2b.png"));
   CHECK(fs::exists(d / "figs" / ".rootsim-figures"));
-  const Result again = rootsim(args);
+  const Result again = run(args);
   CHECK(again.code == 2);
   CHECK(again.out.find("holds fig2b.png from an earlier `rootsim figure`; pass --force") != std::string::npos);
-  CHECK(rootsim(args + " --force").code == 0);
+  CHECK(run(args + " --force").code == 0);
   // a user's file dropped into it makes it no longer rootsim's alone
   std::ofstream(d / "figs" / "notes.txt") << "mine";
-  CHECK(rootsim(args + " --force").code == 2);
+  CHECK(run(args + " --force").code == 2);
   CHECK(slurp(d / "figs" / "notes.txt") == "mine");
   fs::remove_all(d);
 }

@@ -287,7 +287,10 @@ TEST_CASE("a trajectory with a huge coordinate or radius is refused naming file 
       {"0,0,0,0,0,0,0.1,1,0,0,0,-0.6,-0.8,200\n0,0,0,1,0,-0.3,-0.3,,,,,,,\n",
        ":2: frame 0, node 0: radius_mm = 200 is above 100 mm (radii are bounded to 0.1 m)"},
   };
-  for (const auto& [rows, expected] : cases) {
+  for (const auto& c : cases) {
+    // (not a structured binding: clang before 16 cannot capture one in CAPTURE's lambda)
+    const std::string& rows = c.first;
+    const std::string& expected = c.second;
     CAPTURE(expected);
     { std::ofstream(d / "trajectory.csv") << head << rows; }
     std::string e = "(no error)";

@@ -473,7 +473,10 @@ TEST_CASE("a forged checkpoint with a recomputed checksum and an impossible fram
       {2000000000, "trajectory frame count 2000000000 out of range (0 .. 41"},
       {4, "trajectory frame count 4 disagrees with"},
   };
-  for (const auto& [f, why] : cases) {
+  for (const auto& c : cases) {
+    // (not a structured binding: clang before 16 cannot capture one in CAPTURE's lambda)
+    const std::int32_t f = c.first;
+    const std::string& why = c.second;
     CAPTURE(f);
     { std::ofstream(ck, std::ios::binary) << forged(f); }
     const Result r = run(args + (d / "b").string() + " --resume");

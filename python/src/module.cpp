@@ -544,8 +544,9 @@ PYBIND11_MODULE(_rootsim, m) {
       [](const std::string& runDir, const py::dict& options) {
         cli::RenderOptions o;
         o.runDir = runDir;
-        for (const auto& [k, v] : options) {
-          const std::string key = py::str(k);
+        for (const auto& item : options) {
+          const std::string key = py::str(item.first);
+          const py::handle v = item.second;
           auto text = [&] { return v.is_none() ? std::string() : std::string(py::str(v)); };
           try {
             if (key == "mp4") o.mp4 = text();

@@ -386,7 +386,14 @@ TEST_CASE("a read-only earlier run is replaced whole with --force (no run.replac
     return;
   }
   const std::string rs = std::string(ROOTSIM_BINARY) + " run " + kScene + kShort + " --out " + q(d / "run");
-  REQUIRE(run("--version >/dev/null; " + prefix + rs).code == 0);
+  const Result first = run("--version >/dev/null; " + prefix + rs);
+  if (!prefix.empty() && first.code != 0) {
+    // e.g. the scene or the build lies in a folder only root may read
+    rootsim::test::skipCase("an ordinary user cannot run the scene here: " + first.out.substr(0, first.out.find('\n')));
+    fs::remove_all(d);
+    return;
+  }
+  REQUIRE(first.code == 0);
   REQUIRE(run("--version >/dev/null; " + prefix + "chmod -R a-w " + q(d / "run")).code == 0);
   const Result r = run("--version >/dev/null; " + prefix + rs + " --force");
   INFO(r.out);

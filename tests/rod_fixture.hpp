@@ -5,8 +5,11 @@
 #include <vector>
 #include <Eigen/Dense>
 
+#include "rootsim/forces.hpp"
 #include "rootsim/initial.hpp"
 #include "rootsim/relax.hpp"
+#include "rootsim/relax_dynamic.hpp"
+#include "rootsim/relax_newton.hpp"
 #include "rootsim/rotation.hpp"
 
 namespace rootsim::test {

@@ -14,8 +14,8 @@ struct Result {
   std::string out;  // stdout + stderr
 };
 
-inline Result run(const std::string& args) {
-  const std::string cmd = std::string(ROOTSIM_BINARY) + " " + args + " 2>&1";
+inline Result runBinary(const std::string& binary, const std::string& args) {
+  const std::string cmd = binary + " " + args + " 2>&1";
   FILE* p = popen(cmd.c_str(), "r");
   REQUIRE(p != nullptr);
   std::string out;
@@ -24,5 +24,6 @@ inline Result run(const std::string& args) {
   const int st = pclose(p);
   return {WIFEXITED(st) ? WEXITSTATUS(st) : -1, out};
 }
+inline Result run(const std::string& args) { return runBinary(ROOTSIM_BINARY, args); }
 
 }  // namespace rootsim::test

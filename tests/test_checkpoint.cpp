@@ -39,9 +39,9 @@ TEST_CASE("every field of every persistent struct survives a checkpoint round tr
   c.step = a.step();
   c.state = a.state();
   c.carry = ka;
-  c.acc.snapFirst = 1.5;
-  c.acc.maxSubsteps = 7;
-  c.acc.minSelfDistance = 0.25;
+  c.acc.watch.snapFirst = 1.5;
+  c.acc.watch.maxSubsteps = 7;
+  c.acc.watch.minSelfDistance = 0.25;
   c.writers.timeseriesBytes = 123;
   c.writers.vtkEntries = {{0.5, "vtk/step_000010.vtp"}};
   const fs::path dir = rootsim::test::scratchDir("checkpoint", "round_trip");

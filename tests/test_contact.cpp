@@ -11,13 +11,16 @@
 
 #include "rod_fixture.hpp"
 #include "rootsim/contact.hpp"
+#include "rootsim/contact_newton.hpp"
 #include "rootsim/growth.hpp"
 #include "rootsim/initial.hpp"
 #include "rootsim/model.hpp"
 #include "rootsim/relax.hpp"
+#include "rootsim/relax_newton.hpp"
 #include "rootsim/rotation.hpp"
 #include "rootsim/simulation.hpp"
 #include "rootsim/stability.hpp"
+#include "rootsim/tolerance.hpp"
 #include "rootsim/units.hpp"
 #include "tolerance.hpp"
 

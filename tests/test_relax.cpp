@@ -8,6 +8,7 @@
 #include <string>
 
 #include "rod_fixture.hpp"
+#include "rootsim/contact_observe.hpp"
 #include "rootsim/simulation.hpp"
 
 namespace {

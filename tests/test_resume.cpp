@@ -2,9 +2,10 @@
 // a checkpoint and resumed writes the same bytes as one never interrupted (summary.json's wall time
 // aside); refusals; sweeps resume; the zlib ParaView files and trajectory.bin decode to the snapshots.
 //
-// A kill is emulated with the test hook ROOTSIM_TEST_KILL="C:K" (src/io/run_scene.cpp): a checkpoint
-// after growth step C, then _Exit(137) after step K, leaving DIR.partial as SIGKILL would (the files
-// written after the checkpoint included, so resuming has to cut them back).
+// A kill is emulated by the test binary rootsim_killable (tests/seams/kill_at_step.cpp) with
+// ROOTSIM_TEST_KILL="C:K": a checkpoint after growth step C, then _Exit(137) after step K, leaving
+// DIR.partial as SIGKILL would (the files written after the checkpoint included, so resuming has to cut
+// them back).
 #include <doctest/doctest.h>
 #include <signal.h>
 #include <sys/wait.h>
@@ -34,6 +35,7 @@ namespace fs = std::filesystem;
 namespace {
 using rootsim::test::Result;
 using rootsim::test::run;
+using rootsim::test::runBinary;
 
 fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("resume", name); }
 
@@ -85,10 +87,10 @@ void checkSameRun(const fs::path& a, const fs::path& b) {
   }
 }
 
-// runs rootsim with the kill hook set
+// runs rootsim_killable with its kill seam set
 Result runKilled(const std::string& args, const std::string& hook) {
   ::setenv("ROOTSIM_TEST_KILL", hook.c_str(), 1);
-  Result r = run(args);
+  Result r = runBinary(ROOTSIM_KILLABLE_BINARY, args);
   ::unsetenv("ROOTSIM_TEST_KILL");
   return r;
 }
@@ -512,4 +514,14 @@ TEST_CASE("a trajectory.bin with one huge finite coordinate is refused by render
   CHECK(s < 20);
   CHECK(!fs::exists(d / "x.png"));
   fs::remove_all(d);
+}
+
+TEST_CASE("the production binary has no kill seam: ROOTSIM_TEST_KILL changes nothing") {
+  const fs::path d = scratch("no_seam");
+  ::setenv("ROOTSIM_TEST_KILL", "2:3", 1);
+  const Result r = run("run " + kScene + " --set growth.steps=6 --quiet --out " + (d / "a").string());
+  ::unsetenv("ROOTSIM_TEST_KILL");
+  CHECK(r.code == 0);
+  CHECK(fs::exists(d / "a" / "summary.json"));
+  CHECK(!fs::exists(d / "a.partial"));
 }

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "rootsim/fields.hpp"
+#include "rootsim/run_watch.hpp"
 #include "rootsim/rod.hpp"
 #include "rootsim/simulation.hpp"
 
@@ -33,17 +34,11 @@ std::uint64_t sceneHash(const std::string& resolvedToml);
 
 // what runSceneToDir accumulates over the steps besides the simulation
 struct RunAccumulators {
-  double snapFirst = 0, snapVertical = 0, snapPrevTheta = 0, snapPrevTime = 0;  // SnapWatch [h], [rad]
-  long maxSubsteps = 0;
-  int maxSelfContacts = 0;
-  double minSelfDistance = 0;      // [R] (NaN: never within 3R)
+  RunWatch watch;                  // the run's moments and extremes (run_watch.hpp)
   double wallBefore = 0;           // wall time of the earlier attempts [s]
   static constexpr auto fields() {
     using A = RunAccumulators;
-    return std::tuple{field("snapFirst", &A::snapFirst), field("snapVertical", &A::snapVertical),
-                      field("snapPrevTheta", &A::snapPrevTheta), field("snapPrevTime", &A::snapPrevTime),
-                      field("maxSubsteps", &A::maxSubsteps), field("maxSelfContacts", &A::maxSelfContacts),
-                      field("minSelfDistance", &A::minSelfDistance), field("wallBefore", &A::wallBefore)};
+    return std::tuple{field("watch", &A::watch), field("wallBefore", &A::wallBefore)};
   }
 };
 

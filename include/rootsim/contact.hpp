@@ -75,20 +75,6 @@ void addSelfContact(const RodParams& p, const Environment& env, const RodState& 
                     ContactWorkspace& cw, Eigen::Matrix3Xd& force);
 inline constexpr double kSelfExclusionRadii = 3.0;
 
-// the lowest node of the element pairs that self-contact watches (closer than 2R + a skin of R) and whose
-// younger element reaches node `from` or beyond (nodes() when there is none): the Newton solver's window
-// reaches back to it (docs/model.md, Newton solver: contacts are among the unknowns), so that the old turns
-// the window's part of a coil presses on can yield
-int firstNodeNearContact(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw,
-                         int from = 0);
-
-// the stiffness of every self-contact pair in contact (gap < 0) into cw.stiffness, by central differences
-// of the pair's force with step h [m] (the closest points and the normal move with the nodes). The Newton
-// solver takes the rest of its Jacobian from coloured differences without self-contact: a coloured pass
-// would read a far partner's response into the rows of its own colour's blocks.
-void selfContactStiffness(const RodParams& p, const Environment& env, const RodState& s, double h,
-                          ContactWorkspace& cw);
-
 // Coulomb friction on the plate and on obstacles from the committed stick points (needs the obstacle
 // normal forces of addObstacleContact in cw); adhered nodes are excluded
 void addFriction(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw,
@@ -103,28 +89,6 @@ struct FrictionCommit {
 // are (new contacts) or move it by the return mapping (slip); nodes off contact or adhered lose it
 FrictionCommit commitFriction(const RodParams& p, const Environment& env, RodState& s,
                               ContactWorkspace& cw);
-
-// contact counts of a state; allocates nothing once cw is sized (use a workspace of its own, not the
-// solver's, so that observing never changes when the solver's list is rebuilt)
-struct ContactCounts {
-  int selfContacts = 0;          // element pairs in self-contact (gap < 0)
-  int obstacleContacts = 0;      // elements touching an obstacle
-  double minSelfDistance = 0.0;  // smallest centreline distance of elements at least 3R apart along the
-                                 // rod / R, over pairs within 2R + skin (NaN when there are none)
-};
-ContactCounts countContacts(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw);
-
-// the counts and the contact force on each node (for snapshots; allocates)
-struct ContactObservables : ContactCounts {
-  Eigen::Matrix3Xd perNode;      // |force| on each node from the plate (with friction), from self-
-                                 // contact and from obstacles (with friction) [N]  (3 x n+1)
-};
-ContactObservables observeContacts(const RodParams& p, const Environment& env, const RodState& s);
-
-// nodes whose self-contact couples them to nodes far along the rod (off the banded pattern of the
-// stiffness matrix): cw.contactNode is 1 for both nodes of each element in a self-contact pair (gap < 0),
-// 0 elsewhere. Allocates nothing once cw is sized.
-void markSelfContactNodes(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw);
 
 // closest points of segments a0-a1 and b0-b1: parameters sa, sb in [0, 1] (Ericson, Real-Time
 // Collision Detection, 5.1.9; near-parallel segments take the middle of their overlap)

@@ -10,5 +10,8 @@ namespace rootsim {
 // keeps a ".0" ("2.0", not "2") so that TOML reads it back as a float; "inf", "-inf", "nan" as TOML
 // spells them
 std::string shortestNumber(double x);
+// the shortest round-trip text of x as std::to_chars writes it ("2", "0.3", "1e-07", "nan"): the numbers
+// of the CSV and JSON files
+std::string numberText(double x);
 
 }  // namespace rootsim

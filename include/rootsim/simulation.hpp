@@ -7,6 +7,8 @@
 #include "rootsim/analysis.hpp"
 #include "rootsim/fields.hpp"
 #include "rootsim/model.hpp"
+#include "rootsim/relax_dynamic.hpp"
+#include "rootsim/relax_newton.hpp"
 #include "rootsim/snapshot.hpp"
 
 namespace rootsim {

@@ -5,7 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "rootsim/relax.hpp"
+#include "rootsim/relax_newton.hpp"
 
 namespace rootsim {
 

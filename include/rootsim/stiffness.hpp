@@ -25,7 +25,7 @@ class StiffnessSink {
 
 // true when every force piece env switches on has its stiffness here: all but obstacles and friction
 // (their stick points and contact geometry are differenced by the solver); self-contact has its own,
-// pair by pair (contact.hpp: selfContactStiffness)
+// pair by pair (contact_newton.hpp: selfContactStiffness)
 bool stiffnessInClosedForm(const Environment& env);
 
 // the stiffness of the rod's internal forces and couples, the clamp's couple, the tip couple, plate

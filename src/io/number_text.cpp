@@ -4,10 +4,14 @@
 
 namespace rootsim {
 
-std::string shortestNumber(double x) {
+std::string numberText(double x) {
   char buf[64];
   const auto r = std::to_chars(buf, buf + sizeof buf, x);
-  std::string s(buf, r.ptr);
+  return std::string(buf, r.ptr);
+}
+
+std::string shortestNumber(double x) {
+  std::string s = numberText(x);
   if (s.find_first_of(".eEn") == std::string::npos) s += ".0";  // "n": inf, nan
   return s;
 }

@@ -17,6 +17,8 @@
 #include "rootsim/units.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/run_scene.hpp"
+#include "rootsim/run_seams.hpp"
+#include "rootsim/run_watch.hpp"
 #include "rootsim/version.hpp"
 
 namespace fs = std::filesystem;
@@ -29,27 +31,6 @@ double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
-// first time the tip leaves the downhill direction by more than 30 degrees (the first sideways snap) [h]
-// and, for a free organ (theta_tip measured from gravity, starting at -alpha), the first time the tip
-// reaches the vertical: the measured turning time of Eq. 7 [h], interpolated linearly in theta between
-// the two growth steps around the crossing (a growth step is 0.05 h; the turning time can be < 1 h)
-struct SnapWatch {
-  double first = NAN, vertical = NAN;
-  double prevTheta = NAN, prevTime = NAN;
-  void see(const StepRecord& r) {
-    if (std::isnan(first) && std::abs(r.thetaTip) > 30.0 * units::deg && r.step > 0) first = r.timeH;
-    if (std::isnan(vertical) && r.thetaTip >= 0.0 && r.step > 0)
-      vertical = std::isfinite(prevTheta) && prevTheta < 0.0
-                     ? prevTime + (r.timeH - prevTime) * (-prevTheta) / (r.thetaTip - prevTheta)
-                     : r.timeH;
-    prevTheta = r.thetaTip;
-    prevTime = r.timeH;
-  }
-};
-
-}  // namespace
-
-namespace {
 // what to do with an interrupted run DIR.partial when resuming: continue it from its checkpoint (ck
 // filled), discard it (killed before its first checkpoint: nothing to lose), or refuse (another scene,
 // a corrupt checkpoint; with force those are discarded too)
@@ -123,15 +104,6 @@ void removeStaleTemps(const fs::path& work) {
   }
 }
 
-// test hook (tests/test_resume.cpp): ROOTSIM_TEST_KILL="C:K" writes a checkpoint after growth step C and
-// ends the process after step K (K >= C) with _Exit, as a kill would: nothing flushed, nothing renamed
-struct KillHook {
-  int checkpointAt = -1, killAt = -1;
-  KillHook() {
-    if (const char* e = std::getenv("ROOTSIM_TEST_KILL"))
-      if (std::sscanf(e, "%d:%d", &checkpointAt, &killAt) != 2) checkpointAt = killAt = -1;
-  }
-};
 }  // namespace
 
 double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOptions& dirOptions,
@@ -148,7 +120,7 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
   else if (dirOptions.note && partial == PartialRun::Discard)
     dirOptions.note("no usable checkpoint in " + rd.work().string() + ": starting " + rd.final().string() + " again");
   const double t0 = now();
-  const KillHook hook;
+  const StepSeams seams = stepSeams();
   try {
     const fs::path w = rd.work();
     const bool traj = m.output.trajectory;
@@ -159,10 +131,7 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     std::unique_ptr<TrajectoryWriter> tr;
     std::unique_ptr<TrajectoryBinaryWriter> tb;
     std::unique_ptr<VtkSeriesWriter> vtk;
-    SnapWatch snap;
-    long maxSub = 0;
-    int maxSelfContacts = 0;
-    double minSelfDistance = NAN;  // NaN: never within 3R
+    RunWatch watch;
     double wallBefore = 0;         // wall time of earlier attempts (resumed) [s]
     int first = 1;                 // the first growth step this process runs
     if (ck) {
@@ -174,15 +143,8 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
       if (csv) tr = std::make_unique<TrajectoryWriter>(w / "trajectory.csv", p.trajectoryBytes, p.trajectoryFrames);
       if (bin) tb = std::make_unique<TrajectoryBinaryWriter>(w / "trajectory.bin", p.trajectoryBinaryBytes, p.trajectoryFrames);
       if (m.output.vtk) vtk = std::make_unique<VtkSeriesWriter>(w, p.vtkEntries);
-      const RunAccumulators& a = ck->acc;
-      snap.first = a.snapFirst;
-      snap.vertical = a.snapVertical;
-      snap.prevTheta = a.snapPrevTheta;
-      snap.prevTime = a.snapPrevTime;
-      maxSub = a.maxSubsteps;
-      maxSelfContacts = a.maxSelfContacts;
-      minSelfDistance = a.minSelfDistance;
-      wallBefore = a.wallBefore;
+      watch = ck->acc.watch;
+      wallBefore = ck->acc.wallBefore;
       first = ck->step + 1;
     } else {
       rd.write("scene.toml", sc.resolvedToml);
@@ -204,10 +166,7 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     };
     if (!ck) {
       record();
-      snap.see(sim.last());  // the initial state: only remembered, as the step before the first
-      maxSub = sim.last().substeps;
-      maxSelfContacts = sim.last().selfContacts;
-      minSelfDistance = sim.last().minSelfDistance;
+      watch.start(sim.last());
     }
     // a checkpoint: everything carried to the next step, and where the files stand (each add() flushed)
     auto checkpoint = [&](int k) {
@@ -216,8 +175,7 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
       c.step = k;
       c.state = sim.state();
       c.carry = sim.carry();
-      c.acc = {snap.first, snap.vertical, snap.prevTheta, snap.prevTime, maxSub, maxSelfContacts, minSelfDistance,
-               wallBefore + (now() - t0)};
+      c.acc = {watch, wallBefore + (now() - t0)};
       c.writers.timeseriesBytes = ts->bytes();
       if (tr) c.writers.trajectoryBytes = tr->bytes();
       if (tb) c.writers.trajectoryBinaryBytes = tb->bytes();
@@ -247,14 +205,11 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     try {
       for (int k = first; k <= steps; ++k) {
         const StepRecord& r = sim.growthStep();
-        maxSub = std::max(maxSub, r.substeps);
-        maxSelfContacts = std::max(maxSelfContacts, r.selfContacts);
-        if (std::isnan(minSelfDistance) || r.minSelfDistance < minSelfDistance) minSelfDistance = r.minSelfDistance;
-        snap.see(r);
+        watch.see(r);
         try {
           if (k % m.output.everySteps == 0 || k == steps) record();
-          const bool due = hook.checkpointAt >= 0 ? k == hook.checkpointAt
-                                                  : now() - lastCheckpoint >= m.output.checkpointEvery;
+          const bool due = seams.checkpointAfter ? seams.checkpointAfter(k)
+                                                 : now() - lastCheckpoint >= m.output.checkpointEvery;
           if (k < steps && due) {
             checkpoint(k);
             lastCheckpoint = now();
@@ -263,7 +218,7 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
           throw RunError(std::string(e.what()) + " (at growth step " + std::to_string(k) + " of " +
                          std::to_string(steps) + ")");
         }
-        if (k == hook.killAt) std::_Exit(137);
+        if (seams.afterStep) seams.afterStep(k);
         if (progress) progress(r, steps);
       }
     } catch (const RunInterrupted&) {
@@ -288,7 +243,7 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     j.str("rootsim_version", kVersion).str("scene", m.name).str("status", "complete");
     j.integer("steps", sim.step()).num("time_h", r.timeH).num("length_mm", r.length / units::mm);
     j.integer("elements", r.elements).integer("total_substeps", sim.totalSubsteps());
-    j.integer("max_substeps_per_step", maxSub);
+    j.integer("max_substeps_per_step", watch.maxSubsteps);
     j.num("theta_tip_deg", r.thetaTip / units::deg);
     Json tip;
     tip.num("x_mm", r.tip.x() / units::mm).num("y_mm", r.tip.y() / units::mm).num("z_mm", r.tip.z() / units::mm);
@@ -296,13 +251,13 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     // contact (docs/model.md, Contact and friction): zero when self-contact, friction and obstacles are off
     Json contact;
     contact.integer("self_contacts", r.selfContacts)
-        .integer("max_self_contacts", maxSelfContacts)
-        .num("min_self_distance_r", minSelfDistance)
+        .integer("max_self_contacts", watch.maxSelfContacts)
+        .num("min_self_distance_r", watch.minSelfDistance)
         .integer("obstacle_contacts", r.obstacleContacts)
         .integer("slip_events", r.slipEvents)
         .num("frictional_work_j", r.frictionWork);
     j.object("contact", contact);
-    const double snapOrTurn = m.env.plane.enabled ? snap.first : snap.vertical;
+    const double snapOrTurn = m.env.plane.enabled ? watch.snapFirst : watch.snapVertical;
     std::optional<ShapeAnalysis> shape;
     if (m.growth.enabled) shape = analyseShape(m, sim.state());
     const RunResult res = makeResult(m, sim, shape ? &*shape : nullptr, snapOrTurn);

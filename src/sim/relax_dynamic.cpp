@@ -1,5 +1,4 @@
-// Explicit damped relaxation (docs/model.md, Relaxation). relax.hpp declares both this and
-// the stability helpers that share its workspace; this file holds the explicit solver only.
+// Explicit damped relaxation (docs/model.md, Relaxation; relax_dynamic.hpp).
 //
 // One sub-step, in this fixed order (position Verlet, as ref. 37 / PyElastica), each a short function:
 //   1. drift       x += h v, Q <- exp(-h [w]x) Q  (h = dt/2; merged with the previous sub-step's
@@ -29,7 +28,9 @@
 #include <sstream>
 
 #include "rootsim/assert.hpp"
-#include "rootsim/relax.hpp"
+#include "rootsim/forces.hpp"
+#include "rootsim/relax_dynamic.hpp"
+#include "rootsim/tolerance.hpp"
 #include "rootsim/rotation.hpp"
 
 namespace rootsim {
@@ -138,34 +139,6 @@ void reorthonormalise(RodState& s) {
 }
 
 }  // namespace
-
-void RelaxWorkspace::resize(int n) {
-  strains.resize(n);
-  force.resize(3, n + 1);
-  torque.resize(3, n);
-  mass.resize(n + 1);
-  inertia.resize(3, n);
-  invMass.resize(n + 1);
-  invInertia.resize(3, n);
-  xStart.resize(3, n + 1);
-  contact.resize(n);
-}
-
-void computeForces(const RodParams& p, const Environment& env, const RodState& s, bool planeDamping,
-                   RelaxWorkspace& ws, int first, ForcePieces pieces) {
-  computeForces(p, env, s, planeDamping, ws, ForceSpan{first, -1, first}, pieces);
-}
-
-void computeForces(const RodParams& p, const Environment& env, const RodState& s, bool planeDamping,
-                   RelaxWorkspace& ws, ForceSpan span, ForcePieces pieces) {
-  ROOTSIM_ASSERT(s.elements() >= 1 && s.x.cols() == s.nodes() && static_cast<int>(s.Q.size()) == s.elements(),
-                 "a rod state whose fields agree on the element count");
-  if (ws.force.cols() != s.nodes()) ws.resize(s.elements());
-  computeStrains(p, s, ws.strains, span.first, span.end);                              // 2.
-  computeInternalForces(s, ws.strains, ws.force, ws.torque, span.first, span.end);     // 3.
-  addExternalForces(p, env, s, ws.strains, planeDamping, ws.contact, ws.force, ws.torque, span, pieces);  // 4.
-  holdClampedBase(env, ws.force);                                                      // 5.
-}
 
 DynamicRelaxation::DynamicRelaxation(const RodParams& p, const Environment& env,
                                      const SolverOptions& opt, RodState& s, RelaxWorkspace& ws,

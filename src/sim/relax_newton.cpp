@@ -21,6 +21,8 @@
 // Stability (docs/model.md, Newton solver): at the converged state the symmetric part of K is factorised as
 // LDL^T; its negative pivots are the unstable directions (Sylvester), and Lanczos with the
 // same factors gives the eigenvalue nearest zero and its mode.
+#include "rootsim/relax_newton.hpp"
+
 #include <algorithm>
 #include <Eigen/Eigenvalues>
 #include <cmath>
@@ -30,9 +32,12 @@
 
 #include "rootsim/assert.hpp"
 #include "rootsim/contact.hpp"
-#include "rootsim/relax.hpp"
+#include "rootsim/contact_newton.hpp"
+#include "rootsim/forces.hpp"
+#include "rootsim/relax_dynamic.hpp"
 #include "rootsim/rotation.hpp"
 #include "rootsim/stiffness.hpp"
+#include "rootsim/tolerance.hpp"
 
 namespace rootsim {
 

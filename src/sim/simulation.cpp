@@ -6,6 +6,8 @@
 #include <sstream>
 
 #include "rootsim/contact.hpp"
+#include "rootsim/contact_newton.hpp"
+#include "rootsim/contact_observe.hpp"
 #include "rootsim/growth.hpp"
 #include "rootsim/stability.hpp"
 #include "rootsim/units.hpp"

@@ -1,3 +1,7 @@
+#include "rootsim/contact.hpp"
+#include "rootsim/contact_newton.hpp"
+#include "rootsim/forces.hpp"
+#include "rootsim/rotation.hpp"
 #include "rootsim/stability.hpp"
 
 #include <Eigen/Sparse>
@@ -9,8 +13,6 @@
 #include <cmath>
 #include <vector>
 
-#include "rootsim/contact.hpp"
-#include "rootsim/rotation.hpp"
 
 namespace rootsim {
 

@@ -1,10 +1,11 @@
-// The equilibrium tolerance of both solvers (relax.hpp: equilibriumTolerance). The rule and why it is
+// The equilibrium tolerance of both solvers (tolerance.hpp). The rule and why it is
 // the rule: docs/model.md, Relaxation (the equilibrium tolerance), and docs/contact.md.
+#include "rootsim/tolerance.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "rootsim/relax.hpp"
 #include "rootsim/units.hpp"
 
 namespace rootsim {

@@ -1,133 +1,21 @@
-#include "rootsim/outputs.hpp"
+// trajectory.csv and trajectory.bin: writers and the reader (trajectory.hpp).
+#include "rootsim/trajectory.hpp"
 
 #include <charconv>
-#include <cstring>
-#include <iterator>
-#include <zlib.h>
 #include <cmath>
-#include <system_error>
+#include <cstring>
 #include <fstream>
+#include <iterator>
 #include <sstream>
+#include <system_error>
 
 #include "rootsim/errors.hpp"
+#include "rootsim/number_text.hpp"
 #include "rootsim/units.hpp"
 
 namespace fs = std::filesystem;
 
 namespace rootsim {
-
-namespace {
-// shortest round-trip text of a double (locale-independent, deterministic)
-std::string fmt(double x) {
-  char buf[64];
-  auto r = std::to_chars(buf, buf + sizeof buf, x);
-  return std::string(buf, r.ptr);
-}
-std::string jsonEscape(const std::string& s) {
-  std::string o = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') { o += '\\'; o += c; }
-    else if (c == '\n') o += "\\n";
-    else if (static_cast<unsigned char>(c) < 0x20) { char b[8]; std::snprintf(b, sizeof b, "\\u%04x", c); o += b; }
-    else o += c;
-  }
-  return o + "\"";
-}
-}  // namespace
-
-std::string shapeCsv(const Model& m, const RodState& s, const RodStrains& k) {
-  std::ostringstream os;
-  os << "s_mm,x_mm,y_mm,z_mm,d1x,d1y,d1z,d2x,d2y,d2z,d3x,d3y,d3z,kappa1_per_mm,kappa2_per_mm,kappa3_per_mm,"
-        "stretch,radius_mm\n";
-  const int n = s.elements();
-  for (int i = 0; i <= n; ++i) {
-    const int a = std::max(i - 1, 0), b = std::min(i, n - 1);
-    const Mat3 A = s.Q[static_cast<size_t>(a)] + s.Q[static_cast<size_t>(b)];
-    Vec3 d3 = A.row(2).transpose().normalized();
-    Vec3 d1 = A.row(0).transpose();
-    d1 = (d1 - d1.dot(d3) * d3).normalized();
-    const Vec3 d2 = d3.cross(d1);
-    Vec3 kap = Vec3::Zero();
-    if (i >= 1 && i <= n - 1) kap = k.kappa.col(i - 1) / k.ev[i - 1] * units::mm;
-    const double e = 0.5 * (k.e[a] + k.e[b]);
-    os << fmt(s.S[i] / units::mm);
-    for (int d = 0; d < 3; ++d) os << ',' << fmt(s.x(d, i) / units::mm);
-    const Vec3* frame[3] = {&d1, &d2, &d3};
-    for (const Vec3* v : frame)
-      for (int d = 0; d < 3; ++d) os << ',' << fmt((*v)[d]);
-    for (int d = 0; d < 3; ++d) os << ',' << fmt(kap[d]);
-    os << ',' << fmt(e) << ',' << fmt(elementRadius(m.rod, e) / units::mm) << '\n';
-  }
-  return os.str();
-}
-
-std::string modesCsv(const RodState& s, const StiffnessModes& m) {
-  std::ostringstream o;
-  o << "mode,eigenvalue_n_per_m,node,s_mm,x_mm,y_mm,z_mm,ux,uy,uz\n";
-  for (size_t q = 0; q < m.modes.size(); ++q)
-    for (int i = 0; i < s.nodes(); ++i) {
-      o << q + 1 << ',' << fmt(m.eigenvalues[static_cast<long>(q)]) << ',' << i << ',' << fmt(s.S[i] / units::mm);
-      for (int d = 0; d < 3; ++d) o << ',' << fmt(s.x(d, i) / units::mm);
-      for (int d = 0; d < 3; ++d) o << ',' << fmt(m.modes[q][6 * i + d]);
-      o << '\n';
-    }
-  return o.str();
-}
-
-namespace {
-// the opening of a ParaView polyline file: the centreline nodes [mm] joined by one line per element; the
-// caller adds its point or cell data and closes with vtpClose()
-void vtpPolyline(std::ostream& o, const Eigen::Matrix3Xd& x) {
-  const long nn = x.cols(), n = nn - 1;
-  o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
-    << "<PolyData>\n<Piece NumberOfPoints=\"" << nn << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << n
-    << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n<Points>\n"
-    << "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (long i = 0; i < nn; ++i) o << fmt(x(0, i) / units::mm) << ' ' << fmt(x(1, i) / units::mm) << ' ' << fmt(x(2, i) / units::mm) << '\n';
-  o << "</DataArray>\n</Points>\n<Lines>\n<DataArray type=\"Int32\" Name=\"connectivity\" format=\"ascii\">\n";
-  for (long i = 0; i < n; ++i) o << i << ' ' << i + 1 << '\n';
-  o << "</DataArray>\n<DataArray type=\"Int32\" Name=\"offsets\" format=\"ascii\">\n";
-  for (long i = 0; i < n; ++i) o << 2 * (i + 1) << '\n';
-  o << "</DataArray>\n</Lines>\n";
-}
-}  // namespace
-
-std::string modesVtp(const RodState& s, const StiffnessModes& m) {
-  const int nn = s.nodes();
-  std::ostringstream o;
-  vtpPolyline(o, s.x);
-  o << "<PointData Vectors=\"mode_1\">\n";
-  for (size_t q = 0; q < m.modes.size(); ++q) {
-    o << "<DataArray type=\"Float64\" Name=\"mode_" << q + 1 << "\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-    for (int i = 0; i < nn; ++i)
-      o << fmt(m.modes[q][6 * i]) << ' ' << fmt(m.modes[q][6 * i + 1]) << ' ' << fmt(m.modes[q][6 * i + 2]) << '\n';
-    o << "</DataArray>\n";
-  }
-  o << "</PointData>\n</Piece>\n</PolyData>\n</VTKFile>\n";
-  return o.str();
-}
-
-TimeseriesWriter::TimeseriesWriter(const fs::path& path) : f_(path) {
-  f_.stream() << "step,time_h,length_mm,elements,theta_tip_deg,Eb,Et,Wr,Tw,substeps,residual_force_n,splits,unstable,"
-                 "tip_x_mm,tip_y_mm,tip_z_mm,newton_iterations,lowest_eigenvalue_n_per_m,self_contacts,"
-                 "min_self_distance_r,obstacle_contacts,slip_events,frictional_work_j\n";
-}
-
-TimeseriesWriter::TimeseriesWriter(const fs::path& path, std::uintmax_t bytes) : f_(path, bytes) {}
-
-void TimeseriesWriter::add(const StepRecord& r) {
-  auto& o = f_.stream();
-  o << r.step << ',' << fmt(r.timeH) << ',' << fmt(r.length / units::mm) << ',' << r.elements << ','
-    << fmt(r.thetaTip / units::deg) << ',' << fmt(r.zone.Eb) << ',' << fmt(r.zone.Et) << ','
-    << fmt(r.zone.Wr) << ',' << fmt(r.zone.Tw) << ',' << r.substeps << ',' << fmt(r.residualForce) << ','
-    << r.splits << ',' << r.unstable << ',' << fmt(r.tip.x() / units::mm) << ',' << fmt(r.tip.y() / units::mm) << ',' << fmt(r.tip.z() / units::mm)
-    << ',' << r.iterations << ',' << fmt(r.lowestEigenvalue)
-    << ',' << r.selfContacts << ',' << fmt(r.minSelfDistance)
-    << ',' << r.obstacleContacts << ',' << r.slipEvents << ',' << fmt(r.frictionWork) << '\n';
-  f_.flush();  // one row per output step: a write failure stops the run here, not after the last step
-}
-
-void TimeseriesWriter::close() { f_.close(); }
 
 TrajectoryWriter::TrajectoryWriter(const fs::path& path) : f_(path) {
   f_.stream() << "frame,step,time_h,node,x_mm,y_mm,z_mm,d1x,d1y,d1z,d3x,d3y,d3z,radius_mm,kappa0_per_mm,"
@@ -142,17 +30,17 @@ void TrajectoryWriter::add(const Snapshot& s) {
   const int n = s.elements();
   const bool k0 = s.kappa0.size() == n + 1, pf = s.plateForce.size() == n + 1, cf = s.contactForce.cols() == n + 1;
   for (int i = 0; i <= n; ++i) {
-    o << frames_ << ',' << s.step << ',' << fmt(s.timeH) << ',' << i;
-    for (int d = 0; d < 3; ++d) o << ',' << fmt(s.x(d, i) / units::mm);
+    o << frames_ << ',' << s.step << ',' << numberText(s.timeH) << ',' << i;
+    for (int d = 0; d < 3; ++d) o << ',' << numberText(s.x(d, i) / units::mm);
     if (i < n) {
-      for (int d = 0; d < 3; ++d) o << ',' << fmt(s.d1(d, i));
-      for (int d = 0; d < 3; ++d) o << ',' << fmt(s.d3(d, i));
-      o << ',' << fmt(s.radius[i] / units::mm);
+      for (int d = 0; d < 3; ++d) o << ',' << numberText(s.d1(d, i));
+      for (int d = 0; d < 3; ++d) o << ',' << numberText(s.d3(d, i));
+      o << ',' << numberText(s.radius[i] / units::mm);
     } else {
       o << ",,,,,,,";
     }
-    o << ',' << (k0 ? fmt(s.kappa0[i] * units::mm) : "") << ',' << (pf ? fmt(s.plateForce[i]) : "");
-    for (int c = 0; c < 3; ++c) o << ',' << (cf ? fmt(s.contactForce(c, i)) : "");
+    o << ',' << (k0 ? numberText(s.kappa0[i] * units::mm) : "") << ',' << (pf ? numberText(s.plateForce[i]) : "");
+    for (int c = 0; c < 3; ++c) o << ',' << (cf ? numberText(s.contactForce(c, i)) : "");
     o << '\n';
   }
   ++frames_;
@@ -172,11 +60,11 @@ void putRaw(std::string& b, const T& v) {
 
 // the refusals of a position or radius beyond the trajectory bounds (outputs.hpp)
 std::string trajectoryCoordBound(char axis, double v) {
-  return std::string(1, axis) + "_mm = " + fmt(v) + " is outside -" + fmt(kMaxTrajectoryCoordMm) + " .. " +
-         fmt(kMaxTrajectoryCoordMm) + " mm (positions are bounded to |x|, |y|, |z| <= 10 m)";
+  return std::string(1, axis) + "_mm = " + numberText(v) + " is outside -" + numberText(kMaxTrajectoryCoordMm) + " .. " +
+         numberText(kMaxTrajectoryCoordMm) + " mm (positions are bounded to |x|, |y|, |z| <= 10 m)";
 }
 std::string trajectoryRadiusBound(double r) {
-  return "radius_mm = " + fmt(r) + " is above " + fmt(kMaxTrajectoryRadiusMm) + " mm (radii are bounded to 0.1 m)";
+  return "radius_mm = " + numberText(r) + " is above " + numberText(kMaxTrajectoryRadiusMm) + " mm (radii are bounded to 0.1 m)";
 }
 
 // trajectory.bin (layout in outputs.hpp and docs/outputs.md)
@@ -468,190 +356,6 @@ std::vector<Snapshot> readTrajectory(const fs::path& path) {
   flush();
   if (out.empty()) throw SceneError(path.string() + ": no frames");
   return out;
-}
-
-VtkSeriesWriter::VtkSeriesWriter(const fs::path& runDir) : dir_(runDir) {
-  std::error_code ec;
-  fs::create_directories(dir_ / "vtk", ec);
-  if (ec) throw RunError("cannot create " + (dir_ / "vtk").string() + ": " + ec.message());
-}
-
-VtkSeriesWriter::VtkSeriesWriter(const fs::path& runDir, std::vector<std::pair<double, std::string>> entries)
-    : VtkSeriesWriter(runDir) {
-  entries_ = std::move(entries);
-}
-
-namespace {
-// VTK's appended binary data with zlib (vtkZLibDataCompressor, header_type UInt64): each array is a
-// header of UInt64s (number of blocks, uncompressed block size, uncompressed size of the last block or 0
-// when it is full, compressed size of each block) followed by the blocks, each compressed on its own
-constexpr std::size_t kVtkBlock = 32768;
-
-class VtkAppended {
- public:
-  // compresses an array; returns its offset in the appended data (what a DataArray's offset= says)
-  std::size_t add(const void* data, std::size_t bytes) {
-    const std::size_t offset = data_.size();
-    const std::size_t blocks = (bytes + kVtkBlock - 1) / kVtkBlock;
-    std::vector<std::uint64_t> head{blocks, kVtkBlock, bytes % kVtkBlock};
-    std::string body;
-    const auto* p = static_cast<const unsigned char*>(data);
-    for (std::size_t k = 0; k < blocks; ++k) {
-      const std::size_t n = std::min(kVtkBlock, bytes - k * kVtkBlock);
-      uLongf len = compressBound(static_cast<uLong>(n));
-      zbuf_.resize(len);
-      if (compress2(zbuf_.data(), &len, p + k * kVtkBlock, static_cast<uLong>(n), Z_DEFAULT_COMPRESSION) != Z_OK)
-        throw RunError("zlib: cannot compress a ParaView array");
-      head.push_back(len);
-      body.append(reinterpret_cast<const char*>(zbuf_.data()), len);
-    }
-    data_.append(reinterpret_cast<const char*>(head.data()), head.size() * sizeof(std::uint64_t));
-    data_ += body;
-    return offset;
-  }
-  const std::string& data() const { return data_; }
-
- private:
-  std::string data_;
-  std::vector<Bytef> zbuf_;
-};
-}  // namespace
-
-void VtkSeriesWriter::add(const Snapshot& s) {
-  char name[64];
-  std::snprintf(name, sizeof name, "vtk/step_%06d.vtp", s.step);
-  const int n = s.elements(), nn = n + 1;
-  // the arrays, in ParaView's units (mm) and layout (components interleaved)
-  VtkAppended a;
-  std::vector<double> pts(static_cast<std::size_t>(3 * nn));
-  for (int i = 0; i < nn; ++i)
-    for (int d = 0; d < 3; ++d) pts[static_cast<std::size_t>(3 * i + d)] = s.x(d, i) / units::mm;
-  std::vector<std::int32_t> conn(static_cast<std::size_t>(2 * n)), offs(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    conn[static_cast<std::size_t>(2 * i)] = i;
-    conn[static_cast<std::size_t>(2 * i + 1)] = i + 1;
-    offs[static_cast<std::size_t>(i)] = 2 * (i + 1);
-  }
-  std::vector<double> rad(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) rad[static_cast<std::size_t>(i)] = s.radius[i] / units::mm;
-  const std::size_t oPts = a.add(pts.data(), pts.size() * sizeof(double));
-  const std::size_t oConn = a.add(conn.data(), conn.size() * sizeof(std::int32_t));
-  const std::size_t oOffs = a.add(offs.data(), offs.size() * sizeof(std::int32_t));
-  const std::size_t oRad = a.add(rad.data(), rad.size() * sizeof(double));
-  const std::size_t oD1 = a.add(s.d1.data(), static_cast<std::size_t>(s.d1.size()) * sizeof(double));
-  const std::size_t oD3 = a.add(s.d3.data(), static_cast<std::size_t>(s.d3.size()) * sizeof(double));
-  std::ostringstream o;
-  o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\" "
-       "header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\">\n"
-    << "<PolyData>\n<Piece NumberOfPoints=\"" << nn << "\" NumberOfVerts=\"0\" NumberOfLines=\"" << n
-    << "\" NumberOfStrips=\"0\" NumberOfPolys=\"0\">\n<Points>\n"
-    << "<DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"appended\" offset=\"" << oPts << "\"/>\n"
-    << "</Points>\n<Lines>\n"
-    << "<DataArray type=\"Int32\" Name=\"connectivity\" format=\"appended\" offset=\"" << oConn << "\"/>\n"
-    << "<DataArray type=\"Int32\" Name=\"offsets\" format=\"appended\" offset=\"" << oOffs << "\"/>\n"
-    << "</Lines>\n<CellData Scalars=\"radius_mm\">\n"
-    << "<DataArray type=\"Float64\" Name=\"radius_mm\" format=\"appended\" offset=\"" << oRad << "\"/>\n"
-    << "<DataArray type=\"Float64\" Name=\"d1\" NumberOfComponents=\"3\" format=\"appended\" offset=\"" << oD1 << "\"/>\n"
-    << "<DataArray type=\"Float64\" Name=\"d3\" NumberOfComponents=\"3\" format=\"appended\" offset=\"" << oD3 << "\"/>\n"
-    << "</CellData>\n</Piece>\n</PolyData>\n<AppendedData encoding=\"raw\">\n_";
-  std::string text = o.str();
-  text += a.data();
-  text += "\n</AppendedData>\n</VTKFile>\n";
-  writeFileAtomic(dir_ / name, text);
-  entries_.emplace_back(s.timeH, name);
-}
-
-void VtkSeriesWriter::close() {
-  std::ostringstream o;
-  o << "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
-  for (const auto& [t, f] : entries_) o << "<DataSet timestep=\"" << fmt(t) << "\" file=\"" << f << "\"/>\n";
-  o << "</Collection>\n</VTKFile>\n";
-  writeFileAtomic(dir_ / "trajectory.pvd", o.str());
-}
-
-Json& Json::num(const std::string& key, double v) {
-  items_.push_back({key, std::isfinite(v) ? fmt(v) : "null", nullptr});
-  return *this;
-}
-Json& Json::integer(const std::string& key, long long v) {
-  items_.push_back({key, std::to_string(v), nullptr});
-  return *this;
-}
-Json& Json::str(const std::string& key, const std::string& v) {
-  items_.push_back({key, jsonEscape(v), nullptr});
-  return *this;
-}
-Json& Json::boolean(const std::string& key, bool v) {
-  items_.push_back({key, v ? "true" : "false", nullptr});
-  return *this;
-}
-Json& Json::object(const std::string& key, const Json& v) {
-  items_.push_back({key, "", std::make_shared<Json>(v)});
-  return *this;
-}
-std::string Json::dump(int indent) const {
-  const std::string pad(static_cast<size_t>(indent + 2), ' ');
-  std::string o = "{\n";
-  for (size_t i = 0; i < items_.size(); ++i) {
-    o += pad + jsonEscape(items_[i].key) + ": " + (items_[i].child ? items_[i].child->dump(indent + 2) : items_[i].raw);
-    o += i + 1 < items_.size() ? ",\n" : "\n";
-  }
-  return o + std::string(static_cast<size_t>(indent), ' ') + "}";
-}
-
-Json theoryJson(const Theory& t) {
-  Json j;
-  j.num("effective_gain_beta_Lgz_over_R", t.effectiveGain)
-      .num("T0_h", t.T0 / units::hour)
-      .num("max_kappa_per_mm_eq8", t.maxKappa * units::mm)
-      .num("wavelength_mm_eq9", t.wavelength / units::mm)
-      .num("amplitude_mm_eq10", t.amplitude / units::mm)
-      .num("alpha_straight_to_waving_deg_eq12", t.alphaStraightToWave / units::deg)
-      .num("alpha_waving_to_coiling_deg_eq13", t.alphaWaveToCoil / units::deg)
-      .num("omega_per_h_eq5", t.omega * units::hour)
-      .num("omega_T0", t.omegaT0)
-      .num("skew_deg_eq14_small_omegaT0", t.skewSmall / units::deg)
-      .num("skew_deg_eq15_large_omegaT0", t.skewLarge / units::deg);
-  return j;
-}
-
-CsvColumns readCsvColumns(const fs::path& path) {
-  std::ifstream in(path);
-  if (!in) throw SceneError(path.string() + ": cannot open (not a complete run directory?)");
-  CsvColumns t;
-  std::string line;
-  if (!std::getline(in, line) || line.empty()) throw SceneError(path.string() + ":1: no header");
-  auto cells = [](const std::string& l) {
-    std::vector<std::string> f;
-    std::stringstream ss(l);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) f.push_back(cell);
-    if (!l.empty() && l.back() == ',') f.push_back("");
-    return f;
-  };
-  t.names = cells(line);
-  t.values.resize(t.names.size());
-  int lineNo = 1;
-  while (std::getline(in, line)) {
-    ++lineNo;
-    if (line.empty()) continue;
-    const std::vector<std::string> f = cells(line);
-    auto bad = [&](const std::string& why) {
-      throw SceneError(path.string() + ":" + std::to_string(lineNo) + ": " + why);
-    };
-    if (f.size() != t.names.size())
-      bad("expected " + std::to_string(t.names.size()) + " columns, found " + std::to_string(f.size()));
-    for (std::size_t c = 0; c < f.size(); ++c) {
-      double v = 0;
-      const char* b = f[c].data();
-      const char* e = b + f[c].size();
-      const auto r = std::from_chars(b, e, v);
-      if (f[c].empty() || r.ec != std::errc() || r.ptr != e)
-        bad(t.names[c] + ": expected a number (got \"" + printable(f[c]) + "\")");
-      t.values[c].push_back(v);
-    }
-  }
-  return t;
 }
 
 }  // namespace rootsim

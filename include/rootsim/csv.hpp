@@ -1,0 +1,48 @@
+#pragma once
+// The CSV files of a run directory (docs/outputs.md): shape.csv, timeseries.csv (streamed), modes.csv,
+// and the one reader of them. Lab frame of docs/model.md, Frames and signs; millimetres and hours.
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "rootsim/run_dir.hpp"
+#include "rootsim/simulation.hpp"
+#include "rootsim/stability.hpp"
+
+namespace rootsim {
+
+// final centreline per node: s_mm,x_mm,y_mm,z_mm, the node frame (mean of the neighbouring elements'
+// directors, re-orthonormalised) d1x..d3z, curvature kappa1..3 [1/mm] (Voronoi value per current
+// length at interior nodes, 0 at the ends), stretch (dilatation, mean of neighbours), radius_mm
+std::string shapeCsv(const Model& m, const RodState& s, const RodStrains& k);
+
+// stiffness modes of a state (`rootsim modes`): modes.csv, one row per mode and node
+// (mode,eigenvalue_n_per_m,node,s_mm,x_mm,y_mm,z_mm,ux,uy,uz: the node's position and its displacement
+// in the mode, largest 1), and modes.vtp, the centreline with one point-data vector per mode
+std::string modesCsv(const RodState& s, const StiffnessModes& m);
+// time series, one row per output step, streamed (temp file renamed on close)
+class TimeseriesWriter {
+ public:
+  explicit TimeseriesWriter(const std::filesystem::path& path);
+  // continues a killed run's file from the first `bytes` bytes (a checkpoint's position)
+  TimeseriesWriter(const std::filesystem::path& path, std::uintmax_t bytes);
+  void add(const StepRecord& r);
+  void close();
+  std::uintmax_t bytes() const { return f_.size(); }
+
+ private:
+  AtomicFile f_;
+};
+
+// a numeric CSV file of a run directory (timeseries.csv, shape.csv), column by column: the header's names
+// and every column's values, parsed with from_chars, so they are the doubles the run wrote (writers use
+// to_chars, a shortest round trip); "nan" and "inf" cells are read as such. Throws SceneError naming
+// the file and line when it is missing or malformed (a cell that is not a whole number, a short row).
+struct CsvColumns {
+  std::vector<std::string> names;
+  std::vector<std::vector<double>> values;  // values[c][row]
+};
+CsvColumns readCsvColumns(const std::filesystem::path& path);
+
+}  // namespace rootsim

@@ -1,0 +1,72 @@
+#pragma once
+// The quasi-static Newton solver (docs/model.md, Newton solver; relax_newton.cpp) and the memory it keeps
+// across growth steps.
+#include <vector>
+
+#include "rootsim/band.hpp"
+#include "rootsim/environment.hpp"
+#include "rootsim/fields.hpp"
+#include "rootsim/relax.hpp"
+#include "rootsim/sparse_stiffness.hpp"
+
+namespace rootsim {
+
+// memory of the Newton solver, kept across growth steps so that solving allocates nothing once it has
+// seen the largest rod; also what it found about the stability of the last equilibrium
+struct NewtonWorkspace {
+  BandLU lu;                      // the Jacobian over the free dofs and its LU factors
+  BandLDLT ldlt;                  // its symmetric part at the converged state, LDL^T factors
+  // self-contact's couplings of nodes far apart along the rod (off the band), and with them the whole
+  // Jacobian as a sparse matrix (used instead of lu / ldlt while offBand is not empty)
+  std::vector<OffBandEntry> offBand;
+  SparseStiffness sparse;
+  bool sparseActive = false;
+  std::vector<double> r, r0, delta, mode;  // scaled residual, base residual, Newton step, softest mode
+  std::vector<double> lanczos;    // the Lanczos basis of the eigenvalue nearest zero (relax_newton.cpp)
+  std::vector<Vec3> save;         // node positions (by block index) saved across a trial step
+  std::vector<Mat3> saveQ;        // directors saved across a trial step
+  int firstFreeNode = 0;          // the window of the last solve
+  bool factorsValid = false;      // lu holds the LU factors of the last relaxation's last Jacobian, for
+  int factorsDofs = 0;            //   this many unknowns from this first block: the next relaxation's
+  int factorsFirstBlock = 0;      //   first (chord) iteration uses them (relax_newton.cpp)
+  // the frozen twists' stiffness, a tridiagonal chain (relax_newton.cpp): per element e < matureValid,
+  // K(e-1, e), K(e, e), K(e+1, e) [N m / rad], differenced at an earlier state; the relaxations since
+  // the whole chain was last differenced
+  std::vector<double> matureK;
+  int matureValid = 0, matureAge = 0;
+  int modeSize = 0;               // unknowns of the last mode (a warm start for the next one)
+  int negative = 0;               // negative pivots of the symmetric stiffness: unstable directions
+  double lowestEigenvalue = 0;    // eigenvalue of the scaled stiffness nearest zero (the lowest while
+                                  // stable) [N/m]
+  void reserve(int elements);
+  // what the next relaxation depends on, in the checkpoint's order (fields.hpp): the rest is scratch
+  static constexpr auto fields() {
+    using W = NewtonWorkspace;
+    return std::tuple{field("mode", &W::mode), field("modeSize", &W::modeSize),
+                      field("firstFreeNode", &W::firstFreeNode), field("negative", &W::negative),
+                      field("lowestEigenvalue", &W::lowestEigenvalue), field("factorsValid", &W::factorsValid),
+                      field("sparseActive", &W::sparseActive), field("factorsDofs", &W::factorsDofs),
+                      field("factorsFirstBlock", &W::factorsFirstBlock), field("lu", &W::lu),
+                      field("sparse", &W::sparse), field("matureK", &W::matureK),
+                      field("matureValid", &W::matureValid), field("matureAge", &W::matureAge)};
+  }
+  // the eigenvector of lowestEigenvalue as a full dof vector (per node 3 translations [m], per element 3
+  // rotations [rad]), largest translation 1
+  Eigen::VectorXd unstableMode(const RodState& s, const Environment& env) const;
+};
+
+// Newton's method on the discrete equilibrium (docs/model.md, Newton solver) for the nodes firstFreeNode..n
+// and the elements from there on; the rest stays exactly where it is. With opt.stabilityCheck, also the
+// inertia of the converged state's stiffness (nw.negative, nw.lowestEigenvalue). Returns stalled when
+// no acceptable step is found or opt.newtonMaxIterations is reached (the state is then where Newton
+// left it); throws RelaxError on divergence or a singular stiffness.
+RelaxResult relaxNewton(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
+                        RelaxWorkspace& ws, NewtonWorkspace& nw, int firstFreeNode);
+
+// the stiffness K = -dF/du over the free dofs of state s, unfactorised, into nw.lu (scaled units:
+// translations [m] and rotations times the mean element length; forces [N] and couples over it); dof
+// 3b + c - 3 b0 for block b (node i: b = 2i, element i: b = 2i + 1), b0 the first free block
+void assembleStiffness(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
+                       RelaxWorkspace& ws, NewtonWorkspace& nw, int firstFreeNode);
+
+}  // namespace rootsim

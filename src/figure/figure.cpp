@@ -4,6 +4,10 @@
 
 #include "figure_cases.hpp"
 #include "figure_runs.hpp"
+#include "panel_draw.hpp"
+#include "panel_stats.hpp"
+#include "panel_text.hpp"
+#include "transitions.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -33,192 +37,6 @@ namespace {
 
 using namespace fig;
 
-// plate coordinates [mm] of a snapshot's nodes: lateral x and downhill w (drawn with downhill down)
-void plateCoords(const Snapshot& sn, double alphaDeg, std::vector<double>& x, std::vector<double>& w) {
-  const PlateFrame f = PlateFrame::tilted(alphaDeg * units::deg);
-  x.clear();
-  w.clear();
-  for (int i = 0; i < sn.x.cols(); ++i) {
-    const Vec3 p = f.coords(sn.x.col(i)) / units::mm;
-    x.push_back(p.x());
-    w.push_back(p.y());
-  }
-}
-
-// bounding window of several snapshots, with a margin [mm]
-PlateWindow windowOf(const std::vector<const Snapshot*>& sns, double alphaDeg, double margin, double minHalfWidth) {
-  PlateWindow w{1e9, -1e9, 1e9, -1e9, 0, 0};
-  std::vector<double> x, d;
-  for (const Snapshot* sn : sns) {
-    plateCoords(*sn, alphaDeg, x, d);
-    for (size_t i = 0; i < x.size(); ++i) {
-      w.lateralMin = std::min(w.lateralMin, x[i]);
-      w.lateralMax = std::max(w.lateralMax, x[i]);
-      w.downhillMin = std::min(w.downhillMin, d[i]);
-      w.downhillMax = std::max(w.downhillMax, d[i]);
-    }
-  }
-  const double cx = 0.5 * (w.lateralMin + w.lateralMax);
-  const double hw = std::max(0.5 * (w.lateralMax - w.lateralMin) + margin, minHalfWidth);
-  w.lateralMin = cx - hw;
-  w.lateralMax = cx + hw;
-  w.downhillMin -= margin;
-  w.downhillMax += margin;
-  return w;
-}
-
-// one root on the plate in an axes: a rendered tile (tube with +-d1 stripes) when a renderer is
-// available, otherwise the centreline drawn with the root's width
-void addRoot(const Ctx& c, const Figure& f, Axes& ax, const Snapshot& sn, const Case& k, PlateWindow win, Rgb color) {
-  // widen the window to the plot area's aspect, so a rendered tile fills the axes at one scale
-  const double aspect = plotAspect(f, ax);
-  const double lw = win.lateralMax - win.lateralMin, dh = win.downhillMax - win.downhillMin;
-  if (dh / lw > aspect) {
-    const double cx = 0.5 * (win.lateralMin + win.lateralMax), half = 0.5 * dh / aspect;
-    win.lateralMin = cx - half;
-    win.lateralMax = cx + half;
-  } else {
-    const double cy = 0.5 * (win.downhillMin + win.downhillMax), half = 0.5 * lw * aspect;
-    win.downhillMin = cy - half;
-    win.downhillMax = cy + half;
-  }
-  ax.equalAspect = true;
-  ax.autoX = ax.autoY = false;
-  ax.xmin = win.lateralMin;
-  ax.xmax = win.lateralMax;
-  ax.ymin = -win.downhillMax;
-  ax.ymax = -win.downhillMin;
-  if (c.opt.renderTile) {
-    PlateWindow px = win;
-    const double mmPerPx = 0.02;  // 50 px per mm
-    px.width = std::max(2, 2 * static_cast<int>(std::lround(0.5 * (win.lateralMax - win.lateralMin) / mmPerPx)));
-    px.height = std::max(2, 2 * static_cast<int>(std::lround(0.5 * (win.downhillMax - win.downhillMin) / mmPerPx)));
-    Raster r = c.opt.renderTile(sn, infoOf(k), px);
-    r.x0 = win.lateralMin;
-    r.x1 = win.lateralMax;
-    r.y0 = -win.downhillMax;
-    r.y1 = -win.downhillMin;
-    ax.rasters.push_back(std::move(r));
-    ax.grid = false;
-    return;
-  }
-  Shape2D sh;
-  sh.color = color;
-  sh.width = 0.2;  // 2R [mm]
-  std::vector<double> w;
-  plateCoords(sn, k.alpha, sh.x, w);
-  for (double v : w) sh.y.push_back(-v);
-  ax.shapes.push_back(sh);
-}
-
-std::string yesNo(bool b) { return b ? "yes" : "**no**"; }
-std::string fmt3(double v) {
-  if (!std::isfinite(v)) return "n/a";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3g", v);
-  return b;
-}
-
-Series line(std::vector<double> x, std::vector<double> y, int color, std::string label, bool dashed = false) {
-  Series s;
-  s.x = std::move(x);
-  s.y = std::move(y);
-  s.color = paletteColor(color);
-  s.label = std::move(label);
-  s.dashed = dashed;
-  return s;
-}
-
-Series points(std::vector<double> x, std::vector<double> y, int color, char marker, std::string label) {
-  Series s = line(std::move(x), std::move(y), color, std::move(label));
-  s.kind = Series::Kind::Markers;
-  s.marker = marker;
-  return s;
-}
-
-// the referee's tolerances (issue 13): a scaling law holds when measured / predicted is within +-25 %;
-// a ratio of two measured quantities that the paper says is 1 holds within 0.75 ... 1.33 (symmetric in log)
-constexpr double kScaleLo = 0.75, kScaleHi = 1.25, kRatioLo = 0.75, kRatioHi = 1.33;
-const char* kScaleTol = "±25 % (0.75 … 1.25)";
-const char* kRatioTol = "0.75 … 1.33";
-bool within(double v, double lo, double hi) { return std::isfinite(v) && v >= lo && v <= hi; }
-
-// median of the finite values (NaN if none)
-double median(std::vector<double> v) {
-  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
-  if (v.empty()) return NAN;
-  std::sort(v.begin(), v.end());
-  const size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-// "k of n within lo ... hi"
-std::string countWithin(const std::vector<double>& v, double lo, double hi) {
-  int k = 0, n = 0;
-  for (double x : v)
-    if (std::isfinite(x)) { ++n; k += within(x, lo, hi); }
-  return std::to_string(k) + " of " + std::to_string(n) + " runs within";
-}
-
-// times where y crosses zero, interpolated linearly, after time t0 [h]
-std::vector<double> zeroCrossings(const std::vector<double>& t, const std::vector<double>& y, double t0) {
-  std::vector<double> z;
-  for (size_t i = 1; i < t.size(); ++i)
-    if (t[i - 1] >= t0 && y[i - 1] * y[i] < 0) z.push_back(t[i - 1] + (t[i] - t[i - 1]) * (-y[i - 1]) / (y[i] - y[i - 1]));
-  return z;
-}
-// mean spacing of successive values (NaN if fewer than 2)
-double meanSpacing(const std::vector<double>& z) {
-  return z.size() >= 2 ? (z.back() - z.front()) / static_cast<double>(z.size() - 1) : NAN;
-}
-
-std::string md(const Ctx& c, const std::string& name, const std::string& caption, const std::string& body = "") {
-  (void)c;
-  return "## " + name + "\n\n![" + name + "](" + name + ".png)\n\n" + caption + "\n\n" + body + "\n";
-}
-
-// ---------------------------------------------------------------------------------------------------
-
-// a transition in alpha, located by bisection: above(pattern) holds on the high-alpha side
-struct Transition {
-  std::function<bool(const std::string&)> above;
-  double lo = NAN, hi = NAN;  // bracket [deg]: the pattern at lo is below the transition, at hi above
-  int runs = 0;               // bisection runs made
-  std::string log;            // markdown rows "| alpha | pattern |" of the bisection runs
-};
-
-// brackets a transition from a grid of runs ordered by alpha: the first run above, and the run before it
-void bracket(Transition& tr, const std::vector<double>& alphas, const std::vector<std::string>& patterns) {
-  for (size_t i = 1; i < alphas.size(); ++i)
-    if (tr.above(patterns[i]) && !tr.above(patterns[i - 1])) {
-      tr.lo = alphas[i - 1];
-      tr.hi = alphas[i];
-      return;
-    }
-}
-
-// halves every bracket until it is at most `width` [deg] wide; the midpoints of all brackets run together
-void bisect(const Ctx& c, const Case& base, std::vector<Transition*> trs, double width) {
-  for (;;) {
-    std::vector<Case> cs;
-    std::vector<Transition*> who;
-    for (Transition* tr : trs)
-      if (std::isfinite(tr->lo) && tr->hi - tr->lo > width + 1e-9) {
-        Case k = base;
-        k.alpha = 0.5 * (tr->lo + tr->hi);
-        cs.push_back(k);
-        who.push_back(tr);
-      }
-    if (cs.empty()) return;
-    runCases(c, cs);
-    for (size_t j = 0; j < cs.size(); ++j) {
-      const std::string pat = result(c, cs[j]).pattern;
-      (who[j]->above(pat) ? who[j]->hi : who[j]->lo) = cs[j].alpha;
-      ++who[j]->runs;
-      who[j]->log += "| " + num(cs[j].alpha) + " | " + pat + " |\n";
-    }
-  }
-}
-
 std::string fig2a(const Ctx& c) {
   // the paper's ten tilts; quick: the quick phase grid, so these runs are shared with fig3d
   std::vector<double> alphas;
@@ -240,7 +58,7 @@ std::string fig2a(const Ctx& c) {
   // one window for all panels, so the shapes compare at one scale
   PlateWindow win{1e9, -1e9, 1e9, -1e9, 0, 0};
   for (size_t i = 0; i < cases.size(); ++i) {
-    const PlateWindow w = windowOf({finals[i]}, cases[i].alpha, 0.4, 1.5);
+    const PlateWindow w = boundingWindow({finals[i]}, cases[i].alpha, 0.4, 1.5);
     win.lateralMin = std::min(win.lateralMin, w.lateralMin - 0.5 * (w.lateralMin + w.lateralMax));
     win.lateralMax = std::max(win.lateralMax, w.lateralMax - 0.5 * (w.lateralMin + w.lateralMax));
     win.downhillMin = std::min(win.downhillMin, w.downhillMin);
@@ -261,7 +79,7 @@ std::string fig2a(const Ctx& c) {
     ax.xlabel = r.pattern;
     // centre each root laterally in the common window
     PlateWindow w = win;
-    const PlateWindow own = windowOf({finals[i]}, cases[i].alpha, 0.4, 1.5);
+    const PlateWindow own = boundingWindow({finals[i]}, cases[i].alpha, 0.4, 1.5);
     const double cx = 0.5 * (own.lateralMin + own.lateralMax);
     w.lateralMin += cx;
     w.lateralMax += cx;
@@ -314,12 +132,12 @@ std::string fig2a(const Ctx& c) {
                        "pattern", rs.pattern == "waving"});
   table += "\nTransition angles by bisection (the grid's bracket halved down to " + num(width) +
            "°; each row one run):\n\n| α (deg) | pattern |\n|---|---|\n" + sw.log + wc.log;
-  return md(c, "fig2a", "Final top views for increasing tilt. Theory (Eqs. 12, 13) at β Lgz/R = " + num(t.effectiveGain) +
-                            ": straight → waving at " + fmt3(t.alphaStraightToWave / units::deg) + "°, waving → coiling at " +
-                            fmt3(t.alphaWaveToCoil / units::deg) + "°. Measured by bisection: straight → waving between " +
-                            num(sw.lo) + "° and " + num(sw.hi) + "°, waving → coiling between " + num(wc.lo) + "° and " +
-                            num(wc.hi) + "°.",
-            table);
+  return md("fig2a", "Final top views for increasing tilt. Theory (Eqs. 12, 13) at β Lgz/R = " + num(t.effectiveGain) +
+                         ": straight → waving at " + fmt3(t.alphaStraightToWave / units::deg) + "°, waving → coiling at " +
+                         fmt3(t.alphaWaveToCoil / units::deg) + "°. Measured by bisection: straight → waving between " +
+                         num(sw.lo) + "° and " + num(sw.hi) + "°, waving → coiling between " + num(wc.lo) + "° and " +
+                         num(wc.hi) + "°.",
+         table);
 }
 
 Case wavingCase(const Ctx& c) { return Case{40, 0.2, 0.1, 0, false, c.opt.quick ? 13.1 : 31.1}; }
@@ -351,7 +169,7 @@ std::string fig2b(const Ctx& c) {
       if (std::abs(sn.timeH - t) < std::abs(best->timeH - t)) best = &sn;
     snaps.push_back(best);
   }
-  const PlateWindow win = windowOf(snaps, w.alpha, 0.4, 1.5);
+  const PlateWindow win = boundingWindow(snaps, w.alpha, 0.4, 1.5);
   Figure f;
   f.cols = 5;
   f.width = 5 * 200 + 40;
@@ -378,9 +196,9 @@ std::string fig2b(const Ctx& c) {
   c.claims->push_back({"Eq. 10: amplitude A = T0 v_tip tan(α) / 2, A peak-to-peak (α = 40°, β = 0.2)",
                        fmt3(t.amplitude / units::mm) + " mm", "—", fmt3(A) + " mm (ratio " + fmt3(ra) + ")", kScaleTol,
                        within(ra, kScaleLo, kScaleHi)});
-  return md(c, "fig2b", "Five top views of the waving root, evenly spaced in time, at one scale. λ = " + fmt3(lam) +
-                            " mm (Eq. 9: " + fmt3(t.wavelength / units::mm) + " mm), A = " + fmt3(A) + " mm peak-to-peak, A/2 = " +
-                            fmt3(val(r, "amplitude_half_mm")) + " mm (Eq. 10: " + fmt3(t.amplitude / units::mm) + " mm).");
+  return md("fig2b", "Five top views of the waving root, evenly spaced in time, at one scale. λ = " + fmt3(lam) +
+                         " mm (Eq. 9: " + fmt3(t.wavelength / units::mm) + " mm), A = " + fmt3(A) + " mm peak-to-peak, A/2 = " +
+                         fmt3(val(r, "amplitude_half_mm")) + " mm (Eq. 10: " + fmt3(t.amplitude / units::mm) + " mm).");
 }
 
 std::string fig2cde(const Ctx& c) {
@@ -504,9 +322,9 @@ std::string fig2cde(const Ctx& c) {
   table += "\nMeasured exponent of the turning time against β Lgz/R: " + fmt3(slope) +
            " (Eq. 7: −0.6). Half-periods of θ_tip: free organ " + fmt3(halfF) + " h, waving root " + fmt3(halfW) +
            " h; λ / (2 v_tip) = " + fmt3(val(r, "wavelength_mm") / (2 * vtipMmH)) + " h; T0 = " + fmt3(T0h) + " h.\n";
-  return md(c, "fig2cde", "(C) tip angle of the waving root and of the free organ; (D) bending and twisting energy of the "
-                          "growth zone; (E) its writhe and twist. Each sideways snap releases bending energy.",
-            table);
+  return md("fig2cde", "(C) tip angle of the waving root and of the free organ; (D) bending and twisting energy of the "
+                       "growth zone; (E) its writhe and twist. Each sideways snap releases bending energy.",
+         table);
 }
 
 std::vector<Case> scalingCases(const Ctx& c) {
@@ -565,8 +383,8 @@ std::string fig3a(const Ctx& c) {
                        "median ratio " + fmt3(med) + " over " + std::to_string(ratio.size()) + " waving runs (" +
                            countWithin(ratio, kScaleLo, kScaleHi) + " ±25 %)",
                        kScaleTol, within(med, kScaleLo, kScaleHi)});
-  return md(c, "fig3a", "Measured maximum projected curvature of the final shape against Eq. 8 (waving runs only: Eq. 6 is "
-                        "about waving patterns).", table);
+  return md("fig3a", "Measured maximum projected curvature of the final shape against Eq. 8 (waving runs only: Eq. 6 is "
+                     "about waving patterns).", table);
 }
 
 std::string fig3b(const Ctx& c) {
@@ -602,14 +420,14 @@ std::string fig3b(const Ctx& c) {
   c.claims->push_back({"Eq. 10 over the Fig. 3 runs: A ≈ T0 v_tip tan(α) / 2, A peak-to-peak", "ratio 1", "tested in SI 5",
                        "median ratio " + fmt3(m10) + over + countWithin(r10, kScaleLo, kScaleHi) + " ±25 %)", kScaleTol,
                        within(m10, kScaleLo, kScaleHi)});
-  return md(c, "fig3b", "Wavelength against 4 A cot α for the runs that wave. λ is the mean downhill distance between "
-                        "successive lateral peaks on the same side; A is the mean lateral distance between neighbouring "
-                        "(opposite) peaks, the peak-to-peak excursion, as the paper's Fig. 3B caption measures it "
-                        "(\"distances between neighboring peaks ... normal to the downhill direction\"); A/2 is listed "
-                        "beside it. The paper's triangle argument for Eq. 10 would call that excursion 2A; with A/2 in "
-                        "place of A, λ / (4 A cot α) would double. This is the paper's own inconsistency (docs/model.md, "
-                        "Observables); the caption's definition is the one its Fig. 3B plots.",
-            table);
+  return md("fig3b", "Wavelength against 4 A cot α for the runs that wave. λ is the mean downhill distance between "
+                     "successive lateral peaks on the same side; A is the mean lateral distance between neighbouring "
+                     "(opposite) peaks, the peak-to-peak excursion, as the paper's Fig. 3B caption measures it "
+                     "(\"distances between neighboring peaks ... normal to the downhill direction\"); A/2 is listed "
+                     "beside it. The paper's triangle argument for Eq. 10 would call that excursion 2A; with A/2 in "
+                     "place of A, λ / (4 A cot α) would double. This is the paper's own inconsistency (docs/model.md, "
+                     "Observables); the caption's definition is the one its Fig. 3B plots.",
+         table);
 }
 
 // a phase diagram over alpha (a grid of c.alphaStep() degrees) and beta Lgz / R, against Eqs. 12-13
@@ -731,9 +549,9 @@ std::string phaseDiagram(const Ctx& c, const std::string& name, const std::strin
                        "for γ = 1 and apical sensing (SI 7). The cells are listed under the " + name + " panel (≠ marks a "
                        "disagreement); docs/claims.md lists full-resolution runs of the cells the quick report gets "
                        "wrong, which tell a resolution effect from a property of the model."});
-  return md(c, name, "Simulated pattern (symbols) over tilt (" + num(step) + "° grid) and effective gain (" + variant +
-                         "), on the regions predicted by Eqs. 12 and 13 (derived for γ = 0 and local sensing).",
-            table);
+  return md(name, "Simulated pattern (symbols) over tilt (" + num(step) + "° grid) and effective gain (" + variant +
+                      "), on the regions predicted by Eqs. 12 and 13 (derived for γ = 0 and local sensing).",
+         table);
 }
 
 std::string fig3d(const Ctx& c) { return phaseDiagram(c, "fig3d", "γ = 0.1", 0.1, false); }
@@ -752,7 +570,7 @@ std::string fig4a(const Ctx& c) {
   std::vector<const Snapshot*> finals;
   for (const auto& k : cs) traj.push_back(trajectory(c, k));
   for (const auto& t : traj) finals.push_back(&t.back());
-  const PlateWindow win = windowOf(finals, 30, 0.4, 1.5);
+  const PlateWindow win = boundingWindow(finals, 30, 0.4, 1.5);
   Figure f;
   f.cols = static_cast<int>(cs.size());
   f.width = 220 * f.cols + 40;
@@ -777,7 +595,7 @@ std::string fig4a(const Ctx& c) {
   c.claims->push_back({"Fig. 4A: intrinsic twist makes the root skew; skew grows with ω T0", "—", "skew grows with ω T0",
                        "skew magnitude from " + fmt3(skews.front()) + "° (τ = 0) to " + fmt3(skews.back()) + "°",
                        "last > first + 5°", grows});
-  return md(c, "fig4a", "Final top views for increasing intrinsic twist: the root skews to one side.", table);
+  return md("fig4a", "Final top views for increasing intrinsic twist: the root skews to one side.", table);
 }
 
 std::string fig4g(const Ctx& c) {
@@ -827,7 +645,7 @@ std::string fig4g(const Ctx& c) {
   c.claims->push_back({"Eq. 15: sin⟨θ⟩ → tan α for ω T0 ≫ 1", "ratio 1", "≈ 1 (Fig. 4G)",
                        "sin⟨θ⟩ / tan α = " + fmt3(largeRatio) + " at ω T0 = " + fmt3(largeWT), kRatioTol,
                        within(largeRatio, kRatioLo, kRatioHi)});
-  return md(c, "fig4g", "Skewing angle against the apex twist rate, with the limits of Eqs. 14 and 15.", table);
+  return md("fig4g", "Skewing angle against the apex twist rate, with the limits of Eqs. 14 and 15.", table);
 }
 
 std::string makeOne(const std::string& name, const Ctx& c) {

@@ -1,3 +1,4 @@
+// The cases of the figure panels: a number's short text, a case's run directory, its model and scene info.
 #include "figure_cases.hpp"
 
 #include <algorithm>

@@ -1,3 +1,5 @@
+// The shared runner of the figure panels: cases run through the sweep runner (dearest first), and what
+// their runs wrote read back.
 #include "figure_runs.hpp"
 
 #include <algorithm>

@@ -1,0 +1,22 @@
+// The text of the report: numbers to three digits, yes / no, a panel's markdown section.
+#include "panel_text.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+namespace rootsim::fig {
+
+std::string fmt3(double v) {
+  if (!std::isfinite(v)) return "n/a";
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3g", v);
+  return b;
+}
+
+std::string yesNo(bool b) { return b ? "yes" : "**no**"; }
+
+std::string md(const std::string& name, const std::string& caption, const std::string& body) {
+  return "## " + name + "\n\n![" + name + "](" + name + ".png)\n\n" + caption + "\n\n" + body + "\n";
+}
+
+}  // namespace rootsim::fig

@@ -36,26 +36,29 @@ for k in range(1, STEPS + 1):
     for name, sim in (("kept", kept), ("changed", changed)):
         rows[name].append(sim.step())
         if k % 100 == 0:
-            # the state as numpy copies (they stay valid after later steps): the tip in mm
-            tips[name].append(np.array(sim.state().positions[-1]) * 1e3)
+            # the state as numpy copies (they stay valid after later steps), in mm like the files
+            st = sim.state()
+            tips[name].append((st.lateral_mm[-1], st.downhill_mm[-1]))
 for name in rows:
+    lat, down = tips[name][-1]
     print(f"{name:8s}: theta_tip = {rows[name][-1]['theta_tip_deg']:7.2f} deg after {STEPS} steps, "
-          f"tip at {np.round(tips[name][-1], 3)} mm (lab frame)")
+          f"tip {down:.3f} mm downhill, {lat:+.3f} mm lateral (plate coordinates)")
 
-# %% θ_tip(t) and the final centrelines (lab frame, docs/model.md, Frames and signs)
+# %% θ_tip(t) and the final centrelines on the plate (plate coordinates: lateral, downhill; mm)
 fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(10, 4))
 for name, label in (("kept", "β = 0.2 throughout"), ("changed", "β = 0.2 → 1 at 10 h")):
     t = [r["time_h"] for r in rows[name]]
     ax1.plot(t, [r["theta_tip_deg"] for r in rows[name]], label=label)
-    x = (kept if name == "kept" else changed).state().positions * 1e3
-    ax2.plot(x[:, 0], x[:, 1], label=label)
+    st = (kept if name == "kept" else changed).state()
+    ax2.plot(st.lateral_mm, st.downhill_mm, label=label)
 ax1.axvline(HALF * 0.05, color="grey", lw=0.8, ls="--")
 ax1.set_xlabel("time [h]")
 ax1.set_ylabel("θ_tip [°]")
 ax1.legend(fontsize=8)
 ax2.set_aspect("equal")
-ax2.set_xlabel("x [mm] (lateral)")
-ax2.set_ylabel("y [mm] (lab)")
+ax2.invert_yaxis()  # downhill is down the page
+ax2.set_xlabel("lateral [mm]")
+ax2.set_ylabel("downhill [mm]")
 ax2.set_title("final centreline")
 fig.tight_layout()
 fig.savefig(OUT, dpi=110)

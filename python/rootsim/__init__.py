@@ -4,15 +4,18 @@
     r = rootsim.run("scenes/fig2a_alpha40.toml", set={"growth.steps": 100})
     r.summary["pattern"]            # summary.json as a dict
     r.timeseries["theta_tip_deg"]   # timeseries.csv's columns as numpy arrays (the same doubles)
-    r.frames[-1].x                  # trajectory snapshots: node positions [m], directors, radius
+    f = r.frames[-1]                # a trajectory snapshot: positions_mm, directors, radius_mm, ...
+    plt.plot(f.lateral_mm, f.downhill_mm)   # the root on the plate (plate coordinates, mm)
 
-Units: SI (m, m/s, 1/m, N) in the arrays of ``Frame`` and ``State``; time-series rows and CSV columns
-have the files' units, named in the column (``length_mm``, ``time_h``, ``theta_tip_deg``, ...).
+Units: one system, the run directory's files' (lengths mm, time h, angles deg, curvatures 1/mm, forces
+N; velocities mm/s), named in every field and column (``positions_mm``, ``downhill_mm``, ``time_h``,
+``theta_tip_deg``, ``kappa0_per_mm``, ``plate_force_n``): nothing to convert. Scene values (``set=``,
+``Scene.set``, sweep grids) are in the scene keys' units, named in the key (``plane.alpha_deg``).
 
-- ``run(scene_or_path, set=..., out=..., progress=...)`` -> ``Run``; ``load_run(dir)``
+- ``run(scene_or_path, set=..., out=..., progress=...)`` -> ``Run`` (options: keywords only); ``load_run(dir)``
 - ``Scene.load(path)``, ``scene.set(key, value)``, ``scene.to_toml()``, ``scene.check()``
 - ``sweep(...)`` yields points as they finish; ``render(run_dir, ...)`` is ``rootsim render``
-- ``Simulation(scene)``: ``step(n)``, ``state()`` (numpy copies, SI units), ``set("tropism.beta", ...)``;
+- ``Simulation(scene)``: ``step(n)``, ``state()`` (numpy copies, mm), ``set("tropism.beta", ...)``;
   one Simulation may be shared by threads: its calls are serialised
 
 Errors are the command line's: ``SceneError`` (a ValueError: bad key, value, path or option; the

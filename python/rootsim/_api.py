@@ -70,6 +70,9 @@ class Scene:
     Every change is validated at once: a bad key or value raises ``rootsim.SceneError`` (a ``ValueError``)
     with the command line's message, e.g. ``my.toml:3: unknown key tropism.bta (did you mean
     tropism.beta?)`` or ``--set plane.alpha_deg=120: plane.alpha_deg must be in [0, 90] (got 120)``.
+
+    Units: the scene keys' own, named in each key (plane.alpha_deg in degrees, root.radius_mm in mm,
+    growth.step_h in hours; docs/cli.md lists them); values are given and read back in them.
     """
 
     def __init__(self, _scene: Any, _path: Optional[str], _text: Optional[str], _overrides: List[str],
@@ -81,15 +84,19 @@ class Scene:
         self._overrides = list(_overrides)
 
     @classmethod
-    def load(cls, path: PathLike, set: Optional[Mapping[str, Value]] = None) -> "Scene":
-        """Reads and validates a scene file; ``set`` overrides keys ({"plane.alpha_deg": 60})."""
+    def load(cls, path: PathLike, *, set: Optional[Mapping[str, Value]] = None) -> "Scene":
+        """Reads and validates a scene file; ``set`` overrides keys ({"plane.alpha_deg": 60}).
+
+        Units: the scene keys' own, named in each key (plane.alpha_deg, root.radius_mm, growth.step_h)."""
         p = os.fspath(path)
         ov = _overrides(set)
         return cls(_c.load_scene(p, ov), p, None, ov)
 
     @classmethod
-    def from_toml(cls, text: str, name: str = "scene", set: Optional[Mapping[str, Value]] = None) -> "Scene":
-        """A scene from TOML text; ``name`` plays the file's part in messages and names the run."""
+    def from_toml(cls, text: str, *, name: str = "scene", set: Optional[Mapping[str, Value]] = None) -> "Scene":
+        """A scene from TOML text; ``name`` plays the file's part in messages and names the run.
+
+        Units: the scene keys' own, named in each key (plane.alpha_deg, root.radius_mm, growth.step_h)."""
         ov = _overrides(set)
         return cls(_c.parse_scene(text, name, ov), None, text, ov, name)
 
@@ -99,7 +106,9 @@ class Scene:
         return _c.parse_scene(self._text, self._source, overrides)
 
     def set(self, key: str, value: Value) -> "Scene":
-        """Overrides one key (validated now, as ``--set key=value``); returns the scene itself."""
+        """Overrides one key (validated now, as ``--set key=value``); returns the scene itself.
+
+        Units: the key's own, named in it (``scene.set("plane.alpha_deg", 60)``: degrees)."""
         ov = self._overrides + _overrides({key: value})
         self._scene = self._parse(ov)
         self._overrides = ov
@@ -109,12 +118,16 @@ class Scene:
         return Scene(self._scene, self._path, self._text, self._overrides, self._source)
 
     def to_toml(self) -> str:
-        """Every key with its value, defaults filled in: the scene.toml a run directory holds."""
+        """Every key with its value, defaults filled in: the scene.toml a run directory holds.
+
+        Units: the scene keys' own, named in each key."""
         return self._scene.resolved_toml
 
     def check(self) -> Dict[str, Any]:
         """Validates the scene again (from its file) and returns the theory's predictions for it
-        (docs/model.md, Theory: the block ``rootsim check`` prints; empty for a mechanics-only scene)."""
+        (docs/model.md, Theory: the block ``rootsim check`` prints; empty for a mechanics-only scene).
+
+        Units: named in each key, as in summary.json (``wavelength_mm_eq9``, ``alpha_..._deg_eq12``)."""
         self._scene = self._parse(self._overrides)
         t = _c.theory_json(self._scene)
         return {} if t is None else json.loads(t)
@@ -150,45 +163,83 @@ def _scene_of(scene_or_path: Union[Scene, PathLike], set: Optional[Mapping[str, 
         for k, v in (set or {}).items():
             sc.set(k, v)
         return sc
-    return Scene.load(scene_or_path, set)
+    return Scene.load(scene_or_path, set=set)
 
 
 # ---------------------------------------------------------------------------------------------------
 # run directories
 
 
+def _renamed(cls_name: str, renames: Mapping[str, str]) -> Callable[[Any, str], Any]:
+    """A __getattr__ naming the field an old (SI-unit) name became."""
+
+    def __getattr__(self: Any, name: str) -> Any:
+        if name in renames:
+            raise AttributeError(f"{cls_name}.{name} was renamed {renames[name]} (the package's units are the "
+                                 f"files': mm, h, deg, N; docs/python.md, Units)")
+        raise AttributeError(f"{cls_name!r} object has no attribute {name!r}")
+
+    return __getattr__
+
+
 @dataclass(frozen=True)
 class Frame:
-    """One snapshot of the trajectory (trajectory.bin or trajectory.csv: what ``rootsim render`` draws), SI units like ``Simulation.state``.
+    """One snapshot of the trajectory (trajectory.bin or trajectory.csv: what ``rootsim render`` draws).
 
-    ``x`` node positions [m] (nodes x 3); ``d1``, ``d3`` element directors, lab frame, unit (elements x 3;
-    d2 = d3 x d1); ``radius`` element radius R/sqrt(lambda_e) [m] (elements); ``kappa0`` |intrinsic
-    curvature| per node [1/m] and ``plate_force`` the plate's normal force per node [N] (nodes), and
-    ``contact_force`` |plate|, |self|, |obstacle| contact force per node [N] (nodes x 3): None when the
-    trajectory predates them.
+    Units: those of trajectory.csv (lengths mm, time h, curvatures 1/mm, forces N), named in each field.
+
+    ``positions_mm`` node positions, lab frame [mm] (nodes x 3); ``lateral_mm``, ``downhill_mm``,
+    ``height_mm`` the same nodes in plate coordinates [mm] (nodes each; see below); ``d1``, ``d3``
+    element directors, lab frame, unit vectors (elements x 3; d2 = d3 x d1); ``radius_mm`` element radius
+    R/sqrt(lambda_e) [mm] (elements); ``kappa0_per_mm`` |intrinsic curvature| per node [1/mm] and
+    ``plate_force_n`` the plate's normal force per node [N] (nodes), and ``contact_force_n`` |plate|,
+    |self|, |obstacle| contact force per node [N] (nodes x 3): None when the trajectory predates them.
+
+    Plate coordinates: ``PlateFrame::coords`` of the scene's plate, tilted by plane.alpha_deg from the
+    vertical: lateral along the plate's lateral axis (lab x), downhill along the plate's downhill line,
+    height along its normal, with the origin at the foot of the base node on the plate (the root starts
+    at lateral = downhill = 0, height = R). Plot (lateral_mm, downhill_mm) for the plate as seen from
+    above; lab x-y is squashed by sin(alpha). A scene without the plate (plane.enabled = false, a free
+    organ) has the same frame, the one the plate would have: the initial root lies along downhill, and
+    gravity is still lab -z (for alpha = 0, downhill is straight down).
     """
 
     step: int
     time_h: float
-    x: np.ndarray
+    positions_mm: np.ndarray
+    lateral_mm: np.ndarray
+    downhill_mm: np.ndarray
+    height_mm: np.ndarray
     d1: np.ndarray
     d3: np.ndarray
-    radius: np.ndarray
-    kappa0: Optional[np.ndarray]
-    plate_force: Optional[np.ndarray]
-    contact_force: Optional[np.ndarray]
+    radius_mm: np.ndarray
+    kappa0_per_mm: Optional[np.ndarray]
+    plate_force_n: Optional[np.ndarray]
+    contact_force_n: Optional[np.ndarray]
+
+    __getattr__ = _renamed("Frame", {"x": "positions_mm", "radius": "radius_mm", "kappa0": "kappa0_per_mm",
+                                     "plate_force": "plate_force_n", "contact_force": "contact_force_n"})
+
+
+_PLATE_COLUMNS = ("lateral_mm", "downhill_mm", "height_mm")
 
 
 class Run:
     """A run directory and what it holds, read on first access through rootsim's own C++ readers.
 
+    Units: the files' (lengths mm, time h, angles deg, curvatures 1/mm, forces N), named in every column
+    and field; nothing to convert.
+
     - ``dir``: the directory (``pathlib.Path``)
     - ``timeseries``: dict column name -> numpy float64 array, the columns of timeseries.csv (step,
       time_h, length_mm, theta_tip_deg, Eb, Et, Wr, Tw, ...): the very doubles the file holds
-    - ``shape``: dict column name -> array, the final centreline of shape.csv (s_mm, x_mm, ..., radius_mm)
-    - ``frames``: list of ``Frame``, one per snapshot of the trajectory (trajectory.bin or .csv; SI units)
+    - ``shape``: dict column name -> array, the final centreline of shape.csv (s_mm, x_mm, y_mm, z_mm,
+      ..., radius_mm) and its plate coordinates lateral_mm, downhill_mm, height_mm (shape.csv's own
+      columns where it has them, else computed from x_mm, y_mm, z_mm as ``Frame``'s)
+    - ``frames``: list of ``Frame``, one per snapshot of the trajectory (trajectory.bin or .csv), with
+      plate coordinates
     - ``summary``: summary.json as a dict; ``result``: the row of result.csv (a sweep table's columns)
-    - ``scene``: the resolved scene.toml as a ``Scene``
+    - ``scene``: the resolved scene.toml as a ``Scene`` (its keys in the scene keys' units: alpha_deg, ...)
 
     A run made with ``out=None`` lives in a temporary directory that is deleted when the Run object is
     garbage-collected: keep the object (or pass ``out=``) as long as you need the files.
@@ -200,33 +251,48 @@ class Run:
 
     @cached_property
     def timeseries(self) -> Dict[str, np.ndarray]:
+        """timeseries.csv's columns. Units: named in each column (time_h, length_mm, theta_tip_deg, ...)."""
         return _c.read_csv(str(self.dir / "timeseries.csv"))
 
     @cached_property
     def shape(self) -> Dict[str, np.ndarray]:
-        return _c.read_csv(str(self.dir / "shape.csv"))
+        """shape.csv's columns and lateral_mm, downhill_mm, height_mm (plate coordinates, as ``Frame``'s).
+
+        Units: named in each column (s_mm, x_mm, kappa1_per_mm, radius_mm; stretch and directors are
+        dimensionless)."""
+        cols = _c.read_csv(str(self.dir / "shape.csv"))
+        if not all(c in cols for c in _PLATE_COLUMNS):  # an older shape.csv: the same coordinates, here
+            lab = np.column_stack([cols["x_mm"], cols["y_mm"], cols["z_mm"]])
+            plate = _c.plate_coords(self.scene._scene, lab)
+            for k, c in enumerate(_PLATE_COLUMNS):
+                cols.setdefault(c, np.ascontiguousarray(plate[:, k]))
+        return cols
 
     @cached_property
     def frames(self) -> List[Frame]:
-        return [Frame(**f) for f in _c.read_trajectory(str(self.dir / "trajectory.csv"))]
+        """The trajectory's snapshots. Units: trajectory.csv's (mm, h, 1/mm, N), named in each field."""
+        return [Frame(**f) for f in _c.read_trajectory(str(self.dir / "trajectory.csv"), self.scene._scene)]
 
     @cached_property
     def summary(self) -> Dict[str, Any]:
+        """summary.json. Units: named in each key (wavelength_mm, wall_time_s, ...)."""
         with open(self.dir / "summary.json", encoding="utf-8") as f:
             return json.load(f)
 
     @cached_property
     def result(self) -> Dict[str, Any]:
+        """result.csv's row. Units: named in each column, as the sweep table's."""
         return _c.read_result(str(self.dir / "result.csv"))
 
     @cached_property
     def scene(self) -> Scene:
+        """The resolved scene.toml. Units: the scene keys' own (plane.alpha_deg, root.radius_mm, ...)."""
         # the resolved scene.toml, named as the run's scene (a file named scene.toml would be "scene")
         text = (self.dir / "scene.toml").read_text(encoding="utf-8")
         return Scene.from_toml(text, name=self.summary.get("scene", "scene"))
 
     def render(self, **options: Any) -> List[pathlib.Path]:
-        """``rootsim.render(self.dir, **options)``."""
+        """``rootsim.render(self.dir, **options)``: keyword options only (units: ``field_mm`` in mm)."""
         return render(self.dir, **options)
 
     def __repr__(self) -> str:
@@ -237,7 +303,9 @@ def load_run(dir: PathLike) -> Run:
     """Opens a complete run directory (written by ``rootsim run``, ``rootsim sweep`` or ``rootsim.run``).
 
     Raises SceneError when ``dir`` is not one (an interrupted run is ``DIR.partial``, a failed one
-    ``DIR.incomplete`` with ERROR.txt)."""
+    ``DIR.incomplete`` with ERROR.txt).
+
+    Units: the files' (lengths mm, time h, angles deg, forces N), named in each column and field."""
     d = pathlib.Path(dir)
     if not (d / "scene.toml").is_file() or not (d / "summary.json").is_file():
         why = "not a complete run directory (no scene.toml and summary.json)"
@@ -248,12 +316,16 @@ def load_run(dir: PathLike) -> Run:
     return Run(d)
 
 
-def run(scene_or_path: Union[Scene, PathLike], set: Optional[Mapping[str, Value]] = None,
+def run(scene_or_path: Union[Scene, PathLike], *, set: Optional[Mapping[str, Value]] = None,
         out: Optional[PathLike] = None, progress: Optional[Callable[[int, int], None]] = None,
         force: bool = False) -> Run:
     """Simulates a scene into a run directory, exactly as ``rootsim run SCENE --set ... --out OUT``.
 
-    scene_or_path: a scene file or a ``Scene``.
+    Units: ``set`` values are in the scene keys' units (named in the key: plane.alpha_deg is degrees);
+    the returned Run's arrays in the files' (lengths mm, time h, angles deg, forces N), named in each
+    column and field.
+
+    scene_or_path: a scene file or a ``Scene``. The options are keywords only.
     set: overrides, ``{"plane.alpha_deg": 60, "growth.steps": 100}`` (validated first, as ``--set``).
     out: the run directory; written as ``OUT.partial/`` and renamed when complete. An existing run there
         is replaced only with ``force=True`` (never a folder rootsim did not write). ``None``: a temporary
@@ -274,6 +346,7 @@ def run(scene_or_path: Union[Scene, PathLike], set: Optional[Mapping[str, Value]
 
         r = rootsim.run("scenes/fig2a_alpha40.toml", set={"growth.steps": 100})
         r.summary["pattern"], r.timeseries["theta_tip_deg"][-1]
+        f = r.frames[-1]; plt.plot(f.lateral_mm, f.downhill_mm)   # the root on the plate, in mm
     """
     if progress is not None and not callable(progress):
         raise TypeError(f"progress: expected a callable progress(step, total) (got {type(progress).__name__})")
@@ -302,8 +375,11 @@ class SweepPoint:
     """One finished point of a sweep: ``index`` in the grid, ``grid`` (key -> value, typed as the TOML
     value of the sweep's grid was: int, float, bool, str or list; ``{"plane.alpha_deg": 20,
     "tropism.beta": 0.2}``), ``dir`` its run directory, ``error`` (None, or why it failed: the directory
-    is then DIR.incomplete), ``skipped`` (complete before this sweep started), ``wall_s``. ``run`` opens
-    it (``load_run``)."""
+    is then DIR.incomplete), ``skipped`` (complete before this sweep started), ``wall_s`` (seconds of
+    wall time). ``run`` opens it (``load_run``).
+
+    Units: ``grid`` values are in the scene keys' units (named in the key: plane.alpha_deg in degrees);
+    the run's arrays in the files' (mm, h, deg, N), as ``Run``."""
 
     index: int
     name: str
@@ -333,6 +409,8 @@ class Sweep:
     ``out`` is the sweep folder, ``table`` its table.csv (written when the sweep ends), ``summary``
     the counts (ran, skipped, failed, interrupted) once it is over; ``cancel()`` stops it (running points
     stop between growth steps and stay DIR.partial). Also a context manager that cancels on exit.
+
+    Units: as ``SweepPoint`` (grid values in the scene keys' units; runs in the files': mm, h, deg, N).
     """
 
     def __init__(self, runner: Any, out: str, tmp: Any, keep: Any, _grid: Optional[Dict[str, list]] = None):
@@ -388,7 +466,11 @@ def sweep(sweep_file: Optional[PathLike] = None, *, scene: Union[Scene, PathLike
     Either a sweep file (``rootsim.sweep("sweeps/fig3d_phase.toml", jobs=2)``) or the same in Python:
     ``rootsim.sweep(scene="scenes/fig2a_alpha40.toml", grid={"plane.alpha_deg": [20, 60]},
     set={"growth.steps": 200})`` (every combination of the grid, first key slowest; ``set`` fixed).
-    Every point is validated before any runs (SceneError naming the point and key).
+    Every point is validated before any runs (SceneError naming the point and key). The options are
+    keywords only.
+
+    Units: ``grid`` and ``set`` values are in the scene keys' units (named in the key: plane.alpha_deg
+    in degrees, growth.step_h in hours); each point's Run in the files' (mm, h, deg, N).
 
     out: the sweep folder (one run directory per point, table.csv); resumable: points already complete
         there are not run again (they are yielded with ``skipped=True``). ``None``: a temporary folder,
@@ -551,7 +633,10 @@ def render(run_dir: PathLike, *, mp4: Optional[PathLike] = None, png_dir: Option
     Tw (a list or "a,b"); ``shadows``; ``whiskers``; ``transparent`` (PNG frames only);
     ``overlays=False`` is ``--no-overlays``. An output that exists is replaced only if rootsim wrote it
     and ``force=True`` (the command line's write rule). Returns the files and folders written.
-    Bad options raise SceneError with the command line's message; render failures RunError.
+    Bad options raise SceneError with the command line's message; render failures RunError. The options
+    are keywords only: a positional option or an unknown keyword raises TypeError naming it.
+
+    Units: ``field_mm`` in mm (the camera's field of view, as ``--field-mm``); ``fps`` frames per second.
     """
     if not _c.have_render:
         raise SceneError("render: this rootsim was built without the renderer (ROOTSIM_BUILD_RENDER=OFF)")
@@ -575,24 +660,35 @@ def render(run_dir: PathLike, *, mp4: Optional[PathLike] = None, png_dir: Option
 
 @dataclass(frozen=True)
 class State:
-    """The rod's state in SI units (metres, seconds, radians; ``time_h`` in hours), as numpy float64
-    arrays that are copies: owned by the State, unaffected by later ``step()`` calls, free to modify.
+    """The rod's state as numpy float64 arrays that are copies: owned by the State, unaffected by later
+    ``step()`` calls, free to modify.
 
-    ``positions`` node positions [m] (nodes x 3); ``velocities`` [m/s] (nodes x 3); ``directors``
-    element frames, ``directors[e, i]`` is d_{i+1} of element e in lab components (elements x 3 x 3);
-    ``rest_lengths`` [m] (elements); ``material_coordinates`` rest arc length of each node from the base
-    [m] (nodes); ``kappa0`` intrinsic curvature per rest length, material components [1/m]
-    (elements-1 x 3).
+    Units: the files' (lengths mm, time h, curvatures 1/mm), velocities mm/s (of the relaxation, whose
+    clock is seconds), named in each field.
+
+    ``positions_mm`` node positions, lab frame [mm] (nodes x 3); ``lateral_mm``, ``downhill_mm``,
+    ``height_mm`` the nodes in plate coordinates [mm] (nodes each; as ``Frame``'s); ``velocities_mm_per_s``
+    [mm/s] (nodes x 3); ``directors`` element frames, ``directors[e, i]`` is d_{i+1} of element e in lab
+    components, unit vectors (elements x 3 x 3); ``rest_lengths_mm`` [mm] (elements); ``s_mm`` rest arc
+    length of each node from the base [mm] (nodes; shape.csv's s_mm); ``kappa0_per_mm`` intrinsic
+    curvature per rest length, material components [1/mm] (elements-1 x 3).
     """
 
     step: int
     time_h: float
-    positions: np.ndarray
-    velocities: np.ndarray
+    positions_mm: np.ndarray
+    lateral_mm: np.ndarray
+    downhill_mm: np.ndarray
+    height_mm: np.ndarray
+    velocities_mm_per_s: np.ndarray
     directors: np.ndarray
-    rest_lengths: np.ndarray
-    material_coordinates: np.ndarray
-    kappa0: np.ndarray
+    rest_lengths_mm: np.ndarray
+    s_mm: np.ndarray
+    kappa0_per_mm: np.ndarray
+
+    __getattr__ = _renamed("State", {"positions": "positions_mm", "velocities": "velocities_mm_per_s",
+                                     "rest_lengths": "rest_lengths_mm", "material_coordinates": "s_mm",
+                                     "kappa0": "kappa0_per_mm"})
 
 
 def _step_count_arg(n: Any) -> int:
@@ -611,11 +707,12 @@ class Simulation:
     ``Simulation(scene)`` builds the initial rod and relaxes it (growth step 0); ``step(n)`` runs n
     growth steps (grow, relax, observe; the GIL is released meanwhile, Ctrl-C raises KeyboardInterrupt
     after a whole step); ``record()`` is the time-series row of the last step (timeseries.csv's columns
-    and units); ``state()`` the rod's arrays (copies, SI units); ``snapshot()`` the ``Frame`` a trajectory
-    would hold; ``set("tropism.beta", 0.4)`` changes a tropism key between steps.
+    and units); ``state()`` the rod's arrays (copies); ``snapshot()`` the ``Frame`` a trajectory would
+    hold; ``set("tropism.beta", 0.4)`` changes a tropism key between steps.
 
-    Units: SI throughout (m, s, rad, N) for ``state()`` and ``snapshot()``; ``record()`` has the units of
-    timeseries.csv's columns (``length_mm``, ``time_h``, ``theta_tip_deg``, ...).
+    Units: the files' throughout (lengths mm, time h, angles deg, curvatures 1/mm, forces N), named in
+    every field and column (``length_mm``, ``theta_tip_deg``, ``positions_mm``, ``downhill_mm``);
+    ``set`` and the scene's overrides take the scene keys' units (named in the key).
 
     A run's time series holds the rows of steps 0, every ``output.every_steps`` and the last; stepping
     the same scene gives the same numbers. A Simulation steps at most ``growth.steps`` times (the
@@ -628,12 +725,14 @@ class Simulation:
     they compute).
     """
 
-    def __init__(self, scene: Union[Scene, PathLike], set: Optional[Mapping[str, Value]] = None):
+    def __init__(self, scene: Union[Scene, PathLike], *, set: Optional[Mapping[str, Value]] = None):
         self.scene = _scene_of(scene, set)
         self._sim = _c._Simulation(self.scene._scene)
 
     def step(self, n: int = 1) -> Dict[str, Any]:
         """Runs n growth steps; returns the last one's time-series row (a dict, timeseries.csv's columns).
+
+        Units: timeseries.csv's, named in each column (length_mm, time_h, theta_tip_deg, tip_x_mm, ...).
 
         ``n`` is a positive int: TypeError for a float, string or bool, ValueError for n <= 0. Raises
         ValueError, before running any step, when fewer than n of the scene's ``growth.steps`` are left
@@ -648,16 +747,22 @@ class Simulation:
 
     def set(self, key: str, value: Value) -> None:
         """Changes a ``tropism.*`` key (beta, gamma, sensing, twist_r_tau, circumnutation_*) from the next
-        growth step on, validated as ``--set`` (SceneError); the rest of the model is constant."""
+        growth step on, validated as ``--set`` (SceneError); the rest of the model is constant.
+
+        Units: the key's own, named in it where it has one (tropism.circumnutation_period_h: hours)."""
         self._sim.set(key, _value_text(key, value))
         self.scene.set(key, value)
 
     def record(self) -> Dict[str, Any]:
-        """The time-series row of the last step (step 0 after construction)."""
+        """The time-series row of the last step (step 0 after construction).
+
+        Units: timeseries.csv's, named in each column (length_mm, time_h, theta_tip_deg, ...)."""
         return self._sim.record()
 
-    def state(self, copy: bool = True) -> State:
-        """The rod's state now, as copies (SI units): arrays that stay as they are after later steps.
+    def state(self, *, copy: bool = True) -> State:
+        """The rod's state now, as copies: arrays that stay as they are after later steps.
+
+        Units: mm, h, 1/mm, mm/s, named in each field (``positions_mm``, ``downhill_mm``, ...; ``State``).
 
         ``copy`` is accepted for compatibility: the arrays are always copies (views into the rod's memory
         would dangle after the next ``step()``, which reallocates it). Copying is cheap: 14-17 us for the
@@ -666,7 +771,9 @@ class Simulation:
         return State(**self._sim.state())
 
     def snapshot(self) -> Frame:
-        """The snapshot of the current state, as a trajectory frame (copies)."""
+        """The snapshot of the current state, as a trajectory frame (copies).
+
+        Units: trajectory.csv's (mm, h, 1/mm, N), named in each field (``Frame``)."""
         return Frame(**self._sim.snapshot())
 
     @property

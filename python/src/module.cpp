@@ -1,6 +1,7 @@
 // rootsim._rootsim: the C++ side of the Python package (issue 14). Thin: it calls the library the command
 // line calls (loadScene, runSceneToDir, the run-directory readers, runSweep, the `render` glue) and turns
-// its results into numpy arrays and dicts. The Python layer (rootsim/_api.py) adds the user-facing API.
+// its results into numpy arrays and dicts, in the units of the run directory's files (lengths mm, time h,
+// angles deg, forces N; docs/python.md, Units). The Python layer (rootsim/_api.py) adds the user-facing API.
 //
 // Threads: the GIL is released while simulating, sweeping and rendering; it is taken back between growth
 // steps to poll Python's signal handlers (Ctrl-C -> KeyboardInterrupt) and to call progress callbacks.
@@ -20,6 +21,7 @@
 #include <thread>
 #include <utility>
 
+#include "rootsim/environment.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/outputs.hpp"
 #include "rootsim/relax.hpp"
@@ -60,18 +62,37 @@ py::array_t<double> vec(const Eigen::VectorXd& v) {
   if (v.size() > 0) std::memcpy(a.mutable_data(), v.data(), sizeof(double) * static_cast<size_t>(v.size()));
   return a;
 }
-// one snapshot as a dict of numpy arrays, SI units as in Snapshot (snapshot.hpp)
-py::dict snapshotDict(const Snapshot& s) {
+// the units of the package (docs/python.md, Units): those of the run directory's files, named in the
+// field (lengths mm, time h, forces N); SI values (Snapshot, RodState) are divided by units::* here only
+// (the same operations as the writers: a length / units::mm, a curvature * units::mm)
+py::array_t<double> rows3Mm(const Eigen::Matrix3Xd& m) { return rows3(Eigen::Matrix3Xd(m / units::mm)); }
+py::array_t<double> vecMm(const Eigen::VectorXd& v) { return vec(Eigen::VectorXd(v / units::mm)); }
+
+// plate coordinates (lateral, downhill, height above the plate) of lab points [m], in mm, by the core's
+// PlateFrame::coords of the scene's plate (plane.alpha_deg; its origin the foot of the base node). Put in
+// d as lateral_mm, downhill_mm, height_mm (one array of nodes each).
+void putPlateCoords(py::dict& d, const PlateFrame& f, const Eigen::Matrix3Xd& labM) {
+  Eigen::Matrix3Xd c(3, labM.cols());
+  for (Eigen::Index i = 0; i < labM.cols(); ++i) c.col(i) = f.coords(labM.col(i)) / units::mm;
+  d["lateral_mm"] = vec(c.row(0).transpose());
+  d["downhill_mm"] = vec(c.row(1).transpose());
+  d["height_mm"] = vec(c.row(2).transpose());
+}
+
+// one snapshot as a dict of numpy arrays, in the package's units (trajectory.csv's: x_mm, radius_mm,
+// kappa0_per_mm, plate_force_n, ...), with the nodes' plate coordinates in the frame f
+py::dict snapshotDict(const Snapshot& s, const PlateFrame& f) {
   py::dict d;
   d["step"] = s.step;
   d["time_h"] = s.timeH;
-  d["x"] = rows3(s.x);
+  d["positions_mm"] = rows3Mm(s.x);
+  putPlateCoords(d, f, s.x);
   d["d1"] = rows3(s.d1);
   d["d3"] = rows3(s.d3);
-  d["radius"] = vec(s.radius);
-  d["kappa0"] = s.kappa0.size() ? py::object(vec(s.kappa0)) : py::object(py::none());
-  d["plate_force"] = s.plateForce.size() ? py::object(vec(s.plateForce)) : py::object(py::none());
-  d["contact_force"] = s.contactForce.size() ? py::object(rows3(s.contactForce)) : py::object(py::none());
+  d["radius_mm"] = vecMm(s.radius);
+  d["kappa0_per_mm"] = s.kappa0.size() ? py::object(vec(Eigen::VectorXd(s.kappa0 * units::mm))) : py::object(py::none());
+  d["plate_force_n"] = s.plateForce.size() ? py::object(vec(s.plateForce)) : py::object(py::none());
+  d["contact_force_n"] = s.contactForce.size() ? py::object(rows3(s.contactForce)) : py::object(py::none());
   return d;
 }
 
@@ -122,14 +143,15 @@ py::dict readCsv(const std::string& path) {
   return d;
 }
 
-py::list readFrames(const std::string& path) {
+py::list readFrames(const std::string& path, const Scene& sc) {
+  const PlateFrame f = sc.model.env.plane.frame();
   std::vector<Snapshot> snaps;
   {
     py::gil_scoped_release nogil;
     snaps = readTrajectory(path);
   }
   py::list l;
-  for (const Snapshot& s : snaps) l.append(snapshotDict(s));
+  for (const Snapshot& s : snaps) l.append(snapshotDict(s, f));
   return l;
 }
 
@@ -254,8 +276,9 @@ class PySimulation {
     py::dict d;
     d["step"] = sim_->step();
     d["time_h"] = s.time / units::hour;
-    d["positions"] = rows3(s.x);
-    d["velocities"] = rows3(s.v);
+    d["positions_mm"] = rows3Mm(s.x);
+    putPlateCoords(d, scene_.model.env.plane.frame(), s.x);
+    d["velocities_mm_per_s"] = rows3Mm(s.v);
     // Q[e] is column-major: Q(r, c) at r + 3c; directors[e, r] is d_{r+1} (row r of Q)
     py::array_t<double> q({n, py::ssize_t{3}, py::ssize_t{3}});
     double* out = q.mutable_data();
@@ -265,9 +288,9 @@ class PySimulation {
         for (int c = 0; c < 3; ++c) out[9 * e + 3 * r + c] = Q[r + 3 * c];
     }
     d["directors"] = q;
-    d["rest_lengths"] = vec(s.l0);
-    d["material_coordinates"] = vec(s.S);
-    d["kappa0"] = rows3(s.kappa0);  // (elements - 1) x 3
+    d["rest_lengths_mm"] = vecMm(s.l0);
+    d["s_mm"] = vecMm(s.S);
+    d["kappa0_per_mm"] = rows3(Eigen::Matrix3Xd(s.kappa0 * units::mm));  // (elements - 1) x 3
     return d;
   }
   py::dict record() {
@@ -276,7 +299,7 @@ class PySimulation {
   }
   py::dict snapshot() {
     Lock lock = acquire();
-    return snapshotDict(sim_->snapshot());
+    return snapshotDict(sim_->snapshot(), scene_.model.env.plane.frame());
   }
   int stepCount() {
     Lock lock = acquire();
@@ -508,7 +531,22 @@ PYBIND11_MODULE(_rootsim, m) {
   m.def("run_scene", &runScene, py::arg("scene"), py::arg("out"), py::arg("force"), py::arg("progress"));
   m.def("normalise_out_dir", [](const std::string& s) { return normaliseOutDir(s).string(); });
   m.def("read_csv", &readCsv, py::arg("path"));
-  m.def("read_trajectory", &readFrames, py::arg("path"));
+  m.def("read_trajectory", &readFrames, py::arg("path"), py::arg("scene"));
+  // plate coordinates of lab points [mm] (n x 3) in the scene's plate frame: (n x 3) lateral, downhill,
+  // height [mm]; for Run.shape when shape.csv has no such columns
+  m.def("plate_coords", [](const Scene& sc, const py::array_t<double, py::array::c_style | py::array::forcecast>& labMm) {
+    if (labMm.ndim() != 2 || labMm.shape(1) != 3) throw py::value_error("plate_coords: expected an (n, 3) array");
+    const PlateFrame f = sc.model.env.plane.frame();
+    const py::ssize_t n = labMm.shape(0);
+    py::array_t<double> out({n, py::ssize_t{3}});
+    const double* in = labMm.data();
+    double* o = out.mutable_data();
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const Vec3 c = f.coords(Vec3(in[3 * i], in[3 * i + 1], in[3 * i + 2]));
+      for (int k = 0; k < 3; ++k) o[3 * i + k] = c[k];
+    }
+    return out;
+  }, py::arg("scene"), py::arg("lab_mm"));
   m.def("read_result", &readResultDict, py::arg("path"));
   m.def("result_columns", [] {
     py::list l;

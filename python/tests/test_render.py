@@ -63,3 +63,14 @@ def test_the_write_rule_holds_in_python(run_dir, tmp_path):
 def test_render_options_are_named_not_positional(run_dir, tmp_path):
     with pytest.raises(ValueError, match="unknown option colour"):
         rootsim._rootsim.render_run(str(run_dir), {"final_png": str(tmp_path / "x.png"), "colour": "twist"})
+
+
+def test_render_takes_keywords_only(run_dir, tmp_path):
+    # the public calls: a positional option or an unknown keyword is a TypeError naming it, nothing drawn
+    with pytest.raises(TypeError, match="colour"):
+        rootsim.render(run_dir, final_png=tmp_path / "x.png", colour="twist")
+    with pytest.raises(TypeError, match="colour"):
+        rootsim.load_run(run_dir).render(final_png=tmp_path / "x.png", colour="twist")
+    with pytest.raises(TypeError, match="positional"):
+        rootsim.render(run_dir, tmp_path / "x.mp4")
+    assert not (tmp_path / "x.png").exists() and not (tmp_path / "x.mp4").exists()

@@ -42,7 +42,9 @@ def test_run_numbers_are_the_command_lines_to_the_last_bit(cli_run, tmp_path):
     for n in names:
         assert_bitwise_equal(r.timeseries[n], ref[n], f"timeseries {n}")
     names, ref = read_csv_independently(cli_run / "shape.csv")
-    assert list(r.shape) == names
+    # shape.csv's columns, then the plate coordinates where the file has none
+    plate = [c for c in ("lateral_mm", "downhill_mm", "height_mm") if c not in names]
+    assert list(r.shape) == names + plate
     for n in names:
         assert_bitwise_equal(r.shape[n], ref[n], f"shape {n}")
     # the files themselves are the same bytes (summary.json differs only in its wall time)
@@ -60,14 +62,29 @@ def test_frames_are_the_trajectory_snapshots(cli_run, tmp_path):
     assert [f.step for f in frames] == list(range(0, 401, 10))
     last = frames[-1]
     n = int(r.timeseries["elements"][-1])
-    assert last.x.shape == (n + 1, 3) and last.d1.shape == (n, 3) and last.d3.shape == (n, 3)
-    assert last.radius.shape == (n,) and last.kappa0.shape == (n + 1,) and last.contact_force.shape == (n + 1, 3)
-    # the final frame is the final shape (shape.csv in mm, frames in m)
-    np.testing.assert_allclose(last.x[:, 0] * 1e3, r.shape["x_mm"], rtol=0, atol=1e-12)
-    np.testing.assert_allclose(last.x[:, 1] * 1e3, r.shape["y_mm"], rtol=0, atol=1e-12)
+    assert last.positions_mm.shape == (n + 1, 3) and last.d1.shape == (n, 3) and last.d3.shape == (n, 3)
+    assert last.radius_mm.shape == (n,) and last.kappa0_per_mm.shape == (n + 1,)
+    assert last.plate_force_n.shape == (n + 1,) and last.contact_force_n.shape == (n + 1, 3)
+    assert last.lateral_mm.shape == last.downhill_mm.shape == last.height_mm.shape == (n + 1,)
+    # the final frame is the final shape: the same units (mm), nothing to convert
+    for k, c in enumerate(("x_mm", "y_mm", "z_mm")):
+        np.testing.assert_allclose(last.positions_mm[:, k], r.shape[c], rtol=0, atol=1e-12, err_msg=c)
+    for c in ("lateral_mm", "downhill_mm", "height_mm"):
+        np.testing.assert_allclose(getattr(last, c), r.shape[c], rtol=0, atol=1e-12, err_msg=c)
+    np.testing.assert_allclose(last.radius_mm, 0.5 * (r.shape["radius_mm"][:-1] + r.shape["radius_mm"][1:]), rtol=1e-3)
     np.testing.assert_allclose(np.linalg.norm(last.d1, axis=1), 1.0, atol=1e-12)
     # the tip of each frame is the time series' tip
-    np.testing.assert_allclose([f.x[-1, 0] * 1e3 for f in frames], r.timeseries["tip_x_mm"], rtol=0, atol=1e-12)
+    np.testing.assert_allclose([f.positions_mm[-1, 0] for f in frames], r.timeseries["tip_x_mm"], rtol=0, atol=1e-12)
+
+
+def test_options_are_keywords(tmp_path):
+    with pytest.raises(TypeError):
+        rootsim.run(SOURCE / "scenes/fig2a_alpha40.toml", {"growth.steps": 2})  # set= is a keyword
+    with pytest.raises(TypeError, match="colour"):
+        rootsim.run(SOURCE / "scenes/fig2a_alpha40.toml", set={"growth.steps": 2}, colour="red")
+    with pytest.raises(TypeError):
+        rootsim.Scene.load(SOURCE / "scenes/fig2a_alpha40.toml", {"growth.steps": 2})
+    assert not list(tmp_path.iterdir())
 
 
 def test_load_run_of_a_command_line_run(cli_run):

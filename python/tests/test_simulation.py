@@ -30,14 +30,14 @@ def test_stepping_gives_the_runs_time_series_to_the_last_bit(tmp_path):
     for name, col in r.timeseries.items():
         got = np.array([row[name] for row in rows], dtype=np.float64)
         assert np.array_equal(got.view(np.uint64), col.view(np.uint64)), name
-    # the final state is the run's last frame (frames are read back from mm text: equal to rounding)
+    # the final state is the run's last frame (frames are read back from the trajectory: equal to rounding)
     last = r.frames[-1]
     snap = sim.snapshot()
     assert snap.step == last.step == 200
-    np.testing.assert_allclose(snap.x, last.x, rtol=1e-15, atol=1e-18)
+    for name in ("positions_mm", "lateral_mm", "downhill_mm", "height_mm", "radius_mm"):
+        np.testing.assert_allclose(getattr(snap, name), getattr(last, name), rtol=1e-15, atol=1e-15, err_msg=name)
     np.testing.assert_allclose(snap.d1, last.d1, rtol=0, atol=1e-15)
     np.testing.assert_allclose(snap.d3, last.d3, rtol=0, atol=1e-15)
-    np.testing.assert_allclose(snap.radius, last.radius, rtol=1e-15)
 
 
 def test_state_views_shapes_and_contents():
@@ -46,25 +46,62 @@ def test_state_views_shapes_and_contents():
     st = sim.state()
     n = sim.record()["elements"]
     assert st.step == 30 and st.time_h == pytest.approx(30 * 0.05)
-    assert st.positions.shape == (n + 1, 3) and st.velocities.shape == (n + 1, 3)
-    assert st.directors.shape == (n, 3, 3) and st.rest_lengths.shape == (n,)
-    assert st.material_coordinates.shape == (n + 1,) and st.kappa0.shape == (n - 1, 3)
+    assert st.positions_mm.shape == (n + 1, 3) and st.velocities_mm_per_s.shape == (n + 1, 3)
+    assert st.lateral_mm.shape == st.downhill_mm.shape == st.height_mm.shape == (n + 1,)
+    assert st.directors.shape == (n, 3, 3) and st.rest_lengths_mm.shape == (n,)
+    assert st.s_mm.shape == (n + 1,) and st.kappa0_per_mm.shape == (n - 1, 3)
     # copies: owned, C-contiguous float64 arrays
-    for a in (st.positions, st.velocities, st.directors, st.rest_lengths, st.material_coordinates, st.kappa0):
+    arrays = [v for v in vars(st).values() if isinstance(v, np.ndarray)]
+    assert len(arrays) == 9
+    for a in arrays:
         assert a.dtype == np.float64 and a.flags.owndata and a.flags.c_contiguous
     # the positions are the snapshot's node positions; directors orthonormal and d1, d3 the snapshot's
     snap = sim.snapshot()
-    assert np.array_equal(st.positions, snap.x)
+    for name in ("positions_mm", "lateral_mm", "downhill_mm", "height_mm"):
+        assert np.array_equal(getattr(st, name), getattr(snap, name)), name
     assert np.array_equal(st.directors[:, 0, :], snap.d1) and np.array_equal(st.directors[:, 2, :], snap.d3)
     for Q in st.directors:
         np.testing.assert_allclose(Q @ Q.T, np.eye(3), atol=1e-12)
     # rest lengths add up to the recorded length; S is their running sum
-    assert st.rest_lengths.sum() * 1e3 == pytest.approx(sim.record()["length_mm"], rel=1e-13)
-    np.testing.assert_allclose(np.diff(st.material_coordinates), st.rest_lengths, rtol=1e-12)
+    assert st.rest_lengths_mm.sum() == pytest.approx(sim.record()["length_mm"], rel=1e-13)
+    np.testing.assert_allclose(np.diff(st.s_mm), st.rest_lengths_mm, rtol=1e-12)
     # state(copy=True) is still accepted (the arrays are always copies)
     kept = sim.state(copy=True)
     sim.step(1)
-    assert kept.positions.flags.owndata and kept.step == 30
+    assert kept.positions_mm.flags.owndata and kept.step == 30
+
+
+def test_one_unit_system_the_files_units():
+    # the state, the snapshot and the time-series row in the same units (mm): the same numbers, unconverted
+    sim = rootsim.Simulation(SCENE, set=STEPS)
+    sim.step(40)
+    st, snap, row = sim.state(), sim.snapshot(), sim.record()
+    tip = [row["tip_x_mm"], row["tip_y_mm"], row["tip_z_mm"]]
+    assert np.array_equal(st.positions_mm[-1], tip) and np.array_equal(snap.positions_mm[-1], tip)
+    assert st.s_mm[-1] == pytest.approx(row["length_mm"], rel=1e-13)
+    assert st.time_h == snap.time_h == row["time_h"]
+    R = tomllib.loads(sim.scene.to_toml())["root"]["radius_mm"]
+    assert snap.radius_mm == pytest.approx(R, rel=0.01)  # R / sqrt(stretch), stretch within 1e-4 of 1
+    # curvatures in 1/mm: a waving root of wavelength ~2.3 mm bends at ~1/mm, not ~1000/m
+    assert 0.05 < np.abs(st.kappa0_per_mm).max() < 20
+    assert 0.05 < snap.kappa0_per_mm.max() < 20
+    # the old SI names say what they became
+    with pytest.raises(AttributeError, match=r"State\.positions was renamed positions_mm"):
+        st.positions
+    with pytest.raises(AttributeError, match=r"Frame\.x was renamed positions_mm"):
+        snap.x
+    with pytest.raises(AttributeError, match="has no attribute 'nonsense'"):
+        st.nonsense
+
+
+def test_options_are_keywords():
+    with pytest.raises(TypeError):
+        rootsim.Simulation(SCENE, STEPS)  # set= is a keyword
+    sim = rootsim.Simulation(SCENE, set=STEPS)
+    with pytest.raises(TypeError):
+        sim.state(True)
+    with pytest.raises(TypeError, match="colour"):
+        rootsim.Simulation(SCENE, colour=1)
 
 
 def test_length_grows_by_the_growth_law():
@@ -124,10 +161,10 @@ def test_state_arrays_keep_their_values_across_steps():
     assert sim.record()["elements"] > n0  # elements were split: the arrays were reallocated
     for name, values in at_the_time.items():
         assert np.array_equal(getattr(st, name), values), name
-    assert st.positions.shape == (n0 + 1, 3) and np.abs(st.positions).max() < 0.1  # a 30 mm root, in m
+    assert st.positions_mm.shape == (n0 + 1, 3) and 1.0 < np.linalg.norm(st.positions_mm, axis=1).max() < 30  # mm
     # and the arrays are the caller's: writing them changes nothing in the simulation
-    st.positions[:] = 0.0
-    assert np.array_equal(sim.state().positions, sim.snapshot().x) and sim.state().positions.any()
+    st.positions_mm[:] = 0.0
+    assert np.array_equal(sim.state().positions_mm, sim.snapshot().positions_mm) and sim.state().positions_mm.any()
 
 
 def test_step_takes_a_positive_int_only():
@@ -176,7 +213,7 @@ def test_two_threads_stepping_one_simulation_are_serialised():
         try:
             while any(t.is_alive() for t in steppers):
                 st = sim.state()
-                assert st.positions.shape[0] == st.rest_lengths.shape[0] + 1
+                assert st.positions_mm.shape[0] == st.rest_lengths_mm.shape[0] + 1
                 seen.append(st.step)
                 sim.record(), sim.snapshot(), sim.step_count
         except BaseException as e:  # noqa: BLE001
@@ -196,7 +233,7 @@ def test_two_threads_stepping_one_simulation_are_serialised():
     one = rootsim.Simulation(SCENE, set={"growth.steps": 100})
     one.step(100)
     assert same(sim.record(), one.record())
-    assert np.array_equal(sim.state().positions, one.state().positions)
+    assert np.array_equal(sim.state().positions_mm, one.state().positions_mm)
 
 
 def test_a_call_from_inside_its_own_step_is_refused_not_deadlocked():

@@ -14,7 +14,9 @@ namespace rootsim {
 
 // final centreline per node: s_mm,x_mm,y_mm,z_mm, the node frame (mean of the neighbouring elements'
 // directors, re-orthonormalised) d1x..d3z, curvature kappa1..3 [1/mm] (Voronoi value per current
-// length at interior nodes, 0 at the ends), stretch (dilatation, mean of neighbours), radius_mm
+// length at interior nodes, 0 at the ends), stretch (dilatation, mean of neighbours), radius_mm, and the
+// node's plate coordinates lateral_mm, downhill_mm, height_mm (PlateFrame::coords of the scene's plate:
+// across the plate, down it, above it; for a free organ the frame of plane.alpha_deg it started in)
 std::string shapeCsv(const Model& m, const RodState& s, const RodStrains& k);
 
 // stiffness modes of a state (`rootsim modes`): modes.csv, one row per mode and node

@@ -20,8 +20,9 @@ namespace rootsim {
 std::string shapeCsv(const Model& m, const RodState& s, const RodStrains& k) {
   std::ostringstream os;
   os << "s_mm,x_mm,y_mm,z_mm,d1x,d1y,d1z,d2x,d2y,d2z,d3x,d3y,d3z,kappa1_per_mm,kappa2_per_mm,kappa3_per_mm,"
-        "stretch,radius_mm\n";
+        "stretch,radius_mm,lateral_mm,downhill_mm,height_mm\n";
   const int n = s.elements();
+  const PlateFrame plate = m.env.plane.frame();
   for (int i = 0; i <= n; ++i) {
     const int a = std::max(i - 1, 0), b = std::min(i, n - 1);
     const Mat3 A = s.Q[static_cast<size_t>(a)] + s.Q[static_cast<size_t>(b)];
@@ -38,7 +39,10 @@ std::string shapeCsv(const Model& m, const RodState& s, const RodStrains& k) {
     for (const Vec3* v : frame)
       for (int d = 0; d < 3; ++d) os << ',' << numberText((*v)[d]);
     for (int d = 0; d < 3; ++d) os << ',' << numberText(kap[d]);
-    os << ',' << numberText(e) << ',' << numberText(elementRadius(m.rod, e) / units::mm) << '\n';
+    os << ',' << numberText(e) << ',' << numberText(elementRadius(m.rod, e) / units::mm);
+    const Vec3 onPlate = plate.coords(s.x.col(i)) / units::mm;
+    for (int d = 0; d < 3; ++d) os << ',' << numberText(onPlate[d]);
+    os << '\n';
   }
   return os.str();
 }

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "rod_fixture.hpp"
+#include "physics_support.hpp"
 #include "rootsim/contact.hpp"
 #include "rootsim/growth.hpp"
 #include "rootsim/initial.hpp"
@@ -19,7 +19,6 @@
 #include "rootsim/simulation.hpp"
 #include "rootsim/stability.hpp"
 #include "rootsim/units.hpp"
-#include "tolerance.hpp"
 
 using namespace rootsim;
 

@@ -11,6 +11,7 @@
 #include "rootsim/simulation.hpp"
 
 using namespace rootsim;
+using rootsim::test::coarse;
 
 namespace {
 constexpr double pi = std::numbers::pi;

@@ -90,37 +90,37 @@ TEST_CASE("a RunDir writes into DIR.partial, commit makes DIR with its marker li
     CHECK(rd.work() == fs::path(out.string() + ".partial"));
     CHECK(fs::is_directory(rd.work()));
     CHECK(!fs::exists(out));
-    rd.write("a.txt", "hello");
-    rd.write("b.csv", std::string(1000, 'x'));
-    CHECK(slurp(rd.work() / "a.txt") == "hello");
+    rd.write("scene.toml", "hello");
+    rd.write("shape.csv", std::string(1000, 'x'));
+    CHECK(slurp(rd.work() / "scene.toml") == "hello");
     rd.commit();
   }
   CHECK(!fs::exists(fs::path(out.string() + ".partial")));
-  CHECK(slurp(out / "a.txt") == "hello");
-  CHECK(slurp(out / "b.csv") == std::string(1000, 'x'));
+  CHECK(slurp(out / "scene.toml") == "hello");
+  CHECK(slurp(out / "shape.csv") == std::string(1000, 'x'));
   const std::string marker = slurp(out / kRunMarker);
   CHECK(marker.rfind("rootsim run directory ", 0) == 0);
-  CHECK(marker.find("a.txt") != std::string::npos);
-  CHECK(marker.find("b.csv") != std::string::npos);
+  CHECK(marker.find("scene.toml") != std::string::npos);
+  CHECK(marker.find("shape.csv") != std::string::npos);
   CHECK(whyNotWhole(out) == "");
   // a file cut short or missing: not whole, and the reason names it
-  fs::resize_file(out / "b.csv", 10);
-  CHECK(whyNotWhole(out).find("b.csv") != std::string::npos);
-  fs::remove(out / "a.txt");
-  CHECK(whyNotWhole(out).find("a.txt") != std::string::npos);
+  fs::resize_file(out / "shape.csv", 10);
+  CHECK(whyNotWhole(out).find("shape.csv") != std::string::npos);
+  fs::remove(out / "scene.toml");
+  CHECK(whyNotWhole(out).find("scene.toml") != std::string::npos);
   // an earlier run is replaced only with force
   CHECK_THROWS_AS(RunDir(out, {}), SceneError);
-  CHECK(fs::exists(out / "b.csv"));
+  CHECK(fs::exists(out / "shape.csv"));
   {
     RunDirOptions force;
     force.force = true;
     RunDir rd(out, force);
-    rd.write("c.txt", "new");
+    rd.write("summary.json", "new");
     rd.fail("boom: step 3");
   }
   // failed: DIR.incomplete with what was written and ERROR.txt; the earlier DIR is left as it was
   const fs::path inc = out.string() + ".incomplete";
-  CHECK(slurp(inc / "c.txt") == "new");
+  CHECK(slurp(inc / "summary.json") == "new");
   CHECK(slurp(inc / "ERROR.txt").find("boom: step 3") != std::string::npos);
   CHECK(fs::exists(inc / kRunMarker));
   CHECK(!fs::exists(fs::path(out.string() + ".partial")));
@@ -132,33 +132,33 @@ TEST_CASE("a RunDir left without commit or fail stays DIR.partial, refused later
   const fs::path out = d / "run";
   {
     RunDir rd(out, {});
-    rd.write("a.txt", "first");
+    rd.write("scene.toml", "first");
   }  // a run that stopped (interrupted): nothing committed
   const fs::path partial = out.string() + ".partial";
-  CHECK(slurp(partial / "a.txt") == "first");
+  CHECK(slurp(partial / "scene.toml") == "first");
   CHECK(fs::exists(partial / kRunMarker));
   CHECK(!fs::exists(out));
   CHECK_THROWS_AS(RunDir(out, {}), SceneError);
-  CHECK(slurp(partial / "a.txt") == "first");
+  CHECK(slurp(partial / "scene.toml") == "first");
   {
     RunDir rd(out, {}, PartialRun::Continue);
-    CHECK(slurp(rd.work() / "a.txt") == "first");  // kept: a resumed run writes on
-    rd.write("b.txt", "second");
+    CHECK(slurp(rd.work() / "scene.toml") == "first");  // kept: a resumed run writes on
+    rd.write("timeseries.csv", "second");
     rd.commit();
   }
-  CHECK(slurp(out / "a.txt") == "first");
-  CHECK(slurp(out / "b.txt") == "second");
+  CHECK(slurp(out / "scene.toml") == "first");
+  CHECK(slurp(out / "timeseries.csv") == "second");
   CHECK(whyNotWhole(out) == "");
   {
     RunDir rd(d / "other", {});
-    rd.write("a.txt", "x");
+    rd.write("scene.toml", "x");
   }
   {
     RunDir rd(d / "other", {}, PartialRun::Discard);
-    CHECK(!fs::exists(rd.work() / "a.txt"));  // started again
+    CHECK(!fs::exists(rd.work() / "scene.toml"));  // started again
     rd.commit();
   }
-  CHECK(!fs::exists(d / "other" / "a.txt"));
+  CHECK(!fs::exists(d / "other" / "scene.toml"));
   // the --out path as the user meant it
   CHECK(normaliseOutDir("out/") == fs::path("out"));
   CHECK(normaliseOutDir("./a/b/") == fs::path("a/b"));

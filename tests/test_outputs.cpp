@@ -412,7 +412,7 @@ TEST_CASE("trajectory.csv and trajectory.bin written by their writers read back 
   fs::remove_all(d);
 }
 
-TEST_CASE("summary.json: the JSON writer's numbers read back exactly, NaN is null, strings are escaped; a run's summary agrees with its time series") {
+TEST_CASE("summary.json: the JSON writer's numbers read back exactly, NaN is null, strings are escaped, and a run's summary agrees with its time series") {
   Json inner;
   inner.num("nan", std::numeric_limits<double>::quiet_NaN()).num("inf", std::numeric_limits<double>::infinity());
   Json j;

@@ -1,8 +1,8 @@
 #pragma once
 // Process and file helpers shared by the tests that run the rootsim binary or read run directories
-// (rootsim_io_tests, and tests/render through run_rootsim.hpp and test_files.hpp): running the binary,
+// (rootsim_io_tests, test_figure.cpp, and tests/render through run_rootsim.hpp and test_files.hpp): running the binary,
 // a skipped case, a fresh scratch folder, a file's bytes, a folder's files, two runs compared byte for
-// byte, a run killed by the test hook. Needs ROOTSIM_BINARY and ROOTSIM_SOURCE_DIR (tests/CMakeLists.txt).
+// byte, a run killed by the test hook. The binary helpers need ROOTSIM_BINARY, the scene paths ROOTSIM_SOURCE_DIR (tests/CMakeLists.txt).
 #include <doctest/doctest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -20,6 +20,7 @@ namespace rootsim::test {
 
 // --- the rootsim binary ---
 
+#ifdef ROOTSIM_BINARY
 struct Result {
   int code;
   std::string out;  // stdout + stderr
@@ -50,6 +51,8 @@ inline Result runKilled(const std::string& args, const std::string& hook) {
   ::unsetenv("ROOTSIM_TEST_KILL");
   return r;
 }
+
+#endif  // ROOTSIM_BINARY
 
 #ifdef ROOTSIM_SOURCE_DIR
 // shipped scenes the tests run

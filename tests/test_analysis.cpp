@@ -6,9 +6,12 @@
 #include <functional>
 #include <numbers>
 
+#include "physics_support.hpp"
 #include "rootsim/analysis.hpp"
+#include "rootsim/simulation.hpp"
 
 using namespace rootsim;
+using rootsim::test::coarse;
 
 namespace {
 constexpr double pi = std::numbers::pi;
@@ -213,4 +216,30 @@ TEST_CASE("a helix writhes, and its mirror image writhes the opposite way") {
   Eigen::Matrix3Xd q = p;
   q.row(2) *= -1.0;  // mirror: left-handed
   CHECK(writheOpen(q, 0, 199) == doctest::Approx(-wr).epsilon(1e-12));
+}
+
+TEST_CASE("a straight rod twisted once has Tw = 1 and Wr = 0") {
+  Model m = coarse(90, 0.0, 0);
+  m.growth.zoneLength = 2e-3;  // the whole 1.1 mm rod is in the zone
+  m.env.plane.enabled = false;
+  Simulation sim(m);
+  RodState s = sim.state();
+  const int n = s.elements();
+  const double L = s.restLength();
+  // directors turned about d3 by 2 pi s / L (element centres)
+  for (int i = 0; i < n; ++i) {
+    const double phi = 2 * pi * (s.S[i] + 0.5 * s.l0[i]) / L;
+    Mat3 Q = s.Q[i];
+    const Vec3 d1 = std::cos(phi) * Vec3(Q.row(0)) + std::sin(phi) * Vec3(Q.row(1));
+    const Vec3 d2 = -std::sin(phi) * Vec3(Q.row(0)) + std::cos(phi) * Vec3(Q.row(1));
+    s.Q[i].row(0) = d1.transpose();
+    s.Q[i].row(1) = d2.transpose();
+  }
+  RodStrains k;
+  k.resize(n);
+  computeStrains(m.rod, s, k);
+  const ZoneObservables z = observeZone(m, s, k);
+  // the Voronoi domains cover [l/2, L - l/2]: Tw = (n - 1) / n of a turn, exactly 1 as n grows
+  CHECK(z.Tw == doctest::Approx(static_cast<double>(n - 1) / n).epsilon(1e-9));
+  CHECK(std::abs(z.Wr) < 1e-9);
 }

@@ -1,3 +1,4 @@
+// checkpoints (src/io/checkpoint.cpp): every field through a round trip, corrupt, truncated and forged files refused.
 // The field lists (include/rootsim/fields.hpp) through a checkpoint: a simulation of a coil in self-
 // contact on a plate with friction, stepped, carried, written, read back into a fresh Simulation; every
 // field of every persistent struct (the rod state with its friction stick points, the progress, the
@@ -5,16 +6,37 @@
 // name through the same lists, before and after one more growth step of both.
 #include <doctest/doctest.h>
 
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include "rootsim/checkpoint.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/simulation.hpp"
-#include "test_files.hpp"
+#include "test_support.hpp"
 
 namespace fs = std::filesystem;
 using namespace rootsim;
+
+namespace {
+using rootsim::test::Result;
+using rootsim::test::run;
+using rootsim::test::slurp;
+using rootsim::test::checkSameRun;
+using rootsim::test::kScene;
+using rootsim::test::kSets;
+using rootsim::test::runKilled;
+fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("checkpoint", name); }
+
+// FNV-1a 64, the checkpoint's checksum (include/rootsim/checkpoint.hpp)
+std::uint64_t fnv1a(const std::string& s, std::size_t from, std::size_t to) {
+  std::uint64_t h = 14695981039346656037ull;
+  for (std::size_t i = from; i < to; ++i) h = (h ^ static_cast<unsigned char>(s[i])) * 1099511628211ull;
+  return h;
+}
+}  // namespace
 
 TEST_CASE("every field of every persistent struct survives a checkpoint round trip (coil, self-contact, friction)") {
   const std::string src = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/";
@@ -69,4 +91,85 @@ TEST_CASE("every field of every persistent struct survives a checkpoint round tr
     CHECK_MESSAGE(d.empty(), "differs after resuming and growing: ", d);
   }
   fs::remove_all(dir);
+}
+
+TEST_CASE("a corrupt or truncated checkpoint exits 2 naming it and --force discards it and starts again") {
+  const fs::path d = scratch("corrupt");
+  const std::string args = "run " + kScene + kSets + " --out ";
+  REQUIRE(run(args + (d / "a").string()).code == 0);
+  const fs::path ck = d / "b.partial" / "checkpoint.bin";
+  CHECK(runKilled(args + (d / "b").string(), "40:45").code == 137);
+  const std::string good = slurp(ck);
+  REQUIRE(good.size() > 100);
+  std::string flipped = good;
+  flipped[good.size() / 2] = static_cast<char>(flipped[good.size() / 2] ^ 0x10);
+  for (const std::string& bad : {good.substr(0, good.size() / 2), flipped, std::string("RSCHKPT"), std::string()}) {
+    CAPTURE(bad.size());
+    { std::ofstream(ck, std::ios::binary) << bad; }
+    const Result r = run(args + (d / "b").string() + " --resume");
+    CHECK(r.code == 2);
+    CHECK(r.out.find(ck.string() + ": corrupt checkpoint") != std::string::npos);
+    CHECK(r.out.find("--force") != std::string::npos);
+    CHECK(fs::exists(ck));  // nothing discarded without --force
+    CHECK(!fs::exists(d / "b"));
+  }
+  // a valid checkpoint, but a stream shorter than it says (the file was damaged): refused before
+  // anything is touched
+  { std::ofstream(ck, std::ios::binary) << good; }
+  fs::resize_file(d / "b.partial" / "timeseries.csv.tmp", 100);
+  const Result shortened = run(args + (d / "b").string() + " --resume");
+  CHECK(shortened.code == 2);
+  CHECK(shortened.out.find("timeseries.csv.tmp: missing or shorter") != std::string::npos);
+  CHECK(fs::exists(ck));
+  CHECK(!fs::exists(d / "b.incomplete"));
+  const Result forced = run(args + (d / "b").string() + " --resume --force");
+  REQUIRE_MESSAGE(forced.code == 0, forced.out);
+  CHECK(forced.out.find("no usable checkpoint") != std::string::npos);
+  checkSameRun(d / "a", d / "b");
+  fs::remove_all(d);
+}
+
+TEST_CASE("a forged checkpoint with a recomputed checksum and an impossible frame count is refused naming the field") {
+  const fs::path d = scratch("forged");
+  // no ParaView entries: the payload ends with the trajectory frame count (i32) and the entry count (u64)
+  const std::string args = "run " + kScene + kSets + " --set output.vtk=false --out ";
+  CHECK(runKilled(args + (d / "b").string(), "40:45").code == 137);
+  const fs::path ck = d / "b.partial" / "checkpoint.bin";
+  const std::string good = slurp(ck);
+  REQUIRE(good.size() > 100);
+  const std::size_t framesAt = good.size() - 8 - 8 - 4;
+  std::int32_t frames = 0;
+  std::memcpy(&frames, good.data() + framesAt, 4);
+  REQUIRE(frames == 5);  // steps 0, 10, 20, 30, 40
+  auto forged = [&](std::int32_t f) {
+    std::string b = good;
+    std::memcpy(b.data() + framesAt, &f, 4);
+    const std::uint64_t sum = fnv1a(b, 40, b.size() - 8);
+    std::memcpy(b.data() + b.size() - 8, &sum, 8);
+    return b;
+  };
+  const std::pair<std::int32_t, std::string> cases[] = {
+      {-5, "trajectory frame count -5 out of range (0 .. 41: at most one per growth step up to 40, and the initial one)"},
+      {2000000000, "trajectory frame count 2000000000 out of range (0 .. 41"},
+      {4, "trajectory frame count 4 disagrees with"},
+  };
+  for (const auto& c : cases) {
+    // (not a structured binding: clang before 16 cannot capture one in CAPTURE's lambda)
+    const std::int32_t f = c.first;
+    const std::string& why = c.second;
+    CAPTURE(f);
+    { std::ofstream(ck, std::ios::binary) << forged(f); }
+    const Result r = run(args + (d / "b").string() + " --resume");
+    INFO(r.out);
+    CHECK(r.code == 2);
+    CHECK(r.out.find(ck.string() + ": corrupt checkpoint (" + why) != std::string::npos);
+    CHECK(r.out.find("--force") != std::string::npos);
+    CHECK(fs::exists(ck));
+    CHECK(!fs::exists(d / "b"));
+  }
+  // the genuine one still resumes
+  { std::ofstream(ck, std::ios::binary) << good; }
+  const Result ok = run(args + (d / "b").string() + " --resume");
+  CHECK_MESSAGE(ok.code == 0, ok.out);
+  fs::remove_all(d);
 }

@@ -3,8 +3,7 @@
 
 #include <chrono>
 
-#include "run_rootsim.hpp"
-#include "test_files.hpp"
+#include "test_support.hpp"
 
 #include <algorithm>
 #include <array>
@@ -12,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <sys/stat.h>
@@ -28,18 +28,13 @@ using rootsim::test::slurp;
 // a fresh scratch folder per test
 fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("cli", name); }
 
-// runs rootsim with dir as the working directory
-Result runIn(const fs::path& dir, const std::string& args) {
-  return run("--version >/dev/null && cd '" + dir.string() + "' && " + std::string(ROOTSIM_BINARY) + " " + args);
-}
+using rootsim::test::kCantilever;
+using rootsim::test::kScene;
+using rootsim::test::lines;
+using rootsim::test::runIn;
 
-// every file below d with its bytes, to compare a folder before and after
-std::map<std::string, std::string> tree(const fs::path& d) {
-  std::map<std::string, std::string> t;
-  for (const auto& e : fs::recursive_directory_iterator(d))
-    t[fs::relative(e.path(), d).string()] = e.is_regular_file() ? slurp(e.path()) : std::string("<dir>");
-  return t;
-}
+// every file and folder below d, to compare a folder before and after
+std::map<std::string, std::string> tree(const fs::path& d) { return rootsim::test::fileTree(d, true); }
 
 const std::string kSmall = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2b_waving.toml --set growth.steps=30 "
                            "--set output.every_steps=5 --quiet";
@@ -381,22 +376,6 @@ TEST_CASE("a scene path that is not a regular file, or is huge, exits 2 at once"
   CHECK(b.out.find("larger than 1 MiB") != std::string::npos);
 }
 
-TEST_CASE("a sweep over a mechanics-only scene resumes (its points count as complete)") {
-  const fs::path d = scratch("mechsweep");
-  {
-    std::ofstream(d / "s.toml") << "[sweep]\nscene = \"" << ROOTSIM_SOURCE_DIR
-                                << "/scenes/cantilever_tip_load.toml\"\n[grid]\n\"root.youngs_modulus_mpa\" = [40, 50]\n"
-                                   "[set]\n\"root.element_length_mm\" = 0.5\n\"output.vtk\" = false\n";
-  }
-  const std::string cmd = "sweep " + (d / "s.toml").string() + " --out " + (d / "out").string();
-  const Result a = run(cmd);
-  REQUIRE(a.code == 0);
-  CHECK(a.out.find("2 ran, 0 already complete") != std::string::npos);
-  const Result b = run(cmd);
-  CHECK(b.code == 0);
-  CHECK(b.out.find("0 ran, 2 already complete") != std::string::npos);
-}
-
 TEST_CASE("modes writes the softest stiffness modes of a run's final state") {
   const fs::path d = scratch("modes");
   REQUIRE(run("run " + kSmall + " --set solver.kind=newton --out " + (d / "r").string()).code == 0);
@@ -419,4 +398,102 @@ TEST_CASE("modes writes the softest stiffness modes of a run's final state") {
   // a folder that is not a run
   CHECK(run("modes " + d.string() + " --quiet").code == 2);
   CHECK(run("modes " + (d / "r").string() + " --count 0").code == 2);
+}
+
+TEST_CASE("a value beyond its physical bound exits 2 naming key and range and writes nothing") {
+  const fs::path d = scratch("bounds");
+  const Result c = run("check " + kScene + " --set root.radius_mm=1e300");
+  CHECK(c.code == 2);
+  CHECK(c.out == "rootsim: error: --set root.radius_mm=1e300: root.radius_mm must be in (0, 100] (got 1e+300)\n");
+  // growth_zone_mm = 1e300 ran for minutes before failing
+  const Result r = run("run " + kScene + " --set growth.growth_zone_mm=1e300 --quiet --out " + (d / "out").string());
+  CHECK(r.code == 2);
+  CHECK(r.out.find("growth.growth_zone_mm must be in (0, 1000] (got 1e+300)") != std::string::npos);
+  CHECK(fs::is_empty(d));
+  // `check` documents the range of every number key
+  const Result k = run("check " + kScene);
+  CHECK(k.code == 0);
+  CHECK(k.out.find("# root radius R [mm]; in (0, 100]\n") != std::string::npos);
+  fs::remove_all(d);
+}
+
+TEST_CASE("scenes beyond the element cap exit 2 at once naming the keys and the cap") {
+  const fs::path d = scratch("cap");
+  const std::string out = " --quiet --out " + (d / "out").string();
+  const Result a = run("run " + kScene + " --set root.initial_length_mm=1e4" + out);
+  CHECK(a.code == 2);
+  CHECK(a.out.find("root.initial_length_mm / root.element_length_mm = 10000 mm / 0.05 mm = 200000 elements at the "
+                   "start; at most 20000 elements are allowed") != std::string::npos);
+  const Result b = run("run " + kScene + " --set root.element_length_mm=1e-12" + out);
+  CHECK(b.code == 2);
+  CHECK(b.out.find("--set root.element_length_mm: root.element_length_mm = 1e-12: ") != std::string::npos);
+  const Result c = run("run " + kCantilever + " --set root.initial_length_mm=9000 --set root.element_length_mm=0.01" + out);
+  CHECK(c.code == 2);
+  CHECK(c.out.find("= 900000 elements at the start; at most 20000 elements are allowed") != std::string::npos);
+  const Result g = run("run " + kScene + " --set growth.steps=1000000" + out);
+  CHECK(g.code == 2);
+  CHECK(g.out.find("growth.steps = 1000000: the root grows to 10001.1 mm") != std::string::npos);
+  CHECK(fs::is_empty(d));
+  fs::remove_all(d);
+}
+
+TEST_CASE("render on a trajectory with NaN or inf exits 2 naming file and line") {
+  const fs::path d = scratch("nanrender");
+  const Result r = run("run " + kScene + " --set growth.steps=20 --set output.every_steps=10 --set output.vtk=false "
+                       "--set output.trajectory_format=csv --quiet --out " + (d / "out").string());
+  REQUIRE(r.code == 0);
+  const fs::path traj = d / "out" / "trajectory.csv";
+  const std::string good = slurp(traj);
+  for (const char* bad : {"nan", "inf", "-inf"}) {
+    CAPTURE(bad);
+    // line 5: the fourth node of the first frame; its x_mm (5th column) becomes bad
+    std::istringstream in(good);
+    std::string text, line;
+    for (int n = 1; std::getline(in, line); ++n) {
+      if (n == 5) {
+        size_t c = 0;
+        for (int k = 0; k < 4; ++k) c = line.find(',', c) + 1;
+        line = line.substr(0, c) + bad + line.substr(line.find(',', c));
+      }
+      text += line + "\n";
+    }
+    { std::ofstream(traj, std::ios::binary) << text; }
+    const Result m = run("render " + (d / "out").string() + " --quiet --mp4 " + (d / "m.mp4").string());
+    CHECK(m.code == 2);
+    CHECK(m.out == "rootsim: error: " + traj.string() + ":5: x_mm: not a finite number (got " + bad + ")\n");
+    CHECK(!fs::exists(d / "m.mp4"));
+  }
+  fs::remove_all(d);
+}
+
+TEST_CASE("a free 2 mm rod under its weight on a plate at 80 deg slides at mu_s = 0.01 and without friction, stays at mu_s = 0.5") {
+  // physical gravity and the default tolerances, both solvers: the downhill pull (3e-9 N per node) is far
+  // below B1/Lref^2 * force_tol (9.8e-8 N), which once let the rod "converge" unmoved in a few sub-steps
+  const fs::path d = scratch("incline80");
+  {
+    std::ofstream(d / "incline.toml") << "[root]\ninitial_length_mm = 2\n[growth]\nenabled = false\n[plane]\n"
+                                         "alpha_deg = 80\n[adhesion]\nenabled = false\n[load]\nbase = \"free\"\n"
+                                         "gravity = true\n[friction]\nenabled = true\nmu_static = 0.01\n"
+                                         "mu_kinetic = 0.008\n";
+  }
+  const std::string scene = (d / "incline.toml").string();
+  // cot(80 deg) = 0.176
+  for (const char* k : {"dynamic", "newton"}) {
+    const std::string kind = k;
+    INFO(kind);
+    const std::string set = " --set solver.kind=" + kind + " --quiet --out ";
+    for (const char* f : {"friction.enabled=true", "friction.enabled=false"}) {
+      const std::string friction = f;
+      INFO(friction);
+      const Result r = run("run " + scene + " --set " + friction + set + (d / (kind + friction)).string());
+      CHECK(r.code == 1);
+      CHECK(std::regex_search(r.out, std::regex(R"(node \d+ slides: no static equilibrium)")));
+      CHECK(r.out.find("did not reach equilibrium in") == std::string::npos);  // the slide check, not the cap
+    }
+    const Result s = run("run " + scene + " --set friction.mu_static=0.5 --set friction.mu_kinetic=0.4" + set +
+                         (d / kind).string());
+    CHECK(s.code == 0);
+    CHECK(fs::exists(d / kind / "summary.json"));
+  }
+  fs::remove_all(d);
 }

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "rod_fixture.hpp"
+#include "physics_support.hpp"
 #include "rootsim/contact.hpp"
 #include "rootsim/contact_newton.hpp"
 #include "rootsim/growth.hpp"
@@ -22,7 +22,6 @@
 #include "rootsim/stability.hpp"
 #include "rootsim/tolerance.hpp"
 #include "rootsim/units.hpp"
-#include "tolerance.hpp"
 
 using namespace rootsim;
 

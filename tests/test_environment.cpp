@@ -2,7 +2,7 @@
 // closed form
 #include <doctest/doctest.h>
 
-#include "rod_fixture.hpp"
+#include "physics_support.hpp"
 #include "rootsim/environment.hpp"
 #include "rootsim/rotation.hpp"
 #include "rootsim/units.hpp"

@@ -12,7 +12,7 @@
 
 #include "rootsim/figure.hpp"
 #include "rootsim/plot.hpp"
-#include "test_files.hpp"
+#include "test_support.hpp"
 
 namespace fs = std::filesystem;
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "physics_support.hpp"
 #include "rootsim/growth.hpp"
 #include "rootsim/simulation.hpp"
 #include "rootsim/theory.hpp"
@@ -15,16 +16,7 @@ constexpr double pi = std::numbers::pi;
 constexpr double deg = pi / 180.0;
 
 // a coarse growth model: 0.1 mm elements (10 in the zone), 0.1 h steps
-Model coarse(double alphaDeg, double beta, int steps) {
-  Model m;
-  m.env.plane.alpha = alphaDeg * deg;
-  m.tropism.beta = beta;
-  m.initial.elementLength = 1e-4;
-  m.growth.stepTime = 0.1 * 3600;
-  m.growth.steps = steps;
-  completeModel(m);
-  return m;
-}
+using rootsim::test::coarse;
 
 ShapeAnalysis grow(const Model& m, Simulation** out = nullptr) {
   static Simulation* keep = nullptr;
@@ -240,28 +232,3 @@ TEST_CASE("proprioception alone drives kappa0 toward zero") {
   CHECK(maxZone == doctest::Approx(std::hypot(200.0, 100.0) * std::exp(-0.2 * 1.0 * 3.0)).epsilon(0.1));
 }
 
-TEST_CASE("a straight rod twisted once has Tw = 1 and Wr = 0") {
-  Model m = coarse(90, 0.0, 0);
-  m.growth.zoneLength = 2e-3;  // the whole 1.1 mm rod is in the zone
-  m.env.plane.enabled = false;
-  Simulation sim(m);
-  RodState s = sim.state();
-  const int n = s.elements();
-  const double L = s.restLength();
-  // directors turned about d3 by 2 pi s / L (element centres)
-  for (int i = 0; i < n; ++i) {
-    const double phi = 2 * pi * (s.S[i] + 0.5 * s.l0[i]) / L;
-    Mat3 Q = s.Q[i];
-    const Vec3 d1 = std::cos(phi) * Vec3(Q.row(0)) + std::sin(phi) * Vec3(Q.row(1));
-    const Vec3 d2 = -std::sin(phi) * Vec3(Q.row(0)) + std::cos(phi) * Vec3(Q.row(1));
-    s.Q[i].row(0) = d1.transpose();
-    s.Q[i].row(1) = d2.transpose();
-  }
-  RodStrains k;
-  k.resize(n);
-  computeStrains(m.rod, s, k);
-  const ZoneObservables z = observeZone(m, s, k);
-  // the Voronoi domains cover [l/2, L - l/2]: Tw = (n - 1) / n of a turn, exactly 1 as n grows
-  CHECK(z.Tw == doctest::Approx(static_cast<double>(n - 1) / n).epsilon(1e-9));
-  CHECK(std::abs(z.Wr) < 1e-9);
-}

@@ -3,7 +3,7 @@
 
 #include <Eigen/Geometry>
 
-#include "rod_fixture.hpp"
+#include "physics_support.hpp"
 #include "rootsim/rotation.hpp"
 
 using namespace rootsim;

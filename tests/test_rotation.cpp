@@ -1,3 +1,4 @@
+// rotations (src/sim/rotation.cpp): the exponential map and its inverse, rotating directors in place
 #include <doctest/doctest.h>
 
 #include <Eigen/Geometry>

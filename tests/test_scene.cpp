@@ -5,20 +5,21 @@
 #include <numbers>
 #include <string>
 
+#include <filesystem>
+#include <fstream>
+
 #include "rootsim/scene.hpp"
-#include "rootsim/theory.hpp"
+#include "scene_support.hpp"
+#include "test_support.hpp"
 
 using namespace rootsim;
+namespace fs = std::filesystem;
 
 namespace {
-std::string errorOf(const std::string& text, const std::vector<std::string>& sets = {}) {
-  try {
-    parseScene(text, "scenes/t.toml", sets);
-  } catch (const SceneError& e) {
-    return e.what();
-  }
-  return "(no error)";
-}
+using rootsim::test::errorOf;
+using rootsim::test::oneLine;
+using rootsim::test::sweepError;
+fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("scene", name); }
 }  // namespace
 
 TEST_CASE("defaults are the paper's values (docs/model.md, Experiment and parameters)") {
@@ -78,22 +79,6 @@ TEST_CASE("missing and unreadable files") {
   } catch (const SceneError& e) {
     CHECK(std::string(e.what()).find("/nonexistent/scene.toml: no such scene file") != std::string::npos);
   }
-}
-
-TEST_CASE("theory: worked values of docs/model.md, Theory") {
-  auto at = [](double gain) {
-    Model m;
-    m.tropism.beta = gain * m.rod.radius / m.growth.zoneLength;
-    return theoryFor(m);
-  };
-  const double deg = 180 / std::numbers::pi;
-  const Theory a = at(0.5), b = at(1.0);
-  CHECK(a.alphaStraightToWave * deg == doctest::Approx(15.6).epsilon(0.005));
-  CHECK(a.alphaWaveToCoil * deg == doctest::Approx(45.0).epsilon(0.005));
-  CHECK(a.T0 / 3600 == doctest::Approx(11.9).epsilon(0.005));
-  CHECK(b.alphaStraightToWave * deg == doctest::Approx(11.8).epsilon(0.005));
-  CHECK(b.alphaWaveToCoil * deg == doctest::Approx(47.6).epsilon(0.005));
-  CHECK(b.T0 / 3600 == doctest::Approx(7.85).epsilon(0.005));
 }
 
 // --- contact keys (docs/model.md, Contact and friction): [self_contact], [friction], [[obstacle]] ---
@@ -156,4 +141,65 @@ TEST_CASE("contact keys: bad obstacles and friction are errors naming file:line 
         std::string::npos);
   CHECK(errorOf("[self_contact]\nk_n_per_m = 0\n").find("scenes/t.toml:2: self_contact.k_n_per_m must be in (0, 1e+06]") !=
         std::string::npos);
+}
+
+TEST_CASE("a string value or key with control characters is escaped in the message") {
+  const std::string a = errorOf("[tropism]\nsensing = \"api\\ncal\"\n");
+  CHECK(oneLine(a));
+  CHECK(a.find("(got \"api\\ncal\")") != std::string::npos);
+  const std::string b = errorOf("[tropism]\nbeta = \"x\\ty\"\n");
+  CHECK(oneLine(b));
+  CHECK(b.find("the string \"x\\ty\"") != std::string::npos);
+  const std::string c = errorOf("[tropism]\n\"be\\nta\" = 1\n");
+  CHECK(oneLine(c));
+  CHECK(c.find("unknown key tropism.be\\nta") != std::string::npos);
+}
+
+TEST_CASE("integers beyond 2^53 and numbers that underflow are refused with the key's range") {
+  // 9007199254740993 became ...992 as a double
+  CHECK(errorOf("", {"solver.seed=9007199254740993"}) ==
+        "--set solver.seed=9007199254740993: solver.seed must be in [0, 9007199254740992] (got 9007199254740993, more "
+        "than a double holds exactly)");
+  CHECK(errorOf("[solver]\nseed = 9223372036854775807\n").find("scenes/t.toml:2: solver.seed must be in [0, 9007199254740992]") == 0);
+  CHECK(errorOf("", {"solver.seed=9007199254740992"}) == "(no error)");
+  // 1e-400 became 0 (while 1e400 is refused)
+  CHECK(errorOf("", {"tropism.beta=1e-400"}) ==
+        "--set tropism.beta=1e-400: tropism.beta must be in [0, 100] (got 1e-400, which a double holds only as 0.0: "
+        "non-zero magnitudes below 2.2250738585072014e-308 underflow)");
+  CHECK(errorOf("[tropism]\nbeta = 4e-320\n").find("scenes/t.toml:2: tropism.beta must be in [0, 100] (got 4e-320, which a double holds only as 4e-320") == 0);
+  CHECK(errorOf("[load]\ntip_force_n = [0, 0, -1.5e-999]\n").find("scenes/t.toml:2: load.tip_force_n must be an array of 3 numbers: element 3 of 3 (got -1.5e-999") == 0);
+  // zeros as written are zeros
+  CHECK(errorOf("[tropism]\nbeta = 0.0e-400\ngamma = 0e5\n") == "(no error)");
+  CHECK(errorOf("", {"tropism.beta=-0.0"}) == "(no error)");
+  // an analysis threshold of 0 called rounding noise a wave (amplitude 1.4e-26 mm) or a skew
+  CHECK(errorOf("", {"analysis.wave_min_amplitude_r=0"}) ==
+        "--set analysis.wave_min_amplitude_r=0: analysis.wave_min_amplitude_r must be in [0.001, 1000] (got 0)");
+  CHECK(errorOf("", {"analysis.skew_threshold_deg=0"}) ==
+        "--set analysis.skew_threshold_deg=0: analysis.skew_threshold_deg must be in [0.001, 90] (got 0)");
+  CHECK(errorOf("", {"analysis.wave_min_amplitude_r=0.001", "analysis.skew_threshold_deg=0.001"}) == "(no error)");
+}
+
+TEST_CASE("an array element of the wrong type is named and a sweep point's error names its grid line") {
+  CHECK(errorOf("[load]\ntip_force_n = [0, 0, \"a\"]\n") ==
+        "scenes/t.toml:2: load.tip_force_n must be an array of 3 numbers: element 3 of 3 must be a number (got the "
+        "string \"a\")");
+  CHECK(errorOf("", {"load.tip_force_n=[true,0,0]"}) ==
+        "--set load.tip_force_n=[true,0,0]: load.tip_force_n must be an array of 3 numbers: element 1 of 3 must be a "
+        "number (got true)");
+  CHECK(errorOf("[load]\ntip_force_n = [0, 0]\n") ==
+        "scenes/t.toml:2: load.tip_force_n must be an array of 3 numbers (got an array of 2)");
+  const fs::path d = scratch("pointline");
+  {
+    std::ofstream(d / "s.toml") << "[sweep]\nscene = \"" << ROOTSIM_SOURCE_DIR << "/scenes/fig2b_waving.toml\"\n"
+                                << "[grid]\n\"tropism.beta\" = [0.1, 0.2]\n\n\"plane.alpha_deg\" = [30, 95]\n"
+                                << "[set]\n\"growth.steps\" = 10\n";
+  }
+  CHECK(sweepError(d / "s.toml") == (d / "s.toml").string() +
+                                        ":6: point 2: --set plane.alpha_deg=95: plane.alpha_deg must be in [0, 90] (got 95)");
+  {
+    std::ofstream(d / "s.toml") << "[sweep]\nscene = \"" << ROOTSIM_SOURCE_DIR << "/scenes/fig2b_waving.toml\"\n"
+                                << "[grid]\n\"tropism.beta\" = [0.1, 0.2]\n[set]\n\"root.radius_mm\" = -1\n";
+  }
+  CHECK(sweepError(d / "s.toml").find((d / "s.toml").string() + ":6: point 0: --set root.radius_mm=-1: ") == 0);
+  fs::remove_all(d);
 }

@@ -6,10 +6,12 @@
 #include <cstring>
 #include <string>
 
+#include "physics_support.hpp"
 #include "rootsim/simulation.hpp"
 #include "rootsim/units.hpp"
 
 using namespace rootsim;
+using rootsim::test::gAllocs;
 
 namespace {
 Model small() {
@@ -83,4 +85,25 @@ TEST_CASE("the clamp frame is the initial first element's and survives element s
   for (int k = 0; k < 60; ++k) splits += sim.growthStep().splits;
   REQUIRE(splits > 0);
   CHECK(sim.state().clampFrame == clamp);
+}
+
+TEST_CASE("a growth step with the Newton solver allocates nothing after warm-up, unless it splits") {
+  Model m = defaultModel();
+  m.initial.elementLength = 1e-4;
+  m.growth.stepTime = 0.1 * 3600;
+  m.solver.kind = SolverKind::Newton;
+  completeModel(m);
+  Simulation sim(m);
+  for (int k = 0; k < 20; ++k) sim.growthStep();  // warm-up
+  int checked = 0;
+  for (int k = 0; k < 40; ++k) {
+    const long before = gAllocs.load();
+    const StepRecord& r = sim.growthStep();
+    const long allocs = gAllocs.load() - before;
+    if (r.splits > 0 || r.unstable > 0) continue;  // remeshing rebuilds the state; a snap relaxes explicitly
+    INFO("step " << r.step << ": " << allocs << " allocations");
+    CHECK(allocs == 0);
+    ++checked;
+  }
+  CHECK(checked > 10);
 }

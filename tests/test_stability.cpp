@@ -4,7 +4,7 @@
 #include <cmath>
 #include <numbers>
 
-#include "rod_fixture.hpp"
+#include "physics_support.hpp"
 #include "rootsim/stability.hpp"
 #include <Eigen/Dense>
 

@@ -14,11 +14,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <string>
 #include <vector>
 
-#include "run_rootsim.hpp"
-#include "test_files.hpp"
+#include "test_support.hpp"
 
 namespace fs = std::filesystem;
 
@@ -29,7 +29,7 @@ using rootsim::test::slurp;
 
 fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("write", name); }
 
-const std::string kScene = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2b_waving.toml";
+using rootsim::test::kScene;
 // a run of a few seconds' hundredths: 10 growth steps, coarse elements
 const std::string kShort = " --set growth.steps=10 --set root.element_length_mm=0.1 --quiet";
 
@@ -44,13 +44,7 @@ fs::path makeRun(const fs::path& d, const std::string& name = "r") {
 }
 
 // every file below dir with its bytes
-std::vector<std::pair<std::string, std::string>> snapshot(const fs::path& dir) {
-  std::vector<std::pair<std::string, std::string>> out;
-  for (const auto& e : fs::recursive_directory_iterator(dir))
-    if (e.is_regular_file()) out.emplace_back(fs::relative(e.path(), dir).string(), slurp(e.path()));
-  std::sort(out.begin(), out.end());
-  return out;
-}
+std::map<std::string, std::string> snapshot(const fs::path& dir) { return rootsim::test::fileTree(dir); }
 
 // this process holds the lock of an output path, as a second rootsim process would
 struct HeldLock {

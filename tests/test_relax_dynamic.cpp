@@ -1,3 +1,6 @@
+// the explicit dynamic relaxation (src/sim/relax_dynamic.cpp; its computeForces moves to src/sim/forces.cpp):
+// closed-form mechanics, a relaxation window, no heap allocation in a sub-step, errors that name step,
+// node and quantity, physical masses with viscous damping.
 // Validation of the rod core and the dynamic relaxation against closed-form mechanics (docs/model.md,
 // Rod mechanics). Each case runs at two resolutions; with ROOTSIM_PRINT_RESIDUALS=1 the errors and the
 // observed convergence order are printed (ROOTSIM_PRINT_RESIDUALS=1) and, for the second-order
@@ -6,14 +9,17 @@
 
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <numbers>
+#include <string>
 
-#include "elastica.hpp"
-#include "rod_fixture.hpp"
-#include "tolerance.hpp"
+#include "physics_support.hpp"
+#include "rootsim/contact_observe.hpp"
+#include "rootsim/simulation.hpp"
 
 using namespace rootsim;
 using rootsim::test::Cantilever;
+using rootsim::test::gAllocs;
 using rootsim::test::order;
 using rootsim::test::relError;
 
@@ -186,4 +192,87 @@ TEST_CASE("axial load: dilatation 1 + F/(E A) (exactly 1 / (1 - F/(E A)) with S 
     ROOTSIM_CHECK_REL("axial dilatation - 1 vs F/EA", e - 1.0, F / EA, 2e-3);
     ROOTSIM_CHECK_REL("axial dilatation exact", e, 1.0 / (1.0 - F / EA), 1e-9);
   }
+}
+
+TEST_CASE("a relaxation sub-step allocates nothing") {
+  Cantilever c(100);
+  c.env.plane.enabled = true;  // contact, adhesion and loads all in play
+  c.env.plane.alpha = 0.7;
+  c.env.adhesion = true;
+  c.s.anchored[5] = 1;
+  c.env.tipForce = Vec3(1e-4, 0, 0);
+  c.opt.maxSubsteps = std::numeric_limits<long>::max();
+  DynamicRelaxation r(c.p, c.env, c.opt, c.s, c.ws);
+  r.step();  // first step may size the workspace
+  const long before = gAllocs.load();
+  for (int i = 0; i < 1000; ++i) r.step();
+  CHECK(gAllocs.load() - before == 0);
+}
+
+TEST_CASE("a relaxation sub-step with self-contact, friction and an obstacle in play allocates nothing") {
+  Cantilever c(100, 1e-2);
+  c.env.plane.enabled = true;
+  c.env.plane.alpha = 0.7;
+  c.env.friction.enabled = true;
+  c.env.friction.muStatic = 0.5;
+  c.env.friction.muKinetic = 0.3;
+  Obstacle peg;
+  peg.from = peg.to = Eigen::Vector2d(1.5e-4, 5e-3);  // overlaps the rod by half a radius
+  peg.radius = 1e-4;
+  c.env.obstacles.push_back(peg);
+  // element 80 laid over element 20, R above it: a self-contact pair
+  const Vec3 nh = c.env.plane.normal();
+  c.s.x.col(80) = c.s.x.col(20) + 1.0 * c.p.radius * nh;
+  c.s.x.col(81) = c.s.x.col(21) + 1.0 * c.p.radius * nh;
+  c.env.gravity = Vec3(0, 0, -9.81e3);
+  c.ws.resize(c.s.elements());
+  commitFriction(c.p, c.env, c.s, c.ws.contact);
+  c.opt.maxSubsteps = std::numeric_limits<long>::max();
+  DynamicRelaxation r(c.p, c.env, c.opt, c.s, c.ws);
+  r.step();
+  ContactObservables seen = observeContacts(c.p, c.env, c.s);
+  CHECK(seen.selfContacts > 0);
+  CHECK(seen.obstacleContacts > 0);
+  const long before = gAllocs.load();
+  for (int i = 0; i < 1000; ++i) r.step();
+  CHECK(gAllocs.load() - before == 0);
+}
+
+TEST_CASE("hitting the sub-step cap is an error naming node and residual") {
+  Cantilever c(20);
+  c.env.tipForce = Vec3(-1e-3, 0, 0);
+  c.opt.maxSubsteps = 50;
+  try {
+    c.relax();
+    FAIL("no error");
+  } catch (const RelaxError& e) {
+    const std::string w = e.what();
+    CHECK(w.find("did not reach equilibrium in 50 sub-steps") != std::string::npos);
+    CHECK(w.find("at node") != std::string::npos);
+    CHECK(w.find("residual couple") != std::string::npos);
+  }
+}
+
+TEST_CASE("a non-finite force stops the run with sub-step, node and quantity") {
+  Cantilever c(20);
+  c.env.tipForce = Vec3(std::numeric_limits<double>::quiet_NaN(), 0, 0);
+  try {
+    c.relax();
+    FAIL("no error");
+  } catch (const RelaxError& e) {
+    CHECK(std::string(e.what()).find("diverged at sub-step 1: force on node 20 is not finite") != std::string::npos);
+  }
+}
+
+TEST_CASE("physical masses with viscous damping reach the same equilibrium as scaled masses with FIRE") {
+  Cantilever a(20), b(20);
+  for (Cantilever* c : {&a, &b}) {
+    c->env.tipForce = Vec3(-0.5 * c->B1() / (c->L * c->L), 0, 0);
+    c->opt.forceTol = 1e-7;
+  }
+  b.opt.mass = MassModel::Physical;
+  a.relax();
+  const RelaxResult rb = b.relax();
+  CHECK(rb.dt < 1e-6);  // the physical stability limit (~1e-7 s here)
+  CHECK((a.tip() - b.tip()).norm() < 1e-6 * a.L);
 }

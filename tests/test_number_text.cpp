@@ -1,0 +1,46 @@
+// numbers as text (src/io/number_text.cpp): the shortest form that reads back exactly, as scene values,
+// sweep run names and table.csv's grid columns show them
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "rootsim/number_text.hpp"
+#include "rootsim/sweep.hpp"
+#include "test_support.hpp"
+
+using namespace rootsim;
+namespace fs = std::filesystem;
+
+namespace {
+fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("number_text", name); }
+}  // namespace
+
+TEST_CASE("numbers are written in the shortest form that reads back exactly") {
+  CHECK(shortestNumber(0.3) == "0.3");
+  CHECK(shortestNumber(35.7) == "35.7");
+  CHECK(shortestNumber(0.1 + 0.2) == "0.30000000000000004");  // not 0.3: another double
+  CHECK(shortestNumber(2) == "2.0");
+  CHECK(shortestNumber(-0.0) == "-0.0");
+  CHECK(shortestNumber(1e-7) == "1e-07");
+  CHECK(shortestNumber(1e300) == "1e+300");
+  const fs::path d = scratch("numbers");
+  {
+    std::ofstream(d / "s.toml") << "[sweep]\nscene = \"" << ROOTSIM_SOURCE_DIR << "/scenes/cantilever_tip_load.toml\"\n"
+                                << "[grid]\n\"plane.alpha_deg\" = [35.7, 40.0]\n\"tropism.twist_r_tau\" = [0.3]\n"
+                                << "\"load.tip_force_n\" = [[0, 0.1, -2.5e-5]]\n";
+  }
+  // (grid keys in the order toml++ gives them: sorted)
+  const SweepPlan p = loadSweep((d / "s.toml").string());
+  REQUIRE(p.points.size() == 2);
+  CHECK(p.points[0].dirName == "run_0000_tip_force_n=_0_0.1_-2.5e-05__alpha_deg=35.7_twist_r_tau=0.3");
+  CHECK(p.points[1].dirName == "run_0001_tip_force_n=_0_0.1_-2.5e-05__alpha_deg=40.0_twist_r_tau=0.3");
+  REQUIRE(p.points[0].grid.size() == 3);
+  CHECK(p.points[0].grid[1].second == "35.7");  // table.csv's grid column
+  CHECK(p.points[0].grid[0].second == "[0,0.1,-2.5e-05]");
+  CHECK(p.points[0].overrides[2] == "tropism.twist_r_tau=0.3");
+  // the resolved scene writes the value as given
+  CHECK(p.points[0].resolvedToml.find("\nalpha_deg = 35.7 ") != std::string::npos);
+  fs::remove_all(d);
+}

@@ -1,0 +1,450 @@
+// the files of a run directory (src/io/outputs.cpp; to be split into csv, json, vtk and trajectory files):
+// shape.csv and timeseries.csv read back as the doubles written (readCsvColumns), trajectory.csv and
+// trajectory.bin written and read (readTrajectory) with their bounds and errors, the zlib ParaView
+// files decoded, the JSON of summary.json
+#include <doctest/doctest.h>
+
+#include <sys/mount.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <mutex>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+#include <zlib.h>
+
+#include "rootsim/errors.hpp"
+#include "rootsim/outputs.hpp"
+#include "rootsim/run_scene.hpp"
+#include "rootsim/scene.hpp"
+#include "rootsim/snapshot.hpp"
+#include "rootsim/units.hpp"
+#include "test_support.hpp"
+
+using namespace rootsim;
+namespace fs = std::filesystem;
+
+namespace {
+using rootsim::test::Result;
+using rootsim::test::run;
+using rootsim::test::slurp;
+using rootsim::test::kScene;
+using rootsim::test::kSets;
+fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("outputs", name); }
+bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// the appended data of a VTK XML file written with vtkZLibDataCompressor and header_type UInt64: the
+// array at `offset`, decompressed
+std::string vtkArray(const std::string& file, std::size_t offset) {
+  const std::size_t start = file.find("<AppendedData encoding=\"raw\">\n_");
+  REQUIRE(start != std::string::npos);
+  const char* p = file.data() + start + std::strlen("<AppendedData encoding=\"raw\">\n_") + offset;
+  std::uint64_t head[3];
+  std::memcpy(head, p, sizeof head);
+  const std::uint64_t blocks = head[0], blockSize = head[1], last = head[2];
+  std::vector<std::uint64_t> sizes(blocks);
+  std::memcpy(sizes.data(), p + sizeof head, blocks * 8);
+  const char* data = p + sizeof head + blocks * 8;
+  std::string out;
+  for (std::uint64_t k = 0; k < blocks; ++k) {
+    uLongf n = (k + 1 == blocks && last != 0) ? last : blockSize;
+    std::string block(n, '\0');
+    REQUIRE(uncompress(reinterpret_cast<Bytef*>(block.data()), &n, reinterpret_cast<const Bytef*>(data), sizes[k]) == Z_OK);
+    block.resize(n);
+    out += block;
+    data += sizes[k];
+  }
+  return out;
+}
+
+// the offset= of the DataArray named `name` (Points: the first, unnamed)
+std::size_t vtkOffset(const std::string& file, const std::string& name) {
+  const std::size_t at = name.empty() ? file.find("<Points>") : file.find("Name=\"" + name + "\"");
+  REQUIRE(at != std::string::npos);
+  const std::size_t o = file.find("offset=\"", at) + 8;
+  return std::stoul(file.substr(o, file.find('"', o) - o));
+}
+
+template <class T>
+std::vector<T> as(const std::string& bytes) {
+  std::vector<T> v(bytes.size() / sizeof(T));
+  std::memcpy(v.data(), bytes.data(), v.size() * sizeof(T));
+  return v;
+}
+}  // namespace
+
+TEST_CASE("a trajectory with NaN or inf or a malformed cell is refused naming file and line") {
+  const fs::path d = scratch("traj");
+  const std::string head = "frame,step,time_h,node,x_mm,y_mm,z_mm,d1x,d1y,d1z,d3x,d3y,d3z,radius_mm\n";
+  const std::string good = "0,0,0,0,0,0,0.1,1,0,0,0,-0.6,-0.8,0.1\n0,0,0,1,0,-0.3,-0.3,,,,,,,\n";
+  const std::pair<std::string, std::string> cases[] = {
+      {"0,0,0,0,nan,0,0.1,1,0,0,0,-0.6,-0.8,0.1\n0,0,0,1,0,-0.3,-0.3,,,,,,,\n", ":2: x_mm: not a finite number (got nan)"},
+      {"0,0,0,0,0,0,0.1,1,0,0,0,-0.6,-0.8,0.1\n0,0,0,1,0,-inf,-0.3,,,,,,,\n", ":3: y_mm: not a finite number (got -inf)"},
+      {good + "1,5,1e999,0,0,0,0.1,1,0,0,0,-0.6,-0.8,0.1\n", ":4: time_h: expected a number (got \"1e999\")"},
+      {"0,0,0,0,0,0,0.1,1,0,0,0,-0.6,-0.8,0.1\n0x,0,0,1,0,-0.3,-0.3,,,,,,,\n", ":3: frame: expected an integer (got \"0x\")"},
+      {"0,0,0,0,0,0,0.1,1,0,0,0,-0.6,-0.8,0\n0,0,0,1,0,-0.3,-0.3,,,,,,,\n", ":2: radius_mm: must be > 0 (got 0)"},
+      {"0,0,0,0,0,0,0.1,,,,,,,\n", ":2: frame 0 has one node"},
+  };
+  for (const auto& [rows, expected] : cases) {
+    { std::ofstream(d / "trajectory.csv") << head << rows; }
+    std::string e = "(no error)";
+    try {
+      readTrajectory(d / "trajectory.csv");
+    } catch (const SceneError& x) {
+      e = x.what();
+    }
+    CHECK(e.find((d / "trajectory.csv").string() + expected) == 0);
+  }
+  { std::ofstream(d / "trajectory.csv") << head << good; }
+  CHECK(readTrajectory(d / "trajectory.csv").size() == 1);
+  fs::remove_all(d);
+}
+
+TEST_CASE("a trajectory with a huge coordinate or radius is refused naming file line frame and node") {
+  const fs::path d = scratch("trajbound");
+  const std::string head = "frame,step,time_h,node,x_mm,y_mm,z_mm,d1x,d1y,d1z,d3x,d3y,d3z,radius_mm\n";
+  const std::string good = "0,0,0,0,0,0,0.1,1,0,0,0,-0.6,-0.8,0.1\n0,0,0,1,0,-0.3,-0.3,,,,,,,\n";
+  const std::pair<std::string, std::string> cases[] = {
+      {good + "1,5,1,0,0,0,0.1,1,0,0,0,-0.6,-0.8,0.1\n1,5,1,1,0,-1e7,-0.3,,,,,,,\n",
+       ":5: frame 1, node 1: y_mm = -1e+07 is outside -10000 .. 10000 mm (positions are bounded to |x|, |y|, |z| <= 10 m)"},
+      {"0,0,0,0,10000.5,0,0.1,1,0,0,0,-0.6,-0.8,0.1\n0,0,0,1,0,-0.3,-0.3,,,,,,,\n", ":2: frame 0, node 0: x_mm = 10000.5 is outside"},
+      {"0,0,0,0,0,0,0.1,1,0,0,0,-0.6,-0.8,200\n0,0,0,1,0,-0.3,-0.3,,,,,,,\n",
+       ":2: frame 0, node 0: radius_mm = 200 is above 100 mm (radii are bounded to 0.1 m)"},
+  };
+  for (const auto& c : cases) {
+    // (not a structured binding: clang before 16 cannot capture one in CAPTURE's lambda)
+    const std::string& rows = c.first;
+    const std::string& expected = c.second;
+    CAPTURE(expected);
+    { std::ofstream(d / "trajectory.csv") << head << rows; }
+    std::string e = "(no error)";
+    try {
+      readTrajectory(d / "trajectory.csv");
+    } catch (const SceneError& x) {
+      e = x.what();
+    }
+    CHECK(e.find((d / "trajectory.csv").string() + expected) == 0);
+  }
+  // at the bounds: accepted
+  { std::ofstream(d / "trajectory.csv") << head << "0,0,0,0,-10000,0,0.1,1,0,0,0,-0.6,-0.8,100\n0,0,0,1,0,10000,-0.3,,,,,,,\n"; }
+  CHECK(readTrajectory(d / "trajectory.csv").size() == 1);
+  fs::remove_all(d);
+}
+
+TEST_CASE("timeseries.csv reads back as the very doubles of the run's step records") {
+  const fs::path d = scratch("csv");
+  const Scene sc = loadScene(kScene, {"growth.steps=60"});
+  std::vector<StepRecord> seen;
+  runSceneToDir(sc, (d / "run").string(), {}, [&](const StepRecord& r, int) { seen.push_back(r); });
+  const CsvColumns t = readCsvColumns(d / "run" / "timeseries.csv");
+  REQUIRE(t.names.size() > 20);
+  CHECK(t.names[0] == "step");
+  CHECK(t.names[2] == "length_mm");
+  REQUIRE(t.values[0].size() == 7);  // step 0 and every 10th
+  for (size_t row = 1; row < t.values[0].size(); ++row) {
+    const StepRecord& r = seen[static_cast<size_t>(t.values[0][row]) - 1];
+    CHECK(sameBits(t.values[2][row], r.length / units::mm));
+    CHECK(sameBits(t.values[4][row], r.thetaTip / units::deg));
+  }
+  // a malformed cell is named with file and line
+  { std::ofstream(d / "bad.csv") << "a,b\n1,2\n3,x4\n"; }
+  CHECK_THROWS_WITH_AS(readCsvColumns(d / "bad.csv"), doctest::Contains("bad.csv:3: b: expected a number (got \"x4\")"),
+                       SceneError);
+  fs::remove_all(d);
+}
+
+TEST_CASE("ParaView files are zlib-compressed binary that decodes to the snapshot and trajectory.bin reads as the CSV") {
+  const fs::path d = scratch("formats");
+  const fs::path out = d / "r";
+  REQUIRE(run("run " + kScene + kSets + " --out " + out.string()).code == 0);
+  const std::vector<rootsim::Snapshot> csv = rootsim::readTrajectory(out / "trajectory.csv");
+  const std::vector<rootsim::Snapshot> bin = rootsim::readTrajectory(out / "trajectory.bin");
+  REQUIRE(csv.size() == 13);
+  REQUIRE(bin.size() == csv.size());
+  CHECK(rootsim::trajectoryPath(out) == out / "trajectory.bin");
+  // bit for bit: the renderer sees the same snapshots from either file
+  for (std::size_t f = 0; f < csv.size(); ++f) {
+    CAPTURE(f);
+    const rootsim::Snapshot &a = csv[f], &b = bin[f];
+    CHECK(a.step == b.step);
+    CHECK(a.timeH == b.timeH);
+    CHECK(a.x == b.x);
+    CHECK(a.d1 == b.d1);
+    CHECK(a.d3 == b.d3);
+    CHECK(a.radius == b.radius);
+    CHECK(a.kappa0 == b.kappa0);
+    CHECK(a.plateForce == b.plateForce);
+    CHECK(a.contactForce == b.contactForce);
+  }
+  CHECK(fs::file_size(out / "trajectory.bin") * 2 < fs::file_size(out / "trajectory.csv"));
+
+  // the last ParaView file against the last snapshot
+  const rootsim::Snapshot& s = bin.back();
+  const std::string vtp = slurp(out / "vtk" / "step_000120.vtp");
+  CHECK(vtp.find("compressor=\"vtkZLibDataCompressor\"") != std::string::npos);
+  CHECK(vtp.find("header_type=\"UInt64\"") != std::string::npos);
+  CHECK(vtp.find("format=\"ascii\"") == std::string::npos);
+  const int n = s.elements();
+  CHECK(vtp.find("NumberOfPoints=\"" + std::to_string(n + 1) + "\"") != std::string::npos);
+  const auto pts = as<double>(vtkArray(vtp, vtkOffset(vtp, "")));
+  REQUIRE(pts.size() == static_cast<std::size_t>(3 * (n + 1)));
+  for (int i = 0; i <= n; ++i)
+    for (int c = 0; c < 3; ++c) CHECK(pts[static_cast<std::size_t>(3 * i + c)] * rootsim::units::mm == s.x(c, i));
+  const auto conn = as<std::int32_t>(vtkArray(vtp, vtkOffset(vtp, "connectivity")));
+  const auto offs = as<std::int32_t>(vtkArray(vtp, vtkOffset(vtp, "offsets")));
+  REQUIRE(conn.size() == static_cast<std::size_t>(2 * n));
+  REQUIRE(offs.size() == static_cast<std::size_t>(n));
+  CHECK(conn[0] == 0);
+  CHECK(conn.back() == n);
+  CHECK(offs.back() == 2 * n);
+  const auto rad = as<double>(vtkArray(vtp, vtkOffset(vtp, "radius_mm")));
+  const auto d1 = as<double>(vtkArray(vtp, vtkOffset(vtp, "d1")));
+  const auto d3 = as<double>(vtkArray(vtp, vtkOffset(vtp, "d3")));
+  REQUIRE(rad.size() == static_cast<std::size_t>(n));
+  REQUIRE(d1.size() == static_cast<std::size_t>(3 * n));
+  REQUIRE(d3.size() == static_cast<std::size_t>(3 * n));
+  for (int i = 0; i < n; ++i) {
+    CHECK(rad[static_cast<std::size_t>(i)] * rootsim::units::mm == s.radius[i]);
+    for (int c = 0; c < 3; ++c) {
+      CHECK(d1[static_cast<std::size_t>(3 * i + c)] == s.d1(c, i));
+      CHECK(d3[static_cast<std::size_t>(3 * i + c)] == s.d3(c, i));
+    }
+  }
+  fs::remove_all(d);
+}
+
+TEST_CASE("a truncated or corrupt trajectory.bin is refused naming the file and the byte") {
+  const fs::path d = scratch("badbin");
+  const fs::path out = d / "r";
+  REQUIRE(run("run " + kScene + " --set growth.steps=20 --set output.vtk=false --quiet --out " + out.string()).code == 0);
+  REQUIRE(fs::exists(out / "trajectory.bin"));
+  CHECK(!fs::exists(out / "trajectory.csv"));
+  // readTrajectory(run/trajectory.csv) reads the binary sibling (what callers written for the CSV do)
+  CHECK(rootsim::readTrajectory(out / "trajectory.csv").size() == 3);
+  const std::string good = slurp(out / "trajectory.bin");
+  auto refused = [&](const std::string& bytes, const std::string& why) {
+    CAPTURE(why);
+    { std::ofstream(out / "trajectory.bin", std::ios::binary) << bytes; }
+    std::string e;
+    try {
+      rootsim::readTrajectory(out / "trajectory.bin");
+    } catch (const rootsim::SceneError& x) {
+      e = x.what();
+    }
+    CHECK(e.find((out / "trajectory.bin").string() + ": byte ") == 0);
+    CHECK(e.find(why) != std::string::npos);
+  };
+  refused(good.substr(0, good.size() - 5), "truncated");
+  std::string nan = good;
+  const double q = std::numeric_limits<double>::quiet_NaN();
+  std::memcpy(nan.data() + 16 + 24, &q, 8);  // the first x of the first frame
+  refused(nan, "x_mm: not a finite number");
+  refused(std::string("RSTRAJ01\x02\0\0\0\0\0\0\0", 16), "version");
+  fs::remove_all(d);
+}
+
+TEST_CASE("a trajectory.bin with one huge finite coordinate is refused by render quickly (it grew past 4 GB)") {
+  const fs::path d = scratch("hugebin");
+  const fs::path out = d / "r";
+  REQUIRE(run("run " + kScene + " --set growth.steps=20 --set output.vtk=false --quiet --out " + out.string()).code == 0);
+  std::string b = slurp(out / "trajectory.bin");
+  const double huge = 1e7;  // mm
+  std::memcpy(b.data() + 16 + 24 + 8, &huge, 8);  // y of node 0 of the first frame
+  { std::ofstream(out / "trajectory.bin", std::ios::binary) << b; }
+  const auto t0 = std::chrono::steady_clock::now();
+  const Result r = run("render " + out.string() + " --final-png " + (d / "x.png").string() + " --quiet");
+  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  CHECK(r.code == 2);
+  CHECK(r.out.find((out / "trajectory.bin").string() + ": byte 48: frame 0, node 0: y_mm = 1e+07 is outside -10000 .. "
+                                                      "10000 mm (positions are bounded to |x|, |y|, |z| <= 10 m)") !=
+        std::string::npos);
+  CHECK(s < 20);
+  CHECK(!fs::exists(d / "x.png"));
+  fs::remove_all(d);
+}
+
+namespace {
+// a small grown state of the default model (0.1 mm elements), its strains
+struct Grown {
+  Model m;
+  Simulation sim;
+  RodStrains k;
+  Grown() : m(coarseModel()), sim(m) {
+    for (int i = 0; i < 8; ++i) sim.growthStep();
+    k.resize(sim.state().elements());
+    computeStrains(m.rod, sim.state(), k);
+  }
+  static Model coarseModel() {
+    Model m = defaultModel();
+    m.initial.elementLength = 0.1 * units::mm;
+    m.growth.stepTime = 0.1 * units::hour;
+    completeModel(m);
+    return m;
+  }
+};
+}  // namespace
+
+TEST_CASE("shape.csv reads back (readCsvColumns) as the very doubles of the state's arc length and positions") {
+  const fs::path d = scratch("shape");
+  const Grown g;
+  const RodState& s = g.sim.state();
+  { std::ofstream(d / "shape.csv", std::ios::binary) << shapeCsv(g.m, s, g.k); }
+  const CsvColumns c = readCsvColumns(d / "shape.csv");
+  REQUIRE(c.names.size() == 18);
+  CHECK(c.names[0] == "s_mm");
+  CHECK(c.names[1] == "x_mm");
+  CHECK(c.names[17] == "radius_mm");
+  REQUIRE(c.values[0].size() == static_cast<size_t>(s.nodes()));
+  for (int i = 0; i < s.nodes(); ++i) {
+    CAPTURE(i);
+    const auto row = static_cast<size_t>(i);
+    CHECK(sameBits(c.values[0][row], s.S[i] / units::mm));
+    for (int a = 0; a < 3; ++a) CHECK(sameBits(c.values[static_cast<size_t>(1 + a)][row], s.x(a, i) / units::mm));
+    // the node frame: unit directors
+    for (int v = 0; v < 3; ++v) {
+      const Vec3 dv(c.values[static_cast<size_t>(4 + 3 * v)][row], c.values[static_cast<size_t>(5 + 3 * v)][row],
+                    c.values[static_cast<size_t>(6 + 3 * v)][row]);
+      CHECK(dv.norm() == doctest::Approx(1.0).epsilon(1e-12));
+    }
+  }
+  // curvature: the Voronoi value per current length at interior nodes [1/mm], 0 at the two ends
+  for (int a = 0; a < 3; ++a) {
+    CHECK(c.values[static_cast<size_t>(13 + a)].front() == 0.0);
+    CHECK(c.values[static_cast<size_t>(13 + a)].back() == 0.0);
+    const int i = s.nodes() / 2;
+    CHECK(sameBits(c.values[static_cast<size_t>(13 + a)][static_cast<size_t>(i)],
+                   g.k.kappa(a, i - 1) / g.k.ev[i - 1] * units::mm));
+  }
+  fs::remove_all(d);
+}
+
+TEST_CASE("trajectory.csv and trajectory.bin written by their writers read back as the snapshots, and a continued file replaces what followed") {
+  const fs::path d = scratch("trajrt");
+  Grown g;
+  std::vector<Snapshot> snaps;
+  snaps.push_back(makeSnapshot(g.m.rod, g.sim.state(), g.k, 8));
+  snaps.back().timeH = 0.8;
+  for (int i = 0; i < 3; ++i) g.sim.growthStep();
+  g.k.resize(g.sim.state().elements());
+  computeStrains(g.m.rod, g.sim.state(), g.k);
+  snaps.push_back(makeSnapshot(g.m.rod, g.sim.state(), g.k, 11));
+  snaps.back().timeH = 1.1;
+  REQUIRE(snaps[1].elements() > 0);
+  auto same = [](const Snapshot& a, const Snapshot& b, double tol) {
+    CHECK(a.step == b.step);
+    CHECK(a.timeH == b.timeH);
+    REQUIRE(a.x.cols() == b.x.cols());
+    REQUIRE(a.elements() == b.elements());
+    CHECK((a.x - b.x).cwiseAbs().maxCoeff() <= tol * a.x.cwiseAbs().maxCoeff());
+    CHECK((a.d1 - b.d1).cwiseAbs().maxCoeff() <= tol);
+    CHECK((a.d3 - b.d3).cwiseAbs().maxCoeff() <= tol);
+    CHECK((a.radius - b.radius).cwiseAbs().maxCoeff() <= tol * a.radius.maxCoeff());
+  };
+  {
+    TrajectoryWriter csv(d / "trajectory.csv");
+    TrajectoryBinaryWriter bin(d / "trajectory.bin");
+    for (const Snapshot& s : snaps) {
+      csv.add(s);
+      bin.add(s);
+    }
+    CHECK(csv.frames() == 2);
+    CHECK(bin.frames() == 2);
+    csv.close();
+    bin.close();
+  }
+  const std::vector<Snapshot> a = readTrajectory(d / "trajectory.csv"), b = readTrajectory(d / "trajectory.bin");
+  REQUIRE(a.size() == 2);
+  REQUIRE(b.size() == 2);
+  for (size_t f = 0; f < 2; ++f) {
+    CAPTURE(f);
+    // millimetres and back: within a few ulps of the state
+    same(snaps[f], a[f], 4e-16);
+    // the two files hold the same doubles
+    CHECK(a[f].x == b[f].x);
+    CHECK(a[f].d1 == b[f].d1);
+    CHECK(a[f].d3 == b[f].d3);
+    CHECK(a[f].radius == b[f].radius);
+  }
+  // a killed run's file continued from its first frame (a checkpoint's position): the second frame is
+  // replaced by what the resumed run writes
+  std::uintmax_t csvBytes = 0, binBytes = 0;
+  {
+    TrajectoryWriter csv(d / "one.csv");
+    TrajectoryBinaryWriter bin(d / "one.bin");
+    csv.add(snaps[0]);
+    bin.add(snaps[0]);
+    csv.close();
+    bin.close();
+  }
+  csvBytes = fs::file_size(d / "one.csv");
+  binBytes = fs::file_size(d / "one.bin");
+  // the first frame's bytes are those of the two-frame files
+  CHECK(slurp(d / "trajectory.csv").substr(0, csvBytes) == slurp(d / "one.csv"));
+  CHECK(slurp(d / "trajectory.bin").substr(0, binBytes) == slurp(d / "one.bin"));
+  Snapshot other = snaps[1];
+  other.step = 12;
+  other.timeH = 1.2;
+  {
+    TrajectoryWriter csv(d / "trajectory.csv", csvBytes, 1);
+    TrajectoryBinaryWriter bin(d / "trajectory.bin", binBytes, 1);
+    csv.add(other);
+    bin.add(other);
+    CHECK(csv.frames() == 2);
+    csv.close();
+    bin.close();
+  }
+  for (const char* f : {"trajectory.csv", "trajectory.bin"}) {
+    CAPTURE(f);
+    const std::vector<Snapshot> t = readTrajectory(d / f);
+    REQUIRE(t.size() == 2);
+    same(snaps[0], t[0], 4e-16);
+    same(other, t[1], 4e-16);
+  }
+  fs::remove_all(d);
+}
+
+TEST_CASE("summary.json: the JSON writer's numbers read back exactly, NaN is null, strings are escaped, and a run's summary agrees with its time series") {
+  Json inner;
+  inner.num("nan", std::numeric_limits<double>::quiet_NaN()).num("inf", std::numeric_limits<double>::infinity());
+  Json j;
+  j.num("x", 0.1 + 0.2).integer("n", -9007199254740991LL).str("s", "a\"b\\c\nd").boolean("t", true).object("o", inner);
+  const std::string text = j.dump();
+  CAPTURE(text);
+  CHECK(text.front() == '{');
+  CHECK(text.back() == '}');
+  auto valueOf = [&](const std::string& key) {
+    const auto at = text.find("\"" + key + "\": ");
+    REQUIRE(at != std::string::npos);
+    const auto from = at + key.size() + 4;
+    return text.substr(from, text.find_first_of(",\n", from) - from);
+  };
+  CHECK(std::stod(valueOf("x")) == 0.1 + 0.2);
+  CHECK(valueOf("n") == "-9007199254740991");
+  CHECK(valueOf("t") == "true");
+  CHECK(valueOf("nan") == "null");
+  CHECK(valueOf("inf") == "null");
+  CHECK(text.find(R"("s": "a\"b\\c\nd")") != std::string::npos);
+  // a run's summary.json: its final step and length are the time series' last row
+  const fs::path d = scratch("summary");
+  const Scene sc = loadScene(kScene, {"growth.steps=30", "root.element_length_mm=0.1", "output.vtk=false"});
+  runSceneToDir(sc, (d / "run").string(), {}, [](const StepRecord&, int) {});
+  const std::string summary = slurp(d / "run" / "summary.json");
+  const CsvColumns t = readCsvColumns(d / "run" / "timeseries.csv");
+  REQUIRE(t.names[2] == "length_mm");
+  const double lastLength = t.values[2].back();
+  const auto at = summary.find("\"length_mm\": ");
+  REQUIRE_MESSAGE(at != std::string::npos, summary);
+  CHECK(std::stod(summary.substr(at + 13)) == lastLength);
+  CHECK(summary.find("\"steps\": 30,") != std::string::npos);
+  CHECK(t.values[0].back() == 30);
+  fs::remove_all(d);
+}

@@ -27,8 +27,8 @@
 
 #ifdef ROOTSIM_HAVE_RENDER
 #include "render_glue.hpp"
+#include "rootsim/gl_renderer.hpp"
 #include "rootsim/render_scene.hpp"
-#include "rootsim/renderer.hpp"
 #include "rootsim/units.hpp"
 #endif
 

@@ -13,11 +13,12 @@
 #include <vector>
 
 #include "rootsim/errors.hpp"
+#include "rootsim/montage.hpp"
 #include "rootsim/movie.hpp"
 #include "rootsim/outputs.hpp"
 #include "rootsim/png.hpp"
 #include "rootsim/render_scene.hpp"
-#include "rootsim/renderer.hpp"
+#include "rootsim/gl_renderer.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/units.hpp"
 #include "rootsim/write_rule.hpp"

@@ -16,7 +16,7 @@
 #include "render_test_util.hpp"
 #include "rootsim/movie.hpp"
 #include "rootsim/png.hpp"
-#include "rootsim/video.hpp"
+#include "rootsim/video_writer.hpp"
 
 namespace fs = std::filesystem;
 using namespace rootsim;

@@ -1,5 +1,5 @@
 // rootsim._rootsim: the C++ side of the Python package (issue 14). Thin: it calls the library the command
-// line calls (loadScene, runSceneToDir, the run-directory readers, runSweep, the `render` glue) and turns
+// line calls (loadScene, runSceneToDir, the run-directory readers, runSweep, the `render` command) and turns
 // its results into numpy arrays and dicts. The Python layer (rootsim/_api.py) adds the user-facing API.
 //
 // Threads: the GIL is released while simulating, sweeping and rendering; it is taken back between growth
@@ -34,7 +34,7 @@
 #include "rootsim/version.hpp"
 
 #ifdef ROOTSIM_HAVE_RENDER
-#include "render_glue.hpp"
+#include "rootsim/render_run.hpp"
 #endif
 
 namespace py = pybind11;
@@ -542,7 +542,7 @@ PYBIND11_MODULE(_rootsim, m) {
       // the options by name (rootsim.render's keywords, as the command line's flags): an unknown name or
       // a value of the wrong type is a SceneError
       [](const std::string& runDir, const py::dict& options) {
-        cli::RenderOptions o;
+        app::RenderOptions o;
         o.runDir = runDir;
         for (const auto& item : options) {
           const std::string key = py::str(item.first);
@@ -576,7 +576,7 @@ PYBIND11_MODULE(_rootsim, m) {
           }
         }
         py::gil_scoped_release nogil;
-        cli::renderRunCommand(o);
+        app::renderRunCommand(o);
       },
       py::arg("run_dir"), py::arg("options"));
 #else

@@ -1,5 +1,5 @@
 // PNG and MP4 files (src/render/png.cpp, video_writer.cpp, movie.cpp) and `rootsim render`
-// (src/cli/render_glue.cpp): read back independently, frame counts, sizes, durations, errors
+// (src/app/render_run.cpp): read back independently, frame counts, sizes, durations, errors
 #include <doctest/doctest.h>
 
 #include "../run_rootsim.hpp"

@@ -13,11 +13,12 @@
 
 #include <unistd.h>
 
+#include "rootsim/compose.hpp"
+#include "rootsim/gl_renderer.hpp"
 #include "rootsim/movie.hpp"
 #include "rootsim/png.hpp"
 #include "rootsim/render_scene.hpp"
-#include "rootsim/renderer.hpp"
-#include "rootsim/video.hpp"
+#include "rootsim/video_writer.hpp"
 
 using namespace rootsim;
 

@@ -149,9 +149,6 @@ RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const 
 // top-left corner]; false if it is behind the camera
 bool projectToPixel(const RenderScene& scene, const Eigen::Vector3d& plateMm, Eigen::Vector2d& px);
 
-// obstacles of info as plain-coloured meshes: pegs as cylinders, walls as boxes (obstacle_mesh.cpp)
-void addObstacleMeshes(const SceneInfo& info, RenderScene& rs);
-
 // where plate point (u, v) [mm] appears in the top view [px, from the top-left corner, continuous:
 // pixel (i, j) covers [i, i+1) x [j, j+1)]
 Eigen::Vector2d topViewPixel(const Framing& framing, const View& view, double u, double v);

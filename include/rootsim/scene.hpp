@@ -35,4 +35,12 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
 // defaults for the rest. Throws SceneError naming the key ("model NAME: tropism.beta must be ...")
 Scene sceneOf(const Model& model);
 
+// one key of the scene a model resolves to, and its value as Scene::resolvedToml writes it
+struct SceneValue {
+  std::string key;   // "section.key"; an obstacle's "obstacle[k].key" (k from 1, as in messages)
+  std::string text;  // the value in TOML syntax: 0.2, true, "local", [0.0, 0.0, 0.0]
+};
+// every key of that scene: the sections' keys in the order of the resolved text, then each obstacle's
+std::vector<SceneValue> sceneValues(const Model& model);
+
 }  // namespace rootsim

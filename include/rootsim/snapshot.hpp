@@ -51,4 +51,8 @@ struct SceneInfo {
   std::string title;           // e.g. the scene name
 };
 
+struct Model;
+// the facts of a model: its plate tilt, tropism gains, radius, plate, obstacles and its name as title
+SceneInfo sceneInfoOf(const Model& m);
+
 }  // namespace rootsim

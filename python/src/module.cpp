@@ -1,5 +1,5 @@
 // rootsim._rootsim: the C++ side of the Python package (issue 14). Thin: it calls the library the command
-// line calls (loadScene, runSceneToDir, the run-directory readers, runSweep, the `render` glue) and turns
+// line calls (loadScene, runSceneToDir, the run-directory readers, runSweep, the `render` command) and turns
 // its results into numpy arrays and dicts, in the units of the run directory's files (lengths mm, time h,
 // angles deg, forces N; docs/python.md, Units). The Python layer (rootsim/_api.py) adds the user-facing API.
 //
@@ -36,7 +36,7 @@
 #include "rootsim/version.hpp"
 
 #ifdef ROOTSIM_HAVE_RENDER
-#include "render_glue.hpp"
+#include "rootsim/render_run.hpp"
 #endif
 
 namespace py = pybind11;
@@ -580,7 +580,7 @@ PYBIND11_MODULE(_rootsim, m) {
       // the options by name (rootsim.render's keywords, as the command line's flags): an unknown name or
       // a value of the wrong type is a SceneError
       [](const std::string& runDir, const py::dict& options) {
-        cli::RenderOptions o;
+        app::RenderOptions o;
         o.runDir = runDir;
         for (const auto& item : options) {
           const std::string key = py::str(item.first);
@@ -614,7 +614,7 @@ PYBIND11_MODULE(_rootsim, m) {
           }
         }
         py::gil_scoped_release nogil;
-        cli::renderRunCommand(o);
+        app::renderRunCommand(o);
       },
       py::arg("run_dir"), py::arg("options"));
 #else

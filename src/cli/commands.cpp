@@ -26,9 +26,8 @@
 #include "rootsim/write_rule.hpp"
 
 #ifdef ROOTSIM_HAVE_RENDER
-#include "render_glue.hpp"
+#include "rootsim/gl_renderer.hpp"
 #include "rootsim/render_scene.hpp"
-#include "rootsim/renderer.hpp"
 #include "rootsim/units.hpp"
 #endif
 
@@ -80,7 +79,7 @@ int runCommand(const RunOptions& o) {
 #endif
 #ifdef ROOTSIM_HAVE_RENDER
   // the movie's flags are checked before the run, so a bad one writes nothing
-  const MovieLook look = parseLook(o.look);
+  const app::MovieLook look = app::parseLook(o.look);
   if (o.movie && look.shadows && !sc.model.env.plane.enabled)
     throw SceneError("--shadows: " + std::string(sc.path) + " has no plate to cast them on (plane.enabled = false)");
   if (o.movie && (look.camera == CameraMode::Follow || look.inset) && sc.model.growth.enabled) {
@@ -89,7 +88,7 @@ int runCommand(const RunOptions& o) {
     const Model& m = sc.model;
     const double lMax = m.initial.length + m.growth.rate * std::max(m.initial.length, m.growth.zoneLength) *
                                                m.growth.steps * m.growth.stepTime;
-    checkFieldAgainstPlate(look, 2e3 * lMax + 2.0);
+    app::checkFieldAgainstPlate(look, 2e3 * lMax + 2.0);
   }
   if (!o.movie && (o.look.camera != "fit" || o.look.inset || o.look.colorBy != "none" || !o.look.plot.empty() ||
                    o.look.shadows))
@@ -115,7 +114,7 @@ int runCommand(const RunOptions& o) {
                          sc.path + " with these --set values)");
       std::fprintf(stderr, "%s is complete: nothing to resume\n", out.string().c_str());
 #ifdef ROOTSIM_HAVE_RENDER
-      if (o.movie && !fs::exists(out / "movie.mp4", ec)) renderRunMovie(out, sc.model, o.quiet, look);
+      if (o.movie && !fs::exists(out / "movie.mp4", ec)) app::renderRunMovie(out, sc.model, o.quiet, look);
 #endif
       return 0;
     }
@@ -135,7 +134,7 @@ int runCommand(const RunOptions& o) {
   });
   if (steps > 0) pr.finish(std::to_string(steps) + " steps");
 #ifdef ROOTSIM_HAVE_RENDER
-  if (o.movie) renderRunMovie(out, sc.model, o.quiet, look);
+  if (o.movie) app::renderRunMovie(out, sc.model, o.quiet, look);
 #endif
   if (!o.quiet) std::fprintf(stderr, "wrote %s\n", out.string().c_str());
   return 0;
@@ -257,18 +256,18 @@ int checkCommand(const CheckOptions& o) {
   return 0;
 }
 
-int montageCommand(const MontageOptions& o) {
+int montageCommand(const app::MontageOptions& o) {
 #ifdef ROOTSIM_HAVE_RENDER
-  return montageRunsCommand(o);
+  return app::montageRunsCommand(o);
 #else
   (void)o;
   throw SceneError("montage: this rootsim was built without the renderer (ROOTSIM_BUILD_RENDER=OFF)");
 #endif
 }
 
-int renderCommand(const RenderOptions& o) {
+int renderCommand(const app::RenderOptions& o) {
 #ifdef ROOTSIM_HAVE_RENDER
-  return renderRunCommand(o);
+  return app::renderRunCommand(o);
 #else
   (void)o;
   throw SceneError("render: this rootsim was built without the renderer (ROOTSIM_BUILD_RENDER=OFF)");

@@ -4,25 +4,18 @@
 #include <string>
 #include <vector>
 
-namespace rootsim::cli {
+#include "rootsim/montage_runs.hpp"
+#include "rootsim/movie_look.hpp"
+#include "rootsim/render_run.hpp"
 
-// how a movie looks (render, run --movie, montage): camera, colour, plots, shadows
-struct LookOptions {
-  std::string camera = "fit";  // fit | follow
-  double fieldMm = 2.0;        // follow window width [mm]
-  bool fieldGiven = false;     // --field-mm was on the command line
-  bool inset = false;          // fit view with a follow window in its corner
-  std::string colorBy = "none";  // none | curvature | twist | kappa0 | stretch | contact
-  std::string plot;            // comma-separated subset of theta_tip,Eb,Et,Wr,Tw
-  bool shadows = false;        // the root's shadow on the plate
-};
+namespace rootsim::cli {
 
 struct RunOptions {
   std::string scene;
   std::vector<std::string> sets;
   std::string out;        // run directory; default runs/<scene name>
   bool movie = false;
-  LookOptions look;       // the movie's camera, colours, plots (with movie)
+  app::LookOptions look;  // the movie's camera, colours, plots (with movie)
   bool force = false;     // replace an earlier run directory at --out (never a folder rootsim did not write)
   bool resume = false;    // continue DIR.partial from its checkpoint; a complete DIR is left as it is
   bool quiet = false;
@@ -35,26 +28,9 @@ struct CheckOptions {
 };
 int checkCommand(const CheckOptions& o);
 
-struct RenderOptions {
-  std::string runDir;
-  // outputs: with none of mp4, pngDir, finalPng given, RUN_DIR/movie.mp4 and RUN_DIR/final_top.png;
-  // otherwise exactly the ones given
-  std::string mp4;        // H.264 movie
-  std::string pngDir;     // every frame as PNG
-  std::string finalPng;   // the last snapshot, top view
-  std::string view = "top";
-  std::string size = "auto";  // WxH, or auto: 1280x720 or 720x1280 from the root's shape
-  int fps = 30;
-  int crf = 18;
-  bool whiskers = false;     // thin +-d1 spikes
-  bool transparent = false;  // PNG frames without the plate (alpha 0 outside the root)
-  bool noOverlays = false;   // no time, scale bar or parameters
-  LookOptions look;
-  bool force = false;        // replace outputs rootsim wrote earlier (never a user's file)
-  std::string shaderDir;     // development: load tube/plane shaders from here instead of the built-in copies
-  bool quiet = false;
-};
-int renderCommand(const RenderOptions& o);
+// render and montage: the app library's commands (rootsim_app); SceneError when the renderer is not built
+int renderCommand(const app::RenderOptions& o);
+int montageCommand(const app::MontageOptions& o);
 
 struct ModesOptions {
   std::string runDir;
@@ -63,22 +39,6 @@ struct ModesOptions {
   bool quiet = false;
 };
 int modesCommand(const ModesOptions& o);
-
-struct MontageOptions {
-  std::vector<std::string> runDirs;
-  std::string mp4;           // at least one of mp4, pngDir
-  std::string pngDir;
-  std::string size = "1280x720";
-  std::string labels;        // comma-separated, one per run; default: the scene keys that differ
-  std::string view = "top";
-  int fps = 30;
-  int crf = 18;
-  std::string colorBy = "none";
-  bool shadows = false;
-  bool force = false;        // replace outputs rootsim wrote earlier (never a user's file)
-  bool quiet = false;
-};
-int montageCommand(const MontageOptions& o);
 
 struct SweepCliOptions {
   std::string sweep;

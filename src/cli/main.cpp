@@ -14,7 +14,7 @@ using namespace rootsim;
 
 namespace {
 // the movie look flags shared by run --movie and render
-void addLookOptions(CLI::App* c, cli::LookOptions& look) {
+void addLookOptions(CLI::App* c, app::LookOptions& look) {
   c->add_option("--camera", look.camera, "fit (whole root, default) or follow (a window following the growth zone)");
   c->add_option("--field-mm", look.fieldMm, "follow window width [mm] (default 2)");
   c->add_flag("--inset", look.inset, "fit view with a follow window in a free corner, its region marked");
@@ -48,7 +48,7 @@ int main(int argc, char** argv) {
   cCheck->add_option("scene", check.scene, "scene file (TOML)")->required();
   cCheck->add_option("--set", check.sets, "override a scene key: section.key=value (repeatable)");
 
-  cli::RenderOptions render;
+  app::RenderOptions render;
   CLI::App* cRender = app.add_subcommand("render", "render a saved run (its trajectory) to MP4 / PNG frames");
   cRender->add_option("run_dir", render.runDir, "run directory")->required();
   cRender->add_option("--mp4", render.mp4, "movie file (with no output flag: RUN_DIR/movie.mp4 + RUN_DIR/final_top.png)");
@@ -74,7 +74,7 @@ int main(int argc, char** argv) {
   cModes->add_flag("--force", modes.force, "replace modes.csv and modes.vtp written earlier");
   cModes->add_flag("--quiet", modes.quiet, "no progress output");
 
-  cli::MontageOptions montage;
+  app::MontageOptions montage;
   CLI::App* cMontage = app.add_subcommand("montage", "several runs side by side on one scale and one clock");
   cMontage->add_option("run_dirs", montage.runDirs, "run directories");
   cMontage->add_option("--mp4", montage.mp4, "movie file");
@@ -123,7 +123,7 @@ int main(int argc, char** argv) {
                          opt->get_name().c_str());
             return 2;
           }
-  // a --field-mm without a follow window to size is refused (render_glue.cpp), not ignored
+  // a --field-mm without a follow window to size is refused (app::parseLook), not ignored
   run.look.fieldGiven = cRun->get_option("--field-mm")->count() > 0;
   render.look.fieldGiven = cRender->get_option("--field-mm")->count() > 0;
   try {

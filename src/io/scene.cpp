@@ -264,20 +264,24 @@ void checkObstacleClearance(const Model& m, const std::vector<ParsedObstacle>& o
   }
 }
 
-std::string obstaclesToml(const std::vector<Obstacle>& obs) {
-  std::ostringstream os;
+// an [[obstacle]] table's keys and their values in TOML syntax, in the order they are written
+std::vector<std::pair<std::string, std::string>> obstacleKeys(const Obstacle& o) {
   auto pt = [](const Eigen::Vector2d& p) {
     return "[" + formatNumber(p.x() / units::mm, false) + ", " + formatNumber(p.y() / units::mm, false) + "]";
   };
+  if (o.shape == Obstacle::Shape::Peg)
+    return {{"shape", "\"peg\""}, {"center_mm", pt(o.from)}, {"radius_mm", formatNumber(o.radius / units::mm, false)}};
+  return {{"shape", "\"wall\""},
+          {"from_mm", pt(o.from)},
+          {"to_mm", pt(o.to)},
+          {"thickness_mm", formatNumber(2.0 * o.radius / units::mm, false)}};
+}
+
+std::string obstaclesToml(const std::vector<Obstacle>& obs) {
+  std::ostringstream os;
   for (const Obstacle& o : obs) {
     os << "\n[[obstacle]]\n";
-    if (o.shape == Obstacle::Shape::Peg) {
-      os << "shape = \"peg\"\ncenter_mm = " << pt(o.from) << "\nradius_mm = "
-         << formatNumber(o.radius / units::mm, false) << "\n";
-    } else {
-      os << "shape = \"wall\"\nfrom_mm = " << pt(o.from) << "\nto_mm = " << pt(o.to)
-         << "\nthickness_mm = " << formatNumber(2.0 * o.radius / units::mm, false) << "\n";
-    }
+    for (const auto& [key, text] : obstacleKeys(o)) os << key << " = " << text << "\n";
   }
   return os.str();
 }
@@ -406,6 +410,18 @@ Scene sceneOf(const Model& model) {
   sc.model.env.obstacles = model.env.obstacles;
   sc.resolvedToml = resolvedToml(values, model.name) + obstaclesToml(sc.model.env.obstacles);
   return sc;
+}
+
+std::vector<SceneValue> sceneValues(const Model& model) {
+  std::vector<SceneValue> out;
+  const Values values = valuesOf(model, "model " + printable(model.name));
+  for (const auto& sec : sections())
+    for (const KeySpec& k : schema())
+      if (k.section == sec) out.push_back({k.full(), tomlText(k, values.at(k.full()))});
+  for (std::size_t i = 0; i < model.env.obstacles.size(); ++i)
+    for (const auto& [key, text] : obstacleKeys(model.env.obstacles[i]))
+      out.push_back({"obstacle[" + std::to_string(i + 1) + "]." + key, text});
+  return out;
 }
 
 std::string readSceneFile(const std::string& path, const std::string& kind) {

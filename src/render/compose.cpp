@@ -7,7 +7,7 @@
 #include <cstring>
 
 #include "overlay.hpp"
-#include "rootsim/movie.hpp"
+#include "rootsim/compose.hpp"
 #include "rootsim/units.hpp"
 
 namespace rootsim {

@@ -1,6 +1,6 @@
 #pragma once
 // where finished frames go: PNG files and the H.264 encoder, on a second thread behind a one-slot queue
-// (movie.cpp, montage.cpp)
+// (used by movie.cpp and montage.cpp)
 #include <condition_variable>
 #include <exception>
 #include <memory>
@@ -9,7 +9,7 @@
 #include <thread>
 
 #include "rootsim/image.hpp"
-#include "rootsim/video.hpp"
+#include "rootsim/video_writer.hpp"
 
 namespace rootsim::detail {
 

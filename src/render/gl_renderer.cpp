@@ -1,7 +1,7 @@
 // abstract render scene -> pixels with OSMesa (llvmpipe), offscreen, core profile 4.5.
 // Draws into its own 4x multisampled framebuffer, resolves with a blit, reads back with glReadPixels
 // (docs/rendering.md, Pitfalls: this works at any size, independent of the OSMesa buffer).
-#include "rootsim/renderer.hpp"
+#include "rootsim/gl_renderer.hpp"
 
 #include <GL/osmesa.h>
 #include <GL/gl.h>

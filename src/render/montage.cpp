@@ -9,7 +9,7 @@
 
 #include "frame_sink.hpp"
 #include "overlay.hpp"
-#include "rootsim/movie.hpp"
+#include "rootsim/montage.hpp"
 #include "rootsim/units.hpp"
 
 namespace rootsim {

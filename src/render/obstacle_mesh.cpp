@@ -1,10 +1,10 @@
 // Obstacles on the plate (docs/model.md, Contact and friction) as lit meshes of the render scene: a peg as a
 // cylinder standing on the plate, a wall as a box. The model's obstacles are infinitely tall; the pictures
 // show them kObstacleHeightRadii root radii high. (A wall's ends are rounded in the model, square here.)
+#include "obstacle_mesh.hpp"
+
 #include <cmath>
 #include <numbers>
-
-#include "rootsim/render_scene.hpp"
 
 namespace rootsim {
 

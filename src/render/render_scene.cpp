@@ -11,6 +11,7 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <limits>
 
+#include "obstacle_mesh.hpp"
 #include "rootsim/image.hpp"
 
 namespace rootsim {

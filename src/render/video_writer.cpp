@@ -1,5 +1,5 @@
 // H.264 MP4 through libavcodec (libx264) and libavformat; RGBA -> yuv420p BT.709 with swscale
-#include "rootsim/video.hpp"
+#include "rootsim/video_writer.hpp"
 #include "rootsim/signature.hpp"
 
 extern "C" {

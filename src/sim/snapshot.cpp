@@ -1,6 +1,7 @@
 #include "rootsim/snapshot.hpp"
 
 #include "rootsim/assert.hpp"
+#include "rootsim/model.hpp"
 #include "rootsim/rod.hpp"
 #include "rootsim/units.hpp"
 
@@ -25,6 +26,26 @@ Snapshot makeSnapshot(const RodParams& p, const RodState& s, const RodStrains& k
   sn.kappa0 = Eigen::VectorXd::Zero(n + 1);
   for (int j = 0; j + 1 < n && j < s.kappa0.cols(); ++j) sn.kappa0[j + 1] = s.kappa0.col(j).head<2>().norm();
   return sn;
+}
+
+SceneInfo sceneInfoOf(const Model& m) {
+  SceneInfo si;
+  si.alphaDeg = m.env.plane.alpha / units::deg;
+  si.beta = m.tropism.beta;
+  si.gamma = m.tropism.gamma;
+  si.rTau = m.tropism.rTau;
+  si.radius = m.rod.radius;
+  si.plate = m.env.plane.enabled;
+  si.title = m.name;
+  for (const Obstacle& o : m.env.obstacles) {
+    SceneInfo::ObstacleShape sh;
+    sh.peg = o.shape == Obstacle::Shape::Peg;
+    sh.fromU = o.from.x() / units::mm, sh.fromV = -o.from.y() / units::mm;  // downhill -> uphill
+    sh.toU = o.to.x() / units::mm, sh.toV = -o.to.y() / units::mm;
+    sh.radiusMm = o.radius / units::mm;
+    si.obstacles.push_back(sh);
+  }
+  return si;
 }
 
 }  // namespace rootsim

@@ -12,9 +12,11 @@
 #include "render_test_util.hpp"
 #include "rootsim/camera.hpp"
 #include "rootsim/colour_map.hpp"
+#include "rootsim/compose.hpp"
+#include "rootsim/gl_renderer.hpp"
+#include "rootsim/montage.hpp"
 #include "rootsim/movie.hpp"
 #include "rootsim/png.hpp"
-#include "rootsim/renderer.hpp"
 #include "rootsim/units.hpp"
 
 namespace fs = std::filesystem;

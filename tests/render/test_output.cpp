@@ -1,5 +1,5 @@
 // PNG and MP4 files (src/render/png.cpp, video_writer.cpp, movie.cpp) and `rootsim render`
-// (src/cli/render_glue.cpp): read back independently, frame counts, sizes, durations, errors
+// (src/app/render_run.cpp): read back independently, frame counts, sizes, durations, errors
 #include <doctest/doctest.h>
 
 #include "../run_rootsim.hpp"
@@ -16,7 +16,7 @@
 #include "render_test_util.hpp"
 #include "rootsim/movie.hpp"
 #include "rootsim/png.hpp"
-#include "rootsim/video.hpp"
+#include "rootsim/video_writer.hpp"
 
 namespace fs = std::filesystem;
 using namespace rootsim;

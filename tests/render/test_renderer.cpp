@@ -9,9 +9,9 @@
 #include <string>
 
 #include "render_test_util.hpp"
+#include "rootsim/gl_renderer.hpp"
 #include "rootsim/png.hpp"
 #include "rootsim/render_scene.hpp"
-#include "rootsim/renderer.hpp"
 
 using namespace rootsim;
 using rtest::Paint;

@@ -1,6 +1,5 @@
 #pragma once
 // H.264 MP4 writer: libavcodec's libx264, yuv420p, BT.709 limited range, one frame per add().
-// Implemented in src/render/video_writer.cpp (named after the class it holds, VideoWriter).
 #include <memory>
 #include <string>
 

@@ -1,8 +1,7 @@
 #pragma once
 // Abstract render scene -> pixels, offscreen with OSMesa (llvmpipe): no X server or display needed.
 // The renderer never sees the simulation state. Same scene, same pixels (llvmpipe is deterministic;
-// LP_NUM_THREADS only changes speed). The concept is the renderer; its one implementation is GL, so
-// the source is src/render/gl_renderer.cpp (the GL calls and nothing else).
+// LP_NUM_THREADS only changes speed).
 #include <memory>
 #include <string>
 

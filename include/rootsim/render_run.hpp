@@ -1,0 +1,42 @@
+#pragma once
+// `rootsim render RUN_DIR` and `rootsim run --movie` (docs/cli.md): a run directory's trajectory to a
+// movie and its final picture.
+#include <filesystem>
+#include <string>
+
+#include "rootsim/model.hpp"
+#include "rootsim/movie_look.hpp"
+
+namespace rootsim::app {
+
+struct RenderOptions {
+  std::string runDir;
+  // outputs: with none of mp4, pngDir, finalPng given, RUN_DIR/movie.mp4 and RUN_DIR/final_top.png;
+  // otherwise exactly the ones given
+  std::string mp4;        // H.264 movie
+  std::string pngDir;     // every frame as PNG
+  std::string finalPng;   // the last snapshot, top view
+  std::string view = "top";
+  std::string size = "auto";  // WxH, or auto: 1280x720 or 720x1280 from the root's shape
+  int fps = 30;
+  int crf = 18;
+  bool whiskers = false;     // thin +-d1 spikes
+  bool transparent = false;  // PNG frames without the plate (alpha 0 outside the root)
+  bool noOverlays = false;   // no time, scale bar or parameters
+  LookOptions look;
+  bool force = false;        // replace outputs rootsim wrote earlier (never a user's file)
+  std::string shaderDir;     // development: load tube/plane shaders from here instead of the built-in copies
+  bool quiet = false;
+};
+
+// `rootsim render RUN_DIR`: RUN_DIR/trajectory.csv -> MP4 (default RUN_DIR/movie.mp4), optional PNG
+// frames, and RUN_DIR/final_top.png (last snapshot, top view). Bad flags, a missing run directory or
+// a malformed trajectory throw SceneError (exit 2); render or encoder failures RenderError (exit 1).
+int renderRunCommand(const RenderOptions& o);
+
+// `rootsim run --movie`: after the run, RUN_DIR/movie.mp4 (top view, size auto, 30 fps, crf 18, with
+// the look's camera, colours and plots) and RUN_DIR/final_top.png from RUN_DIR/trajectory.csv; model is
+// the run's (the scene `run` parsed: scene.toml is not read again)
+void renderRunMovie(const std::filesystem::path& runDir, const Model& model, bool quiet, const MovieLook& look);
+
+}  // namespace rootsim::app

@@ -1,0 +1,65 @@
+// what `render` and `montage` read from a run directory and how they claim their outputs
+#include "run_files.hpp"
+
+#include <cstdio>
+#include <utility>
+
+#include "rootsim/errors.hpp"
+#include "rootsim/outputs.hpp"
+
+namespace fs = std::filesystem;
+
+namespace rootsim::app {
+
+std::vector<Snapshot> loadSnapshots(const fs::path& runDir) {
+  const fs::path traj = trajectoryPath(runDir);  // trajectory.bin, or trajectory.csv
+  if (!fs::is_regular_file(traj))
+    throw SceneError(traj.string() + ": not found (a run directory written with output.trajectory = true)");
+  std::vector<Snapshot> snaps = readTrajectory(traj);
+  if (snaps.empty()) throw SceneError(traj.string() + ": no snapshots to render");
+  return snaps;
+}
+
+Outputs claimOutputs(const std::string& mp4, const fs::path& png, const std::string& pngDir, const WriteRule& rule) {
+  Outputs o;
+  std::vector<std::pair<const char*, fs::path>> all;
+  if (!mp4.empty()) all.emplace_back("--mp4", mp4);
+  if (!png.empty()) all.emplace_back("--final-png", png);
+  if (!pngDir.empty()) all.emplace_back("--png-dir", pngDir);
+  // no output may be another, or lie inside the frame folder (replaced whole)
+  for (std::size_t i = 0; i < all.size(); ++i)
+    for (std::size_t j = 0; j < all.size(); ++j) {
+      if (i == j) continue;
+      const fs::path a = fs::absolute(all[i].second).lexically_normal(), b = fs::absolute(all[j].second).lexically_normal();
+      const auto rel = a.lexically_relative(b);
+      if (a == b || (std::string(all[j].first) == "--png-dir" && !rel.empty() && *rel.begin() != ".."))
+        throw SceneError(std::string(all[i].first) + " " + all[i].second.string() + ": the same path as, or inside, " +
+                         all[j].first + " " + all[j].second.string());
+    }
+  for (const auto& [flag, path] : all) {
+    // locked first, then checked: a second process cannot slip in between
+    if (std::string(flag) == "--png-dir") {
+      checkOutputName(path.string(), flag);
+      claimFolder(path, framesFolder(), rule, flag, true);
+      continue;  // StagedFolder locks it when the frames are written
+    }
+    checkOutputName(path.string(), flag);
+    const fs::path dir = fs::absolute(path).parent_path();
+    if (!fs::is_directory(dir)) throw SceneError(std::string(flag) + " " + path.string() + ": folder " + dir.string() + " not found");
+    o.locks.emplace_back(path, flag);
+    claimFile(path, rule, flag);
+  }
+  return o;
+}
+
+MovieProgress progressLines(bool quiet, const std::string& what) {
+  if (quiet) return {};
+  return [what, next = 0](int done, int total) mutable {
+    const int percent = 100 * done / total;
+    if (percent < next && done != total) return;
+    std::fprintf(stderr, "%s: frame %d/%d (%d %%)\n", what.c_str(), done, total, percent);
+    next = percent / 10 * 10 + 10;
+  };
+}
+
+}  // namespace rootsim::app

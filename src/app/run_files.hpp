@@ -1,0 +1,28 @@
+#pragma once
+// internal: what `render` and `montage` read from a run directory and how they claim their outputs
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "rootsim/movie.hpp"
+#include "rootsim/snapshot.hpp"
+#include "rootsim/write_rule.hpp"
+
+namespace rootsim::app {
+
+// the run's trajectory (trajectory.bin, or trajectory.csv); SceneError when it is missing or empty
+std::vector<Snapshot> loadSnapshots(const std::filesystem::path& runDir);
+
+// the outputs of render and montage, checked by the write rule and locked until they are written
+struct Outputs {
+  std::vector<OutputLock> locks;
+};
+// the --mp4 file, the --final-png file and the --png-dir folder (each empty for none): none may be
+// another or lie inside the frame folder; each is locked, then checked against rule (SceneError)
+Outputs claimOutputs(const std::string& mp4, const std::filesystem::path& png, const std::string& pngDir,
+                     const WriteRule& rule);
+
+// stderr progress: one line per ~10 % of the frames; none when quiet
+MovieProgress progressLines(bool quiet, const std::string& what);
+
+}  // namespace rootsim::app

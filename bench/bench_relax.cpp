@@ -6,7 +6,7 @@
 #include <chrono>
 #include <cmath>
 
-#include "../tests/rod_fixture.hpp"
+#include "../tests/physics_support.hpp"
 #include "rootsim/model.hpp"
 #include "rootsim/simulation.hpp"
 #include "rootsim/units.hpp"

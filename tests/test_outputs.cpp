@@ -299,16 +299,23 @@ TEST_CASE("shape.csv reads back (readCsvColumns) as the very doubles of the stat
   const RodState& s = g.sim.state();
   { std::ofstream(d / "shape.csv", std::ios::binary) << shapeCsv(g.m, s, g.k); }
   const CsvColumns c = readCsvColumns(d / "shape.csv");
-  REQUIRE(c.names.size() == 18);
+  REQUIRE(c.names.size() == 21);
   CHECK(c.names[0] == "s_mm");
   CHECK(c.names[1] == "x_mm");
   CHECK(c.names[17] == "radius_mm");
+  CHECK(c.names[18] == "lateral_mm");
+  CHECK(c.names[19] == "downhill_mm");
+  CHECK(c.names[20] == "height_mm");
+  // the plate coordinates: the lab position in the plate's frame (lateral, downhill, height)
+  const PlateFrame plate = g.m.env.plane.frame();
   REQUIRE(c.values[0].size() == static_cast<size_t>(s.nodes()));
   for (int i = 0; i < s.nodes(); ++i) {
     CAPTURE(i);
     const auto row = static_cast<size_t>(i);
     CHECK(sameBits(c.values[0][row], s.S[i] / units::mm));
     for (int a = 0; a < 3; ++a) CHECK(sameBits(c.values[static_cast<size_t>(1 + a)][row], s.x(a, i) / units::mm));
+    const Vec3 onPlate = plate.coords(s.x.col(i)) / units::mm;
+    for (int a = 0; a < 3; ++a) CHECK(sameBits(c.values[static_cast<size_t>(18 + a)][row], onPlate[a]));
     // the node frame: unit directors
     for (int v = 0; v < 3; ++v) {
       const Vec3 dv(c.values[static_cast<size_t>(4 + 3 * v)][row], c.values[static_cast<size_t>(5 + 3 * v)][row],

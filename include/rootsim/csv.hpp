@@ -41,6 +41,10 @@ class TimeseriesWriter {
 // and every column's values, parsed with from_chars, so they are the doubles the run wrote (writers use
 // to_chars, a shortest round trip); "nan" and "inf" cells are read as such. Throws SceneError naming
 // the file and line when it is missing or malformed (a cell that is not a whole number, a short row).
+// the cells of a comma-separated line, a trailing comma giving an empty last cell (result.csv rows, the
+// CLI's comma lists)
+std::vector<std::string> splitCommas(const std::string& line);
+
 struct CsvColumns {
   std::vector<std::string> names;
   std::vector<std::vector<double>> values;  // values[c][row]

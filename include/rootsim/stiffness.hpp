@@ -1,7 +1,7 @@
 #pragma once
 // The stiffness K = -dF/du of the discrete rod in closed form (docs/model.md, Newton solver): the derivative
 // of exactly what computeStrains / computeInternalForces (rod.cpp) and the outside pieces of environment.cpp
-// evaluate, for the Newton solver's Jacobian. tests/test_newton.cpp checks it against central
+// evaluate, for the Newton solver's Jacobian. tests/test_stiffness.cpp checks it against central
 // differences of computeForces, one dof at a time; the solver's coloured finite differences stay as the
 // route for the pieces it does not cover (stiffnessInClosedForm).
 //

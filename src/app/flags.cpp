@@ -54,13 +54,4 @@ ColourField parseColourBy(const std::string& name) {
   return f;
 }
 
-std::vector<std::string> splitList(const std::string& s) {
-  std::vector<std::string> out;
-  std::stringstream ss(s);
-  std::string item;
-  while (std::getline(ss, item, ',')) out.push_back(item);
-  if (!s.empty() && s.back() == ',') out.push_back("");
-  return out;
-}
-
 }  // namespace rootsim::app

@@ -19,7 +19,5 @@ std::pair<int, int> parseSize(const std::string& s);
 VideoOptions parseVideo(int fps, int crf);
 // --color-by: one of colourFieldNames()
 ColourField parseColourBy(const std::string& name);
-// a comma-separated list (--plot, --labels); a trailing comma gives an empty last item
-std::vector<std::string> splitList(const std::string& s);
 
 }  // namespace rootsim::app

@@ -12,7 +12,8 @@
 #include "flags.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/montage.hpp"
-#include "rootsim/outputs.hpp"
+#include "rootsim/csv.hpp"
+#include "rootsim/trajectory.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/write_rule.hpp"
 #include "run_files.hpp"
@@ -78,7 +79,7 @@ int montageRunsCommand(const MontageOptions& o) {
   job.mp4 = o.mp4;
   std::vector<std::string> labels;
   if (!o.labels.empty()) {
-    labels = splitList(o.labels);
+    labels = splitCommas(o.labels);
     if (labels.size() != dirs.size())
       throw SceneError("--labels " + o.labels + ": " + std::to_string(labels.size()) + " labels for " +
                        std::to_string(dirs.size()) + " runs");

@@ -7,7 +7,8 @@
 #include "flags.hpp"
 #include "rootsim/compose.hpp"
 #include "rootsim/errors.hpp"
-#include "rootsim/outputs.hpp"
+#include "rootsim/csv.hpp"
+#include "rootsim/trajectory.hpp"
 
 namespace fs = std::filesystem;
 
@@ -57,7 +58,7 @@ MovieLook parseLook(const LookOptions& o) {
   l.colourBy = parseColourBy(o.colorBy);
   if (!o.plot.empty()) {
     std::set<std::string> seen;
-    for (const std::string& k : splitList(o.plot)) {
+    for (const std::string& k : splitCommas(o.plot)) {
       bool known = false;
       for (const PlotKey& p : kPlotKeys) known = known || k == p.key;
       if (!known) throw SceneError("--plot " + o.plot + ": unknown key '" + k + "' (expected any of theta_tip,Eb,Et,Wr,Tw)");

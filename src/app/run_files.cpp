@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "rootsim/errors.hpp"
-#include "rootsim/outputs.hpp"
+#include "rootsim/trajectory.hpp"
 
 namespace fs = std::filesystem;
 

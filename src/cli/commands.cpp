@@ -26,8 +26,7 @@
 #include "rootsim/write_rule.hpp"
 
 #ifdef ROOTSIM_HAVE_RENDER
-#include "rootsim/gl_renderer.hpp"
-#include "rootsim/render_scene.hpp"
+#include "rootsim/figure_tile.hpp"
 #include "rootsim/units.hpp"
 #endif
 
@@ -161,36 +160,11 @@ int sweepCommand(const SweepCliOptions& o) {
   return r.failed > 0 ? 1 : 0;
 }
 
-#ifdef ROOTSIM_HAVE_RENDER
-namespace {
-// a root tile for figure panels: the renderer's top view (tube, +-d1 stripes, 1 mm grid) of exactly
-// the plate window asked for, without overlays (the panel's axes carry the labels)
-Raster renderTile(const Snapshot& sn, const SceneInfo& info, const PlateWindow& w) {
-  View v;
-  v.kind = View::Kind::Top;
-  v.width = w.width;
-  v.height = w.height;
-  v.overlays = false;
-  v.marginMm = 0.0;
-  // plate coordinates of the renderer: u lateral, v uphill = -downhill
-  v.centreMm = std::array<double, 2>{0.5 * (w.lateralMin + w.lateralMax), -0.5 * (w.downhillMin + w.downhillMax)};
-  v.widthMm = w.lateralMax - w.lateralMin;
-  const Framing fr = frameFor({sn}, info, v);
-  GlRenderer gl(v.width, v.height);
-  const Image im = gl.render(buildRenderScene(sn, info, v, fr));
-  Raster r;
-  r.width = im.width;
-  r.height = im.height;
-  r.rgba.assign(im.rgba.begin(), im.rgba.end());
-  return r;
-}
-}  // namespace
-#endif
 
 int figureCommand(const FigureCliOptions& o) {
   FigureOptions fo;
 #ifdef ROOTSIM_HAVE_RENDER
-  fo.renderTile = renderTile;
+  fo.renderTile = app::renderFigureTile;
 #endif
   fo.quick = o.quick;
   fo.out = o.out;

@@ -43,14 +43,6 @@ Model modelOf(const Ctx& c, const Case& k) {
   return m;
 }
 
-SceneInfo infoOf(const Case& k) {
-  SceneInfo si;
-  si.alphaDeg = k.alpha;
-  si.beta = k.beta;
-  si.gamma = k.gamma;
-  si.rTau = k.rTau;
-  si.plate = !k.free;
-  return si;
-}
+SceneInfo infoOf(const Ctx& c, const Case& k) { return sceneInfoOf(modelOf(c, k)); }
 
 }  // namespace rootsim::fig

@@ -49,7 +49,7 @@ inline constexpr const char* kFigureSceneName = "base";
 // parameters, the context's element length and growth step, growth steps to reach the case's length, no VTK
 // output
 Model modelOf(const Ctx& c, const Case& k);
-// what a picture of the case shows beside the root
-SceneInfo infoOf(const Case& k);
+// what a picture of the case shows beside the root: its model's (sceneInfoOf, snapshot.hpp)
+SceneInfo infoOf(const Ctx& c, const Case& k);
 
 }  // namespace rootsim::fig

@@ -70,7 +70,7 @@ void addRoot(const Ctx& c, const Figure& f, Axes& ax, const Snapshot& sn, const 
     const double mmPerPx = 0.02;  // 50 px per mm
     px.width = std::max(2, 2 * static_cast<int>(std::lround(0.5 * (win.lateralMax - win.lateralMin) / mmPerPx)));
     px.height = std::max(2, 2 * static_cast<int>(std::lround(0.5 * (win.downhillMax - win.downhillMin) / mmPerPx)));
-    Raster r = c.opt.renderTile(sn, infoOf(k), px);
+    Raster r = c.opt.renderTile(sn, infoOf(c, k), px);
     r.x0 = win.lateralMin;
     r.x1 = win.lateralMax;
     r.y0 = -win.downhillMax;

@@ -17,6 +17,15 @@ namespace fs = std::filesystem;
 
 namespace rootsim {
 
+std::vector<std::string> splitCommas(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
 std::string shapeCsv(const Model& m, const RodState& s, const RodStrains& k) {
   std::ostringstream os;
   os << "s_mm,x_mm,y_mm,z_mm,d1x,d1y,d1z,d2x,d2y,d2z,d3x,d3y,d3z,kappa1_per_mm,kappa2_per_mm,kappa3_per_mm,"

@@ -5,6 +5,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "rootsim/csv.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/units.hpp"
 
@@ -21,14 +22,6 @@ std::string csvNum(double x) {
   return b;
 }
 
-std::vector<std::string> split(const std::string& line) {
-  std::vector<std::string> cells;
-  std::stringstream ss(line);
-  std::string cell;
-  while (std::getline(ss, cell, ',')) cells.push_back(cell);
-  if (!line.empty() && line.back() == ',') cells.emplace_back();
-  return cells;
-}
 }  // namespace
 
 const std::vector<ResultColumn>& resultColumns() {
@@ -144,7 +137,7 @@ RunResult readResult(const std::filesystem::path& path) {
   r.grows = head == resultHeader(true);
   if (!r.grows && head != resultHeader(false))
     throw RunError(path.string() + ": not a result.csv of this rootsim (header differs)");
-  const std::vector<std::string> cells = split(line);
+  const std::vector<std::string> cells = splitCommas(line);
   size_t i = 0;
   for (const auto& c : resultColumns()) {
     if (c.growthOnly && !r.grows) continue;

@@ -5,7 +5,7 @@
 // drift). Residual: the explicit solver's forces and couples, from computeForces() (one code path for
 // the physics, so the two solvers cannot drift apart). Jacobian K = -dF/du in closed form
 // (stiffness.hpp: the derivative of that same force code, checked against differences of it in
-// tests/test_newton.cpp) wherever it covers the forces in play; with obstacles or friction, by coloured
+// tests/test_stiffness.cpp) wherever it covers the forces in play; with obstacles or friction, by coloured
 // finite differences: a dof of block b (node or element) changes the forces of blocks b-3 .. b+3 only (a node
 // moves its two elements: their shear and the dilatation of the three Voronoi couples around them, which
 // act on the elements i-2 .. i+1; an element's rotation changes its shear and its two curvatures), so

@@ -2,7 +2,7 @@
 // (src/app/render_run.cpp): read back independently, frame counts, sizes, durations, errors
 #include <doctest/doctest.h>
 
-#include "../run_rootsim.hpp"
+#include "../test_support.hpp"
 
 #include <algorithm>
 #include <array>

@@ -9,8 +9,7 @@
 #include <fstream>
 #include <string>
 
-#include "../run_rootsim.hpp"
-#include "../test_files.hpp"
+#include "../test_support.hpp"
 
 namespace fs = std::filesystem;
 

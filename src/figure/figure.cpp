@@ -137,10 +137,8 @@ std::string makeFigure(const std::string& name, const FigureOptions& opt,
           report += "- **" + cl.what + "**: measured " + cl.measured + " against " + cl.theory + " (tolerance " +
                     cl.tolerance + "). " + (cl.note.empty() ? "" : cl.note) + "\n";
     }
-    report += std::string("\nRoots are drawn ") +
-              (opt.renderTile ? "by the OSMesa renderer (tube with +d1 pink / -d1 orange stripes)"
-                              : "as centreline strokes of width 2R (this rootsim was built without the renderer)") +
-              ".\n\n" + sections;
+    report += "\nRoots are drawn as vector paths seen from above: the tube's outline, shading bands and the +d1 "
+              "(pink) / -d1 (orange) stripes where they face the viewer.\n\n" + sections;
     writeFileAtomic(fs::path(opt.out) / "report.md", report);
     return report;
   }

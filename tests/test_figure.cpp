@@ -73,7 +73,7 @@ std::array<long, 3> physOf(const fs::path& png) {
 }
 }  // namespace
 
-TEST_CASE("every panel exists as PNG and SVG with drawn content") {
+TEST_CASE("every panel exists as PDF, SVG and PNG with drawn content") {
   for (const auto& n : rootsim::figureNames()) {
     INFO(n);
     REQUIRE(fs::exists(kOut / (n + ".png")));

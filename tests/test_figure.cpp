@@ -1,9 +1,13 @@
-// figure panels: `rootsim figure all --quick` (run by the figures_quick ctest fixture) made every panel,
-// each PNG has drawn content, and the quick runs show the paper's patterns
+// figure panels: `rootsim figure all --quick` (run by the figures_quick ctest fixture) made every panel
+// as PDF, SVG and PNG, the vector files draw the roots as paths (no images), the PNG carries its dpi, the
+// PDF's text is text, each PNG has drawn content, and the quick runs show the paper's patterns
 #include <doctest/doctest.h>
 
 #include <cairo.h>
 
+#include <array>
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -37,22 +41,56 @@ double inkFraction(const fs::path& png, int* width = nullptr, int* height = null
   return static_cast<double>(ink) / (static_cast<double>(w) * h);
 }
 const fs::path kOut = ROOTSIM_FIGURE_DIR;
+
+// stdout of a shell command
+std::string capture(const std::string& cmd) {
+  std::string out;
+  FILE* p = popen(cmd.c_str(), "r");
+  REQUIRE(p != nullptr);
+  char buf[4096];
+  size_t n;
+  while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
+  pclose(p);
+  return out;
+}
+
+// the pHYs chunk of a PNG: pixels per metre along x and y and the unit byte; {-1, -1, -1} if none
+std::array<long, 3> physOf(const fs::path& png) {
+  const std::string b = slurp(png);
+  size_t p = 8;
+  while (p + 12 <= b.size()) {
+    auto u32 = [&](size_t q) {
+      return (static_cast<long>(static_cast<unsigned char>(b[q])) << 24) | (static_cast<unsigned char>(b[q + 1]) << 16) |
+             (static_cast<unsigned char>(b[q + 2]) << 8) | static_cast<unsigned char>(b[q + 3]);
+    };
+    const long len = u32(p);
+    const std::string type = b.substr(p + 4, 4);
+    if (type == "pHYs" && len == 9) return {u32(p + 8), u32(p + 12), static_cast<unsigned char>(b[p + 16])};
+    if (type == "IDAT") break;
+    p += 12 + static_cast<size_t>(len);
+  }
+  return {-1, -1, -1};
+}
 }  // namespace
 
-TEST_CASE("every panel exists as PNG and SVG with drawn content") {
+TEST_CASE("every panel exists as PDF, SVG and PNG with drawn content") {
   for (const auto& n : rootsim::figureNames()) {
     INFO(n);
     REQUIRE(fs::exists(kOut / (n + ".png")));
     REQUIRE(fs::exists(kOut / (n + ".svg")));
+    REQUIRE(fs::exists(kOut / (n + ".pdf")));
     CHECK(slurp(kOut / (n + ".svg")).find("<svg") != std::string::npos);
+    CHECK(slurp(kOut / (n + ".pdf")).rfind("%PDF-", 0) == 0);
     int w = 0, h = 0;
     const double ink = inkFraction(kOut / (n + ".png"), &w, &h);
     CHECK(ink > 0.005);  // not blank
     CHECK(ink < 0.95);   // fig3d is mostly coloured background
-    CHECK(w >= 600);     // the panel sizes set in src/figure/figure.cpp
-    CHECK(w <= 2200);
-    CHECK(h >= 500);
-    CHECK(h <= 1100);
+    // the panels' layout sizes (src/figure/fig*.cpp), 96 layout units per inch, at 300 dpi
+    const double lw = w * 96.0 / 300.0, lh = h * 96.0 / 300.0;
+    CHECK(lw >= 600);
+    CHECK(lw <= 2200);
+    CHECK(lh >= 400);
+    CHECK(lh <= 1100);
   }
   CHECK(slurp(kOut / "report.md").find("## fig4g") != std::string::npos);
 }
@@ -178,7 +216,9 @@ TEST_CASE("a plot draws a line where its data are") {
   a.series.push_back(s);
   f.axes.push_back(a);
   const fs::path base = fs::temp_directory_path() / "rootsim_plot_test";
-  rootsim::saveFigure(f, base.string());
+  rootsim::SaveOptions so;
+  so.dpi = 96;  // one pixel a layout unit
+  rootsim::saveFigure(f, base.string(), so);
   cairo_surface_t* img = cairo_image_surface_create_from_png((base.string() + ".png").c_str());
   REQUIRE(cairo_surface_status(img) == CAIRO_STATUS_SUCCESS);
   const int stride = cairo_image_surface_get_stride(img);
@@ -190,4 +230,163 @@ TEST_CASE("a plot draws a line where its data are") {
   CHECK(px(200, 60)[2] > 200);   // white above the line
   CHECK(px(200, 60)[1] > 200);
   cairo_surface_destroy(img);
+}
+
+TEST_CASE("the panels are vector drawings: no raster images in their SVG or PDF") {
+  for (const auto& n : rootsim::figureNames()) {
+    INFO(n);
+    const std::string svg = slurp(kOut / (n + ".svg"));
+    CHECK(svg.find("<image") == std::string::npos);
+    // cairo writes the PDF's object dictionaries uncompressed: an image would be an XObject /Subtype /Image
+    const std::string pdf = slurp(kOut / (n + ".pdf"));
+    CHECK(pdf.find("/Image") == std::string::npos);
+    // and poppler lists none
+    const std::string list = capture("pdfimages -list '" + (kOut / (n + ".pdf")).string() + "' 2>&1");
+    INFO(list);
+    CHECK(list.find("page") != std::string::npos);  // the header: pdfimages ran
+    size_t lines = 0;
+    for (char ch : list) lines += ch == '\n';
+    CHECK(lines == 2);  // header and rule only
+  }
+  // the plate views draw their roots as paths: many of them
+  const std::string svg = slurp(kOut / "fig2a.svg");
+  size_t paths = 0;
+  for (size_t p = svg.find("<path"); p != std::string::npos; p = svg.find("<path", p + 1)) ++paths;
+  CHECK(paths > 500);
+}
+
+TEST_CASE("the PNG carries its resolution: pHYs = dpi / 0.0254 pixels per metre") {
+  for (const auto& n : rootsim::figureNames()) {
+    INFO(n);
+    const auto ph = physOf(kOut / (n + ".png"));
+    CHECK(ph[0] == std::lround(300 / 0.0254));
+    CHECK(ph[1] == std::lround(300 / 0.0254));
+    CHECK(ph[2] == 1);
+  }
+  // --dpi and --width-mm: a journal column of 85 mm at 600 dpi
+  rootsim::Figure f;
+  f.width = 500;
+  f.height = 400;
+  rootsim::Axes a;
+  a.series.push_back(rootsim::Series{});
+  a.series.back().x = {0, 1};
+  a.series.back().y = {0, 1};
+  f.axes.push_back(a);
+  const fs::path base = fs::temp_directory_path() / "rootsim_plot_dpi";
+  rootsim::SaveOptions so;
+  so.dpi = 600;
+  so.widthMm = 85;
+  rootsim::saveFigure(f, base.string(), so);
+  int w = 0, h = 0;
+  inkFraction(base.string() + ".png", &w, &h);
+  CHECK(w == std::lround(85 / 25.4 * 600));
+  CHECK(h == std::lround(85 / 25.4 * 600 * 400 / 500));
+  CHECK(physOf(base.string() + ".png")[0] == std::lround(600 / 0.0254));
+  // the PDF's page is 85 mm wide (points)
+  const std::string info = capture("pdfinfo '" + base.string() + ".pdf' 2>&1");
+  INFO(info);
+  CHECK(info.find("240.9") != std::string::npos);  // 85 mm = 240.94 pt
+}
+
+TEST_CASE("the PDF's text is text: pdftotext finds the axis titles with their units") {
+  auto text = [](const std::string& n) { return capture("pdftotext '" + (kOut / (n + ".pdf")).string() + "' - 2>&1"); };
+  const std::string a2 = text("fig2a");
+  CHECK(a2.find("lateral [mm]") != std::string::npos);
+  CHECK(a2.find("downhill [mm]") != std::string::npos);
+  const std::string a4 = text("fig4a");
+  CHECK(a4.find("lateral [mm]") != std::string::npos);
+  CHECK(a4.find("downhill [mm]") != std::string::npos);
+  CHECK(text("fig2b").find("downhill [mm]") != std::string::npos);
+  CHECK(text("fig2cde").find("time [h]") != std::string::npos);
+  const std::string d3 = text("fig3d");
+  CHECK(d3.find("plate tilt α [deg]") != std::string::npos);
+  CHECK(d3.find("effective gravitropic gain βL") != std::string::npos);  // L, then the subscript gz
+  CHECK(text("fig3b").find("wavelength λ [mm]") != std::string::npos);
+  CHECK(text("fig4g").find("sin⟨θ⟩ / tan α") != std::string::npos);
+}
+
+namespace {
+// the raster renderer's rule (shaders/tube.frag): a surface point whose direction around the axis is
+// cos(phi) d1 + sin(phi) d2 is in the +d1 stripe where cos(phi) > cos(half width). Seen from above, the
+// pixel at lateral offset u (units of r) across the tube shows the point with normal u side + sqrt(1 - u^2) up.
+bool rasterPlus(const std::array<double, 3>& d1, double u) {
+  const double c = u * d1[0] + std::sqrt(1 - u * u) * d1[2];  // side = x, up = z
+  return c > std::cos(38.0 * M_PI / 180);
+}
+}  // namespace
+
+TEST_CASE("the vector root's stripes sit where the raster renderer draws them") {
+  const std::array<double, 3> side{1, 0, 0}, up{0, 0, 1}, t{0, 1, 0};
+  auto cross = [](const std::array<double, 3>& p, const std::array<double, 3>& q) {
+    return std::array<double, 3>{p[1] * q[2] - p[2] * q[1], p[2] * q[0] - p[0] * q[2], p[0] * q[1] - p[1] * q[0]};
+  };
+  const double hw = 38.0 * M_PI / 180;
+  // d1 facing the viewer: the stripe on the tube's centre line, symmetric about it
+  {
+    const auto s = rootsim::visibleStripe(up, cross(t, up), side, up, hw);
+    CHECK(s[0] == doctest::Approx(-std::sin(hw)).epsilon(1e-3));
+    CHECK(s[1] == doctest::Approx(std::sin(hw)).epsilon(1e-3));
+  }
+  // d1 facing away: no stripe seen
+  {
+    const std::array<double, 3> down{0, 0, -1};
+    const auto s = rootsim::visibleStripe(down, cross(t, down), side, up, hw);
+    CHECK(std::isnan(s[0]));
+  }
+  // d1 turned about the axis by psi: the stripe's extent holds exactly the pixels the raster rule stripes
+  for (double psiDeg : {0.0, 20.0, 45.0, 70.0, 90.0, 110.0, -30.0, -80.0}) {
+    const double psi = psiDeg * M_PI / 180;
+    const std::array<double, 3> d1{std::sin(psi), 0, std::cos(psi)};
+    const auto s = rootsim::visibleStripe(d1, cross(t, d1), side, up, hw);
+    for (double u = -0.98; u <= 0.98; u += 0.07) {
+      INFO("psi " << psiDeg << " u " << u);
+      const bool vec = std::isfinite(s[0]) && u >= s[0] && u <= s[1];
+      // away from the stripe's edges (the sampled extent is exact to a few 1e-3)
+      bool nearEdge = std::isfinite(s[0]) && (std::abs(u - s[0]) < 0.02 || std::abs(u - s[1]) < 0.02);
+      if (!nearEdge) CHECK(vec == rasterPlus(d1, u));
+    }
+  }
+  // drawn: a straight tube with d1 up shows pink on its centre line, body colour at its flanks
+  rootsim::Figure f;
+  f.width = 300;
+  f.height = 300;
+  rootsim::Axes a;
+  a.grid = false;
+  a.frameOnly = true;
+  a.autoX = a.autoY = false;
+  a.xmin = -1;
+  a.xmax = 1;
+  a.ymin = 0;
+  a.ymax = 2;
+  a.yDown = true;
+  rootsim::Tube tb;
+  for (int i = 0; i <= 10; ++i) {
+    tb.x.push_back(0);
+    tb.y.push_back(0.2 * i);
+    tb.z.push_back(0.2);
+    tb.r.push_back(0.3);
+    tb.sx.push_back(1);
+    tb.sy.push_back(0);
+    tb.plus.push_back(rootsim::visibleStripe(up, cross(t, up), side, up, hw));
+    tb.minus.push_back(rootsim::visibleStripe({0, 0, -1}, cross(t, {0, 0, -1}), side, up, hw));
+  }
+  a.tubes.push_back(tb);
+  f.axes.push_back(a);
+  const fs::path base = fs::temp_directory_path() / "rootsim_plot_tube";
+  rootsim::SaveOptions so;
+  so.dpi = 96;
+  rootsim::saveFigure(f, base.string(), so);
+  cairo_surface_t* img = cairo_image_surface_create_from_png((base.string() + ".png").c_str());
+  REQUIRE(cairo_surface_status(img) == CAIRO_STATUS_SUCCESS);
+  const int stride = cairo_image_surface_get_stride(img);
+  const unsigned char* d = cairo_image_surface_get_data(img);
+  auto px = [&](int x, int y) { return d + y * stride + 4 * x; };  // BGRA
+  // plot area x 64..286 (2 units: 111 px a unit), centre line at x = 175, y mid 133
+  const unsigned char* c = px(175, 133);
+  CHECK(c[2] > 200);  // pink (0.90, 0.20, 0.55)
+  CHECK(c[1] < 90);
+  const unsigned char* flank = px(175 + 27, 133);  // u = 0.8: outside the stripe (sin 38 = 0.62)
+  CHECK(flank[1] > 150);  // body (ivory, shaded), not pink
+  cairo_surface_destroy(img);
+  CHECK(slurp(base.string() + ".svg").find("<image") == std::string::npos);
 }

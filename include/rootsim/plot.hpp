@@ -1,5 +1,10 @@
 #pragma once
-// Publication plots (cairo): the same drawing goes to PNG and to SVG. Data in, files out; no physics.
+// Publication plots (cairo): one vector drawing goes to PDF, SVG and PNG (rasterised from the same
+// drawing, with its resolution in a pHYs chunk). Data in, files out; no physics.
+//
+// Labels (titles, axis labels, legend entries, notes) take a small markup: _{...} sets its contents as a
+// subscript, ^{...} as a superscript (smaller, shifted); a single character may follow _ or ^ without
+// braces. Text stays text in the PDF and SVG.
 #include <array>
 #include <string>
 #include <vector>
@@ -15,7 +20,7 @@ struct Series {
   Rgb color{0.1, 0.3, 0.7};
   double width = 1.8;           // line width [px at 1x]
   bool dashed = false;
-  char marker = 'o';            // 'o' circle, 's' square, '^' triangle, 'x' cross
+  char marker = 'o';            // 'o' circle, 's' square, 'D' diamond, '^' up / '>' right triangle, 'x' cross
   std::string label;            // legend entry ("" = none)
 };
 
@@ -25,6 +30,28 @@ struct Shape2D {                // a root drawn on the plate: a polyline with a 
   Rgb color{0.25, 0.25, 0.25};
 };
 
+// a root seen from above as vector paths: its outline (the centreline offset by the radius on both
+// sides), shading bands along it and its +-d1 stripes, node by node in plot units
+struct Tube {
+  std::vector<double> x, y;       // centreline
+  std::vector<double> z;          // height above the plate (strands are drawn lowest first)
+  std::vector<double> r;          // radius
+  std::vector<double> sx, sy;     // unit vector across the tube (the side the lateral offsets point to)
+  // visible lateral extent of each stripe across the tube, in units of r (-1..1, lo <= hi); NaN where the
+  // stripe faces away from the viewer
+  std::vector<std::array<double, 2>> plus, minus;
+  Rgb body{0.95, 0.93, 0.86}, plusColor{0.90, 0.20, 0.55}, minusColor{0.98, 0.52, 0.05};
+};
+
+// the part of a stripe of the tube's surface that a viewer sees, as a lateral extent across the tube in
+// units of the radius: the stripe is the surface directions cos(phi) a + sin(phi) b (a: the stripe's
+// centre direction, e.g. +d1 or -d1, b: t x a) with cos(phi) >= cos(halfWidth) (as the raster renderer
+// places them, shaders/tube.frag); a surface point is seen where its normal has a positive component along
+// `view` (towards the viewer) and lies at offset (normal . side) across the tube. {NaN, NaN} if none is seen.
+std::array<double, 2> visibleStripe(const std::array<double, 3>& a, const std::array<double, 3>& b,
+                                    const std::array<double, 3>& side, const std::array<double, 3>& view,
+                                    double halfWidthRad);
+
 struct Fill {                   // a filled polygon in data coordinates (background regions)
   std::vector<double> x, y;
   Rgb color{0.9, 0.9, 0.9};
@@ -32,29 +59,26 @@ struct Fill {                   // a filled polygon in data coordinates (backgro
   std::string label;            // legend entry ("" = none)
 };
 
-struct Raster {                 // an RGBA picture placed at a data-coordinate rectangle
-  int width = 0, height = 0;
-  std::vector<unsigned char> rgba;  // top row first, straight alpha
-  double x0 = 0, x1 = 1, y0 = 0, y1 = 1;  // extent: left, right, bottom, top
-};
-
 struct Axes {
-  std::string title, xlabel, ylabel;
+  std::string title, xlabel, ylabel;  // labels with their unit, e.g. "lateral [mm]"
   std::string panelLabel;       // bold letter at the top left ("A", "B", ...)
   bool frameOnly = false;       // no ticks or grid: for pictures
   std::vector<Fill> fills;
-  std::vector<Raster> rasters;
   bool autoX = true, autoY = true;
   double xmin = 0, xmax = 1, ymin = 0, ymax = 1;
   bool equalAspect = false;     // for shapes on the plate
+  bool yDown = false;           // y grows downwards (plate views: downhill is down)
+  bool logX = false;            // logarithmic x axis (ticks at 1, 2, 5 per decade); x must be > 0
   bool grid = true;
   std::vector<Series> series;
   std::vector<Shape2D> shapes;
+  std::vector<Tube> tubes;
   std::vector<std::pair<std::array<double, 2>, std::string>> notes;  // text at data coordinates
   std::string legendPos = "ne"; // ne, nw, se, sw, none
 };
 
-// a figure: a row-major grid of axes, drawn at width x height pixels
+// a figure: a row-major grid of axes, laid out on width x height layout units (1/96 inch unless
+// SaveOptions::widthMm scales it)
 struct Figure {
   int width = 1200, height = 800;
   int rows = 1, cols = 1;
@@ -65,8 +89,14 @@ struct Figure {
 // height / width of the plot area of axes a in figure f, in pixels (the layout saveFigure uses)
 double plotAspect(const Figure& f, const Axes& a);
 
-// writes path.png and path.svg (atomically); throws RunError
-void saveFigure(const Figure& f, const std::string& pathWithoutExtension);
+struct SaveOptions {
+  double dpi = 300;             // PNG resolution (stored in its pHYs chunk)
+  double widthMm = 0;           // physical width (e.g. 85 or 180 mm for a journal column); 0: width / 96 inch
+  bool titles = true;           // false: no figure title (the caption goes with the paper)
+};
+
+// writes path.pdf, path.svg and path.png (atomically), one drawing; throws RunError
+void saveFigure(const Figure& f, const std::string& pathWithoutExtension, const SaveOptions& so = {});
 
 // colours of a qualitative palette (Okabe-Ito)
 Rgb paletteColor(int i);

@@ -26,7 +26,6 @@
 #include "rootsim/write_rule.hpp"
 
 #ifdef ROOTSIM_HAVE_RENDER
-#include "rootsim/figure_tile.hpp"
 #include "rootsim/units.hpp"
 #endif
 
@@ -163,14 +162,14 @@ int sweepCommand(const SweepCliOptions& o) {
 
 int figureCommand(const FigureCliOptions& o) {
   FigureOptions fo;
-#ifdef ROOTSIM_HAVE_RENDER
-  fo.renderTile = app::renderFigureTile;
-#endif
   fo.quick = o.quick;
   fo.out = o.out;
   fo.jobs = o.jobs;
   fo.force = o.force;
   fo.quiet = o.quiet;
+  fo.dpi = o.dpi;
+  fo.widthMm = o.widthMm;
+  fo.titles = !o.noTitle;
   const double t0 = now();
   makeFigure(o.name, fo, [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
   if (!o.quiet) std::fprintf(stderr, "figure %s: done in %.1f s -> %s\n", o.name.c_str(), now() - t0, o.out.c_str());

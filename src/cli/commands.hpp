@@ -57,6 +57,9 @@ struct FigureCliOptions {
   int jobs = 2;
   bool force = false;     // replace panels rootsim wrote earlier in --out
   bool quiet = false;
+  double dpi = 300;       // PNG resolution (stored in the PNG)
+  double widthMm = 0;     // physical panel width [mm] (85, 180: a journal column); 0: 96 layout units per inch
+  bool noTitle = false;   // panels without their figure title
 };
 int figureCommand(const FigureCliOptions& o);
 

@@ -99,13 +99,17 @@ int main(int argc, char** argv) {
   cSweep->add_flag("--quiet", sweep.quiet, "no progress output");
 
   cli::FigureCliOptions figure;
-  CLI::App* cFigure = app.add_subcommand("figure", "make the paper's figure panels (PNG + SVG) and report.md");
+  CLI::App* cFigure = app.add_subcommand("figure", "make the paper's figure panels (PDF + SVG + PNG) and report.md");
   cFigure->add_option("name", figure.name, "fig2a fig2b fig2cde fig3a fig3b fig3d fig3d_gamma1 fig3d_apical fig4a fig4g, or all")->required();
   cFigure->add_flag("--quick", figure.quick, "coarsened runs (for CI)");
   cFigure->add_option("--out", figure.out, "output folder (default: figures)");
   cFigure->add_option("-j,--jobs", figure.jobs, "parallel simulations")->check(CLI::Range(1, 1024));
   cFigure->add_flag("--force", figure.force, "replace panels rootsim wrote earlier in --out");
   cFigure->add_flag("--quiet", figure.quiet, "no progress output");
+  cFigure->add_option("--dpi", figure.dpi, "PNG resolution, stored in the PNG (default 300)")->check(CLI::Range(10.0, 2400.0));
+  cFigure->add_option("--width-mm", figure.widthMm, "physical width of each panel, e.g. 85 or 180 (a journal column)")
+      ->check(CLI::Range(10.0, 1000.0));
+  cFigure->add_flag("--no-title", figure.noTitle, "panels without their figure title (the caption goes with the paper)");
 
   try {
     app.parse(argc, argv);

@@ -39,7 +39,7 @@ std::string fig2a(const Ctx& c) {
   for (const auto& k : cases) traj.push_back(trajectory(c, k));
   for (const auto& t : traj) finals.push_back(&t.back());
   // one window for all panels, so the shapes compare at one scale
-  PlateWindow win{1e9, -1e9, 1e9, -1e9, 0, 0};
+  PlateWindow win{1e9, -1e9, 1e9, -1e9};
   for (size_t i = 0; i < cases.size(); ++i) {
     const PlateWindow w = boundingWindow({finals[i]}, cases[i].alpha, 0.4, 1.5);
     win.lateralMin = std::min(win.lateralMin, w.lateralMin - 0.5 * (w.lateralMin + w.lateralMax));
@@ -50,23 +50,30 @@ std::string fig2a(const Ctx& c) {
   Figure f;
   f.cols = static_cast<int>(cases.size());
   f.width = 170 * f.cols + 40;
-  f.height = 780;
-  f.title = "Fig. 2A: final shapes on the plate (β = γ = 0.1, 1 mm grid; downhill is down)";
+  f.title = "Fig. 2A: final shapes on the plate (β = γ = 0.1; pink +d_1, orange −d_1; downhill is down)";
+  {
+    Axes sample;
+    sample.title = "α";
+    fitHeight(f, sample, plateAspect(win), 420, 1000);
+  }
   std::string table = "| α (deg) | pattern | λ (mm) | A peak-to-peak (mm) | θ range (deg) |\n|---|---|---|---|---|\n";
   bool straight0 = false;
   for (size_t i = 0; i < cases.size(); ++i) {
     const RunResult r = result(c, cases[i]);
     Axes ax;
-    ax.panelLabel = std::string(1, static_cast<char>('a' + i));
+    if (i == 0) ax.panelLabel = "A";
     ax.title = "α = " + num(cases[i].alpha) + "°";
-    ax.xlabel = r.pattern;
+    ax.xlabel = "lateral [mm]";
+    if (i == 0) ax.ylabel = "downhill [mm]";
     // centre each root laterally in the common window
     PlateWindow w = win;
     const PlateWindow own = boundingWindow({finals[i]}, cases[i].alpha, 0.4, 1.5);
     const double cx = 0.5 * (own.lateralMin + own.lateralMax);
     w.lateralMin += cx;
     w.lateralMax += cx;
-    addRoot(c, f, ax, *finals[i], cases[i], w, {0.3, 0.3, 0.32});
+    addRoot(f, ax, *finals[i], cases[i], w);
+    // the pattern found, at the bottom of the view
+    ax.notes.push_back({{0.5 * (ax.xmin + ax.xmax), ax.ymax - 0.03 * (ax.ymax - ax.ymin)}, r.pattern});
     f.axes.push_back(ax);
     const std::string pat = r.pattern;
     if (cases[i].alpha == 0) straight0 = pat == "straight";
@@ -74,7 +81,7 @@ std::string fig2a(const Ctx& c) {
              fmt3(val(r, "amplitude_mm")) + " | " + num(std::round(val(r, "theta_min_deg"))) + " .. " +
              num(std::round(val(r, "theta_max_deg"))) + " |\n";
   }
-  saveFigure(f, (fs::path(c.opt.out) / "fig2a").string());
+  saveFigure(f, (fs::path(c.opt.out) / "fig2a").string(), c.save());
   const Theory t = theoryFor(modelOf(c, cases[0]));
   c.claims->push_back({"Fig. 2A: α = 0 grows straight", "straight", "straight", straight0 ? "straight" : "not straight",
                        "pattern", straight0});

@@ -51,18 +51,22 @@ std::string fig2b(const Ctx& c) {
   Figure f;
   f.cols = 5;
   f.width = 5 * 200 + 40;
-  f.height = 820;
   f.title = "Fig. 2B: a waving root growing on a plate tilted by 40° (β = 0.2, γ = 0.1)";
+  {
+    Axes sample;
+    sample.title = "t";
+    fitHeight(f, sample, plateAspect(win), 420, 1000);
+  }
   for (int k = 0; k < 5; ++k) {
     Axes ax;
-    ax.panelLabel = std::string(1, static_cast<char>('a' + k));
+    if (k == 0) ax.panelLabel = "B";
     ax.title = "t = " + num(std::round(snaps[static_cast<size_t>(k)]->timeH)) + " h";
-    ax.xlabel = "lateral (mm)";
-    if (k == 0) ax.ylabel = "downhill (mm)";
-    addRoot(c, f, ax, *snaps[static_cast<size_t>(k)], w, win, paletteColor(0));
+    ax.xlabel = "lateral [mm]";
+    if (k == 0) ax.ylabel = "downhill [mm]";
+    addRoot(f, ax, *snaps[static_cast<size_t>(k)], w, win);
     f.axes.push_back(ax);
   }
-  saveFigure(f, (fs::path(c.opt.out) / "fig2b").string());
+  saveFigure(f, (fs::path(c.opt.out) / "fig2b").string(), c.save());
   const RunResult r = result(c, w);
   const Theory t = theoryFor(modelOf(c, w));
   const double lam = val(r, "wavelength_mm"), A = val(r, "amplitude_mm");

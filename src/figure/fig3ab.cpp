@@ -30,7 +30,7 @@ std::vector<Case> scalingCases(const Ctx& c) {
 
 namespace {
 // measured against predicted with the identity line
-void identityPlot(const Ctx& c, const std::string& name, const std::string& title, const std::string& xl,
+void identityPlot(const Ctx& c, const std::string& name, const std::string& letter, const std::string& title, const std::string& xl,
                   const std::string& yl, const std::vector<double>& x, const std::vector<double>& y, int color, char mark,
                   const std::string& label, const std::string& lineLabel) {
   double hi = 0.5;
@@ -39,8 +39,9 @@ void identityPlot(const Ctx& c, const std::string& name, const std::string& titl
   Figure f;
   f.width = 700;
   f.height = 640;
+  f.title = title;
   Axes ax;
-  ax.title = title;
+  ax.panelLabel = letter;
   ax.xlabel = xl;
   ax.ylabel = yl;
   ax.autoX = ax.autoY = false;
@@ -50,7 +51,7 @@ void identityPlot(const Ctx& c, const std::string& name, const std::string& titl
   ax.series.push_back(line({0, 1.08 * hi}, {0, 1.08 * hi}, 7, lineLabel, true));
   ax.legendPos = "nw";
   f.axes.push_back(ax);
-  saveFigure(f, (fs::path(c.opt.out) / name).string());
+  saveFigure(f, (fs::path(c.opt.out) / name).string(), c.save());
 }
 }  // namespace
 
@@ -70,7 +71,7 @@ std::string fig3a(const Ctx& c) {
     meas.push_back(mk);
     ratio.push_back(mk / p);
   }
-  identityPlot(c, "fig3a", "Fig. 3A: max curvature vs Eq. 8", "T0 (ε̇0/R) β sin α  (1/mm)", "measured max κ (1/mm)", pred,
+  identityPlot(c, "fig3a", "A", "Fig. 3A: max curvature vs Eq. 8", "max κ_f^0 = T_0 (ε̇_0/R) β sin α [1/mm]", "measured max κ [1/mm]", pred,
                meas, 0, 'o', "waving simulations (γ = 0.1)", "y = x");
   const double med = median(ratio);
   c.claims->push_back({"Eq. 8 (Fig. 3A): max κ ≈ T0 (ε̇0/R) β sin α", "ratio 1", "ratio ≈ 1",
@@ -101,8 +102,8 @@ std::string fig3b(const Ctx& c) {
     r9.push_back(lam / val(r, "wavelength_eq9_mm"));
     r10.push_back(A / val(r, "amplitude_eq10_mm"));
   }
-  identityPlot(c, "fig3b", "Fig. 3B: wavelength vs 4 A cot α (Eq. 11), A peak-to-peak", "4 A cot α  (mm)",
-               "wavelength λ (mm)", x, y, 1, 's', "waving simulations", "Eq. 11: λ = 4 A cot α");
+  identityPlot(c, "fig3b", "B", "Fig. 3B: wavelength vs 4 A cot α (Eq. 11), A peak-to-peak", "4 A cot α [mm]",
+               "wavelength λ [mm]", x, y, 1, 's', "waving simulations", "Eq. 11: λ = 4 A cot α");
   const std::string over = " over " + std::to_string(r11.size()) + " waving runs (";
   const double m11 = median(r11), m9 = median(r9), m10 = median(r10);
   c.claims->push_back({"Eq. 11 (Fig. 3B): λ ≈ 4 A cot α, A peak-to-peak", "ratio 1", "ratio ≈ 1",

@@ -85,16 +85,17 @@ std::string phaseDiagram(const Ctx& c, const std::string& name, const std::strin
     table += "| " + num(g) + " | " + num(k.alpha) + " | " + r.pattern + " | " + th + (ok ? "" : " **≠**") + " |\n";
   }
   Axes ax;
-  ax.title = "Fig. 3D: phase diagram (" + variant + "); background: Eqs. 12-13";
-  ax.xlabel = "effective gravitropic gain β Lgz / R";
-  ax.ylabel = "plate tilt α (deg)";
+  if (name == "fig3d") ax.panelLabel = "D";  // the SI's variants have no letter of the paper's Fig. 3
+  ax.xlabel = "effective gravitropic gain βL_{gz}/R";
+  ax.ylabel = "plate tilt α [deg]";
   ax.autoX = ax.autoY = false;
-  ax.xmin = 0;
-  ax.xmax = 10.5;
+  ax.logX = true;  // the gains are spaced 1, 2, 5, 10
+  ax.xmin = 0.35;
+  ax.xmax = 14;
   ax.ymin = -3;
   ax.ymax = 93;
   std::vector<double> g, a12, a13;
-  for (double x = 0.05; x <= 10.6; x += 0.05) {
+  for (double x = 0.35; x <= 14.01; x *= 1.02) {
     Model m;
     m.tropism.beta = x * m.rod.radius / m.growth.zoneLength;
     const Theory t = theoryFor(m);
@@ -118,17 +119,18 @@ std::string phaseDiagram(const Ctx& c, const std::string& name, const std::strin
   band(mid, a13, paletteColor(4), "waving (theory)");
   band(a13, top, paletteColor(2), "coiling (theory)");
   const char* pats[] = {"straight", "waving", "coiling", "skewing"};
-  const char marks[] = {'o', 's', '^', 'x'};
+  const char marks[] = {'s', 'D', '>', 'o'};  // the paper's symbols: square straight, diamond waving, triangle coiling
   for (int i = 0; i < 4; ++i)
     if (byPattern.count(pats[i]))
       ax.series.push_back(points(byPattern[pats[i]].first, byPattern[pats[i]].second, 7, marks[i],
                                  std::string("simulated: ") + pats[i]));
   ax.legendPos = "ne";
   Figure f;
+  f.title = "Fig. 3D: phase diagram (" + variant + "); background: Eqs. 12–13";
   f.width = 950;
   f.height = 720;
   f.axes.push_back(ax);
-  saveFigure(f, (fs::path(c.opt.out) / name).string());
+  saveFigure(f, (fs::path(c.opt.out) / name).string(), c.save());
   c.claims->push_back({"Fig. 3D (" + variant + "): simulated patterns follow Eqs. 12-13", "the regions of Eqs. 12-13",
                        name == "fig3d" ? "good agreement" : "no qualitative difference (SI 7)",
                        std::to_string(agree) + " of " + std::to_string(total) + " cells agree; " +

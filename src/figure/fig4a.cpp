@@ -31,23 +31,28 @@ std::string fig4a(const Ctx& c) {
   Figure f;
   f.cols = static_cast<int>(cs.size());
   f.width = 220 * f.cols + 40;
-  f.height = 780;
   f.title = "Fig. 4A: skewing with intrinsic twist (α = 30°, β = 0.2, γ = 0.1)";
+  {
+    Axes sample;
+    sample.title = "ω";
+    fitHeight(f, sample, plateAspect(win), 420, 1000);
+  }
   std::string table = "| R τ | ω T0 | skew ⟨θ⟩ (deg) | pattern |\n|---|---|---|---|\n";
   std::vector<double> skews;
   for (size_t i = 0; i < cs.size(); ++i) {
     const RunResult r = result(c, cs[i]);
     Axes ax;
-    ax.panelLabel = std::string(1, static_cast<char>('a' + i));
-    ax.title = "R τ = " + num(cs[i].rTau);
-    ax.xlabel = "ω T0 = " + fmt3(val(r, "omega_T0"));
-    addRoot(c, f, ax, *finals[i], cs[i], win, paletteColor(static_cast<int>(i)));
+    if (i == 0) ax.panelLabel = "A";
+    ax.title = "ωT_0 = " + fmt3(val(r, "omega_T0"));
+    ax.xlabel = "lateral [mm]";
+    if (i == 0) ax.ylabel = "downhill [mm]";
+    addRoot(f, ax, *finals[i], cs[i], win);
     f.axes.push_back(ax);
     skews.push_back(std::abs(val(r, "skew_deg")));
     table += "| " + num(cs[i].rTau) + " | " + fmt3(val(r, "omega_T0")) + " | " + fmt3(val(r, "skew_deg")) + " | " +
              r.pattern + " |\n";
   }
-  saveFigure(f, (fs::path(c.opt.out) / "fig4a").string());
+  saveFigure(f, (fs::path(c.opt.out) / "fig4a").string(), c.save());
   bool grows = skews.back() > skews.front() + 5;
   c.claims->push_back({"Fig. 4A: intrinsic twist makes the root skew; skew grows with ω T0", "—", "skew grows with ω T0",
                        "skew magnitude from " + fmt3(skews.front()) + "° (τ = 0) to " + fmt3(skews.back()) + "°",

@@ -26,8 +26,8 @@ std::string fig4g(const Ctx& c) {
       if (t > 0) cs.push_back(Case{a, 0.2, 0.1, t, false, c.opt.quick ? 12.0 : 20.0});
   runCases(c, cs);
   Axes ax;
-  ax.title = "Fig. 4G: skewing angle vs apex twist rate";
-  ax.xlabel = "ω T0 R / Lgz";
+  ax.panelLabel = "G";
+  ax.xlabel = "ωT_0 · R/L_{gz}";
   ax.ylabel = "sin⟨θ⟩ / tan α";
   std::string table = "| α | R τ | ω T0 | skew (deg) | sin⟨θ⟩ / tan α |\n|---|---|---|---|---|\n";
   double xmax = 0, largeRatio = NAN, largeWT = 0;
@@ -51,17 +51,18 @@ std::string fig4g(const Ctx& c) {
     gx.push_back(x);
     g14.push_back(x * 10.0);  // Eq. 14: sin<theta>/tan(alpha) = omega T0 = x Lgz / R
   }
-  ax.series.push_back(line(gx, g14, 2, "Eq. 14 (ω T0 ≪ 1)", true));
-  ax.series.push_back(line({0, 1.1 * xmax}, {1, 1}, 7, "Eq. 15 (ω T0 ≫ 1)", true));
+  ax.series.push_back(line(gx, g14, 2, "Eq. 14 (ωT_0 ≪ 1)", true));
+  ax.series.push_back(line({0, 1.1 * xmax}, {1, 1}, 7, "Eq. 15 (ωT_0 ≫ 1)", true));
   ax.autoY = false;
   ax.ymin = -0.05;
   ax.ymax = 1.5;
   ax.legendPos = "se";
   Figure f;
+  f.title = "Fig. 4G: skewing angle vs apex twist rate";
   f.width = 800;
   f.height = 620;
   f.axes.push_back(ax);
-  saveFigure(f, (fs::path(c.opt.out) / "fig4g").string());
+  saveFigure(f, (fs::path(c.opt.out) / "fig4g").string(), c.save());
   c.claims->push_back({"Eq. 15: sin⟨θ⟩ → tan α for ω T0 ≫ 1", "ratio 1", "≈ 1 (Fig. 4G)",
                        "sin⟨θ⟩ / tan α = " + fmt3(largeRatio) + " at ω T0 = " + fmt3(largeWT), kRatioTol,
                        within(largeRatio, kRatioLo, kRatioHi)});

@@ -35,12 +35,12 @@ constexpr Panel kPanels[] = {
     {"fig2a", fig2a}, {"fig2b", fig2b}, {"fig2cde", fig2cde}, {"fig3a", fig3a}, {"fig3b", fig3b}, {"fig3d", fig3d},
     {"fig3d_gamma1", fig3dGamma1}, {"fig3d_apical", fig3dApical}, {"fig4a", fig4a}, {"fig4g", fig4g}};
 
-// a figure folder: marker .rootsim-figures, the panels (PNG, SVG), report.md and the runs/ sweep folder
+// a figure folder: marker .rootsim-figures, the panels (PDF, SVG, PNG), report.md and the runs/ sweep folder
 bool isFigureEntry(const fs::path& dir, const std::string& name) {
   if (name == ".rootsim-figures" || name == "report.md" || name == "report.md.tmp") return true;
   if (name == "runs") return whyNotOurs(dir / name, sweepFolder()).empty();
   for (const auto& n : figureNames())
-    for (const char* ext : {".png", ".svg", ".png.tmp", ".svg.tmp"})
+    for (const char* ext : {".png", ".svg", ".pdf", ".png.tmp", ".svg.tmp", ".pdf.tmp"})
       if (name == n + ext) return true;
   return false;
 }
@@ -80,7 +80,7 @@ std::string makeFigure(const std::string& name, const FigureOptions& opt,
   claimFolder(out, figuresFolder(), rule, "--out", false);
   std::vector<std::string> writes;
   for (const auto& n : names)
-    if (name == "all" || name == n) writes.insert(writes.end(), {n + ".png", n + ".svg"});
+    if (name == "all" || name == n) writes.insert(writes.end(), {n + ".png", n + ".svg", n + ".pdf"});
   if (name == "all") writes.push_back("report.md");
   std::error_code ec;
   for (const std::string& f : writes)
@@ -137,10 +137,8 @@ std::string makeFigure(const std::string& name, const FigureOptions& opt,
           report += "- **" + cl.what + "**: measured " + cl.measured + " against " + cl.theory + " (tolerance " +
                     cl.tolerance + "). " + (cl.note.empty() ? "" : cl.note) + "\n";
     }
-    report += std::string("\nRoots are drawn ") +
-              (opt.renderTile ? "by the OSMesa renderer (tube with +d1 pink / -d1 orange stripes)"
-                              : "as centreline strokes of width 2R (this rootsim was built without the renderer)") +
-              ".\n\n" + sections;
+    report += "\nRoots are drawn as vector paths seen from above: the tube's outline, shading bands and the +d1 "
+              "(pink) / -d1 (orange) stripes where they face the viewer.\n\n" + sections;
     writeFileAtomic(fs::path(opt.out) / "report.md", report);
     return report;
   }

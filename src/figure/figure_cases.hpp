@@ -36,6 +36,8 @@ struct Ctx {
   double dt() const { return opt.quick ? 0.1 : 0.05; }  // growth step [h]
   // the phase diagrams' step in alpha [deg]: the tolerance of every transition-angle claim
   double alphaStep() const { return opt.quick ? 15 : 5; }
+  // how the panels are written (resolution, physical size, titles)
+  SaveOptions save() const { return SaveOptions{opt.dpi, opt.widthMm, opt.titles}; }
 };
 
 // short decimal text of a number ("0.2", "40")

@@ -1,5 +1,5 @@
-// Drawing a panel: roots on the plate (plate coordinates of a snapshot, the window that bounds them, a
-// rendered tile or a centreline) and plot series.
+// Drawing a panel: roots on the plate (plate coordinates of a snapshot, the window that bounds them, the
+// root as a vector tube) and plot series.
 #include "panel_draw.hpp"
 
 #include <algorithm>
@@ -26,7 +26,7 @@ void plateCoords(const Snapshot& sn, double alphaDeg, std::vector<double>& x, st
 }  // namespace
 
 PlateWindow boundingWindow(const std::vector<const Snapshot*>& sns, double alphaDeg, double margin, double minHalfWidth) {
-  PlateWindow w{1e9, -1e9, 1e9, -1e9, 0, 0};
+  PlateWindow w{1e9, -1e9, 1e9, -1e9};
   std::vector<double> x, d;
   for (const Snapshot* sn : sns) {
     plateCoords(*sn, alphaDeg, x, d);
@@ -46,8 +46,50 @@ PlateWindow boundingWindow(const std::vector<const Snapshot*>& sns, double alpha
   return w;
 }
 
-void addRoot(const Ctx& c, const Figure& f, Axes& ax, const Snapshot& sn, const Case& k, PlateWindow win, Rgb color) {
-  // widen the window to the plot area's aspect, so a rendered tile fills the axes at one scale
+Tube tubeOf(const Snapshot& sn, double alphaDeg) {
+  const PlateFrame pf = PlateFrame::tilted(alphaDeg * units::deg);
+  const int n = sn.elements();
+  Tube tb;
+  if (n < 1) return tb;
+  const Vec3 view(0, 0, 1);  // the top view: towards the viewer is the plate's normal
+  for (int i = 0; i <= n; ++i) {
+    // the node's frame from its elements' directors, as the raster renderer's rings (render_scene.cpp)
+    Vec3 t = Vec3::Zero(), a = Vec3::Zero();
+    double r = 0;
+    int cnt = 0;
+    for (int e : {i - 1, i}) {
+      if (e < 0 || e >= n) continue;
+      t += pf.dirToPlate(sn.d3.col(e));
+      a += pf.dirToPlate(sn.d1.col(e));
+      r += sn.radius[e];
+      ++cnt;
+    }
+    if (t.norm() < 1e-12) t = Vec3::UnitY();
+    t.normalize();
+    a -= a.dot(t) * t;
+    if (a.norm() < 1e-12) a = t.unitOrthogonal();
+    a.normalize();
+    const Vec3 b = t.cross(a);
+    Vec3 side = view.cross(t);  // across the tube in the plate's plane
+    if (side.norm() < 1e-9) side = a;  // a root pointing at the viewer
+    side.normalize();
+    const Vec3 c = pf.toPlateMm(sn.x.col(i));  // lateral, uphill, height [mm]
+    tb.x.push_back(c.x());
+    tb.y.push_back(-c.y());  // downhill
+    tb.z.push_back(c.z());
+    tb.r.push_back(r / cnt / units::mm);
+    tb.sx.push_back(side.x());
+    tb.sy.push_back(-side.y());
+    auto arr = [](const Vec3& v) { return std::array<double, 3>{v.x(), v.y(), v.z()}; };
+    const double hw = kStripeHalfWidthDeg * units::deg;
+    tb.plus.push_back(visibleStripe(arr(a), arr(b), arr(side), arr(view), hw));
+    tb.minus.push_back(visibleStripe(arr(-a), arr(-b), arr(side), arr(view), hw));
+  }
+  return tb;
+}
+
+void addRoot(const Figure& f, Axes& ax, const Snapshot& sn, const Case& k, PlateWindow win) {
+  // widen the window to the plot area's aspect, so the root fills the axes at one scale
   const double aspect = plotAspect(f, ax);
   const double lw = win.lateralMax - win.lateralMin, dh = win.downhillMax - win.downhillMin;
   if (dh / lw > aspect) {
@@ -60,32 +102,27 @@ void addRoot(const Ctx& c, const Figure& f, Axes& ax, const Snapshot& sn, const 
     win.downhillMax = cy + half;
   }
   ax.equalAspect = true;
+  ax.yDown = true;
   ax.autoX = ax.autoY = false;
   ax.xmin = win.lateralMin;
   ax.xmax = win.lateralMax;
-  ax.ymin = -win.downhillMax;
-  ax.ymax = -win.downhillMin;
-  if (c.opt.renderTile) {
-    PlateWindow px = win;
-    const double mmPerPx = 0.02;  // 50 px per mm
-    px.width = std::max(2, 2 * static_cast<int>(std::lround(0.5 * (win.lateralMax - win.lateralMin) / mmPerPx)));
-    px.height = std::max(2, 2 * static_cast<int>(std::lround(0.5 * (win.downhillMax - win.downhillMin) / mmPerPx)));
-    Raster r = c.opt.renderTile(sn, infoOf(c, k), px);
-    r.x0 = win.lateralMin;
-    r.x1 = win.lateralMax;
-    r.y0 = -win.downhillMax;
-    r.y1 = -win.downhillMin;
-    ax.rasters.push_back(std::move(r));
-    ax.grid = false;
-    return;
-  }
-  Shape2D sh;
-  sh.color = color;
-  sh.width = 0.2;  // 2R [mm]
-  std::vector<double> w;
-  plateCoords(sn, k.alpha, sh.x, w);
-  for (double v : w) sh.y.push_back(-v);
-  ax.shapes.push_back(sh);
+  ax.ymin = win.downhillMin;
+  ax.ymax = win.downhillMax;
+  ax.tubes.push_back(tubeOf(sn, k.alpha));
+}
+
+double plateAspect(const PlateWindow& w) {
+  return (w.downhillMax - w.downhillMin) / (w.lateralMax - w.lateralMin);
+}
+
+void fitHeight(Figure& f, const Axes& sample, double aspect, int lo, int hi) {
+  // the plot area's aspect is linear in the figure's height
+  f.height = 1000;
+  const double a1 = plotAspect(f, sample);
+  f.height = 500;
+  const double a0 = plotAspect(f, sample);
+  const double h = 500 + (aspect - a0) / (a1 - a0) * 500;
+  f.height = std::clamp(static_cast<int>(std::lround(h)), lo, hi);
 }
 
 Series line(std::vector<double> x, std::vector<double> y, int color, std::string label, bool dashed) {

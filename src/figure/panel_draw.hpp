@@ -1,5 +1,5 @@
 #pragma once
-// Drawing a panel: roots on the plate in an axes (at one scale, in a window that bounds them) and the
+// Drawing a panel: roots on the plate in an axes (vector tubes at one scale, in a window that bounds them) and the
 // line and marker series of a plot.
 #include <string>
 #include <vector>
@@ -15,9 +15,22 @@ namespace rootsim::fig {
 // margin, at least minHalfWidth to either side of its centre
 PlateWindow boundingWindow(const std::vector<const Snapshot*>& sns, double alphaDeg, double margin, double minHalfWidth);
 
-// one root on the plate in an axes of f, window win widened to the axes' aspect: a rendered tile (tube
-// with +-d1 stripes) when c has a renderer, otherwise the centreline drawn with the root's width
-void addRoot(const Ctx& c, const Figure& f, Axes& ax, const Snapshot& sn, const Case& k, PlateWindow win, Rgb color);
+// half the angular width of each +-d1 stripe around its director, as the raster renderer draws it
+// (View::stripeHalfWidthDeg, render_scene.hpp)
+inline constexpr double kStripeHalfWidthDeg = 38.0;
+
+// a snapshot seen from above on a plate tilted by alphaDeg: the tube in plate coordinates [mm] (lateral,
+// downhill), each node's side vector and the lateral extents of its +-d1 stripes where they face the viewer
+Tube tubeOf(const Snapshot& sn, double alphaDeg);
+
+// one root on the plate in an axes of f (downhill down, axes in mm), window win widened to the axes' aspect
+void addRoot(const Figure& f, Axes& ax, const Snapshot& sn, const Case& k, PlateWindow win);
+
+// height / width of a plate window
+double plateAspect(const PlateWindow& w);
+// sets f.height (within lo..hi) so that axes like `sample` have a plot area of height / width `aspect`:
+// plate views framed tightly around their roots
+void fitHeight(Figure& f, const Axes& sample, double aspect, int lo, int hi);
 
 // a line of palette colour `color`
 Series line(std::vector<double> x, std::vector<double> y, int color, std::string label, bool dashed = false);

@@ -1,12 +1,15 @@
-// Plots with cairo: one drawing routine, two surfaces (PNG image and SVG).
+// Plots with cairo: one drawing routine, three surfaces (PDF, SVG, and a PNG image rasterised from it).
 #include "rootsim/plot.hpp"
 
+#include <cairo-pdf.h>
 #include <cairo-svg.h>
 #include <cairo.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 
 #include "rootsim/errors.hpp"
@@ -39,6 +42,18 @@ std::vector<double> ticks(double lo, double hi, int target = 6) {
   return t;
 }
 
+// ticks of a log axis over [lo, hi] (lo > 0): 1, 2, 5 per decade
+std::vector<double> logTicks(double lo, double hi) {
+  std::vector<double> t;
+  if (!(hi > lo) || !(lo > 0)) return t;
+  for (int e = static_cast<int>(std::floor(std::log10(lo))) - 1; e <= static_cast<int>(std::ceil(std::log10(hi))); ++e)
+    for (double m : {1.0, 2.0, 5.0}) {
+      const double v = m * std::pow(10.0, e);
+      if (v >= lo * (1 - 1e-9) && v <= hi * (1 + 1e-9)) t.push_back(v);
+    }
+  return t;
+}
+
 std::string tickLabel(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%g", v);
@@ -50,17 +65,84 @@ struct Box { double x, y, w, h; };
 // layout of one axes inside its cell [px]
 constexpr double kLeft = 64, kRight = 14, kTop = 12, kTopTitle = 32, kBottom = 46, kFigureTitle = 34;
 
-void text(cairo_t* cr, double x, double y, const std::string& s, double size, double ax, double ay,
-          bool bold = false, double angle = 0) {
+// a label as runs of text at three levels (0 base, -1 subscript, +1 superscript): _{..} and ^{..}
+struct Run { std::string s; int level; };
+std::vector<Run> parseLabel(const std::string& s) {
+  std::vector<Run> out;
+  auto push = [&](std::string t, int level) {
+    if (t.empty()) return;
+    if (!out.empty() && out.back().level == level) out.back().s += t;
+    else out.push_back({std::move(t), level});
+  };
+  std::string cur;
+  for (size_t i = 0; i < s.size(); ++i) {
+    if ((s[i] == '_' || s[i] == '^') && i + 1 < s.size()) {
+      const int level = s[i] == '_' ? -1 : 1;
+      std::string inner;
+      size_t j = i + 1;
+      if (s[j] == '{') {
+        const size_t close = s.find('}', j);
+        if (close == std::string::npos) { cur += s[i]; continue; }
+        inner = s.substr(j + 1, close - j - 1);
+        j = close;
+      } else {
+        // one character (a whole UTF-8 sequence)
+        size_t k = j + 1;
+        while (k < s.size() && (static_cast<unsigned char>(s[k]) & 0xC0) == 0x80) ++k;
+        inner = s.substr(j, k - j);
+        j = k - 1;
+      }
+      push(cur, 0);
+      cur.clear();
+      push(inner, level);
+      i = j;
+      continue;
+    }
+    cur += s[i];
+  }
+  push(cur, 0);
+  return out;
+}
+
+void setFont(cairo_t* cr, double size, bool bold) {
   cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, bold ? CAIRO_FONT_WEIGHT_BOLD : CAIRO_FONT_WEIGHT_NORMAL);
   cairo_set_font_size(cr, size);
-  cairo_text_extents_t e;
-  cairo_text_extents(cr, s.c_str(), &e);
+}
+
+constexpr double kScriptScale = 0.7;
+// advance width of a label with its markup
+double labelWidth(cairo_t* cr, const std::string& s, double size, bool bold = false) {
+  double w = 0;
+  for (const Run& r : parseLabel(s)) {
+    setFont(cr, r.level ? kScriptScale * size : size, bold);
+    cairo_text_extents_t e;
+    cairo_text_extents(cr, r.s.c_str(), &e);
+    w += e.x_advance;
+  }
+  return w;
+}
+
+// a label anchored at (x, y): ax, ay in 0..1 of its width and of its cap height (0: left / top)
+void text(cairo_t* cr, double x, double y, const std::string& s, double size, double ax, double ay,
+          bool bold = false, double angle = 0) {
+  if (s.empty()) return;
+  const double w = labelWidth(cr, s, size, bold);
+  const double capH = 0.73 * size;  // DejaVu Sans cap height
   cairo_save(cr);
   cairo_translate(cr, x, y);
   cairo_rotate(cr, angle);
-  cairo_move_to(cr, -ax * e.width - e.x_bearing, -ay * e.height - e.y_bearing);
-  cairo_show_text(cr, s.c_str());
+  double pen = -ax * w;
+  const double base = (1 - ay) * capH;
+  for (const Run& r : parseLabel(s)) {
+    const double sz = r.level ? kScriptScale * size : size;
+    setFont(cr, sz, bold);
+    const double shift = r.level < 0 ? 0.22 * size : r.level > 0 ? -0.38 * size : 0.0;
+    cairo_move_to(cr, pen, base + shift);
+    cairo_show_text(cr, r.s.c_str());
+    cairo_text_extents_t e;
+    cairo_text_extents(cr, r.s.c_str(), &e);
+    pen += e.x_advance;
+  }
   cairo_restore(cr);
 }
 
@@ -70,10 +152,110 @@ void marker(cairo_t* cr, char m, double x, double y, double r) {
     case '^':
       cairo_move_to(cr, x, y - 1.2 * r); cairo_line_to(cr, x + r, y + 0.8 * r); cairo_line_to(cr, x - r, y + 0.8 * r);
       cairo_close_path(cr); cairo_fill(cr); break;
+    case '>':
+      cairo_move_to(cr, x + 1.2 * r, y); cairo_line_to(cr, x - 0.8 * r, y + r); cairo_line_to(cr, x - 0.8 * r, y - r);
+      cairo_close_path(cr); cairo_fill(cr); break;
+    case 'D':
+      cairo_move_to(cr, x, y - 1.3 * r); cairo_line_to(cr, x + r, y); cairo_line_to(cr, x, y + 1.3 * r);
+      cairo_line_to(cr, x - r, y); cairo_close_path(cr); cairo_fill(cr); break;
     case 'x':
       cairo_move_to(cr, x - r, y - r); cairo_line_to(cr, x + r, y + r);
       cairo_move_to(cr, x - r, y + r); cairo_line_to(cr, x + r, y - r); cairo_stroke(cr); break;
     default: cairo_arc(cr, x, y, r, 0, 2 * units::pi); cairo_fill(cr);
+  }
+}
+
+// a path along the tube between nodes i0..i1 at lateral offsets u0(i), u1(i) (units of r): forward along
+// u0, back along u1
+template <class FX, class FY, class U0, class U1>
+void strip(cairo_t* cr, const Tube& t, size_t i0, size_t i1, FX X, FY Y, U0 u0, U1 u1) {
+  for (size_t i = i0; i <= i1; ++i) {
+    const double u = u0(i) * t.r[i];
+    (i == i0 ? cairo_move_to : cairo_line_to)(cr, X(t.x[i] + u * t.sx[i]), Y(t.y[i] + u * t.sy[i]));
+  }
+  for (size_t i = i1 + 1; i-- > i0;) {
+    const double u = u1(i) * t.r[i];
+    cairo_line_to(cr, X(t.x[i] + u * t.sx[i]), Y(t.y[i] + u * t.sy[i]));
+  }
+  cairo_close_path(cr);
+}
+
+Rgb mixRgb(const Rgb& c, const Rgb& d, double f) {
+  return {c[0] + f * (d[0] - c[0]), c[1] + f * (d[1] - c[1]), c[2] + f * (d[2] - c[2])};
+}
+
+// a tube seen from above: pieces of a few elements, lowest first (a coil's upper strand covers the lower);
+// each piece: the body in nested shading bands (darker at the flanks), the visible stripes, the flanks'
+// outline; the tip's cap closes the last piece
+template <class FX, class FY>
+void drawTube(cairo_t* cr, const Tube& t, FX X, FY Y, double unit) {
+  const size_t n = t.x.size();
+  if (n < 2 || t.y.size() != n || t.r.size() != n || t.sx.size() != n || t.sy.size() != n) return;
+  const bool haveZ = t.z.size() == n, haveStripes = t.plus.size() == n && t.minus.size() == n;
+  constexpr size_t kPiece = 4;  // elements per piece
+  std::vector<std::pair<size_t, size_t>> pieces;
+  for (size_t i = 0; i + 1 < n; i += kPiece) pieces.push_back({i, std::min(n - 1, i + kPiece)});
+  auto height = [&](const std::pair<size_t, size_t>& p) {
+    if (!haveZ) return 0.0;
+    double h = 0;
+    for (size_t i = p.first; i <= p.second; ++i) h += t.z[i];
+    return h / static_cast<double>(p.second - p.first + 1);
+  };
+  std::stable_sort(pieces.begin(), pieces.end(), [&](const auto& p, const auto& q) { return height(p) < height(q); });
+  const Rgb outline = mixRgb(t.body, {0, 0, 0}, 0.62);
+  // shading bands: half widths (units of r) and their colour, outermost (darkest) first
+  const double bands[] = {1.0, 0.82, 0.58, 0.3};
+  const double shade[] = {0.34, 0.18, 0.07, 0.0};
+  const double lw = std::max(0.6, 0.08 * unit * t.r[0]);
+  for (const auto& [i0, i1] : pieces) {
+    const bool tip = i1 == n - 1;
+    for (int b = 0; b < 4; ++b) {
+      const Rgb c = mixRgb(t.body, {0.35, 0.3, 0.22}, shade[b]);
+      cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+      const double h = bands[b];
+      strip(cr, t, i0, i1, X, Y, [&](size_t) { return -h; }, [&](size_t) { return h; });
+      cairo_fill(cr);
+      if (tip) {  // the cap: a disc of the band's width at the tip
+        cairo_arc(cr, X(t.x[n - 1]), Y(t.y[n - 1]), h * t.r[n - 1] * unit, 0, 2 * units::pi);
+        cairo_fill(cr);
+      }
+    }
+    if (haveStripes) {
+      for (int k = 0; k < 2; ++k) {
+        const auto& sp = k ? t.minus : t.plus;
+        const Rgb& c = k ? t.minusColor : t.plusColor;
+        cairo_set_source_rgb(cr, c[0], c[1], c[2]);
+        // runs of nodes where the stripe is seen
+        size_t i = i0;
+        while (i <= i1) {
+          while (i <= i1 && !std::isfinite(sp[i][0])) ++i;
+          size_t j = i;
+          while (j + 1 <= i1 && std::isfinite(sp[j + 1][0])) ++j;
+          if (i <= i1 && j > i) {
+            strip(cr, t, i, j, X, Y, [&](size_t m) { return sp[m][0]; }, [&](size_t m) { return sp[m][1]; });
+            cairo_fill(cr);
+          }
+          i = j + 1;
+        }
+      }
+    }
+    cairo_set_source_rgb(cr, outline[0], outline[1], outline[2]);
+    cairo_set_line_width(cr, lw);
+    for (double side : {-1.0, 1.0}) {
+      for (size_t i = i0; i <= i1; ++i) {
+        const double u = side * t.r[i];
+        (i == i0 ? cairo_move_to : cairo_line_to)(cr, X(t.x[i] + u * t.sx[i]), Y(t.y[i] + u * t.sy[i]));
+      }
+      cairo_stroke(cr);
+    }
+    if (tip) {
+      // the cap's outline: the half circle ahead of the tip
+      const double dx = X(t.x[n - 1]) - X(t.x[n - 2]), dy = Y(t.y[n - 1]) - Y(t.y[n - 2]);
+      const double ang = std::atan2(dy, dx);
+      cairo_new_sub_path(cr);
+      cairo_arc(cr, X(t.x[n - 1]), Y(t.y[n - 1]), t.r[n - 1] * unit, ang - 0.5 * units::pi, ang + 0.5 * units::pi);
+      cairo_stroke(cr);
+    }
   }
 }
 
@@ -88,12 +270,13 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
     };
     for (const auto& s : a.series) for (size_t i = 0; i < s.x.size(); ++i) see(s.x[i], s.y[i]);
     for (const auto& s : a.shapes) for (size_t i = 0; i < s.x.size(); ++i) see(s.x[i], s.y[i]);
-    for (const auto& r : a.rasters) { see(r.x0, r.y0); see(r.x1, r.y1); }
+    for (const auto& s : a.tubes) for (size_t i = 0; i < s.x.size(); ++i) see(s.x[i], s.y[i]);
     if (!std::isfinite(lx)) { lx = 0; hx = 1; ly = 0; hy = 1; }
     if (hx - lx < 1e-12) { lx -= 0.5; hx += 0.5; }
     if (hy - ly < 1e-12) { ly -= 0.5; hy += 0.5; }
     const double px = 0.04 * (hx - lx), py = 0.06 * (hy - ly);
-    if (a.autoX) { x0 = lx - px; x1 = hx + px; }
+    if (a.autoX && a.logX && lx > 0) { x0 = lx / 1.25; x1 = hx * 1.25; }
+    else if (a.autoX) { x0 = lx - px; x1 = hx + px; }
     if (a.autoY) { y0 = ly - py; y1 = hy + py; }
   }
   const double L = box.x + kLeft, R = box.x + box.w - kRight, T = box.y + (a.title.empty() ? kTop : kTopTitle),
@@ -105,15 +288,18 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
     if (sx > sy) { const double c = 0.5 * (x0 + x1), h = 0.5 * pw / sy; x0 = c - h; x1 = c + h; }
     else { const double c = 0.5 * (y0 + y1), h = 0.5 * ph / sx; y0 = c - h; y1 = c + h; }
   }
-  auto X = [&](double x) { return L + (x - x0) / (x1 - x0) * pw; };
-  auto Y = [&](double y) { return B - (y - y0) / (y1 - y0) * ph; };
+  const bool logX = a.logX && x0 > 0 && x1 > x0;
+  auto X = [&](double x) {
+    return logX ? L + std::log(x / x0) / std::log(x1 / x0) * pw : L + (x - x0) / (x1 - x0) * pw;
+  };
+  auto Y = [&](double y) { return a.yDown ? T + (y - y0) / (y1 - y0) * ph : B - (y - y0) / (y1 - y0) * ph; };
   const double unit = pw / (x1 - x0);  // pixels per data unit along x
 
   // frame, grid, ticks
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_rectangle(cr, L, T, pw, ph);
   cairo_fill(cr);
-  const auto xt = a.frameOnly ? std::vector<double>{} : ticks(x0, x1);
+  const auto xt = a.frameOnly ? std::vector<double>{} : logX ? logTicks(x0, x1) : ticks(x0, x1);
   const auto yt = a.frameOnly ? std::vector<double>{} : ticks(y0, y1, 5);
   cairo_set_line_width(cr, 0.8);
   for (double v : xt) {
@@ -147,33 +333,6 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
     cairo_close_path(cr);
     cairo_fill(cr);
   }
-  for (const auto& r : a.rasters) {
-    if (r.width <= 0 || r.height <= 0 || r.rgba.size() != static_cast<size_t>(4 * r.width * r.height)) continue;
-    // cairo wants premultiplied BGRA (native-endian ARGB32)
-    cairo_surface_t* img = cairo_image_surface_create(CAIRO_FORMAT_ARGB32, r.width, r.height);
-    unsigned char* d = cairo_image_surface_get_data(img);
-    const int stride = cairo_image_surface_get_stride(img);
-    cairo_surface_flush(img);
-    for (int yy = 0; yy < r.height; ++yy)
-      for (int xx = 0; xx < r.width; ++xx) {
-        const unsigned char* p = &r.rgba[static_cast<size_t>(4 * (yy * r.width + xx))];
-        unsigned char* q = d + yy * stride + 4 * xx;
-        const unsigned a8 = p[3];
-        q[0] = static_cast<unsigned char>(p[2] * a8 / 255);
-        q[1] = static_cast<unsigned char>(p[1] * a8 / 255);
-        q[2] = static_cast<unsigned char>(p[0] * a8 / 255);
-        q[3] = static_cast<unsigned char>(a8);
-      }
-    cairo_surface_mark_dirty(img);
-    cairo_save(cr);
-    cairo_translate(cr, X(r.x0), Y(r.y1));
-    cairo_scale(cr, (X(r.x1) - X(r.x0)) / r.width, (Y(r.y0) - Y(r.y1)) / r.height);
-    cairo_set_source_surface(cr, img, 0, 0);
-    cairo_pattern_set_filter(cairo_get_source(cr), CAIRO_FILTER_GOOD);
-    cairo_paint(cr);
-    cairo_restore(cr);
-    cairo_surface_destroy(img);
-  }
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
   for (const auto& s : a.shapes) {
@@ -182,6 +341,7 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
     for (size_t i = 0; i < s.x.size(); ++i) (i ? cairo_line_to : cairo_move_to)(cr, X(s.x[i]), Y(s.y[i]));
     cairo_stroke(cr);
   }
+  for (const auto& tb : a.tubes) drawTube(cr, tb, X, Y, unit);
   for (const auto& s : a.series) {
     cairo_set_source_rgb(cr, s.color[0], s.color[1], s.color[2]);
     cairo_set_line_width(cr, s.width);
@@ -212,20 +372,10 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
   for (const auto& fl : a.fills) n += !fl.label.empty();
   if (n > 0 && a.legendPos != "none") {
     double w = 0;
-    cairo_select_font_face(cr, "DejaVu Sans", CAIRO_FONT_SLANT_NORMAL, CAIRO_FONT_WEIGHT_NORMAL);
-    cairo_set_font_size(cr, 12);
-    for (const auto& s : a.series) {
-      if (s.label.empty()) continue;
-      cairo_text_extents_t e;
-      cairo_text_extents(cr, s.label.c_str(), &e);
-      w = std::max(w, e.x_advance);
-    }
-    for (const auto& fl : a.fills) {
-      if (fl.label.empty()) continue;
-      cairo_text_extents_t e;
-      cairo_text_extents(cr, fl.label.c_str(), &e);
-      w = std::max(w, e.x_advance);
-    }
+    for (const auto& s : a.series)
+      if (!s.label.empty()) w = std::max(w, labelWidth(cr, s.label, 12));
+    for (const auto& fl : a.fills)
+      if (!fl.label.empty()) w = std::max(w, labelWidth(cr, fl.label, 12));
     const double bw = w + 44, bh = 18.0 * n + 8;
     const double lx = a.legendPos[1] == 'w' ? L + 8 : R - bw - 8;
     const double ly = a.legendPos[0] == 's' ? B - bh - 8 : T + 8;
@@ -290,33 +440,104 @@ double plotAspect(const Figure& f, const Axes& a) {
   return ph / pw;
 }
 
-void saveFigure(const Figure& f, const std::string& base) {
-  const fs::path png = base + ".png", svg = base + ".svg";
-  const fs::path pngTmp = base + ".png.tmp", svgTmp = base + ".svg.tmp";
-  {
-    cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, f.width, f.height);
-    cairo_t* cr = cairo_create(s);
-    drawFigure(cr, f);
-    cairo_destroy(cr);
-    const cairo_status_t st = cairo_surface_write_to_png(s, pngTmp.c_str());
-    cairo_surface_destroy(s);
-    check(st, "writing " + pngTmp.string());
+namespace {
+std::uint32_t crc32(const unsigned char* p, size_t n, std::uint32_t c = 0xFFFFFFFFu) {
+  for (size_t i = 0; i < n; ++i) {
+    c ^= p[i];
+    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
   }
-  {
-    cairo_surface_t* s = cairo_svg_surface_create(svgTmp.c_str(), f.width, f.height);
-    check(cairo_surface_status(s), "creating " + svgTmp.string());
+  return c;
+}
+void be32(std::string& s, std::uint32_t v) {
+  for (int k = 3; k >= 0; --k) s += static_cast<char>((v >> (8 * k)) & 0xFF);
+}
+cairo_status_t appendBytes(void* closure, const unsigned char* data, unsigned int length) {
+  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
+  return CAIRO_STATUS_SUCCESS;
+}
+// the PNG cairo writes with a pHYs chunk (pixels per metre) after its IHDR
+std::string withPhys(const std::string& png, double dpi) {
+  constexpr size_t kIhdrEnd = 8 + 4 + 4 + 13 + 4;  // signature, IHDR length, type, data, CRC
+  if (png.size() < kIhdrEnd || png.compare(12, 4, "IHDR") != 0) return png;
+  const auto ppm = static_cast<std::uint32_t>(std::lround(dpi / 0.0254));
+  std::string chunk = "pHYs";
+  be32(chunk, ppm);
+  be32(chunk, ppm);
+  chunk += '\x01';  // unit: metre
+  std::string out = png.substr(0, kIhdrEnd);
+  be32(out, 9);
+  out += chunk;
+  be32(out, crc32(reinterpret_cast<const unsigned char*>(chunk.data()), chunk.size()) ^ 0xFFFFFFFFu);
+  out += png.substr(kIhdrEnd);
+  return out;
+}
+}  // namespace
+
+void saveFigure(const Figure& fig, const std::string& base, const SaveOptions& so) {
+  Figure f = fig;
+  if (!so.titles) f.title.clear();
+  if (!(so.dpi > 0) || so.widthMm < 0) throw RunError("figure: --dpi must be positive and --width-mm not negative");
+  const double inches = so.widthMm > 0 ? so.widthMm / 25.4 : f.width / 96.0;
+  const double pt = inches * 72.0 / f.width;  // points per layout unit (PDF, SVG)
+  const fs::path png = base + ".png", svg = base + ".svg", pdf = base + ".pdf";
+  const fs::path pngTmp = base + ".png.tmp", svgTmp = base + ".svg.tmp", pdfTmp = base + ".pdf.tmp";
+  auto vector = [&](cairo_surface_t* s, const fs::path& tmp) {
+    check(cairo_surface_status(s), "creating " + tmp.string());
     cairo_t* cr = cairo_create(s);
+    cairo_scale(cr, pt, pt);
     drawFigure(cr, f);
     cairo_destroy(cr);
     cairo_surface_finish(s);
     const cairo_status_t st = cairo_surface_status(s);
     cairo_surface_destroy(s);
-    check(st, "writing " + svgTmp.string());
+    check(st, "writing " + tmp.string());
+  };
+  vector(cairo_pdf_surface_create(pdfTmp.c_str(), f.width * pt, f.height * pt), pdfTmp);
+  vector(cairo_svg_surface_create(svgTmp.c_str(), f.width * pt, f.height * pt), svgTmp);
+  {
+    const int w = std::max(1, static_cast<int>(std::lround(inches * so.dpi)));
+    const double scale = static_cast<double>(w) / f.width;
+    const int h = std::max(1, static_cast<int>(std::lround(f.height * scale)));
+    cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
+    cairo_t* cr = cairo_create(s);
+    cairo_scale(cr, scale, scale);
+    drawFigure(cr, f);
+    cairo_destroy(cr);
+    std::string bytes;
+    const cairo_status_t st = cairo_surface_write_to_png_stream(s, appendBytes, &bytes);
+    cairo_surface_destroy(s);
+    check(st, "encoding " + pngTmp.string());
+    std::ofstream o(pngTmp, std::ios::binary);
+    o << withPhys(bytes, so.dpi);
+    o.close();
+    if (!o) throw RunError("cannot write " + pngTmp.string());
   }
   std::error_code ec;
   fs::rename(pngTmp, png, ec);
   if (!ec) fs::rename(svgTmp, svg, ec);
-  if (ec) throw RunError("cannot rename figure files to " + base + ".{png,svg}: " + ec.message());
+  if (!ec) fs::rename(pdfTmp, pdf, ec);
+  if (ec) throw RunError("cannot rename figure files to " + base + ".{png,svg,pdf}: " + ec.message());
+}
+
+std::array<double, 2> visibleStripe(const std::array<double, 3>& a, const std::array<double, 3>& b,
+                                    const std::array<double, 3>& side, const std::array<double, 3>& view,
+                                    double halfWidthRad) {
+  auto dot = [](const std::array<double, 3>& p, const std::array<double, 3>& q) {
+    return p[0] * q[0] + p[1] * q[1] + p[2] * q[2];
+  };
+  const double an = dot(a, view), bn = dot(b, view), as = dot(a, side), bs = dot(b, side);
+  constexpr int kSamples = 48;
+  double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (int k = 0; k <= kSamples; ++k) {
+    const double phi = -halfWidthRad + 2 * halfWidthRad * k / kSamples;
+    const double c = std::cos(phi), sn = std::sin(phi);
+    if (c * an + sn * bn <= 0) continue;  // faces away from the viewer
+    const double u = c * as + sn * bs;
+    lo = std::min(lo, u);
+    hi = std::max(hi, u);
+  }
+  if (!(hi >= lo)) return {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
+  return {lo, hi};
 }
 
 }  // namespace rootsim

@@ -12,7 +12,8 @@ pkgs=(cmake ninja-build g++ pkg-config
       clang libclang-rt-dev             # sanitizer + libFuzzer build (.ci/run, scripts/fuzz.sh)
       slurm-wlm munge                   # tests/slurm/run.sh: a sweep through a single-node SLURM
       python3-vtk9                      # tests/vtk_read.py: VTK's own reader reads the .vtp files
-      mkdocs)                           # the docs site (ctest docs_site_builds)
+      mkdocs                            # the docs site (ctest docs_site_builds)
+      poppler-utils)                    # tests/test_figure.cpp: pdftotext, pdfimages read the PDF panels
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -296,8 +296,8 @@ struct FrameComposer::Impl {
     }
   }
 
-  // the inset's own scale bar (bottom right) and its magnification over the view (top left), each on
-  // a light backing so they read over the grid and the root
+  // the inset's own scale bar and its magnification over the view ("x6"), in its bottom right corner
+  // on a light backing so they read over the grid and the root
   void insetOverlays(const Framing& fv, const Framing& fi, std::vector<OverlayRect>& rects, std::vector<OverlayText>& texts) {
     const float f = std::round(0.8f * overlayFontPx(mainView));
     const float m = 0.5f * f;
@@ -309,18 +309,17 @@ struct FrameComposer::Impl {
     const float barH = std::max(3.0f, std::round(0.22f * f));
     const std::string label = (lenMm >= 1 ? fmt("%.0f", lenMm) : lenMm >= 0.1 ? fmt("%.1f", lenMm) : fmt("%.2f", lenMm)) + " mm";
     const float labelW = painter.textWidth(job.view.fontPath, label, f);
-    const float boxW = std::max(len, labelW) + 2 * m, boxH = barH + 1.35f * f + 2 * m;
-    const float bx = x0 + w - 3 - boxW, by = y0 + h - 3 - boxH;
-    rects.push_back({bx, by, boxW, boxH, {255, 255, 255, 200}});
-    const float barX = std::round(bx + boxW - m - len), barY = std::round(by + boxH - m - barH);
-    rects.push_back({barX, barY, len, barH, kInk});
-    texts.push_back({label, barX + 0.5f * len, barY - 0.3f * f, f, OverlayText::Anchor::BottomCentre});
-    // magnification: the inset's pixels per mm over the view's
+    // magnification: the inset's pixels per mm over the view's, left of the bar in the same box
     const double mag = pxPerMm / (static_cast<double>(layout.viewW) / fv.widthMm);
     const std::string magText = "\xC3\x97" + (mag >= 3 ? fmt("%.0f", mag) : fmt("%.1f", mag));
     const float magW = painter.textWidth(job.view.fontPath, magText, f);
-    rects.push_back({x0 + 3, y0 + 3, magW + 2 * m, f + 2 * m, {255, 255, 255, 200}});
-    texts.push_back({magText, x0 + 3 + m, y0 + 3 + m, f, OverlayText::Anchor::TopLeft});
+    const float boxW = magW + f + std::max(len, labelW) + 2 * m, boxH = barH + 1.35f * f + 2 * m;
+    const float bx = x0 + w - 3 - boxW, by = y0 + h - 3 - boxH;
+    rects.push_back({bx, by, boxW, boxH, {255, 255, 255, 200}});
+    const float barX = std::round(bx + boxW - m - 0.5f * (std::max(len, labelW) + len)), barY = std::round(by + boxH - m - barH);
+    rects.push_back({barX, barY, len, barH, kInk});
+    texts.push_back({label, barX + 0.5f * len, barY - 0.3f * f, f, OverlayText::Anchor::BottomCentre});
+    texts.push_back({magText, bx + m, by + 0.5f * (boxH - f), f, OverlayText::Anchor::TopLeft});
     lastMagnification = mag;
   }
   double lastMagnification = 0.0;

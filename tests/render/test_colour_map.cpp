@@ -57,7 +57,7 @@ TEST_CASE("the diverging map: neutral at 0, blue below, red above, lightness mir
   }
 }
 
-TEST_CASE("signed fields: a symmetric range; kappa1 and kappa2 are the bending components") {
+TEST_CASE("signed fields: a symmetric range, and kappa1 and kappa2 are the bending components") {
   ColourField f{};
   REQUIRE(parseColourField("kappa1", f));
   CHECK(f == ColourField::Kappa1);

@@ -107,7 +107,7 @@ TEST_CASE("downhill arrow: in the top view it points down the picture") {
   CHECK(sumY / n > 0.5 * (y0 + y1));  // and the ink's weight is there
 }
 
-TEST_CASE("downhill arrow in the 3-D view follows the plate's slope; the grid's pitch is stated") {
+TEST_CASE("downhill arrow in the 3-D view follows the plate's slope, and the grid's pitch is stated") {
   const SceneInfo si = rtest::info(40);
   const Snapshot s = rtest::straightRod(40, 20, 2.0, 0.1);
   View v;
@@ -192,7 +192,7 @@ TEST_CASE("inset: its own scale bar and its magnification") {
   const double expected = (l.insetW / plan.inset.back().widthMm) / (l.viewW / plan.view.front().widthMm);
   CHECK(comp.lastInsetMagnification() == doctest::Approx(expected));
   CHECK(expected > 2);
-  // ink in the inset's bottom right (its scale bar) and top left (its "x6"), on a light backing
+  // ink in the inset's bottom right: its scale bar and, left of it, its "x6", on a light backing
   auto inkIn = [&](int x0, int y0, int x1, int y1) {
     int n = 0;
     for (int y = y0; y < y1; ++y)
@@ -200,8 +200,8 @@ TEST_CASE("inset: its own scale bar and its magnification") {
     return n;
   };
   const int side = l.insetW;
-  CHECK(inkIn(l.insetX + side * 2 / 3, l.insetY + side * 4 / 5, l.insetX + side - 4, l.insetY + side - 4) > 60);
-  CHECK(inkIn(l.insetX + 4, l.insetY + 4, l.insetX + side / 4, l.insetY + side / 7) > 20);
+  CHECK(inkIn(l.insetX + side * 3 / 4, l.insetY + side * 4 / 5, l.insetX + side - 4, l.insetY + side - 4) > 60);
+  CHECK(inkIn(l.insetX + side / 3, l.insetY + side * 4 / 5, l.insetX + side * 3 / 4, l.insetY + side - 4) > 20);
   // the legend stays visible: the inset's corner is not on the bottom band's left end
   CHECK(l.insetY + l.insetH < job.view.height - 1.5 * overlayFontPx(job.view));
 }

@@ -74,6 +74,9 @@ class FrameComposer {
   Eigen::Vector2d plotPixel(int series, double timeH, double value) const;
   // the inset's region as drawn on the view in the last composed frame: its 4 corners [px, frame]
   std::vector<Eigen::Vector2d> lastInsetMark() const;
+  // the inset's magnification over the view in the last composed frame (its "x6" label); 0 without
+  // an inset or overlays
+  double lastInsetMagnification() const;
 
  private:
   struct Impl;

@@ -1,5 +1,6 @@
 #pragma once
 // Several runs side by side on one scale and one clock (`rootsim montage`).
+#include <array>
 #include <string>
 #include <vector>
 
@@ -14,7 +15,7 @@ namespace rootsim {
 struct MontageRun {
   std::vector<Snapshot> snaps;  // time ordered
   SceneInfo info;
-  std::string label;            // drawn under the tile (e.g. the parameters that differ)
+  std::string label;            // drawn under the run's root (e.g. the parameters that differ)
 };
 struct MontageJob {
   std::string mp4;        // empty: none
@@ -22,6 +23,7 @@ struct MontageJob {
   View view;              // the whole frame's size; kind, colours, shadows and overlays of every tile
   VideoOptions video;
   RendererOptions renderer;
+  std::string caption;    // one line in the header after the time (e.g. the values all runs share)
 };
 // the montage's clock: every snapshot time of every run, sorted, equal times (within 1e-9 h) merged
 std::vector<double> montageClock(const std::vector<MontageRun>& runs);
@@ -35,7 +37,12 @@ struct MontageLayout {
   int tileW = 0, tileH = 0;   // [px]
   int headerH = 0;            // [px] band with the time at the top
   std::vector<Framing> framing;  // per run
+  float labelPx = 14;         // text height of the labels, the time and the caption [px]
 };
+// where run i's label goes in its tile [px from the tile's top-left corner]: the bottom centre of the
+// text, under the lowest point the run's root reaches in the movie and centred on its lateral extent
+std::array<float, 2> montageLabelAnchor(const MontageRun& run, const View& tileView, const Framing& framing,
+                                        float labelWidthPx, float labelPx);
 MontageLayout montageLayout(const std::vector<MontageRun>& runs, const View& view);
 void renderMontage(const std::vector<MontageRun>& runs, const MontageJob& job, const MovieProgress& progress = {});
 

@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "rootsim/model.hpp"
+
 namespace rootsim::app {
 
 struct MontageOptions {
@@ -22,5 +24,14 @@ struct MontageOptions {
   bool quiet = false;
 };
 int montageRunsCommand(const MontageOptions& o);
+
+// the automatic labels of a montage: per run the scene keys whose values differ, as symbols with units
+// ("α = 40°, β = 0.2"; keys without a symbol as "key = value"), the run's name (dirNames) when nothing
+// differs; and a caption with the paper's parameters all runs share ("β = γ = 0.1, Rτ = 0")
+struct MontageLabels {
+  std::vector<std::string> labels;
+  std::string caption;
+};
+MontageLabels montageLabels(const std::vector<Model>& models, const std::vector<std::string>& dirNames);
 
 }  // namespace rootsim::app

@@ -34,10 +34,14 @@ struct View {
   bool shadows = false;          // the root's shadow on the plate and on itself (shadow map)
   int shadowMapPx = 4096;        // largest shadow map side [px]; the map gets about one texel per
                                  // picture pixel over the root's box, a power of two up to this
-  // overlays (drawn in the top view; the scale bar only there)
+  // overlays, in the margins the framing keeps free (top: time, parameters; bottom left: title, stripe
+  // legend; bottom right: downhill arrow, scale bar; right edge: colour bar)
   bool overlays = true;          // master switch
   bool showTime = true;          // "t = 12.0 h"
-  bool showScaleBar = true;      // a bar of 1, 2, 5, 10 ... mm with its label
+  bool showScaleBar = true;      // top view: a bar of 1, 2, 5, 10 ... mm with its label; 3-D: the grid's
+                                 // pitch ("grid 1 mm")
+  bool showLegend = true;        // a pink swatch "+d1" and an orange one "−d1"
+  bool showDownhill = true;      // an arrow down the plate's slope as the picture shows it, "downhill"
   bool showParams = true;        // alpha, beta, gamma, and R tau when nonzero
   bool showTitle = false;        // SceneInfo::title
   bool showColourBar = true;     // with colourBy: the map, its range and the field's unit
@@ -116,7 +120,8 @@ struct RenderScene {
     std::array<float, 3> colour{0.97f, 0.97f, 0.96f};
     std::array<float, 3> line{0.80f, 0.82f, 0.86f};
     std::array<float, 3> major{0.62f, 0.65f, 0.72f};
-    float lineWidthPx = 1.0f;                          // grid line width [px] (anti-aliased)
+    float lineWidthPx = 1.0f;                          // grid line width [px] (anti-aliased); grows with
+                                                     // the picture: min(width, height) / 1080, >= 1
   } plate;
 
   // shadows: a depth map of the root seen from the key light, sampled by the plate
@@ -135,6 +140,13 @@ struct RenderScene {
 
   double pxPerMm = 0.0;                 // top view scale [px/mm]; 0 in perspective
 };
+
+// the overlay font's pixel height for a view: its shorter side / 26, at least 12
+float overlayFontPx(const View& view);
+// the legend's labels and the downhill arrow's label
+inline constexpr const char* kLegendPlus = "+d1";
+inline constexpr const char* kLegendMinus = "\xE2\x88\x92" "d1";  // U+2212 minus
+inline constexpr const char* kDownhillLabel = "downhill";
 
 // framing for a whole movie: the bounding box of every node of every snapshot in plate (u, v),
 // plus the element radius and View::marginMm on each side, widened to the picture's aspect

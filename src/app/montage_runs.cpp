@@ -2,7 +2,11 @@
 // hand the runs to the renderer library (RenderError, exit 1)
 #include "rootsim/montage_runs.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <iterator>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -24,10 +28,67 @@ namespace rootsim::app {
 
 namespace {
 
-// a label per run: the resolved scene keys whose values differ between the runs (not the output
-// section), "key = value" in the order of the keys' names, obstacles first; a run without the key
-// shows "-"; the run directory's name when nothing differs
-std::vector<std::string> differingLabels(const std::vector<Model>& models, const std::vector<fs::path>& dirs) {
+// scene keys as the paper writes them: symbol, unit (appended to the number), and whether a value all
+// runs share goes into the caption line
+struct KeySymbol {
+  const char* key;
+  const char* symbol;
+  const char* unit;
+  bool caption;
+};
+constexpr KeySymbol kSymbols[] = {
+    {"plane.alpha_deg", "\xCE\xB1", "\xC2\xB0", true},
+    {"tropism.beta", "\xCE\xB2", "", true},
+    {"tropism.gamma", "\xCE\xB3", "", true},
+    {"tropism.twist_r_tau", "R\xCF\x84", "", true},
+    {"growth.growth_zone_mm", "L_gz", " mm", true},
+    {"growth.rate_per_h", "rate", " /h", false},
+    {"root.radius_mm", "R", " mm", false},
+    {"root.initial_length_mm", "L\xE2\x82\x80", " mm", false},
+    {"root.youngs_modulus_mpa", "E", " MPa", false},
+    {"tropism.circumnutation_gain", "\xCE\xBB_cn", "", false},
+    {"tropism.circumnutation_period_h", "T_cn", " h", false},
+    {"friction.mu_static", "\xCE\xBC_s", "", false},
+    {"friction.mu_kinetic", "\xCE\xBC_k", "", false},
+};
+
+const KeySymbol* symbolOf(const std::string& key) {
+  for (const KeySymbol& k : kSymbols)
+    if (key == k.key) return &k;
+  return nullptr;
+}
+
+// a TOML number as a short decimal ("40.0" -> "40", "0.10" -> "0.1"); anything else unchanged
+std::string shortNumber(const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v)) return text;
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.4g", v);
+  return buf;
+}
+
+// "value unit" of key (symbol table), or the TOML text
+std::string valueText(const std::string& key, const std::string& text) {
+  const KeySymbol* k = symbolOf(key);
+  return k ? shortNumber(text) + k->unit : text;
+}
+// "α", or the key without its section ("growth.steps" -> "steps")
+std::string nameOf(const std::string& key) {
+  const KeySymbol* k = symbolOf(key);
+  return k ? k->symbol : key.substr(key.find('.') + 1);
+}
+
+// the table's keys first (in its order), then obstacles, then the rest by name
+int rank(const std::string& key) {
+  for (std::size_t i = 0; i < std::size(kSymbols); ++i)
+    if (key == kSymbols[i].key) return static_cast<int>(i);
+  return key.rfind("obstacle[", 0) == 0 ? 1000 : 2000;
+}
+
+}  // namespace
+
+MontageLabels montageLabels(const std::vector<Model>& models, const std::vector<std::string>& dirNames) {
   std::vector<std::map<std::string, std::string>> keys;
   std::set<std::string> all;
   for (const Model& m : models) {
@@ -37,27 +98,41 @@ std::vector<std::string> differingLabels(const std::vector<Model>& models, const
       all.insert(v.key);
     }
   }
-  std::vector<std::string> differ, obstacles;
+  std::vector<std::string> differ, shared;
   for (const std::string& k : all) {
     if (k.rfind("output.", 0) == 0) continue;
     std::set<std::string> values;
     for (const auto& m : keys) values.insert(m.count(k) ? m.at(k) : "-");
-    if (values.size() > 1) (k.rfind("obstacle[", 0) == 0 ? obstacles : differ).push_back(k);
+    if (values.size() > 1)
+      differ.push_back(k);
+    else if (const KeySymbol* s = symbolOf(k); s && s->caption)
+      shared.push_back(k);
   }
-  differ.insert(differ.begin(), obstacles.begin(), obstacles.end());
-  std::vector<std::string> labels;
-  for (std::size_t i = 0; i < dirs.size(); ++i) {
+  auto byRank = [](const std::string& a, const std::string& b) {
+    return std::make_pair(rank(a), a) < std::make_pair(rank(b), b);
+  };
+  std::sort(differ.begin(), differ.end(), byRank);
+  std::sort(shared.begin(), shared.end(), byRank);
+  MontageLabels out;
+  for (std::size_t i = 0; i < models.size(); ++i) {
     std::string l;
-    for (const std::string& k : differ) {
-      const std::string shortKey = k.substr(k.find('.') + 1);
-      l += (l.empty() ? "" : "  ") + shortKey + " = " + (keys[i].count(k) ? keys[i].at(k) : "-");
-    }
-    labels.push_back(l.empty() ? fs::absolute(dirs[i]).lexically_normal().filename().string() : l);
+    for (const std::string& k : differ)
+      l += (l.empty() ? "" : ", ") + nameOf(k) + " = " + (keys[i].count(k) ? valueText(k, keys[i].at(k)) : "-");
+    out.labels.push_back(l.empty() && i < dirNames.size() ? dirNames[i] : l);
   }
-  return labels;
+  // the shared values once: keys with the same value and unit grouped, "β = γ = 0.1"
+  std::vector<std::pair<std::string, std::string>> groups;  // (names joined, value)
+  for (const std::string& k : shared) {
+    const std::string v = valueText(k, keys.front().at(k));
+    auto it = std::find_if(groups.begin(), groups.end(), [&](const auto& g) { return g.second == v; });
+    if (it == groups.end())
+      groups.emplace_back(nameOf(k), v);
+    else
+      it->first += " = " + nameOf(k);
+  }
+  for (const auto& [names, v] : groups) out.caption += (out.caption.empty() ? "" : ", ") + names + " = " + v;
+  return out;
 }
-
-}  // namespace
 
 int montageRunsCommand(const MontageOptions& o) {
   // every check first: exit 2 before anything is written
@@ -99,7 +174,11 @@ int montageRunsCommand(const MontageOptions& o) {
       throw SceneError("--color-by contact: " + trajectoryPath(d).string() + " has no plate_force_n column");
     runs.push_back(std::move(r));
   }
-  if (labels.empty()) labels = differingLabels(models, dirs);
+  std::vector<std::string> names;
+  for (const fs::path& d : dirs) names.push_back(fs::absolute(d).lexically_normal().filename().string());
+  const MontageLabels automatic = montageLabels(models, names);
+  if (labels.empty()) labels = automatic.labels;
+  job.caption = automatic.caption;
   for (std::size_t i = 0; i < runs.size(); ++i) runs[i].label = labels[i];
   // the write rule, once the flags and the runs are known good: the run directories are read, never written
   WriteRule rule;

@@ -21,6 +21,8 @@ struct FieldName {
 constexpr FieldName kFields[] = {
     {ColourField::Curvature, "curvature", "curvature [1/mm]"},
     {ColourField::Twist, "twist", "twist \xCE\xBA\xE2\x82\x83 [rad/mm]"},
+    {ColourField::Kappa1, "kappa1", "bending \xCE\xBA\xE2\x82\x81 [1/mm]"},
+    {ColourField::Kappa2, "kappa2", "bending \xCE\xBA\xE2\x82\x82 [1/mm]"},
     {ColourField::Kappa0, "kappa0", "intrinsic curvature \xCE\xBA\xE2\x82\x80 [1/mm]"},
     {ColourField::Stretch, "stretch", "stretch \xCE\xBB\xE2\x82\x91 [-]"},
     {ColourField::Contact, "contact", "plate contact force [mN]"},
@@ -74,6 +76,10 @@ std::string colourFieldNames() {
   return s;
 }
 
+bool colourFieldSigned(ColourField f) {
+  return f == ColourField::Twist || f == ColourField::Kappa1 || f == ColourField::Kappa2;
+}
+
 std::string colourFieldLabel(ColourField f) {
   for (const FieldName& n : kFields)
     if (n.f == f) return n.label;
@@ -86,14 +92,20 @@ Eigen::VectorXd nodeField(const Snapshot& s, const SceneInfo& info, ColourField 
     case ColourField::None:
       return Eigen::VectorXd::Zero(n + 1);
     case ColourField::Curvature:
-    case ColourField::Twist: {
+    case ColourField::Twist:
+    case ColourField::Kappa1:
+    case ColourField::Kappa2: {
       // kappa D = log(Q_j Q_{j+1}^T) in material components (rod.cpp), per current Voronoi length
       Eigen::VectorXd v(std::max(n - 1, 0));
       for (int j = 0; j + 1 < n; ++j) {
         const Eigen::Vector3d k = rotationToVector(directors(s, j) * directors(s, j + 1).transpose());
         const double D = 0.5 * ((s.x.col(j + 1) - s.x.col(j)).norm() + (s.x.col(j + 2) - s.x.col(j + 1)).norm());
         const double perMm = units::mm / std::max(D, 1e-300);
-        v[j] = f == ColourField::Curvature ? std::hypot(k.x(), k.y()) * perMm : k.z() * perMm;
+        const double c = f == ColourField::Curvature ? std::hypot(k.x(), k.y())
+                         : f == ColourField::Kappa1  ? k.x()
+                         : f == ColourField::Kappa2  ? k.y()
+                                                     : k.z();
+        v[j] = c * perMm;
       }
       return toNodes(v, n);
     }
@@ -126,7 +138,7 @@ std::array<double, 2> fieldRange(const std::vector<Snapshot>& snaps, const Scene
   std::vector<double> all;
   for (const Snapshot& s : snaps) {
     const Eigen::VectorXd v = nodeField(s, info, f);
-    for (double x : v) all.push_back(f == ColourField::Twist ? std::abs(x) : x);
+    for (double x : v) all.push_back(colourFieldSigned(f) ? std::abs(x) : x);
   }
   double lo = 0.0, hi = 0.0;
   if (f == ColourField::Stretch) {
@@ -135,12 +147,12 @@ std::array<double, 2> fieldRange(const std::vector<Snapshot>& snaps, const Scene
     hi = quantile(all, 0.99);
   } else {
     hi = quantile(all, 0.99);
-    if (f == ColourField::Twist) lo = -hi;
+    if (colourFieldSigned(f)) lo = -hi;
   }
   // a constant field still gets a usable bar
   if (!(hi - lo > 1e-12 * std::max(1.0, std::abs(hi)))) {
     const double pad = std::max(1e-9, 0.05 * std::abs(hi));
-    if (f == ColourField::Stretch || f == ColourField::Twist) lo -= pad;
+    if (f == ColourField::Stretch || colourFieldSigned(f)) lo -= pad;
     hi += pad;
   }
   return {lo, hi};
@@ -162,6 +174,33 @@ std::array<float, 3> viridis(double t) {
     c[static_cast<std::size_t>(k)] = static_cast<float>(a + w * (b - a));
   }
   return c;
+}
+
+std::array<float, 3> coolWarm(double t) {
+  // Moreland's 33 published control points (8-bit sRGB) at t = 0, 1/32, ..., 1; the middle one is
+  // the neutral grey (221, 221, 221)
+  static constexpr unsigned char kStops[33][3] = {
+      {59, 76, 192},   {68, 90, 204},   {77, 104, 215},  {87, 117, 225},  {98, 130, 234},  {108, 142, 241},
+      {119, 154, 247}, {130, 165, 251}, {141, 176, 254}, {152, 185, 255}, {163, 194, 255}, {174, 201, 253},
+      {184, 208, 249}, {194, 213, 244}, {204, 217, 238}, {213, 219, 230}, {221, 221, 221}, {229, 216, 209},
+      {236, 211, 197}, {241, 204, 185}, {245, 196, 173}, {247, 187, 160}, {247, 177, 148}, {247, 166, 135},
+      {244, 154, 123}, {241, 141, 111}, {236, 127, 99},  {229, 112, 88},  {222, 96, 77},   {213, 80, 66},
+      {203, 62, 56},   {192, 40, 47},   {180, 4, 38}};
+  if (!(t >= 0.0)) t = 0.0;  // NaN -> 0
+  t = std::min(t, 1.0);
+  const double x = t * 32.0;
+  const int i = std::min(static_cast<int>(x), 31);
+  const double w = x - i;
+  std::array<float, 3> c{};
+  for (int k = 0; k < 3; ++k)
+    c[static_cast<std::size_t>(k)] =
+        static_cast<float>((kStops[i][k] + w * (kStops[i + 1][k] - kStops[i][k])) / 255.0);
+  return c;
+}
+
+std::array<float, 3> fieldColour(ColourField f, double v, const std::array<double, 2>& range) {
+  const double t = (v - range[0]) / (range[1] - range[0]);
+  return colourFieldSigned(f) ? coolWarm(t) : viridis(t);
 }
 
 }  // namespace rootsim

@@ -43,6 +43,14 @@ double niceStep(double span, int count) {
   return 10 * p;
 }
 
+// a round bar length: 1, 2 or 5 times a power of ten [mm], at most maxMm
+double niceLength(double maxMm) {
+  const double p = std::pow(10.0, std::floor(std::log10(maxMm)));
+  for (double m : {5.0, 2.0, 1.0})
+    if (m * p <= maxMm) return m * p;
+  return p;
+}
+
 // SI prefix for values up to maxAbs: (factor to multiply by, prefix)
 std::pair<double, std::string> siScale(double maxAbs) {
   struct P { int e; const char* s; };
@@ -119,7 +127,9 @@ FramePlan planFrames(const std::vector<Snapshot>& snaps, const SceneInfo& info, 
     const int top = v.overlays ? static_cast<int>((portrait ? 3.4 : 1.9) * font) + m : m;
     const int lowY = v.height - m - side;
     const int barY = v.overlays && v.showScaleBar ? static_cast<int>(2.6 * font) : 0;
-    std::vector<std::array<int, 2>> corners = {{m, lowY}, {m, top}};
+    // the bottom band's left end holds the stripe legend (and the title)
+    const int legendY = v.overlays && (v.showLegend || v.showTitle) ? static_cast<int>(2.2 * font) : 0;
+    std::vector<std::array<int, 2>> corners = {{m, lowY - legendY}, {m, top}};
     if (v.colourBy == ColourField::None || !v.overlays) {
       corners.push_back({v.width - m - side, lowY - barY});
       corners.push_back({v.width - m - side, top});
@@ -286,6 +296,34 @@ struct FrameComposer::Impl {
     }
   }
 
+  // the inset's own scale bar and its magnification over the view ("x6"), in its bottom right corner
+  // on a light backing so they read over the grid and the root
+  void insetOverlays(const Framing& fv, const Framing& fi, std::vector<OverlayRect>& rects, std::vector<OverlayText>& texts) {
+    const float f = std::round(0.8f * overlayFontPx(mainView));
+    const float m = 0.5f * f;
+    const float x0 = static_cast<float>(layout.insetX), y0 = static_cast<float>(layout.insetY);
+    const float w = static_cast<float>(layout.insetW), h = static_cast<float>(layout.insetH);
+    const double pxPerMm = w / fi.widthMm;
+    const double lenMm = niceLength(0.3 * w / pxPerMm);
+    const float len = std::round(static_cast<float>(lenMm * pxPerMm));
+    const float barH = std::max(3.0f, std::round(0.22f * f));
+    const std::string label = (lenMm >= 1 ? fmt("%.0f", lenMm) : lenMm >= 0.1 ? fmt("%.1f", lenMm) : fmt("%.2f", lenMm)) + " mm";
+    const float labelW = painter.textWidth(job.view.fontPath, label, f);
+    // magnification: the inset's pixels per mm over the view's, left of the bar in the same box
+    const double mag = pxPerMm / (static_cast<double>(layout.viewW) / fv.widthMm);
+    const std::string magText = "\xC3\x97" + (mag >= 3 ? fmt("%.0f", mag) : fmt("%.1f", mag));
+    const float magW = painter.textWidth(job.view.fontPath, magText, f);
+    const float boxW = magW + f + std::max(len, labelW) + 2 * m, boxH = barH + 1.35f * f + 2 * m;
+    const float bx = x0 + w - 3 - boxW, by = y0 + h - 3 - boxH;
+    rects.push_back({bx, by, boxW, boxH, {255, 255, 255, 200}});
+    const float barX = std::round(bx + boxW - m - 0.5f * (std::max(len, labelW) + len)), barY = std::round(by + boxH - m - barH);
+    rects.push_back({barX, barY, len, barH, kInk});
+    texts.push_back({label, barX + 0.5f * len, barY - 0.3f * f, f, OverlayText::Anchor::BottomCentre});
+    texts.push_back({magText, bx + m, by + 0.5f * (boxH - f), f, OverlayText::Anchor::TopLeft});
+    lastMagnification = mag;
+  }
+  double lastMagnification = 0.0;
+
   void compose(const Snapshot& snap, int frame, Image& out) {
     const auto pick = [&](const std::vector<Framing>& v) -> const Framing& {
       return v[static_cast<std::size_t>(std::clamp(frame, 0, static_cast<int>(v.size()) - 1))];
@@ -324,6 +362,7 @@ struct FrameComposer::Impl {
         if (mark.size() < 4) mark.push_back(px);
       }
       lines.push_back(region);
+      if (job.view.overlays) insetOverlays(pick(plan.view), fi, rects, texts);
     }
     if (layout.panel) drawPanel(snap.timeH, rects, lines, texts);
     painter.draw(rects, lines, texts, job.view.fontPath, out);
@@ -336,6 +375,7 @@ FrameComposer::~FrameComposer() = default;
 void FrameComposer::compose(const Snapshot& snap, int frame, Image& out) { impl_->compose(snap, frame, out); }
 const FrameLayout& FrameComposer::layout() const { return impl_->layout; }
 std::vector<Eigen::Vector2d> FrameComposer::lastInsetMark() const { return impl_->mark; }
+double FrameComposer::lastInsetMagnification() const { return impl_->lastMagnification; }
 
 Eigen::Vector2d FrameComposer::plotPixel(int series, double timeH, double value) const {
   const auto& c = impl_->cells.at(static_cast<std::size_t>(series));

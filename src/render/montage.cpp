@@ -7,6 +7,8 @@
 #include <cstring>
 #include <limits>
 
+#include <Eigen/Core>
+
 #include "frame_sink.hpp"
 #include "overlay.hpp"
 #include "rootsim/montage.hpp"
@@ -71,23 +73,25 @@ MontageLayout montageLayout(const std::vector<MontageRun>& runs, const View& vie
   const double pad = rMax + view.marginMm;
   const double wMm = u1 - u0 + 2 * pad, hMm = v1 - v0 + 2 * pad;
   MontageLayout l;
-  const float font = std::max(11.0f, std::round(static_cast<float>(std::min(view.width, view.height)) / 40.0f));
-  l.headerH = static_cast<int>(std::lround(2.0f * font));
+  // labels legible at 720p (21 px there) and growing with the picture
+  const float font = std::max(14.0f, std::round(static_cast<float>(std::min(view.width, view.height)) / 34.0f));
+  l.labelPx = font;
+  l.headerH = static_cast<int>(std::lround(1.8f * font));
   const int n = static_cast<int>(runs.size());
   // the grid with the largest common scale [px/mm]; a tile keeps room for its label
   double best = -1.0;
   for (int c = 1; c <= n; ++c) {
     const int r = (n + c - 1) / c;
     const int tw = view.width / c, th = (view.height - l.headerH) / r;
-    const double scale = std::min(tw / wMm, (th - 2.2 * font) / hMm);
+    const double scale = std::min(tw / wMm, (th - 2.1 * font) / hMm);
     if (scale > best) best = scale, l.cols = c, l.rows = r, l.tileW = tw, l.tileH = th;
   }
   if (l.tileW < 16 || l.tileH < 16) throw RenderError("montage: " + std::to_string(n) + " tiles do not fit " +
                                                       std::to_string(view.width) + "x" + std::to_string(view.height));
   // one width in mm for every tile; the content centred (leaving the label band at the bottom free)
-  const double width = std::max(wMm, hMm * l.tileW / std::max(1.0, l.tileH - 2.2 * font));
+  const double width = std::max(wMm, hMm * l.tileW / std::max(1.0, l.tileH - 2.1 * font));
   const double height = width * l.tileH / l.tileW;
-  const double labelMm = 2.2 * font / l.tileH * height;
+  const double labelMm = 2.1 * font / l.tileH * height;
   for (const MontageRun& r : runs) {
     const PlateFrame pf = PlateFrame::tilted(r.info.alphaDeg * units::deg);
     const Eigen::Vector3d base = pf.toPlateMm(r.snaps.front().x.col(0));
@@ -103,6 +107,28 @@ MontageLayout montageLayout(const std::vector<MontageRun>& runs, const View& vie
     l.framing.push_back(f);
   }
   return l;
+}
+
+std::array<float, 2> montageLabelAnchor(const MontageRun& run, const View& tileView, const Framing& framing,
+                                        float labelWidthPx, float labelPx) {
+  View v = tileView;
+  v.overlays = false;
+  const RenderScene scene = buildRenderScene(run.snaps.back(), run.info, v, framing);
+  const PlateFrame pf = PlateFrame::tilted(run.info.alphaDeg * units::deg);
+  double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, yMax = -x0;
+  for (const Snapshot& s : run.snaps)
+    for (long i = 0; i < s.x.cols(); ++i) {
+      Eigen::Vector2d px;
+      if (!projectToPixel(scene, pf.toPlateMm(s.x.col(i)), px)) continue;
+      x0 = std::min(x0, px.x()), x1 = std::max(x1, px.x()), yMax = std::max(yMax, px.y());
+    }
+  const float w = static_cast<float>(v.width), h = static_cast<float>(v.height);
+  if (!(x1 >= x0)) return {0.5f * w, h - 0.3f * labelPx};
+  const float rPx = static_cast<float>(run.snaps.back().radius.maxCoeff() / units::mm * v.width / framing.widthMm);
+  const float half = 0.5f * labelWidthPx + 0.3f * labelPx;
+  const float x = std::clamp(static_cast<float>(0.5 * (x0 + x1)), std::min(half, 0.5f * w), std::max(w - half, 0.5f * w));
+  const float y = std::clamp(static_cast<float>(yMax) + rPx + 1.4f * labelPx, 1.2f * labelPx, h - 0.3f * labelPx);
+  return {x, y};
 }
 
 void renderMontage(const std::vector<MontageRun>& runs, const MontageJob& job, const MovieProgress& progress) {
@@ -127,8 +153,17 @@ void renderMontage(const std::vector<MontageRun>& runs, const MontageJob& job, c
   }
   GlRenderer gl(l.tileW, l.tileH, job.renderer);
   detail::OverlayPainter painter;
+  const float font = l.labelPx;
+  // labels under their roots, fixed for the whole movie
+  std::vector<std::array<float, 2>> anchors;
+  for (std::size_t i = 0; i < runs.size(); ++i)
+    anchors.push_back(montageLabelAnchor(runs[i], tileView, l.framing[i],
+                                         painter.textWidth(job.view.fontPath, runs[i].label, font), font));
+  // the header: time on the left, then the caption; the stripe legend at the right end
+  const float m = 0.5f * font;
+  const float timeW = painter.textWidth(job.view.fontPath, "t = " + fmt("%.1f", clock.back()) + " h", font);
+  const bool overlays = job.view.overlays;
   detail::FrameSink sink(job.mp4, job.pngDir, "", job.view.width, job.view.height, job.video);
-  const float font = std::max(11.0f, std::round(static_cast<float>(std::min(job.view.width, job.view.height)) / 40.0f));
   Image frame(job.view.width, job.view.height), tile;
   const int total = static_cast<int>(clock.size());
   for (int k = 0; k < total; ++k) {
@@ -142,8 +177,11 @@ void renderMontage(const std::vector<MontageRun>& runs, const MontageJob& job, c
       const MontageRun& r = runs[i];
       const int col = static_cast<int>(i) % l.cols, row = static_cast<int>(i) / l.cols;
       View v = tileView;
-      v.showScaleBar = i + 1 == runs.size();  // one scale bar and one colour bar: both are common
+      // one scale bar, downhill arrow and colour bar: all are common (the legend is in the header)
+      v.showScaleBar = i + 1 == runs.size();
       v.showColourBar = i + 1 == runs.size();
+      v.showDownhill = i + 1 == runs.size();
+      v.showLegend = false;
       const Snapshot& s = r.snaps[static_cast<std::size_t>(snapshotAt(r.snaps, t))];
       gl.render(buildRenderScene(s, r.info, v, l.framing[i]), tile);
       const int x = col * l.tileW, y = l.headerH + row * l.tileH;
@@ -151,11 +189,29 @@ void renderMontage(const std::vector<MontageRun>& runs, const MontageJob& job, c
       // thin separators and the run's label at the bottom of its tile
       rects.push_back({static_cast<float>(x), static_cast<float>(y), static_cast<float>(l.tileW), 1, {200, 200, 200, 255}});
       rects.push_back({static_cast<float>(x), static_cast<float>(y), 1, static_cast<float>(l.tileH), {200, 200, 200, 255}});
-      texts.push_back({r.label, static_cast<float>(x) + 0.5f * static_cast<float>(l.tileW),
-                       static_cast<float>(y + l.tileH) - 0.5f * font, std::round(0.9f * font),
-                       OverlayText::Anchor::BottomCentre});
+      texts.push_back({r.label, static_cast<float>(x) + anchors[i][0], static_cast<float>(y) + anchors[i][1], font,
+                         OverlayText::Anchor::BottomCentre});
     }
-    texts.push_back({"t = " + fmt("%.1f", t) + " h", 0.7f * font, 0.3f * font, font, OverlayText::Anchor::TopLeft});
+    {
+      const float ty = std::round(0.5f * (static_cast<float>(l.headerH) - font));
+      texts.push_back({"t = " + fmt("%.1f", t) + " h", m, ty, font, OverlayText::Anchor::TopLeft});
+      if (!job.caption.empty()) texts.push_back({job.caption, m + timeW + 1.5f * font, ty, font, OverlayText::Anchor::TopLeft});
+      if (overlays && tileView.showLegend) {
+        float right = static_cast<float>(job.view.width) - m;
+        const RenderScene::Material mat;
+        for (int side = 1; side >= 0; --side) {
+          const std::string label = side == 0 ? kLegendPlus : kLegendMinus;
+          const auto& c = side == 0 ? mat.plus : mat.minus;
+          texts.push_back({label, right, ty, font, OverlayText::Anchor::TopRight});
+          right -= painter.textWidth(job.view.fontPath, label, font) + 0.3f * font;
+          const float sw = std::round(1.3f * font), sh = std::max(3.0f, std::round(0.45f * font));
+          rects.push_back({std::round(right - sw), std::round(ty + 0.5f * font - 0.5f * sh), sw, sh,
+                           {static_cast<std::uint8_t>(std::lround(255 * c[0])), static_cast<std::uint8_t>(std::lround(255 * c[1])),
+                            static_cast<std::uint8_t>(std::lround(255 * c[2])), 255}});
+          right -= sw + 0.9f * font;
+        }
+      }
+    }
     painter.draw(rects, {}, texts, job.view.fontPath, frame);
     sink.push(frame);
     if (progress) progress(k + 1, total);

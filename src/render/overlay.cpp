@@ -10,6 +10,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <mutex>
 #include <tuple>
 #include <vector>
 
@@ -219,6 +220,19 @@ void OverlayPainter::draw(const std::vector<OverlayRect>& rects, const std::vect
 
 float OverlayPainter::textWidth(const std::string& fontPath, const std::string& text, float sizePx) {
   return std::get<0>(impl_->measure(impl_->font(fontPath), text, sizePx));
+}
+
+float measureText(const std::string& fontPath, const std::string& text, float sizePx) {
+  static std::mutex mutex;
+  static OverlayPainter painter;
+  const std::lock_guard<std::mutex> lock(mutex);
+  try {
+    return painter.textWidth(fontPath, text, sizePx);
+  } catch (const RenderError&) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < text.size();) nextCodepoint(text, i), ++n;
+    return 0.6f * sizePx * static_cast<float>(n);
+  }
 }
 
 }  // namespace rootsim::detail

@@ -31,4 +31,9 @@ class OverlayPainter {
   std::unique_ptr<Impl> impl_;
 };
 
+// width of text in pixels at sizePx with the font at fontPath, for laying overlays out before they are
+// painted (one process-wide font cache, thread safe); an estimate (0.6 sizePx per code point) when
+// the font cannot be read: painting then throws the RenderError that names it
+float measureText(const std::string& fontPath, const std::string& text, float sizePx);
+
 }  // namespace rootsim::detail

@@ -12,6 +12,7 @@
 #include <limits>
 
 #include "obstacle_mesh.hpp"
+#include "overlay.hpp"
 #include "rootsim/image.hpp"
 
 namespace rootsim {
@@ -209,44 +210,90 @@ std::string tick(double v) {
   return fmt("%.3g", v);
 }
 
+constexpr std::array<std::uint8_t, 4> kInk{40, 40, 40, 255};
+
+std::array<std::uint8_t, 4> rgba8(const std::array<float, 3>& c) {
+  auto b = [](float v) { return static_cast<std::uint8_t>(std::lround(255.0f * std::clamp(v, 0.0f, 1.0f))); };
+  return {b(c[0]), b(c[1]), b(c[2]), 255};
+}
+
+// the colour bar's geometry for a view: bar width, and the width [px] it takes from the right edge
+// with its tick labels and its title (the framing keeps that strip free of the root)
+struct ColourBarBox {
+  float barW, small, reserve;
+};
+ColourBarBox colourBarBox(const View& view, float font) {
+  ColourBarBox b{};
+  const float m = 0.7f * font;
+  b.barW = std::max(8.0f, std::round(0.6f * font));
+  b.small = std::round(0.8f * font);
+  const auto [lo, hi] = view.colourRange;
+  float ticks = 0;
+  for (double v : {lo, 0.5 * (lo + hi), hi}) ticks = std::max(ticks, detail::measureText(view.fontPath, tick(v), b.small));
+  const float title = detail::measureText(view.fontPath, colourFieldLabel(view.colourBy), b.small);
+  b.reserve = m + std::max(b.barW + 7 + ticks, title) + 0.5f * font;
+  return b;
+}
+
 // vertical colour bar at the right edge, middle half of the height: the map from the range's low
-// end (bottom) to its high end (top), three labelled values and the field's name with its unit
+// end (bottom) to its high end (top), three labelled values and the field's name with its unit above;
+// a signed field's diverging map has its 0 marked across the bar
 void addColourBar(RenderScene& rs, const View& view, float font) {
   const float m = 0.7f * font;
-  const float barW = std::max(8.0f, std::round(0.6f * font));
+  const ColourBarBox box = colourBarBox(view, font);
+  const float barW = box.barW;
   const float y0 = std::round(0.28f * static_cast<float>(view.height));
   const float y1 = std::round(0.78f * static_cast<float>(view.height));
   const float x = std::round(static_cast<float>(view.width) - m - barW);
   const int rows = static_cast<int>(y1 - y0);
+  const auto [lo, hi] = view.colourRange;
   for (int r = 0; r < rows; ++r) {
-    const auto c = viridis(1.0 - (r + 0.5) / rows);
-    rs.rects.push_back({x, y0 + static_cast<float>(r), barW, 1.0f,
-                        {static_cast<std::uint8_t>(std::lround(255 * c[0])), static_cast<std::uint8_t>(std::lround(255 * c[1])),
-                         static_cast<std::uint8_t>(std::lround(255 * c[2])), 255}});
+    const double v = lo + (hi - lo) * (1.0 - (r + 0.5) / rows);
+    rs.rects.push_back({x, y0 + static_cast<float>(r), barW, 1.0f, rgba8(fieldColour(view.colourBy, v, view.colourRange))});
   }
   // frame around the bar
-  const std::array<std::uint8_t, 4> ink{40, 40, 40, 255};
-  rs.rects.push_back({x - 1, y0 - 1, barW + 2, 1, ink});
-  rs.rects.push_back({x - 1, y1, barW + 2, 1, ink});
-  rs.rects.push_back({x - 1, y0 - 1, 1, y1 - y0 + 2, ink});
-  rs.rects.push_back({x + barW, y0 - 1, 1, y1 - y0 + 2, ink});
-  const float small = std::round(0.8f * font);
-  const auto [lo, hi] = view.colourRange;
+  rs.rects.push_back({x - 1, y0 - 1, barW + 2, 1, kInk});
+  rs.rects.push_back({x - 1, y1, barW + 2, 1, kInk});
+  rs.rects.push_back({x - 1, y0 - 1, 1, y1 - y0 + 2, kInk});
+  rs.rects.push_back({x + barW, y0 - 1, 1, y1 - y0 + 2, kInk});
+  const float small = box.small;
   for (int k = 0; k <= 2; ++k) {
     const double v = lo + (hi - lo) * k / 2.0;
     const float y = y1 - (y1 - y0) * static_cast<float>(k) / 2.0f;
-    rs.rects.push_back({x - 5, std::round(y), 5, 1, ink});
+    rs.rects.push_back({x - 5, std::round(y), 5, 1, kInk});
     rs.texts.push_back({tick(v), x - 7, y - 0.5f * small, small, OverlayText::Anchor::TopRight});
   }
-  rs.texts.push_back({colourFieldLabel(view.colourBy), x + barW, y0 - 0.5f * font, small, OverlayText::Anchor::BottomRight});
+  if (colourFieldSigned(view.colourBy) && lo < 0 && hi > 0) {
+    // 0 across the bar, and its label (the middle tick when the range is symmetric)
+    const float y = std::round(y1 - (y1 - y0) * static_cast<float>(-lo / (hi - lo)));
+    rs.rects.push_back({x - 5, y, barW + 6, std::max(1.0f, std::round(font / 14.0f)), kInk});
+    if (std::abs(lo + hi) > 1e-9 * (hi - lo))
+      rs.texts.push_back({"0", x - 7, y - 0.5f * small, small, OverlayText::Anchor::TopRight});
+  }
+  rs.texts.push_back({colourFieldLabel(view.colourBy), static_cast<float>(view.width) - m, y0 - 0.5f * font, small,
+                      OverlayText::Anchor::BottomRight});
 }
 
-void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, const View& view) {
+// an arrow from a to b [px]: shaft and a filled-looking head (two thick strokes)
+void addArrow(RenderScene& rs, const Eigen::Vector2d& a, const Eigen::Vector2d& b, float width) {
+  const Eigen::Vector2d d = (b - a).normalized(), n(-d.y(), d.x());
+  const double head = 4.0 * width;
+  const Eigen::Vector2d h1 = b - head * d + 0.6 * head * n, h2 = b - head * d - 0.6 * head * n;
+  auto pt = [](const Eigen::Vector2d& p) { return std::array<float, 2>{static_cast<float>(p.x()), static_cast<float>(p.y())}; };
+  rs.lines.push_back({{pt(a), pt(b - 0.5 * width * d)}, width, kInk});
+  rs.lines.push_back({{pt(h1), pt(b), pt(h2)}, width, kInk});
+  // the head's inside: strokes from its tip across to its base
+  for (double f : {0.25, 0.5, 0.75}) rs.lines.push_back({{pt(b), pt(h1 + f * (h2 - h1))}, width, kInk});
+}
+
+void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, const View& view, const Framing& framing) {
   if (!view.overlays) return;
   // text scales with the shorter side, so portrait frames get the same text as landscape ones
-  const float font = std::max(12.0f, static_cast<float>(std::min(view.width, view.height)) / 26.0f);
+  const float font = overlayFontPx(view);
   const bool portrait = view.height > view.width;
   const float m = 0.7f * font;
+  const auto W = static_cast<float>(view.width), H = static_cast<float>(view.height);
+  auto width = [&](const std::string& t, float size) { return detail::measureText(view.fontPath, t, size); };
   if (view.showTime)
     rs.texts.push_back({"t = " + fmt("%.1f", s.timeH) + " h", m, m, font, OverlayText::Anchor::TopLeft});
   if (view.showParams) {
@@ -257,20 +304,56 @@ void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, cons
     if (portrait)
       rs.texts.push_back({p, m, m + (view.showTime ? 1.5f * font : 0.0f), font, OverlayText::Anchor::TopLeft});
     else
-      rs.texts.push_back({p, static_cast<float>(view.width) - m, m, font, OverlayText::Anchor::TopRight});
+      rs.texts.push_back({p, W - m, m, font, OverlayText::Anchor::TopRight});
   }
-  if (view.showTitle && !info.title.empty())
-    rs.texts.push_back({info.title, m, static_cast<float>(view.height) - m, font,
-                        OverlayText::Anchor::BottomLeft});
+  // the bottom band: from the left the title and the stripe legend, from the right the scale bar (or
+  // the grid's pitch) and the downhill arrow; every item's vertical centre on one line
+  const float small = std::round(0.8f * font);
+  const float midY = std::round(H - m - 0.55f * font);
+  float left = m, right = W - m;
+  if (view.showTitle && !info.title.empty()) {
+    rs.texts.push_back({info.title, m, H - m, font, OverlayText::Anchor::BottomLeft});
+    left += width(info.title, font) + 1.2f * font;
+  }
+  if (view.showLegend) {
+    const float sw = std::round(1.3f * font), sh = std::max(3.0f, std::round(0.45f * font));
+    for (int k = 0; k < 2; ++k) {
+      const auto& c = k == 0 ? rs.material.plus : rs.material.minus;
+      const std::string label = k == 0 ? kLegendPlus : kLegendMinus;
+      rs.rects.push_back({std::round(left), std::round(midY - 0.5f * sh), sw, sh, rgba8(c)});
+      rs.texts.push_back({label, left + sw + 0.3f * font, midY - 0.5f * font, font, OverlayText::Anchor::TopLeft});
+      left += sw + 0.3f * font + width(label, font) + 0.9f * font;
+    }
+  }
   if (view.showScaleBar && rs.pxPerMm > 0) {
     const double lenMm = niceLength(0.22 * view.width / rs.pxPerMm);
     const float len = static_cast<float>(lenMm * rs.pxPerMm);
     const float h = std::max(3.0f, std::round(0.22f * font));
-    const float x = std::round(static_cast<float>(view.width) - m - len);
-    const float y = std::round(static_cast<float>(view.height) - m - h);
+    const float x = std::round(W - m - len);
+    const float y = std::round(H - m - h);
     rs.rects.push_back({x, y, std::round(len), h});
     const std::string label = (lenMm >= 1 ? fmt("%.0f", lenMm) : fmt("%.1f", lenMm)) + " mm";
     rs.texts.push_back({label, x + 0.5f * len, y - 0.35f * font, font, OverlayText::Anchor::BottomCentre});
+    right = x - 1.0f * font;
+  } else if (view.showScaleBar && rs.plate.visible) {
+    // perspective: no single scale, so the grid's pitch
+    const std::string pitch = "grid " + (rs.plate.gridMm >= 1 ? fmt("%.0f", rs.plate.gridMm) : fmt("%.1f", rs.plate.gridMm)) +
+                              " mm" + (rs.plate.gridMm < 1 ? ", dark every 1 mm" : "");
+    rs.texts.push_back({pitch, right, midY - 0.5f * font, font, OverlayText::Anchor::TopRight});
+    right -= width(pitch, font) + 1.0f * font;
+  }
+  if (view.showDownhill && info.plate) {
+    // downhill (-v) as the picture shows it at the framing's centre
+    Eigen::Vector2d a, b, dir(0, 1);
+    const double step = 0.05 * framing.widthMm;
+    if (projectToPixel(rs, V3(framing.centreU, framing.centreV, 0), a) &&
+        projectToPixel(rs, V3(framing.centreU, framing.centreV - step, 0), b) && (b - a).norm() > 1e-6)
+      dir = (b - a).normalized();
+    const float lw = std::max(2.0f, std::round(font / 9.0f));
+    const double half = 0.75 * font;
+    const Eigen::Vector2d centre(right - 0.5 * font, midY);
+    addArrow(rs, centre - half * dir, centre + half * dir, lw);
+    rs.texts.push_back({kDownhillLabel, right - 1.3f * font, midY - 0.5f * small, small, OverlayText::Anchor::TopRight});
   }
   if (view.colourBy != ColourField::None && view.showColourBar) addColourBar(rs, view, font);
 }
@@ -314,6 +397,10 @@ std::array<float, 16> lightViewProj(const RenderScene& rs, const glm::vec3& towa
 
 }  // namespace
 
+float overlayFontPx(const View& view) {
+  return std::max(12.0f, static_cast<float>(std::min(view.width, view.height)) / 26.0f);
+}
+
 Framing frameFor(const std::vector<Snapshot>& snaps, const SceneInfo& info, const View& view) {
   checkSize(view);
   if (snaps.empty()) throw RenderError("render: no snapshots to frame");
@@ -334,6 +421,9 @@ Framing frameFor(const std::vector<Snapshot>& snaps, const SceneInfo& info, cons
   const double aspect = static_cast<double>(view.width) / view.height;
   // with overlays, keep the root inside the middle 80 % of the height (text above, scale bar below)
   const double usable = view.overlays ? 0.8 : 1.0;
+  // with a colour bar, keep the root left of its strip at the right edge
+  const bool bar = view.overlays && view.showColourBar && view.colourBy != ColourField::None;
+  const double barFrac = bar ? std::min(0.4, static_cast<double>(colourBarBox(view, overlayFontPx(view)).reserve) / view.width) : 0.0;
   Framing f;
   f.centreU = view.centreMm ? (*view.centreMm)[0] : 0.5 * (u0 + u1);
   f.centreV = view.centreMm ? (*view.centreMm)[1] : 0.5 * (v0 + v1);
@@ -344,7 +434,9 @@ Framing frameFor(const std::vector<Snapshot>& snaps, const SceneInfo& info, cons
     // half extents about the (possibly fixed) centre
     const double hu = std::max(f.centreU - u0, u1 - f.centreU) + pad;
     const double hv = std::max(f.centreV - v0, v1 - f.centreV) + pad;
-    f.widthMm = std::max({2 * hu, 2 * hv / usable * aspect, 1.0});
+    f.widthMm = std::max({2 * hu / (1.0 - barFrac), 2 * hv / usable * aspect, 1.0});
+    // the root's centre in the middle of the part left of the bar
+    if (!view.centreMm) f.centreU += 0.5 * barFrac * f.widthMm;
   }
   f.heightMm = f.widthMm / aspect;
   f.topW = wTop + rMax;
@@ -389,7 +481,7 @@ RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const 
     const Eigen::VectorXd field = nodeField(snap, info, view.colourBy);
     const auto [lo, hi] = view.colourRange;
     if (!(hi > lo)) throw RenderError("render view: colourRange must be increasing");
-    for (double v : field) ringColour.push_back(viridis((v - lo) / (hi - lo)));
+    for (double v : field) ringColour.push_back(fieldColour(view.colourBy, v, view.colourRange));
   }
   addTube(rs, rings, ringColour);
   if (view.whiskers) addWhiskers(rs, rings);
@@ -467,7 +559,9 @@ RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const 
   else
     rs.background = {rs.plate.colour[0], rs.plate.colour[1], rs.plate.colour[2], 1};
 
-  addOverlays(rs, snap, info, view);
+  // grid lines that stay visible on big pictures
+  rs.plate.lineWidthPx = std::max(1.0f, static_cast<float>(std::min(view.width, view.height)) / 1080.0f);
+  addOverlays(rs, snap, info, view, framing);
   return rs;
 }
 

@@ -211,6 +211,8 @@ TEST_CASE("overlays: time, parameters and a scale bar, each can be turned off") 
   View v;
   v.width = 640;
   v.height = 360;
+  v.showLegend = false;  // the legend and the downhill arrow: test_legend.cpp
+  v.showDownhill = false;
   const Framing f = frameFor({s}, si, v);
   const RenderScene rs = buildRenderScene(s, si, v, f);
   REQUIRE(rs.texts.size() == 3);  // time, parameters, scale-bar label

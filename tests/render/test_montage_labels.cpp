@@ -1,0 +1,80 @@
+// montage labels (src/app/montage_runs.cpp): scene keys as symbols with units, the values every run
+// shares once in a caption; placed under each root (src/render/montage.cpp)
+#include <doctest/doctest.h>
+
+#include <string>
+
+#include "render_test_util.hpp"
+#include "rootsim/montage.hpp"
+#include "rootsim/montage_runs.hpp"
+#include "rootsim/scene.hpp"
+
+using namespace rootsim;
+
+namespace {
+
+Model modelWith(const std::string& toml) { return parseScene(toml, "test.toml").model; }
+
+}  // namespace
+
+TEST_CASE("montage labels: symbols and units for what differs, a caption for what is shared") {
+  const std::string base = "[tropism]\nbeta = 0.1\ngamma = 0.1\n[growth]\nsteps = 10\n";
+  const std::vector<Model> models = {modelWith(base + "[plane]\nalpha_deg = 0\n"),
+                                     modelWith(base + "[plane]\nalpha_deg = 40\n")};
+  const app::MontageLabels l = app::montageLabels(models, {"a", "b"});
+  REQUIRE(l.labels.size() == 2);
+  CHECK(l.labels[0] == "\xCE\xB1 = 0\xC2\xB0");
+  CHECK(l.labels[1] == "\xCE\xB1 = 40\xC2\xB0");
+  INFO("caption: " << l.caption);
+  CHECK(l.caption.find("\xCE\xB2 = \xCE\xB3 = 0.1") != std::string::npos);
+  CHECK(l.caption.find("L_gz = ") != std::string::npos);
+  CHECK(l.caption.find(" mm") != std::string::npos);
+  CHECK(l.caption.find("\xCE\xB1") == std::string::npos);  // what differs is not in the caption
+
+  // two keys differ: both, in the table's order; nothing differs: the runs' names
+  const std::vector<Model> two = {modelWith(base + "[plane]\nalpha_deg = 30\n"),
+                                  modelWith("[tropism]\nbeta = 0.2\ngamma = 0.1\n[growth]\nsteps = 10\n[plane]\nalpha_deg = 60\n")};
+  const app::MontageLabels l2 = app::montageLabels(two, {"a", "b"});
+  CHECK(l2.labels[1] == "\xCE\xB1 = 60\xC2\xB0, \xCE\xB2 = 0.2");
+  const app::MontageLabels same = app::montageLabels({models[0], models[0]}, {"first", "second"});
+  CHECK(same.labels[0] == "first");
+  CHECK(same.labels[1] == "second");
+}
+
+TEST_CASE("montage: a label sits under its own root, not in the middle of the tile") {
+  const SceneInfo info = rtest::info(40);
+  MontageRun a, b;
+  a.info = b.info = info;
+  a.snaps = {rtest::straightRod(40, 20, 1.0, 0.1)};
+  // b: a root that leaves its base sideways, towards +u
+  Snapshot side = rtest::straightRod(40, 20, 2.0, 0.1);
+  const double al = 40 * rtest::kDeg;
+  const Eigen::Vector3d lateral(1, 0, 0), downhill(0, -std::sin(al), -std::cos(al));
+  for (long i = 0; i < side.x.cols(); ++i) {
+    const double t = static_cast<double>(i) / static_cast<double>(side.x.cols() - 1);
+    side.x.col(i) += (2.0e-3 * t) * lateral - (1.0e-3 * t) * downhill;
+  }
+  b.snaps = {side};
+  a.label = "\xCE\xB1 = 0\xC2\xB0";
+  b.label = "\xCE\xB1 = 40\xC2\xB0";
+  View v;
+  v.width = 1280;
+  v.height = 720;
+  const MontageLayout l = montageLayout({a, b}, v);
+  CHECK(l.labelPx >= 14);
+  View tile = v;
+  tile.width = l.tileW;
+  tile.height = l.tileH;
+  const auto pa = montageLabelAnchor(a, tile, l.framing[0], 100, l.labelPx);
+  const auto pb = montageLabelAnchor(b, tile, l.framing[1], 100, l.labelPx);
+  // a hangs straight down from its base: its label under the base; b's under its sideways extent
+  const PlateFrame pf = PlateFrame::tilted(40 * units::deg);
+  const Eigen::Vector3d baseA = pf.toPlateMm(a.snaps[0].x.col(0));
+  const Eigen::Vector2d baseAPx = topViewPixel(l.framing[0], tile, baseA.x(), baseA.y());
+  CHECK(std::abs(pa[0] - baseAPx.x()) < 3);
+  CHECK(pb[0] > pa[0] + 0.5 * l.tileW / l.framing[1].widthMm);  // at least 0.5 mm further right
+  // under the root's lowest point, inside the tile
+  const Eigen::Vector3d tipA = pf.toPlateMm(a.snaps[0].x.col(a.snaps[0].x.cols() - 1));
+  CHECK(pa[1] > topViewPixel(l.framing[0], tile, tipA.x(), tipA.y()).y());
+  CHECK(pa[1] <= l.tileH);
+}

@@ -629,7 +629,7 @@ def render(run_dir: PathLike, *, mp4: Optional[PathLike] = None, png_dir: Option
     Writes only what is asked for: ``mp4`` (H.264 movie), ``png_dir`` (every frame as PNG), ``final_png``
     (the last snapshot, top view); with none of them, RUN_DIR/movie.mp4 and RUN_DIR/final_top.png.
     view "top" | "3d"; size "WxH" (even) or "auto"; camera "fit" | "follow" (``field_mm`` wide);
-    ``inset``; color_by none|curvature|twist|kappa0|stretch|contact; plot: any of theta_tip, Eb, Et, Wr,
+    ``inset``; color_by none|curvature|kappa1|kappa2|twist|kappa0|stretch|contact; plot: any of theta_tip, Eb, Et, Wr,
     Tw (a list or "a,b"); ``shadows``; ``whiskers``; ``transparent`` (PNG frames only);
     ``overlays=False`` is ``--no-overlays``. An output that exists is replaced only if rootsim wrote it
     and ``force=True`` (the command line's write rule). Returns the files and folders written.

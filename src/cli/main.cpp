@@ -18,7 +18,7 @@ void addLookOptions(CLI::App* c, app::LookOptions& look) {
   c->add_option("--camera", look.camera, "fit (whole root, default) or follow (a window following the growth zone)");
   c->add_option("--field-mm", look.fieldMm, "follow window width [mm] (default 2)");
   c->add_flag("--inset", look.inset, "fit view with a follow window in a free corner, its region marked");
-  c->add_option("--color-by", look.colorBy, "colour the tube: curvature, twist, kappa0, stretch or contact");
+  c->add_option("--color-by", look.colorBy, "colour the tube: curvature, kappa1, kappa2, twist (signed: a diverging map centred on 0), kappa0, stretch or contact");
   c->add_option("--plot", look.plot, "panel of time series: any of theta_tip,Eb,Et,Wr,Tw (comma separated)");
   c->add_flag("--shadows", look.shadows, "cast the root's shadow on the plate and on itself (shadow map)");
 }
@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
   cMontage->add_option("--view", montage.view, "top or 3d");
   cMontage->add_option("--fps", montage.fps, "frames per second")->check(CLI::Range(1, 240));
   cMontage->add_option("--crf", montage.crf, "H.264 quality, 0 (lossless) .. 51")->check(CLI::Range(0, 51));
-  cMontage->add_option("--color-by", montage.colorBy, "colour the tubes: curvature, twist, kappa0, stretch or contact");
+  cMontage->add_option("--color-by", montage.colorBy, "colour the tubes: curvature, kappa1, kappa2, twist (signed: a diverging map centred on 0), kappa0, stretch or contact");
   cMontage->add_flag("--shadows", montage.shadows, "cast the roots' shadows on the plate");
   cMontage->add_flag("--force", montage.force, "replace outputs rootsim wrote earlier (never a file rootsim did not write)");
   cMontage->add_flag("--quiet", montage.quiet, "no progress output");

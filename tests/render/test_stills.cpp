@@ -14,7 +14,6 @@
 #include "render_test_util.hpp"
 #include "rootsim/movie.hpp"
 #include "rootsim/png.hpp"
-#include "rootsim/trajectory.hpp"
 
 namespace fs = std::filesystem;
 using namespace rootsim;
@@ -42,7 +41,7 @@ std::string num(double v) {
   return b;
 }
 
-// a small run: 11 snapshots, steps 0, 4, ..., 40
+// a small run: 11 snapshots, steps 0, 4, ..., 40 (0, 0.2, ..., 2 h)
 struct TinyRun {
   fs::path dir;
   std::vector<double> timesH;
@@ -53,14 +52,15 @@ TinyRun tinyRun(const fs::path& d) {
                          "/scenes/fig2b_waving.toml --set growth.steps=40 --set output.every_steps=4 --quiet --out " +
                          t.dir.string());
   REQUIRE_MESSAGE(ran.code == 0, ran.out);
-  for (const Snapshot& s : readTrajectory(trajectoryPath(t.dir))) t.timesH.push_back(s.timeH);
-  REQUIRE(t.timesH.size() == 11);
+  // snapshot k at step 4k of 0.05 h (the flags below keep a margin of a tenth of the spacing, so
+  // rounding in the run's own clock does not matter)
+  for (int k = 0; k <= 10; ++k) t.timesH.push_back(0.05 * 4 * k);
   return t;
 }
 
 }  // namespace
 
-TEST_CASE("movieFrames and nearestSnapshot: the window, the speed, ties to the earlier snapshot") {
+TEST_CASE("stills: movieFrames and nearestSnapshot pick the window and the speed and break ties to the earlier snapshot") {
   const std::vector<double> t = {0.0, 0.5, 1.0, 1.5, 2.0};
   CHECK(nearestSnapshot(t, -3.0) == 0);
   CHECK(nearestSnapshot(t, 0.24) == 0);
@@ -75,15 +75,16 @@ TEST_CASE("movieFrames and nearestSnapshot: the window, the speed, ties to the e
   CHECK(movieFrames(t, 0.6, 0.9, 0.0, 30).empty());
   // fast: 1 h/s at 1 fps over [0, 2] h -> floor(2 / 1) + 1 = 3 frames at 0, 1, 2 h (snapshots skipped)
   CHECK(movieFrames(t, 0.0, 2.0, 1.0, 1) == std::vector<int>{0, 2, 4});
-  // slow: 0.25 h/s at 2 fps -> frames every 0.125 h over [0.5, 1.5]: 9 frames; 0.75 h is a tie -> 0.5 h
-  CHECK(movieFrames(t, 0.5, 1.5, 0.25, 2) == std::vector<int>{1, 1, 1, 2, 2, 2, 3, 3, 3});
+  // slow: 0.25 h/s at 2 fps -> frames every 0.125 h over [0.5, 1.5]: 9 frames; 0.75 h and 1.25 h are
+  // ties -> the earlier snapshot (0.5 h, 1 h)
+  CHECK(movieFrames(t, 0.5, 1.5, 0.25, 2) == std::vector<int>{1, 1, 1, 2, 2, 2, 2, 3, 3});
   // a speed that is not a divisor: 0.4 h/s at 1 fps over [0, 2] -> floor(5) + 1 = 6 frames at 0, 0.4, ... 2.0 h
   CHECK(movieFrames(t, 0.0, 2.0, 0.4, 1) == std::vector<int>{0, 1, 2, 2, 3, 4});
   // the window's own first and last snapshots are the span, not the flags
   CHECK(movieFrames(t, 0.3, 1.7, 0.5, 1) == std::vector<int>{1, 2, 3});
 }
 
-TEST_CASE("a still is the movie's frame with the same flags, pixel for pixel; --final-png is its last frame") {
+TEST_CASE("stills: a still is the movie's frame with the same flags pixel for pixel and --final-png is its last frame") {
   const fs::path d = rtest::scratch("stills");
   const TinyRun r = tinyRun(d);
   const std::string rd = r.dir.string();
@@ -133,7 +134,9 @@ TEST_CASE("a still is the movie's frame with the same flags, pixel for pixel; --
   CHECK(readPng(plain.string()).rgba != readPng(f3d.string()).rgba);
   // with a window, the still is framed like the windowed movie
   const fs::path wframes = d / "wframes", wstill = d / "wstill.png";
-  const std::string win = " --size 320x240 --camera follow --from-h " + num(r.timesH[2]) + " --to-h " + num(r.timesH[8]);
+  const double dt = r.timesH[1] - r.timesH[0];
+  const std::string win = " --size 320x240 --camera follow --from-h " + num(r.timesH[2] - 0.1 * dt) + " --to-h " +
+                          num(r.timesH[8] + 0.1 * dt);
   REQUIRE(run("render " + rd + win + " --quiet --png-dir " + wframes.string()).code == 0);
   const Result ws = run("render " + rd + win + " --quiet --at-h " + num(r.timesH[5]) + " --png " + wstill.string());
   REQUIRE_MESSAGE(ws.code == 0, ws.out);
@@ -143,7 +146,7 @@ TEST_CASE("a still is the movie's frame with the same flags, pixel for pixel; --
   CHECK_FALSE(fs::exists(r.dir / "final_top.png"));
 }
 
-TEST_CASE("--from-h, --to-h, --hours-per-second: frames and duration of the MP4; bad values exit 2 naming the flag") {
+TEST_CASE("stills: --from-h --to-h and --hours-per-second set the frames and the MP4 duration and bad values exit 2") {
   const fs::path d = rtest::scratch("windows");
   const TinyRun r = tinyRun(d);
   const std::string rd = r.dir.string();
@@ -197,7 +200,7 @@ TEST_CASE("--from-h, --to-h, --hours-per-second: frames and duration of the MP4;
       {" --frame 1 --at-h 0.1 --png " + (d / "bad.png").string(), "give --at-h or --frame, not both"},
       {" --at-h 0.1 --png " + (d / "bad.png").string() + mp4, "a still is one picture"},
       {" --at-h 0.1 --hours-per-second 1 --png " + (d / "bad.png").string(), "--hours-per-second 1: paces a movie"},
-      {" --from-h " + num(r.timesH[5]) + " --at-h " + num(r.timesH[1]) + " --png " + (d / "bad.png").string(),
+      {" --from-h " + num(r.timesH[5] - 0.1 * dt) + " --at-h " + num(r.timesH[1]) + " --png " + (d / "bad.png").string(),
        "outside the window's snapshots"},
   };
   for (const Bad& b : bad) {

@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
   cRun->add_option("scene", run.scene, "scene file (TOML)")->required();
   cRun->add_option("--set", run.sets, "override a scene key: section.key=value (repeatable)");
   cRun->add_option("--out", run.out, "run directory (default: runs/<scene name>)");
-  cRun->add_flag("--movie", run.movie, "also render movie.mp4 and final_top.png into the run directory");
+  cRun->add_flag("--movie", run.movie, "also render movie.mp4 and final_top.png (its last frame) into the run directory; without --camera or --inset: the whole root with a follow inset (--inset)");
   addLookOptions(cRun, run.look);
   cRun->add_flag("--force", run.force,
                  "replace an earlier run (or interrupted run) at --out; folders rootsim did not write are never touched");

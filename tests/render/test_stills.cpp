@@ -225,3 +225,38 @@ TEST_CASE("stills: --from-h --to-h and --hours-per-second set the frames and the
   CHECK(again.out.find("--force") != std::string::npos);
   REQUIRE(run("render " + rd + " --size 320x180 --quiet --frame 3 --png " + ours.string() + " --force").code == 0);
 }
+
+TEST_CASE("stills: run --movie defaults to the inset look and its final_top.png is the movie's last frame") {
+  const fs::path d = rtest::scratch("first_picture");
+  const std::string scene = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2b_waving.toml";
+  // 3.1 mm of root: wider than the 2 mm window in the fit view
+  const std::string base = " --set growth.steps=200 --set output.every_steps=50 --quiet --movie --out ";
+  const fs::path r1 = d / "default", r2 = d / "fit";
+  const Result a = run("run " + scene + base + r1.string());
+  REQUIRE_MESSAGE(a.code == 0, a.out);
+  const Result b = run("run " + scene + base + r2.string() + " --camera fit");
+  REQUIRE_MESSAGE(b.code == 0, b.out);
+  CHECK(rtest::decodeMp4((r1 / "movie.mp4").string()).frames == 5);
+  // the default is render --inset, the explicit fit is render's own default
+  const fs::path inset = d / "inset.png", plain = d / "plain.png", frames = d / "frames";
+  REQUIRE(run("render " + r1.string() + " --inset --quiet --final-png " + inset.string() + " --png-dir " +
+              frames.string()).code == 0);
+  REQUIRE(run("render " + r1.string() + " --quiet --final-png " + plain.string()).code == 0);
+  const Image def = readPng((r1 / "final_top.png").string());
+  CHECK(def.rgba == readPng(inset.string()).rgba);
+  CHECK(def.rgba == readPng((frames / frameName(4)).string()).rgba);
+  CHECK(def.rgba != readPng(plain.string()).rgba);
+  CHECK(readPng((r2 / "final_top.png").string()).rgba == readPng(plain.string()).rgba);
+  // the inset's frame (the look's blue, 0 110 230) is there in the default picture, not in the plain one
+  auto blue = [](const Image& img) {
+    long n = 0;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        const std::uint8_t* p = img.at(x, y);
+        n += p[0] < 20 && p[1] > 90 && p[1] < 130 && p[2] > 210;
+      }
+    return n;
+  };
+  CHECK(blue(def) > 1000);
+  CHECK(blue(readPng(plain.string())) == 0);
+}

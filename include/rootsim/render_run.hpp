@@ -12,7 +12,7 @@ namespace rootsim::app {
 struct RenderOptions {
   static constexpr double kUnset = -1e300;  // a number flag not given
   std::string runDir;
-  // outputs: with none of mp4, pngDir, finalPng given, RUN_DIR/movie.mp4 and RUN_DIR/final_top.png;
+  // outputs: with none of mp4, pngDir, finalPng, png given, RUN_DIR/movie.mp4 and RUN_DIR/final_top.png;
   // otherwise exactly the ones given
   std::string mp4;        // H.264 movie
   std::string pngDir;     // every frame as PNG
@@ -40,7 +40,7 @@ struct RenderOptions {
 };
 
 // `rootsim render RUN_DIR`: RUN_DIR/trajectory.csv -> MP4 (default RUN_DIR/movie.mp4), optional PNG
-// frames, and RUN_DIR/final_top.png (last snapshot, top view). Bad flags, a missing run directory or
+// frames, and RUN_DIR/final_top.png (the movie's last frame); or a still (png). Bad flags, a missing run directory or
 // a malformed trajectory throw SceneError (exit 2); render or encoder failures RenderError (exit 1).
 int renderRunCommand(const RenderOptions& o);
 

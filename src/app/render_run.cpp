@@ -10,9 +10,7 @@
 
 #include "flags.hpp"
 #include "rootsim/errors.hpp"
-#include "rootsim/gl_renderer.hpp"
 #include "rootsim/movie.hpp"
-#include "rootsim/png.hpp"
 #include "rootsim/render_scene.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/units.hpp"

@@ -42,6 +42,25 @@ class MovieRecorder {
   std::unique_ptr<Impl> impl_;
 };
 
+// one frame of the movie renderMovie(snaps, info, job) makes, to the PNG file `path`: the same plan
+// (the fit camera framed over all snaps, the follow camera's smoothing over all of them), the same
+// colour range, the same pixels as that movie's frame_<frame>.png; costs one frame's drawing. Throws
+// RenderError (also on a frame outside 0 .. snaps.size() - 1)
+void renderStill(const std::vector<Snapshot>& snaps, const SceneInfo& info, const MovieJob& job, int frame,
+                 const std::string& path);
+
+// frame planning in time (docs/rendering.md, "Time windows and speed"):
+// the snapshot nearest timeH (ties to the earlier one); timesH increasing, not empty
+int nearestSnapshot(const std::vector<double>& timesH, double timeH);
+// the snapshots of a movie from fromH to toH at hoursPerSecond growth hours per second of movie at fps:
+// the window is the snapshots with fromH <= t <= toH (first t_a, last t_b); with hoursPerSecond <= 0 each
+// of them is one frame; otherwise there are floor((t_b - t_a) fps / hoursPerSecond) + 1 frames and frame
+// f shows the window's snapshot nearest t_a + f hoursPerSecond / fps (ties to the earlier), so a fast
+// movie skips snapshots and a slow one repeats them. Indices into timesH; empty when the window holds
+// no snapshot
+std::vector<int> movieFrames(const std::vector<double>& timesH, double fromH, double toH, double hoursPerSecond,
+                             int fps);
+
 // one picture straight to a PNG file (framing from this snapshot alone unless the view fixes it)
 void renderPng(const Snapshot& snap, const SceneInfo& info, const View& view, const std::string& path);
 

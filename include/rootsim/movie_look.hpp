@@ -24,6 +24,7 @@ struct LookOptions {
   std::string colorBy = "none";  // none | curvature | twist | kappa0 | stretch | contact
   std::string plot;            // comma-separated subset of theta_tip,Eb,Et,Wr,Tw
   bool shadows = false;        // the root's shadow on the plate
+  bool cameraGiven = false;    // --camera was on the command line (run --movie: else the inset look)
 };
 
 // the look, checked
@@ -34,6 +35,7 @@ struct MovieLook {
   ColourField colourBy = ColourField::None;
   std::vector<std::string> plots;  // keys in the order given
   bool shadows = false;
+  bool defaultCamera = false;  // neither --camera nor --inset given (run --movie picks the inset look)
 };
 MovieLook parseLook(const LookOptions& o);
 // --field-mm larger than the plate a fit view shows (plateMm wide) is refused (SceneError)

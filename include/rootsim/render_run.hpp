@@ -10,12 +10,22 @@
 namespace rootsim::app {
 
 struct RenderOptions {
+  static constexpr double kUnset = -1e300;  // a number flag not given
   std::string runDir;
-  // outputs: with none of mp4, pngDir, finalPng given, RUN_DIR/movie.mp4 and RUN_DIR/final_top.png;
+  // outputs: with none of mp4, pngDir, finalPng, png given, RUN_DIR/movie.mp4 and RUN_DIR/final_top.png;
   // otherwise exactly the ones given
   std::string mp4;        // H.264 movie
   std::string pngDir;     // every frame as PNG
-  std::string finalPng;   // the last snapshot, top view
+  std::string finalPng;   // the movie's last frame (the same look), as PNG
+  // a still (docs/cli.md, "Stills"): one frame of the movie these flags make, to the PNG file `png`;
+  // at the snapshot nearest atH (ties to the earlier), or frame number `frame` of the movie
+  std::string png;
+  double atH = kUnset;    // --at-h [h]
+  int frame = 0;          // --frame N (0-based, as frame_<N>.png)
+  bool frameGiven = false;
+  // time window and speed of the movie: the snapshots with fromH <= t <= toH; hoursPerSecond growth
+  // hours per second of movie (unset: one frame per snapshot); see movieFrames (movie.hpp)
+  double fromH = kUnset, toH = kUnset, hoursPerSecond = kUnset;
   std::string view = "top";
   std::string size = "auto";  // WxH, or auto: 1280x720 or 720x1280 from the root's shape
   int fps = 30;
@@ -30,13 +40,16 @@ struct RenderOptions {
 };
 
 // `rootsim render RUN_DIR`: RUN_DIR/trajectory.csv -> MP4 (default RUN_DIR/movie.mp4), optional PNG
-// frames, and RUN_DIR/final_top.png (last snapshot, top view). Bad flags, a missing run directory or
+// frames, and RUN_DIR/final_top.png (the movie's last frame); or a still (png). Bad flags, a missing run directory or
 // a malformed trajectory throw SceneError (exit 2); render or encoder failures RenderError (exit 1).
 int renderRunCommand(const RenderOptions& o);
 
 // `rootsim run --movie`: after the run, RUN_DIR/movie.mp4 (top view, size auto, 30 fps, crf 18, with
 // the look's camera, colours and plots) and RUN_DIR/final_top.png from RUN_DIR/trajectory.csv; model is
 // the run's (the scene `run` parsed: scene.toml is not read again)
+// With MovieLook::defaultCamera (no --camera and no --inset given) the movie is the inset look: the fit
+// view with a follow window (--field-mm, 2 mm) in a corner, so the whole root and its stripes both read;
+// a plate narrower than the window keeps the plain fit view. final_top.png is the movie's last frame.
 void renderRunMovie(const std::filesystem::path& runDir, const Model& model, bool quiet, const MovieLook& look);
 
 }  // namespace rootsim::app

@@ -623,11 +623,17 @@ def render(run_dir: PathLike, *, mp4: Optional[PathLike] = None, png_dir: Option
            crf: int = 18, whiskers: bool = False, transparent: bool = False, overlays: bool = True,
            camera: str = "fit", field_mm: Optional[float] = None, inset: bool = False, color_by: str = "none",
            plot: Union[str, Sequence[str], None] = None, shadows: bool = False, shader_dir: Optional[PathLike] = None,
-           force: bool = False, quiet: bool = True) -> List[pathlib.Path]:
+           force: bool = False, quiet: bool = True, png: Optional[PathLike] = None,
+           at_h: Optional[float] = None, frame: Optional[int] = None, from_h: Optional[float] = None,
+           to_h: Optional[float] = None, hours_per_second: Optional[float] = None) -> List[pathlib.Path]:
     """Renders a saved run, as ``rootsim render RUN_DIR`` with the same options (the same C++ code).
 
     Writes only what is asked for: ``mp4`` (H.264 movie), ``png_dir`` (every frame as PNG), ``final_png``
-    (the last snapshot, top view); with none of them, RUN_DIR/movie.mp4 and RUN_DIR/final_top.png.
+    (the movie's last frame, the same look); with none of them, RUN_DIR/movie.mp4 and RUN_DIR/final_top.png.
+    A still: ``png`` with ``at_h`` (the snapshot nearest that growth time, ties to the earlier) or ``frame``
+    (the movie's frame number): the movie's frame with these options, pixel for pixel. ``from_h``/``to_h``
+    keep the snapshots in [from_h, to_h]; ``hours_per_second`` paces the movie (growth hours per second
+    at ``fps``; as ``--hours-per-second``).
     view "top" | "3d"; size "WxH" (even) or "auto"; camera "fit" | "follow" (``field_mm`` wide);
     ``inset``; color_by none|curvature|kappa1|kappa2|twist|kappa0|stretch|contact; plot: any of theta_tip, Eb, Et, Wr,
     Tw (a list or "a,b"); ``shadows``; ``whiskers``; ``transparent`` (PNG frames only);
@@ -647,7 +653,12 @@ def render(run_dir: PathLike, *, mp4: Optional[PathLike] = None, png_dir: Option
         mp4=s(mp4), png_dir=s(png_dir), final_png=s(final_png), view=view, size=size, fps=int(fps), crf=int(crf),
         whiskers=bool(whiskers), transparent=bool(transparent), overlays=bool(overlays), camera=camera,
         field_mm=None if field_mm is None else float(field_mm), inset=bool(inset), color_by=color_by,
-        plot=plot or "", shadows=bool(shadows), shader_dir=s(shader_dir), force=bool(force), quiet=bool(quiet)))
+        plot=plot or "", shadows=bool(shadows), shader_dir=s(shader_dir), force=bool(force), quiet=bool(quiet),
+        png=s(png), at_h=None if at_h is None else float(at_h), frame=None if frame is None else int(frame),
+        from_h=None if from_h is None else float(from_h), to_h=None if to_h is None else float(to_h),
+        hours_per_second=None if hours_per_second is None else float(hours_per_second)))
+    if png is not None:
+        return [pathlib.Path(png)]
     if mp4 is None and png_dir is None and final_png is None:
         d = pathlib.Path(run_dir)
         return [d / "movie.mp4", d / "final_top.png"]

@@ -75,5 +75,6 @@ class _SweepRunner:
 
 def render_run(run_dir: str, options: Dict[str, Any]) -> None:
     """``rootsim render``: options by name (mp4, png_dir, final_png, view, size, fps, crf, whiskers,
-    transparent, overlays, camera, field_mm, inset, color_by, plot, shadows, shader_dir, force, quiet)."""
+    transparent, overlays, camera, field_mm, inset, color_by, plot, shadows, shader_dir, force, quiet, png,
+    at_h, frame, from_h, to_h, hours_per_second)."""
     ...

@@ -590,6 +590,15 @@ PYBIND11_MODULE(_rootsim, m) {
             if (key == "mp4") o.mp4 = text();
             else if (key == "png_dir") o.pngDir = text();
             else if (key == "final_png") o.finalPng = text();
+            else if (key == "png") o.png = text();
+            else if (key == "at_h") { if (!v.is_none()) o.atH = v.cast<double>(); }
+            else if (key == "frame") {
+              o.frameGiven = !v.is_none();
+              if (o.frameGiven) o.frame = v.cast<int>();
+            }
+            else if (key == "from_h") { if (!v.is_none()) o.fromH = v.cast<double>(); }
+            else if (key == "to_h") { if (!v.is_none()) o.toH = v.cast<double>(); }
+            else if (key == "hours_per_second") { if (!v.is_none()) o.hoursPerSecond = v.cast<double>(); }
             else if (key == "view") o.view = v.cast<std::string>();
             else if (key == "size") o.size = v.cast<std::string>();
             else if (key == "fps") o.fps = v.cast<int>();

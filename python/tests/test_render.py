@@ -74,3 +74,30 @@ def test_render_takes_keywords_only(run_dir, tmp_path):
     with pytest.raises(TypeError, match="positional"):
         rootsim.render(run_dir, tmp_path / "x.mp4")
     assert not (tmp_path / "x.png").exists() and not (tmp_path / "x.mp4").exists()
+
+
+def test_a_still_is_the_movies_frame(run_dir, tmp_path):
+    # rootsim.render(png=..., at_h=...) is `rootsim render --png --at-h` and the movie's frame, pixel for pixel
+    frames = rootsim.load_run(run_dir).frames
+    k = len(frames) // 2
+    look = dict(size="256x192", camera="follow", color_by="twist")
+    rootsim.render(run_dir, png_dir=tmp_path / "frames", from_h=0.0, **look)
+    written = rootsim.render(run_dir, png=tmp_path / "py.png", at_h=frames[k].time_h, from_h=0.0, **look)
+    assert written == [tmp_path / "py.png"]
+    cli("render", run_dir, "--png", tmp_path / "cli.png", "--frame", str(k), "--size", "256x192",
+        "--camera", "follow", "--color-by", "twist", "--quiet")
+    movie = (tmp_path / "frames" / f"frame_{k:05d}.png").read_bytes()
+    assert (tmp_path / "py.png").read_bytes() == movie
+    assert (tmp_path / "cli.png").read_bytes() == movie
+    # a window and a speed: frame count from the documented rule
+    t0, t1 = frames[2].time_h, frames[-3].time_h
+    rootsim.render(run_dir, png_dir=tmp_path / "win", size="128x128", from_h=t0, to_h=t1)
+    assert len(list((tmp_path / "win").glob("*.png"))) == len(frames) - 4
+    # bad values: the command line's messages
+    with pytest.raises(ValueError, match="--from-h 2: after --to-h 1"):
+        rootsim.render(run_dir, mp4=tmp_path / "bad.mp4", from_h=2.0, to_h=1.0)
+    with pytest.raises(ValueError, match="--hours-per-second 0: must be > 0"):
+        rootsim.render(run_dir, mp4=tmp_path / "bad.mp4", hours_per_second=0.0)
+    with pytest.raises(ValueError, match="--at-h 1e\\+06: outside the run's snapshots"):
+        rootsim.render(run_dir, png=tmp_path / "bad.png", at_h=1e6)
+    assert not (tmp_path / "bad.mp4").exists() and not (tmp_path / "bad.png").exists()

@@ -67,6 +67,7 @@ MovieLook parseLook(const LookOptions& o) {
     }
   }
   l.shadows = o.shadows;
+  l.defaultCamera = !o.cameraGiven && !o.inset;
   return l;
 }
 

@@ -10,9 +10,7 @@
 
 #include "flags.hpp"
 #include "rootsim/errors.hpp"
-#include "rootsim/gl_renderer.hpp"
 #include "rootsim/movie.hpp"
-#include "rootsim/png.hpp"
 #include "rootsim/render_scene.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/units.hpp"
@@ -50,25 +48,16 @@ std::pair<int, int> autoSizeFor(const std::vector<Snapshot>& snaps, const SceneI
   return autoSize(snaps, info);
 }
 
-// the last snapshot seen from the top, framed like a top-view movie of the whole run
-void writeFinalTop(const std::vector<Snapshot>& snaps, const SceneInfo& info, const View& like,
-                   const fs::path& path) {
-  View top = like;
-  top.kind = View::Kind::Top;
-  if (top.colourBy != ColourField::None) top.colourRange = fieldRange(snaps, info, top.colourBy);
-  const Framing framing = frameFor(snaps, info, top);
-  GlRenderer renderer(top.width, top.height);
-  writePng(path.string(), renderer.render(buildRenderScene(snaps.back(), info, top, framing)));
-}
-
-// the movie and, when asked for, the final picture (always the top view, framed like a top-view movie)
+// the movie and, when asked for, the final picture: the movie's last frame (the same look, the same
+// framing); with no movie to render, that one frame alone (a still)
 void renderRun(const std::vector<Snapshot>& snaps, const SceneInfo& info, MovieJob job,
                const fs::path& finalTop, bool quiet) {
-  // the movie's last frame is the final picture when it is a plain fit top view
-  const bool same = job.view.kind == View::Kind::Top && job.camera == CameraMode::Fit && !job.inset && job.plots.empty();
-  if (same && !finalTop.empty()) job.finalPng = finalTop.string();
-  renderMovie(snaps, info, job, progressLines(quiet, "render " + info.title));
-  if (!same && !finalTop.empty()) writeFinalTop(snaps, info, job.view, finalTop);
+  if (!job.mp4.empty() || !job.pngDir.empty()) {
+    if (!finalTop.empty()) job.finalPng = finalTop.string();
+    renderMovie(snaps, info, job, progressLines(quiet, "render " + info.title));
+  } else if (!finalTop.empty()) {
+    renderStill(snaps, info, job, static_cast<int>(snaps.size()) - 1, finalTop.string());
+  }
   if (!quiet) {
     if (!job.mp4.empty()) std::fprintf(stderr, "wrote %s\n", job.mp4.c_str());
     if (!finalTop.empty()) std::fprintf(stderr, "wrote %s\n", finalTop.string().c_str());
@@ -84,6 +73,79 @@ double fitPlateMm(const std::vector<Snapshot>& snaps, const SceneInfo& info, con
   return frameFor(snaps, info, v).widthMm;
 }
 
+std::string num(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
+
+bool given(double v) { return v != RenderOptions::kUnset; }
+
+// the flags of a still and of a time window, checked before anything is read
+void checkTimeFlags(const RenderOptions& o) {
+  const bool still = !o.png.empty() || given(o.atH) || o.frameGiven;
+  if (given(o.atH) && o.frameGiven) throw SceneError("--at-h " + num(o.atH) + ": give --at-h or --frame, not both");
+  if (still) {
+    if (o.png.empty())
+      throw SceneError(std::string(given(o.atH) ? "--at-h " + num(o.atH) : "--frame " + std::to_string(o.frame)) +
+                       ": writes a still; add --png FILE");
+    if (!given(o.atH) && !o.frameGiven) throw SceneError("--png " + o.png + ": a still; add --at-h H or --frame N");
+    if (!o.mp4.empty() || !o.pngDir.empty() || !o.finalPng.empty())
+      throw SceneError("--png " + o.png + ": a still is one picture; not with --mp4, --png-dir or --final-png");
+    if (given(o.hoursPerSecond))
+      throw SceneError("--hours-per-second " + num(o.hoursPerSecond) + ": paces a movie; a still (--png) has no speed");
+    if (o.frameGiven && o.frame < 0) throw SceneError("--frame " + std::to_string(o.frame) + ": must be >= 0");
+  }
+  if (given(o.atH) && !(o.atH >= 0)) throw SceneError("--at-h " + num(o.atH) + ": must be >= 0 h");
+  if (given(o.fromH) && !(o.fromH >= 0)) throw SceneError("--from-h " + num(o.fromH) + ": must be >= 0 h");
+  if (given(o.toH) && !(o.toH >= 0)) throw SceneError("--to-h " + num(o.toH) + ": must be >= 0 h");
+  if (given(o.fromH) && given(o.toH) && o.fromH > o.toH)
+    throw SceneError("--from-h " + num(o.fromH) + ": after --to-h " + num(o.toH));
+  if (given(o.hoursPerSecond) && !(o.hoursPerSecond > 0))
+    throw SceneError("--hours-per-second " + num(o.hoursPerSecond) + ": must be > 0 h/s");
+}
+
+// the snapshots the movie shows, one per frame (the window and the speed applied)
+std::vector<Snapshot> framesOf(const std::vector<Snapshot>& snaps, const RenderOptions& o, int fps) {
+  std::vector<double> t;
+  for (const Snapshot& s : snaps) t.push_back(s.timeH);
+  const double from = given(o.fromH) ? o.fromH : -1e300, to = given(o.toH) ? o.toH : 1e300;
+  const double hps = given(o.hoursPerSecond) ? o.hoursPerSecond : 0.0;
+  if (hps > 0 && (t.back() - t.front()) * fps / hps > 1e6)
+    throw SceneError("--hours-per-second " + num(hps) + ": more than a million frames for the run's " +
+                     num(t.back() - t.front()) + " h at " + std::to_string(fps) + " fps");
+  const std::vector<int> idx = movieFrames(t, from, to, hps, fps);
+  if (idx.empty()) {
+    std::string flags;
+    if (given(o.fromH)) flags += "--from-h " + num(o.fromH);
+    if (given(o.toH)) flags += std::string(flags.empty() ? "" : " ") + "--to-h " + num(o.toH);
+    throw SceneError(flags + ": no snapshot in [" + num(given(o.fromH) ? o.fromH : t.front()) + ", " +
+                     num(given(o.toH) ? o.toH : t.back()) + "] h (the run's snapshots: " + num(t.front()) + " .. " +
+                     num(t.back()) + " h)");
+  }
+  std::vector<Snapshot> out;
+  out.reserve(idx.size());
+  for (int i : idx) out.push_back(snaps[static_cast<std::size_t>(i)]);
+  return out;
+}
+
+// the frame of the movie a still shows (SceneError naming the flag and the range)
+int stillFrame(const std::vector<Snapshot>& frames, const RenderOptions& o) {
+  const bool window = given(o.fromH) || given(o.toH);
+  if (o.frameGiven) {
+    if (o.frame >= static_cast<int>(frames.size()))
+      throw SceneError("--frame " + std::to_string(o.frame) + ": the movie has frames 0 .. " +
+                       std::to_string(frames.size() - 1));
+    return o.frame;
+  }
+  std::vector<double> t;
+  for (const Snapshot& s : frames) t.push_back(s.timeH);
+  if (o.atH < t.front() || o.atH > t.back())
+    throw SceneError("--at-h " + num(o.atH) + ": outside the " + (window ? "window's" : "run's") + " snapshots, " +
+                     num(t.front()) + " .. " + num(t.back()) + " h");
+  return nearestSnapshot(t, o.atH);
+}
+
 }  // namespace
 
 int renderRunCommand(const RenderOptions& o) {
@@ -97,17 +159,19 @@ int renderRunCommand(const RenderOptions& o) {
   job.video = parseVideo(o.fps, o.crf);
   // only what is asked for: with no output flag at all, RUN_DIR/movie.mp4 and RUN_DIR/final_top.png;
   // with any of --mp4, --png-dir, --final-png, exactly those (the run directory stays untouched)
-  const bool asked = !o.mp4.empty() || !o.pngDir.empty() || !o.finalPng.empty();
+  const bool asked = !o.mp4.empty() || !o.pngDir.empty() || !o.finalPng.empty() || !o.png.empty();
   job.mp4 = asked ? o.mp4 : (runDir / "movie.mp4").string();
   const fs::path finalTop = asked ? fs::path(o.finalPng) : runDir / "final_top.png";
   job.view.whiskers = o.whiskers;
   if (o.transparent) {
     // PNG frames only: MP4 has no alpha channel
-    if (o.pngDir.empty()) throw SceneError("--transparent: applies to PNG frames; add --png-dir DIR");
+    if (o.pngDir.empty() && o.png.empty() && o.finalPng.empty())
+      throw SceneError("--transparent: applies to PNG pictures; add --png-dir DIR, --png FILE or --final-png FILE");
     if (!o.mp4.empty()) throw SceneError("--transparent: MP4 has no alpha channel; drop --mp4 " + o.mp4);
     job.view.transparent = true;
   }
   if (o.noOverlays) job.view.overlays = false;
+  checkTimeFlags(o);
   const MovieLook look = parseLook(o.look);
   if (o.transparent && (look.inset || !look.plots.empty() || look.shadows))
     throw SceneError("--transparent: frames of the root alone, without a plate; not with --inset, --plot or --shadows");
@@ -122,15 +186,23 @@ int renderRunCommand(const RenderOptions& o) {
   const SceneInfo info = sceneInfoOf(loadScene(sceneFile.string()).model);
   if (look.shadows && !info.plate)
     throw SceneError("--shadows: " + sceneFile.string() + " has no plate to cast them on (plane.enabled = false)");
-  const std::vector<Snapshot> snaps = loadSnapshots(runDir);
+  const std::vector<Snapshot> snaps = framesOf(loadSnapshots(runDir), o, job.video.fps);
   if (autoSized) std::tie(job.view.width, job.view.height) = autoSizeFor(snaps, info, look);
   applyLook(look, runDir, snaps, job);
   checkFieldAgainstPlate(look, fitPlateMm(snaps, info, job));
+  const int still = o.png.empty() ? -1 : stillFrame(snaps, o);
   // the write rule, once the flags and the run are known good: the run directory is read and receives
   // only its own movie.mp4 and final_top.png
   WriteRule rule;
   rule.force = o.force;
   rule.inputs = {WriteInput{runDir, {"movie.mp4", "final_top.png"}}};
+  if (still >= 0) {
+    const Outputs outs = claimOutputs("", o.png, "", rule, "--png");
+    renderStill(snaps, info, job, still, o.png);
+    if (!o.quiet)
+      std::fprintf(stderr, "wrote %s (frame %d, %g h)\n", o.png.c_str(), still, snaps[static_cast<std::size_t>(still)].timeH);
+    return 0;
+  }
   const Outputs outs = claimOutputs(job.mp4, finalTop, o.pngDir, rule);
 
   // every check passed: the frame folder is made now (DIR.partial, renamed to DIR when all are written)
@@ -153,7 +225,16 @@ void renderRunMovie(const fs::path& runDir, const Model& model, bool quiet, cons
   job.mp4 = (runDir / "movie.mp4").string();
   const std::vector<Snapshot> snaps = loadSnapshots(runDir);
   std::tie(job.view.width, job.view.height) = autoSizeFor(snaps, info, look);
-  applyLook(look, runDir, snaps, job);
+  MovieLook l = look;
+  if (l.defaultCamera && l.camera == CameraMode::Fit && !l.inset) {
+    // the first picture must show the twist: a follow window in a corner of the whole root, unless
+    // the plate the fit view shows is narrower than that window
+    l.inset = true;
+    applyLook(l, runDir, snaps, job);
+    if (l.fieldMm > fitPlateMm(snaps, info, job)) job.inset = false;
+  } else {
+    applyLook(l, runDir, snaps, job);
+  }
   renderRun(snaps, info, job, runDir / "final_top.png", quiet);
 }
 

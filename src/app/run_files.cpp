@@ -20,11 +20,12 @@ std::vector<Snapshot> loadSnapshots(const fs::path& runDir) {
   return snaps;
 }
 
-Outputs claimOutputs(const std::string& mp4, const fs::path& png, const std::string& pngDir, const WriteRule& rule) {
+Outputs claimOutputs(const std::string& mp4, const fs::path& png, const std::string& pngDir, const WriteRule& rule,
+                     const char* pngFlag) {
   Outputs o;
   std::vector<std::pair<const char*, fs::path>> all;
   if (!mp4.empty()) all.emplace_back("--mp4", mp4);
-  if (!png.empty()) all.emplace_back("--final-png", png);
+  if (!png.empty()) all.emplace_back(pngFlag, png);
   if (!pngDir.empty()) all.emplace_back("--png-dir", pngDir);
   // no output may be another, or lie inside the frame folder (replaced whole)
   for (std::size_t i = 0; i < all.size(); ++i)

@@ -15,7 +15,7 @@ using namespace rootsim;
 namespace {
 // the movie look flags shared by run --movie and render
 void addLookOptions(CLI::App* c, app::LookOptions& look) {
-  c->add_option("--camera", look.camera, "fit (whole root, default) or follow (a window following the growth zone)");
+  c->add_option("--camera", look.camera, "fit (whole root; render's default) or follow (a window following the growth zone); run --movie without --camera: fit with a follow inset");
   c->add_option("--field-mm", look.fieldMm, "follow window width [mm] (default 2)");
   c->add_flag("--inset", look.inset, "fit view with a follow window in a free corner, its region marked");
   c->add_option("--color-by", look.colorBy, "colour the tube: curvature, kappa1, kappa2, twist (signed: a diverging map centred on 0), kappa0, stretch or contact");
@@ -35,7 +35,7 @@ int main(int argc, char** argv) {
   cRun->add_option("scene", run.scene, "scene file (TOML)")->required();
   cRun->add_option("--set", run.sets, "override a scene key: section.key=value (repeatable)");
   cRun->add_option("--out", run.out, "run directory (default: runs/<scene name>)");
-  cRun->add_flag("--movie", run.movie, "also render movie.mp4 and final_top.png into the run directory");
+  cRun->add_flag("--movie", run.movie, "also render movie.mp4 and final_top.png (its last frame) into the run directory; without --camera or --inset: the whole root with a follow inset (--inset)");
   addLookOptions(cRun, run.look);
   cRun->add_flag("--force", run.force,
                  "replace an earlier run (or interrupted run) at --out; folders rootsim did not write are never touched");
@@ -53,13 +53,21 @@ int main(int argc, char** argv) {
   cRender->add_option("run_dir", render.runDir, "run directory")->required();
   cRender->add_option("--mp4", render.mp4, "movie file (with no output flag: RUN_DIR/movie.mp4 + RUN_DIR/final_top.png)");
   cRender->add_option("--png-dir", render.pngDir, "write every frame as PNG into this folder");
-  cRender->add_option("--final-png", render.finalPng, "write the last snapshot (top view) as PNG");
+  cRender->add_option("--final-png", render.finalPng, "write the movie's last frame (the same look) as PNG");
+  cRender->add_option("--png", render.png, "a still: one frame of the movie these flags make, as PNG (with --at-h or --frame)");
+  cRender->add_option("--at-h", render.atH, "the still's growth time [h]: the snapshot nearest H (ties to the earlier); outside the run's snapshots: exit 2");
+  cRender->add_option("--frame", render.frame, "the still's frame number N (0-based, as the movie's frame_N.png)");
+  cRender->add_option("--from-h", render.fromH, "the movie (or still) starts at the first snapshot at or after H hours");
+  cRender->add_option("--to-h", render.toH, "the movie (or still) ends at the last snapshot at or before H hours");
+  cRender->add_option("--hours-per-second", render.hoursPerSecond,
+                      "playback speed: growth hours per second of movie at --fps; frame f shows the snapshot nearest "
+                      "t_first + f * H / fps (skipping or repeating snapshots); default one frame per snapshot");
   cRender->add_option("--view", render.view, "top or 3d")->check(CLI::IsMember({"top", "3d"}));
   cRender->add_option("--size", render.size, "frame size WxH (even numbers), or auto (default): 1280x720, or 720x1280 for a root growing mostly downhill");
   cRender->add_option("--fps", render.fps, "frames per second")->check(CLI::Range(1, 240));
   cRender->add_option("--crf", render.crf, "H.264 quality, 0 (lossless) .. 51")->check(CLI::Range(0, 51));
   cRender->add_flag("--whiskers", render.whiskers, "draw thin +d1 (pink) / -d1 (orange) whiskers");
-  cRender->add_flag("--transparent", render.transparent, "PNG frames without the plate (needs --png-dir)");
+  cRender->add_flag("--transparent", render.transparent, "PNG pictures without the plate (--png-dir, --png or --final-png)");
   cRender->add_flag("--no-overlays", render.noOverlays, "no time, scale bar or parameters");
   cRender->add_option("--shader-dir", render.shaderDir,
                       "development: load tube/plane .vert/.frag from DIR instead of the built-in shaders");
@@ -130,6 +138,10 @@ int main(int argc, char** argv) {
   // a --field-mm without a follow window to size is refused (app::parseLook), not ignored
   run.look.fieldGiven = cRun->get_option("--field-mm")->count() > 0;
   render.look.fieldGiven = cRender->get_option("--field-mm")->count() > 0;
+  // run --movie without --camera or --inset: the inset look (app::renderRunMovie); render keeps fit
+  run.look.cameraGiven = cRun->get_option("--camera")->count() > 0;
+  render.look.cameraGiven = cRender->get_option("--camera")->count() > 0;
+  render.frameGiven = cRender->get_option("--frame")->count() > 0;
   try {
     if (cRun->parsed()) return cli::runCommand(run);
     if (cCheck->parsed()) return cli::checkCommand(check);

@@ -220,7 +220,7 @@ TEST_CASE("rootsim render on a tiny run: movie.mp4 with one frame per snapshot, 
   CHECK(top.height == 180);
   CHECK(fs::exists(d / "frames" / "frame_00010.png"));
 
-  SUBCASE("--view 3d still writes a top-view final picture; --quiet prints nothing") {
+  SUBCASE("--view 3d renders the movie; --quiet prints nothing") {
     const Result r3 = run("render " + runDir + " --view 3d --size 320x180 --quiet --mp4 " + (d / "3d.mp4").string());
     REQUIRE_MESSAGE(r3.code == 0, r3.out);
     CHECK(r3.out.empty());
@@ -279,7 +279,8 @@ TEST_CASE("rootsim render on a tiny run: movie.mp4 with one frame per snapshot, 
     CHECK(contents(runDir) == before);
     CHECK(rtest::decodeMp4((d / "elsewhere.mp4").string()).frames == 11);
     CHECK(fs::exists(d / "pngs" / "frame_00010.png"));
-    CHECK(readPng((d / "last.png").string()).rgba == readPng(runDir + "/final_top.png").rgba);
+    // the final picture is the movie's last frame, in the movie's look (here the 3-D view)
+    CHECK(readPng((d / "last.png").string()).rgba == readPng((d / "pngs" / "frame_00010.png").string()).rgba);
     // no output flag at all: the run directory's movie.mp4 and final_top.png, nothing else
     fs::remove(runDir + "/movie.mp4");
     fs::remove(runDir + "/final_top.png");

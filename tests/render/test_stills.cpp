@@ -1,0 +1,262 @@
+// stills and time windows (src/app/render_run.cpp, src/render/movie.cpp): `rootsim render --png --at-h`
+// is the movie's frame with the same flags, pixel for pixel; --final-png is the movie's last frame;
+// --from-h / --to-h / --hours-per-second pick the frames (movieFrames) and set the MP4's duration
+#include <doctest/doctest.h>
+
+#include "../test_support.hpp"
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "render_test_util.hpp"
+#include "rootsim/movie.hpp"
+#include "rootsim/png.hpp"
+
+namespace fs = std::filesystem;
+using namespace rootsim;
+using rootsim::test::Result;
+using rootsim::test::run;
+
+namespace {
+
+std::string bytes(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+std::string frameName(int k) {
+  char b[32];
+  std::snprintf(b, sizeof b, "frame_%05d.png", k);
+  return b;
+}
+
+std::string num(double v) {
+  char b[40];
+  std::snprintf(b, sizeof b, "%.17g", v);
+  return b;
+}
+
+// a small run: 11 snapshots, steps 0, 4, ..., 40 (0, 0.2, ..., 2 h)
+struct TinyRun {
+  fs::path dir;
+  std::vector<double> timesH;
+};
+TinyRun tinyRun(const fs::path& d) {
+  TinyRun t{d / "run", {}};
+  const Result ran = run("run " + std::string(ROOTSIM_SOURCE_DIR) +
+                         "/scenes/fig2b_waving.toml --set growth.steps=40 --set output.every_steps=4 --quiet --out " +
+                         t.dir.string());
+  REQUIRE_MESSAGE(ran.code == 0, ran.out);
+  // snapshot k at step 4k of 0.05 h (the flags below keep a margin of a tenth of the spacing, so
+  // rounding in the run's own clock does not matter)
+  for (int k = 0; k <= 10; ++k) t.timesH.push_back(0.05 * 4 * k);
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("stills: movieFrames and nearestSnapshot pick the window and the speed and break ties to the earlier snapshot") {
+  const std::vector<double> t = {0.0, 0.5, 1.0, 1.5, 2.0};
+  CHECK(nearestSnapshot(t, -3.0) == 0);
+  CHECK(nearestSnapshot(t, 0.24) == 0);
+  CHECK(nearestSnapshot(t, 0.25) == 0);  // a tie: the earlier
+  CHECK(nearestSnapshot(t, 0.26) == 1);
+  CHECK(nearestSnapshot(t, 1.0) == 2);
+  CHECK(nearestSnapshot(t, 9.0) == 4);
+  // the window alone: the snapshots in [from, to], one frame each
+  CHECK(movieFrames(t, -1e300, 1e300, 0.0, 30) == std::vector<int>{0, 1, 2, 3, 4});
+  CHECK(movieFrames(t, 0.5, 1.5, 0.0, 30) == std::vector<int>{1, 2, 3});
+  CHECK(movieFrames(t, 0.4, 1.6, 0.0, 30) == std::vector<int>{1, 2, 3});
+  CHECK(movieFrames(t, 0.6, 0.9, 0.0, 30).empty());
+  // fast: 1 h/s at 1 fps over [0, 2] h -> floor(2 / 1) + 1 = 3 frames at 0, 1, 2 h (snapshots skipped)
+  CHECK(movieFrames(t, 0.0, 2.0, 1.0, 1) == std::vector<int>{0, 2, 4});
+  // slow: 0.25 h/s at 2 fps -> frames every 0.125 h over [0.5, 1.5]: 9 frames; 0.75 h and 1.25 h are
+  // ties -> the earlier snapshot (0.5 h, 1 h)
+  CHECK(movieFrames(t, 0.5, 1.5, 0.25, 2) == std::vector<int>{1, 1, 1, 2, 2, 2, 2, 3, 3});
+  // a speed that is not a divisor: 0.4 h/s at 1 fps over [0, 2] -> floor(5) + 1 = 6 frames at 0, 0.4, ... 2.0 h
+  CHECK(movieFrames(t, 0.0, 2.0, 0.4, 1) == std::vector<int>{0, 1, 2, 2, 3, 4});
+  // the window's own first and last snapshots are the span, not the flags
+  CHECK(movieFrames(t, 0.3, 1.7, 0.5, 1) == std::vector<int>{1, 2, 3});
+}
+
+TEST_CASE("stills: a still is the movie's frame with the same flags pixel for pixel and --final-png is its last frame") {
+  const fs::path d = rtest::scratch("stills");
+  const TinyRun r = tinyRun(d);
+  const std::string rd = r.dir.string();
+  // every look flag, in four groups
+  const std::vector<std::string> looks = {
+      " --size 320x180",
+      " --size 320x240 --camera follow --field-mm 1.5 --color-by twist --whiskers",
+      " --size 480x270 --view 3d --inset --plot theta_tip,Tw --shadows",
+      " --size 256x256 --camera follow --transparent --no-overlays",
+  };
+  for (std::size_t li = 0; li < looks.size(); ++li) {
+    const std::string& look = looks[li];
+    CAPTURE(look);
+    const fs::path frames = d / ("frames" + std::to_string(li));
+    const Result movie = run("render " + rd + look + " --quiet --png-dir " + frames.string());
+    REQUIRE_MESSAGE(movie.code == 0, movie.out);
+    for (int k : {0, 3, 7, 10}) {
+      CAPTURE(k);
+      const fs::path atH = d / ("at_" + std::to_string(li) + "_" + std::to_string(k) + ".png");
+      const fs::path byFrame = d / ("frame_" + std::to_string(li) + "_" + std::to_string(k) + ".png");
+      // a time a little after the snapshot: still the nearest
+      const double h = r.timesH[static_cast<std::size_t>(k)] + (k < 10 ? 0.2 : 0.0) * (r.timesH[1] - r.timesH[0]);
+      const Result s1 = run("render " + rd + look + " --quiet --at-h " + num(h) + " --png " + atH.string());
+      REQUIRE_MESSAGE(s1.code == 0, s1.out);
+      const Result s2 = run("render " + rd + look + " --quiet --frame " + std::to_string(k) + " --png " + byFrame.string());
+      REQUIRE_MESSAGE(s2.code == 0, s2.out);
+      const Image want = readPng((frames / frameName(k)).string());
+      const Image got = readPng(atH.string());
+      REQUIRE(got.width == want.width);
+      REQUIRE(got.height == want.height);
+      CHECK_MESSAGE(got.rgba == want.rgba, "still " << rtest::hash(got) << " movie frame " << rtest::hash(want));
+      CHECK(bytes(atH) == bytes(frames / frameName(k)));
+      CHECK(bytes(byFrame) == bytes(frames / frameName(k)));
+    }
+    // the final picture: the movie's last frame, with the same look (alone, and beside a movie)
+    const fs::path fin = d / ("final" + std::to_string(li) + ".png");
+    const Result f = run("render " + rd + look + " --quiet --final-png " + fin.string());
+    REQUIRE_MESSAGE(f.code == 0, f.out);
+    CHECK(readPng(fin.string()).rgba == readPng((frames / frameName(10)).string()).rgba);
+  }
+  // the stills do show different times
+  CHECK(readPng((d / "frames1" / frameName(3)).string()).rgba != readPng((d / "frames1" / frameName(7)).string()).rgba);
+  // a 3-D follow final picture is not the plain top view any more
+  const fs::path plain = d / "plain.png", f3d = d / "f3d.png";
+  REQUIRE(run("render " + rd + " --size 320x180 --quiet --final-png " + plain.string()).code == 0);
+  REQUIRE(run("render " + rd + " --size 320x180 --view 3d --camera follow --quiet --final-png " + f3d.string()).code == 0);
+  CHECK(readPng(plain.string()).rgba != readPng(f3d.string()).rgba);
+  // with a window, the still is framed like the windowed movie
+  const fs::path wframes = d / "wframes", wstill = d / "wstill.png";
+  const double dt = r.timesH[1] - r.timesH[0];
+  const std::string win = " --size 320x240 --camera follow --from-h " + num(r.timesH[2] - 0.1 * dt) + " --to-h " +
+                          num(r.timesH[8] + 0.1 * dt);
+  REQUIRE(run("render " + rd + win + " --quiet --png-dir " + wframes.string()).code == 0);
+  const Result ws = run("render " + rd + win + " --quiet --at-h " + num(r.timesH[5]) + " --png " + wstill.string());
+  REQUIRE_MESSAGE(ws.code == 0, ws.out);
+  CHECK(readPng(wstill.string()).rgba == readPng((wframes / frameName(3)).string()).rgba);
+  // a still writes that one file and nothing else (no movie in the run directory)
+  CHECK_FALSE(fs::exists(r.dir / "movie.mp4"));
+  CHECK_FALSE(fs::exists(r.dir / "final_top.png"));
+}
+
+TEST_CASE("stills: --from-h --to-h and --hours-per-second set the frames and the MP4 duration and bad values exit 2") {
+  const fs::path d = rtest::scratch("windows");
+  const TinyRun r = tinyRun(d);
+  const std::string rd = r.dir.string();
+  const double dt = r.timesH[1] - r.timesH[0];  // between snapshots [h]
+  // the window [t2, t8]: 7 snapshots, one frame each at 10 fps -> 0.7 s
+  const std::string win = " --from-h " + num(r.timesH[2] - 0.1 * dt) + " --to-h " + num(r.timesH[8] + 0.1 * dt);
+  const Result w = run("render " + rd + " --size 320x180 --fps 10 --quiet" + win + " --mp4 " + (d / "w.mp4").string());
+  REQUIRE_MESSAGE(w.code == 0, w.out);
+  const rtest::Decoded mw = rtest::decodeMp4((d / "w.mp4").string());
+  CHECK(mw.frames == 7);
+  CHECK(mw.durationS == doctest::Approx(0.7).epsilon(0.001));
+  // fast: 2 snapshot spacings per frame -> the snapshots t2, t4, t6, t8: 4 frames, 0.4 s
+  const Result fast = run("render " + rd + " --size 320x180 --fps 10 --quiet" + win + " --hours-per-second " +
+                          num(20 * dt) + " --mp4 " + (d / "fast.mp4").string() + " --png-dir " + (d / "fast").string());
+  REQUIRE_MESSAGE(fast.code == 0, fast.out);
+  const rtest::Decoded mf = rtest::decodeMp4((d / "fast.mp4").string());
+  CHECK(mf.frames == 4);
+  CHECK(mf.durationS == doctest::Approx(0.4).epsilon(0.001));
+  // slow: a quarter of a snapshot spacing per frame: floor(6 * 4) + 1 = 25 frames, 2.5 s; snapshots repeat
+  const Result slow = run("render " + rd + " --size 320x180 --fps 10 --quiet" + win + " --hours-per-second " +
+                          num(2.5 * dt) + " --mp4 " + (d / "slow.mp4").string() + " --png-dir " + (d / "slow").string());
+  REQUIRE_MESSAGE(slow.code == 0, slow.out);
+  const rtest::Decoded ms = rtest::decodeMp4((d / "slow.mp4").string());
+  CHECK(ms.frames == 25);
+  CHECK(ms.durationS == doctest::Approx(2.5).epsilon(0.001));
+  // frames 0 and 1 show t2 (t2 and t2 + dt/4), frames 3 and 4 t3 (t2 + 3dt/4, t2 + dt)
+  const auto px = [&](const char* dir, int k) { return readPng((d / dir / frameName(k)).string()).rgba; };
+  CHECK(px("slow", 0) == px("slow", 1));
+  CHECK(px("slow", 1) != px("slow", 3));
+  CHECK(px("slow", 3) == px("slow", 4));
+  CHECK(px("slow", 21) != px("slow", 24));  // t2 + 5.25 dt is t7
+  CHECK(px("slow", 23) == px("slow", 24));  // t2 + 5.75 dt is t8
+  CHECK(px("fast", 0) != px("fast", 1));
+  // bad values: exit 2, the flag named, nothing written
+  struct Bad {
+    std::string args, says;
+  };
+  const std::string mp4 = " --mp4 " + (d / "bad.mp4").string();
+  const std::vector<Bad> bad = {
+      {" --from-h 1.5 --to-h 0.5" + mp4, "--from-h 1.5: after --to-h 0.5"},
+      {" --from-h -1" + mp4, "--from-h -1: must be >= 0 h"},
+      {" --to-h -2" + mp4, "--to-h -2: must be >= 0 h"},
+      {" --from-h " + num(r.timesH[3] + 0.2 * dt) + " --to-h " + num(r.timesH[3] + 0.6 * dt) + mp4, "no snapshot in"},
+      {" --from-h 50" + mp4, "--from-h 50: no snapshot in [50, "},
+      {" --hours-per-second 0" + mp4, "--hours-per-second 0: must be > 0"},
+      {" --hours-per-second -3" + mp4, "--hours-per-second -3: must be > 0"},
+      {" --at-h 50 --png " + (d / "bad.png").string(), "--at-h 50: outside the run's snapshots, 0 .. "},
+      {" --at-h 0.1", "--at-h 0.1: writes a still; add --png FILE"},
+      {" --png " + (d / "bad.png").string(), "add --at-h H or --frame N"},
+      {" --frame 11 --png " + (d / "bad.png").string(), "--frame 11: the movie has frames 0 .. 10"},
+      {" --frame 1 --at-h 0.1 --png " + (d / "bad.png").string(), "give --at-h or --frame, not both"},
+      {" --at-h 0.1 --png " + (d / "bad.png").string() + mp4, "a still is one picture"},
+      {" --at-h 0.1 --hours-per-second 1 --png " + (d / "bad.png").string(), "--hours-per-second 1: paces a movie"},
+      {" --from-h " + num(r.timesH[5] - 0.1 * dt) + " --at-h " + num(r.timesH[1]) + " --png " + (d / "bad.png").string(),
+       "outside the window's snapshots"},
+  };
+  for (const Bad& b : bad) {
+    CAPTURE(b.args);
+    const Result res = run("render " + rd + " --size 320x180 --quiet" + b.args);
+    CHECK(res.code == 2);
+    CHECK_MESSAGE(res.out.find(b.says) != std::string::npos, res.out);
+  }
+  CHECK_FALSE(fs::exists(d / "bad.mp4"));
+  CHECK_FALSE(fs::exists(d / "bad.png"));
+  // the write rule: a still never replaces a user's file, and its own only with --force
+  const fs::path mine = d / "mine.png";
+  { std::ofstream(mine) << "my picture"; }
+  const Result refused = run("render " + rd + " --size 320x180 --quiet --frame 2 --png " + mine.string() + " --force");
+  CHECK(refused.code == 2);
+  CHECK(refused.out.find("--png") != std::string::npos);
+  CHECK(bytes(mine) == "my picture");
+  const fs::path ours = d / "ours.png";
+  REQUIRE(run("render " + rd + " --size 320x180 --quiet --frame 2 --png " + ours.string()).code == 0);
+  const Result again = run("render " + rd + " --size 320x180 --quiet --frame 3 --png " + ours.string());
+  CHECK(again.code == 2);
+  CHECK(again.out.find("--force") != std::string::npos);
+  REQUIRE(run("render " + rd + " --size 320x180 --quiet --frame 3 --png " + ours.string() + " --force").code == 0);
+}
+
+TEST_CASE("stills: run --movie defaults to the inset look and its final_top.png is the movie's last frame") {
+  const fs::path d = rtest::scratch("first_picture");
+  const std::string scene = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2b_waving.toml";
+  // 3.1 mm of root: wider than the 2 mm window in the fit view
+  const std::string base = " --set growth.steps=200 --set output.every_steps=50 --quiet --movie --out ";
+  const fs::path r1 = d / "default", r2 = d / "fit";
+  const Result a = run("run " + scene + base + r1.string());
+  REQUIRE_MESSAGE(a.code == 0, a.out);
+  const Result b = run("run " + scene + base + r2.string() + " --camera fit");
+  REQUIRE_MESSAGE(b.code == 0, b.out);
+  CHECK(rtest::decodeMp4((r1 / "movie.mp4").string()).frames == 5);
+  // the default is render --inset, the explicit fit is render's own default
+  const fs::path inset = d / "inset.png", plain = d / "plain.png", frames = d / "frames";
+  REQUIRE(run("render " + r1.string() + " --inset --quiet --final-png " + inset.string() + " --png-dir " +
+              frames.string()).code == 0);
+  REQUIRE(run("render " + r1.string() + " --quiet --final-png " + plain.string()).code == 0);
+  const Image def = readPng((r1 / "final_top.png").string());
+  CHECK(def.rgba == readPng(inset.string()).rgba);
+  CHECK(def.rgba == readPng((frames / frameName(4)).string()).rgba);
+  CHECK(def.rgba != readPng(plain.string()).rgba);
+  CHECK(readPng((r2 / "final_top.png").string()).rgba == readPng(plain.string()).rgba);
+  // the inset's frame (the look's blue, 0 110 230) is there in the default picture, not in the plain one
+  auto blue = [](const Image& img) {
+    long n = 0;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        const std::uint8_t* p = img.at(x, y);
+        n += p[0] < 20 && p[1] > 90 && p[1] < 130 && p[2] > 210;
+      }
+    return n;
+  };
+  CHECK(blue(def) > 1000);
+  CHECK(blue(readPng(plain.string())) == 0);
+}

@@ -12,6 +12,7 @@ pkgs=(cmake ninja-build g++ pkg-config
       clang libclang-rt-dev             # sanitizer + libFuzzer build (.ci/run, scripts/fuzz.sh)
       slurm-wlm munge                   # tests/slurm/run.sh: a sweep through a single-node SLURM
       python3-vtk9                      # tests/vtk_read.py: VTK's own reader reads the .vtp files
+      chromium                          # ctest figures_report_html: report.html in a headless browser
       mkdocs                            # the docs site (ctest docs_site_builds)
       poppler-utils)                    # tests/test_figure.cpp: pdftotext, pdfimages read the PDF panels
 missing=()

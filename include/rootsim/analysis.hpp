@@ -20,10 +20,18 @@ double writheClosed(const Eigen::Matrix3Xd& p);
 // Gauss linking number of two closed polygons
 double linkingNumber(const Eigen::Matrix3Xd& a, const Eigen::Matrix3Xd& b);
 
-// growth-zone observables of a relaxed state (strains must belong to it)
+// rest arc length of Voronoi domain j (from the centre of element j to that of element j + 1) that lies
+// in [Sfrom, Sto] [m]
+double zoneShare(const RodState& s, int j, double Sfrom, double Sto);
+
+// growth-zone observables of a relaxed state (strains must belong to it), integrated over exactly the last
+// Lgz of rest arc length, the domain and element straddling the zone's start counted pro rata
+// (docs/model.md, Observables)
 struct ZoneObservables {
-  double Eb = 0, Et = 0;   // bending and twisting energies of the zone (no factor 1/2) [J]
-  double Wr = 0, Tw = 0;   // writhe of the zone centreline, twist (1/2pi) int kappa3 ds
+  double Eb = 0, Et = 0;   // bending and twisting energies of the zone (no factor 1/2) [J]:
+                           //   int m.(dk1 d1 + dk2 d2) ds and int m.(dk3 d3) ds
+  double Wr = 0, Tw = 0;   // writhe of the zone centreline (open-curve Gauss integral), twist
+                           //   (1/2pi) int kappa3 ds [turns]
 };
 ZoneObservables observeZone(const Model& m, const RodState& s, const RodStrains& k);
 

@@ -95,10 +95,4 @@ inline int spanEnd(int end, int count) { return end >= 0 && end < count ? end : 
 // radius of element i, shrinking with dilatation as R / sqrt(e) [m]
 inline double elementRadius(const RodParams& p, double e) { return p.radius / std::sqrt(e); }
 
-// elastic energies (no factor 1/2, docs/model.md, Observables) over Voronoi domains whose material coordinate
-// lies in [Sfrom, Sto]: bending and twisting [J]
-struct GrowthZoneEnergy { double bend = 0, twist = 0; };
-GrowthZoneEnergy zoneEnergy(const RodParams& p, const RodState& s, const RodStrains& k, double Sfrom,
-                            double Sto);
-
 }  // namespace rootsim

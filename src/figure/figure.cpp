@@ -6,6 +6,7 @@
 #include "figure_runs.hpp"
 #include "panel_text.hpp"
 #include "panels.hpp"
+#include "report_html.hpp"
 
 #include <algorithm>
 #include <filesystem>
@@ -35,9 +36,11 @@ constexpr Panel kPanels[] = {
     {"fig2a", fig2a}, {"fig2b", fig2b}, {"fig2cde", fig2cde}, {"fig3a", fig3a}, {"fig3b", fig3b}, {"fig3d", fig3d},
     {"fig3d_gamma1", fig3dGamma1}, {"fig3d_apical", fig3dApical}, {"fig4a", fig4a}, {"fig4g", fig4g}};
 
-// a figure folder: marker .rootsim-figures, the panels (PDF, SVG, PNG), report.md and the runs/ sweep folder
+// a figure folder: marker .rootsim-figures, the panels (PDF, SVG, PNG), report.md, report.html and the
+// runs/ sweep folder
 bool isFigureEntry(const fs::path& dir, const std::string& name) {
-  if (name == ".rootsim-figures" || name == "report.md" || name == "report.md.tmp") return true;
+  for (const char* f : {".rootsim-figures", "report.md", "report.md.tmp", "report.html", "report.html.tmp"})
+    if (name == f) return true;
   if (name == "runs") return whyNotOurs(dir / name, sweepFolder()).empty();
   for (const auto& n : figureNames())
     for (const char* ext : {".png", ".svg", ".pdf", ".png.tmp", ".svg.tmp", ".pdf.tmp"})
@@ -81,7 +84,7 @@ std::string makeFigure(const std::string& name, const FigureOptions& opt,
   std::vector<std::string> writes;
   for (const auto& n : names)
     if (name == "all" || name == n) writes.insert(writes.end(), {n + ".png", n + ".svg", n + ".pdf"});
-  if (name == "all") writes.push_back("report.md");
+  if (name == "all") writes.insert(writes.end(), {"report.md", "report.html"});
   std::error_code ec;
   for (const std::string& f : writes)
     if (fs::exists(fs::symlink_status(out / f, ec)) && !opt.force)
@@ -140,6 +143,10 @@ std::string makeFigure(const std::string& name, const FigureOptions& opt,
     report += "\nRoots are drawn as vector paths seen from above: the tube's outline, shading bands and the +d1 "
               "(pink) / -d1 (orange) stripes where they face the viewer.\n\n" + sections;
     writeFileAtomic(fs::path(opt.out) / "report.md", report);
+    // the same claims and every panel in one self-contained page (report_html.hpp)
+    const std::string command = std::string("rootsim figure all") + (opt.quick ? " --quick" : "") + " --out " + opt.out +
+                                (opt.jobs != 2 ? " -j " + std::to_string(opt.jobs) : "");
+    writeFileAtomic(fs::path(opt.out) / "report.html", reportHtml(command, claims, names, fs::path(opt.out)));
     return report;
   }
   return panel->make(c);

@@ -74,20 +74,41 @@ double linkingNumber(const Eigen::Matrix3Xd& a, const Eigen::Matrix3Xd& b) {
   return lk;
 }
 
+double zoneShare(const RodState& s, int j, double Sfrom, double Sto) {
+  // Voronoi domain j runs from the centre of element j to the centre of element j + 1 (rest arc length)
+  const double a = s.S[j + 1] - 0.5 * s.l0[j], b = s.S[j + 1] + 0.5 * s.l0[j + 1];
+  return std::max(0.0, std::min(b, Sto) - std::max(a, Sfrom));
+}
+
 ZoneObservables observeZone(const Model& m, const RodState& s, const RodStrains& k) {
+  // docs/model.md, Observables: every integral runs over exactly [S0, L] in rest arc length; the Voronoi
+  // domain (and, for Wr, the element) that straddles S0 counts pro rata
   ZoneObservables o;
   const double S0 = growthZoneStart(m, s), L = s.restLength();
-  const GrowthZoneEnergy E = zoneEnergy(m.rod, s, k, S0, L);
-  o.Eb = E.bend;
-  o.Et = E.twist;
-  // twist: (1/2pi) int kappa3 ds with kappa3 per current length and ds = D0 ev
+  const Vec3 Bd = m.rod.bendStiffness();
   double tw = 0.0;
-  for (int j = 0; j + 1 < s.elements(); ++j)
-    if (s.S[j + 1] >= S0) tw += k.kappa(2, j) * k.D0[j];
+  for (int j = 0; j + 1 < s.elements(); ++j) {
+    const double share = zoneShare(s, j, S0, L);  // rest length of domain j inside the zone
+    if (share <= 0.0) continue;
+    const double ev = k.ev[j];
+    const Vec3 dk = Vec3(k.kappa.col(j)) / ev - Vec3(s.kappa0.col(j));
+    const Vec3 mc = Bd.cwiseProduct(dk) / (ev * ev);
+    const double ds = share * ev;  // current arc length of that part
+    o.Eb += (mc.x() * dk.x() + mc.y() * dk.y()) * ds;
+    o.Et += mc.z() * dk.z() * ds;
+    // kappa is per rest length (rotation / D0): kappa3 per current length (kappa3 / ev) times ds
+    tw += k.kappa(2, j) * share;
+  }
   o.Tw = tw / (2.0 * std::numbers::pi);
-  int first = 0;
-  while (first < s.nodes() - 1 && s.S[first + 1] <= S0) ++first;
-  o.Wr = writheOpen(s.x, first, s.nodes() - 1);
+  // writhe of the centreline from S0 to the tip: the element straddling S0 is cut there, its first point
+  // interpolated linearly along the element's chord
+  int e = 0;
+  while (e + 1 < s.nodes() - 1 && s.S[e + 1] <= S0) ++e;
+  const double f = s.l0[e] > 0.0 ? std::clamp((S0 - s.S[e]) / s.l0[e], 0.0, 1.0) : 0.0;
+  Eigen::Matrix3Xd zone(3, s.nodes() - e);
+  zone.col(0) = s.x.col(e) + f * (s.x.col(e + 1) - s.x.col(e));
+  zone.rightCols(s.nodes() - e - 1) = s.x.rightCols(s.nodes() - e - 1);
+  o.Wr = writheOpen(zone, 0, static_cast<int>(zone.cols()) - 1);
   return o;
 }
 

@@ -141,21 +141,4 @@ void computeInternalForces(const RodState& s, const RodStrains& k, Eigen::Matrix
   }
 }
 
-GrowthZoneEnergy zoneEnergy(const RodParams& p, const RodState& s, const RodStrains& k, double Sfrom,
-                            double Sto) {
-  const Vec3 Bd = p.bendStiffness();
-  GrowthZoneEnergy E;
-  for (int j = 0; j + 1 < s.elements(); ++j) {
-    const double Sj = s.S[j + 1];
-    if (Sj < Sfrom || Sj > Sto) continue;
-    const double ev = k.ev[j];
-    const Vec3 dk = Vec3(k.kappa.col(j)) / ev - Vec3(s.kappa0.col(j));
-    const Vec3 m = Bd.cwiseProduct(dk) / (ev * ev);
-    const double ds = k.D0[j] * ev;
-    E.bend += (m.x() * dk.x() + m.y() * dk.y()) * ds;
-    E.twist += m.z() * dk.z() * ds;
-  }
-  return E;
-}
-
 }  // namespace rootsim

@@ -102,7 +102,7 @@ struct Reader {
       fail(pt, std::string("point ") + c + " is not finite");
     if (std::fabs(mm) > kMaxCoordMm)
       fail(pt, std::string("point ") + c + " = " + numberText(mm) + " mm is absurd (beyond " +
-                   numberText(kMaxCoordMm) + " mm: a wrong unit or resolution?)");
+                   decimalNumber(kMaxCoordMm) + " mm, 1 km: a wrong unit or resolution?)");
     return mm;
   }
 

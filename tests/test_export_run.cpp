@@ -54,7 +54,7 @@ std::vector<double> column(const CsvColumns& c, const std::string& name) {
 
 }  // namespace
 
-TEST_CASE("export --rsml: the final root in plate coordinates, its functions and the run's observables") {
+TEST_CASE("export --rsml: the final root in plate coordinates / its functions and the observables of the run") {
   if (!exportBuilt()) return;
   const fs::path out = scratch("final") / "wave.rsml";
   const auto r = run("export " + shortRun().string() + " --rsml " + out.string());
@@ -139,7 +139,7 @@ TEST_CASE("export --rsml: the final root in plate coordinates, its functions and
   CHECK(slurp(again) == bytes);
 }
 
-TEST_CASE("export --at-h: the snapshot nearest H, ties to the earlier; outside the run exit 2 writing nothing") {
+TEST_CASE("export --at-h: the snapshot nearest H / ties to the earlier / outside the run exit 2 writing nothing") {
   if (!exportBuilt()) return;
   const fs::path dir = scratch("at");
   REQUIRE(run("export " + shortRun().string() + " --rsml " + (dir / "a.rsml").string() + " --at-h 2.25 --quiet").code == 0);
@@ -161,7 +161,7 @@ TEST_CASE("export --at-h: the snapshot nearest H, ties to the earlier; outside t
         std::string::npos);
 }
 
-TEST_CASE("export --every-h: one file per time, named by it, each a time-sequence entry") {
+TEST_CASE("export --every-h: one file per time / named by it / each a time-sequence entry") {
   if (!exportBuilt()) return;
   const fs::path dir = scratch("every");
   const auto r = run("export " + shortRun().string() + " --rsml " + (dir / "s.rsml").string() + " --every-h 2.5");

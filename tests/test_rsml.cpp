@@ -34,7 +34,7 @@ std::string errorOf(const fs::path& f) {
 
 }  // namespace
 
-TEST_CASE("RSML reader: a SmartRoot-style file in pixels, unit cm at 100 px/cm, nested laterals") {
+TEST_CASE("RSML reader: a SmartRoot-style file in pixels / unit cm at 100 px/cm / nested laterals") {
   const rsml::Document d = rsml::readRsml(kData / "smartroot_pixels.rsml");
   CHECK(d.meta.unit == "cm");
   CHECK(d.meta.resolution == 100);
@@ -76,7 +76,7 @@ TEST_CASE("RSML reader: a SmartRoot-style file in pixels, unit cm at 100 px/cm, 
   CHECK(p.roots[2].x[1] == doctest::Approx(57.0));
 }
 
-TEST_CASE("RSML reader: an openalea-style file in micrometres, two plants, child-element points, radius") {
+TEST_CASE("RSML reader: an openalea-style file in micrometres / two plants / child-element points / radius") {
   const rsml::Document d = rsml::readRsml(kData / "openalea_micrometer.rsml");
   CHECK(d.mmPerUnit == doctest::Approx(1e-3).epsilon(1e-15));
   CHECK(d.meta.sequenceLabel == "series_a");
@@ -99,7 +99,7 @@ TEST_CASE("RSML reader: an openalea-style file in micrometres, two plants, child
   CHECK(d.plants[1].roots[0].x[0] == doctest::Approx(5.0));
 }
 
-TEST_CASE("RSML units: the names and spellings, the resolution in pixels per unit") {
+TEST_CASE("RSML units: the names and spellings / the resolution in pixels per unit") {
   for (const char* mm : {"mm", "MM", "millimeter", "millimetre", " mm "}) CHECK(rsml::mmPerUnit(mm, 1) == 1);
   for (const char* cm : {"cm", "centimeter", "Centimetre"}) CHECK(rsml::mmPerUnit(cm, 1) == 10);
   for (const char* m : {"m", "meter", "metre"}) CHECK(rsml::mmPerUnit(m, 1) == 1000);
@@ -147,7 +147,7 @@ TEST_CASE("RSML reader: every bad file exits 2 naming file:line") {
                        doctest::Contains("r.rsml:4: <resolution> must be a positive number"), SceneError);
 }
 
-TEST_CASE("RSML writer: what it writes reads back bit for bit, nested roots, properties, metadata") {
+TEST_CASE("RSML writer: what it writes reads back bit for bit / nested roots / properties / metadata") {
   rsml::Document d;
   d.comment = "written by a test";
   d.meta.lastModified = "1970-01-01T00:00:00";

@@ -77,3 +77,15 @@ def test_the_write_rule_holds_in_python(run_dir, tmp_path):
 def test_options_are_keywords_only(run_dir, tmp_path):
     with pytest.raises(TypeError):
         rootsim.export(run_dir, tmp_path / "k.rsml")  # type: ignore[misc]
+
+
+def test_the_example_reads_the_file_without_rootsim(run_dir, tmp_path):
+    import subprocess
+    import sys
+    rootsim.export(run_dir, rsml=tmp_path / "e.rsml")
+    r = subprocess.run([sys.executable, str(SOURCE / "examples/rsml_functions.py"), str(tmp_path / "e.rsml"),
+                        str(tmp_path / "e.png")], capture_output=True, text=True, check=True)
+    frame = rootsim.load_run(run_dir).frames[-1]
+    assert f": {len(frame.lateral_mm)} points," in r.stdout
+    assert f"age up to {frame.time_h:.1f} h" in r.stdout  # the base has been mature since the start
+    assert (tmp_path / "e.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"

@@ -69,7 +69,8 @@ TEST_CASE("export --rsml: the final root in plate coordinates / its functions an
   CHECK(d.meta.software == "rootsim");
   CHECK(d.meta.lastModified == "1970-01-01T00:00:00");
   CHECK(d.meta.fileKey.rfind("wave-", 0) == 0);
-  CHECK(d.sceneProperty("time_h")->number == 10);
+  CHECK(d.hasTime);
+  CHECK(d.timeH == 10);
   CHECK(d.sceneProperty("step")->number == 200);
   CHECK(d.sceneProperty("plane.alpha_deg")->number == 40);
   CHECK(d.sceneProperty("growth.steps")->number == 200);

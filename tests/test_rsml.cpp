@@ -82,6 +82,8 @@ TEST_CASE("RSML reader: an openalea-style file in micrometres / two plants / chi
   CHECK(d.meta.sequenceLabel == "series_a");
   CHECK(d.meta.sequenceIndex == 3);
   CHECK(d.meta.unified);
+  CHECK(d.meta.observationHours == std::vector<double>{0, 24, 48.5});
+  CHECK_FALSE(d.hasTime);
   REQUIRE(d.plants.size() == 2);
   REQUIRE(d.plants[0].roots.size() == 1);
   REQUIRE(d.plants[1].roots.size() == 1);

@@ -279,6 +279,21 @@ Document parseRsml(const std::string& text, const std::string& name) {
         doc.meta.unified = u == "true" || u == "1";
       }
     }
+    if (const tinyxml2::XMLElement* obs = m->FirstChildElement("observation-hours")) {
+      const std::string all = textOf(obs);
+      std::size_t from = 0;
+      while (from <= all.size()) {
+        const std::size_t comma = std::min(all.find(',', from), all.size());
+        const std::string item = trim(std::string_view(all).substr(from, comma - from));
+        if (!item.empty()) {
+          const double h = rd.number(obs, item, "<observation-hours>");
+          if (!std::isfinite(h)) rd.fail(obs, "<observation-hours>: a time is not finite");
+          doc.meta.observationHours.push_back(h);
+          if (doc.meta.observationHours.size() > kMaxPoints) rd.fail(obs, "<observation-hours>: too many times");
+        }
+        from = comma + 1;
+      }
+    }
     const tinyxml2::XMLElement* unitAt = m->FirstChildElement("unit");
     rd.mmPerUnit = mmPerUnit(doc.meta.unit, doc.meta.resolution);
     if (rd.mmPerUnit == 0)
@@ -290,6 +305,10 @@ Document parseRsml(const std::string& text, const std::string& name) {
   const tinyxml2::XMLElement* scene = top->FirstChildElement("scene");
   if (!scene) rd.fail(top, "<rsml> has no <scene>");
   doc.sceneProperties = rd.properties(scene);
+  if (const Property* t = doc.sceneProperty("time_h"); t && std::isfinite(t->number)) {
+    doc.timeH = t->number;
+    doc.hasTime = true;
+  }
   for (const tinyxml2::XMLElement* p = scene->FirstChildElement("plant"); p; p = p->NextSiblingElement("plant")) {
     Plant plant;
     if (const char* id = p->Attribute("id")) plant.id = id;

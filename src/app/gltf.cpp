@@ -104,7 +104,6 @@ struct Bin {
 
 std::string num(double v) { return numberText(v); }
 std::string num(float v) { return numberText(static_cast<double>(v)); }
-std::string num(long long v) { return std::to_string(v); }
 std::string num(int v) { return std::to_string(v); }
 std::string num(std::size_t v) { return std::to_string(v); }
 std::string quote(const std::string& s) {

@@ -111,19 +111,20 @@ pink = (r > g + 0.25) & (b > g + 0.08) & (r > b)
 orange = (r > b + 0.35) & (g > b + 0.12) & (r > g + 0.1)
 
 # where the stripes face the camera: the pixels of the last snapshot's +d1 / -d1 faces whose normals
-# point up (towards the camera), widened by 2 px
+# point up (towards the camera: the tube is convex)
 depsgraph = bpy.context.evaluated_depsgraph_get()
 mesh = last.evaluated_get(depsgraph).to_mesh()
 normal_matrix = last.matrix_world.to_3x3().inverted().transposed()
 expect = {name: np.zeros((H, W), dtype=bool) for name in ("stripe +d1", "stripe -d1")}
 for poly in mesh.polygons:
     name = last.material_slots[poly.material_index].material.name if last.material_slots else ""
-    if name not in expect or (normal_matrix @ poly.normal).normalized().z < 0.2:
+    if name not in expect or (normal_matrix @ poly.normal).normalized().z <= 0.0:
         continue
-    for vi in poly.vertices:
-        p = world_to_camera_view(scene, camera, last.matrix_world @ mesh.vertices[vi].co)
-        i, j = int((1 - p.y) * H), int(p.x * W)
-        expect[name][max(0, i - 2):i + 3, max(0, j - 2):j + 3] = True
+    # the face's box in pixels (faces are a few pixels long), widened by 2 px
+    ps = [world_to_camera_view(scene, camera, last.matrix_world @ mesh.vertices[vi].co) for vi in poly.vertices]
+    i0, i1 = int((1 - max(p.y for p in ps)) * H) - 2, int((1 - min(p.y for p in ps)) * H) + 3
+    j0, j1 = int(min(p.x for p in ps) * W) - 2, int(max(p.x for p in ps) * W) + 3
+    expect[name][max(0, i0):max(0, i1), max(0, j0):max(0, j1)] = True
 for name, found in (("stripe +d1", pink), ("stripe -d1", orange)):
     n, inside = int(found.sum()), int((found & expect[name]).sum())
     print("%s: %d pixels of its colour, %d of them where its faces turn to the camera (%d such pixels)" %

@@ -221,13 +221,19 @@ TEST_CASE("glTF: the GLB's container, meshes and tube vertices match the snapsho
     // base disc 1 + 12, cap 4 x 12 + apex, wall 12 per node
     CHECK(js["accessors"][static_cast<std::size_t>(pos)]["count"].i() == 13 + 49 + 12 * nodes);
     auto vertex = [&](long i) {
-      return Eigen::Vector3d(element(g, pos, i, 0), element(g, pos, i, 1), element(g, pos, i, 2)) * scale + t;
+      Eigen::Vector3d v;
+      for (int c = 0; c < 3; ++c) v[c] = element(g, pos, i, c) * scale + t[c];
+      return v;
     };
     // every wall vertex of node j lies R from the node, in glTF axes: (u, w, -v) [m]
     double worst = 0;
     for (long j = 0; j < nodes; ++j) {
-      const Eigen::Vector3d p = pf.toPlateMm(s.x.col(j)) * 1e-3, c(p.x(), p.z(), -p.y());
-      for (long k = 0; k < 12; ++k) worst = std::max(worst, std::abs((vertex(62 + 12 * j + k) - c).norm() - 1e-4));
+      const Eigen::Vector3d p = pf.toPlateMm(s.x.col(j));
+      const Eigen::Vector3d c(1e-3 * p.x(), 1e-3 * p.z(), -1e-3 * p.y());
+      for (long k = 0; k < 12; ++k) {
+        const Eigen::Vector3d d = vertex(62 + 12 * j + k) - c;
+        worst = std::max(worst, std::abs(d.norm() - 1e-4));
+      }
     }
     CHECK(worst < 1e-6);  // 1 um: int16 over a few mm
     // the primitives' materials and where their faces point: +d1 = plate normal = glTF +y
@@ -287,7 +293,7 @@ TEST_CASE("glTF: the animation shows exactly snapshot k from k / 24 s to (k + 1)
   };
   for (std::size_t k = 0; k < snaps.size(); ++k)
     for (double dt : {0.0, 0.5 / 24}) {
-      const double t = k / 24.0 + dt;
+      const double t = static_cast<float>(k / 24.0) + dt;  // the keys are float32 times
       for (std::size_t f = 0; f < snaps.size(); ++f) {
         INFO("t = " << t << " s, frame " << f);
         CHECK(scaleAt(f, t) == (f == k ? 1.0 : 0.0));

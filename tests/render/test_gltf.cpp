@@ -2,7 +2,10 @@
 // tube's vertices against the snapshots (where the stripes are), the animation's switching and the still
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cstring>
+#include <fstream>
+#include <sstream>
 #include <limits>
 #include <map>
 #include <memory>
@@ -10,12 +13,17 @@
 #include <string>
 #include <vector>
 
+#include "../test_support.hpp"
 #include "render_test_util.hpp"
 #include "rootsim/environment.hpp"
 #include "rootsim/gltf.hpp"
 #include "rootsim/signature.hpp"
+#include "rootsim/write_rule.hpp"
 
 using namespace rootsim;
+namespace fs = std::filesystem;
+using rootsim::test::Result;
+using rootsim::test::run;
 
 namespace {
 
@@ -321,4 +329,62 @@ TEST_CASE("glTF: no snapshots, a bad stripe width and a broken snapshot are refu
   Snapshot bad = arcRoot(4, 1.0, 0.0);
   bad.x(0, 2) = std::numeric_limits<double>::quiet_NaN();
   CHECK_THROWS_AS(gltfBinary({bad}, rtest::info(40.0)), RenderError);
+}
+
+TEST_CASE("glTF: rootsim export --gltf writes every snapshot animated, --at-h one; the write rule and bad names exit 2") {
+  const fs::path d = rtest::scratch("gltf_export");
+  const std::string rd = (d / "run").string();
+  // 11 snapshots: steps 0, 4, ..., 40 (0, 0.2, ..., 2 h)
+  const Result ran = run("run " + std::string(ROOTSIM_SOURCE_DIR) +
+                         "/scenes/fig2b_waving.toml --set growth.steps=40 --set output.every_steps=4 --quiet --out " + rd);
+  REQUIRE_MESSAGE(ran.code == 0, ran.out);
+  auto read = [](const fs::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    return ss.str();
+  };
+  auto listing = [&]() {
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(rd)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+  };
+  const std::vector<std::string> before = listing();
+  const fs::path glb = d / "run.glb";
+  const Result all = run("export " + rd + " --gltf " + glb.string());
+  REQUIRE_MESSAGE(all.code == 0, all.out);
+  const std::string bytes = read(glb);
+  const Glb g = parseGlb(bytes);
+  CHECK((*nodeNamed(g, "root"))["children"].size() == 11);
+  CHECK(g.json["animations"][0]["channels"].size() == 11);
+  CHECK(carriesSignature(glb));
+  CHECK(listing() == before);  // the run directory receives nothing
+
+  // again without --force: refused, the file untouched; with --force and --at-h: one snapshot
+  const Result again = run("export " + rd + " --gltf " + glb.string());
+  CHECK(again.code == 2);
+  CHECK(again.out.find("--force") != std::string::npos);
+  CHECK(read(glb) == bytes);
+  const Result still = run("export " + rd + " --gltf " + glb.string() + " --force --at-h 1.05");
+  REQUIRE_MESSAGE(still.code == 0, still.out);
+  const Glb one = parseGlb(read(glb));
+  CHECK((*nodeNamed(one, "root"))["children"].size() == 1);
+  CHECK_FALSE(one.json.has("animations"));
+  CHECK(one.json["nodes"][static_cast<std::size_t>((*nodeNamed(one, "root"))["children"][0].i())]["extras"]["time_h"].n ==
+        doctest::Approx(1.0).epsilon(1e-9));
+
+  // a user's file is never replaced, not even with --force; a name without .glb and a missing folder exit 2
+  const fs::path mine = d / "mine.glb";
+  std::ofstream(mine) << "my own file";
+  const Result foreign = run("export " + rd + " --gltf " + mine.string() + " --force");
+  CHECK(foreign.code == 2);
+  CHECK(read(mine) == "my own file");
+  const Result text = run("export " + rd + " --gltf " + (d / "run.gltf").string());
+  CHECK(text.code == 2);
+  CHECK(text.out.find(".glb") != std::string::npos);
+  CHECK_FALSE(fs::exists(d / "run.gltf"));
+  const Result nowhere = run("export " + rd + " --gltf " + (d / "no" / "run.glb").string());
+  CHECK(nowhere.code == 2);
+  fs::remove_all(d);
 }

@@ -196,7 +196,7 @@ Snapshot arcRoot(int n, double lengthMm, double timeH) {
 
 }  // namespace
 
-TEST_CASE("glTF: the GLB's container, meshes and tube vertices match the snapshots; stripes face +-d1") {
+TEST_CASE("glTF: the container and the tube vertices match the snapshots and the stripes face +-d1") {
   const std::vector<Snapshot> snaps{arcRoot(6, 2.0, 0.0), arcRoot(10, 3.0, 0.5), arcRoot(15, 4.0, 1.0)};
   SceneInfo info = rtest::info(40.0);
   info.obstacles.push_back({true, 3.0, -2.0, 3.0, -2.0, 0.4});
@@ -277,7 +277,7 @@ TEST_CASE("glTF: the GLB's container, meshes and tube vertices match the snapsho
   CHECK((*nodeNamed(g, "top view"))["translation"][1].n > 0.01);
 }
 
-TEST_CASE("glTF: the animation shows exactly snapshot k from k / 24 s to (k + 1) / 24 s; a still has none") {
+TEST_CASE("glTF: the animation shows exactly snapshot k from k / 24 s to (k + 1) / 24 s and a still has none") {
   const std::vector<Snapshot> snaps{arcRoot(4, 1.0, 0.0), arcRoot(5, 1.5, 0.5), arcRoot(6, 2.0, 1.0), arcRoot(8, 2.5, 1.5)};
   const Glb g = parseGlb(gltfBinary(snaps, rtest::info(40.0)));
   const J& anim = g.json["animations"][0];
@@ -321,7 +321,7 @@ TEST_CASE("glTF: the animation shows exactly snapshot k from k / 24 s to (k + 1)
   CHECK(nodeNamed(organ, "grid") == nullptr);
 }
 
-TEST_CASE("glTF: no snapshots, a bad stripe width and a broken snapshot are refused") {
+TEST_CASE("glTF: no snapshots or a bad stripe width or a broken snapshot are refused") {
   CHECK_THROWS_AS(gltfBinary({}, rtest::info(40.0)), RenderError);
   GltfOptions o;
   o.stripeHalfWidthDeg = 90.0;
@@ -331,7 +331,7 @@ TEST_CASE("glTF: no snapshots, a bad stripe width and a broken snapshot are refu
   CHECK_THROWS_AS(gltfBinary({bad}, rtest::info(40.0)), RenderError);
 }
 
-TEST_CASE("glTF: rootsim export --gltf writes every snapshot animated, --at-h one; the write rule and bad names exit 2") {
+TEST_CASE("glTF: rootsim export --gltf writes every snapshot animated or one with --at-h and bad outputs exit 2") {
   const fs::path d = rtest::scratch("gltf_export");
   const std::string rd = (d / "run").string();
   // 11 snapshots: steps 0, 4, ..., 40 (0, 0.2, ..., 2 h)

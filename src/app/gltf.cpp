@@ -45,8 +45,12 @@ constexpr int kSideStart = kBaseVertices + kCapVertices;      // first vertex of
 constexpr double kPlateMarginMm = 1.0;     // plate beyond the root's farthest reach, then whole mm
 constexpr double kGridLineMm = 0.03;       // width of a 1 mm grid line
 constexpr double kGridMajorLineMm = 0.06;  // width of every 10th line
-constexpr double kGridLiftMm = 0.004;      // lines above the plate (no coplanar faces: z-fighting)
-constexpr double kGridMajorLiftMm = 0.006; // the darker lines above the light ones where they cross
+// lines above the plate, each kind at its own height, so that no two faces are coplanar where lines cross
+// (coplanar faces flicker in rasterisers and come out dark in Cycles): along v (constant u) 4 um, along u
+// 5 um, the darker 10 mm lines 6 and 7 um
+constexpr double kGridLiftMm = 0.004;
+constexpr double kGridMajorLiftMm = 0.006;
+constexpr double kGridCrossLiftMm = 0.001;  // the lines along u above those along v
 constexpr int kMajorEvery = 10;
 constexpr double kCameraHeightM = 0.1;     // the top camera above the plate [m]
 constexpr float kRoughness = 0.6f;
@@ -412,7 +416,8 @@ std::string gltfBinary(const std::vector<Snapshot>& snaps, const SceneInfo& info
     }
     for (int v = static_cast<int>(v0); v <= static_cast<int>(v1); ++v) {
       const bool isMajor = v % kMajorEvery == 0;
-      const double hw = 0.5 * (isMajor ? kGridMajorLineMm : kGridLineMm), w = isMajor ? kGridMajorLiftMm : kGridLiftMm;
+      const double hw = 0.5 * (isMajor ? kGridMajorLineMm : kGridLineMm);
+      const double w = (isMajor ? kGridMajorLiftMm : kGridLiftMm) + kGridCrossLiftMm;
       (isMajor ? major : minor).quad(P(u0, v - hw, w), P(u1, v - hw, w), P(u1, v + hw, w), P(u0, v + hw, w), up);
     }
     std::vector<std::string> prims{floatPrimitive(doc, minor, doc.material("grid 1 mm", plateLook.line, false))};

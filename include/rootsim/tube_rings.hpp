@@ -4,6 +4,7 @@
 // (render_scene.cpp) and the glTF writer (src/app/gltf.cpp) both sweep their surfaces round these rings.
 // No GL here.
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 #include "rootsim/environment.hpp"
@@ -16,6 +17,10 @@ struct TubeRing {
   Eigen::Vector3d c, t, a, b;
   double r;
 };
+
+// a snapshot the tube can be built from: n >= 1 elements, n + 1 nodes, finite values; else RenderError
+// "<what>: snapshot of step N has inconsistent shapes (...)" or "... has non-finite values"
+void checkTubeSnapshot(const Snapshot& s, const std::string& what);
 
 // node rings from the element directors, averaged at interior nodes (smooth shading and stripes); a
 // surface point at angle phi from d1 towards d2 is c + r (cos phi a + sin phi b). The snapshot's shapes

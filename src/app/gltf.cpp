@@ -80,15 +80,6 @@ double sideAngle(int k, double h) {
   return kPi + h + (kPi - 2 * h) * (k - 2 * S - B) / B;
 }
 
-void checkSnapshot(const Snapshot& s) {
-  const long n = s.radius.size();
-  if (n < 1 || s.x.cols() != n + 1 || s.d1.cols() != n || s.d3.cols() != n)
-    throw RenderError("glTF: snapshot of step " + std::to_string(s.step) + " has inconsistent shapes (elements " +
-                      std::to_string(n) + ", nodes " + std::to_string(s.x.cols()) + ")");
-  if (!s.x.allFinite() || !s.d1.allFinite() || !s.d3.allFinite() || !s.radius.allFinite())
-    throw RenderError("glTF: snapshot of step " + std::to_string(s.step) + " has non-finite values");
-}
-
 // ---- the binary chunk ----
 
 struct Bin {
@@ -299,7 +290,7 @@ std::string gltfBinary(const std::vector<Snapshot>& snaps, const SceneInfo& info
   if (!(options.stripeHalfWidthDeg > 0.0 && options.stripeHalfWidthDeg < 90.0))
     throw RenderError("glTF: the stripe half width must be in (0, 90) degrees (got " +
                       numberText(options.stripeHalfWidthDeg) + ")");
-  for (const Snapshot& s : snaps) checkSnapshot(s);
+  for (const Snapshot& s : snaps) checkTubeSnapshot(s, "glTF");
   const double h = options.stripeHalfWidthDeg * units::deg;
   const PlateFrame pf = PlateFrame::tilted(info.alphaDeg * units::deg);
   const int frames = static_cast<int>(snaps.size());

@@ -40,17 +40,6 @@ void checkSize(const View& view) {
                       std::to_string(view.height) + ")");
 }
 
-void checkSnapshot(const Snapshot& s) {
-  const long n = s.radius.size();
-  if (n < 1 || s.x.cols() != n + 1 || s.d1.cols() != n || s.d3.cols() != n)
-    throw RenderError("render: snapshot of step " + std::to_string(s.step) +
-                      " has inconsistent shapes (elements " + std::to_string(n) + ", nodes " +
-                      std::to_string(s.x.cols()) + ", d1 " + std::to_string(s.d1.cols()) + ", d3 " +
-                      std::to_string(s.d3.cols()) + ")");
-  if (!s.x.allFinite() || !s.d1.allFinite() || !s.d3.allFinite() || !s.radius.allFinite())
-    throw RenderError("render: snapshot of step " + std::to_string(s.step) + " has non-finite values");
-}
-
 using Ring = TubeRing;  // rootsim/tube_rings.hpp
 
 void addVertex(RenderScene& rs, const V3& p, const V3& nrm, double cs, double sn,
@@ -377,7 +366,7 @@ Framing frameFor(const std::vector<Snapshot>& snaps, const SceneInfo& info, cons
   const double inf = std::numeric_limits<double>::infinity();
   double u0 = inf, u1 = -inf, v0 = inf, v1 = -inf, wTop = 0.0, rMax = 0.0;
   for (const Snapshot& s : snaps) {
-    checkSnapshot(s);
+    checkTubeSnapshot(s, "render");
     for (long i = 0; i < s.x.cols(); ++i) {
       const V3 p = pf.toPlateMm(s.x.col(i));
       u0 = std::min(u0, p.x()), u1 = std::max(u1, p.x());
@@ -430,7 +419,7 @@ Eigen::Vector2d topViewPixel(const Framing& f, const View& view, double u, doubl
 RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const View& view,
                              const Framing& framing) {
   checkSize(view);
-  checkSnapshot(snap);
+  checkTubeSnapshot(snap, "render");
   if (!(framing.widthMm > 0) || !(framing.heightMm > 0))
     throw RenderError("render: framing must have a positive width and height (got " +
                       std::to_string(framing.widthMm) + " x " + std::to_string(framing.heightMm) + " mm)");

@@ -3,7 +3,20 @@
 
 #include <Eigen/Geometry>
 
+#include "rootsim/image.hpp"
+
 namespace rootsim {
+
+void checkTubeSnapshot(const Snapshot& s, const std::string& what) {
+  const long n = s.radius.size();
+  if (n < 1 || s.x.cols() != n + 1 || s.d1.cols() != n || s.d3.cols() != n)
+    throw RenderError(what + ": snapshot of step " + std::to_string(s.step) +
+                      " has inconsistent shapes (elements " + std::to_string(n) + ", nodes " +
+                      std::to_string(s.x.cols()) + ", d1 " + std::to_string(s.d1.cols()) + ", d3 " +
+                      std::to_string(s.d3.cols()) + ")");
+  if (!s.x.allFinite() || !s.d1.allFinite() || !s.d3.allFinite() || !s.radius.allFinite())
+    throw RenderError(what + ": snapshot of step " + std::to_string(s.step) + " has non-finite values");
+}
 
 std::vector<TubeRing> tubeRings(const Snapshot& s, const PlateFrame& pf) {
   using V3 = Eigen::Vector3d;

@@ -15,11 +15,15 @@ pkgs=(cmake ninja-build g++ pkg-config
       python3-vtk9                      # tests/vtk_read.py: VTK's own reader reads the .vtp files
       chromium                          # ctest figures_report_html: report.html in a headless browser
       mkdocs                            # the docs site (ctest docs_site_builds)
+      nodejs                            # ctest gltf_validator: the Khronos glTF-Validator (npm, below)
+      blender                           # ctest gltf_blender: Blender imports and renders the .glb
       poppler-utils)                    # tests/test_figure.cpp: pdftotext, pdfimages read the PDF panels
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+# npm: Debian's package, unless the installed Node brings its own (NodeSource's nodejs does)
+command -v npm >/dev/null || missing+=(npm)
 if ((${#missing[@]})); then
   echo "installing: ${missing[*]}"
   SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
@@ -28,4 +32,10 @@ if ((${#missing[@]})); then
   $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
 else
   echo "all dependencies present"
+fi
+# the Khronos glTF-Validator (ctest gltf_validator, tests/gltf/validate.js): an npm package, pinned
+if ! (cd / && node -e "require(require('path').join('$(npm root -g)', 'gltf-validator'))") 2>/dev/null; then
+  echo "installing: npm gltf-validator@2.0.0-dev.3.10"
+  SUDO=""; [ "$(id -u)" -ne 0 ] && SUDO="sudo"
+  $SUDO npm install -g gltf-validator@2.0.0-dev.3.10
 fi

@@ -12,10 +12,12 @@ struct ExportOptions {
   std::string runDir;
   // outputs: at least one
   std::string rsml;       // --rsml FILE: RSML 1.0 (docs/rsml.md)
-  std::string gltf;       // --gltf FILE.glb
+  std::string gltf;       // --gltf FILE.glb: glTF 2.0 (docs/gltf.md); every snapshot, animated, unless
+                          // --at-h (a still) or --every-h (those snapshots, animated, in this one file)
   std::string paraview;   // --paraview DIR
   // which snapshots: the final one (default), the one nearest atH (ties to the earlier), or one every
-  // everyH hours from the first (each output then writes one file per time: docs/rsml.md, Choosing the time)
+  // everyH hours from the first (RSML then writes one file per time, glTF animates those snapshots in its
+  // one file: docs/rsml.md, Choosing the time)
   double atH = kUnset;    // --at-h [h]
   double everyH = kUnset; // --every-h [h]
   bool force = false;     // replace outputs rootsim wrote earlier (never a file rootsim did not write)

@@ -672,8 +672,11 @@ def export(run_dir: PathLike, *, rsml: Optional[PathLike] = None, gltf: Optional
 
     ``rsml``: an RSML 1.0 file (docs/rsml.md: plate coordinates in mm with the origin at the seed,
     per-node diameter, frame_angle, curvature and age, the run's observables as root properties).
-    ``gltf`` (a .glb file) and ``paraview`` (a folder) are the command line's other formats. At least
-    one output. The final snapshot by default; ``at_h``: the snapshot nearest that growth time (ties to
+    ``gltf``: a glTF 2.0 binary .glb file for Blender and three.js (docs/gltf.md: metres, +Y up, the
+    root as a tube with the stripes as materials "stripe +d1" and "stripe -d1", the plate with its grid,
+    obstacles, a top camera); every snapshot as an animation (24 snapshots a second) by default, the one
+    nearest ``at_h`` as a still, or the ``every_h`` snapshots animated in the one file. ``paraview`` (a
+    folder) is the command line's other format. At least one output. RSML: the final snapshot by default; ``at_h``: the snapshot nearest that growth time (ties to
     the earlier; outside the run's snapshots a SceneError); ``every_h``: one file every that many hours
     from the first snapshot, named FILE_t<time>h.EXT. An output that exists is replaced only if rootsim
     wrote it and ``force=True``. Returns the files written (for ``every_h``, the series' files, in time

@@ -54,8 +54,8 @@ def test_bad_options_have_the_command_lines_messages(run_dir, tmp_path):
 
 
 def test_formats_not_in_this_build_are_refused_not_ignored(run_dir, tmp_path):
-    with pytest.raises(rootsim.SceneError, match="--gltf: not available"):
-        rootsim.export(run_dir, rsml=tmp_path / "g.rsml", gltf=tmp_path / "g.glb")
+    with pytest.raises(rootsim.SceneError, match="--paraview: not available"):
+        rootsim.export(run_dir, rsml=tmp_path / "g.rsml", paraview=tmp_path / "g_vtk")
     assert not (tmp_path / "g.rsml").exists()
 
 

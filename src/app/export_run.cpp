@@ -1,5 +1,6 @@
 // `rootsim export RUN_DIR`: flags and the run directory checked (SceneError, exit 2), the outputs claimed
-// by the write rule, then written, each atomically. docs/rsml.md describes the RSML mapping.
+// by the write rule, then written, each atomically. docs/rsml.md describes the RSML mapping, docs/gltf.md
+// the glTF one.
 #include "rootsim/export_run.hpp"
 
 #include <algorithm>
@@ -14,6 +15,7 @@
 #include "rootsim/csv.hpp"
 #include "rootsim/environment.hpp"
 #include "rootsim/errors.hpp"
+#include "rootsim/gltf.hpp"
 #include "rootsim/number_text.hpp"
 #include "rootsim/results.hpp"
 #include "rootsim/rsml.hpp"
@@ -350,9 +352,8 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
   const fs::path runDir(o.runDir);
   if (o.rsml.empty() && o.gltf.empty() && o.paraview.empty())
     throw SceneError("export: no output asked for; give --rsml FILE (or --gltf FILE.glb, --paraview DIR)");
-  // --gltf and --paraview: their writers are added by later changes to this command; until then they
-  // are refused rather than ignored
-  if (!o.gltf.empty()) throw SceneError("--gltf: not available in this build");
+  // --paraview: its writer is added by a later change to this command; until then it is refused rather
+  // than ignored
   if (!o.paraview.empty()) throw SceneError("--paraview: not available in this build");
   if (given(o.atH) && given(o.everyH))
     throw SceneError("--at-h " + flagNumber(o.atH) + ": give --at-h or --every-h, not both");
@@ -382,12 +383,40 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
     }
   }
 
+  // --gltf FILE.glb: one file; the run's every snapshot as an animation, the one nearest --at-h as a
+  // still, or the --every-h snapshots as an animation (docs/gltf.md)
+  fs::path gltfFile;
+  if (!o.gltf.empty()) {
+    gltfFile = checkOutputName(o.gltf, "--gltf");
+    if (gltfFile.extension() != ".glb")
+      throw SceneError("--gltf " + o.gltf + ": the file name must end in .glb (binary glTF 2.0)");
+    const fs::path dir = fs::absolute(gltfFile).parent_path();
+    if (!fs::is_directory(dir)) throw SceneError("--gltf " + o.gltf + ": folder " + dir.string() + " not found");
+    for (const fs::path& f : rsmlFiles)
+      if (fs::absolute(f).lexically_normal() == fs::absolute(gltfFile).lexically_normal())
+        throw SceneError("--gltf " + o.gltf + ": the same file as --rsml");
+    locks.emplace_back(gltfFile, "--gltf");
+    claimFile(gltfFile, rule, "--gltf");
+  }
+
   // every check passed: write
   for (std::size_t k = 0; k < rsmlFiles.size(); ++k) {
     const Snapshot& s = data.snaps[static_cast<std::size_t>(picks[k].index)];
     writeFileAtomic(rsmlFiles[k], rsml::writeRsml(rsmlOf(data, s, series ? static_cast<int>(k) : -1)));
     if (written) written->push_back(rsmlFiles[k]);
     if (!o.quiet) std::fprintf(stderr, "wrote %s (growth step %d, %g h)\n", rsmlFiles[k].c_str(), s.step, s.timeH);
+  }
+  if (!gltfFile.empty()) {
+    std::vector<Snapshot> snaps;
+    if (given(o.atH) || series)
+      for (const Pick& p : picks) snaps.push_back(data.snaps[static_cast<std::size_t>(p.index)]);
+    else
+      snaps = data.snaps;
+    writeFileAtomic(gltfFile, gltfBinary(snaps, sceneInfoOf(data.scene.model)));
+    if (written) written->push_back(gltfFile);
+    if (!o.quiet)
+      std::fprintf(stderr, "wrote %s (%zu snapshot%s, %g h to %g h)\n", gltfFile.c_str(), snaps.size(),
+                   snaps.size() == 1 ? "" : "s", snaps.front().timeH, snaps.back().timeH);
   }
   return 0;
 }

@@ -83,11 +83,12 @@ int main(int argc, char** argv) {
   cModes->add_flag("--quiet", modes.quiet, "no progress output");
 
   app::ExportOptions exportOpts;
-  CLI::App* cExport = app.add_subcommand("export", "a saved run's root in other programs' formats (RSML)");
+  CLI::App* cExport = app.add_subcommand("export", "a saved run's root in other programs' formats (RSML, glTF)");
   cExport->add_option("run_dir", exportOpts.runDir, "run directory")->required();
   cExport->add_option("--rsml", exportOpts.rsml, "RSML 1.0 file (plate coordinates in mm, origin at the seed; docs/rsml.md)");
-  cExport->add_option("--at-h", exportOpts.atH, "the snapshot nearest H hours (ties to the earlier; default the final one); outside the run's snapshots: exit 2");
-  cExport->add_option("--every-h", exportOpts.everyH, "one file every H hours from the first snapshot, FILE_t<time>h.EXT (docs/rsml.md, Choosing the time)");
+  cExport->add_option("--gltf", exportOpts.gltf, "glTF 2.0 binary FILE.glb for Blender and the web: the root with its stripes, the plate, obstacles; every snapshot animated, or one with --at-h (docs/gltf.md)");
+  cExport->add_option("--at-h", exportOpts.atH, "the snapshot nearest H hours (ties to the earlier; default: RSML the final one, glTF every snapshot); outside the run's snapshots: exit 2");
+  cExport->add_option("--every-h", exportOpts.everyH, "one file every H hours from the first snapshot, FILE_t<time>h.EXT (docs/rsml.md, Choosing the time); --gltf: those snapshots animated in its one file");
   cExport->add_flag("--force", exportOpts.force, "replace outputs rootsim wrote earlier (never a file rootsim did not write)");
   cExport->add_flag("--quiet", exportOpts.quiet, "no progress output");
 

@@ -1,7 +1,7 @@
 // Obstacles on the plate (docs/model.md, Contact and friction) as lit meshes of the render scene: a peg as a
 // cylinder standing on the plate, a wall as a box. The model's obstacles are infinitely tall; the pictures
 // show them kObstacleHeightRadii root radii high. (A wall's ends are rounded in the model, square here.)
-#include "obstacle_mesh.hpp"
+#include "rootsim/obstacle_mesh.hpp"
 
 #include <cmath>
 #include <numbers>
@@ -9,7 +9,6 @@
 namespace rootsim {
 
 namespace {
-constexpr double kObstacleHeightRadii = 6.0;
 constexpr int kPegSides = 40;
 constexpr float kObstacleColour[3] = {0.56f, 0.62f, 0.72f};  // slate blue-grey, apart from the ivory root
 

@@ -11,9 +11,10 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <limits>
 
-#include "obstacle_mesh.hpp"
 #include "overlay.hpp"
 #include "rootsim/image.hpp"
+#include "rootsim/obstacle_mesh.hpp"
+#include "rootsim/tube_rings.hpp"
 
 namespace rootsim {
 
@@ -39,22 +40,7 @@ void checkSize(const View& view) {
                       std::to_string(view.height) + ")");
 }
 
-void checkSnapshot(const Snapshot& s) {
-  const long n = s.radius.size();
-  if (n < 1 || s.x.cols() != n + 1 || s.d1.cols() != n || s.d3.cols() != n)
-    throw RenderError("render: snapshot of step " + std::to_string(s.step) +
-                      " has inconsistent shapes (elements " + std::to_string(n) + ", nodes " +
-                      std::to_string(s.x.cols()) + ", d1 " + std::to_string(s.d1.cols()) + ", d3 " +
-                      std::to_string(s.d3.cols()) + ")");
-  if (!s.x.allFinite() || !s.d1.allFinite() || !s.d3.allFinite() || !s.radius.allFinite())
-    throw RenderError("render: snapshot of step " + std::to_string(s.step) + " has non-finite values");
-}
-
-// a ring of the tube: centre, unit tangent t, unit d1 normal to t, radius, all in plate mm
-struct Ring {
-  V3 c, t, a, b;  // b = t x a (d2)
-  double r;
-};
+using Ring = TubeRing;  // rootsim/tube_rings.hpp
 
 void addVertex(RenderScene& rs, const V3& p, const V3& nrm, double cs, double sn,
                const std::array<float, 3>& col, bool striped) {
@@ -79,34 +65,6 @@ void stitchRings(RenderScene& rs, std::uint32_t first, int rings, int sides) {
       const std::uint32_t c = a + static_cast<std::uint32_t>(sides), d = b + static_cast<std::uint32_t>(sides);
       rs.indices.insert(rs.indices.end(), {a, b, d, a, d, c});
     }
-}
-
-// node frames from the element directors, averaged at interior nodes (smooth shading and stripes)
-std::vector<Ring> nodeRings(const Snapshot& s, const PlateFrame& pf) {
-  const int n = s.elements();
-  std::vector<Ring> rings(static_cast<size_t>(n + 1));
-  for (int i = 0; i <= n; ++i) {
-    V3 t = V3::Zero(), a = V3::Zero();
-    double r = 0.0;
-    int cnt = 0;
-    for (int e : {i - 1, i}) {
-      if (e < 0 || e >= n) continue;
-      t += pf.dirToPlate(s.d3.col(e));
-      a += pf.dirToPlate(s.d1.col(e));
-      r += s.radius[e];
-      ++cnt;
-    }
-    Ring& g = rings[static_cast<size_t>(i)];
-    g.c = pf.toPlateMm(s.x.col(i));
-    if (t.norm() < 1e-12) t = V3::UnitY();
-    g.t = t.normalized();
-    a -= a.dot(g.t) * g.t;
-    if (a.norm() < 1e-12) a = g.t.unitOrthogonal();
-    g.a = a.normalized();
-    g.b = g.t.cross(g.a);
-    g.r = r / cnt / units::mm;
-  }
-  return rings;
 }
 
 // ringColour: the body colour of each ring (empty: the material's ivory); with colours, the vertices
@@ -408,7 +366,7 @@ Framing frameFor(const std::vector<Snapshot>& snaps, const SceneInfo& info, cons
   const double inf = std::numeric_limits<double>::infinity();
   double u0 = inf, u1 = -inf, v0 = inf, v1 = -inf, wTop = 0.0, rMax = 0.0;
   for (const Snapshot& s : snaps) {
-    checkSnapshot(s);
+    checkTubeSnapshot(s, "render");
     for (long i = 0; i < s.x.cols(); ++i) {
       const V3 p = pf.toPlateMm(s.x.col(i));
       u0 = std::min(u0, p.x()), u1 = std::max(u1, p.x());
@@ -461,7 +419,7 @@ Eigen::Vector2d topViewPixel(const Framing& f, const View& view, double u, doubl
 RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const View& view,
                              const Framing& framing) {
   checkSize(view);
-  checkSnapshot(snap);
+  checkTubeSnapshot(snap, "render");
   if (!(framing.widthMm > 0) || !(framing.heightMm > 0))
     throw RenderError("render: framing must have a positive width and height (got " +
                       std::to_string(framing.widthMm) + " x " + std::to_string(framing.heightMm) + " mm)");
@@ -473,7 +431,7 @@ RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const 
 
   // the root
   const PlateFrame pf = PlateFrame::tilted(info.alphaDeg * units::deg);
-  const std::vector<Ring> rings = nodeRings(snap, pf);
+  const std::vector<Ring> rings = tubeRings(snap, pf);
   rs.vertices.reserve(static_cast<size_t>((rings.size() + kTipRings + 2) * kSides));
   rs.indices.reserve(rs.vertices.capacity() * 6);
   std::vector<std::array<float, 3>> ringColour;

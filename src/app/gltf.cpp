@@ -1,0 +1,512 @@
+// glTF 2.0 binary (.glb) of a run: the mapping, the layout and the sizes are in docs/gltf.md.
+//
+// The file, in short:
+//   nodes    "rootsim" (the scene's one root) -> "plate", "grid", "obstacles", "top view" (camera), "root";
+//            "root" carries the dequantisation of the tube (translation and uniform scale, KHR_mesh_quantization)
+//            and holds one node per snapshot ("frame NNNN"), scale 1 when shown and 0 when hidden
+//   meshes   one per snapshot: three primitives over one vertex list (positions int16, normals int8):
+//            "root body", "stripe +d1", "stripe -d1" (materials a Blender user can retarget)
+//   indices  the tube's vertices are laid out so that each snapshot's triangles are a prefix of the
+//            largest snapshot's: the base disc and the tip cap first (the same for every snapshot),
+//            then the wall ring by ring. One index list per material serves every snapshot.
+//   animation "growth": snapshot k's node has scale 1 from k / fps to (k + 1) / fps, 0 otherwise (STEP)
+// Every number is little-endian; every chunk and buffer view 4-byte aligned; no time stamps.
+#include "rootsim/gltf.hpp"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <limits>
+
+#include "rootsim/environment.hpp"
+#include "rootsim/image.hpp"
+#include "rootsim/number_text.hpp"
+#include "rootsim/obstacle_mesh.hpp"
+#include "rootsim/signature.hpp"
+#include "rootsim/tube_rings.hpp"
+#include "rootsim/units.hpp"
+
+namespace rootsim {
+
+namespace {
+
+using V3 = Eigen::Vector3d;
+constexpr double kPi = units::pi;
+
+constexpr int S = kGltfStripeFaces, B = kGltfBodyFaces, kSides = kGltfTubeSides, K = kGltfCapRings;
+constexpr int kBaseVertices = 1 + kSides;                     // centre and rim of the base disc
+constexpr int kCapVertices = K * kSides + 1;                  // cap rings and apex
+constexpr int kSideStart = kBaseVertices + kCapVertices;      // first vertex of the wall's ring 0
+
+constexpr double kPlateMarginMm = 1.0;     // plate beyond the root's farthest reach, then whole mm
+constexpr double kGridLineMm = 0.03;       // width of a 1 mm grid line
+constexpr double kGridMajorLineMm = 0.06;  // width of every 10th line
+// lines above the plate, each kind at its own height, so that no two faces are coplanar where lines cross
+// (coplanar faces flicker in rasterisers and come out dark in Cycles): along v (constant u) 4 um, along u
+// 5 um, the darker 10 mm lines 6 and 7 um
+constexpr double kGridLiftMm = 0.004;
+constexpr double kGridMajorLiftMm = 0.006;
+constexpr double kGridCrossLiftMm = 0.001;  // the lines along u above those along v
+constexpr int kMajorEvery = 10;
+constexpr double kCameraHeightM = 0.1;     // the top camera above the plate [m]
+constexpr float kRoughness = 0.6f;
+
+// the glTF frame: x = u, y = w, z = -v, metres (docs/gltf.md, Axes)
+V3 toGltf(const V3& plateMm) { return V3(plateMm.x(), plateMm.z(), -plateMm.y()) * units::mm; }
+V3 dirToGltf(const V3& plateDir) { return V3(plateDir.x(), plateDir.z(), -plateDir.y()); }
+
+// the renderer's colours are what its pictures show (sRGB); glTF's baseColorFactor is linear
+double srgbToLinear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+
+// which material a face of the tube wall between angular samples k and k + 1 belongs to
+enum Part { Body = 0, Plus = 1, Minus = 2 };
+Part sidePart(int k) {
+  if (k < S) return Plus;
+  if (k < S + B) return Body;
+  if (k < 2 * S + B) return Minus;
+  return Body;
+}
+
+// angle of sample k from d1 towards d2 [rad]: -h .. h the +d1 stripe, then a body band, pi - h .. pi + h
+// the -d1 stripe, then the other body band back to 2 pi - h
+double sideAngle(int k, double h) {
+  if (k <= S) return -h + 2 * h * k / S;
+  if (k <= S + B) return h + (kPi - 2 * h) * (k - S) / B;
+  if (k <= 2 * S + B) return kPi - h + 2 * h * (k - S - B) / S;
+  return kPi + h + (kPi - 2 * h) * (k - 2 * S - B) / B;
+}
+
+// ---- the binary chunk ----
+
+struct Bin {
+  std::string bytes;
+  void u8(std::uint8_t v) { bytes.push_back(static_cast<char>(v)); }
+  void u16(std::uint16_t v) { u8(static_cast<std::uint8_t>(v & 0xff)), u8(static_cast<std::uint8_t>(v >> 8)); }
+  void u32(std::uint32_t v) {
+    for (int k = 0; k < 4; ++k) u8(static_cast<std::uint8_t>((v >> (8 * k)) & 0xff));
+  }
+  void f32(float v) { u32(std::bit_cast<std::uint32_t>(v)); }
+  void align4() {
+    while (bytes.size() % 4) u8(0);
+  }
+};
+
+// ---- JSON text: arrays and objects of already formatted members ----
+
+std::string num(double v) { return numberText(v); }
+std::string num(float v) { return numberText(static_cast<double>(v)); }
+std::string num(int v) { return std::to_string(v); }
+std::string num(std::size_t v) { return std::to_string(v); }
+std::string quote(const std::string& s) {
+  std::string q = "\"";
+  for (char c : s) {
+    if (static_cast<unsigned char>(c) < 0x20) {  // control characters: \u00XX
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
+      q += buf;
+      continue;
+    }
+    if (c == '"' || c == '\\') q += '\\';
+    q += c;
+  }
+  return q + "\"";
+}
+std::string join(const std::vector<std::string>& items, const char* open, const char* close) {
+  std::string s = open;
+  for (std::size_t i = 0; i < items.size(); ++i) s += (i ? "," : "") + items[i];
+  return s + close;
+}
+std::string arr(const std::vector<std::string>& items) { return join(items, "[", "]"); }
+std::string obj(const std::vector<std::string>& members) { return join(members, "{", "}"); }
+std::string kv(const std::string& key, const std::string& value) { return quote(key) + ":" + value; }
+template <class T>
+std::string arrOf(const std::vector<T>& v) {
+  std::vector<std::string> items;
+  for (const T& x : v) items.push_back(num(x));
+  return arr(items);
+}
+
+// the file's tables: what the JSON lists, built in order
+struct Doc {
+  Bin bin;
+  std::vector<std::string> views, accessors, meshes, nodes, materials;
+
+  // a buffer view of bytes appended now; target 0: none (animation data)
+  int view(const std::string& data, int target, int stride = 0) {
+    bin.align4();
+    std::vector<std::string> m{kv("buffer", "0"), kv("byteOffset", num(bin.bytes.size())),
+                               kv("byteLength", num(data.size()))};
+    if (stride) m.push_back(kv("byteStride", num(stride)));
+    if (target) m.push_back(kv("target", num(target)));
+    bin.bytes += data;
+    views.push_back(obj(m));
+    return static_cast<int>(views.size()) - 1;
+  }
+  int accessor(int view, std::size_t offset, int componentType, bool normalized, std::size_t count,
+               const char* type, const std::string& minMax = "") {
+    std::vector<std::string> m{kv("bufferView", num(view))};
+    if (offset) m.push_back(kv("byteOffset", num(offset)));
+    m.push_back(kv("componentType", num(componentType)));
+    if (normalized) m.push_back(kv("normalized", "true"));
+    m.push_back(kv("count", num(count)));
+    m.push_back(kv("type", quote(type)));
+    std::string a = obj(m);
+    if (!minMax.empty()) a.insert(a.size() - 1, "," + minMax);
+    accessors.push_back(a);
+    return static_cast<int>(accessors.size()) - 1;
+  }
+  int material(const std::string& name, const std::array<float, 3>& srgb, bool doubleSided) {
+    std::vector<std::string> c;
+    for (float v : srgb) c.push_back(num(static_cast<float>(srgbToLinear(v))));
+    c.push_back("1");
+    std::vector<std::string> m{
+        kv("name", quote(name)),
+        kv("pbrMetallicRoughness", obj({kv("baseColorFactor", arr(c)), kv("metallicFactor", "0"),
+                                        kv("roughnessFactor", num(kRoughness))}))};
+    if (doubleSided) m.push_back(kv("doubleSided", "true"));
+    materials.push_back(obj(m));
+    return static_cast<int>(materials.size()) - 1;
+  }
+};
+
+constexpr int kArrayBuffer = 34962, kElementArrayBuffer = 34963;
+constexpr int kByte = 5120, kShort = 5122, kUnsignedShort = 5123, kUnsignedInt = 5125, kFloat = 5126;
+
+// a float mesh (plate, grid, obstacles): positions and normals [glTF axes, m], triangles
+struct FloatMesh {
+  std::vector<V3> pos, nrm;
+  std::vector<std::uint32_t> idx;
+  void quad(const V3& a, const V3& b, const V3& c, const V3& d, const V3& n) {  // a-b-c-d counter-clockwise seen from n
+    const auto o = static_cast<std::uint32_t>(pos.size());
+    for (const V3* p : {&a, &b, &c, &d}) pos.push_back(*p), nrm.push_back(n);
+    idx.insert(idx.end(), {o, o + 1, o + 2, o, o + 2, o + 3});
+  }
+};
+
+// a primitive of a float mesh: its attributes and indices (32-bit: these meshes are small) appended
+std::string floatPrimitive(Doc& doc, const FloatMesh& m, int material) {
+  Bin data;
+  std::array<float, 3> lo{}, hi{};
+  lo.fill(std::numeric_limits<float>::max());
+  hi.fill(-std::numeric_limits<float>::max());
+  for (std::size_t i = 0; i < m.pos.size(); ++i) {
+    for (int k = 0; k < 3; ++k) {
+      const auto p = static_cast<float>(m.pos[i][k]);
+      data.f32(p);
+      lo[static_cast<std::size_t>(k)] = std::min(lo[static_cast<std::size_t>(k)], p);
+      hi[static_cast<std::size_t>(k)] = std::max(hi[static_cast<std::size_t>(k)], p);
+    }
+    for (int k = 0; k < 3; ++k) data.f32(static_cast<float>(m.nrm[i][k]));
+  }
+  const int v = doc.view(data.bytes, kArrayBuffer, 24);
+  const std::string minMax = kv("min", arr({num(lo[0]), num(lo[1]), num(lo[2])})) + "," +
+                             kv("max", arr({num(hi[0]), num(hi[1]), num(hi[2])}));
+  const int pos = doc.accessor(v, 0, kFloat, false, m.pos.size(), "VEC3", minMax);
+  const int nrm = doc.accessor(v, 12, kFloat, false, m.pos.size(), "VEC3");
+  Bin ib;
+  for (std::uint32_t i : m.idx) ib.u32(i);
+  const int iv = doc.view(ib.bytes, kElementArrayBuffer);
+  const int ia = doc.accessor(iv, 0, kUnsignedInt, false, m.idx.size(), "SCALAR");
+  return obj({kv("attributes", obj({kv("POSITION", num(pos)), kv("NORMAL", num(nrm))})), kv("indices", num(ia)),
+              kv("material", num(material))});
+}
+
+// ---- the tube ----
+
+// a snapshot's tube vertices [glTF axes, m] and unit normals, in the layout of the file's comment:
+// base disc (centre, rim), tip cap (K rings, apex), then the wall's rings
+void tubeVertices(const std::vector<TubeRing>& rings, double h, std::vector<V3>& pos, std::vector<V3>& nrm) {
+  pos.clear(), nrm.clear();
+  auto add = [&](const V3& pMm, const V3& n) { pos.push_back(toGltf(pMm)), nrm.push_back(dirToGltf(n)); };
+  auto around = [&](const TubeRing& g, int k) {
+    const double phi = sideAngle(k, h);
+    return V3(std::cos(phi) * g.a + std::sin(phi) * g.b);
+  };
+  const TubeRing& base = rings.front();
+  add(base.c, -base.t);
+  for (int k = 0; k < kSides; ++k) add(base.c + base.r * around(base, k), -base.t);
+  const TubeRing& tip = rings.back();
+  for (int j = 0; j < K; ++j) {
+    const double th = 0.5 * kPi * j / K;
+    for (int k = 0; k < kSides; ++k) {
+      const V3 n = std::cos(th) * around(tip, k) + std::sin(th) * tip.t;
+      add(tip.c + tip.r * n, n);
+    }
+  }
+  add(tip.c + tip.r * tip.t, tip.t);
+  for (const TubeRing& g : rings)
+    for (int k = 0; k < kSides; ++k) add(g.c + g.r * around(g, k), around(g, k));
+}
+
+// the triangles of a tube of `rings` rings, one list per material (Body, Plus, Minus): the fixed part
+// (base disc, cap) first, then the wall band by band, so a tube of fewer rings uses a prefix of each list
+std::array<std::vector<std::uint32_t>, 3> tubeTriangles(int rings) {
+  std::array<std::vector<std::uint32_t>, 3> out;
+  auto tri = [&](Part p, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
+    out[static_cast<std::size_t>(p)].insert(out[static_cast<std::size_t>(p)].end(), {a, b, c});
+  };
+  auto next = [](int k) { return static_cast<std::uint32_t>((k + 1) % kSides); };
+  // ring j's sample k, rings starting at vertex `first`
+  auto at = [](int first, int j, std::uint32_t k) { return static_cast<std::uint32_t>(first + j * kSides) + k; };
+  auto band = [&](int first, int j) {
+    for (int k = 0; k < kSides; ++k) {
+      const auto kk = static_cast<std::uint32_t>(k);
+      const std::uint32_t a = at(first, j, kk), b = at(first, j, next(k)), c = at(first, j + 1, kk), d = at(first, j + 1, next(k));
+      tri(sidePart(k), a, b, d);
+      tri(sidePart(k), a, d, c);
+    }
+  };
+  for (int k = 0; k < kSides; ++k) tri(Body, 0, 1 + next(k), 1 + static_cast<std::uint32_t>(k));  // faces -t
+  for (int j = 0; j + 1 < K; ++j) band(kBaseVertices, j);
+  const auto apex = static_cast<std::uint32_t>(kBaseVertices + K * kSides);
+  for (int k = 0; k < kSides; ++k)
+    tri(sidePart(k), at(kBaseVertices, K - 1, static_cast<std::uint32_t>(k)), at(kBaseVertices, K - 1, next(k)), apex);
+  for (int j = 0; j + 1 < rings; ++j) band(kSideStart, j);
+  return out;
+}
+
+// the number of indices of each material's list that a tube of `rings` rings uses
+std::array<std::size_t, 3> tubeIndexCounts(int rings) {
+  const std::size_t fixedBody = 3 * kSides + 6 * 2 * B * (K - 1) + 3 * 2 * B;
+  const std::size_t fixedStripe = 6 * S * (K - 1) + 3 * S;
+  const auto bands = static_cast<std::size_t>(rings - 1);
+  return {fixedBody + bands * 6 * 2 * B, fixedStripe + bands * 6 * S, fixedStripe + bands * 6 * S};
+}
+
+std::string frameName(int k, const Snapshot& s) {
+  char buf[96];
+  std::snprintf(buf, sizeof buf, "frame %04d, t = %.2f h", k, s.timeH);
+  return buf;
+}
+
+}  // namespace
+
+std::string gltfBinary(const std::vector<Snapshot>& snaps, const SceneInfo& info, const GltfOptions& options) {
+  if (snaps.empty()) throw RenderError("glTF: no snapshots to write");
+  if (!(options.stripeHalfWidthDeg > 0.0 && options.stripeHalfWidthDeg < 90.0))
+    throw RenderError("glTF: the stripe half width must be in (0, 90) degrees (got " +
+                      numberText(options.stripeHalfWidthDeg) + ")");
+  for (const Snapshot& s : snaps) checkTubeSnapshot(s, "glTF");
+  const double h = options.stripeHalfWidthDeg * units::deg;
+  const PlateFrame pf = PlateFrame::tilted(info.alphaDeg * units::deg);
+  const int frames = static_cast<int>(snaps.size());
+
+  // pass 1: the tube's reach (every surface point is within r of its ring's centre), the largest tube
+  const double inf = std::numeric_limits<double>::infinity();
+  V3 lo = V3::Constant(inf), hi = V3::Constant(-inf);          // glTF axes [m]
+  double u0 = inf, u1 = -inf, v0 = inf, v1 = -inf;              // plate [mm]
+  int maxRings = 0;
+  for (const Snapshot& s : snaps) {
+    const std::vector<TubeRing> rings = tubeRings(s, pf);
+    maxRings = std::max(maxRings, static_cast<int>(rings.size()));
+    for (const TubeRing& g : rings) {
+      const V3 c = toGltf(g.c), r = V3::Constant(g.r * units::mm);
+      lo = lo.cwiseMin(c - r), hi = hi.cwiseMax(c + r);
+      u0 = std::min(u0, g.c.x() - g.r), u1 = std::max(u1, g.c.x() + g.r);
+      v0 = std::min(v0, g.c.y() - g.r), v1 = std::max(v1, g.c.y() + g.r);
+    }
+  }
+  const std::size_t maxVertices = static_cast<std::size_t>(kSideStart + maxRings * kSides);
+  // int16 positions on one grid for every snapshot: q / 32767 * half + centre (the "root" node)
+  const V3 centre = 0.5 * (lo + hi);
+  const double half = std::max(0.5 * (hi - lo).maxCoeff(), 1e-9);
+
+  Doc doc;
+  const RenderScene::Material look;
+  const int matBody = doc.material("root body", look.body, false);
+  const int matPlus = doc.material("stripe +d1", look.plus, false);
+  const int matMinus = doc.material("stripe -d1", look.minus, false);
+  const std::array<int, 3> tubeMaterial{matBody, matPlus, matMinus};
+
+  // the index lists of the largest tube, one per material; every snapshot uses a prefix of each
+  const bool shortIndices = maxVertices < 65535;  // 65535 is the primitive restart value
+  const auto lists = tubeTriangles(maxRings);
+  std::array<int, 3> indexView{};
+  for (std::size_t m = 0; m < 3; ++m) {
+    Bin ib;
+    for (std::uint32_t i : lists[m]) shortIndices ? ib.u16(static_cast<std::uint16_t>(i)) : ib.u32(i);
+    ib.align4();
+    indexView[m] = doc.view(ib.bytes, kElementArrayBuffer);
+  }
+
+  // pass 2: one mesh and one node per snapshot
+  std::vector<int> frameNodes;
+  std::vector<V3> pos, nrm;
+  for (int f = 0; f < frames; ++f) {
+    const Snapshot& s = snaps[static_cast<std::size_t>(f)];
+    const std::vector<TubeRing> rings = tubeRings(s, pf);
+    tubeVertices(rings, h, pos, nrm);
+    Bin vb;
+    std::array<int, 3> qlo{32767, 32767, 32767}, qhi{-32767, -32767, -32767};
+    for (std::size_t i = 0; i < pos.size(); ++i) {
+      for (int k = 0; k < 3; ++k) {
+        const auto q = static_cast<int>(std::clamp(std::lround((pos[i][k] - centre[k]) / half * 32767.0), -32767L, 32767L));
+        vb.u16(static_cast<std::uint16_t>(static_cast<std::int16_t>(q)));
+        qlo[static_cast<std::size_t>(k)] = std::min(qlo[static_cast<std::size_t>(k)], q);
+        qhi[static_cast<std::size_t>(k)] = std::max(qhi[static_cast<std::size_t>(k)], q);
+      }
+      vb.u16(0);
+      const V3 n = nrm[i].normalized();
+      for (int k = 0; k < 3; ++k)
+        vb.u8(static_cast<std::uint8_t>(static_cast<std::int8_t>(std::clamp(std::lround(n[k] * 127.0), -127L, 127L))));
+      vb.u8(0);
+    }
+    const int v = doc.view(vb.bytes, kArrayBuffer, 12);
+    const std::string minMax = kv("min", arr({num(qlo[0]), num(qlo[1]), num(qlo[2])})) + "," +
+                               kv("max", arr({num(qhi[0]), num(qhi[1]), num(qhi[2])}));
+    const int pa = doc.accessor(v, 0, kShort, true, pos.size(), "VEC3", minMax);
+    const int na = doc.accessor(v, 8, kByte, true, pos.size(), "VEC3");
+    const auto counts = tubeIndexCounts(static_cast<int>(rings.size()));
+    std::vector<std::string> prims;
+    for (std::size_t m = 0; m < 3; ++m) {
+      const int ia = doc.accessor(indexView[m], 0, shortIndices ? kUnsignedShort : kUnsignedInt, false, counts[m], "SCALAR");
+      prims.push_back(obj({kv("attributes", obj({kv("POSITION", num(pa)), kv("NORMAL", num(na))})),
+                           kv("indices", num(ia)), kv("material", num(tubeMaterial[m]))}));
+    }
+    doc.meshes.push_back(obj({kv("name", quote("root " + frameName(f, s))), kv("primitives", arr(prims))}));
+    // a still, or the last snapshot, is shown by viewers that do not play the animation
+    const bool shown = f == frames - 1;
+    doc.nodes.push_back(obj({kv("name", quote(frameName(f, s))), kv("mesh", num(static_cast<int>(doc.meshes.size()) - 1)),
+                             kv("scale", shown ? "[1,1,1]" : "[0,0,0]"),
+                             kv("extras", obj({kv("step", num(s.step)), kv("time_h", num(s.timeH))}))}));
+    frameNodes.push_back(static_cast<int>(doc.nodes.size()) - 1);
+  }
+  std::vector<std::string> frameIds;
+  for (int n : frameNodes) frameIds.push_back(num(n));
+  doc.nodes.push_back(obj({kv("name", quote("root")), kv("children", arr(frameIds)),
+                           kv("translation", arr({num(centre.x()), num(centre.y()), num(centre.z())})),
+                           kv("scale", arr({num(half), num(half), num(half)}))}));
+  std::vector<std::string> top{num(static_cast<int>(doc.nodes.size()) - 1)};
+
+  // the plate, its grid (whole millimetres, darker every 10 mm) and the obstacles
+  const RenderScene::Plate plateLook;
+  for (const SceneInfo::ObstacleShape& o : info.obstacles) {
+    u0 = std::min({u0, o.fromU - o.radiusMm, o.toU - o.radiusMm}), u1 = std::max({u1, o.fromU + o.radiusMm, o.toU + o.radiusMm});
+    v0 = std::min({v0, o.fromV - o.radiusMm, o.toV - o.radiusMm}), v1 = std::max({v1, o.fromV + o.radiusMm, o.toV + o.radiusMm});
+  }
+  u0 = std::floor(u0 - kPlateMarginMm), u1 = std::ceil(u1 + kPlateMarginMm);
+  v0 = std::floor(v0 - kPlateMarginMm), v1 = std::ceil(v1 + kPlateMarginMm);
+  const V3 up(0, 1, 0);
+  auto P = [](double u, double v, double w) { return toGltf(V3(u, v, w)); };
+  if (info.plate) {
+    FloatMesh plate;
+    plate.quad(P(u0, v0, 0), P(u1, v0, 0), P(u1, v1, 0), P(u0, v1, 0), up);
+    const int mat = doc.material("plate", plateLook.colour, false);
+    doc.meshes.push_back(obj({kv("name", quote("plate")), kv("primitives", arr({floatPrimitive(doc, plate, mat)}))}));
+    doc.nodes.push_back(obj({kv("name", quote("plate")), kv("mesh", num(static_cast<int>(doc.meshes.size()) - 1))}));
+    top.push_back(num(static_cast<int>(doc.nodes.size()) - 1));
+    FloatMesh minor, major;
+    for (int u = static_cast<int>(u0); u <= static_cast<int>(u1); ++u) {
+      const bool isMajor = u % kMajorEvery == 0;
+      const double hw = 0.5 * (isMajor ? kGridMajorLineMm : kGridLineMm), w = isMajor ? kGridMajorLiftMm : kGridLiftMm;
+      (isMajor ? major : minor).quad(P(u - hw, v0, w), P(u + hw, v0, w), P(u + hw, v1, w), P(u - hw, v1, w), up);
+    }
+    for (int v = static_cast<int>(v0); v <= static_cast<int>(v1); ++v) {
+      const bool isMajor = v % kMajorEvery == 0;
+      const double hw = 0.5 * (isMajor ? kGridMajorLineMm : kGridLineMm);
+      const double w = (isMajor ? kGridMajorLiftMm : kGridLiftMm) + kGridCrossLiftMm;
+      (isMajor ? major : minor).quad(P(u0, v - hw, w), P(u1, v - hw, w), P(u1, v + hw, w), P(u0, v + hw, w), up);
+    }
+    std::vector<std::string> prims{floatPrimitive(doc, minor, doc.material("grid 1 mm", plateLook.line, false))};
+    if (!major.pos.empty()) prims.push_back(floatPrimitive(doc, major, doc.material("grid 10 mm", plateLook.major, false)));
+    doc.meshes.push_back(obj({kv("name", quote("grid")), kv("primitives", arr(prims))}));
+    doc.nodes.push_back(obj({kv("name", quote("grid")), kv("mesh", num(static_cast<int>(doc.meshes.size()) - 1))}));
+    top.push_back(num(static_cast<int>(doc.nodes.size()) - 1));
+  }
+  if (!info.obstacles.empty()) {
+    RenderScene scratch;
+    addObstacleMeshes(info, scratch);
+    FloatMesh m;
+    for (const TubeVertex& tv : scratch.vertices) {
+      m.pos.push_back(toGltf(V3(tv.pos[0], tv.pos[1], tv.pos[2])));
+      m.nrm.push_back(dirToGltf(V3(tv.normal[0], tv.normal[1], tv.normal[2])));
+    }
+    m.idx = scratch.indices;
+    const TubeVertex& first = scratch.vertices.front();
+    const int mat = doc.material("obstacle", {first.colour[0], first.colour[1], first.colour[2]}, true);
+    doc.meshes.push_back(obj({kv("name", quote("obstacles")), kv("primitives", arr({floatPrimitive(doc, m, mat)}))}));
+    doc.nodes.push_back(obj({kv("name", quote("obstacles")), kv("mesh", num(static_cast<int>(doc.meshes.size()) - 1))}));
+    top.push_back(num(static_cast<int>(doc.nodes.size()) - 1));
+  }
+
+  // the top view: an orthographic camera above the plate's centre looking down -y, uphill (-z) up the
+  // picture: its node turned -90 degrees about x
+  const V3 plateCentre = P(0.5 * (u0 + u1), 0.5 * (v0 + v1), 0);
+  const double xmag = 0.5 * (u1 - u0) * units::mm, ymag = 0.5 * (v1 - v0) * units::mm;
+  const std::string camera =
+      obj({kv("name", quote("top view")), kv("type", quote("orthographic")),
+           kv("orthographic", obj({kv("xmag", num(xmag)), kv("ymag", num(ymag)), kv("znear", num(0.01 * kCameraHeightM)),
+                                   kv("zfar", num(2.0 * kCameraHeightM))}))});
+  const double s2 = std::sqrt(0.5);
+  doc.nodes.push_back(obj({kv("name", quote("top view")), kv("camera", "0"),
+                           kv("rotation", arr({num(-s2), "0", "0", num(s2)})),
+                           kv("translation", arr({num(plateCentre.x()), num(kCameraHeightM), num(plateCentre.z())}))}));
+  top.push_back(num(static_cast<int>(doc.nodes.size()) - 1));
+
+  // the animation: snapshot k's node has scale 1 on [k, k + 1) / fps and 0 elsewhere (STEP); each
+  // sampler reads a slice of one time list and one value list [0, 1, 0]
+  std::string animations;
+  if (frames > 1) {
+    Bin times, values;
+    for (int f = 0; f < frames; ++f) times.f32(static_cast<float>(f / kGltfFramesPerSecond));
+    for (float v : {0.0f, 1.0f, 0.0f})
+      for (int k = 0; k < 3; ++k) values.f32(v);
+    const int tv = doc.view(times.bytes, 0), vv = doc.view(values.bytes, 0);
+    std::vector<std::string> samplers, channels;
+    for (int f = 0; f < frames; ++f) {
+      const int first = std::max(0, f - 1), last = std::min(frames - 1, f + 1);
+      const auto t0 = static_cast<float>(first / kGltfFramesPerSecond), t1 = static_cast<float>(last / kGltfFramesPerSecond);
+      const int in = doc.accessor(tv, static_cast<std::size_t>(first) * 4, kFloat, false, static_cast<std::size_t>(last - first + 1),
+                                  "SCALAR", kv("min", arr({num(t0)})) + "," + kv("max", arr({num(t1)})));
+      // values from [0, 1, 0]: the first snapshot starts at its 1, the last ends at its 1
+      const std::size_t valueOffset = f == 0 ? 12 : 0;
+      const int out = doc.accessor(vv, valueOffset, kFloat, false, static_cast<std::size_t>(last - first + 1), "VEC3");
+      samplers.push_back(obj({kv("input", num(in)), kv("output", num(out)), kv("interpolation", quote("STEP"))}));
+      channels.push_back(obj({kv("sampler", num(f)),
+                              kv("target", obj({kv("node", num(frameNodes[static_cast<std::size_t>(f)])), kv("path", quote("scale"))}))}));
+    }
+    animations = kv("animations", arr({obj({kv("name", quote("growth")), kv("channels", arr(channels)),
+                                            kv("samplers", arr(samplers))})}));
+  }
+  doc.nodes.push_back(obj({kv("name", quote("rootsim")), kv("children", arr(top))}));
+  const int sceneRoot = static_cast<int>(doc.nodes.size()) - 1;
+  doc.bin.align4();
+
+  std::vector<std::string> members{
+      kv("asset", obj({kv("version", quote("2.0")), kv("generator", quote(outputSignatureText()))})),
+      kv("extensionsUsed", arr({quote("KHR_mesh_quantization")})),
+      kv("extensionsRequired", arr({quote("KHR_mesh_quantization")})),
+      kv("scene", "0"),
+      kv("scenes", arr({obj({kv("name", quote(info.title.empty() ? "rootsim" : info.title)), kv("nodes", arr({num(sceneRoot)}))})})),
+      kv("nodes", arr(doc.nodes)),
+      kv("meshes", arr(doc.meshes)),
+      kv("materials", arr(doc.materials)),
+      kv("cameras", arr({camera})),
+      kv("accessors", arr(doc.accessors)),
+      kv("bufferViews", arr(doc.views)),
+      kv("buffers", arr({obj({kv("byteLength", num(doc.bin.bytes.size()))})}))};
+  if (!animations.empty()) members.push_back(animations);
+  std::string json = obj(members);
+  while (json.size() % 4) json += ' ';
+
+  const std::size_t total = 12 + 8 + json.size() + 8 + doc.bin.bytes.size();
+  if (total > std::numeric_limits<std::uint32_t>::max())
+    throw RenderError("glTF: the file would be " + std::to_string(total) + " bytes, more than a GLB can hold (4 GiB)");
+  Bin glb;
+  glb.u32(0x46546C67);  // "glTF"
+  glb.u32(2);
+  glb.u32(static_cast<std::uint32_t>(total));
+  glb.u32(static_cast<std::uint32_t>(json.size()));
+  glb.u32(0x4E4F534A);  // "JSON"
+  glb.bytes += json;
+  glb.u32(static_cast<std::uint32_t>(doc.bin.bytes.size()));
+  glb.u32(0x004E4942);  // "BIN\0"
+  glb.bytes += doc.bin.bytes;
+  return glb.bytes;
+}
+
+}  // namespace rootsim

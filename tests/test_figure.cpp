@@ -54,6 +54,16 @@ std::string capture(const std::string& cmd) {
   return out;
 }
 
+// a PDF's page size [pt] (pdfinfo)
+std::array<double, 2> pageSizePt(const fs::path& pdf) {
+  const std::string info = capture("pdfinfo '" + pdf.string() + "' 2>&1");
+  const size_t p = info.find("Page size:");
+  REQUIRE(p != std::string::npos);
+  std::array<double, 2> wh{0, 0};
+  REQUIRE(std::sscanf(info.c_str() + p, "Page size: %lf x %lf", &wh[0], &wh[1]) == 2);
+  return wh;
+}
+
 // the pHYs chunk of a PNG: pixels per metre along x and y and the unit byte; {-1, -1, -1} if none
 std::array<long, 3> physOf(const fs::path& png) {
   const std::string b = slurp(png);
@@ -280,12 +290,114 @@ TEST_CASE("the PNG carries its resolution: pHYs = dpi / 0.0254 pixels per metre"
   int w = 0, h = 0;
   inkFraction(base.string() + ".png", &w, &h);
   CHECK(w == std::lround(85 / 25.4 * 600));
-  CHECK(h == std::lround(85 / 25.4 * 600 * 400 / 500));
   CHECK(physOf(base.string() + ".png")[0] == std::lround(600 / 0.0254));
-  // the PDF's page is 85 mm wide (points)
-  const std::string info = capture("pdfinfo '" + base.string() + ".pdf' 2>&1");
-  INFO(info);
-  CHECK(info.find("240.9") != std::string::npos);  // 85 mm = 240.94 pt
+  // the PDF's page is 85 mm wide (points), and the PNG has the page's proportions
+  const auto page = pageSizePt(base.string() + ".pdf");
+  CHECK(page[0] == doctest::Approx(85 / 25.4 * 72).epsilon(1e-5));
+  CHECK(h == std::lround(w * page[1] / page[0]));
+}
+
+namespace {
+// the words of a PDF with their font size [pt]: pdftotext -bbox gives each word's box, across the line as
+// high as the font's ascent + descent, which for DejaVu Sans (the panels' font) is 1.164 em (0.928 +
+// 0.236). A rotated word (a y axis label) has that extent along x: a word of three or more characters is
+// longer along its line than across it, so its size is the box's smaller side; one or two characters
+// (subscripts, digits) are never wider than 1.164 em along a horizontal line unless they are rotated, so
+// theirs is the larger side
+std::vector<std::pair<std::string, double>> wordSizesPt(const fs::path& pdf) {
+  const std::string xml = capture("pdftotext -bbox '" + pdf.string() + "' - 2>&1");
+  std::vector<std::pair<std::string, double>> out;
+  for (size_t p = xml.find("<word "); p != std::string::npos; p = xml.find("<word ", p + 1)) {
+    auto attr = [&](const std::string& k) { return std::stod(xml.substr(xml.find(k + "=\"", p) + k.size() + 2)); };
+    const size_t a = xml.find('>', p) + 1;
+    const std::string word = xml.substr(a, xml.find('<', a) - a);
+    size_t chars = 0;
+    for (char ch : word) chars += (static_cast<unsigned char>(ch) & 0xC0) != 0x80;
+    const double w = attr("xMax") - attr("xMin"), h = attr("yMax") - attr("yMin");
+    out.emplace_back(word, (chars >= 3 ? std::min(w, h) : std::max(w, h)) / 1.164);
+  }
+  return out;
+}
+
+// a panel like the paper's rows of roots: tiles sharing their y axis (fixed y range, a y label on the
+// first only), tubes, titles and notes with subscripts, a long figure title; and a plot with a legend
+rootsim::Figure journalPanel() {
+  rootsim::Figure f;
+  f.cols = 6;
+  f.width = 170 * f.cols + 40;
+  f.height = 600;
+  f.title = "Fig. 2A: final shapes on the plate (β = γ = 0.1; pink +d_1, orange −d_1; downhill is down)";
+  for (int i = 0; i < f.cols; ++i) {
+    rootsim::Axes a;
+    if (i == 0) a.panelLabel = "A";
+    a.title = "α = " + std::to_string(15 * i) + "°";
+    a.xlabel = "lateral [mm]";
+    if (i == 0) a.ylabel = "downhill [mm]";
+    a.autoX = a.autoY = false;
+    a.equalAspect = a.yDown = true;
+    a.xmin = -2;
+    a.xmax = 2;
+    a.ymin = -0.5;
+    a.ymax = 12;
+    rootsim::Tube tb;
+    for (int k = 0; k <= 40; ++k) {
+      tb.x.push_back(0.8 * std::sin(0.3 * k * i / 5.0));
+      tb.y.push_back(0.3 * k);
+      tb.r.push_back(0.1);
+      tb.sx.push_back(1);
+      tb.sy.push_back(0);
+    }
+    a.tubes.push_back(tb);
+    a.notes.push_back({{0, 11.5}, "κ_{f}^{0} L_{gz}"});
+    f.axes.push_back(a);
+  }
+  return f;
+}
+}  // namespace
+
+TEST_CASE("at --width-mm 85 and 180 the panel is that wide and its text is at least 6 pt") {
+  rootsim::Figure plot;
+  plot.width = 800;
+  plot.height = 620;
+  rootsim::Axes pa;
+  pa.title = "sin⟨θ⟩ / tan α over β L_{gz} / R";
+  pa.xlabel = "effective gravitropic gain βL_{gz}/R";
+  pa.ylabel = "θ^{tip} [deg]";
+  pa.series.push_back(rootsim::Series{});
+  pa.series.back().x = {0, 1, 2};
+  pa.series.back().y = {0, 1, 0.5};
+  pa.series.back().label = "E_{b} (zone)";
+  plot.axes.push_back(pa);
+  for (const auto& [name, fig] : {std::pair{"rows", journalPanel()}, std::pair{"plot", plot}})
+    for (double mm : {85.0, 180.0}) {
+      INFO(name << " at " << mm << " mm");
+      const fs::path base = fs::temp_directory_path() / ("rootsim_plot_journal_" + std::string(name));
+      rootsim::SaveOptions so;
+      so.widthMm = mm;
+      rootsim::saveFigure(fig, base.string(), so);
+      const auto page = pageSizePt(base.string() + ".pdf");
+      CHECK(page[0] == doctest::Approx(mm / 25.4 * 72).epsilon(1e-5));
+      const auto words = wordSizesPt(base.string() + ".pdf");
+      CHECK(words.size() > 10);
+      double smallest = 1e9;
+      for (const auto& [w, size] : words) {
+        INFO(w << " " << size << " pt");
+        CHECK(size >= 5.95);
+        smallest = std::min(smallest, size);
+      }
+      // the tick labels are 7 pt and the sub- and superscripts 6 pt, at either width
+      CHECK(smallest == doctest::Approx(6).epsilon(0.03));
+      // the PNG draws the same page
+      int w = 0, h = 0;
+      inkFraction(base.string() + ".png", &w, &h);
+      CHECK(h == std::lround(w * page[1] / page[0]));
+    }
+  // without --width-mm the same panel at 85 mm would be scaled as a whole: its text far below 6 pt
+  const fs::path base = fs::temp_directory_path() / "rootsim_plot_journal_scaled";
+  rootsim::saveFigure(journalPanel(), base.string(), rootsim::SaveOptions{});
+  double smallest = 1e9;
+  for (const auto& [w, size] : wordSizesPt(base.string() + ".pdf")) smallest = std::min(smallest, size);
+  CHECK(smallest * 85 / (pageSizePt(base.string() + ".pdf")[0] / 72 * 25.4) < 4);
 }
 
 TEST_CASE("the PDF's text is text: pdftotext finds the axis titles with their units") {

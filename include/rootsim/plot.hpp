@@ -77,8 +77,10 @@ struct Axes {
   std::string legendPos = "ne"; // ne, nw, se, sw, none
 };
 
-// a figure: a row-major grid of axes, laid out on width x height layout units (1/96 inch unless
-// SaveOptions::widthMm scales it)
+// a figure: a row-major grid of axes, laid out on width x height layout units of 1/96 inch. With
+// SaveOptions::widthMm the panel is laid out again at that physical width (docs/rendering.md, "Figure
+// panels at a journal's width"): text at fixed point sizes, each plot area keeping its aspect, tiles of
+// one row sharing their y axis, rows of tiles wrapping when a tile would be narrower than 12 mm.
 struct Figure {
   int width = 1200, height = 800;
   int rows = 1, cols = 1;
@@ -86,8 +88,24 @@ struct Figure {
   std::vector<Axes> axes;
 };
 
-// height / width of the plot area of axes a in figure f, in pixels (the layout saveFigure uses)
+// height / width of the plot area of axes a in figure f (the layout saveFigure uses; the physical layout
+// keeps it)
 double plotAspect(const Figure& f, const Axes& a);
+
+// a label laid out: its runs of text with the pen position of each (x along the base line from the
+// label's start, y down from the base line, in units of the font size given) and its font size
+struct LabelRun {
+  std::string text;
+  double x = 0, y = 0, size = 0;
+  int level = 0;  // 0 base, -1 subscript, +1 superscript
+};
+struct LabelLayout {
+  std::vector<LabelRun> runs;
+  double width = 0;  // advance width
+};
+// the layout of a label (markup above) at font size `size`, its sub- and superscripts no smaller than
+// scriptMin (same units)
+LabelLayout layoutLabel(const std::string& label, double size, bool bold = false, double scriptMin = 0);
 
 struct SaveOptions {
   double dpi = 300;             // PNG resolution (stored in its pHYs chunk)

@@ -502,3 +502,67 @@ TEST_CASE("the vector root's stripes sit where the raster renderer draws them") 
   cairo_surface_destroy(img);
   CHECK(slurp(base.string() + ".svg").find("<image") == std::string::npos);
 }
+
+TEST_CASE("root views draw the plate's obstacles (a peg, a wall with round ends) on a light 1 mm grid") {
+  rootsim::Figure f;
+  f.width = 300;
+  f.height = 300;
+  rootsim::Axes a;
+  a.grid = false;
+  a.frameOnly = true;
+  a.autoX = a.autoY = false;
+  a.xmin = -1;
+  a.xmax = 1;
+  a.ymin = 0;
+  a.ymax = 2;
+  a.yDown = true;
+  a.plateGridPitch = 0.5;
+  rootsim::Obstacle2D peg;
+  peg.fromX = peg.toX = 0.5;
+  peg.fromY = peg.toY = 1.0;
+  peg.r = 0.2;
+  rootsim::Obstacle2D wall;
+  wall.fromX = wall.toX = -0.6;
+  wall.fromY = 0.3;
+  wall.toY = 1.7;
+  wall.r = 0.08;
+  a.obstacles = {peg, wall};
+  f.axes.push_back(a);
+  const fs::path base = fs::temp_directory_path() / "rootsim_plot_obstacles";
+  rootsim::SaveOptions so;
+  so.dpi = 96;  // one pixel a layout unit
+  rootsim::saveFigure(f, base.string(), so);
+  cairo_surface_t* img = cairo_image_surface_create_from_png((base.string() + ".png").c_str());
+  REQUIRE(cairo_surface_status(img) == CAIRO_STATUS_SUCCESS);
+  const int stride = cairo_image_surface_get_stride(img);
+  const unsigned char* d = cairo_image_surface_get_data(img);
+  // plot area x 64..286 (111 px a unit), y 12..254 (121 px a unit, downhill down); BGRA in memory
+  auto px = [&](double x, double y) {
+    return d + static_cast<int>(12 + y * 121) * stride + 4 * static_cast<int>(64 + (x + 1) * 111);
+  };
+  auto slate = [](const unsigned char* p) { return std::abs(p[2] - 143) < 6 && std::abs(p[1] - 158) < 6 && std::abs(p[0] - 184) < 6; };
+  CHECK(slate(px(0.5, 1.0)));          // the peg's centre
+  CHECK(slate(px(0.5 + 0.12, 1.05)));  // inside its radius
+  CHECK(px(0.5 + 0.3, 1.1)[1] > 240);  // outside it: plate
+  CHECK(slate(px(-0.6, 1.0)));         // the wall's middle
+  CHECK(slate(px(-0.6, 1.75)));        // its round end, beyond the segment
+  CHECK(px(-0.6, 1.85)[1] > 240);      // and no further
+  CHECK(px(-0.6 + 0.15, 1.0)[1] > 240);
+  // the grid: lines every 0.5 units (x = 0 at pixel column 175), white between them
+  int darkest = 255;
+  for (int x = 172; x <= 178; ++x) darkest = std::min<int>(darkest, d[200 * stride + 4 * x + 1]);
+  CHECK(darkest < 245);
+  CHECK(darkest > 200);  // light
+  CHECK(d[200 * stride + 4 * 147 + 1] == 255);
+  cairo_surface_destroy(img);
+  // no grid without a pitch
+  a.plateGridPitch = 0;
+  f.axes = {a};
+  rootsim::saveFigure(f, base.string(), so);
+  img = cairo_image_surface_create_from_png((base.string() + ".png").c_str());
+  d = cairo_image_surface_get_data(img);
+  darkest = 255;
+  for (int x = 172; x <= 178; ++x) darkest = std::min<int>(darkest, d[200 * stride + 4 * x + 1]);
+  CHECK(darkest == 255);
+  cairo_surface_destroy(img);
+}

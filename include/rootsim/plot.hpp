@@ -52,6 +52,14 @@ std::array<double, 2> visibleStripe(const std::array<double, 3>& a, const std::a
                                     const std::array<double, 3>& side, const std::array<double, 3>& view,
                                     double halfWidthRad);
 
+// an obstacle on the plate seen from above, in plot units: a peg (a disc, from == to) or a wall (the
+// segment from..to thickened by r on either side, with round ends as the model's capsule)
+struct Obstacle2D {
+  double fromX = 0, fromY = 0, toX = 0, toY = 0;
+  double r = 0;
+  Rgb color{0.56, 0.62, 0.72};  // the raster renderer's slate blue-grey (src/render/obstacle_mesh.cpp)
+};
+
 struct Fill {                   // a filled polygon in data coordinates (background regions)
   std::vector<double> x, y;
   Rgb color{0.9, 0.9, 0.9};
@@ -73,6 +81,8 @@ struct Axes {
   std::vector<Series> series;
   std::vector<Shape2D> shapes;
   std::vector<Tube> tubes;
+  std::vector<Obstacle2D> obstacles;  // drawn under the tubes
+  double plateGridPitch = 0;    // > 0: a light grid of this pitch [plot units] under the data (1 mm on the plate)
   std::vector<std::pair<std::array<double, 2>, std::string>> notes;  // text at data coordinates
   std::string legendPos = "ne"; // ne, nw, se, sw, none
 };

@@ -367,8 +367,36 @@ void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
     cairo_close_path(cr);
     cairo_fill(cr);
   }
+  if (a.plateGridPitch > 0) {
+    // the plate's grid (as the raster renderer's plate, docs/rendering.md): light lines every pitch
+    const double g = a.plateGridPitch;
+    const double lo = std::min(y0, y1), hi = std::max(y0, y1);
+    if ((x1 - x0) / g < 2000 && (hi - lo) / g < 2000) {
+      cairo_set_source_rgb(cr, 0.85, 0.85, 0.85);
+      cairo_set_line_width(cr, 0.7);
+      for (double v = std::ceil(x0 / g) * g; v <= x1; v += g) { cairo_move_to(cr, X(v), T); cairo_line_to(cr, X(v), B); }
+      for (double v = std::ceil(lo / g) * g; v <= hi; v += g) { cairo_move_to(cr, L, Y(v)); cairo_line_to(cr, R, Y(v)); }
+      cairo_stroke(cr);
+    }
+  }
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  for (const auto& o : a.obstacles) {
+    // the capsule (or disc) filled, then its outline a darker shade
+    const double rr = o.r * unit;
+    const double dx = X(o.toX) - X(o.fromX), dy = Y(o.toY) - Y(o.fromY);
+    const double ang = std::atan2(dy, dx);
+    cairo_new_sub_path(cr);
+    cairo_arc(cr, X(o.toX), Y(o.toY), rr, ang - 0.5 * units::pi, ang + 0.5 * units::pi);
+    cairo_arc(cr, X(o.fromX), Y(o.fromY), rr, ang + 0.5 * units::pi, ang + 1.5 * units::pi);
+    cairo_close_path(cr);
+    cairo_set_source_rgb(cr, o.color[0], o.color[1], o.color[2]);
+    cairo_fill_preserve(cr);
+    const Rgb edge = mixRgb(o.color, {0, 0, 0}, 0.45);
+    cairo_set_source_rgb(cr, edge[0], edge[1], edge[2]);
+    cairo_set_line_width(cr, 0.8);
+    cairo_stroke(cr);
+  }
   for (const auto& s : a.shapes) {
     cairo_set_source_rgb(cr, s.color[0], s.color[1], s.color[2]);
     cairo_set_line_width(cr, std::max(1.0, s.width * unit));

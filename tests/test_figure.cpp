@@ -566,3 +566,54 @@ TEST_CASE("root views draw the plate's obstacles (a peg, a wall with round ends)
   CHECK(darkest == 255);
   cairo_surface_destroy(img);
 }
+
+TEST_CASE("a straight tube's PNG has no seams across it where its pieces meet") {
+  // a tube along y with nodes every 0.137 units (15.2 px: piece boundaries fall inside pixels), no
+  // stripes: every pixel column across the body must keep one colour along the tube
+  rootsim::Figure f;
+  f.width = 300;
+  f.height = 300;
+  rootsim::Axes a;
+  a.grid = false;
+  a.frameOnly = true;
+  a.autoX = a.autoY = false;
+  a.xmin = -1;
+  a.xmax = 1;
+  a.ymin = 0;
+  a.ymax = 2;
+  a.yDown = true;
+  rootsim::Tube tb;
+  for (int i = 0; i <= 14; ++i) {
+    tb.x.push_back(0.0);
+    tb.y.push_back(0.05 + 0.137 * i);
+    tb.z.push_back(0.3 + 1e-9 * ((i * 7) % 5));  // lying on the plate, heights with rounding noise
+    tb.r.push_back(0.3);
+    tb.sx.push_back(1);
+    tb.sy.push_back(0);
+  }
+  a.tubes.push_back(tb);
+  f.axes.push_back(a);
+  const fs::path base = fs::temp_directory_path() / "rootsim_plot_seams";
+  rootsim::SaveOptions so;
+  so.dpi = 96;
+  rootsim::saveFigure(f, base.string(), so);
+  cairo_surface_t* img = cairo_image_surface_create_from_png((base.string() + ".png").c_str());
+  REQUIRE(cairo_surface_status(img) == CAIRO_STATUS_SUCCESS);
+  const int stride = cairo_image_surface_get_stride(img);
+  const unsigned char* d = cairo_image_surface_get_data(img);
+  // plot area x 64..286 (111 px a unit): the body spans x = 175 -+ 33 px; rows from y = 0.2 to 1.8 units
+  // (12 + 121 y px) stay clear of the root's start and its cap
+  int worst = 0;
+  for (int x = 175 - 31; x <= 175 + 31; ++x) {
+    const unsigned char* ref = d + 100 * stride + 4 * x;
+    for (int y = 40; y <= 220; ++y)
+      for (int ch = 0; ch < 3; ++ch) worst = std::max(worst, std::abs(d[y * stride + 4 * x + ch] - ref[ch]));
+  }
+  CHECK(worst <= 2);
+  // and the centre of the body is the body colour (ivory 0.95, 0.93, 0.86)
+  const unsigned char* c = d + 130 * stride + 4 * 175;
+  CHECK(std::abs(c[2] - 242) <= 2);
+  CHECK(std::abs(c[1] - 237) <= 2);
+  CHECK(std::abs(c[0] - 219) <= 2);
+  cairo_surface_destroy(img);
+}

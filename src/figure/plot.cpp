@@ -203,30 +203,51 @@ Rgb mixRgb(const Rgb& c, const Rgb& d, double f) {
   return {c[0] + f * (d[0] - c[0]), c[1] + f * (d[1] - c[1]), c[2] + f * (d[2] - c[2])};
 }
 
-// a tube seen from above: pieces of a few elements, lowest first (a coil's upper strand covers the lower);
-// each piece: the body in nested shading bands (darker at the flanks), the visible stripes, the flanks'
-// outline; the tip's cap closes the last piece
+// a tube seen from above, lowest first (a coil's upper strand covers the lower): the tube is cut into
+// pieces of a few elements, each piece gets a layer (its mean height in radii, rounded: a strand lying on
+// the plate is one layer, a strand crossing over it one higher), and consecutive pieces of one layer are
+// drawn as one run: the body in nested shading bands (darker at the flanks), each band one path over the
+// whole run, then the visible stripes and the flanks' outline; the tip's cap closes the last run. Drawing
+// a band piece by piece would leave antialiasing seams across the tube where pieces meet (each edge
+// pixel covered twice by half: the plate shows through); a run that follows another starts one node
+// back, under the other's end, so the plate does not show through there either.
 template <class FX, class FY>
 void drawTube(cairo_t* cr, const Tube& t, FX X, FY Y, double unit) {
   const size_t n = t.x.size();
   if (n < 2 || t.y.size() != n || t.r.size() != n || t.sx.size() != n || t.sy.size() != n) return;
   const bool haveZ = t.z.size() == n, haveStripes = t.plus.size() == n && t.minus.size() == n;
   constexpr size_t kPiece = 4;  // elements per piece
-  std::vector<std::pair<size_t, size_t>> pieces;
-  for (size_t i = 0; i + 1 < n; i += kPiece) pieces.push_back({i, std::min(n - 1, i + kPiece)});
-  auto height = [&](const std::pair<size_t, size_t>& p) {
-    if (!haveZ) return 0.0;
-    double h = 0;
-    for (size_t i = p.first; i <= p.second; ++i) h += t.z[i];
-    return h / static_cast<double>(p.second - p.first + 1);
+  struct Piece {
+    size_t i0, i1;
+    long layer;
   };
-  std::stable_sort(pieces.begin(), pieces.end(), [&](const auto& p, const auto& q) { return height(p) < height(q); });
+  std::vector<Piece> pieces;
+  for (size_t i = 0; i + 1 < n; i += kPiece) {
+    const size_t i1 = std::min(n - 1, i + kPiece);
+    long layer = 0;
+    if (haveZ) {
+      double h = 0, r = 0;
+      for (size_t k = i; k <= i1; ++k) {
+        h += t.z[k];
+        r += t.r[k];
+      }
+      layer = r > 0 ? std::lround(h / r) : 0;
+    }
+    pieces.push_back({i, i1, layer});
+  }
+  std::stable_sort(pieces.begin(), pieces.end(), [](const Piece& p, const Piece& q) { return p.layer < q.layer; });
+  std::vector<std::pair<size_t, size_t>> runs;
+  for (size_t k = 0; k < pieces.size(); ++k) {
+    if (k > 0 && pieces[k].layer == pieces[k - 1].layer && pieces[k].i0 == pieces[k - 1].i1) runs.back().second = pieces[k].i1;
+    else runs.push_back({pieces[k].i0, pieces[k].i1});
+  }
   const Rgb outline = mixRgb(t.body, {0, 0, 0}, 0.62);
   // shading bands: half widths (units of r) and their colour, outermost (darkest) first
   const double bands[] = {1.0, 0.82, 0.58, 0.3};
   const double shade[] = {0.34, 0.18, 0.07, 0.0};
   const double lw = std::max(0.6, 0.08 * unit * t.r[0]);
-  for (const auto& [i0, i1] : pieces) {
+  for (auto [i0, i1] : runs) {
+    if (i0 > 0) --i0;  // under the end of the run before
     const bool tip = i1 == n - 1;
     for (int b = 0; b < 4; ++b) {
       const Rgb c = mixRgb(t.body, {0.35, 0.3, 0.22}, shade[b]);
@@ -234,7 +255,7 @@ void drawTube(cairo_t* cr, const Tube& t, FX X, FY Y, double unit) {
       const double h = bands[b];
       strip(cr, t, i0, i1, X, Y, [&](size_t) { return -h; }, [&](size_t) { return h; });
       cairo_fill(cr);
-      if (tip) {  // the cap: a disc of the band's width at the tip
+      if (tip) {  // the cap: a disc of the band's width at the tip (its edge inside the band or on its edge)
         cairo_arc(cr, X(t.x[n - 1]), Y(t.y[n - 1]), h * t.r[n - 1] * unit, 0, 2 * units::pi);
         cairo_fill(cr);
       }

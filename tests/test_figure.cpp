@@ -617,3 +617,36 @@ TEST_CASE("a straight tube's PNG has no seams across it where its pieces meet") 
   CHECK(std::abs(c[0] - 219) <= 2);
   cairo_surface_destroy(img);
 }
+
+TEST_CASE("label layout: a sub- and a superscript in a row stack (kappa_f^0), others run side by side") {
+  using rootsim::layoutLabel;
+  const auto base = layoutLabel("κ", 12);
+  const auto f = layoutLabel("f", 0.7 * 12), zero = layoutLabel("0", 0.7 * 12);
+  const auto k = layoutLabel("κ_f^0", 12);
+  REQUIRE(k.runs.size() == 3);
+  CHECK(k.runs[0].text == "κ");
+  CHECK(k.runs[1].text == "f");
+  CHECK(k.runs[1].level == -1);
+  CHECK(k.runs[2].text == "0");
+  CHECK(k.runs[2].level == 1);
+  CHECK(k.runs[1].x == doctest::Approx(base.width));     // the f after the κ
+  CHECK(k.runs[2].x == doctest::Approx(k.runs[1].x));    // the 0 above the f, not beside it
+  CHECK(k.runs[2].y < k.runs[1].y - 0.5 * 0.7 * 12);     // above by more than half the script's size
+  CHECK(k.runs[1].size == doctest::Approx(0.7 * 12));
+  CHECK(k.width == doctest::Approx(base.width + std::max(f.width, zero.width)));
+  // the other order stacks too, with braces
+  const auto k2 = layoutLabel("κ^{0}_{f} [1/mm]", 12);
+  REQUIRE(k2.runs.size() == 4);
+  CHECK(k2.runs[2].x == doctest::Approx(k2.runs[1].x));
+  CHECK(k2.runs[3].x == doctest::Approx(base.width + std::max(f.width, zero.width)));
+  // a lone superscript and a base run after it: side by side
+  const auto t = layoutLabel("θ^{tip} [deg]", 12);
+  REQUIRE(t.runs.size() == 3);
+  CHECK(t.runs[2].x == doctest::Approx(t.runs[1].x + layoutLabel("tip", 0.7 * 12).width));
+  // a third script does not stack on a stacked pair: it follows it
+  const auto three = layoutLabel("x_a^b_c", 12);
+  REQUIRE(three.runs.size() == 4);
+  CHECK(three.runs[3].x > three.runs[2].x);
+  // scripts no smaller than the floor asked for (the physical layout's 6 pt)
+  CHECK(layoutLabel("L_{gz}", 7, false, 6).runs[1].size == doctest::Approx(6));
+}

@@ -4,7 +4,7 @@
 //
 // Labels (titles, axis labels, legend entries, notes) take a small markup: _{...} sets its contents as a
 // subscript, ^{...} as a superscript (smaller, shifted); a single character may follow _ or ^ without
-// braces. Text stays text in the PDF and SVG.
+// braces; a sub- and a superscript in a row stack. Text stays text in the PDF and SVG.
 #include <array>
 #include <string>
 #include <vector>
@@ -103,7 +103,9 @@ struct Figure {
 double plotAspect(const Figure& f, const Axes& a);
 
 // a label laid out: its runs of text with the pen position of each (x along the base line from the
-// label's start, y down from the base line, in units of the font size given) and its font size
+// label's start, y down from the base line, in the units of the font size given) and its font size. A
+// subscript right after a superscript, or a superscript right after a subscript, stacks on it (κ_f^0:
+// the 0 above the f, both at one x)
 struct LabelRun {
   std::string text;
   double x = 0, y = 0, size = 0;

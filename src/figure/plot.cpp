@@ -128,14 +128,27 @@ constexpr double kScriptScale = 0.7;
 LabelLayout placeLabel(cairo_t* cr, const std::string& s, double size, bool bold, double scriptMin) {
   LabelLayout out;
   double pen = 0;
+  double prevAdvance = 0;  // advance of the run before
   for (const Run& r : parseLabel(s)) {
     const double sz = r.level ? std::max(kScriptScale * size, scriptMin) : size;
     setFont(cr, sz, bold);
     cairo_text_extents_t e;
     cairo_text_extents(cr, r.s.c_str(), &e);
     const double shift = r.level < 0 ? 0.22 * size : r.level > 0 ? -0.38 * size : 0.0;
-    out.runs.push_back({r.s, pen, shift, sz, r.level});
-    pen += e.x_advance;
+    // a subscript right after a superscript (or the other way round) stacks on it, as in κ_f^0: both
+    // start at the same x, and the pen moves on by the wider of the two
+    const bool stacks = r.level != 0 && !out.runs.empty() && out.runs.back().level == -r.level &&
+                        (out.runs.size() < 2 || out.runs[out.runs.size() - 2].level != r.level ||
+                         out.runs[out.runs.size() - 2].x != out.runs.back().x);
+    if (stacks) {
+      const double x = out.runs.back().x;
+      out.runs.push_back({r.s, x, shift, sz, r.level});
+      pen = x + std::max(prevAdvance, e.x_advance);
+    } else {
+      out.runs.push_back({r.s, pen, shift, sz, r.level});
+      pen += e.x_advance;
+    }
+    prevAdvance = e.x_advance;
   }
   out.width = pen;
   return out;

@@ -72,6 +72,7 @@ constexpr double kPtPerUnit = 7.0 / 12.0;
 constexpr double kScriptMinPt = 6;
 constexpr double kInnerLeft = 10;   // left margin of a tile that shares its row's y axis [layout units]
 constexpr double kMinPlotMm = 12;   // narrowest plot area before a row of tiles wraps into more rows [mm]
+constexpr double kMinPlotAspect = 0.45;  // height / width of a plot's area at least (not for pictures)
 
 // a cairo context and the smallest size of sub- and superscripts on it [layout units]
 struct Pen {
@@ -368,7 +369,7 @@ void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
   cairo_rectangle(cr, L, T, pw, ph);
   cairo_fill(cr);
   const auto xt = a.frameOnly ? std::vector<double>{} : logX ? logTicks(x0, x1) : ticks(x0, x1, tickTarget(pw, 40, 2, 6));
-  const auto yt = a.frameOnly ? std::vector<double>{} : ticks(y0, y1, tickTarget(ph, 36, 2, 5));
+  const auto yt = a.frameOnly ? std::vector<double>{} : ticks(y0, y1, tickTarget(ph, 36, 3, 5));
   cairo_set_line_width(cr, 0.8);
   for (double v : xt) {
     if (a.grid) { cairo_set_source_rgb(cr, 0.9, 0.9, 0.9); cairo_move_to(cr, X(v), T); cairo_line_to(cr, X(v), B); cairo_stroke(cr); }
@@ -581,7 +582,10 @@ Layout layoutOf(cairo_t* cr, const Figure& f, double widthMm) {
     double h = 0;
     for (int i = r0; i < std::min(n, r0 + cols); ++i) {
       const Axes& a = f.axes[static_cast<size_t>(i)];
-      h = std::max(h, pw * plotAspect(f, a) + (a.title.empty() ? kTop : kTopTitle) + kBottom);
+      // a plot (not a picture at one scale) at least kMinPlotAspect high: a wide default plot (Fig. 2C-E,
+      // 0.27) would leave a column's plot too flat for its ticks and legend
+      const double aspect = a.equalAspect ? plotAspect(f, a) : std::max(kMinPlotAspect, plotAspect(f, a));
+      h = std::max(h, pw * aspect + (a.title.empty() ? kTop : kTopTitle) + kBottom);
     }
     for (int i = r0; i < std::min(n, r0 + cols); ++i) {
       const int c = i - r0;

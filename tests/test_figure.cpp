@@ -13,6 +13,9 @@
 #include <sstream>
 #include <string>
 #include <vector>
+#include <cctype>
+#include <chrono>
+#include <thread>
 
 #include "rootsim/figure.hpp"
 #include "rootsim/plot.hpp"
@@ -649,4 +652,26 @@ TEST_CASE("label layout: a sub- and a superscript in a row stack (kappa_f^0), ot
   CHECK(three.runs[3].x > three.runs[2].x);
   // scripts no smaller than the floor asked for (the physical layout's 6 pt)
   CHECK(layoutLabel("L_{gz}", 7, false, 6).runs[1].size == doctest::Approx(6));
+}
+
+TEST_CASE("same figure, same bytes: PDF (no CreationDate stamped), SVG and PNG saved a second later are identical") {
+  const rootsim::Figure f = journalPanel();
+  const fs::path a = fs::temp_directory_path() / "rootsim_plot_same_a", b = fs::temp_directory_path() / "rootsim_plot_same_b";
+  rootsim::saveFigure(f, a.string());
+  std::this_thread::sleep_for(std::chrono::milliseconds(1100));  // the PDF date's resolution is a second
+  rootsim::saveFigure(f, b.string());
+  // cairo numbers SVG surfaces with a counter per process ("surface7"): each rootsim run starts it
+  // afresh, within this test process it has moved on, so the number is left out of the comparison
+  auto svgWithoutSurfaceIds = [](std::string t) {
+    for (size_t p = t.find("id=\"surface"); p != std::string::npos; p = t.find("id=\"surface", p + 1)) {
+      size_t e = p + 11;  // after id="surface
+      while (e < t.size() && std::isdigit(static_cast<unsigned char>(t[e]))) ++e;
+      t.erase(p + 11, e - (p + 11));
+    }
+    return t;
+  };
+  CHECK(slurp(a.string() + ".pdf") == slurp(b.string() + ".pdf"));
+  CHECK(slurp(a.string() + ".png") == slurp(b.string() + ".png"));
+  CHECK(svgWithoutSurfaceIds(slurp(a.string() + ".svg")) == svgWithoutSurfaceIds(slurp(b.string() + ".svg")));
+  CHECK(slurp(a.string() + ".pdf").find("/CreationDate") == std::string::npos);
 }

@@ -683,7 +683,13 @@ void saveFigure(const Figure& fig, const std::string& base, const SaveOptions& s
     cairo_surface_destroy(s);
     check(st, "writing " + tmp.string());
   };
-  vector(cairo_pdf_surface_create(pdfTmp.c_str(), lay.width * pt, lay.height * pt), pdfTmp);
+  {
+    // same input, same bytes: cairo stamps the PDF's CreationDate with the clock unless it is given one;
+    // an empty one is written as an empty string
+    cairo_surface_t* s = cairo_pdf_surface_create(pdfTmp.c_str(), lay.width * pt, lay.height * pt);
+    cairo_pdf_surface_set_metadata(s, CAIRO_PDF_METADATA_CREATE_DATE, "");
+    vector(s, pdfTmp);
+  }
   vector(cairo_svg_surface_create(svgTmp.c_str(), lay.width * pt, lay.height * pt), svgTmp);
   {
     const int w = std::max(1, static_cast<int>(std::lround(inches * so.dpi)));

@@ -88,9 +88,9 @@ struct Axes {
 };
 
 // a figure: a row-major grid of axes, laid out on width x height layout units of 1/96 inch. With
-// SaveOptions::widthMm the panel is laid out again at that physical width (docs/rendering.md, "Figure
-// panels at a journal's width"): text at fixed point sizes, each plot area keeping its aspect, tiles of
-// one row sharing their y axis, rows of tiles wrapping when a tile would be narrower than 12 mm.
+// SaveOptions::widthMm the panel is laid out again at that physical width (docs/rendering.md, Figure
+// panels): text at fixed point sizes, each plot area keeping its aspect (plots at least 0.45 high), tiles
+// of one row sharing their y axis, rows of tiles wrapping when a tile would be narrower than 12 mm.
 struct Figure {
   int width = 1200, height = 800;
   int rows = 1, cols = 1;

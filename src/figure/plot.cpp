@@ -65,7 +65,7 @@ struct Box { double x, y, w, h; };
 // layout of one axes inside its cell [layout units]
 constexpr double kLeft = 64, kRight = 14, kTop = 12, kTopTitle = 32, kBottom = 46, kFigureTitle = 34;
 constexpr double kFigureTitleSize = 17, kFigureTitleLine = 22;  // the figure title's font and line pitch
-// the physical layout (SaveOptions::widthMm, docs/rendering.md "Figure panels at a journal's width"): a
+// the physical layout (SaveOptions::widthMm; docs/rendering.md, Figure panels): a
 // layout unit is kPtPerUnit points, so the 12-unit tick labels are 7 pt, axis labels 7.6 pt, titles
 // 8.75 pt; sub- and superscripts no smaller than kScriptMinPt
 constexpr double kPtPerUnit = 7.0 / 12.0;

@@ -380,3 +380,29 @@ TEST_CASE("the growth-zone observables change continuously as the start of the z
   check("Tw", &ZoneObservables::Tw);
   check("Wr", &ZoneObservables::Wr);
 }
+
+// Fig. 2E's Wr at t = 0 (docs/model.md, Observables): a straight rod in a general orientation has
+// collinear segments only up to rounding; each pair's solid angle must be 0, not the angle between two
+// normals of rounding-noise length
+TEST_CASE("a straight or planar rod in a general orientation has zero writhe, rounding noise aside") {
+  const Vec3 dir = Vec3(0.3, -0.5, 0.81).normalized();
+  Eigen::Matrix3Xd p(3, 23);
+  for (int i = 0; i < 23; ++i) p.col(i) = Vec3(1e-3, 2e-3, -0.5e-3) + (0.05e-3 * i) * dir;
+  CHECK(std::abs(writheOpen(p, 0, 22)) < 1e-9);
+  // a planar arc in a tilted plane
+  const Vec3 e1 = Vec3(1, 0.2, -0.3).normalized(), e2 = e1.cross(dir).normalized();
+  for (int i = 0; i < 23; ++i)
+    p.col(i) = Vec3(1e-3, 2e-3, -0.5e-3) + 1e-3 * (std::cos(0.1 * i) * e1 + std::sin(0.1 * i) * e2);
+  CHECK(std::abs(writheOpen(p, 0, 22)) < 1e-9);
+  // the first record of a run on a plate tilted by 40 degrees: the initial straight rod
+  for (double alpha : {40.0, 73.0}) {
+    INFO("alpha " << alpha);
+    const Model m = coarse(alpha, 0.2, 0);
+    Simulation sim(m);
+    const RodState& s = sim.state();
+    RodStrains k;
+    k.resize(s.elements());
+    computeStrains(m.rod, s, k);
+    CHECK(std::abs(observeZone(m, s, k).Wr) < 1e-9);
+  }
+}

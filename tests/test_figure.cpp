@@ -13,6 +13,9 @@
 #include <sstream>
 #include <string>
 #include <vector>
+#include <cctype>
+#include <chrono>
+#include <thread>
 
 #include "rootsim/figure.hpp"
 #include "rootsim/plot.hpp"
@@ -52,6 +55,16 @@ std::string capture(const std::string& cmd) {
   while ((n = fread(buf, 1, sizeof buf, p)) > 0) out.append(buf, n);
   pclose(p);
   return out;
+}
+
+// a PDF's page size [pt] (pdfinfo)
+std::array<double, 2> pageSizePt(const fs::path& pdf) {
+  const std::string info = capture("pdfinfo '" + pdf.string() + "' 2>&1");
+  const size_t p = info.find("Page size:");
+  REQUIRE(p != std::string::npos);
+  std::array<double, 2> wh{0, 0};
+  REQUIRE(std::sscanf(info.c_str() + p, "Page size: %lf x %lf", &wh[0], &wh[1]) == 2);
+  return wh;
 }
 
 // the pHYs chunk of a PNG: pixels per metre along x and y and the unit byte; {-1, -1, -1} if none
@@ -280,12 +293,114 @@ TEST_CASE("the PNG carries its resolution: pHYs = dpi / 0.0254 pixels per metre"
   int w = 0, h = 0;
   inkFraction(base.string() + ".png", &w, &h);
   CHECK(w == std::lround(85 / 25.4 * 600));
-  CHECK(h == std::lround(85 / 25.4 * 600 * 400 / 500));
   CHECK(physOf(base.string() + ".png")[0] == std::lround(600 / 0.0254));
-  // the PDF's page is 85 mm wide (points)
-  const std::string info = capture("pdfinfo '" + base.string() + ".pdf' 2>&1");
-  INFO(info);
-  CHECK(info.find("240.9") != std::string::npos);  // 85 mm = 240.94 pt
+  // the PDF's page is 85 mm wide (points), and the PNG has the page's proportions
+  const auto page = pageSizePt(base.string() + ".pdf");
+  CHECK(page[0] == doctest::Approx(85 / 25.4 * 72).epsilon(1e-5));
+  CHECK(h == std::lround(w * page[1] / page[0]));
+}
+
+namespace {
+// the words of a PDF with their font size [pt]: pdftotext -bbox gives each word's box, across the line as
+// high as the font's ascent + descent, which for DejaVu Sans (the panels' font) is 1.164 em (0.928 +
+// 0.236). A rotated word (a y axis label) has that extent along x: a word of three or more characters is
+// longer along its line than across it, so its size is the box's smaller side; one or two characters
+// (subscripts, digits) are never wider than 1.164 em along a horizontal line unless they are rotated, so
+// theirs is the larger side
+std::vector<std::pair<std::string, double>> wordSizesPt(const fs::path& pdf) {
+  const std::string xml = capture("pdftotext -bbox '" + pdf.string() + "' - 2>&1");
+  std::vector<std::pair<std::string, double>> out;
+  for (size_t p = xml.find("<word "); p != std::string::npos; p = xml.find("<word ", p + 1)) {
+    auto attr = [&](const std::string& k) { return std::stod(xml.substr(xml.find(k + "=\"", p) + k.size() + 2)); };
+    const size_t a = xml.find('>', p) + 1;
+    const std::string word = xml.substr(a, xml.find('<', a) - a);
+    size_t chars = 0;
+    for (char ch : word) chars += (static_cast<unsigned char>(ch) & 0xC0) != 0x80;
+    const double w = attr("xMax") - attr("xMin"), h = attr("yMax") - attr("yMin");
+    out.emplace_back(word, (chars >= 3 ? std::min(w, h) : std::max(w, h)) / 1.164);
+  }
+  return out;
+}
+
+// a panel like the paper's rows of roots: tiles sharing their y axis (fixed y range, a y label on the
+// first only), tubes, titles and notes with subscripts, a long figure title; and a plot with a legend
+rootsim::Figure journalPanel() {
+  rootsim::Figure f;
+  f.cols = 6;
+  f.width = 170 * f.cols + 40;
+  f.height = 600;
+  f.title = "Fig. 2A: final shapes on the plate (β = γ = 0.1; pink +d_1, orange −d_1; downhill is down)";
+  for (int i = 0; i < f.cols; ++i) {
+    rootsim::Axes a;
+    if (i == 0) a.panelLabel = "A";
+    a.title = "α = " + std::to_string(15 * i) + "°";
+    a.xlabel = "lateral [mm]";
+    if (i == 0) a.ylabel = "downhill [mm]";
+    a.autoX = a.autoY = false;
+    a.equalAspect = a.yDown = true;
+    a.xmin = -2;
+    a.xmax = 2;
+    a.ymin = -0.5;
+    a.ymax = 12;
+    rootsim::Tube tb;
+    for (int k = 0; k <= 40; ++k) {
+      tb.x.push_back(0.8 * std::sin(0.3 * k * i / 5.0));
+      tb.y.push_back(0.3 * k);
+      tb.r.push_back(0.1);
+      tb.sx.push_back(1);
+      tb.sy.push_back(0);
+    }
+    a.tubes.push_back(tb);
+    a.notes.push_back({{0, 11.5}, "κ_{f}^{0} L_{gz}"});
+    f.axes.push_back(a);
+  }
+  return f;
+}
+}  // namespace
+
+TEST_CASE("at --width-mm 85 and 180 the panel is that wide and its text is at least 6 pt") {
+  rootsim::Figure plot;
+  plot.width = 800;
+  plot.height = 620;
+  rootsim::Axes pa;
+  pa.title = "sin⟨θ⟩ / tan α over β L_{gz} / R";
+  pa.xlabel = "effective gravitropic gain βL_{gz}/R";
+  pa.ylabel = "θ^{tip} [deg]";
+  pa.series.push_back(rootsim::Series{});
+  pa.series.back().x = {0, 1, 2};
+  pa.series.back().y = {0, 1, 0.5};
+  pa.series.back().label = "E_{b} (zone)";
+  plot.axes.push_back(pa);
+  for (const auto& [name, fig] : {std::pair{"rows", journalPanel()}, std::pair{"plot", plot}})
+    for (double mm : {85.0, 180.0}) {
+      INFO(name << " at " << mm << " mm");
+      const fs::path base = fs::temp_directory_path() / ("rootsim_plot_journal_" + std::string(name));
+      rootsim::SaveOptions so;
+      so.widthMm = mm;
+      rootsim::saveFigure(fig, base.string(), so);
+      const auto page = pageSizePt(base.string() + ".pdf");
+      CHECK(page[0] == doctest::Approx(mm / 25.4 * 72).epsilon(1e-5));
+      const auto words = wordSizesPt(base.string() + ".pdf");
+      CHECK(words.size() > 10);
+      double smallest = 1e9;
+      for (const auto& [w, size] : words) {
+        INFO(w << " " << size << " pt");
+        CHECK(size >= 5.95);
+        smallest = std::min(smallest, size);
+      }
+      // the tick labels are 7 pt and the sub- and superscripts 6 pt, at either width
+      CHECK(smallest == doctest::Approx(6).epsilon(0.03));
+      // the PNG draws the same page
+      int w = 0, h = 0;
+      inkFraction(base.string() + ".png", &w, &h);
+      CHECK(h == std::lround(w * page[1] / page[0]));
+    }
+  // without --width-mm the same panel at 85 mm would be scaled as a whole: its text far below 6 pt
+  const fs::path base = fs::temp_directory_path() / "rootsim_plot_journal_scaled";
+  rootsim::saveFigure(journalPanel(), base.string(), rootsim::SaveOptions{});
+  double smallest = 1e9;
+  for (const auto& [w, size] : wordSizesPt(base.string() + ".pdf")) smallest = std::min(smallest, size);
+  CHECK(smallest * 85 / (pageSizePt(base.string() + ".pdf")[0] / 72 * 25.4) < 4);
 }
 
 TEST_CASE("the PDF's text is text: pdftotext finds the axis titles with their units") {
@@ -389,4 +504,174 @@ TEST_CASE("the vector root's stripes sit where the raster renderer draws them") 
   CHECK(flank[1] > 150);  // body (ivory, shaded), not pink
   cairo_surface_destroy(img);
   CHECK(slurp(base.string() + ".svg").find("<image") == std::string::npos);
+}
+
+TEST_CASE("root views draw the plate's obstacles (a peg, a wall with round ends) on a light 1 mm grid") {
+  rootsim::Figure f;
+  f.width = 300;
+  f.height = 300;
+  rootsim::Axes a;
+  a.grid = false;
+  a.frameOnly = true;
+  a.autoX = a.autoY = false;
+  a.xmin = -1;
+  a.xmax = 1;
+  a.ymin = 0;
+  a.ymax = 2;
+  a.yDown = true;
+  a.plateGridPitch = 0.5;
+  rootsim::Obstacle2D peg;
+  peg.fromX = peg.toX = 0.5;
+  peg.fromY = peg.toY = 1.0;
+  peg.r = 0.2;
+  rootsim::Obstacle2D wall;
+  wall.fromX = wall.toX = -0.6;
+  wall.fromY = 0.3;
+  wall.toY = 1.7;
+  wall.r = 0.08;
+  a.obstacles = {peg, wall};
+  f.axes.push_back(a);
+  const fs::path base = fs::temp_directory_path() / "rootsim_plot_obstacles";
+  rootsim::SaveOptions so;
+  so.dpi = 96;  // one pixel a layout unit
+  rootsim::saveFigure(f, base.string(), so);
+  cairo_surface_t* img = cairo_image_surface_create_from_png((base.string() + ".png").c_str());
+  REQUIRE(cairo_surface_status(img) == CAIRO_STATUS_SUCCESS);
+  const int stride = cairo_image_surface_get_stride(img);
+  const unsigned char* d = cairo_image_surface_get_data(img);
+  // plot area x 64..286 (111 px a unit), y 12..254 (121 px a unit, downhill down); BGRA in memory
+  auto px = [&](double x, double y) {
+    return d + static_cast<int>(12 + y * 121) * stride + 4 * static_cast<int>(64 + (x + 1) * 111);
+  };
+  auto slate = [](const unsigned char* p) { return std::abs(p[2] - 143) < 6 && std::abs(p[1] - 158) < 6 && std::abs(p[0] - 184) < 6; };
+  CHECK(slate(px(0.5, 1.0)));          // the peg's centre
+  CHECK(slate(px(0.5 + 0.12, 1.05)));  // inside its radius
+  CHECK(px(0.5 + 0.3, 1.1)[1] > 240);  // outside it: plate
+  CHECK(slate(px(-0.6, 1.0)));         // the wall's middle
+  CHECK(slate(px(-0.6, 1.75)));        // its round end, beyond the segment
+  CHECK(px(-0.6, 1.85)[1] > 240);      // and no further
+  CHECK(px(-0.6 + 0.15, 1.0)[1] > 240);
+  // the grid: lines every 0.5 units (x = 0 at pixel column 175), white between them
+  int darkest = 255;
+  for (int x = 172; x <= 178; ++x) darkest = std::min<int>(darkest, d[200 * stride + 4 * x + 1]);
+  CHECK(darkest < 245);
+  CHECK(darkest > 200);  // light
+  CHECK(d[200 * stride + 4 * 147 + 1] == 255);
+  cairo_surface_destroy(img);
+  // no grid without a pitch
+  a.plateGridPitch = 0;
+  f.axes = {a};
+  rootsim::saveFigure(f, base.string(), so);
+  img = cairo_image_surface_create_from_png((base.string() + ".png").c_str());
+  d = cairo_image_surface_get_data(img);
+  darkest = 255;
+  for (int x = 172; x <= 178; ++x) darkest = std::min<int>(darkest, d[200 * stride + 4 * x + 1]);
+  CHECK(darkest == 255);
+  cairo_surface_destroy(img);
+}
+
+TEST_CASE("a straight tube's PNG has no seams across it where its pieces meet") {
+  // a tube along y with nodes every 0.137 units (15.2 px: piece boundaries fall inside pixels), no
+  // stripes: every pixel column across the body must keep one colour along the tube
+  rootsim::Figure f;
+  f.width = 300;
+  f.height = 300;
+  rootsim::Axes a;
+  a.grid = false;
+  a.frameOnly = true;
+  a.autoX = a.autoY = false;
+  a.xmin = -1;
+  a.xmax = 1;
+  a.ymin = 0;
+  a.ymax = 2;
+  a.yDown = true;
+  rootsim::Tube tb;
+  for (int i = 0; i <= 14; ++i) {
+    tb.x.push_back(0.0);
+    tb.y.push_back(0.05 + 0.137 * i);
+    tb.z.push_back(0.3 + 1e-9 * ((i * 7) % 5));  // lying on the plate, heights with rounding noise
+    tb.r.push_back(0.3);
+    tb.sx.push_back(1);
+    tb.sy.push_back(0);
+  }
+  a.tubes.push_back(tb);
+  f.axes.push_back(a);
+  const fs::path base = fs::temp_directory_path() / "rootsim_plot_seams";
+  rootsim::SaveOptions so;
+  so.dpi = 96;
+  rootsim::saveFigure(f, base.string(), so);
+  cairo_surface_t* img = cairo_image_surface_create_from_png((base.string() + ".png").c_str());
+  REQUIRE(cairo_surface_status(img) == CAIRO_STATUS_SUCCESS);
+  const int stride = cairo_image_surface_get_stride(img);
+  const unsigned char* d = cairo_image_surface_get_data(img);
+  // plot area x 64..286 (111 px a unit): the body spans x = 175 -+ 33 px; rows from y = 0.2 to 1.8 units
+  // (12 + 121 y px) stay clear of the root's start and its cap
+  int worst = 0;
+  for (int x = 175 - 31; x <= 175 + 31; ++x) {
+    const unsigned char* ref = d + 100 * stride + 4 * x;
+    for (int y = 40; y <= 220; ++y)
+      for (int ch = 0; ch < 3; ++ch) worst = std::max(worst, std::abs(d[y * stride + 4 * x + ch] - ref[ch]));
+  }
+  CHECK(worst <= 2);
+  // and the centre of the body is the body colour (ivory 0.95, 0.93, 0.86)
+  const unsigned char* c = d + 130 * stride + 4 * 175;
+  CHECK(std::abs(c[2] - 242) <= 2);
+  CHECK(std::abs(c[1] - 237) <= 2);
+  CHECK(std::abs(c[0] - 219) <= 2);
+  cairo_surface_destroy(img);
+}
+
+TEST_CASE("label layout: a sub- and a superscript in a row stack (kappa_f^0), others run side by side") {
+  using rootsim::layoutLabel;
+  const auto base = layoutLabel("κ", 12);
+  const auto f = layoutLabel("f", 0.7 * 12), zero = layoutLabel("0", 0.7 * 12);
+  const auto k = layoutLabel("κ_f^0", 12);
+  REQUIRE(k.runs.size() == 3);
+  CHECK(k.runs[0].text == "κ");
+  CHECK(k.runs[1].text == "f");
+  CHECK(k.runs[1].level == -1);
+  CHECK(k.runs[2].text == "0");
+  CHECK(k.runs[2].level == 1);
+  CHECK(k.runs[1].x == doctest::Approx(base.width));     // the f after the κ
+  CHECK(k.runs[2].x == doctest::Approx(k.runs[1].x));    // the 0 above the f, not beside it
+  CHECK(k.runs[2].y < k.runs[1].y - 0.5 * 0.7 * 12);     // above by more than half the script's size
+  CHECK(k.runs[1].size == doctest::Approx(0.7 * 12));
+  CHECK(k.width == doctest::Approx(base.width + std::max(f.width, zero.width)));
+  // the other order stacks too, with braces
+  const auto k2 = layoutLabel("κ^{0}_{f} [1/mm]", 12);
+  REQUIRE(k2.runs.size() == 4);
+  CHECK(k2.runs[2].x == doctest::Approx(k2.runs[1].x));
+  CHECK(k2.runs[3].x == doctest::Approx(base.width + std::max(f.width, zero.width)));
+  // a lone superscript and a base run after it: side by side
+  const auto t = layoutLabel("θ^{tip} [deg]", 12);
+  REQUIRE(t.runs.size() == 3);
+  CHECK(t.runs[2].x == doctest::Approx(t.runs[1].x + layoutLabel("tip", 0.7 * 12).width));
+  // a third script does not stack on a stacked pair: it follows it
+  const auto three = layoutLabel("x_a^b_c", 12);
+  REQUIRE(three.runs.size() == 4);
+  CHECK(three.runs[3].x > three.runs[2].x);
+  // scripts no smaller than the floor asked for (the physical layout's 6 pt)
+  CHECK(layoutLabel("L_{gz}", 7, false, 6).runs[1].size == doctest::Approx(6));
+}
+
+TEST_CASE("same figure, same bytes: PDF (no CreationDate stamped), SVG and PNG saved a second later are identical") {
+  const rootsim::Figure f = journalPanel();
+  const fs::path a = fs::temp_directory_path() / "rootsim_plot_same_a", b = fs::temp_directory_path() / "rootsim_plot_same_b";
+  rootsim::saveFigure(f, a.string());
+  std::this_thread::sleep_for(std::chrono::milliseconds(1100));  // the PDF date's resolution is a second
+  rootsim::saveFigure(f, b.string());
+  // cairo numbers SVG surfaces with a counter per process ("surface7"): each rootsim run starts it
+  // afresh, within this test process it has moved on, so the number is left out of the comparison
+  auto svgWithoutSurfaceIds = [](std::string t) {
+    for (size_t p = t.find("id=\"surface"); p != std::string::npos; p = t.find("id=\"surface", p + 1)) {
+      size_t e = p + 11;  // after id="surface
+      while (e < t.size() && std::isdigit(static_cast<unsigned char>(t[e]))) ++e;
+      t.erase(p + 11, e - (p + 11));
+    }
+    return t;
+  };
+  CHECK(slurp(a.string() + ".pdf") == slurp(b.string() + ".pdf"));
+  CHECK(slurp(a.string() + ".png") == slurp(b.string() + ".png"));
+  CHECK(svgWithoutSurfaceIds(slurp(a.string() + ".svg")) == svgWithoutSurfaceIds(slurp(b.string() + ".svg")));
+  CHECK(slurp(a.string() + ".pdf").find("/CreationDate") == std::string::npos);
 }

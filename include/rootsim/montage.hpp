@@ -44,6 +44,10 @@ struct MontageLayout {
 std::array<float, 2> montageLabelAnchor(const MontageRun& run, const View& tileView, const Framing& framing,
                                         float labelWidthPx, float labelPx);
 MontageLayout montageLayout(const std::vector<MontageRun>& runs, const View& view);
+// the view tile i of n is rendered with (the montage's view at the tile's size, its overlays in the
+// labels' size labelPx): no time, parameters, title or legend (the header has them); the scale bar,
+// downhill arrow and colour bar on the last tile only (they are common)
+View montageTileView(const MontageLayout& l, const View& view, std::size_t i, std::size_t n);
 void renderMontage(const std::vector<MontageRun>& runs, const MontageJob& job, const MovieProgress& progress = {});
 
 }  // namespace rootsim

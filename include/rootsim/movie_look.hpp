@@ -25,6 +25,9 @@ struct LookOptions {
   std::string plot;            // comma-separated subset of theta_tip,Eb,Et,Wr,Tw
   bool shadows = false;        // the root's shadow on the plate
   bool cameraGiven = false;    // --camera was on the command line (run --movie: else the inset look)
+  bool insetByDefault = false; // run --movie: without --camera the look is the fit view with a follow
+                               // inset, so --field-mm alone sizes that inset (render: --field-mm needs
+                               // --camera follow or --inset)
 };
 
 // the look, checked

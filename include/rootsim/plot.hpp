@@ -4,7 +4,7 @@
 //
 // Labels (titles, axis labels, legend entries, notes) take a small markup: _{...} sets its contents as a
 // subscript, ^{...} as a superscript (smaller, shifted); a single character may follow _ or ^ without
-// braces. Text stays text in the PDF and SVG.
+// braces; a sub- and a superscript in a row stack. Text stays text in the PDF and SVG.
 #include <array>
 #include <string>
 #include <vector>
@@ -52,6 +52,14 @@ std::array<double, 2> visibleStripe(const std::array<double, 3>& a, const std::a
                                     const std::array<double, 3>& side, const std::array<double, 3>& view,
                                     double halfWidthRad);
 
+// an obstacle on the plate seen from above, in plot units: a peg (a disc, from == to) or a wall (the
+// segment from..to thickened by r on either side, with round ends as the model's capsule)
+struct Obstacle2D {
+  double fromX = 0, fromY = 0, toX = 0, toY = 0;
+  double r = 0;
+  Rgb color{0.56, 0.62, 0.72};  // the raster renderer's slate blue-grey (src/render/obstacle_mesh.cpp)
+};
+
 struct Fill {                   // a filled polygon in data coordinates (background regions)
   std::vector<double> x, y;
   Rgb color{0.9, 0.9, 0.9};
@@ -73,12 +81,16 @@ struct Axes {
   std::vector<Series> series;
   std::vector<Shape2D> shapes;
   std::vector<Tube> tubes;
+  std::vector<Obstacle2D> obstacles;  // drawn under the tubes
+  double plateGridPitch = 0;    // > 0: a light grid of this pitch [plot units] under the data (1 mm on the plate)
   std::vector<std::pair<std::array<double, 2>, std::string>> notes;  // text at data coordinates
   std::string legendPos = "ne"; // ne, nw, se, sw, none
 };
 
-// a figure: a row-major grid of axes, laid out on width x height layout units (1/96 inch unless
-// SaveOptions::widthMm scales it)
+// a figure: a row-major grid of axes, laid out on width x height layout units of 1/96 inch. With
+// SaveOptions::widthMm the panel is laid out again at that physical width (docs/rendering.md, Figure
+// panels): text at fixed point sizes, each plot area keeping its aspect (plots at least 0.45 high), tiles
+// of one row sharing their y axis, rows of tiles wrapping when a tile would be narrower than 12 mm.
 struct Figure {
   int width = 1200, height = 800;
   int rows = 1, cols = 1;
@@ -86,8 +98,26 @@ struct Figure {
   std::vector<Axes> axes;
 };
 
-// height / width of the plot area of axes a in figure f, in pixels (the layout saveFigure uses)
+// height / width of the plot area of axes a in figure f (the layout saveFigure uses; the physical layout
+// keeps it)
 double plotAspect(const Figure& f, const Axes& a);
+
+// a label laid out: its runs of text with the pen position of each (x along the base line from the
+// label's start, y down from the base line, in the units of the font size given) and its font size. A
+// subscript right after a superscript, or a superscript right after a subscript, stacks on it (κ_f^0:
+// the 0 above the f, both at one x)
+struct LabelRun {
+  std::string text;
+  double x = 0, y = 0, size = 0;
+  int level = 0;  // 0 base, -1 subscript, +1 superscript
+};
+struct LabelLayout {
+  std::vector<LabelRun> runs;
+  double width = 0;  // advance width
+};
+// the layout of a label (markup above) at font size `size`, its sub- and superscripts no smaller than
+// scriptMin (same units)
+LabelLayout layoutLabel(const std::string& label, double size, bool bold = false, double scriptMin = 0);
 
 struct SaveOptions {
   double dpi = 300;             // PNG resolution (stored in its pHYs chunk)

@@ -46,6 +46,9 @@ struct View {
   bool showTitle = false;        // SceneInfo::title
   bool showColourBar = true;     // with colourBy: the map, its range and the field's unit
   std::string fontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";  // fonts-dejavu-core
+  // the overlay font's pixel height; unset: from the view's size (overlayFontPx). A montage's tiles take
+  // the montage's label size, so the common scale bar and downhill arrow match the labels
+  std::optional<float> fontPx;
   // framing; unset fields are computed from the snapshots' bounding box
   std::optional<std::array<double, 2>> centreMm;  // picture centre, plate (u, v) [mm]
   std::optional<double> widthMm;                  // visible plate width [mm]
@@ -141,7 +144,7 @@ struct RenderScene {
   double pxPerMm = 0.0;                 // top view scale [px/mm]; 0 in perspective
 };
 
-// the overlay font's pixel height for a view: its shorter side / 26, at least 12
+// the overlay font's pixel height for a view: View::fontPx, or its shorter side / 26, at least 12
 float overlayFontPx(const View& view);
 // the legend's labels and the downhill arrow's label
 inline constexpr const char* kLegendPlus = "+d1";

@@ -50,11 +50,13 @@ MovieLook parseLook(const LookOptions& o) {
     throw SceneError("--camera " + o.camera + ": expected fit or follow");
   if (!(o.fieldMm > 0)) throw SceneError("--field-mm " + fmtNumber(o.fieldMm) + ": must be > 0 mm");
   l.fieldMm = o.fieldMm;
-  if (o.fieldGiven && l.camera != CameraMode::Follow && !o.inset)
+  // run --movie's default look is the fit view with a follow inset: there --field-mm alone sizes the inset
+  const bool impliedInset = o.insetByDefault && o.fieldGiven && !o.cameraGiven && !o.inset;
+  if (o.fieldGiven && l.camera != CameraMode::Follow && !o.inset && !impliedInset)
     throw SceneError("--field-mm " + fmtNumber(o.fieldMm) + ": sizes the follow window; add --camera follow or --inset");
   if (o.inset && l.camera == CameraMode::Follow)
     throw SceneError("--inset: puts a follow window into the fit view; use it with --camera fit");
-  l.inset = o.inset;
+  l.inset = o.inset || impliedInset;
   l.colourBy = parseColourBy(o.colorBy);
   if (!o.plot.empty()) {
     std::set<std::string> seen;
@@ -67,7 +69,7 @@ MovieLook parseLook(const LookOptions& o) {
     }
   }
   l.shadows = o.shadows;
-  l.defaultCamera = !o.cameraGiven && !o.inset;
+  l.defaultCamera = !o.cameraGiven && !l.inset;
   return l;
 }
 

@@ -88,9 +88,9 @@ int runCommand(const RunOptions& o) {
                                                m.growth.steps * m.growth.stepTime;
     app::checkFieldAgainstPlate(look, 2e3 * lMax + 2.0);
   }
-  if (!o.movie && (o.look.camera != "fit" || o.look.inset || o.look.colorBy != "none" || !o.look.plot.empty() ||
-                   o.look.shadows))
-    throw SceneError("--camera, --inset, --color-by, --plot and --shadows shape the movie; add --movie");
+  if (!o.movie && (o.look.camera != "fit" || o.look.inset || o.look.fieldGiven || o.look.colorBy != "none" ||
+                   !o.look.plot.empty() || o.look.shadows))
+    throw SceneError("--camera, --inset, --field-mm, --color-by, --plot and --shadows shape the movie; add --movie");
 #endif
   if (o.movie && !sc.model.output.trajectory)
     throw SceneError("--movie needs the trajectory, but output.trajectory = false (" +

@@ -16,7 +16,7 @@ namespace {
 // the movie look flags shared by run --movie and render
 void addLookOptions(CLI::App* c, app::LookOptions& look) {
   c->add_option("--camera", look.camera, "fit (whole root; render's default) or follow (a window following the growth zone); run --movie without --camera: fit with a follow inset");
-  c->add_option("--field-mm", look.fieldMm, "follow window width [mm] (default 2)");
+  c->add_option("--field-mm", look.fieldMm, "follow window width [mm] (default 2); with --camera follow or --inset, or alone with run --movie (its default inset)");
   c->add_flag("--inset", look.inset, "fit view with a follow window in a free corner, its region marked");
   c->add_option("--color-by", look.colorBy, "colour the tube: curvature, kappa1, kappa2, twist (signed: a diverging map centred on 0), kappa0, stretch or contact");
   c->add_option("--plot", look.plot, "panel of time series: any of theta_tip,Eb,Et,Wr,Tw (comma separated)");
@@ -150,6 +150,7 @@ int main(int argc, char** argv) {
   render.look.fieldGiven = cRender->get_option("--field-mm")->count() > 0;
   // run --movie without --camera or --inset: the inset look (app::renderRunMovie); render keeps fit
   run.look.cameraGiven = cRun->get_option("--camera")->count() > 0;
+  run.look.insetByDefault = true;  // and --field-mm alone sizes that inset
   render.look.cameraGiven = cRender->get_option("--camera")->count() > 0;
   render.frameGiven = cRender->get_option("--frame")->count() > 0;
   try {

@@ -71,7 +71,7 @@ std::string fig2a(const Ctx& c) {
     const double cx = 0.5 * (own.lateralMin + own.lateralMax);
     w.lateralMin += cx;
     w.lateralMax += cx;
-    addRoot(f, ax, *finals[i], cases[i], w);
+    addRoot(c, f, ax, *finals[i], cases[i], w);
     // the pattern found, at the bottom of the view
     ax.notes.push_back({{0.5 * (ax.xmin + ax.xmax), ax.ymax - 0.03 * (ax.ymax - ax.ymin)}, r.pattern});
     f.axes.push_back(ax);

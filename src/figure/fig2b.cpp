@@ -63,7 +63,7 @@ std::string fig2b(const Ctx& c) {
     ax.title = "t = " + num(std::round(snaps[static_cast<size_t>(k)]->timeH)) + " h";
     ax.xlabel = "lateral [mm]";
     if (k == 0) ax.ylabel = "downhill [mm]";
-    addRoot(f, ax, *snaps[static_cast<size_t>(k)], w, win);
+    addRoot(c, f, ax, *snaps[static_cast<size_t>(k)], w, win);
     f.axes.push_back(ax);
   }
   saveFigure(f, (fs::path(c.opt.out) / "fig2b").string(), c.save());

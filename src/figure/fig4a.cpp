@@ -46,7 +46,7 @@ std::string fig4a(const Ctx& c) {
     ax.title = "ωT_0 = " + fmt3(val(r, "omega_T0"));
     ax.xlabel = "lateral [mm]";
     if (i == 0) ax.ylabel = "downhill [mm]";
-    addRoot(f, ax, *finals[i], cs[i], win);
+    addRoot(c, f, ax, *finals[i], cs[i], win);
     f.axes.push_back(ax);
     skews.push_back(std::abs(val(r, "skew_deg")));
     table += "| " + num(cs[i].rTau) + " | " + fmt3(val(r, "omega_T0")) + " | " + fmt3(val(r, "skew_deg")) + " | " +

@@ -88,7 +88,21 @@ Tube tubeOf(const Snapshot& sn, double alphaDeg) {
   return tb;
 }
 
-void addRoot(const Figure& f, Axes& ax, const Snapshot& sn, const Case& k, PlateWindow win) {
+std::vector<Obstacle2D> obstaclesOf(const SceneInfo& info) {
+  std::vector<Obstacle2D> out;
+  for (const auto& o : info.obstacles) {
+    Obstacle2D d;
+    d.fromX = o.fromU;
+    d.fromY = -o.fromV;  // uphill -> downhill
+    d.toX = o.peg ? o.fromU : o.toU;
+    d.toY = o.peg ? -o.fromV : -o.toV;
+    d.r = o.radiusMm;
+    out.push_back(d);
+  }
+  return out;
+}
+
+void addRoot(const Ctx& c, const Figure& f, Axes& ax, const Snapshot& sn, const Case& k, PlateWindow win) {
   // widen the window to the plot area's aspect, so the root fills the axes at one scale
   const double aspect = plotAspect(f, ax);
   const double lw = win.lateralMax - win.lateralMin, dh = win.downhillMax - win.downhillMin;
@@ -108,6 +122,9 @@ void addRoot(const Figure& f, Axes& ax, const Snapshot& sn, const Case& k, Plate
   ax.xmax = win.lateralMax;
   ax.ymin = win.downhillMin;
   ax.ymax = win.downhillMax;
+  ax.grid = false;  // the plate's grid instead
+  ax.plateGridPitch = 1.0;
+  ax.obstacles = obstaclesOf(infoOf(c, k));
   ax.tubes.push_back(tubeOf(sn, k.alpha));
 }
 

@@ -23,8 +23,12 @@ inline constexpr double kStripeHalfWidthDeg = 38.0;
 // downhill), each node's side vector and the lateral extents of its +-d1 stripes where they face the viewer
 Tube tubeOf(const Snapshot& sn, double alphaDeg);
 
-// one root on the plate in an axes of f (downhill down, axes in mm), window win widened to the axes' aspect
-void addRoot(const Figure& f, Axes& ax, const Snapshot& sn, const Case& k, PlateWindow win);
+// the obstacles of a scene seen from above in plate coordinates [mm] (lateral, downhill)
+std::vector<Obstacle2D> obstaclesOf(const SceneInfo& info);
+
+// one root on the plate in an axes of f (downhill down, axes in mm), window win widened to the axes'
+// aspect, on the plate's 1 mm grid with the case's obstacles (the axes' ticks as they are, without their grid)
+void addRoot(const Ctx& c, const Figure& f, Axes& ax, const Snapshot& sn, const Case& k, PlateWindow win);
 
 // height / width of a plate window
 double plateAspect(const PlateWindow& w);

@@ -62,8 +62,23 @@ std::string tickLabel(double v) {
 
 struct Box { double x, y, w, h; };
 
-// layout of one axes inside its cell [px]
+// layout of one axes inside its cell [layout units]
 constexpr double kLeft = 64, kRight = 14, kTop = 12, kTopTitle = 32, kBottom = 46, kFigureTitle = 34;
+constexpr double kFigureTitleSize = 17, kFigureTitleLine = 22;  // the figure title's font and line pitch
+// the physical layout (SaveOptions::widthMm; docs/rendering.md, Figure panels): a
+// layout unit is kPtPerUnit points, so the 12-unit tick labels are 7 pt, axis labels 7.6 pt, titles
+// 8.75 pt; sub- and superscripts no smaller than kScriptMinPt
+constexpr double kPtPerUnit = 7.0 / 12.0;
+constexpr double kScriptMinPt = 6;
+constexpr double kInnerLeft = 10;   // left margin of a tile that shares its row's y axis [layout units]
+constexpr double kMinPlotMm = 12;   // narrowest plot area before a row of tiles wraps into more rows [mm]
+constexpr double kMinPlotAspect = 0.45;  // height / width of a plot's area at least (not for pictures)
+
+// a cairo context and the smallest size of sub- and superscripts on it [layout units]
+struct Pen {
+  cairo_t* cr;
+  double scriptMin = 0;
+};
 
 // a label as runs of text at three levels (0 base, -1 subscript, +1 superscript): _{..} and ^{..}
 struct Run { std::string s; int level; };
@@ -110,38 +125,56 @@ void setFont(cairo_t* cr, double size, bool bold) {
 }
 
 constexpr double kScriptScale = 0.7;
-// advance width of a label with its markup
-double labelWidth(cairo_t* cr, const std::string& s, double size, bool bold = false) {
-  double w = 0;
+// a label's runs placed on a cairo context (label markup: plot.hpp)
+LabelLayout placeLabel(cairo_t* cr, const std::string& s, double size, bool bold, double scriptMin) {
+  LabelLayout out;
+  double pen = 0;
+  double prevAdvance = 0;  // advance of the run before
   for (const Run& r : parseLabel(s)) {
-    setFont(cr, r.level ? kScriptScale * size : size, bold);
+    const double sz = r.level ? std::max(kScriptScale * size, scriptMin) : size;
+    setFont(cr, sz, bold);
     cairo_text_extents_t e;
     cairo_text_extents(cr, r.s.c_str(), &e);
-    w += e.x_advance;
+    const double shift = r.level < 0 ? 0.22 * size : r.level > 0 ? -0.38 * size : 0.0;
+    // a subscript right after a superscript (or the other way round) stacks on it, as in κ_f^0: both
+    // start at the same x, and the pen moves on by the wider of the two
+    const bool stacks = r.level != 0 && !out.runs.empty() && out.runs.back().level == -r.level &&
+                        (out.runs.size() < 2 || out.runs[out.runs.size() - 2].level != r.level ||
+                         out.runs[out.runs.size() - 2].x != out.runs.back().x);
+    if (stacks) {
+      const double x = out.runs.back().x;
+      out.runs.push_back({r.s, x, shift, sz, r.level});
+      pen = x + std::max(prevAdvance, e.x_advance);
+    } else {
+      out.runs.push_back({r.s, pen, shift, sz, r.level});
+      pen += e.x_advance;
+    }
+    prevAdvance = e.x_advance;
   }
-  return w;
+  out.width = pen;
+  return out;
+}
+
+// advance width of a label with its markup
+double labelWidth(const Pen& p, const std::string& s, double size, bool bold = false) {
+  return placeLabel(p.cr, s, size, bold, p.scriptMin).width;
 }
 
 // a label anchored at (x, y): ax, ay in 0..1 of its width and of its cap height (0: left / top)
-void text(cairo_t* cr, double x, double y, const std::string& s, double size, double ax, double ay,
+void text(const Pen& p, double x, double y, const std::string& s, double size, double ax, double ay,
           bool bold = false, double angle = 0) {
   if (s.empty()) return;
-  const double w = labelWidth(cr, s, size, bold);
+  cairo_t* cr = p.cr;
+  const LabelLayout lay = placeLabel(cr, s, size, bold, p.scriptMin);
   const double capH = 0.73 * size;  // DejaVu Sans cap height
   cairo_save(cr);
   cairo_translate(cr, x, y);
   cairo_rotate(cr, angle);
-  double pen = -ax * w;
-  const double base = (1 - ay) * capH;
-  for (const Run& r : parseLabel(s)) {
-    const double sz = r.level ? kScriptScale * size : size;
-    setFont(cr, sz, bold);
-    const double shift = r.level < 0 ? 0.22 * size : r.level > 0 ? -0.38 * size : 0.0;
-    cairo_move_to(cr, pen, base + shift);
-    cairo_show_text(cr, r.s.c_str());
-    cairo_text_extents_t e;
-    cairo_text_extents(cr, r.s.c_str(), &e);
-    pen += e.x_advance;
+  const double x0 = -ax * lay.width, base = (1 - ay) * capH;
+  for (const LabelRun& r : lay.runs) {
+    setFont(cr, r.size, bold);
+    cairo_move_to(cr, x0 + r.x, base + r.y);
+    cairo_show_text(cr, r.text.c_str());
   }
   cairo_restore(cr);
 }
@@ -184,30 +217,51 @@ Rgb mixRgb(const Rgb& c, const Rgb& d, double f) {
   return {c[0] + f * (d[0] - c[0]), c[1] + f * (d[1] - c[1]), c[2] + f * (d[2] - c[2])};
 }
 
-// a tube seen from above: pieces of a few elements, lowest first (a coil's upper strand covers the lower);
-// each piece: the body in nested shading bands (darker at the flanks), the visible stripes, the flanks'
-// outline; the tip's cap closes the last piece
+// a tube seen from above, lowest first (a coil's upper strand covers the lower): the tube is cut into
+// pieces of a few elements, each piece gets a layer (its mean height in radii, rounded: a strand lying on
+// the plate is one layer, a strand crossing over it one higher), and consecutive pieces of one layer are
+// drawn as one run: the body in nested shading bands (darker at the flanks), each band one path over the
+// whole run, then the visible stripes and the flanks' outline; the tip's cap closes the last run. Drawing
+// a band piece by piece would leave antialiasing seams across the tube where pieces meet (each edge
+// pixel covered twice by half: the plate shows through); a run that follows another starts one node
+// back, under the other's end, so the plate does not show through there either.
 template <class FX, class FY>
 void drawTube(cairo_t* cr, const Tube& t, FX X, FY Y, double unit) {
   const size_t n = t.x.size();
   if (n < 2 || t.y.size() != n || t.r.size() != n || t.sx.size() != n || t.sy.size() != n) return;
   const bool haveZ = t.z.size() == n, haveStripes = t.plus.size() == n && t.minus.size() == n;
   constexpr size_t kPiece = 4;  // elements per piece
-  std::vector<std::pair<size_t, size_t>> pieces;
-  for (size_t i = 0; i + 1 < n; i += kPiece) pieces.push_back({i, std::min(n - 1, i + kPiece)});
-  auto height = [&](const std::pair<size_t, size_t>& p) {
-    if (!haveZ) return 0.0;
-    double h = 0;
-    for (size_t i = p.first; i <= p.second; ++i) h += t.z[i];
-    return h / static_cast<double>(p.second - p.first + 1);
+  struct Piece {
+    size_t i0, i1;
+    long layer;
   };
-  std::stable_sort(pieces.begin(), pieces.end(), [&](const auto& p, const auto& q) { return height(p) < height(q); });
+  std::vector<Piece> pieces;
+  for (size_t i = 0; i + 1 < n; i += kPiece) {
+    const size_t i1 = std::min(n - 1, i + kPiece);
+    long layer = 0;
+    if (haveZ) {
+      double h = 0, r = 0;
+      for (size_t k = i; k <= i1; ++k) {
+        h += t.z[k];
+        r += t.r[k];
+      }
+      layer = r > 0 ? std::lround(h / r) : 0;
+    }
+    pieces.push_back({i, i1, layer});
+  }
+  std::stable_sort(pieces.begin(), pieces.end(), [](const Piece& p, const Piece& q) { return p.layer < q.layer; });
+  std::vector<std::pair<size_t, size_t>> runs;
+  for (size_t k = 0; k < pieces.size(); ++k) {
+    if (k > 0 && pieces[k].layer == pieces[k - 1].layer && pieces[k].i0 == pieces[k - 1].i1) runs.back().second = pieces[k].i1;
+    else runs.push_back({pieces[k].i0, pieces[k].i1});
+  }
   const Rgb outline = mixRgb(t.body, {0, 0, 0}, 0.62);
   // shading bands: half widths (units of r) and their colour, outermost (darkest) first
   const double bands[] = {1.0, 0.82, 0.58, 0.3};
   const double shade[] = {0.34, 0.18, 0.07, 0.0};
   const double lw = std::max(0.6, 0.08 * unit * t.r[0]);
-  for (const auto& [i0, i1] : pieces) {
+  for (auto [i0, i1] : runs) {
+    if (i0 > 0) --i0;  // under the end of the run before
     const bool tip = i1 == n - 1;
     for (int b = 0; b < 4; ++b) {
       const Rgb c = mixRgb(t.body, {0.35, 0.3, 0.22}, shade[b]);
@@ -215,7 +269,7 @@ void drawTube(cairo_t* cr, const Tube& t, FX X, FY Y, double unit) {
       const double h = bands[b];
       strip(cr, t, i0, i1, X, Y, [&](size_t) { return -h; }, [&](size_t) { return h; });
       cairo_fill(cr);
-      if (tip) {  // the cap: a disc of the band's width at the tip
+      if (tip) {  // the cap: a disc of the band's width at the tip (its edge inside the band or on its edge)
         cairo_arc(cr, X(t.x[n - 1]), Y(t.y[n - 1]), h * t.r[n - 1] * unit, 0, 2 * units::pi);
         cairo_fill(cr);
       }
@@ -259,7 +313,22 @@ void drawTube(cairo_t* cr, const Tube& t, FX X, FY Y, double unit) {
   }
 }
 
-void drawAxes(cairo_t* cr, const Axes& a, Box box) {
+// an axes' place in the figure: its cell, the cell's left margin (kLeft, or kInnerLeft for a tile that
+// shares its row's y axis) and whether it labels its y ticks
+struct Cell {
+  Box box;
+  double left = kLeft;
+  bool yTickLabels = true;
+};
+
+// about one tick label per `pitch` layout units of the axis, between lo and hi labels
+int tickTarget(double length, double pitch, int lo, int hi) {
+  return std::clamp(static_cast<int>(length / pitch), lo, hi);
+}
+
+void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
+  cairo_t* cr = p.cr;
+  const Box box = cell.box;
   // data range
   double x0 = a.xmin, x1 = a.xmax, y0 = a.ymin, y1 = a.ymax;
   if (a.autoX || a.autoY) {
@@ -279,7 +348,7 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
     else if (a.autoX) { x0 = lx - px; x1 = hx + px; }
     if (a.autoY) { y0 = ly - py; y1 = hy + py; }
   }
-  const double L = box.x + kLeft, R = box.x + box.w - kRight, T = box.y + (a.title.empty() ? kTop : kTopTitle),
+  const double L = box.x + cell.left, R = box.x + box.w - kRight, T = box.y + (a.title.empty() ? kTop : kTopTitle),
                B = box.y + box.h - kBottom;
   double pw = R - L, ph = B - T;
   if (a.equalAspect) {
@@ -299,29 +368,29 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_rectangle(cr, L, T, pw, ph);
   cairo_fill(cr);
-  const auto xt = a.frameOnly ? std::vector<double>{} : logX ? logTicks(x0, x1) : ticks(x0, x1);
-  const auto yt = a.frameOnly ? std::vector<double>{} : ticks(y0, y1, 5);
+  const auto xt = a.frameOnly ? std::vector<double>{} : logX ? logTicks(x0, x1) : ticks(x0, x1, tickTarget(pw, 40, 2, 6));
+  const auto yt = a.frameOnly ? std::vector<double>{} : ticks(y0, y1, tickTarget(ph, 36, 3, 5));
   cairo_set_line_width(cr, 0.8);
   for (double v : xt) {
     if (a.grid) { cairo_set_source_rgb(cr, 0.9, 0.9, 0.9); cairo_move_to(cr, X(v), T); cairo_line_to(cr, X(v), B); cairo_stroke(cr); }
     cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
     cairo_move_to(cr, X(v), B); cairo_line_to(cr, X(v), B + 5); cairo_stroke(cr);
-    text(cr, X(v), B + 8, tickLabel(v), 12, 0.5, 0.0);
+    text(p, X(v), B + 8, tickLabel(v), 12, 0.5, 0.0);
   }
   for (double v : yt) {
     if (a.grid) { cairo_set_source_rgb(cr, 0.9, 0.9, 0.9); cairo_move_to(cr, L, Y(v)); cairo_line_to(cr, R, Y(v)); cairo_stroke(cr); }
     cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
     cairo_move_to(cr, L - 5, Y(v)); cairo_line_to(cr, L, Y(v)); cairo_stroke(cr);
-    text(cr, L - 8, Y(v), tickLabel(v), 12, 1.0, 0.5);
+    if (cell.yTickLabels) text(p, L - 8, Y(v), tickLabel(v), 12, 1.0, 0.5);
   }
   cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
   cairo_set_line_width(cr, 1.2);
   cairo_rectangle(cr, L, T, pw, ph);
   cairo_stroke(cr);
-  if (!a.title.empty()) text(cr, 0.5 * (L + R), box.y + 8, a.title, 15, 0.5, 0.0, true);
-  if (!a.panelLabel.empty()) text(cr, box.x + 8, box.y + 6, a.panelLabel, 20, 0.0, 0.0, true);
-  text(cr, 0.5 * (L + R), B + 26, a.xlabel, 13, 0.5, 0.0);
-  text(cr, box.x + 14, 0.5 * (T + B), a.ylabel, 13, 0.5, 0.5, false, -units::pi / 2);
+  if (!a.title.empty()) text(p, 0.5 * (L + R), box.y + 8, a.title, 15, 0.5, 0.0, true);
+  if (!a.panelLabel.empty()) text(p, box.x + 8, box.y + 6, a.panelLabel, 20, 0.0, 0.0, true);
+  text(p, 0.5 * (L + R), B + 26, a.xlabel, 13, 0.5, 0.0);
+  text(p, box.x + 14, 0.5 * (T + B), a.ylabel, 13, 0.5, 0.5, false, -units::pi / 2);
 
   // data, clipped to the plot area
   cairo_save(cr);
@@ -333,8 +402,36 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
     cairo_close_path(cr);
     cairo_fill(cr);
   }
+  if (a.plateGridPitch > 0) {
+    // the plate's grid (as the raster renderer's plate, docs/rendering.md): light lines every pitch
+    const double g = a.plateGridPitch;
+    const double lo = std::min(y0, y1), hi = std::max(y0, y1);
+    if ((x1 - x0) / g < 2000 && (hi - lo) / g < 2000) {
+      cairo_set_source_rgb(cr, 0.85, 0.85, 0.85);
+      cairo_set_line_width(cr, 0.7);
+      for (double v = std::ceil(x0 / g) * g; v <= x1; v += g) { cairo_move_to(cr, X(v), T); cairo_line_to(cr, X(v), B); }
+      for (double v = std::ceil(lo / g) * g; v <= hi; v += g) { cairo_move_to(cr, L, Y(v)); cairo_line_to(cr, R, Y(v)); }
+      cairo_stroke(cr);
+    }
+  }
   cairo_set_line_cap(cr, CAIRO_LINE_CAP_ROUND);
   cairo_set_line_join(cr, CAIRO_LINE_JOIN_ROUND);
+  for (const auto& o : a.obstacles) {
+    // the capsule (or disc) filled, then its outline a darker shade
+    const double rr = o.r * unit;
+    const double dx = X(o.toX) - X(o.fromX), dy = Y(o.toY) - Y(o.fromY);
+    const double ang = std::atan2(dy, dx);
+    cairo_new_sub_path(cr);
+    cairo_arc(cr, X(o.toX), Y(o.toY), rr, ang - 0.5 * units::pi, ang + 0.5 * units::pi);
+    cairo_arc(cr, X(o.fromX), Y(o.fromY), rr, ang + 0.5 * units::pi, ang + 1.5 * units::pi);
+    cairo_close_path(cr);
+    cairo_set_source_rgb(cr, o.color[0], o.color[1], o.color[2]);
+    cairo_fill_preserve(cr);
+    const Rgb edge = mixRgb(o.color, {0, 0, 0}, 0.45);
+    cairo_set_source_rgb(cr, edge[0], edge[1], edge[2]);
+    cairo_set_line_width(cr, 0.8);
+    cairo_stroke(cr);
+  }
   for (const auto& s : a.shapes) {
     cairo_set_source_rgb(cr, s.color[0], s.color[1], s.color[2]);
     cairo_set_line_width(cr, std::max(1.0, s.width * unit));
@@ -363,7 +460,7 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
     }
   }
   cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-  for (const auto& [p, s] : a.notes) text(cr, X(p[0]), Y(p[1]), s, 12, 0.5, 0.5);
+  for (const auto& [at, s] : a.notes) text(p, X(at[0]), Y(at[1]), s, 12, 0.5, 0.5);
   cairo_restore(cr);
 
   // legend
@@ -373,9 +470,9 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
   if (n > 0 && a.legendPos != "none") {
     double w = 0;
     for (const auto& s : a.series)
-      if (!s.label.empty()) w = std::max(w, labelWidth(cr, s.label, 12));
+      if (!s.label.empty()) w = std::max(w, labelWidth(p, s.label, 12));
     for (const auto& fl : a.fills)
-      if (!fl.label.empty()) w = std::max(w, labelWidth(cr, fl.label, 12));
+      if (!fl.label.empty()) w = std::max(w, labelWidth(p, fl.label, 12));
     const double bw = w + 44, bh = 18.0 * n + 8;
     const double lx = a.legendPos[1] == 'w' ? L + 8 : R - bw - 8;
     const double ly = a.legendPos[0] == 's' ? B - bh - 8 : T + 8;
@@ -398,7 +495,7 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
       }
       if (s.kind != Series::Kind::Line) marker(cr, s.marker, lx + 19, yy, 4.5);
       cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-      text(cr, lx + 38, yy, s.label, 12, 0.0, 0.5);
+      text(p, lx + 38, yy, s.label, 12, 0.0, 0.5);
     }
     for (const auto& fl : a.fills) {
       if (fl.label.empty()) continue;
@@ -407,24 +504,109 @@ void drawAxes(cairo_t* cr, const Axes& a, Box box) {
       cairo_rectangle(cr, lx + 8, yy - 6, 22, 12);
       cairo_fill(cr);
       cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-      text(cr, lx + 38, yy, fl.label, 12, 0.0, 0.5);
+      text(p, lx + 38, yy, fl.label, 12, 0.0, 0.5);
     }
   }
 }
 
-void drawFigure(cairo_t* cr, const Figure& f) {
+// a figure laid out: its size [layout units], the figure title's lines and each axes' cell
+struct Layout {
+  double width = 0, height = 0;
+  double scriptMin = 0;  // [layout units]
+  std::vector<std::string> titleLines;
+  std::vector<Cell> cells;
+};
+
+// the title in lines no wider than `width`, broken at spaces
+std::vector<std::string> wrapTitle(const Pen& p, const std::string& title, double width) {
+  std::vector<std::string> lines;
+  std::string line;
+  size_t i = 0;
+  while (i < title.size()) {
+    size_t j = title.find(' ', i);
+    if (j == std::string::npos) j = title.size();
+    const std::string word = title.substr(i, j - i);
+    const std::string longer = line.empty() ? word : line + " " + word;
+    if (!line.empty() && labelWidth(p, longer, kFigureTitleSize, true) > width) {
+      lines.push_back(line);
+      line = word;
+    } else {
+      line = longer;
+    }
+    i = j + 1;
+  }
+  if (!line.empty()) lines.push_back(line);
+  return lines;
+}
+
+// the axes share their y axis: more than one tile in a row, each with the same fixed y range, and only
+// the first with a y label (rows of roots on the plate at one scale)
+bool sharesY(const Figure& f) {
+  if (f.cols < 2 || f.axes.size() < 2) return false;
+  const Axes& a0 = f.axes[0];
+  for (size_t i = 0; i < f.axes.size(); ++i) {
+    const Axes& a = f.axes[i];
+    if (a.autoY || a.yDown != a0.yDown || a.ymin != a0.ymin || a.ymax != a0.ymax) return false;
+    if (i > 0 && !a.ylabel.empty()) return false;
+  }
+  return true;
+}
+
+// widthMm 0: f's own grid on f.width x f.height. widthMm > 0: the physical layout (plot.hpp): f.width's
+// grid redrawn at widthMm / 25.4 * 72 / kPtPerUnit layout units, each row as high as its plot areas at
+// their aspect (plotAspect) need
+Layout layoutOf(cairo_t* cr, const Figure& f, double widthMm) {
+  const bool physical = widthMm > 0;
+  Layout out;
+  out.width = physical ? widthMm / 25.4 * 72.0 / kPtPerUnit : f.width;
+  out.scriptMin = physical ? kScriptMinPt / kPtPerUnit : 0;
+  const Pen p{cr, out.scriptMin};
+  if (!f.title.empty()) out.titleLines = wrapTitle(p, f.title, out.width - 20);
+  const double top =
+      out.titleLines.empty() ? 0 : kFigureTitle + kFigureTitleLine * static_cast<double>(out.titleLines.size() - 1);
+  const int n = static_cast<int>(f.axes.size());
+  if (!physical) {
+    out.height = f.height;
+    const double cw = static_cast<double>(f.width) / f.cols, ch = (f.height - top) / static_cast<double>(f.rows);
+    for (int i = 0; i < n; ++i) out.cells.push_back({Box{i % f.cols * cw, top + i / f.cols * ch, cw, ch}});
+    return out;
+  }
+  const bool shared = sharesY(f);
+  const double inner = shared ? kInnerLeft : kLeft;
+  auto plotWidth = [&](int cols) { return (out.width - kLeft - (cols - 1) * inner - cols * kRight) / cols; };
+  int cols = std::max(1, f.cols);
+  while (cols > 1 && plotWidth(cols) * kPtPerUnit < kMinPlotMm / 25.4 * 72.0) --cols;
+  const double pw = plotWidth(cols);
+  double y = top;
+  for (int r0 = 0; r0 < n; r0 += cols) {
+    double h = 0;
+    for (int i = r0; i < std::min(n, r0 + cols); ++i) {
+      const Axes& a = f.axes[static_cast<size_t>(i)];
+      // a plot (not a picture at one scale) at least kMinPlotAspect high: a wide default plot (Fig. 2C-E,
+      // 0.27) would leave a column's plot too flat for its ticks and legend
+      const double aspect = a.equalAspect ? plotAspect(f, a) : std::max(kMinPlotAspect, plotAspect(f, a));
+      h = std::max(h, pw * aspect + (a.title.empty() ? kTop : kTopTitle) + kBottom);
+    }
+    for (int i = r0; i < std::min(n, r0 + cols); ++i) {
+      const int c = i - r0;
+      const double x = c == 0 ? 0 : kLeft + pw + kRight + (c - 1) * (inner + pw + kRight);
+      const double left = c == 0 ? kLeft : inner;
+      out.cells.push_back({Box{x, y, left + pw + kRight, h}, left, c == 0 || !shared});
+    }
+    y += h;
+  }
+  out.height = n > 0 ? y : top + f.height * out.width / f.width;
+  return out;
+}
+
+void drawFigure(const Pen& p, const Figure& f, const Layout& lay) {
+  cairo_t* cr = p.cr;
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_paint(cr);
-  const double top = f.title.empty() ? 0 : kFigureTitle;
-  if (!f.title.empty()) {
-    cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-    text(cr, 0.5 * f.width, 10, f.title, 17, 0.5, 0.0, true);
-  }
-  const double cw = static_cast<double>(f.width) / f.cols, ch = (f.height - top) / static_cast<double>(f.rows);
-  for (size_t i = 0; i < f.axes.size(); ++i) {
-    const int r = static_cast<int>(i) / f.cols, c = static_cast<int>(i) % f.cols;
-    drawAxes(cr, f.axes[i], Box{c * cw, top + r * ch, cw, ch});
-  }
+  cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
+  for (size_t k = 0; k < lay.titleLines.size(); ++k)
+    text(p, 0.5 * lay.width, 10 + kFigureTitleLine * static_cast<double>(k), lay.titleLines[k], kFigureTitleSize, 0.5, 0.0, true);
+  for (size_t i = 0; i < f.axes.size(); ++i) drawAxes(p, f.axes[i], lay.cells[i]);
 }
 
 void check(cairo_status_t st, const std::string& what) {
@@ -477,31 +659,46 @@ void saveFigure(const Figure& fig, const std::string& base, const SaveOptions& s
   Figure f = fig;
   if (!so.titles) f.title.clear();
   if (!(so.dpi > 0) || so.widthMm < 0) throw RunError("figure: --dpi must be positive and --width-mm not negative");
-  const double inches = so.widthMm > 0 ? so.widthMm / 25.4 : f.width / 96.0;
-  const double pt = inches * 72.0 / f.width;  // points per layout unit (PDF, SVG)
+  // the layout, measured on a scratch surface (text extents do not depend on the surface)
+  Layout lay;
+  {
+    cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
+    cairo_t* cr = cairo_create(s);
+    lay = layoutOf(cr, f, so.widthMm);
+    cairo_destroy(cr);
+    cairo_surface_destroy(s);
+  }
+  const double pt = so.widthMm > 0 ? kPtPerUnit : 72.0 / 96.0;  // points per layout unit (PDF, SVG)
+  const double inches = lay.width * pt / 72.0;
   const fs::path png = base + ".png", svg = base + ".svg", pdf = base + ".pdf";
   const fs::path pngTmp = base + ".png.tmp", svgTmp = base + ".svg.tmp", pdfTmp = base + ".pdf.tmp";
   auto vector = [&](cairo_surface_t* s, const fs::path& tmp) {
     check(cairo_surface_status(s), "creating " + tmp.string());
     cairo_t* cr = cairo_create(s);
     cairo_scale(cr, pt, pt);
-    drawFigure(cr, f);
+    drawFigure(Pen{cr, lay.scriptMin}, f, lay);
     cairo_destroy(cr);
     cairo_surface_finish(s);
     const cairo_status_t st = cairo_surface_status(s);
     cairo_surface_destroy(s);
     check(st, "writing " + tmp.string());
   };
-  vector(cairo_pdf_surface_create(pdfTmp.c_str(), f.width * pt, f.height * pt), pdfTmp);
-  vector(cairo_svg_surface_create(svgTmp.c_str(), f.width * pt, f.height * pt), svgTmp);
+  {
+    // same input, same bytes: cairo stamps the PDF's CreationDate with the clock unless it is given one;
+    // an empty one is written as an empty string
+    cairo_surface_t* s = cairo_pdf_surface_create(pdfTmp.c_str(), lay.width * pt, lay.height * pt);
+    cairo_pdf_surface_set_metadata(s, CAIRO_PDF_METADATA_CREATE_DATE, "");
+    vector(s, pdfTmp);
+  }
+  vector(cairo_svg_surface_create(svgTmp.c_str(), lay.width * pt, lay.height * pt), svgTmp);
   {
     const int w = std::max(1, static_cast<int>(std::lround(inches * so.dpi)));
-    const double scale = static_cast<double>(w) / f.width;
-    const int h = std::max(1, static_cast<int>(std::lround(f.height * scale)));
+    const double scale = static_cast<double>(w) / lay.width;
+    const int h = std::max(1, static_cast<int>(std::lround(lay.height * scale)));
     cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, w, h);
     cairo_t* cr = cairo_create(s);
     cairo_scale(cr, scale, scale);
-    drawFigure(cr, f);
+    drawFigure(Pen{cr, lay.scriptMin}, f, lay);
     cairo_destroy(cr);
     std::string bytes;
     const cairo_status_t st = cairo_surface_write_to_png_stream(s, appendBytes, &bytes);
@@ -517,6 +714,15 @@ void saveFigure(const Figure& fig, const std::string& base, const SaveOptions& s
   if (!ec) fs::rename(svgTmp, svg, ec);
   if (!ec) fs::rename(pdfTmp, pdf, ec);
   if (ec) throw RunError("cannot rename figure files to " + base + ".{png,svg,pdf}: " + ec.message());
+}
+
+LabelLayout layoutLabel(const std::string& label, double size, bool bold, double scriptMin) {
+  cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
+  cairo_t* cr = cairo_create(s);
+  LabelLayout out = placeLabel(cr, label, size, bold, scriptMin);
+  cairo_destroy(cr);
+  cairo_surface_destroy(s);
+  return out;
 }
 
 std::array<double, 2> visibleStripe(const std::array<double, 3>& a, const std::array<double, 3>& b,

@@ -131,18 +131,31 @@ std::array<float, 2> montageLabelAnchor(const MontageRun& run, const View& tileV
   return {x, y};
 }
 
+View montageTileView(const MontageLayout& l, const View& view, std::size_t i, std::size_t n) {
+  View v = view;
+  v.width = l.tileW;
+  v.height = l.tileH;
+  v.showTime = false;
+  v.showParams = false;
+  v.showTitle = false;
+  // the last tile's scale bar, downhill arrow and colour bar in the labels' size (the tile's own would be
+  // its shorter side / 26: 13-16 px at 720p beside 21 px labels)
+  v.fontPx = l.labelPx;
+  // one scale bar, downhill arrow and colour bar: all are common (the legend is in the header)
+  v.showScaleBar = v.showScaleBar && i + 1 == n;
+  v.showColourBar = v.showColourBar && i + 1 == n;
+  v.showDownhill = v.showDownhill && i + 1 == n;
+  v.showLegend = false;
+  return v;
+}
+
 void renderMontage(const std::vector<MontageRun>& runs, const MontageJob& job, const MovieProgress& progress) {
   const MontageLayout l = montageLayout(runs, job.view);
   const std::vector<double> clock = montageClock(runs);
   if (job.view.transparent && !job.mp4.empty())
     throw RenderError("montage " + job.mp4 + ": a transparent background is for PNG only (MP4 has no alpha)");
   // one colour range over every run
-  View tileView = job.view;
-  tileView.width = l.tileW;
-  tileView.height = l.tileH;
-  tileView.showTime = false;
-  tileView.showParams = false;
-  tileView.showTitle = false;
+  View tileView = montageTileView(l, job.view, 0, runs.size());
   if (tileView.colourBy != ColourField::None) {
     double lo = std::numeric_limits<double>::infinity(), hi = -lo;
     for (const MontageRun& r : runs) {
@@ -176,12 +189,8 @@ void renderMontage(const std::vector<MontageRun>& runs, const MontageJob& job, c
     for (std::size_t i = 0; i < runs.size(); ++i) {
       const MontageRun& r = runs[i];
       const int col = static_cast<int>(i) % l.cols, row = static_cast<int>(i) / l.cols;
-      View v = tileView;
-      // one scale bar, downhill arrow and colour bar: all are common (the legend is in the header)
-      v.showScaleBar = i + 1 == runs.size();
-      v.showColourBar = i + 1 == runs.size();
-      v.showDownhill = i + 1 == runs.size();
-      v.showLegend = false;
+      View v = montageTileView(l, job.view, i, runs.size());
+      v.colourRange = tileView.colourRange;
       const Snapshot& s = r.snaps[static_cast<std::size_t>(snapshotAt(r.snaps, t))];
       gl.render(buildRenderScene(s, r.info, v, l.framing[i]), tile);
       const int x = col * l.tileW, y = l.headerH + row * l.tileH;
@@ -196,7 +205,7 @@ void renderMontage(const std::vector<MontageRun>& runs, const MontageJob& job, c
       const float ty = std::round(0.5f * (static_cast<float>(l.headerH) - font));
       texts.push_back({"t = " + fmt("%.1f", t) + " h", m, ty, font, OverlayText::Anchor::TopLeft});
       if (!job.caption.empty()) texts.push_back({job.caption, m + timeW + 1.5f * font, ty, font, OverlayText::Anchor::TopLeft});
-      if (overlays && tileView.showLegend) {
+      if (overlays && job.view.showLegend) {
         float right = static_cast<float>(job.view.width) - m;
         const RenderScene::Material mat;
         for (int side = 1; side >= 0; --side) {

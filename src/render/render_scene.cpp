@@ -356,6 +356,10 @@ std::array<float, 16> lightViewProj(const RenderScene& rs, const glm::vec3& towa
 }  // namespace
 
 float overlayFontPx(const View& view) {
+  if (view.fontPx) {
+    if (!(*view.fontPx > 0)) throw RenderError("render view: fontPx must be > 0 (got " + std::to_string(*view.fontPx) + ")");
+    return *view.fontPx;
+  }
   return std::max(12.0f, static_cast<float>(std::min(view.width, view.height)) / 26.0f);
 }
 

@@ -29,9 +29,18 @@ double tipAngle(const Model& m, const RodState& s) {
 
 namespace {
 
+// the triple product of two segments and their offset, relative to the product of their lengths, below
+// which they count as coplanar: rounding leaves about 1e-15 of it (positions ~1 mm, elements ~0.05 mm)
+constexpr double kCoplanarTolerance = 1e-12;
+
 // solid-angle contribution of segments (p1,p2) and (p3,p4) to the Gauss integral, divided by 4 pi
 double gaussPair(const Vec3& p1, const Vec3& p2, const Vec3& p3, const Vec3& p4) {
   const Vec3 r13 = p3 - p1, r14 = p4 - p1, r23 = p3 - p2, r24 = p4 - p2;
+  // coplanar segments (collinear ones included) contribute exactly 0: the integrand (t x t').r vanishes.
+  // Up to rounding they are not coplanar, and the normals below, of rounding-noise length, would point
+  // anywhere (a straight rod at a general orientation gave Wr of +-1..3 turns; docs/model.md, Observables)
+  const double sg = (p4 - p3).cross(p2 - p1).dot(r13);
+  if (std::abs(sg) <= kCoplanarTolerance * (p4 - p3).norm() * (p2 - p1).norm() * r13.norm()) return 0.0;
   Vec3 n[4] = {r13.cross(r14), r14.cross(r24), r24.cross(r23), r23.cross(r13)};
   for (auto& v : n) {
     const double l = v.norm();
@@ -40,8 +49,6 @@ double gaussPair(const Vec3& p1, const Vec3& p2, const Vec3& p3, const Vec3& p4)
   }
   auto as = [](double x) { return std::asin(std::clamp(x, -1.0, 1.0)); };
   const double om = as(n[0].dot(n[1])) + as(n[1].dot(n[2])) + as(n[2].dot(n[3])) + as(n[3].dot(n[0]));
-  const double sg = (p4 - p3).cross(p2 - p1).dot(r13);
-  if (sg == 0.0) return 0.0;
   return (sg > 0 ? om : -om) / (4.0 * std::numbers::pi);
 }
 

@@ -78,3 +78,43 @@ TEST_CASE("montage: a label sits under its own root, not in the middle of the ti
   CHECK(pa[1] > topViewPixel(l.framing[0], tile, tipA.x(), tipA.y()).y());
   CHECK(pa[1] <= l.tileH);
 }
+
+TEST_CASE("montage: the last tile's scale bar and downhill text match the labels' size") {
+  const SceneInfo info = rtest::info(40);
+  std::vector<MontageRun> runs(3);
+  for (MontageRun& r : runs) {
+    r.info = info;
+    r.snaps = {rtest::straightRod(40, 20, 1.0, 0.1)};
+    r.label = "\xCE\xB1 = 40\xC2\xB0";
+  }
+  View v;
+  v.width = 1280;
+  v.height = 720;
+  const MontageLayout l = montageLayout(runs, v);
+  CHECK(l.labelPx == doctest::Approx(21));  // 720 / 34
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    INFO("tile " << i);
+    const View tv = montageTileView(l, v, i, runs.size());
+    CHECK(tv.width == l.tileW);
+    CHECK(!tv.showTime);
+    CHECK(!tv.showLegend);
+    const RenderScene rs = buildRenderScene(runs[i].snaps.back(), info, tv, l.framing[i]);
+    const bool last = i + 1 == runs.size();
+    CHECK(rs.texts.empty() == !last);  // the common scale and arrow on the last tile only
+    bool scale = false, downhill = false;
+    for (const OverlayText& t : rs.texts) {
+      INFO(t.text << " at " << t.sizePx << " px");
+      if (t.text.find(" mm") != std::string::npos) {
+        scale = true;
+        CHECK(t.sizePx == doctest::Approx(l.labelPx));
+      }
+      if (t.text == kDownhillLabel) {
+        downhill = true;
+        CHECK(t.sizePx == doctest::Approx(std::round(0.8f * l.labelPx)));  // the single view's ratio
+      }
+      CHECK(t.sizePx >= 0.8f * l.labelPx - 0.5f);
+    }
+    CHECK(scale == last);
+    CHECK(downhill == last);
+  }
+}

@@ -260,3 +260,30 @@ TEST_CASE("stills: run --movie defaults to the inset look and its final_top.png 
   CHECK(blue(def) > 1000);
   CHECK(blue(readPng(plain.string())) == 0);
 }
+
+TEST_CASE("stills: run --movie --field-mm alone sizes the default inset; without --movie or with --camera fit it is refused") {
+  const fs::path d = rtest::scratch("field_inset");
+  const std::string scene = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2b_waving.toml";
+  const std::string base = " --set growth.steps=200 --set output.every_steps=50 --quiet";
+  const fs::path r1 = d / "field";
+  const Result a = run("run " + scene + base + " --movie --field-mm 1.2 --out " + r1.string());
+  REQUIRE_MESSAGE(a.code == 0, a.out);
+  // the picture is render --inset --field-mm 1.2's, not the 2 mm inset's
+  const fs::path small = d / "small.png", wide = d / "wide.png";
+  REQUIRE(run("render " + r1.string() + " --inset --field-mm 1.2 --quiet --final-png " + small.string()).code == 0);
+  REQUIRE(run("render " + r1.string() + " --inset --quiet --final-png " + wide.string()).code == 0);
+  const Image def = readPng((r1 / "final_top.png").string());
+  CHECK(def.rgba == readPng(small.string()).rgba);
+  CHECK(def.rgba != readPng(wide.string()).rgba);
+  // refused before the run: nothing written, the flag named, one line
+  const fs::path r2 = d / "refused";
+  for (const std::string& args : {base + " --field-mm 1.2", base + " --movie --camera fit --field-mm 1.2",
+                                  base + " --movie --field-mm 500"}) {
+    const Result r = run("run " + scene + args + " --out " + r2.string());
+    INFO(args << " -> " << r.out);
+    CHECK(r.code == 2);
+    CHECK(r.out.find("--field-mm") != std::string::npos);
+    CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(r2));
+  }
+}

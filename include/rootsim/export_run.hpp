@@ -15,7 +15,7 @@ struct ExportOptions {
   std::string gltf;       // --gltf FILE.glb
   std::string paraview;   // --paraview DIR
   // which snapshots: the final one (default), the one nearest atH (ties to the earlier), or one every
-  // everyH hours from the first (each output then writes one file per time: docs/rsml.md, Time series)
+  // everyH hours from the first (each output then writes one file per time: docs/rsml.md, Choosing the time)
   double atH = kUnset;    // --at-h [h]
   double everyH = kUnset; // --every-h [h]
   bool force = false;     // replace outputs rootsim wrote earlier (never a file rootsim did not write)

@@ -66,6 +66,9 @@ struct Metadata {
   std::string sequenceLabel;
   int sequenceIndex = -1;
   bool unified = false;
+  // <observation-hours>: the times of the observations a file of several holds [h] (openalea,
+  // RootSystemTracker: comma-separated); empty when absent
+  std::vector<double> observationHours;
 };
 
 struct Document {
@@ -74,6 +77,8 @@ struct Document {
   std::vector<Plant> plants;
   double mmPerUnit = 1;                     // file coordinates x mmPerUnit = mm (docs/rsml.md, Units)
   std::string comment;                      // written before <rsml> as an XML comment (the signature)
+  double timeH = 0;                         // the growth time the file shows [h]: rootsim's scene property
+  bool hasTime = false;                     // time_h (the reader sets both; the writer writes the property)
   const Property* sceneProperty(std::string_view name) const;
 };
 

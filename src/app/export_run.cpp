@@ -175,17 +175,18 @@ std::vector<double> frameAngleDeg(const Snapshot& s, const PlateFrame& pf) {
   return out;
 }
 
-// the centreline's curvature [1/mm] at interior nodes: 2 tan(phi/2) / ((l_a + l_b) / 2), phi the turning
-// angle between the two neighbouring segments (the discrete curvature binormal's length over the
-// Voronoi length); 0 at the two ends. From the points alone: what a reader of the file can recompute.
+// the centreline's curvature [1/mm] at interior nodes: phi / ((l_a + l_b) / 2), phi the turning angle
+// between the two neighbouring segments (of lengths l_a, l_b) over the Voronoi length; 0 at the two
+// ends. From the points alone: what a reader of the file can recompute. (The curvature binormal's
+// 2 tan(phi/2) differs by phi^3/12 and is infinite for a fold; the angle stays finite.)
 std::vector<double> curvaturePerMm(const Snapshot& s) {
   const int n = s.elements();
   std::vector<double> k(static_cast<std::size_t>(n) + 1, 0.0);
   for (int i = 1; i < n; ++i) {
     const Eigen::Vector3d a = (s.x.col(i) - s.x.col(i - 1)) / units::mm, b = (s.x.col(i + 1) - s.x.col(i)) / units::mm;
     const double la = a.norm(), lb = b.norm();
-    const double kb = 2.0 * a.cross(b).norm() / (la * lb + a.dot(b));
-    k[static_cast<std::size_t>(i)] = kb / (0.5 * (la + lb));
+    const double phi = std::atan2(a.cross(b).norm(), a.dot(b));
+    k[static_cast<std::size_t>(i)] = phi / (0.5 * (la + lb));
   }
   return k;
 }

@@ -44,6 +44,14 @@ bool parseNumber(std::string_view text, double& out) {
   return r.ec == std::errc() && r.ptr == t.data() + t.size();
 }
 
+// text from the file in a message: one printable line (control characters as '?'), at most 40 bytes
+std::string shown(std::string_view text) {
+  std::string o(text.substr(0, 40));
+  for (char& c : o)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  return text.size() > 40 ? o + "..." : o;
+}
+
 // the element's text, "" when it has none
 std::string textOf(const tinyxml2::XMLElement* e) {
   const char* t = e->GetText();
@@ -61,7 +69,7 @@ struct Reader {
 
   double number(const tinyxml2::XMLElement* at, std::string_view text, const std::string& what) const {
     double v = 0;
-    if (!parseNumber(text, v)) fail(at, what + ": expected a number, found \"" + std::string(text.substr(0, 40)) + "\"");
+    if (!parseNumber(text, v)) fail(at, what + ": expected a number, found \"" + shown(text) + "\"");
     return v;
   }
 
@@ -102,7 +110,7 @@ struct Reader {
       fail(pt, std::string("point ") + c + " is not finite");
     if (std::fabs(mm) > kMaxCoordMm)
       fail(pt, std::string("point ") + c + " = " + numberText(mm) + " mm is absurd (beyond " +
-                   numberText(kMaxCoordMm) + " mm: a wrong unit or resolution?)");
+                   decimalNumber(kMaxCoordMm) + " mm, 1 km: a wrong unit or resolution?)");
     return mm;
   }
 
@@ -116,7 +124,7 @@ struct Reader {
     r.properties = properties(e);
     const tinyxml2::XMLElement* geometry = e->FirstChildElement("geometry");
     const tinyxml2::XMLElement* polyline = geometry ? geometry->FirstChildElement("polyline") : nullptr;
-    if (!polyline) fail(e, "<root" + (r.id.empty() ? std::string() : " id=\"" + r.id + "\"") + "> has no <geometry><polyline>");
+    if (!polyline) fail(e, "<root" + (r.id.empty() ? std::string() : " id=\"" + shown(r.id) + "\"") + "> has no <geometry><polyline>");
     bool allZ = true;
     for (const tinyxml2::XMLElement* pt = polyline->FirstChildElement("point"); pt; pt = pt->NextSiblingElement("point")) {
       double x = 0, y = 0, z = 0;
@@ -142,14 +150,14 @@ struct Reader {
         if (const char* d = f->Attribute("domain")) fn.domain = d;
         for (const tinyxml2::XMLElement* s = f->FirstChildElement("sample"); s; s = s->NextSiblingElement("sample")) {
           const char* v = s->Attribute("value");
-          const double value = number(s, v ? std::string(v) : textOf(s), "function " + fn.name + " sample");
-          if (!std::isfinite(value)) fail(s, "function " + fn.name + ": a sample is not finite");
+          const double value = number(s, v ? std::string(v) : textOf(s), "function " + shown(fn.name) + " sample");
+          if (!std::isfinite(value)) fail(s, "function " + shown(fn.name) + ": a sample is not finite");
           fn.samples.push_back(value);
-          if (const char* pos = s->Attribute("position")) fn.positions.push_back(number(s, pos, "function " + fn.name + " position"));
+          if (const char* pos = s->Attribute("position")) fn.positions.push_back(number(s, pos, "function " + shown(fn.name) + " position"));
           if (++points > kMaxPoints) fail(s, "more than " + std::to_string(kMaxPoints) + " samples in the file");
         }
         if (fn.domain == "polyline" && fn.samples.size() != r.x.size())
-          fail(f, "function " + fn.name + " has " + std::to_string(fn.samples.size()) + " samples for the polyline's " +
+          fail(f, "function " + shown(fn.name) + " has " + std::to_string(fn.samples.size()) + " samples for the polyline's " +
                       std::to_string(r.x.size()) + " points");
         r.functions.push_back(std::move(fn));
       }
@@ -230,7 +238,7 @@ Document parseRsml(const std::string& text, const std::string& name) {
   const tinyxml2::XMLElement* top = xml.RootElement();
   if (!top) throw SceneError(name + ":1: no <rsml> element (an empty document)");
   if (std::string(top->Name()) != "rsml")
-    rd.fail(top, "the document is a <" + std::string(top->Name()) + ">, not an <rsml>");
+    rd.fail(top, "the document is a <" + shown(top->Name()) + ">, not an <rsml>");
   Document doc;
   doc.meta.unit = "pixel";   // RSML: without a unit, coordinates are pixels
   doc.meta.version.clear();
@@ -248,7 +256,7 @@ Document parseRsml(const std::string& text, const std::string& name) {
     if (const tinyxml2::XMLElement* res = m->FirstChildElement("resolution")) {
       doc.meta.resolution = rd.number(res, textOf(res), "<resolution>");
       if (!(doc.meta.resolution > 0) || !std::isfinite(doc.meta.resolution))
-        rd.fail(res, "<resolution> must be a positive number (pixels per unit), found " + textOf(res));
+        rd.fail(res, "<resolution> must be a positive number (pixels per unit), found " + shown(textOf(res)));
     }
     if (const tinyxml2::XMLElement* defs = m->FirstChildElement("property-definitions"))
       for (const tinyxml2::XMLElement* d = defs->FirstChildElement(); d; d = d->NextSiblingElement()) {
@@ -263,7 +271,7 @@ Document parseRsml(const std::string& text, const std::string& name) {
       if (const tinyxml2::XMLElement* e = ts->FirstChildElement("index")) {
         const double idx = rd.number(e, textOf(e), "<time-sequence><index>");
         if (!(idx >= 0 && idx <= 1e9) || idx != std::floor(idx))
-          rd.fail(e, "<time-sequence><index> must be a whole number >= 0, found " + textOf(e));
+          rd.fail(e, "<time-sequence><index> must be a whole number >= 0, found " + shown(textOf(e)));
         doc.meta.sequenceIndex = static_cast<int>(idx);
       }
       if (const tinyxml2::XMLElement* e = ts->FirstChildElement("unified")) {
@@ -271,10 +279,25 @@ Document parseRsml(const std::string& text, const std::string& name) {
         doc.meta.unified = u == "true" || u == "1";
       }
     }
+    if (const tinyxml2::XMLElement* obs = m->FirstChildElement("observation-hours")) {
+      const std::string all = textOf(obs);
+      std::size_t from = 0;
+      while (from <= all.size()) {
+        const std::size_t comma = std::min(all.find(',', from), all.size());
+        const std::string item = trim(std::string_view(all).substr(from, comma - from));
+        if (!item.empty()) {
+          const double h = rd.number(obs, item, "<observation-hours>");
+          if (!std::isfinite(h)) rd.fail(obs, "<observation-hours>: a time is not finite");
+          doc.meta.observationHours.push_back(h);
+          if (doc.meta.observationHours.size() > kMaxPoints) rd.fail(obs, "<observation-hours>: too many times");
+        }
+        from = comma + 1;
+      }
+    }
     const tinyxml2::XMLElement* unitAt = m->FirstChildElement("unit");
     rd.mmPerUnit = mmPerUnit(doc.meta.unit, doc.meta.resolution);
     if (rd.mmPerUnit == 0)
-      rd.fail(unitAt ? unitAt : m, "unknown <unit> \"" + doc.meta.unit +
+      rd.fail(unitAt ? unitAt : m, "unknown <unit> \"" + shown(doc.meta.unit) +
                                        "\" (expected pixel, px, um, micrometer, mm, millimeter, cm, centimeter, m, meter, "
                                        "nm or inch)");
   }
@@ -282,6 +305,10 @@ Document parseRsml(const std::string& text, const std::string& name) {
   const tinyxml2::XMLElement* scene = top->FirstChildElement("scene");
   if (!scene) rd.fail(top, "<rsml> has no <scene>");
   doc.sceneProperties = rd.properties(scene);
+  if (const Property* t = doc.sceneProperty("time_h"); t && std::isfinite(t->number)) {
+    doc.timeH = t->number;
+    doc.hasTime = true;
+  }
   for (const tinyxml2::XMLElement* p = scene->FirstChildElement("plant"); p; p = p->NextSiblingElement("plant")) {
     Plant plant;
     if (const char* id = p->Attribute("id")) plant.id = id;
@@ -312,6 +339,8 @@ namespace {
 std::string escape(std::string_view s) {
   std::string o;
   for (char c : s) {
+    if ((static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') || c == 0x7f)
+      throw SceneError("RSML: a control character cannot be written (XML 1.0)");
     switch (c) {
       case '&': o += "&amp;"; break;
       case '<': o += "&lt;"; break;

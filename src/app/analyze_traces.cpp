@@ -166,7 +166,7 @@ std::vector<RootRow> analyzeTraces(const AnalyzeOptions& o) {
     const double zone = sceneNumber(doc, "growth.growth_zone_mm");
     const double exclude = given(o.excludeTipMm) ? o.excludeTipMm : (std::isfinite(zone) ? zone : 0.0);
     const AnalysisParams set = analysisOf(doc);
-    double timeH = times.empty() ? sceneNumber(doc, "time_h") : times[fi];
+    const double timeH = !times.empty() ? times[fi] : doc.hasTime ? doc.timeH : kNaN;
     for (std::size_t pi = 0; pi < doc.plants.size(); ++pi) {
       const rsml::Plant& plant = doc.plants[pi];
       // every root of the plant in plate coordinates [mm], with the origin at the plant's first root's base

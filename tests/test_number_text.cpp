@@ -2,8 +2,12 @@
 // sweep run names and table.csv's grid columns show them
 #include <doctest/doctest.h>
 
+#include <charconv>
+#include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <string>
 
 #include "rootsim/number_text.hpp"
@@ -43,4 +47,26 @@ TEST_CASE("numbers are written in the shortest form that reads back exactly") {
   // the resolved scene writes the value as given
   CHECK(p.points[0].resolvedToml.find("\nalpha_deg = 35.7 ") != std::string::npos);
   fs::remove_all(d);
+}
+
+TEST_CASE("decimal numbers: the shortest text without an exponent that reads back exactly (RSML's xs:decimal)") {
+  CHECK(decimalNumber(1e-7) == "0.0000001");
+  CHECK(decimalNumber(0.3) == "0.3");
+  CHECK(decimalNumber(2.0) == "2");
+  CHECK(decimalNumber(-123456.75) == "-123456.75");
+  CHECK(decimalNumber(1e21) == "1000000000000000000000");
+  CHECK(decimalNumber(-0.0) == "-0");
+  // random doubles over many magnitudes: never an exponent, the same bits back
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> mant(-1.0, 1.0);
+  std::uniform_int_distribution<int> ex(-30, 30);
+  for (int i = 0; i < 20000; ++i) {
+    const double x = std::ldexp(mant(rng), ex(rng) * 3);
+    const std::string t = decimalNumber(x);
+    CHECK(t.find_first_of("eE") == std::string::npos);
+    double back = 0;
+    const auto r = std::from_chars(t.data(), t.data() + t.size(), back);
+    REQUIRE(r.ec == std::errc());
+    CHECK(std::memcmp(&back, &x, sizeof x) == 0);
+  }
 }

@@ -43,6 +43,17 @@ struct RootRow {
 // the rows of every root of every file (bad input: SceneError naming the file:line or the flag)
 std::vector<RootRow> analyzeTraces(const AnalyzeOptions& o);
 
+// one cell of a row: the column of analysis.csv / the key of analysis.json, its unit ("" for none), and
+// its value (text, or a number: NaN for an empty cell)
+struct RowField {
+  const char* name;
+  const char* unit;
+  bool isText;
+  std::string text;
+  double number;
+};
+std::vector<RowField> rowFields(const RootRow& r);
+
 // the command: analysis.csv and analysis.json into --out (a rootsim analysis folder, written whole), one
 // summary line per root on stdout. Returns 0.
 int analyzeCommand(const AnalyzeOptions& o);

@@ -315,6 +315,17 @@ const std::vector<Column>& columns() {
   return c;
 }
 
+}  // namespace
+
+std::vector<RowField> rowFields(const RootRow& r) {
+  std::vector<RowField> f;
+  for (const Column& c : columns())
+    f.push_back(RowField{c.name, c.unit, c.text != nullptr, c.text ? c.text(r) : std::string(), c.text ? kNaN : c.number(r)});
+  return f;
+}
+
+namespace {
+
 std::string analysisCsv(const std::vector<RootRow>& rows) {
   std::string out;
   for (const Column& c : columns()) out += std::string(out.empty() ? "" : ",") + c.name;

@@ -61,5 +61,15 @@ struct ShapeAnalysis {
 // angle is biased by its incomplete wave, so a skew is not judged); otherwise skewing if |skew| exceeds
 // analysis.skew_threshold_deg; otherwise waving (2 or more peaks) or straight.
 ShapeAnalysis analyseShape(const Model& m, const RodState& s);
+// the last node of the mature part: nodes whose rest arc length S lies below the growth zone's start
+// (all of them, n, when the run does not grow)
+int matureLastNode(const Model& m, const RodState& s);
+// the same analysis of any centreline lying on the plate pl (a run's nodes, or a traced root put into the
+// lab frame): columns of x [m], the mature part being columns 0 .. last; set: the thresholds, radius: the
+// root's radius R [m] (the hysteresis is set.waveMinAmplitude * R). analyseShape is
+// analyseCentreline(s.x, matureLastNode(m, s), m.env.plane, m.analysis, m.rod.radius).
+// Throws std::invalid_argument for fewer than two points.
+ShapeAnalysis analyseCentreline(const Eigen::Matrix3Xd& x, int last, const Plane& pl, const AnalysisParams& set,
+                                double radius);
 
 }  // namespace rootsim

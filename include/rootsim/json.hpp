@@ -19,12 +19,15 @@ class Json {
   Json& str(const std::string& key, const std::string& v);
   Json& boolean(const std::string& key, bool v);
   Json& object(const std::string& key, const Json& v);
+  Json& array(const std::string& key, const std::vector<Json>& v);   // an array of objects
   std::string dump(int indent = 0) const;
 
  private:
   struct Item {
     std::string key, raw;           // raw JSON text of a scalar value
     std::shared_ptr<Json> child;    // or a nested object
+    std::vector<Json> elems;        // or an array of objects (isArray)
+    bool isArray = false;
   };
   std::vector<Item> items_;
 };

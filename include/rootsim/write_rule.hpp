@@ -34,6 +34,8 @@ const FolderSpec& runFolder();
 const FolderSpec& sweepFolder();
 // a folder of PNG frames: marker .rootsim-frames, frame_NNNNN.png
 const FolderSpec& framesFolder();
+// the folder of `analyze`: marker .rootsim-analysis, analysis.csv, analysis.json
+const FolderSpec& analysisFolder();
 
 // what a command reads: never replaced nor held by an output; a folder whose content is read (a run
 // directory) is also never written into, except for the names it receives

@@ -693,6 +693,29 @@ def export(run_dir: PathLike, *, rsml: Optional[PathLike] = None, gltf: Optional
     return [pathlib.Path(p) for p in written]
 
 
+def analyze(files: Union[PathLike, Sequence[PathLike]], *, px_per_mm: Optional[float] = None,
+            downhill: Union[str, float] = "+y", times: Optional[Sequence[float]] = None,
+            ds_mm: Optional[float] = None, exclude_tip_mm: Optional[float] = None,
+            radius_mm: Optional[float] = None) -> List[Dict[str, Any]]:
+    """The traits and run observables of every root of RSML files, as ``rootsim analyze`` computes them
+    (docs/experiments.md; the same C++ code), one dict per root with analysis.csv's columns (numbers as
+    floats, NaN where the CSV cell is empty). Writes nothing.
+
+    ``px_per_mm``: for files whose unit is pixel; ``downhill``: "+y", "-y" or an angle in degrees from
+    +y towards +x; ``times``: one growth time per file [h] (growth rates across files of one plate);
+    ``ds_mm``, ``exclude_tip_mm``, ``radius_mm``: as the command line's flags. Bad input raises
+    SceneError with the command line's message. Keywords only."""
+    if not _c.have_render:
+        raise SceneError("analyze: this rootsim was built without the renderer and the app library "
+                         "(ROOTSIM_BUILD_RENDER=OFF)")
+    paths = [os.fspath(files)] if isinstance(files, (str, os.PathLike)) else [os.fspath(f) for f in files]
+    opts: Dict[str, Any] = dict(px_per_mm=px_per_mm, downhill=str(downhill), ds_mm=ds_mm,
+                                exclude_tip_mm=exclude_tip_mm, radius_mm=radius_mm)
+    if times is not None:
+        opts["times"] = ",".join(repr(float(t)) for t in times)
+    return [dict(r) for r in _c.analyze_traces(paths, opts)]
+
+
 # ---------------------------------------------------------------------------------------------------
 # stepping
 

@@ -78,6 +78,11 @@ def export_run(run_dir: str, options: Dict[str, Any]) -> List[str]:
     the files and folders written."""
     ...
 
+def analyze_traces(files: List[str], options: Dict[str, Any]) -> List[Dict[str, Any]]:
+    """``rootsim analyze`` without writing: options by name (px_per_mm, downhill, times, ds_mm,
+    exclude_tip_mm, radius_mm); one dict per root with analysis.csv's columns."""
+    ...
+
 def render_run(run_dir: str, options: Dict[str, Any]) -> None:
     """``rootsim render``: options by name (mp4, png_dir, final_png, view, size, fps, crf, whiskers,
     transparent, overlays, camera, field_mm, inset, color_by, plot, shadows, shader_dir, force, quiet, png,

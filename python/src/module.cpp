@@ -36,6 +36,7 @@
 #include "rootsim/version.hpp"
 
 #ifdef ROOTSIM_HAVE_RENDER
+#include "rootsim/analyze_traces.hpp"
 #include "rootsim/export_run.hpp"
 #include "rootsim/render_run.hpp"
 #endif
@@ -661,6 +662,45 @@ PYBIND11_MODULE(_rootsim, m) {
         return out;
       },
       py::arg("run_dir"), py::arg("options"));
+  m.def(
+      "analyze_traces",
+      // rootsim.analyze's keywords, as the command line's flags; the rows as dicts of analysis.csv's columns
+      [](const std::vector<std::string>& files, const py::dict& options) {
+        app::AnalyzeOptions o;
+        o.files = files;
+        for (const auto& item : options) {
+          const std::string key = py::str(item.first);
+          const py::handle v = item.second;
+          if (v.is_none()) continue;
+          try {
+            if (key == "px_per_mm") o.pxPerMm = v.cast<double>();
+            else if (key == "downhill") o.downhill = std::string(py::str(v));
+            else if (key == "times") o.times = std::string(py::str(v));
+            else if (key == "ds_mm") o.dsMm = v.cast<double>();
+            else if (key == "exclude_tip_mm") o.excludeTipMm = v.cast<double>();
+            else if (key == "radius_mm") o.radiusMm = v.cast<double>();
+            else throw SceneError("analyze: unknown option " + key);
+          } catch (const py::cast_error&) {
+            throw SceneError("analyze: option " + key + " has the wrong type");
+          }
+        }
+        std::vector<app::RootRow> rows;
+        {
+          py::gil_scoped_release nogil;
+          rows = app::analyzeTraces(o);
+        }
+        py::list out;
+        for (const app::RootRow& r : rows) {
+          py::dict d;
+          for (const app::RowField& f : app::rowFields(r)) {
+            if (f.isText) d[f.name] = f.text;
+            else d[f.name] = f.number;
+          }
+          out.append(d);
+        }
+        return out;
+      },
+      py::arg("files"), py::arg("options"));
 #else
   m.attr("have_render") = false;
 #endif

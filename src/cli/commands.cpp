@@ -256,4 +256,13 @@ int exportCommand(const app::ExportOptions& o) {
 #endif
 }
 
+int analyzeCommand(const app::AnalyzeOptions& o) {
+#ifdef ROOTSIM_HAVE_RENDER
+  return app::analyzeCommand(o);
+#else
+  (void)o;
+  throw SceneError("analyze: this rootsim was built without the renderer and the app library (ROOTSIM_BUILD_RENDER=OFF)");
+#endif
+}
+
 }  // namespace rootsim::cli

@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "rootsim/analyze_traces.hpp"
 #include "rootsim/export_run.hpp"
 #include "rootsim/montage_runs.hpp"
 #include "rootsim/movie_look.hpp"
@@ -34,6 +35,8 @@ int renderCommand(const app::RenderOptions& o);
 int montageCommand(const app::MontageOptions& o);
 // export: the app library's command (rootsim_app); SceneError when it is not built
 int exportCommand(const app::ExportOptions& o);
+// analyze: the app library's command (rootsim_app); SceneError when it is not built
+int analyzeCommand(const app::AnalyzeOptions& o);
 
 struct ModesOptions {
   std::string runDir;

@@ -92,6 +92,19 @@ int main(int argc, char** argv) {
   cExport->add_flag("--force", exportOpts.force, "replace outputs rootsim wrote earlier (never a file rootsim did not write)");
   cExport->add_flag("--quiet", exportOpts.quiet, "no progress output");
 
+  app::AnalyzeOptions analyze;
+  CLI::App* cAnalyze = app.add_subcommand("analyze", "traits and run observables of every root of traced (or exported) RSML files: analysis.csv, analysis.json");
+  cAnalyze->add_option("files", analyze.files, "RSML files (several files of one plate at several times give growth rates)")->required();
+  cAnalyze->add_option("--px-per-mm", analyze.pxPerMm, "pixels per millimetre, for a file whose unit is pixel");
+  cAnalyze->add_option("--downhill", analyze.downhill, "the plate's downhill in the file: +y (default: a scan with the plate upright), -y, or an angle in degrees from +y towards +x");
+  cAnalyze->add_option("--times", analyze.times, "growth time of each file [h], comma separated (default: the file's time_h property)");
+  cAnalyze->add_option("--ds-mm", analyze.dsMm, "resampling step of the shape analysis [mm]; 0: the trace's own points (default: 0 for a rootsim export, else 0.05)");
+  cAnalyze->add_option("--exclude-tip-mm", analyze.excludeTipMm, "leave the last part out of the shape analysis, as runs leave out their growth zone [mm] (default: the file's growth.growth_zone_mm, else 0)");
+  cAnalyze->add_option("--radius-mm", analyze.radiusMm, "root radius R for the peaks' hysteresis [mm] (default: the file's root.radius_mm, else half the median diameter, else 0.1)");
+  cAnalyze->add_option("--out", analyze.out, "output folder (default analysis/<first file's stem>)");
+  cAnalyze->add_flag("--force", analyze.force, "replace an analysis folder rootsim wrote earlier");
+  cAnalyze->add_flag("--quiet", analyze.quiet, "no progress output");
+
   app::MontageOptions montage;
   CLI::App* cMontage = app.add_subcommand("montage", "several runs side by side on one scale and one clock");
   cMontage->add_option("run_dirs", montage.runDirs, "run directories");
@@ -161,6 +174,7 @@ int main(int argc, char** argv) {
     if (cSweep->parsed()) return cli::sweepCommand(sweep);
     if (cModes->parsed()) return cli::modesCommand(modes);
     if (cExport->parsed()) return cli::exportCommand(exportOpts);
+    if (cAnalyze->parsed()) return cli::analyzeCommand(analyze);
     if (cFigure->parsed()) return cli::figureCommand(figure);
   } catch (const SceneError& e) {
     std::fprintf(stderr, "rootsim: error: %s\n", e.what());

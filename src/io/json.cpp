@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdio>
+#include <utility>
 
 #include "rootsim/number_text.hpp"
 
@@ -24,30 +25,46 @@ std::string jsonEscape(const std::string& s) {
 
 
 Json& Json::num(const std::string& key, double v) {
-  items_.push_back({key, std::isfinite(v) ? numberText(v) : "null", nullptr});
+  items_.push_back({key, std::isfinite(v) ? numberText(v) : "null", nullptr, {}, false});
   return *this;
 }
 Json& Json::integer(const std::string& key, long long v) {
-  items_.push_back({key, std::to_string(v), nullptr});
+  items_.push_back({key, std::to_string(v), nullptr, {}, false});
   return *this;
 }
 Json& Json::str(const std::string& key, const std::string& v) {
-  items_.push_back({key, jsonEscape(v), nullptr});
+  items_.push_back({key, jsonEscape(v), nullptr, {}, false});
   return *this;
 }
 Json& Json::boolean(const std::string& key, bool v) {
-  items_.push_back({key, v ? "true" : "false", nullptr});
+  items_.push_back({key, v ? "true" : "false", nullptr, {}, false});
   return *this;
 }
 Json& Json::object(const std::string& key, const Json& v) {
-  items_.push_back({key, "", std::make_shared<Json>(v)});
+  items_.push_back({key, "", std::make_shared<Json>(v), {}, false});
+  return *this;
+}
+Json& Json::array(const std::string& key, const std::vector<Json>& v) {
+  Item it{key, "", nullptr, {}, true};
+  it.elems = v;
+  it.isArray = true;
+  items_.push_back(std::move(it));
   return *this;
 }
 std::string Json::dump(int indent) const {
   const std::string pad(static_cast<size_t>(indent + 2), ' ');
   std::string o = "{\n";
   for (size_t i = 0; i < items_.size(); ++i) {
-    o += pad + jsonEscape(items_[i].key) + ": " + (items_[i].child ? items_[i].child->dump(indent + 2) : items_[i].raw);
+    const Item& it = items_[i];
+    std::string value = it.child ? it.child->dump(indent + 2) : it.raw;
+    if (it.isArray) {
+      const std::string inner(static_cast<size_t>(indent + 4), ' ');
+      value = it.elems.empty() ? "[]" : "[\n";
+      for (size_t k = 0; k < it.elems.size(); ++k)
+        value += inner + it.elems[k].dump(indent + 4) + (k + 1 < it.elems.size() ? ",\n" : "\n");
+      if (!it.elems.empty()) value += pad + "]";
+    }
+    o += pad + jsonEscape(it.key) + ": " + value;
     o += i + 1 < items_.size() ? ",\n" : "\n";
   }
   return o + std::string(static_cast<size_t>(indent), ' ') + "}";

@@ -79,6 +79,12 @@ bool isFrameEntry(const fs::path&, const std::string& name) {
   return true;
 }
 
+// what `analyze` writes into its folder (docs/experiments.md)
+bool isAnalysisEntry(const fs::path&, const std::string& name) {
+  const std::string base = stripTemp(name);
+  return base == ".rootsim-analysis" || base == "analysis.csv" || base == "analysis.json";
+}
+
 fs::path absoluteNormal(const fs::path& p) {
   std::error_code ec;
   fs::path a = fs::weakly_canonical(fs::absolute(p, ec), ec);
@@ -176,6 +182,11 @@ const FolderSpec& sweepFolder() {
 }
 const FolderSpec& framesFolder() {
   static const FolderSpec s{".rootsim-frames", "rootsim frame folder", isFrameEntry};
+  return s;
+}
+
+const FolderSpec& analysisFolder() {
+  static const FolderSpec s{".rootsim-analysis", "rootsim analysis folder", isAnalysisEntry};
   return s;
 }
 

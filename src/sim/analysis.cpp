@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 #include <vector>
 
 #include "rootsim/growth.hpp"
@@ -119,15 +120,30 @@ ZoneObservables observeZone(const Model& m, const RodState& s, const RodStrains&
   return o;
 }
 
-ShapeAnalysis analyseShape(const Model& m, const RodState& s) {
-  ShapeAnalysis a;
-  const Plane& pl = m.env.plane;
-  const Vec3 down = pl.downhill(), lat = pl.lateral();
+int matureLastNode(const Model& m, const RodState& s) {
   const int n = s.elements();
+  if (!m.growth.enabled) return n;
+  const double S0 = growthZoneStart(m, s);
+  int last = 0;
+  while (last < n && s.S[last + 1] <= S0 + 1e-15) ++last;
+  return last;
+}
+
+ShapeAnalysis analyseShape(const Model& m, const RodState& s) {
+  return analyseCentreline(s.x, matureLastNode(m, s), m.env.plane, m.analysis, m.rod.radius);
+}
+
+ShapeAnalysis analyseCentreline(const Eigen::Matrix3Xd& x, int last, const Plane& pl, const AnalysisParams& set,
+                                double radius) {
+  ShapeAnalysis a;
+  const Vec3 down = pl.downhill(), lat = pl.lateral();
+  const int n = static_cast<int>(x.cols()) - 1;
+  if (n < 1) throw std::invalid_argument("analyseCentreline: a centreline needs at least two points");
+  last = std::clamp(last, 0, n);
   // unwrapped planar tangent angle per element
   std::vector<double> th(static_cast<size_t>(n));
   for (int i = 0; i < n; ++i) {
-    double t = planarAngle(pl, s.x.col(i + 1) - s.x.col(i));
+    double t = planarAngle(pl, x.col(i + 1) - x.col(i));
     if (i > 0) {
       const double prev = th[static_cast<size_t>(i - 1)];
       t += 2.0 * std::numbers::pi * std::round((prev - t) / (2.0 * std::numbers::pi));
@@ -138,28 +154,21 @@ ShapeAnalysis analyseShape(const Model& m, const RodState& s) {
   a.thetaMax = *std::max_element(th.begin(), th.end());
   // projected curvature d theta / ds between neighbouring elements
   for (int j = 0; j + 1 < n; ++j) {
-    const double ds = 0.5 * ((s.x.col(j + 1) - s.x.col(j)).norm() + (s.x.col(j + 2) - s.x.col(j + 1)).norm());
+    const double ds = 0.5 * ((x.col(j + 1) - x.col(j)).norm() + (x.col(j + 2) - x.col(j + 1)).norm());
     a.maxKappa = std::max(a.maxKappa, std::abs(th[static_cast<size_t>(j + 1)] - th[static_cast<size_t>(j)]) / ds);
   }
-  // mature part: nodes with S below the growth zone (the whole rod when not growing)
-  int last = n;
-  if (m.growth.enabled) {
-    const double S0 = growthZoneStart(m, s);
-    last = 0;
-    while (last < n && s.S[last + 1] <= S0 + 1e-15) ++last;
-  }
   // skew: direction of the mature part as a whole (replaced below by the direction over whole waves)
-  if (last >= 1) a.skew = planarAngle(pl, s.x.col(last) - s.x.col(0));
+  if (last >= 1) a.skew = planarAngle(pl, x.col(last) - x.col(0));
   // lateral and downhill plate coordinates of the mature nodes, in order along the rod
   std::vector<double> u, w;
   for (int i = 0; i <= last; ++i) {
-    u.push_back(s.x.col(i).dot(lat));
-    w.push_back(s.x.col(i).dot(down));
+    u.push_back(x.col(i).dot(lat));
+    w.push_back(x.col(i).dot(down));
   }
   // turning points of u with hysteresis minSwing: a running extreme becomes a peak once u has come back
   // from it by more than minSwing, so ripples smaller than minSwing never make peaks and consecutive
   // peaks alternate sides
-  const double minSwing = m.analysis.waveMinAmplitude * m.rod.radius;
+  const double minSwing = set.waveMinAmplitude * radius;
   std::vector<int> ext;
   {
     int cand = 0, dir = 0;
@@ -185,7 +194,7 @@ ShapeAnalysis analyseShape(const Model& m, const RodState& s) {
   // incomplete first or last excursion does not bias it
   if (np >= 3) {
     const size_t lastSame = np - 1 - ((np - 1) % 2);
-    a.skew = planarAngle(pl, s.x.col(ext[lastSame]) - s.x.col(ext[0]));
+    a.skew = planarAngle(pl, x.col(ext[lastSame]) - x.col(ext[0]));
   }
   // A: mean lateral distance between neighbouring (opposite) peaks, the peak-to-peak excursion
   if (np >= 2) {
@@ -202,10 +211,10 @@ ShapeAnalysis analyseShape(const Model& m, const RodState& s) {
   }
   // pattern (docs/model.md, Observables): a skew is judged only without waves or over enough whole waves
   const bool wavy = np >= 2;
-  a.skewJudged = !wavy || a.waves >= m.analysis.skewMinWaves;
+  a.skewJudged = !wavy || a.waves >= set.skewMinWaves;
   const double turn = a.thetaMax - a.thetaMin;
-  if (turn > m.analysis.coilTurnDeg * units::deg) a.pattern = "coiling";
-  else if (a.skewJudged && std::abs(a.skew) > m.analysis.skewThresholdDeg * units::deg) a.pattern = "skewing";
+  if (turn > set.coilTurnDeg * units::deg) a.pattern = "coiling";
+  else if (a.skewJudged && std::abs(a.skew) > set.skewThresholdDeg * units::deg) a.pattern = "skewing";
   else if (wavy) a.pattern = "waving";
   else a.pattern = "straight";
   return a;

@@ -1,0 +1,45 @@
+"""rootsim.analyze is `rootsim analyze`: the same rows, the same option checks, nothing written."""
+import math
+
+import pytest
+
+import rootsim
+from conftest import SOURCE, cli
+
+pytestmark = pytest.mark.skipif(not rootsim._rootsim.have_render, reason="built without the app library")
+
+SMARTROOT = SOURCE / "tests/data/rsml/smartroot_pixels.rsml"
+
+
+def test_rows_are_the_command_lines_csv(tmp_path):
+    cli("analyze", SMARTROOT, "--out", tmp_path / "an", "--quiet")
+    header, *lines = (tmp_path / "an" / "analysis.csv").read_text().splitlines()
+    rows = rootsim.analyze(SMARTROOT)
+    assert [list(r) for r in rows] == [header.split(",")] * len(lines)
+    for row, line in zip(rows, lines):
+        for (key, value), cell in zip(row.items(), line.split(",")):
+            if isinstance(value, str):
+                assert value == cell, key
+            elif cell == "":
+                assert math.isnan(value), key
+            else:
+                assert value == float(cell), key
+
+
+def test_a_run_exported_gives_its_own_observables(tmp_path):
+    run = rootsim.run(SOURCE / "scenes/fig2b_waving.toml", set={"growth.steps": 600}, out=tmp_path / "wave")
+    rootsim.export(run.dir, rsml=tmp_path / "wave.rsml")
+    (row,) = rootsim.analyze([tmp_path / "wave.rsml"])
+    assert row["pattern"] == run.summary["pattern"]
+    assert row["lateral_peaks"] == run.summary["lateral_peaks"]
+    assert row["wavelength_mm"] == pytest.approx(run.summary["wavelength_mm"], rel=1e-9)
+    assert row["amplitude_mm"] == pytest.approx(run.summary["amplitude_mm"], rel=1e-9)
+
+
+def test_bad_options_raise_the_command_lines_message():
+    with pytest.raises(rootsim.SceneError, match="--downhill sideways"):
+        rootsim.analyze(SMARTROOT, downhill="sideways")
+    with pytest.raises(rootsim.SceneError, match="--times 1.0,2.0: 2 time"):
+        rootsim.analyze(SMARTROOT, times=[1, 2])
+    with pytest.raises(rootsim.SceneError, match="not pixels"):
+        rootsim.analyze(SMARTROOT, px_per_mm=20)

@@ -1,0 +1,397 @@
+// `rootsim analyze FILE.rsml...`: every root of every plant of every file put into plate coordinates
+// (docs/experiments.md, "Traced roots"), measured by traits.hpp (the runs' own analysis), written as
+// analysis.csv and analysis.json into a rootsim analysis folder (the write rule: written whole, replaced
+// only with --force).
+#include "rootsim/analyze_traces.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <map>
+#include <stdexcept>
+
+#include "rootsim/csv.hpp"
+#include "rootsim/errors.hpp"
+#include "rootsim/json.hpp"
+#include "rootsim/number_text.hpp"
+#include "rootsim/rsml.hpp"
+#include "rootsim/run_dir.hpp"
+#include "rootsim/signature.hpp"
+#include "rootsim/traits.hpp"
+#include "rootsim/units.hpp"
+#include "rootsim/write_rule.hpp"
+
+namespace fs = std::filesystem;
+
+namespace rootsim::app {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kRunElementMm = 0.05;   // a run's element length (root.element_length_mm's default) [mm]
+constexpr double kDefaultRadiusMm = 0.1; // an Arabidopsis root's radius (root.radius_mm's default) [mm]
+constexpr double kInsertionSpanMm = 0.5; // the lateral's and the parent's directions are taken over this [mm]
+
+bool given(double v) { return v != AnalyzeOptions::kUnset; }
+
+std::string num(double v) { return numberText(v); }
+
+double parseNumber(const std::string& text, const std::string& flag) {
+  double v = 0;
+  const char* b = text.data();
+  const char* e = b + text.size();
+  const auto r = std::from_chars(b, e, v);
+  if (text.empty() || r.ec != std::errc() || r.ptr != e || !std::isfinite(v))
+    throw SceneError(flag + ": expected a number, found \"" + text + "\"");
+  return v;
+}
+
+// downhill and lateral as directions in the file's (x, y) plane: downhill at angle phi from +y towards +x,
+// lateral turned so that (lateral, downhill) keep the handedness of (x, y) (docs/experiments.md)
+struct Axes {
+  double dx = 0, dy = 1;   // downhill
+  double lx = 1, ly = 0;   // lateral
+};
+Axes parseDownhill(const std::string& s) {
+  double phiDeg = 0;
+  if (s == "+y" || s == "y") phiDeg = 0;
+  else if (s == "-y") phiDeg = 180;
+  else {
+    phiDeg = parseNumber(s, "--downhill " + s + " (+y, -y or an angle in degrees)");
+    if (std::abs(phiDeg) > 360) throw SceneError("--downhill " + s + ": the angle must be within [-360, 360] deg");
+  }
+  const double p = phiDeg * units::deg;
+  Axes a;
+  a.dx = std::sin(p);
+  a.dy = std::cos(p);
+  a.lx = std::cos(p);
+  a.ly = -std::sin(p);
+  // exact at multiples of 90 degrees
+  for (double* v : {&a.dx, &a.dy, &a.lx, &a.ly})
+    if (std::abs(*v) < 1e-15) *v = 0.0;
+  return a;
+}
+
+bool isPixelUnit(const std::string& unit) {
+  std::string u;
+  for (char c : unit)
+    if (c != ' ') u += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return u == "pixel" || u == "pixels" || u == "px";
+}
+
+double sceneNumber(const rsml::Document& d, const char* key) {
+  const rsml::Property* p = d.sceneProperty(key);
+  return p ? p->number : kNaN;
+}
+
+double median(std::vector<double> v) {
+  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !(x > 0) || !std::isfinite(x); }), v.end());
+  if (v.empty()) return kNaN;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// the analysis thresholds: the file's analysis.* keys (a run's), else the model's defaults
+AnalysisParams analysisOf(const rsml::Document& d) {
+  AnalysisParams a;
+  auto take = [&](const char* key, double& field) {
+    const double v = sceneNumber(d, key);
+    if (std::isfinite(v)) field = v;
+  };
+  take("analysis.skew_threshold_deg", a.skewThresholdDeg);
+  take("analysis.coil_turn_deg", a.coilTurnDeg);
+  take("analysis.wave_min_amplitude_r", a.waveMinAmplitude);
+  take("analysis.skew_min_waves", a.skewMinWaves);
+  return a;
+}
+
+std::vector<double> parseTimes(const std::string& text, std::size_t files) {
+  std::vector<double> t;
+  if (text.empty()) return t;
+  for (const std::string& cell : splitCommas(text)) {
+    const double v = parseNumber(cell, "--times " + text);
+    if (v < 0) throw SceneError("--times " + text + ": times must be >= 0 h");
+    t.push_back(v);
+  }
+  if (t.size() != files)
+    throw SceneError("--times " + text + ": " + std::to_string(t.size()) + " time(s) for " + std::to_string(files) +
+                     " file(s); give one per file");
+  return t;
+}
+
+// a root's identity across files of one plate: plant and root ids (their positions when a file has none)
+std::string rootKey(const rsml::Plant& p, std::size_t pi, const rsml::Root& r, std::size_t ri) {
+  return (p.id.empty() ? "#" + std::to_string(pi) : p.id) + "/" + (r.id.empty() ? "#" + std::to_string(ri) : r.id);
+}
+
+}  // namespace
+
+std::vector<RootRow> analyzeTraces(const AnalyzeOptions& o) {
+  if (o.files.empty()) throw SceneError("analyze: give at least one RSML file");
+  if (given(o.pxPerMm) && !(o.pxPerMm > 0 && std::isfinite(o.pxPerMm)))
+    throw SceneError("--px-per-mm " + num(o.pxPerMm) + ": must be > 0");
+  if (given(o.dsMm) && !(o.dsMm >= 0 && o.dsMm <= 10))
+    throw SceneError("--ds-mm " + num(o.dsMm) + ": must be in [0, 10] mm (0: the trace's own points)");
+  if (given(o.excludeTipMm) && !(o.excludeTipMm >= 0 && std::isfinite(o.excludeTipMm)))
+    throw SceneError("--exclude-tip-mm " + num(o.excludeTipMm) + ": must be >= 0 mm");
+  if (given(o.radiusMm) && !(o.radiusMm > 0 && o.radiusMm <= 100))
+    throw SceneError("--radius-mm " + num(o.radiusMm) + ": must be in (0, 100] mm");
+  const Axes ax = parseDownhill(o.downhill);
+  const std::vector<double> times = parseTimes(o.times, o.files.size());
+
+  std::vector<RootRow> rows;
+  std::vector<std::string> keys;
+  for (std::size_t fi = 0; fi < o.files.size(); ++fi) {
+    const std::string& file = o.files[fi];
+    if (!fs::is_regular_file(file)) throw SceneError(file + ": RSML file not found");
+    const rsml::Document doc = rsml::readRsml(file);
+    // units: the reader gives millimetres, or pixels for a pixel file
+    double scale = 1.0;  // file units as read -> mm
+    if (isPixelUnit(doc.meta.unit)) {
+      if (!given(o.pxPerMm))
+        throw SceneError(file + ": its unit is " + doc.meta.unit + " with no physical scale; give --px-per-mm R");
+      scale = 1.0 / o.pxPerMm;
+    } else if (given(o.pxPerMm)) {
+      throw SceneError("--px-per-mm " + num(o.pxPerMm) + ": " + file + " is in " + doc.meta.unit +
+                       ", not pixels (its scale is known)");
+    }
+    std::size_t roots = 0;
+    for (const rsml::Plant& p : doc.plants) roots += p.roots.size();
+    if (roots == 0) throw SceneError(file + ":1: no root in the file (no <plant> with a <root>)");
+    const bool ours = doc.meta.software == "rootsim";
+    const double ds = given(o.dsMm) ? o.dsMm : (ours ? 0.0 : kRunElementMm);
+    const double zone = sceneNumber(doc, "growth.growth_zone_mm");
+    const double exclude = given(o.excludeTipMm) ? o.excludeTipMm : (std::isfinite(zone) ? zone : 0.0);
+    const AnalysisParams set = analysisOf(doc);
+    const double timeH = !times.empty() ? times[fi] : doc.hasTime ? doc.timeH : kNaN;
+    for (std::size_t pi = 0; pi < doc.plants.size(); ++pi) {
+      const rsml::Plant& plant = doc.plants[pi];
+      // every root of the plant in plate coordinates [mm], with the origin at the plant's first root's base
+      std::vector<Eigen::Matrix3Xd> plate(plant.roots.size());
+      double ox = 0, oy = 0;
+      if (!plant.roots.empty()) {
+        ox = plant.roots.front().x.front();
+        oy = plant.roots.front().y.front();
+      }
+      for (std::size_t ri = 0; ri < plant.roots.size(); ++ri) {
+        const rsml::Root& r = plant.roots[ri];
+        Eigen::Matrix3Xd c(3, static_cast<Eigen::Index>(r.points()));
+        for (std::size_t k = 0; k < r.points(); ++k) {
+          const double x = (r.x[k] - ox) * scale, y = (r.y[k] - oy) * scale;
+          c(0, static_cast<Eigen::Index>(k)) = ax.lx * x + ax.ly * y;
+          c(1, static_cast<Eigen::Index>(k)) = ax.dx * x + ax.dy * y;
+          c(2, static_cast<Eigen::Index>(k)) = r.hasZ ? r.z[k] * scale : 0.0;
+        }
+        plate[ri] = std::move(c);
+      }
+      for (std::size_t ri = 0; ri < plant.roots.size(); ++ri) {
+        const rsml::Root& r = plant.roots[ri];
+        RootRow row;
+        row.file = file;
+        row.timeH = timeH;
+        row.plant = plant.id;
+        row.plantLabel = plant.label;
+        row.root = r.id;
+        row.rootLabel = r.label;
+        row.order = r.order;
+        row.points = static_cast<int>(r.points());
+        if (r.parent >= 0) {
+          const rsml::Root& par = plant.roots[static_cast<std::size_t>(r.parent)];
+          row.parent = par.id.empty() ? "#" + std::to_string(r.parent) : par.id;
+        }
+        // the radius of the peaks' hysteresis
+        double radius = kNaN;
+        if (given(o.radiusMm)) {
+          radius = o.radiusMm;
+          row.radiusSource = "--radius-mm";
+        } else if (std::isfinite(sceneNumber(doc, "root.radius_mm")) && r.order == 0) {
+          radius = sceneNumber(doc, "root.radius_mm");
+          row.radiusSource = "root.radius_mm";
+        } else if (std::isfinite(median(r.diameterMm))) {
+          radius = 0.5 * median(r.diameterMm) * scale;
+          row.radiusSource = "diameter";
+        } else {
+          radius = kDefaultRadiusMm;
+          row.radiusSource = "default";
+        }
+        RootTraits t;
+        try {
+          t = rootTraits(plate[ri], ds, exclude, radius, set);
+        } catch (const std::invalid_argument&) {
+          throw SceneError(file + ":" + std::to_string(r.line) + ": root " + (r.id.empty() ? "#" + std::to_string(ri) : r.id) +
+                           " has fewer than two distinct points");
+        }
+        row.lengthMm = t.lengthMm;
+        row.chordMm = t.chordMm;
+        row.tortuosity = t.tortuosity;
+        row.skewDeg = t.skewDeg;
+        row.insertionDeg = r.parent >= 0 ? insertionAngleDeg(plate[static_cast<std::size_t>(r.parent)], plate[ri], kInsertionSpanMm) : kNaN;
+        row.pattern = t.shape.pattern;
+        row.wavelengthMm = t.shape.wavelength / units::mm;
+        row.amplitudeMm = t.shape.amplitude / units::mm;
+        row.amplitudeHalfMm = t.shape.amplitudeHalf / units::mm;
+        row.lateralPeaks = t.shape.peaks;
+        row.waves = t.shape.waves;
+        row.skewWavesDeg = t.shape.skew / units::deg;
+        row.maxKappaPerMm = t.shape.maxKappa * units::mm;
+        row.thetaMinDeg = t.shape.thetaMin / units::deg;
+        row.thetaMaxDeg = t.shape.thetaMax / units::deg;
+        row.dsMm = ds;
+        row.excludeTipMm = exclude;
+        row.radiusMm = radius;
+        row.growthRateMmPerH = kNaN;
+        rows.push_back(row);
+        keys.push_back(rootKey(plant, pi, r, ri));
+      }
+    }
+  }
+  // growth rates: the same root in the file nearest before in time
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (!std::isfinite(rows[i].timeH)) continue;
+    double bestT = -std::numeric_limits<double>::infinity();
+    std::size_t best = rows.size();
+    for (std::size_t j = 0; j < rows.size(); ++j)
+      if (keys[j] == keys[i] && std::isfinite(rows[j].timeH) && rows[j].timeH < rows[i].timeH && rows[j].timeH > bestT) {
+        bestT = rows[j].timeH;
+        best = j;
+      }
+    if (best < rows.size()) rows[i].growthRateMmPerH = (rows[i].lengthMm - rows[best].lengthMm) / (rows[i].timeH - bestT);
+  }
+  return rows;
+}
+
+namespace {
+
+struct Column {
+  const char* name;
+  const char* unit;
+  std::string (*text)(const RootRow&);
+  double (*number)(const RootRow&);
+};
+
+std::string csvText(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string o = "\"";
+  for (char c : s) o += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return o + "\"";
+}
+
+// the columns of analysis.csv and the keys of analysis.json, one table (docs/experiments.md)
+const std::vector<Column>& columns() {
+  static const std::vector<Column> c = {
+      {"file", "", [](const RootRow& r) { return r.file; }, nullptr},
+      {"time_h", "h", nullptr, [](const RootRow& r) { return r.timeH; }},
+      {"plant", "", [](const RootRow& r) { return r.plant; }, nullptr},
+      {"plant_label", "", [](const RootRow& r) { return r.plantLabel; }, nullptr},
+      {"root", "", [](const RootRow& r) { return r.root; }, nullptr},
+      {"root_label", "", [](const RootRow& r) { return r.rootLabel; }, nullptr},
+      {"parent", "", [](const RootRow& r) { return r.parent; }, nullptr},
+      {"order", "", nullptr, [](const RootRow& r) { return double(r.order); }},
+      {"points", "", nullptr, [](const RootRow& r) { return double(r.points); }},
+      {"length_mm", "mm", nullptr, [](const RootRow& r) { return r.lengthMm; }},
+      {"chord_mm", "mm", nullptr, [](const RootRow& r) { return r.chordMm; }},
+      {"tortuosity", "", nullptr, [](const RootRow& r) { return r.tortuosity; }},
+      {"skew_base_tip_deg", "deg", nullptr, [](const RootRow& r) { return r.skewDeg; }},
+      {"insertion_deg", "deg", nullptr, [](const RootRow& r) { return r.insertionDeg; }},
+      {"pattern", "", [](const RootRow& r) { return r.pattern; }, nullptr},
+      {"wavelength_mm", "mm", nullptr, [](const RootRow& r) { return r.wavelengthMm; }},
+      {"amplitude_mm", "mm", nullptr, [](const RootRow& r) { return r.amplitudeMm; }},
+      {"amplitude_half_mm", "mm", nullptr, [](const RootRow& r) { return r.amplitudeHalfMm; }},
+      {"lateral_peaks", "", nullptr, [](const RootRow& r) { return double(r.lateralPeaks); }},
+      {"waves", "", nullptr, [](const RootRow& r) { return r.waves; }},
+      {"skew_deg", "deg", nullptr, [](const RootRow& r) { return r.skewWavesDeg; }},
+      {"max_kappa_per_mm", "1/mm", nullptr, [](const RootRow& r) { return r.maxKappaPerMm; }},
+      {"theta_min_deg", "deg", nullptr, [](const RootRow& r) { return r.thetaMinDeg; }},
+      {"theta_max_deg", "deg", nullptr, [](const RootRow& r) { return r.thetaMaxDeg; }},
+      {"growth_rate_mm_per_h", "mm/h", nullptr, [](const RootRow& r) { return r.growthRateMmPerH; }},
+      {"ds_mm", "mm", nullptr, [](const RootRow& r) { return r.dsMm; }},
+      {"exclude_tip_mm", "mm", nullptr, [](const RootRow& r) { return r.excludeTipMm; }},
+      {"radius_mm", "mm", nullptr, [](const RootRow& r) { return r.radiusMm; }},
+      {"radius_source", "", [](const RootRow& r) { return r.radiusSource; }, nullptr},
+  };
+  return c;
+}
+
+}  // namespace
+
+std::vector<RowField> rowFields(const RootRow& r) {
+  std::vector<RowField> f;
+  for (const Column& c : columns())
+    f.push_back(RowField{c.name, c.unit, c.text != nullptr, c.text ? c.text(r) : std::string(), c.text ? kNaN : c.number(r)});
+  return f;
+}
+
+namespace {
+
+std::string analysisCsv(const std::vector<RootRow>& rows) {
+  std::string out;
+  for (const Column& c : columns()) out += std::string(out.empty() ? "" : ",") + c.name;
+  out += "\n";
+  for (const RootRow& r : rows) {
+    bool first = true;
+    for (const Column& c : columns()) {
+      if (!first) out += ",";
+      first = false;
+      if (c.text) out += csvText(c.text(r));
+      else if (std::isfinite(c.number(r))) out += numberText(c.number(r));
+      // NaN and infinities: an empty cell
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+std::string analysisJson(const std::vector<RootRow>& rows) {
+  std::vector<Json> items;
+  for (const RootRow& r : rows) {
+    Json j;
+    for (const Column& c : columns()) {
+      if (c.text) j.str(c.name, c.text(r));
+      else j.num(c.name, c.number(r));
+    }
+    items.push_back(j);
+  }
+  Json units;
+  for (const Column& c : columns())
+    if (*c.unit) units.str(c.name, c.unit);
+  Json top;
+  top.str("software", outputSignatureText()).object("units", units).array("roots", items);
+  return top.dump() + "\n";
+}
+
+std::string summaryLine(const RootRow& r) {
+  char b[512];
+  auto f = [](double v) { return std::isfinite(v) ? v : 0.0; };
+  std::snprintf(b, sizeof b, "%s %s/%s%s: %s, length %.3g mm, skew %.3g deg (base-tip), tortuosity %.4g, lambda %.3g mm, A %.3g mm, %d peaks",
+                fs::path(r.file).filename().c_str(), r.plant.empty() ? "-" : r.plant.c_str(),
+                r.root.empty() ? "-" : r.root.c_str(), r.order > 0 ? (" (order " + std::to_string(r.order) + ")").c_str() : "",
+                r.pattern.c_str(), r.lengthMm, r.skewDeg, f(r.tortuosity), r.wavelengthMm, r.amplitudeMm, r.lateralPeaks);
+  return b;
+}
+
+}  // namespace
+
+int analyzeCommand(const AnalyzeOptions& o) {
+  // the output folder's name is checked before anything is read
+  const std::string outText =
+      o.out.empty() ? (fs::path("analysis") / fs::path(o.files.empty() ? std::string("analysis") : o.files.front()).stem()).string() : o.out;
+  const fs::path out = checkOutputName(outText, "--out");
+  WriteRule rule;
+  rule.force = o.force;
+  for (const std::string& f : o.files) rule.inputs.push_back(WriteInput{f, {}, true});
+  rule.inputs.push_back(workingFolder());
+  claimFolder(out, analysisFolder(), rule, "--out", true);
+  const std::vector<RootRow> rows = analyzeTraces(o);
+  StagedFolder folder(out, analysisFolder(), rule, "--out");
+  writeFileAtomic(folder.work() / "analysis.csv", analysisCsv(rows));
+  writeFileAtomic(folder.work() / "analysis.json", analysisJson(rows));
+  folder.commit();
+  for (const RootRow& r : rows) std::printf("%s\n", summaryLine(r).c_str());
+  if (!o.quiet) std::fprintf(stderr, "wrote %s (analysis.csv, analysis.json: %zu roots)\n", out.c_str(), rows.size());
+  return 0;
+}
+
+}  // namespace rootsim::app

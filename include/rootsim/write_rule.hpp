@@ -34,6 +34,9 @@ const FolderSpec& runFolder();
 const FolderSpec& sweepFolder();
 // a folder of PNG frames: marker .rootsim-frames, frame_NNNNN.png
 const FolderSpec& framesFolder();
+// a ParaView folder (export --paraview): marker .rootsim-paraview, step_NNNNNN.vtp, root.pvd, plate.vtp,
+// open_in_paraview.py (docs/paraview.md)
+const FolderSpec& paraviewFolder();
 
 // what a command reads: never replaced nor held by an output; a folder whose content is read (a run
 // directory) is also never written into, except for the names it receives

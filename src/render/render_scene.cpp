@@ -14,6 +14,7 @@
 #include "obstacle_mesh.hpp"
 #include "overlay.hpp"
 #include "rootsim/image.hpp"
+#include "rootsim/node_fields.hpp"
 
 namespace rootsim {
 
@@ -81,30 +82,18 @@ void stitchRings(RenderScene& rs, std::uint32_t first, int rings, int sides) {
     }
 }
 
-// node frames from the element directors, averaged at interior nodes (smooth shading and stripes)
+// node frames from the element directors, averaged at interior nodes (smooth shading and stripes), in
+// plate mm (node_fields.hpp)
 std::vector<Ring> nodeRings(const Snapshot& s, const PlateFrame& pf) {
-  const int n = s.elements();
-  std::vector<Ring> rings(static_cast<size_t>(n + 1));
-  for (int i = 0; i <= n; ++i) {
-    V3 t = V3::Zero(), a = V3::Zero();
-    double r = 0.0;
-    int cnt = 0;
-    for (int e : {i - 1, i}) {
-      if (e < 0 || e >= n) continue;
-      t += pf.dirToPlate(s.d3.col(e));
-      a += pf.dirToPlate(s.d1.col(e));
-      r += s.radius[e];
-      ++cnt;
-    }
-    Ring& g = rings[static_cast<size_t>(i)];
-    g.c = pf.toPlateMm(s.x.col(i));
-    if (t.norm() < 1e-12) t = V3::UnitY();
-    g.t = t.normalized();
-    a -= a.dot(g.t) * g.t;
-    if (a.norm() < 1e-12) a = g.t.unitOrthogonal();
-    g.a = a.normalized();
-    g.b = g.t.cross(g.a);
-    g.r = r / cnt / units::mm;
+  const std::vector<NodeFrame> frames = nodeFrames(s, [&](const V3& d) { return pf.dirToPlate(d); });
+  std::vector<Ring> rings(frames.size());
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    Ring& g = rings[i];
+    g.c = pf.toPlateMm(s.x.col(static_cast<Eigen::Index>(i)));
+    g.t = frames[i].t;
+    g.a = frames[i].d1;
+    g.b = frames[i].d2;
+    g.r = frames[i].radius / units::mm;
   }
   return rings;
 }

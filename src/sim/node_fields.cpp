@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "rootsim/rotation.hpp"
+#include "rootsim/units.hpp"
 
 namespace rootsim {
 
@@ -29,7 +30,8 @@ double materialAngle(const Eigen::Vector3d& t, const Eigen::Vector3d& d1, const 
   Eigen::Vector3d e = plate.normal - plate.normal.dot(t) * t;
   if (e.norm() < 1e-9) e = plate.lateral - plate.lateral.dot(t) * t;
   e.normalize();
-  return std::atan2(t.dot(e.cross(d1)), e.dot(d1));
+  const double a = std::atan2(t.dot(e.cross(d1)), e.dot(d1));
+  return a > -units::pi ? a : units::pi;  // atan2(-0, -1) = -pi: the half-open range (-pi, pi]
 }
 
 std::vector<VoronoiBend> voronoiBends(const Snapshot& s) {

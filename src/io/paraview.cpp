@@ -96,11 +96,21 @@ def build():
     part = GetColorTransferFunction("part")
     part.InterpretValuesAsCategories = 1
     part.Annotations = ["0", "plate", "1", "grid (1 mm)", "2", "obstacle"]
-    part.IndexedColors = [0.97, 0.97, 0.95, 0.72, 0.74, 0.78, 0.45, 0.40, 0.36]
+    part.IndexedColors = [0.97, 0.97, 0.95, 0.62, 0.65, 0.70, 0.45, 0.40, 0.36]
     ColorBy(plateShow, ("CELLS", "part"))
     plateShow.LookupTable = part
     plateShow.SetScalarBarVisibility(view, False)
     plateShow.LineWidth = 1.0
+    plateShow.Ambient = 1.0  # unlit: the plate's own colours, as bright from every side
+    plateShow.Diffuse = 0.0
+
+    # the growth time of the snapshot shown
+    clock = AnnotateTime(registrationName="time")
+    clock.Format = "t = {time:.1f} h"
+    clockShow = Show(clock, view)
+    clockShow.Color = [0.1, 0.1, 0.1]
+    clockShow.FontSize = 20
+    clockShow.WindowLocation = "Upper Left Corner"
     Hide(root, view)
     Hide(tube, view)
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Runs the libFuzzer harnesses of a ROOTSIM_FUZZ build (fuzz/CMakeLists.txt) for a fixed time each.
-# Usage: scripts/fuzz.sh BUILD_DIR SECONDS [scene|sweep|trajectory ...]   (default: all three)
-# Seeds: fuzz/seeds/<harness>, the repository's scenes/ or sweeps/, and the kept crashers in
+# Usage: scripts/fuzz.sh BUILD_DIR SECONDS [scene|sweep|trajectory|rsml ...]   (default: all four)
+# Seeds: fuzz/seeds/<harness>, the repository's scenes/ or sweeps/ (rsml: tests/data/rsml), and the kept crashers in
 # fuzz/regressions/<harness>. Each harness must survive: no crash, sanitizer report, leak, timeout
 # (> 10 s for one input) or memory blow-up (> 1 GiB RSS, > 512 MiB in one allocation). A failing input
 # is left as BUILD_DIR/fuzz-artifacts/<harness>-crash-* (or -timeout-, -oom-, -leak-): fix the bug and
@@ -12,7 +12,7 @@ seconds=${2:?usage: scripts/fuzz.sh BUILD_DIR SECONDS [harness...]}
 shift 2
 src=$(cd "$(dirname "$0")/.." && pwd)
 harnesses=("$@")
-((${#harnesses[@]})) || harnesses=(scene sweep trajectory)
+((${#harnesses[@]})) || harnesses=(scene sweep trajectory rsml)
 mkdir -p "$build/fuzz-artifacts"
 status=0
 for h in "${harnesses[@]}"; do
@@ -23,6 +23,7 @@ for h in "${harnesses[@]}"; do
   seeds=("$src/fuzz/seeds/$h")
   [ "$h" = scene ] && seeds+=("$src/scenes")
   [ "$h" = sweep ] && seeds+=("$src/sweeps")
+  [ "$h" = rsml ] && seeds+=("$src/tests/data/rsml" "$src/tests/data/rsml/bad")
   [ -d "$src/fuzz/regressions/$h" ] && seeds+=("$src/fuzz/regressions/$h")
   log="$build/fuzz-artifacts/$h.log"
   start=$(date +%s)

@@ -13,5 +13,8 @@ std::string shortestNumber(double x);
 // the shortest round-trip text of x as std::to_chars writes it ("2", "0.3", "1e-07", "nan"): the numbers
 // of the CSV and JSON files
 std::string numberText(double x);
+// the shortest round-trip text of x without an exponent ("0.0000001", "35.7", "2"): for formats whose
+// numbers are decimals (RSML's xs:decimal); x must be finite
+std::string decimalNumber(double x);
 
 }  // namespace rootsim

@@ -14,7 +14,8 @@ N; velocities mm/s), named in every field and column (``positions_mm``, ``downhi
 
 - ``run(scene_or_path, set=..., out=..., progress=...)`` -> ``Run`` (options: keywords only); ``load_run(dir)``
 - ``Scene.load(path)``, ``scene.set(key, value)``, ``scene.to_toml()``, ``scene.check()``
-- ``sweep(...)`` yields points as they finish; ``render(run_dir, ...)`` is ``rootsim render``
+- ``sweep(...)`` yields points as they finish; ``render(run_dir, ...)`` is ``rootsim render``;
+  ``export(run_dir, rsml=...)`` is ``rootsim export`` (RSML)
 - ``Simulation(scene)``: ``step(n)``, ``state()`` (numpy copies, mm), ``set("tropism.beta", ...)``;
   one Simulation may be shared by threads: its calls are serialised
 
@@ -24,9 +25,9 @@ the growth step and node). Ctrl-C raises KeyboardInterrupt between growth steps;
 directory stays ``DIR.partial/``. Built with the project (PYTHONPATH=build/python) for Debian's
 /usr/bin/python3.
 """
-from ._api import (Frame, Run, RunError, Scene, SceneError, Simulation, State, Sweep, SweepPoint, load_run,
-                   render, run, sweep)
+from ._api import (Frame, Run, RunError, Scene, SceneError, Simulation, State, Sweep, SweepPoint, export,
+                   load_run, render, run, sweep)
 from ._rootsim import __version__
 
 __all__ = ["Frame", "Run", "RunError", "Scene", "SceneError", "Simulation", "State", "Sweep", "SweepPoint",
-           "load_run", "render", "run", "sweep", "__version__"]
+           "export", "load_run", "render", "run", "sweep", "__version__"]

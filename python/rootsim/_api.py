@@ -665,6 +665,31 @@ def render(run_dir: PathLike, *, mp4: Optional[PathLike] = None, png_dir: Option
     return [pathlib.Path(p) for p in (mp4, png_dir, final_png) if p is not None]
 
 
+def export(run_dir: PathLike, *, rsml: Optional[PathLike] = None, gltf: Optional[PathLike] = None,
+           paraview: Optional[PathLike] = None, at_h: Optional[float] = None, every_h: Optional[float] = None,
+           force: bool = False, quiet: bool = True) -> List[pathlib.Path]:
+    """Exports a saved run, as ``rootsim export RUN_DIR`` with the same options (the same C++ code).
+
+    ``rsml``: an RSML 1.0 file (docs/rsml.md: plate coordinates in mm with the origin at the seed,
+    per-node diameter, frame_angle, curvature and age, the run's observables as root properties).
+    ``gltf`` (a .glb file) and ``paraview`` (a folder) are the command line's other formats. At least
+    one output. The final snapshot by default; ``at_h``: the snapshot nearest that growth time (ties to
+    the earlier; outside the run's snapshots a SceneError); ``every_h``: one file every that many hours
+    from the first snapshot, named FILE_t<time>h.EXT. An output that exists is replaced only if rootsim
+    wrote it and ``force=True``. Returns the files written (for ``every_h``, the series' files, in time
+    order). Bad options raise SceneError with the command line's message. Keywords only.
+
+    Units: ``at_h``, ``every_h`` in hours of growth time."""
+    if not _c.have_render:
+        raise SceneError("export: this rootsim was built without the renderer and the app library "
+                         "(ROOTSIM_BUILD_RENDER=OFF)")
+    s = lambda p: "" if p is None else os.fspath(p)  # noqa: E731
+    written = _c.export_run(os.fspath(run_dir), dict(
+        rsml=s(rsml), gltf=s(gltf), paraview=s(paraview), at_h=None if at_h is None else float(at_h),
+        every_h=None if every_h is None else float(every_h), force=bool(force), quiet=bool(quiet)))
+    return [pathlib.Path(p) for p in written]
+
+
 # ---------------------------------------------------------------------------------------------------
 # stepping
 

@@ -73,6 +73,11 @@ class _SweepRunner:
     def cancel(self) -> None: ...
     def summary(self) -> Dict[str, Any]: ...
 
+def export_run(run_dir: str, options: Dict[str, Any]) -> List[str]:
+    """``rootsim export``: options by name (rsml, gltf, paraview, at_h, every_h, force, quiet); returns
+    the files and folders written."""
+    ...
+
 def render_run(run_dir: str, options: Dict[str, Any]) -> None:
     """``rootsim render``: options by name (mp4, png_dir, final_png, view, size, fps, crf, whiskers,
     transparent, overlays, camera, field_mm, inset, color_by, plot, shadows, shader_dir, force, quiet, png,

@@ -36,6 +36,7 @@
 #include "rootsim/version.hpp"
 
 #ifdef ROOTSIM_HAVE_RENDER
+#include "rootsim/export_run.hpp"
 #include "rootsim/render_run.hpp"
 #endif
 
@@ -624,6 +625,40 @@ PYBIND11_MODULE(_rootsim, m) {
         }
         py::gil_scoped_release nogil;
         app::renderRunCommand(o);
+      },
+      py::arg("run_dir"), py::arg("options"));
+  m.def(
+      "export_run",
+      // rootsim.export's keywords, as the command line's flags: an unknown name or a value of the wrong
+      // type is a SceneError
+      [](const std::string& runDir, const py::dict& options) {
+        app::ExportOptions o;
+        o.runDir = runDir;
+        for (const auto& item : options) {
+          const std::string key = py::str(item.first);
+          const py::handle v = item.second;
+          auto text = [&] { return v.is_none() ? std::string() : std::string(py::str(v)); };
+          try {
+            if (key == "rsml") o.rsml = text();
+            else if (key == "gltf") o.gltf = text();
+            else if (key == "paraview") o.paraview = text();
+            else if (key == "at_h") { if (!v.is_none()) o.atH = v.cast<double>(); }
+            else if (key == "every_h") { if (!v.is_none()) o.everyH = v.cast<double>(); }
+            else if (key == "force") o.force = v.cast<bool>();
+            else if (key == "quiet") o.quiet = v.cast<bool>();
+            else throw SceneError("export: unknown option " + key);
+          } catch (const py::cast_error&) {
+            throw SceneError("export: option " + key + " has the wrong type");
+          }
+        }
+        std::vector<fs::path> written;
+        {
+          py::gil_scoped_release nogil;
+          app::exportRunCommand(o, &written);
+        }
+        std::vector<std::string> out;
+        for (const fs::path& f : written) out.push_back(f.string());
+        return out;
       },
       py::arg("run_dir"), py::arg("options"));
 #else

@@ -73,11 +73,7 @@ double fitPlateMm(const std::vector<Snapshot>& snaps, const SceneInfo& info, con
   return frameFor(snaps, info, v).widthMm;
 }
 
-std::string num(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
+std::string num(double v) { return flagNumber(v); }
 
 bool given(double v) { return v != RenderOptions::kUnset; }
 
@@ -138,12 +134,7 @@ int stillFrame(const std::vector<Snapshot>& frames, const RenderOptions& o) {
                        std::to_string(frames.size() - 1));
     return o.frame;
   }
-  std::vector<double> t;
-  for (const Snapshot& s : frames) t.push_back(s.timeH);
-  if (o.atH < t.front() || o.atH > t.back())
-    throw SceneError("--at-h " + num(o.atH) + ": outside the " + (window ? "window's" : "run's") + " snapshots, " +
-                     num(t.front()) + " .. " + num(t.back()) + " h");
-  return nearestSnapshot(t, o.atH);
+  return snapshotNear(snapshotTimes(frames), o.atH, window ? "window's" : "run's");
 }
 
 }  // namespace

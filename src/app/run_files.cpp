@@ -20,6 +20,26 @@ std::vector<Snapshot> loadSnapshots(const fs::path& runDir) {
   return snaps;
 }
 
+std::vector<double> snapshotTimes(const std::vector<Snapshot>& snaps) {
+  std::vector<double> t;
+  t.reserve(snaps.size());
+  for (const Snapshot& s : snaps) t.push_back(s.timeH);
+  return t;
+}
+
+std::string flagNumber(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
+
+int snapshotNear(const std::vector<double>& t, double atH, const std::string& range) {
+  if (t.empty() || atH < t.front() || atH > t.back())
+    throw SceneError("--at-h " + flagNumber(atH) + ": outside the " + range + " snapshots, " +
+                     (t.empty() ? std::string("none") : flagNumber(t.front()) + " .. " + flagNumber(t.back()) + " h"));
+  return nearestSnapshot(t, atH);
+}
+
 Outputs claimOutputs(const std::string& mp4, const fs::path& png, const std::string& pngDir, const WriteRule& rule,
                      const char* pngFlag) {
   Outputs o;

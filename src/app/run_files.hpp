@@ -13,6 +13,15 @@ namespace rootsim::app {
 // the run's trajectory (trajectory.bin, or trajectory.csv); SceneError when it is missing or empty
 std::vector<Snapshot> loadSnapshots(const std::filesystem::path& runDir);
 
+// the growth times of the snapshots [h]
+std::vector<double> snapshotTimes(const std::vector<Snapshot>& snaps);
+// the snapshot nearest atH (ties to the earlier one): `render --png --at-h`, `export --at-h`. A time
+// outside timesH's range is refused: SceneError "--at-h H: outside the <range> snapshots, A .. B h"
+// (range: "run's", or "window's" for render's --from-h/--to-h window)
+int snapshotNear(const std::vector<double>& timesH, double atH, const std::string& range = "run's");
+// a flag's number in messages (%g)
+std::string flagNumber(double v);
+
 // the outputs of render and montage, checked by the write rule and locked until they are written
 struct Outputs {
   std::vector<OutputLock> locks;

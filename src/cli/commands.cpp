@@ -247,4 +247,13 @@ int renderCommand(const app::RenderOptions& o) {
 #endif
 }
 
+int exportCommand(const app::ExportOptions& o) {
+#ifdef ROOTSIM_HAVE_RENDER
+  return app::exportRunCommand(o);
+#else
+  (void)o;
+  throw SceneError("export: this rootsim was built without the renderer and the app library (ROOTSIM_BUILD_RENDER=OFF)");
+#endif
+}
+
 }  // namespace rootsim::cli

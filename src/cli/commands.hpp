@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "rootsim/export_run.hpp"
 #include "rootsim/montage_runs.hpp"
 #include "rootsim/movie_look.hpp"
 #include "rootsim/render_run.hpp"
@@ -31,6 +32,8 @@ int checkCommand(const CheckOptions& o);
 // render and montage: the app library's commands (rootsim_app); SceneError when the renderer is not built
 int renderCommand(const app::RenderOptions& o);
 int montageCommand(const app::MontageOptions& o);
+// export: the app library's command (rootsim_app); SceneError when it is not built
+int exportCommand(const app::ExportOptions& o);
 
 struct ModesOptions {
   std::string runDir;

@@ -82,6 +82,15 @@ int main(int argc, char** argv) {
   cModes->add_flag("--force", modes.force, "replace modes.csv and modes.vtp written earlier");
   cModes->add_flag("--quiet", modes.quiet, "no progress output");
 
+  app::ExportOptions exportOpts;
+  CLI::App* cExport = app.add_subcommand("export", "a saved run's root in other programs' formats (RSML)");
+  cExport->add_option("run_dir", exportOpts.runDir, "run directory")->required();
+  cExport->add_option("--rsml", exportOpts.rsml, "RSML 1.0 file (plate coordinates in mm, origin at the seed; docs/rsml.md)");
+  cExport->add_option("--at-h", exportOpts.atH, "the snapshot nearest H hours (ties to the earlier; default the final one); outside the run's snapshots: exit 2");
+  cExport->add_option("--every-h", exportOpts.everyH, "one file every H hours from the first snapshot, FILE_t<time>h.EXT (docs/rsml.md, Time series)");
+  cExport->add_flag("--force", exportOpts.force, "replace outputs rootsim wrote earlier (never a file rootsim did not write)");
+  cExport->add_flag("--quiet", exportOpts.quiet, "no progress output");
+
   app::MontageOptions montage;
   CLI::App* cMontage = app.add_subcommand("montage", "several runs side by side on one scale and one clock");
   cMontage->add_option("run_dirs", montage.runDirs, "run directories");
@@ -149,6 +158,7 @@ int main(int argc, char** argv) {
     if (cMontage->parsed()) return cli::montageCommand(montage);
     if (cSweep->parsed()) return cli::sweepCommand(sweep);
     if (cModes->parsed()) return cli::modesCommand(modes);
+    if (cExport->parsed()) return cli::exportCommand(exportOpts);
     if (cFigure->parsed()) return cli::figureCommand(figure);
   } catch (const SceneError& e) {
     std::fprintf(stderr, "rootsim: error: %s\n", e.what());

@@ -16,4 +16,11 @@ std::string shortestNumber(double x) {
   return s;
 }
 
+std::string decimalNumber(double x) {
+  // fixed notation: up to ~330 characters for the largest doubles, 1100 for the smallest subnormals
+  char buf[1200];
+  const auto r = std::to_chars(buf, buf + sizeof buf, x, std::chars_format::fixed);
+  return std::string(buf, r.ptr);
+}
+
 }  // namespace rootsim

@@ -68,29 +68,35 @@ TEST_CASE("node frames: unit, orthogonal, right-handed, the ends taking their on
   for (int i = 0; i <= kN; ++i) CHECK((p[static_cast<size_t>(i)].d1 - a.plate.dirToPlate(f[static_cast<size_t>(i)].d1)).norm() < 1e-14);
 }
 
-TEST_CASE("material angle: from the plate normal to d1, right-handed about the tangent") {
+TEST_CASE("material angle: from the in-plate direction n x t to d1, right-handed about the tangent") {
   const Arc a;
   const std::vector<NodeFrame> f = nodeFrames(a.s);
+  // the arc's d1 is kPhi0 + kTwist s from the plate normal, which is +90 deg from the reference n x t
+  auto expected = [](double fromNormal) { return std::remainder(fromNormal + units::pi / 2, 2 * units::pi); };
   // the first node has one element: exactly its angle
-  CHECK(materialAngle(f[0].t, f[0].d1, a.plate) == doctest::Approx(kPhi0 + kTwist * kRho * std::sin(kDelta / 2)).epsilon(1e-12));
+  CHECK(materialAngle(f[0].t, f[0].d1, a.plate) == doctest::Approx(expected(a.phi[0])).epsilon(1e-12));
   for (int i = 0; i <= kN; ++i) {
     const NodeFrame& g = f[static_cast<size_t>(i)];
     const double ang = materialAngle(g.t, g.d1, a.plate);
     CAPTURE(i);
     CHECK(ang > -units::pi);
     CHECK(ang <= units::pi);
-    // d1 = cos(angle) e + sin(angle) t x e, with e the plate normal made normal to t
-    const Eigen::Vector3d e = (a.plate.normal - a.plate.normal.dot(g.t) * g.t).normalized();
+    // d1 = cos(angle) e + sin(angle) t x e, with e = n x t and n the plate normal made normal to t
+    const Eigen::Vector3d n = (a.plate.normal - a.plate.normal.dot(g.t) * g.t).normalized(), e = n.cross(g.t);
     CHECK((std::cos(ang) * e + std::sin(ang) * g.t.cross(e) - g.d1).norm() < 1e-13);
     // between two elements: their mean angle, to the order of the tangent's turn
-    if (i > 0 && i < kN) CHECK(ang == doctest::Approx(std::remainder(0.5 * (a.phi[i - 1] + a.phi[i]), 2 * units::pi)).epsilon(1e-4));
+    if (i > 0 && i < kN) CHECK(ang == doctest::Approx(expected(0.5 * (a.phi[i - 1] + a.phi[i]))).epsilon(1e-4));
   }
-  // quarter turns: +90 deg is t x (plate normal); a tangent along the normal measures from the lateral
+  // quarter turns of a root growing along the lateral axis: d1 in the plate to its right is 0, away
+  // from the plate +90 deg, into it -90 deg; a tangent along the normal measures from the lateral axis
   const Eigen::Vector3d t = a.plate.lateral;
-  CHECK(materialAngle(t, a.plate.normal, a.plate) == doctest::Approx(0.0));
-  CHECK(materialAngle(t, t.cross(a.plate.normal), a.plate) == doctest::Approx(units::pi / 2));
-  CHECK(materialAngle(t, -a.plate.normal, a.plate) == doctest::Approx(units::pi));
+  CHECK(materialAngle(t, a.plate.normal.cross(t), a.plate) == doctest::Approx(0.0));
+  CHECK(materialAngle(t, a.plate.normal, a.plate) == doctest::Approx(units::pi / 2));
+  CHECK(materialAngle(t, -a.plate.normal, a.plate) == doctest::Approx(-units::pi / 2));
+  CHECK(materialAngle(t, -a.plate.normal.cross(t), a.plate) == doctest::Approx(units::pi));
   CHECK(materialAngle(a.plate.normal, a.plate.lateral, a.plate) == doctest::Approx(0.0));
+  // the initial root grows downhill with d1 along the lateral axis: 0
+  CHECK(materialAngle(a.plate.downhill, a.plate.lateral, a.plate) == doctest::Approx(0.0));
 }
 
 TEST_CASE("bends: the arc's curvature 1/rho and the material frame's twist per length") {

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <fstream>
 #include <regex>
 #include <string>
 #include <vector>
@@ -27,6 +28,7 @@ namespace fs = std::filesystem;
 using rootsim::test::as;
 using rootsim::test::kScene;
 using rootsim::test::kSets;
+using rootsim::test::Result;
 using rootsim::test::run;
 using rootsim::test::slurp;
 using rootsim::test::vtkArray;
@@ -106,9 +108,10 @@ TEST_CASE("ParaView point data of a real run: frame, angle, stretch, growth zone
       const int ea = std::max(i - 1, 0), eb = std::min(i, n - 1);
       CHECK(radius[static_cast<size_t>(i)] == doctest::Approx(0.5 * (s.radius[ea] + s.radius[eb]) / units::mm).epsilon(1e-14));
       CHECK(stretch[static_cast<size_t>(i)] == doctest::Approx(0.5 * (lambda(ea) + lambda(eb))).epsilon(1e-14));
-      // the angle turns the plate normal (made normal to d3) about d3 into d1
+      // the angle turns the in-plate direction n x d3 (n: the plate normal made normal to d3) about d3
+      // into d1
       const double phi = angle[static_cast<size_t>(i)] * units::deg;
-      const Eigen::Vector3d ref = (plate.normal - plate.normal.dot(t) * t).normalized();
+      const Eigen::Vector3d ref = (plate.normal - plate.normal.dot(t) * t).normalized().cross(t);
       CHECK((std::cos(phi) * ref + std::sin(phi) * t.cross(ref) - a).norm() < 1e-12);
       CHECK(std::isfinite(curvature[static_cast<size_t>(i)]));
       CHECK(curvature[static_cast<size_t>(i)] >= 0);
@@ -229,5 +232,49 @@ TEST_CASE("the ParaView folder: a .vtp per snapshot, root.pvd in hours, plate.vt
   fs::create_directories(again);
   writeParaviewFiles(again, snaps, info);
   CHECK(rootsim::test::fileTree(again) == rootsim::test::fileTree(pv));
+  fs::remove_all(d);
+}
+
+TEST_CASE("export --paraview: every snapshot or one, written whole; a user's folder never, rootsim's own with --force") {
+  const fs::path d = scratch("export");
+  const fs::path out = d / "r";
+  REQUIRE(run("run " + kScene + " --set growth.steps=60 --set output.every_steps=20 --quiet --out " + out.string()).code == 0);
+  const fs::path pv = d / "pv";
+  const std::string exportTo = "export " + out.string() + " --quiet --paraview ";
+  REQUIRE(run(exportTo + pv.string()).code == 0);
+  CHECK(fs::exists(pv / ".rootsim-paraview"));
+  CHECK(!fs::exists(d / "pv.partial"));
+  for (const char* f : {"root.pvd", "plate.vtp", "open_in_paraview.py", "step_000000.vtp", "step_000060.vtp"}) CHECK(fs::exists(pv / f));
+  const auto before = rootsim::test::fileTree(pv);
+  // rootsim's own folder: refused without --force (untouched), replaced whole with it (one snapshot now)
+  Result r = run(exportTo + pv.string());
+  CHECK(r.code == 2);
+  CHECK(r.out.find("--paraview " + pv.string()) != std::string::npos);
+  CHECK(rootsim::test::fileTree(pv) == before);
+  REQUIRE(run(exportTo + pv.string() + " --force --at-h 1.1").code == 0);
+  CHECK(fs::exists(pv / "step_000020.vtp"));
+  CHECK(!fs::exists(pv / "step_000000.vtp"));
+  CHECK(slurp(pv / "root.pvd").find("timestep=\"1\" file=\"step_000020.vtp\"") != std::string::npos);
+  // a file the user added makes it theirs: refused even with --force, and kept
+  { std::ofstream(pv / "notes.txt") << "mine"; }
+  r = run(exportTo + pv.string() + " --force");
+  CHECK(r.code == 2);
+  CHECK(r.out.find("notes.txt") != std::string::npos);
+  CHECK(slurp(pv / "notes.txt") == "mine");
+  // a user's folder, a file, the run directory itself or a folder inside it: refused, nothing written
+  const fs::path user = d / "user";
+  fs::create_directories(user);
+  { std::ofstream(user / "a.vtp") << "mine"; }
+  { std::ofstream(d / "file") << "mine"; }
+  for (const fs::path& p : {user, d / "file", out, out / "pv"}) {
+    CAPTURE(p);
+    r = run(exportTo + p.string() + " --force");
+    CHECK(r.code == 2);
+    CHECK(rootsim::test::oneLine(r.out.substr(0, r.out.size() - 1)));
+  }
+  CHECK(slurp(user / "a.vtp") == "mine");
+  CHECK(slurp(d / "file") == "mine");
+  CHECK(!fs::exists(out / "pv"));
+  CHECK(!fs::exists(d / "user.partial"));
   fs::remove_all(d);
 }

@@ -54,10 +54,11 @@ std::vector<NodeFrame> nodeFrames(const Snapshot& s, DirMap&& dir) {
 std::vector<NodeFrame> nodeFrames(const Snapshot& s);
 
 // The material-frame angle [rad, in (-pi, pi]] of d1 about the tangent t (both unit, lab): the angle from
-// the reference direction e, the plate normal made normal to t, to d1, positive counter-clockwise seen
-// from the tip (a right-handed turn about t): atan2(t . (e x d1), e . d1). 0: d1 points away from the
-// plate; +90 deg: d1 = t x e. Where t is along the plate normal (|n - (n.t) t| < 1e-9) e is the plate's
-// lateral direction instead. One definition for every writer (ParaView's point data, RSML).
+// the in-plate reference e = n_perp x t (n_perp: the plate normal made normal to t) to d1, positive
+// right-handed about t (towards n_perp): atan2(d1 . n_perp, d1 . e). 0: d1 lies in the plate, to the
+// right of the tangent seen from above (the initial root's d1, the lateral axis); +90 deg: d1 points away
+// from the plate. Where t is along the plate normal (|n_perp| < 1e-9) e is the plate's lateral axis made
+// normal to t and n_perp = t x e. One definition for every writer (ParaView's point data, RSML).
 double materialAngle(const Eigen::Vector3d& t, const Eigen::Vector3d& d1, const PlateFrame& plate);
 
 // the rotation vector kappa = log(Q_j Q_{j+1}^T) between the directors of elements j and j+1 (material

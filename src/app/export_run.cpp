@@ -15,6 +15,7 @@
 #include "rootsim/environment.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/number_text.hpp"
+#include "rootsim/paraview.hpp"
 #include "rootsim/results.hpp"
 #include "rootsim/rsml.hpp"
 #include "rootsim/run_dir.hpp"
@@ -349,10 +350,9 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
   const fs::path runDir(o.runDir);
   if (o.rsml.empty() && o.gltf.empty() && o.paraview.empty())
     throw SceneError("export: no output asked for; give --rsml FILE (or --gltf FILE.glb, --paraview DIR)");
-  // --gltf and --paraview: their writers are added by later changes to this command; until then they
-  // are refused rather than ignored
+  // --gltf: its writer is added by a later change to this command; until then it is refused rather than
+  // ignored
   if (!o.gltf.empty()) throw SceneError("--gltf: not available in this build");
-  if (!o.paraview.empty()) throw SceneError("--paraview: not available in this build");
   if (given(o.atH) && given(o.everyH))
     throw SceneError("--at-h " + flagNumber(o.atH) + ": give --at-h or --every-h, not both");
   if (given(o.atH) && !(o.atH >= 0)) throw SceneError("--at-h " + flagNumber(o.atH) + ": must be >= 0 h");
@@ -381,12 +381,30 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
     }
   }
 
+  // --paraview DIR: a folder of its own kind, written whole (DIR.partial, then renamed); every snapshot, or
+  // those --at-h / --every-h pick (docs/paraview.md)
+  std::optional<StagedFolder> paraview;
+  if (!o.paraview.empty()) paraview.emplace(fs::path(checkOutputName(o.paraview, "--paraview")), paraviewFolder(), rule, "--paraview");
+
   // every check passed: write
   for (std::size_t k = 0; k < rsmlFiles.size(); ++k) {
     const Snapshot& s = data.snaps[static_cast<std::size_t>(picks[k].index)];
     writeFileAtomic(rsmlFiles[k], rsml::writeRsml(rsmlOf(data, s, series ? static_cast<int>(k) : -1)));
     if (written) written->push_back(rsmlFiles[k]);
     if (!o.quiet) std::fprintf(stderr, "wrote %s (growth step %d, %g h)\n", rsmlFiles[k].c_str(), s.step, s.timeH);
+  }
+  if (paraview) {
+    std::vector<Snapshot> snaps;
+    if (given(o.atH) || series)
+      for (const Pick& p : picks) snaps.push_back(data.snaps[static_cast<std::size_t>(p.index)]);
+    else
+      snaps = data.snaps;
+    writeParaviewFiles(paraview->work(), snaps, sceneInfoOf(data.scene.model));
+    paraview->commit();
+    if (written) written->push_back(paraview->final());
+    if (!o.quiet)
+      std::fprintf(stderr, "wrote %s (%zu snapshot%s; open with: paraview --script=%s)\n", paraview->final().c_str(),
+                   snaps.size(), snaps.size() == 1 ? "" : "s", (paraview->final() / "open_in_paraview.py").c_str());
   }
   return 0;
 }

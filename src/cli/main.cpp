@@ -86,6 +86,7 @@ int main(int argc, char** argv) {
   CLI::App* cExport = app.add_subcommand("export", "a saved run's root in other programs' formats (RSML)");
   cExport->add_option("run_dir", exportOpts.runDir, "run directory")->required();
   cExport->add_option("--rsml", exportOpts.rsml, "RSML 1.0 file (plate coordinates in mm, origin at the seed; docs/rsml.md)");
+  cExport->add_option("--paraview", exportOpts.paraview, "ParaView folder: the snapshots (.vtp with point data), root.pvd, plate.vtp and open_in_paraview.py, which shows the striped tube on the plate (docs/paraview.md)");
   cExport->add_option("--at-h", exportOpts.atH, "the snapshot nearest H hours (ties to the earlier; default the final one); outside the run's snapshots: exit 2");
   cExport->add_option("--every-h", exportOpts.everyH, "one file every H hours from the first snapshot, FILE_t<time>h.EXT (docs/rsml.md, Time series)");
   cExport->add_flag("--force", exportOpts.force, "replace outputs rootsim wrote earlier (never a file rootsim did not write)");

@@ -27,10 +27,15 @@ std::vector<NodeFrame> nodeFrames(const Snapshot& s) {
 }
 
 double materialAngle(const Eigen::Vector3d& t, const Eigen::Vector3d& d1, const PlateFrame& plate) {
-  Eigen::Vector3d e = plate.normal - plate.normal.dot(t) * t;
-  if (e.norm() < 1e-9) e = plate.lateral - plate.lateral.dot(t) * t;
-  e.normalize();
-  const double a = std::atan2(t.dot(e.cross(d1)), e.dot(d1));
+  Eigen::Vector3d np = plate.normal - plate.normal.dot(t) * t, e;
+  if (np.norm() > 1e-9) {
+    np.normalize();
+    e = np.cross(t);
+  } else {
+    e = (plate.lateral - plate.lateral.dot(t) * t).normalized();
+    np = t.cross(e);
+  }
+  const double a = std::atan2(d1.dot(np), d1.dot(e));
   return a > -units::pi ? a : units::pi;  // atan2(-0, -1) = -pi: the half-open range (-pi, pi]
 }
 

@@ -49,7 +49,7 @@ struct Arc {
 };
 }  // namespace
 
-TEST_CASE("node frames: unit, orthogonal, right-handed, the ends taking their one element") {
+TEST_CASE("node frames: unit and orthogonal and right-handed with the ends taking their one element") {
   const Arc a;
   const std::vector<NodeFrame> f = nodeFrames(a.s);
   REQUIRE(f.size() == kN + 1);
@@ -68,7 +68,7 @@ TEST_CASE("node frames: unit, orthogonal, right-handed, the ends taking their on
   for (int i = 0; i <= kN; ++i) CHECK((p[static_cast<size_t>(i)].d1 - a.plate.dirToPlate(f[static_cast<size_t>(i)].d1)).norm() < 1e-14);
 }
 
-TEST_CASE("material angle: from the in-plate direction n x t to d1, right-handed about the tangent") {
+TEST_CASE("material angle: from the in-plate direction n x t to d1 right-handed about the tangent") {
   const Arc a;
   const std::vector<NodeFrame> f = nodeFrames(a.s);
   // the arc's d1 is kPhi0 + kTwist s from the plate normal, which is +90 deg from the reference n x t

@@ -47,7 +47,7 @@ Eigen::Vector3d col3(const std::vector<double>& v, int i) {
 }
 }  // namespace
 
-TEST_CASE("ParaView point data of a real run: frame, angle, stretch, growth zone, kappa0 and forces per node") {
+TEST_CASE("ParaView point data of a real run: frame and angle and stretch and growth zone and kappa0 and forces per node") {
   const fs::path d = scratch("points");
   const fs::path out = d / "r";
   REQUIRE(run("run " + kScene + kSets + " --out " + out.string()).code == 0);
@@ -136,7 +136,7 @@ TEST_CASE("ParaView point data of a real run: frame, angle, stretch, growth zone
   fs::remove_all(d);
 }
 
-TEST_CASE("plate.vtp: the plate under every snapshot in whole millimetres, its 1 mm grid, the obstacles") {
+TEST_CASE("plate.vtp: the plate under every snapshot in whole millimetres with its 1 mm grid and the obstacles") {
   const fs::path d = scratch("plate");
   const fs::path out = d / "r";
   REQUIRE(run("run " + kScene + " --set growth.steps=60 --set output.every_steps=20 --quiet --out " + out.string()).code == 0);
@@ -190,7 +190,7 @@ TEST_CASE("plate.vtp: the plate under every snapshot in whole millimetres, its 1
   fs::remove_all(d);
 }
 
-TEST_CASE("the ParaView folder: a .vtp per snapshot, root.pvd in hours, plate.vtp and a Python script") {
+TEST_CASE("the ParaView folder: a .vtp per snapshot and root.pvd in hours and plate.vtp and a Python script") {
   const fs::path d = scratch("folder");
   const fs::path out = d / "r";
   REQUIRE(run("run " + kScene + " --set growth.steps=60 --set output.every_steps=20 --quiet --out " + out.string()).code == 0);
@@ -224,18 +224,20 @@ TEST_CASE("the ParaView folder: a .vtp per snapshot, root.pvd in hours, plate.vt
                 numberText(plate.normal.z()) + ")") != std::string::npos);
   CHECK(py.find("STRIPE_COS = " + numberText(std::cos(38 * units::deg))) != std::string::npos);
   CHECK(py.find("dot(TubeNormals, d1)") != std::string::npos);
+  // where ParaView's GUI (which gives a script no file name) finds the files
+  CHECK(py.find("WRITTEN_TO = \"" + fs::absolute(pv).lexically_normal().string() + "\"\n") != std::string::npos);
   // (parsed, not compiled: nothing written into the folder)
   CHECK(rootsim::test::runBinary("python3", "-c 'import ast, sys; ast.parse(open(sys.argv[1]).read())' " +
                                                 (pv / "open_in_paraview.py").string()).code == 0);
   // the same snapshots, the same bytes
   const fs::path again = d / "again";
   fs::create_directories(again);
-  writeParaviewFiles(again, snaps, info);
+  writeParaviewFiles(again, snaps, info, pv);
   CHECK(rootsim::test::fileTree(again) == rootsim::test::fileTree(pv));
   fs::remove_all(d);
 }
 
-TEST_CASE("export --paraview: every snapshot or one, written whole; a user's folder never, rootsim's own with --force") {
+TEST_CASE("export --paraview: every snapshot or one written whole and a user's folder never and rootsim's own only with --force") {
   const fs::path d = scratch("export");
   const fs::path out = d / "r";
   REQUIRE(run("run " + kScene + " --set growth.steps=60 --set output.every_steps=20 --quiet --out " + out.string()).code == 0);

@@ -22,11 +22,15 @@ struct StripeStyle {
 };
 
 // open_in_paraview.py for a run of this scene whose snapshots cover extentMm (plateExtentMm): the plate's
-// axes and extent for the top camera, the stripe rule and colours
-std::string paraviewScript(const SceneInfo& info, const std::array<double, 4>& extentMm);
+// axes and extent for the top camera, the stripe rule and colours, and `folder` (made absolute), where
+// the script finds its files when ParaView's GUI runs it without its own file name
+std::string paraviewScript(const SceneInfo& info, const std::array<double, 4>& extentMm,
+                           const std::filesystem::path& folder);
 
 // writes the folder's files into dir (which exists: a StagedFolder's work folder): step_NNNNNN.vtp of
-// each snapshot, root.pvd, plate.vtp (covering every snapshot), open_in_paraview.py
-void writeParaviewFiles(const std::filesystem::path& dir, const std::vector<Snapshot>& snaps, const SceneInfo& info);
+// each snapshot, root.pvd, plate.vtp (covering every snapshot), open_in_paraview.py naming finalDir (the
+// folder's final name; empty: dir) as its folder
+void writeParaviewFiles(const std::filesystem::path& dir, const std::vector<Snapshot>& snaps, const SceneInfo& info,
+                        const std::filesystem::path& finalDir = {});
 
 }  // namespace rootsim

@@ -399,7 +399,7 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
       for (const Pick& p : picks) snaps.push_back(data.snaps[static_cast<std::size_t>(p.index)]);
     else
       snaps = data.snaps;
-    writeParaviewFiles(paraview->work(), snaps, sceneInfoOf(data.scene.model));
+    writeParaviewFiles(paraview->work(), snaps, sceneInfoOf(data.scene.model), paraview->final());
     paraview->commit();
     if (written) written->push_back(paraview->final());
     if (!o.quiet)

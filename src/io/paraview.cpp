@@ -42,7 +42,21 @@ import sys
 
 from paraview.simple import *  # noqa: F401,F403 (ParaView's own scripting interface)
 
-HERE = os.path.dirname(os.path.abspath(__file__)) if "__file__" in globals() else os.getcwd()
+# the folder rootsim wrote this script into (ParaView's GUI runs a script without its file name)
+WRITTEN_TO = @FOLDER@
+
+
+def here():
+    """The folder of this script: its own name's (pvpython), else the one rootsim wrote it into
+    (paraview --script=, the Python shell's Run Script), else the working folder."""
+    if "__file__" in globals():
+        return os.path.dirname(os.path.abspath(__file__))
+    if os.path.isfile(os.path.join(WRITTEN_TO, "root.pvd")):
+        return WRITTEN_TO
+    return os.getcwd()
+
+
+HERE = here()
 
 # the plate in the lab frame [mm] (written by rootsim for this run)
 PLATE_NORMAL = @PLATE_NORMAL@  # unit normal, to the side the root lies on: the camera looks down it
@@ -196,10 +210,21 @@ void replaceAll(std::string& s, const std::string& from, const std::string& to) 
 }
 }  // namespace
 
-std::string paraviewScript(const SceneInfo& info, const std::array<double, 4>& extentMm) {
+std::string paraviewScript(const SceneInfo& info, const std::array<double, 4>& extentMm, const fs::path& folder) {
   const PlateFrame plate = PlateFrame::tilted(info.alphaDeg * units::deg);
   const StripeStyle style;
   std::string s = kScript;
+  // a Python string literal of the folder (UTF-8 bytes kept; backslash and quote escaped)
+  std::string lit = "\"";
+  for (char c : fs::absolute(folder).lexically_normal().string()) {
+    if (c == '\\' || c == '"') lit += '\\';
+    if (c == '\n') {
+      lit += "\\n";
+      continue;
+    }
+    lit += c;
+  }
+  lit += '"';
   replaceAll(s, "@SIGNATURE@", std::string("written by ") + outputSignatureText());
   replaceAll(s, "@PLATE_NORMAL@", tuple(plate.normal));
   replaceAll(s, "@UPHILL@", tuple(plate.uphill()));
@@ -210,10 +235,12 @@ std::string paraviewScript(const SceneInfo& info, const std::array<double, 4>& e
   replaceAll(s, "@BODY@", tuple(style.body.data(), 3));
   replaceAll(s, "@PLUS@", tuple(style.plus.data(), 3));
   replaceAll(s, "@MINUS@", tuple(style.minus.data(), 3));
+  replaceAll(s, "@FOLDER@", lit);  // last: a folder name holding "@...@" stays as it is
   return s;
 }
 
-void writeParaviewFiles(const fs::path& dir, const std::vector<Snapshot>& snaps, const SceneInfo& info) {
+void writeParaviewFiles(const fs::path& dir, const std::vector<Snapshot>& snaps, const SceneInfo& info,
+                        const fs::path& finalDir) {
   std::vector<std::pair<double, std::string>> entries;
   for (const Snapshot& s : snaps) {
     const std::string name = vtpFileName(s);
@@ -222,7 +249,8 @@ void writeParaviewFiles(const fs::path& dir, const std::vector<Snapshot>& snaps,
   }
   writeFileAtomic(dir / "root.pvd", pvdText(entries));
   writeFileAtomic(dir / "plate.vtp", plateVtp(info, snaps));
-  writeFileAtomic(dir / "open_in_paraview.py", paraviewScript(info, plateExtentMm(info, snaps)));
+  writeFileAtomic(dir / "open_in_paraview.py",
+                  paraviewScript(info, plateExtentMm(info, snaps), finalDir.empty() ? dir : finalDir));
 }
 
 }  // namespace rootsim

@@ -14,6 +14,7 @@ pkgs=(cmake ninja-build g++ pkg-config
       slurm-wlm munge                   # tests/slurm/run.sh: a sweep through a single-node SLURM
       python3-vtk9                      # tests/vtk_read.py: VTK's own reader reads the .vtp files
       chromium                          # ctest figures_report_html: report.html in a headless browser
+      paraview python3-paraview xvfb xauth  # ctest paraview_script: pvpython opens export --paraview's script
       mkdocs                            # the docs site (ctest docs_site_builds)
       nodejs                            # ctest gltf_validator: the Khronos glTF-Validator (npm, below)
       blender                           # ctest gltf_blender: Blender imports and renders the .glb

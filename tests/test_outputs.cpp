@@ -29,6 +29,7 @@
 #include "rootsim/snapshot.hpp"
 #include "rootsim/units.hpp"
 #include "test_support.hpp"
+#include "vtk_support.hpp"
 
 using namespace rootsim;
 namespace fs = std::filesystem;
@@ -39,47 +40,12 @@ using rootsim::test::run;
 using rootsim::test::slurp;
 using rootsim::test::kScene;
 using rootsim::test::kSets;
+using rootsim::test::as;
+using rootsim::test::vtkArray;
+using rootsim::test::vtkOffset;
 fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("outputs", name); }
 bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
-// the appended data of a VTK XML file written with vtkZLibDataCompressor and header_type UInt64: the
-// array at `offset`, decompressed
-std::string vtkArray(const std::string& file, std::size_t offset) {
-  const std::size_t start = file.find("<AppendedData encoding=\"raw\">\n_");
-  REQUIRE(start != std::string::npos);
-  const char* p = file.data() + start + std::strlen("<AppendedData encoding=\"raw\">\n_") + offset;
-  std::uint64_t head[3];
-  std::memcpy(head, p, sizeof head);
-  const std::uint64_t blocks = head[0], blockSize = head[1], last = head[2];
-  std::vector<std::uint64_t> sizes(blocks);
-  std::memcpy(sizes.data(), p + sizeof head, blocks * 8);
-  const char* data = p + sizeof head + blocks * 8;
-  std::string out;
-  for (std::uint64_t k = 0; k < blocks; ++k) {
-    uLongf n = (k + 1 == blocks && last != 0) ? last : blockSize;
-    std::string block(n, '\0');
-    REQUIRE(uncompress(reinterpret_cast<Bytef*>(block.data()), &n, reinterpret_cast<const Bytef*>(data), sizes[k]) == Z_OK);
-    block.resize(n);
-    out += block;
-    data += sizes[k];
-  }
-  return out;
-}
-
-// the offset= of the DataArray named `name` (Points: the first, unnamed)
-std::size_t vtkOffset(const std::string& file, const std::string& name) {
-  const std::size_t at = name.empty() ? file.find("<Points>") : file.find("Name=\"" + name + "\"");
-  REQUIRE(at != std::string::npos);
-  const std::size_t o = file.find("offset=\"", at) + 8;
-  return std::stoul(file.substr(o, file.find('"', o) - o));
-}
-
-template <class T>
-std::vector<T> as(const std::string& bytes) {
-  std::vector<T> v(bytes.size() / sizeof(T));
-  std::memcpy(v.data(), bytes.data(), v.size() * sizeof(T));
-  return v;
-}
 }  // namespace
 
 TEST_CASE("a trajectory with NaN or inf or a malformed cell is refused naming file and line") {
@@ -206,9 +172,9 @@ TEST_CASE("ParaView files are zlib-compressed binary that decodes to the snapsho
   CHECK(conn[0] == 0);
   CHECK(conn.back() == n);
   CHECK(offs.back() == 2 * n);
-  const auto rad = as<double>(vtkArray(vtp, vtkOffset(vtp, "radius_mm")));
-  const auto d1 = as<double>(vtkArray(vtp, vtkOffset(vtp, "d1")));
-  const auto d3 = as<double>(vtkArray(vtp, vtkOffset(vtp, "d3")));
+  const auto rad = as<double>(vtkArray(vtp, vtkOffset(vtp, "radius_mm", "<CellData")));
+  const auto d1 = as<double>(vtkArray(vtp, vtkOffset(vtp, "d1", "<CellData")));
+  const auto d3 = as<double>(vtkArray(vtp, vtkOffset(vtp, "d3", "<CellData")));
   REQUIRE(rad.size() == static_cast<std::size_t>(n));
   REQUIRE(d1.size() == static_cast<std::size_t>(3 * n));
   REQUIRE(d3.size() == static_cast<std::size_t>(3 * n));

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """Reads rootsim's zlib-compressed ParaView files with VTK's own XML reader (Debian's python3-vtk9) and
-compares every point and cell value with trajectory.bin (docs/outputs.md), bit for bit. An independent
+compares every point and cell value with trajectory.bin (docs/outputs.md), bit for bit, and checks the
+point data (docs/paraview.md): every array per node, the node frame orthonormal with d2 = d3 x d1. An independent
 check of the appended-data encoding: the C++ test decodes it with our understanding of the format, this
 one with VTK's. Exit 77 (skipped) when VTK's Python module is not installed.
 
@@ -77,6 +78,23 @@ def main():
             assert rad.GetValue(i) == f["radius"][i], (path, i)
             assert d1.GetTuple3(i) == tuple(f["d1"][3 * i:3 * i + 3]), (path, i)
             assert d3.GetTuple3(i) == tuple(f["d3"][3 * i:3 * i + 3]), (path, i)
+        # the point data (docs/paraview.md): every array one value per node; the node frame orthonormal and
+        # right-handed (d2 = d3 x d1); the radius and stretch the adjacent elements' means
+        pdata = pd.GetPointData()
+        names = [pdata.GetArrayName(k) for k in range(pdata.GetNumberOfArrays())]
+        for name in ("radius_mm", "d1", "d2", "d3", "material_angle_deg", "curvature_per_mm", "twist_rad_per_mm",
+                     "kappa0_per_mm", "stretch", "growth_zone", "plate_force_n", "contact_plate_n", "contact_self_n",
+                     "contact_obstacle_n"):
+            assert name in names, (path, name, names)
+            assert pdata.GetArray(name).GetNumberOfTuples() == n, (path, name)
+        p1, p2, p3, prad = pdata.GetArray("d1"), pdata.GetArray("d2"), pdata.GetArray("d3"), pdata.GetArray("radius_mm")
+        for i in range(n):
+            a, b, t = p1.GetTuple3(i), p2.GetTuple3(i), p3.GetTuple3(i)
+            cross = (t[1] * a[2] - t[2] * a[1], t[2] * a[0] - t[0] * a[2], t[0] * a[1] - t[1] * a[0])
+            assert max(abs(b[k] - cross[k]) for k in range(3)) < 1e-12, (path, i, b, cross)
+            assert abs(sum(x * x for x in a) - 1) < 1e-12 and abs(sum(x * t[k] for k, x in enumerate(a))) < 1e-12
+            ea, eb = max(i - 1, 0), min(i, n - 2)
+            assert abs(prad.GetValue(i) - 0.5 * (f["radius"][ea] + f["radius"][eb])) < 1e-15, (path, i)
         # the polyline joins node i to i + 1
         ids = pd.GetLines().GetData()
         assert ids.GetNumberOfTuples() == 3 * (n - 1), ids.GetNumberOfTuples()

@@ -5,4 +5,5 @@
 #include "rootsim/csv.hpp"
 #include "rootsim/json.hpp"
 #include "rootsim/trajectory.hpp"
+#include "rootsim/paraview.hpp"
 #include "rootsim/vtk.hpp"

@@ -39,6 +39,7 @@ struct SceneInfo {
   double gamma = 0.1;          // proprioceptive gain
   double rTau = 0.0;           // intrinsic twist R tau
   double radius = 1e-4;        // rest radius R [m]
+  double zoneLength = 1e-3;    // growth zone length Lgz [m] (the last Lgz of material grows)
   bool plate = true;           // draw the plate (false for a free organ)
   // obstacles on the plate (docs/model.md, Contact and friction), in the top view's plate coordinates [mm]:
   // u lateral, v uphill (PlateFrame::toPlateMm); a peg has from == to

@@ -1,5 +1,6 @@
 #pragma once
 // The ParaView files of a run (docs/outputs.md): vtk/step_NNNNNN.vtp and trajectory.pvd, and modes.vtp.
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <string>
@@ -16,14 +17,39 @@ namespace rootsim {
 // modes.vtp of `rootsim modes`: the centreline with one point-data vector per mode (modes.csv: csv.hpp)
 std::string modesVtp(const RodState& s, const StiffnessModes& m);
 
-// ParaView: vtk/step_NNNNNN.vtp (polyline, per-element d1, d3, radius) and trajectory.pvd
-// (VTK XML PolyData, binary appended data compressed with zlib: compressor="vtkZLibDataCompressor",
-// header_type="UInt64"; ParaView and VTK's readers read it)
+// The ParaView file of one snapshot (VTK XML PolyData, binary appended data compressed with zlib:
+// compressor="vtkZLibDataCompressor", header_type="UInt64"; ParaView and VTK's readers read it): the
+// centreline nodes [mm, lab] joined by one line per element; point data per node (the material frame
+// d1, d2, d3 averaged at the node, radius, material-frame angle, curvature, twist, kappa0, stretch,
+// growth zone, plate and contact forces: docs/paraview.md, Point data); cell data per element (radius,
+// d1, d3 as the simulation has them). info gives the plate tilt, R and Lgz.
+std::string snapshotVtp(const Snapshot& s, const SceneInfo& info);
+// its file name: step_NNNNNN.vtp (the growth step)
+std::string vtpFileName(const Snapshot& s);
+// a ParaView collection (.pvd) of (time_h, file) entries: the time slider steps through them in hours
+std::string pvdText(const std::vector<std::pair<double, std::string>>& entries);
+
+// plate.vtp's cells carry a cell-data array "part": which piece each cell is
+inline constexpr std::uint8_t kPlatePartPlate = 0;     // the plate's rectangle (one polygon)
+inline constexpr std::uint8_t kPlatePartGrid = 1;      // a line of the 1 mm grid
+inline constexpr std::uint8_t kPlatePartObstacle = 2;  // a face of an obstacle's prism
+// obstacles are infinitely tall in the model; plate.vtp draws them this high above the plate [mm]
+inline constexpr double kObstacleHeightMm = 1.0;
+// the plate's extent in the top view's plate coordinates [mm]: {u0, u1, v0, v1} (u lateral, v uphill),
+// whole millimetres covering every node of the snapshots and every obstacle with 2 mm to spare
+std::array<double, 4> plateExtentMm(const SceneInfo& info, const std::vector<Snapshot>& snaps);
+// plate.vtp: the plate (through the origin, normal PlateFrame::normal) as a rectangle over
+// plateExtentMm with a 1 mm grid of lines on it, and the obstacles as prisms, in the lab frame [mm];
+// no plate when info.plate is false (obstacles only)
+std::string plateVtp(const SceneInfo& info, const std::vector<Snapshot>& snaps);
+
+// A run's ParaView series: vtk/step_NNNNNN.vtp (snapshotVtp) and trajectory.pvd
 class VtkSeriesWriter {
  public:
-  explicit VtkSeriesWriter(const std::filesystem::path& runDir);
+  VtkSeriesWriter(const std::filesystem::path& runDir, const SceneInfo& info);
   // continues a killed run's series with the entries it had written (a checkpoint's)
-  VtkSeriesWriter(const std::filesystem::path& runDir, std::vector<std::pair<double, std::string>> entries);
+  VtkSeriesWriter(const std::filesystem::path& runDir, const SceneInfo& info,
+                  std::vector<std::pair<double, std::string>> entries);
   void add(const Snapshot& s);
   void close();
   // trajectory.pvd's entries so far: (time_h, file)
@@ -31,6 +57,7 @@ class VtkSeriesWriter {
 
  private:
   std::filesystem::path dir_;
+  SceneInfo info_;
   std::vector<std::pair<double, std::string>> entries_;
 };
 

@@ -36,6 +36,9 @@ const FolderSpec& sweepFolder();
 const FolderSpec& framesFolder();
 // the folder of `analyze`: marker .rootsim-analysis, analysis.csv, analysis.json
 const FolderSpec& analysisFolder();
+// a ParaView folder (export --paraview): marker .rootsim-paraview, step_NNNNNN.vtp, root.pvd, plate.vtp,
+// open_in_paraview.py (docs/paraview.md)
+const FolderSpec& paraviewFolder();
 
 // what a command reads: never replaced nor held by an output; a folder whose content is read (a run
 // directory) is also never written into, except for the names it receives

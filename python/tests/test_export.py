@@ -53,10 +53,15 @@ def test_bad_options_have_the_command_lines_messages(run_dir, tmp_path):
     assert not (tmp_path / "x.rsml").exists()
 
 
-def test_formats_not_in_this_build_are_refused_not_ignored(run_dir, tmp_path):
-    with pytest.raises(rootsim.SceneError, match="--paraview: not available"):
-        rootsim.export(run_dir, rsml=tmp_path / "g.rsml", paraview=tmp_path / "g_vtk")
-    assert not (tmp_path / "g.rsml").exists()
+def test_three_formats_in_one_call_and_no_two_at_one_path(run_dir, tmp_path):
+    written = rootsim.export(run_dir, rsml=tmp_path / "a.rsml", gltf=tmp_path / "a.glb", paraview=tmp_path / "a_pv",
+                             at_h=2)
+    assert written == [tmp_path / "a.rsml", tmp_path / "a.glb", tmp_path / "a_pv"]
+    assert (tmp_path / "a_pv" / "open_in_paraview.py").is_file()
+    with pytest.raises(rootsim.SceneError, match="--paraview .*: the same path as --rsml"):
+        rootsim.export(run_dir, rsml=tmp_path / "same", paraview=tmp_path / "same")
+    assert not (tmp_path / "same").exists()
+    assert not (tmp_path / "same.partial").exists()
 
 
 def test_the_write_rule_holds_in_python(run_dir, tmp_path):

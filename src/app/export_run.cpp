@@ -17,6 +17,7 @@
 #include "rootsim/errors.hpp"
 #include "rootsim/gltf.hpp"
 #include "rootsim/number_text.hpp"
+#include "rootsim/paraview.hpp"
 #include "rootsim/results.hpp"
 #include "rootsim/rsml.hpp"
 #include "rootsim/run_dir.hpp"
@@ -352,9 +353,6 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
   const fs::path runDir(o.runDir);
   if (o.rsml.empty() && o.gltf.empty() && o.paraview.empty())
     throw SceneError("export: no output asked for; give --rsml FILE (or --gltf FILE.glb, --paraview DIR)");
-  // --paraview: its writer is added by a later change to this command; until then it is refused rather
-  // than ignored
-  if (!o.paraview.empty()) throw SceneError("--paraview: not available in this build");
   if (given(o.atH) && given(o.everyH))
     throw SceneError("--at-h " + flagNumber(o.atH) + ": give --at-h or --every-h, not both");
   if (given(o.atH) && !(o.atH >= 0)) throw SceneError("--at-h " + flagNumber(o.atH) + ": must be >= 0 h");
@@ -398,6 +396,18 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
     locks.emplace_back(gltfFile, "--gltf");
     claimFile(gltfFile, rule, "--gltf");
   }
+  // --paraview DIR: a folder of its own kind, written whole (DIR.partial, then renamed); every snapshot, or
+  // those --at-h / --every-h pick (docs/paraview.md)
+  std::optional<StagedFolder> paraview;
+  if (!o.paraview.empty()) {
+    const fs::path dir = checkOutputName(o.paraview, "--paraview");
+    const fs::path at = fs::absolute(dir).lexically_normal();
+    for (const fs::path& f : rsmlFiles)
+      if (fs::absolute(f).lexically_normal() == at) throw SceneError("--paraview " + o.paraview + ": the same path as --rsml");
+    if (!gltfFile.empty() && fs::absolute(gltfFile).lexically_normal() == at)
+      throw SceneError("--paraview " + o.paraview + ": the same path as --gltf");
+    paraview.emplace(dir, paraviewFolder(), rule, "--paraview");
+  }
 
   // every check passed: write
   for (std::size_t k = 0; k < rsmlFiles.size(); ++k) {
@@ -406,17 +416,28 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
     if (written) written->push_back(rsmlFiles[k]);
     if (!o.quiet) std::fprintf(stderr, "wrote %s (growth step %d, %g h)\n", rsmlFiles[k].c_str(), s.step, s.timeH);
   }
-  if (!gltfFile.empty()) {
-    std::vector<Snapshot> snaps;
+  // the snapshots glTF and ParaView show: every one, or those --at-h / --every-h pick
+  std::vector<Snapshot> snaps;
+  if (!gltfFile.empty() || paraview) {
     if (given(o.atH) || series)
       for (const Pick& p : picks) snaps.push_back(data.snaps[static_cast<std::size_t>(p.index)]);
     else
       snaps = data.snaps;
+  }
+  if (!gltfFile.empty()) {
     writeFileAtomic(gltfFile, gltfBinary(snaps, sceneInfoOf(data.scene.model)));
     if (written) written->push_back(gltfFile);
     if (!o.quiet)
       std::fprintf(stderr, "wrote %s (%zu snapshot%s, %g h to %g h)\n", gltfFile.c_str(), snaps.size(),
                    snaps.size() == 1 ? "" : "s", snaps.front().timeH, snaps.back().timeH);
+  }
+  if (paraview) {
+    writeParaviewFiles(paraview->work(), snaps, sceneInfoOf(data.scene.model), paraview->final());
+    paraview->commit();
+    if (written) written->push_back(paraview->final());
+    if (!o.quiet)
+      std::fprintf(stderr, "wrote %s (%zu snapshot%s; open with: paraview --script=%s)\n", paraview->final().c_str(),
+                   snaps.size(), snaps.size() == 1 ? "" : "s", (paraview->final() / "open_in_paraview.py").c_str());
   }
   return 0;
 }

@@ -83,11 +83,12 @@ int main(int argc, char** argv) {
   cModes->add_flag("--quiet", modes.quiet, "no progress output");
 
   app::ExportOptions exportOpts;
-  CLI::App* cExport = app.add_subcommand("export", "a saved run's root in other programs' formats (RSML, glTF)");
+  CLI::App* cExport = app.add_subcommand("export", "a saved run's root in other programs' formats (RSML, glTF, ParaView)");
   cExport->add_option("run_dir", exportOpts.runDir, "run directory")->required();
   cExport->add_option("--rsml", exportOpts.rsml, "RSML 1.0 file (plate coordinates in mm, origin at the seed; docs/rsml.md)");
   cExport->add_option("--gltf", exportOpts.gltf, "glTF 2.0 binary FILE.glb for Blender and the web: the root with its stripes, the plate, obstacles; every snapshot animated, or one with --at-h (docs/gltf.md)");
-  cExport->add_option("--at-h", exportOpts.atH, "the snapshot nearest H hours (ties to the earlier; default: RSML the final one, glTF every snapshot); outside the run's snapshots: exit 2");
+  cExport->add_option("--paraview", exportOpts.paraview, "ParaView folder: the snapshots (.vtp with point data), root.pvd, plate.vtp and open_in_paraview.py, which shows the striped tube on the plate (docs/paraview.md)");
+  cExport->add_option("--at-h", exportOpts.atH, "the snapshot nearest H hours (ties to the earlier; default: RSML the final one, glTF and ParaView every snapshot); outside the run's snapshots: exit 2");
   cExport->add_option("--every-h", exportOpts.everyH, "one file every H hours from the first snapshot, FILE_t<time>h.EXT (docs/rsml.md, Choosing the time); --gltf: those snapshots animated in its one file");
   cExport->add_flag("--force", exportOpts.force, "replace outputs rootsim wrote earlier (never a file rootsim did not write)");
   cExport->add_flag("--quiet", exportOpts.quiet, "no progress output");

@@ -142,7 +142,7 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
       ts = std::make_unique<TimeseriesWriter>(w / "timeseries.csv", p.timeseriesBytes);
       if (csv) tr = std::make_unique<TrajectoryWriter>(w / "trajectory.csv", p.trajectoryBytes, p.trajectoryFrames);
       if (bin) tb = std::make_unique<TrajectoryBinaryWriter>(w / "trajectory.bin", p.trajectoryBinaryBytes, p.trajectoryFrames);
-      if (m.output.vtk) vtk = std::make_unique<VtkSeriesWriter>(w, p.vtkEntries);
+      if (m.output.vtk) vtk = std::make_unique<VtkSeriesWriter>(w, sceneInfoOf(m), p.vtkEntries);
       watch = ck->acc.watch;
       wallBefore = ck->acc.wallBefore;
       first = ck->step + 1;
@@ -152,7 +152,7 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
       ts = std::make_unique<TimeseriesWriter>(w / "timeseries.csv");
       if (csv) tr = std::make_unique<TrajectoryWriter>(w / "trajectory.csv");
       if (bin) tb = std::make_unique<TrajectoryBinaryWriter>(w / "trajectory.bin");
-      if (m.output.vtk) vtk = std::make_unique<VtkSeriesWriter>(w);
+      if (m.output.vtk) vtk = std::make_unique<VtkSeriesWriter>(w, sceneInfoOf(m));
     }
     Simulation& sim = *simp;
     auto record = [&]() {

@@ -85,6 +85,18 @@ bool isAnalysisEntry(const fs::path&, const std::string& name) {
   return base == ".rootsim-analysis" || base == "analysis.csv" || base == "analysis.json";
 }
 
+// what `export --paraview DIR` writes (docs/paraview.md): step_NNNNNN.vtp, root.pvd, plate.vtp, the script
+bool isParaviewEntry(const fs::path&, const std::string& name) {
+  const std::string base = stripTemp(name);
+  if (base == ".rootsim-paraview" || base == "root.pvd" || base == "plate.vtp" || base == "open_in_paraview.py")
+    return true;
+  // step_NNNNNN.vtp
+  if (base.size() < 10 || base.rfind("step_", 0) != 0 || !endsWith(base, ".vtp")) return false;
+  for (std::size_t i = 5; i + 4 < base.size(); ++i)
+    if (!std::isdigit(static_cast<unsigned char>(base[i]))) return false;
+  return true;
+}
+
 fs::path absoluteNormal(const fs::path& p) {
   std::error_code ec;
   fs::path a = fs::weakly_canonical(fs::absolute(p, ec), ec);
@@ -187,6 +199,10 @@ const FolderSpec& framesFolder() {
 
 const FolderSpec& analysisFolder() {
   static const FolderSpec s{".rootsim-analysis", "rootsim analysis folder", isAnalysisEntry};
+  return s;
+}
+const FolderSpec& paraviewFolder() {
+  static const FolderSpec s{".rootsim-paraview", "rootsim ParaView folder", isParaviewEntry};
   return s;
 }
 

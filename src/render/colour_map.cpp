@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "rootsim/image.hpp"
-#include "rootsim/rotation.hpp"
+#include "rootsim/node_fields.hpp"
 #include "rootsim/units.hpp"
 
 namespace rootsim {
@@ -27,26 +27,6 @@ constexpr FieldName kFields[] = {
     {ColourField::Stretch, "stretch", "stretch \xCE\xBB\xE2\x82\x91 [-]"},
     {ColourField::Contact, "contact", "plate contact force [mN]"},
 };
-
-// directors of element e as the rows of a matrix (d2 = d3 x d1)
-Eigen::Matrix3d directors(const Snapshot& s, int e) {
-  Eigen::Matrix3d Q;
-  const Eigen::Vector3d d1 = s.d1.col(e), d3 = s.d3.col(e);
-  Q.row(0) = d1.transpose();
-  Q.row(1) = d3.cross(d1).transpose();
-  Q.row(2) = d3.transpose();
-  return Q;
-}
-
-// interior Voronoi values (n-1) spread to the n+1 nodes, the ends copying their neighbour
-Eigen::VectorXd toNodes(const Eigen::VectorXd& voronoi, int n) {
-  Eigen::VectorXd v(n + 1);
-  if (n < 2) return Eigen::VectorXd::Zero(n + 1);
-  v.segment(1, n - 1) = voronoi;
-  v[0] = voronoi[0];
-  v[n] = voronoi[n - 2];
-  return v;
-}
 
 double quantile(std::vector<double>& v, double q) {
   if (v.empty()) return 0.0;
@@ -96,10 +76,11 @@ Eigen::VectorXd nodeField(const Snapshot& s, const SceneInfo& info, ColourField 
     case ColourField::Kappa1:
     case ColourField::Kappa2: {
       // kappa D = log(Q_j Q_{j+1}^T) in material components (rod.cpp), per current Voronoi length
+      const std::vector<VoronoiBend> bends = voronoiBends(s);
       Eigen::VectorXd v(std::max(n - 1, 0));
       for (int j = 0; j + 1 < n; ++j) {
-        const Eigen::Vector3d k = rotationToVector(directors(s, j) * directors(s, j + 1).transpose());
-        const double D = 0.5 * ((s.x.col(j + 1) - s.x.col(j)).norm() + (s.x.col(j + 2) - s.x.col(j + 1)).norm());
+        const Eigen::Vector3d& k = bends[static_cast<std::size_t>(j)].kappa;
+        const double D = bends[static_cast<std::size_t>(j)].length;
         const double perMm = units::mm / std::max(D, 1e-300);
         const double c = f == ColourField::Curvature ? std::hypot(k.x(), k.y())
                          : f == ColourField::Kappa1  ? k.x()
@@ -107,7 +88,7 @@ Eigen::VectorXd nodeField(const Snapshot& s, const SceneInfo& info, ColourField 
                                                      : k.z();
         v[j] = c * perMm;
       }
-      return toNodes(v, n);
+      return voronoiToNodes(v, n);
     }
     case ColourField::Kappa0:
       if (s.kappa0.size() != n + 1)
@@ -116,13 +97,7 @@ Eigen::VectorXd nodeField(const Snapshot& s, const SceneInfo& info, ColourField 
       return s.kappa0 * units::mm;
     case ColourField::Stretch: {
       if (!(info.radius > 0)) throw RenderError("--color-by stretch: the scene's root radius must be > 0");
-      Eigen::VectorXd v(n + 1);
-      auto lambda = [&](int e) { return std::pow(info.radius / s.radius[e], 2); };
-      for (int i = 0; i <= n; ++i) {
-        const int a = std::max(i - 1, 0), b = std::min(i, n - 1);
-        v[i] = 0.5 * (lambda(a) + lambda(b));
-      }
-      return v;
+      return nodeStretch(s, info.radius);
     }
     case ColourField::Contact:
       if (s.plateForce.size() != n + 1)

@@ -4,6 +4,8 @@
 #include <Eigen/Geometry>
 
 #include "rootsim/image.hpp"
+#include "rootsim/node_fields.hpp"
+#include "rootsim/units.hpp"
 
 namespace rootsim {
 
@@ -19,29 +21,16 @@ void checkTubeSnapshot(const Snapshot& s, const std::string& what) {
 }
 
 std::vector<TubeRing> tubeRings(const Snapshot& s, const PlateFrame& pf) {
-  using V3 = Eigen::Vector3d;
-  const int n = s.elements();
-  std::vector<TubeRing> rings(static_cast<size_t>(n + 1));
-  for (int i = 0; i <= n; ++i) {
-    V3 t = V3::Zero(), a = V3::Zero();
-    double r = 0.0;
-    int cnt = 0;
-    for (int e : {i - 1, i}) {
-      if (e < 0 || e >= n) continue;
-      t += pf.dirToPlate(s.d3.col(e));
-      a += pf.dirToPlate(s.d1.col(e));
-      r += s.radius[e];
-      ++cnt;
-    }
-    TubeRing& g = rings[static_cast<size_t>(i)];
-    g.c = pf.toPlateMm(s.x.col(i));
-    if (t.norm() < 1e-12) t = V3::UnitY();
-    g.t = t.normalized();
-    a -= a.dot(g.t) * g.t;
-    if (a.norm() < 1e-12) a = g.t.unitOrthogonal();
-    g.a = a.normalized();
-    g.b = g.t.cross(g.a);
-    g.r = r / cnt / units::mm;
+  // the material frame at the nodes (node_fields.hpp), its directions in the top view's plate axes
+  const std::vector<NodeFrame> frames = nodeFrames(s, [&](const Eigen::Vector3d& d) { return pf.dirToPlate(d); });
+  std::vector<TubeRing> rings(frames.size());
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    TubeRing& g = rings[i];
+    g.c = pf.toPlateMm(s.x.col(static_cast<Eigen::Index>(i)));
+    g.t = frames[i].t;
+    g.a = frames[i].d1;
+    g.b = frames[i].d2;
+    g.r = frames[i].radius / units::mm;
   }
   return rings;
 }

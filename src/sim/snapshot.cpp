@@ -35,6 +35,7 @@ SceneInfo sceneInfoOf(const Model& m) {
   si.gamma = m.tropism.gamma;
   si.rTau = m.tropism.rTau;
   si.radius = m.rod.radius;
+  si.zoneLength = m.growth.zoneLength;
   si.plate = m.env.plane.enabled;
   si.title = m.name;
   for (const Obstacle& o : m.env.obstacles) {

@@ -10,6 +10,7 @@
 
 #include "render_test_util.hpp"
 #include "rootsim/gl_renderer.hpp"
+#include "rootsim/paraview.hpp"
 #include "rootsim/png.hpp"
 #include "rootsim/render_scene.hpp"
 
@@ -379,4 +380,16 @@ TEST_CASE("shaders from disk (development option) draw what the built-in copies 
   RendererOptions missing;
   missing.shaderDir = "/nonexistent/shaders";
   CHECK_THROWS_WITH_AS(GlRenderer(64, 64, missing), doctest::Contains("/nonexistent/shaders/tube.vert"), RenderError);
+}
+
+TEST_CASE("the ParaView script's stripes (paraview.hpp) are the renderer's: half width and colours") {
+  const StripeStyle pv;
+  const View v;
+  const RenderScene::Material m;
+  CHECK(pv.halfWidthDeg == v.stripeHalfWidthDeg);
+  for (std::size_t k = 0; k < 3; ++k) {
+    CHECK(static_cast<float>(pv.body[k]) == m.body[k]);
+    CHECK(static_cast<float>(pv.plus[k]) == m.plus[k]);
+    CHECK(static_cast<float>(pv.minus[k]) == m.minus[k]);
+  }
 }

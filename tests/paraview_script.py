@@ -8,7 +8,7 @@ first snapshot and at the last (the time slider's two ends). Checks: the first s
 the last both pink (+d1) and orange (-d1) stripe pixels; the two differ, and the root reaches further down
 the screen at the end (it grows downhill, which the top camera puts down the screen).
 
-Exit 77 (ctest SKIPPED) when pvpython or xvfb-run is not installed, unless ROOTSIM_REQUIRE_PARAVIEW=1 (CI,
+Exit 77 (ctest SKIPPED) when pvpython or xvfb-run is not installed, unless ROOTSIM_REQUIRE_CONSUMERS=1 (CI,
 which installs them: scripts/install-deps.sh), where that is a failure.
 usage: paraview_script.py ROOTSIM_BINARY SCENE WORKDIR
 """
@@ -105,8 +105,8 @@ def main():
     pvpython, xvfb = shutil.which("pvpython"), shutil.which("xvfb-run")
     if not pvpython or not xvfb:
         missing = "pvpython (python3-paraview)" if not pvpython else "xvfb-run (xvfb)"
-        if os.environ.get("ROOTSIM_REQUIRE_PARAVIEW") == "1":
-            fail(missing + " not found and ROOTSIM_REQUIRE_PARAVIEW=1: bash scripts/install-deps.sh")
+        if os.environ.get("ROOTSIM_REQUIRE_CONSUMERS") == "1":
+            fail(missing + " not found and ROOTSIM_REQUIRE_CONSUMERS=1: bash scripts/install-deps.sh")
         print("skipped: %s not found (bash scripts/install-deps.sh installs it)" % missing)
         return SKIP
     shutil.rmtree(work, ignore_errors=True)

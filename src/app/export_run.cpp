@@ -16,6 +16,7 @@
 #include "rootsim/environment.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/gltf.hpp"
+#include "rootsim/node_fields.hpp"
 #include "rootsim/number_text.hpp"
 #include "rootsim/paraview.hpp"
 #include "rootsim/results.hpp"
@@ -143,34 +144,15 @@ std::vector<double> toNodes(const std::vector<double>& e) {
 
 // the unit tangent and d1 at a node: the neighbouring elements' d3 and d1 averaged (the node frame of
 // shape.csv), d1 made normal to the tangent
-std::pair<Eigen::Vector3d, Eigen::Vector3d> nodeFrame(const Snapshot& s, int i) {
-  const int n = s.elements();
-  const int a = std::max(i - 1, 0), b = std::min(i, n - 1);
-  const Eigen::Vector3d t = (s.d3.col(a) + s.d3.col(b)).normalized();
-  Eigen::Vector3d d1 = s.d1.col(a) + s.d1.col(b);
-  d1 = (d1 - d1.dot(t) * t).normalized();
-  return {t, d1};
-}
-
-// the angle of d1 about the tangent [deg], from the in-plate direction normal to the tangent
-// e = n_perp x t (n_perp: the plate normal made normal to t), positive toward n_perp (right-handed
-// about t): 0 for the initial root (d1 = lateral), +90 when d1 points away from the plate. When the
-// tangent is along the plate normal, e is the lateral axis made normal to t. Unwrapped along the root
-// from node 0 (whose value lies in (-180, 180]), so a twisted root's angle keeps counting.
+// the angle of d1 about the tangent at each node [deg]: materialAngle (node_fields.hpp, the ParaView point
+// data's material_angle_deg) of the node frames, unwrapped along the root from node 0 (whose value lies in
+// (-180, 180]), so a twisted root's angle keeps counting
 std::vector<double> frameAngleDeg(const Snapshot& s, const PlateFrame& pf) {
   std::vector<double> out;
   double prev = 0;
-  for (int i = 0; i <= s.elements(); ++i) {
-    const auto [t, d1] = nodeFrame(s, i);
-    Eigen::Vector3d np = pf.normal - pf.normal.dot(t) * t, e;
-    if (np.norm() > 1e-9) {
-      np.normalize();
-      e = np.cross(t);
-    } else {
-      e = (pf.lateral - pf.lateral.dot(t) * t).normalized();
-      np = t.cross(e);
-    }
-    double phi = std::atan2(d1.dot(np), d1.dot(e)) / units::deg;
+  const std::vector<NodeFrame> frames = nodeFrames(s);
+  for (std::size_t i = 0; i < frames.size(); ++i) {
+    double phi = materialAngle(frames[i].t, frames[i].d1, pf) / units::deg;
     if (i > 0) phi += 360.0 * std::round((prev - phi) / 360.0);
     out.push_back(phi);
     prev = phi;

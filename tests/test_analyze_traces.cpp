@@ -161,7 +161,7 @@ TEST_CASE("analyze: a SmartRoot-style plate / orders, parents, lengths and inser
   CHECK(rows[0].at("growth_rate_mm_per_h").empty());
 }
 
-TEST_CASE("analyze: pixel units need --px-per-mm; --downhill -y reads a plate scanned upside down") {
+TEST_CASE("analyze: pixel units need --px-per-mm - and --downhill -y reads a plate scanned upside down") {
   if (!analyzeBuilt()) return;
   const fs::path d = scratch("pixels");
   auto file = [&](const std::string& name, double sign) {

@@ -43,7 +43,7 @@ TEST_CASE("resampling keeps the ends, spaces the points equally and drops repeat
   CHECK_THROWS(resampleByArcLength(Eigen::Matrix3Xd::Zero(3, 3), 0.1));
 }
 
-TEST_CASE("length, chord and tortuosity of a half circle; a straight root has tortuosity 1") {
+TEST_CASE("length and chord and tortuosity of a half circle - a straight root has tortuosity 1") {
   const double R = 2.0;  // [mm]
   const Eigen::Matrix3Xd half = plateCurve(2000, [&](double p, double& u, double& w) {
     u = R - R * std::cos(pi * p);

@@ -261,7 +261,7 @@ TEST_CASE("stills: run --movie defaults to the inset look and its final_top.png 
   CHECK(blue(readPng(plain.string())) == 0);
 }
 
-TEST_CASE("stills: run --movie --field-mm alone sizes the default inset; without --movie or with --camera fit it is refused") {
+TEST_CASE("stills: run --movie --field-mm alone sizes the default inset - and without --movie or with --camera fit it is refused") {
   const fs::path d = rtest::scratch("field_inset");
   const std::string scene = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2b_waving.toml";
   const std::string base = " --set growth.steps=200 --set output.every_steps=50 --quiet";

@@ -12,9 +12,10 @@ pkgs=(cmake ninja-build g++ pkg-config
       python3-pytest python3-matplotlib                         # its tests; examples/*.py
       clang libclang-rt-dev             # sanitizer + libFuzzer build (.ci/run, scripts/fuzz.sh)
       slurm-wlm munge                   # tests/slurm/run.sh: a sweep through a single-node SLURM
-      python3-vtk9                      # tests/vtk_read.py: VTK's own reader reads the .vtp files
       chromium                          # ctest figures_report_html: report.html in a headless browser
       paraview python3-paraview xvfb xauth  # ctest paraview_script: pvpython opens export --paraview's script
+                                        # python3-paraview's pvpython also runs tests/vtk_read.py (VTK's own
+                                        # reader reads the .vtp files); it conflicts with python3-vtk9, so not that
       mkdocs                            # the docs site (ctest docs_site_builds)
       nodejs                            # ctest gltf_validator: the Khronos glTF-Validator (npm, below)
       blender                           # ctest gltf_blender: Blender imports and renders the .glb

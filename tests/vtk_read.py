@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Reads rootsim's zlib-compressed ParaView files with VTK's own XML reader (Debian's python3-vtk9) and
+"""Reads rootsim's zlib-compressed ParaView files with VTK's own XML reader (ParaView's pvpython from Debian's python3-paraview, or python3 with python3-vtk9) and
 compares every point and cell value with trajectory.bin (docs/outputs.md), bit for bit, and checks the
 point data (docs/paraview.md): every array per node, the node frame orthonormal with d2 = d3 x d1. An independent
 check of the appended-data encoding: the C++ test decodes it with our understanding of the format, this
@@ -50,7 +50,7 @@ def main():
     try:
         from vtkmodules.vtkIOXML import vtkXMLPolyDataReader
     except ImportError:
-        print("skipped: VTK's Python module is not installed (apt-get install python3-vtk9)")
+        print("skipped: VTK's Python module is not installed (apt-get install python3-paraview, whose pvpython has it)")
         return 77
     binary, scene, work = sys.argv[1:4]
     shutil.rmtree(work, ignore_errors=True)

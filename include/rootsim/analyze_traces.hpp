@@ -5,6 +5,10 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
+#include "rootsim/traits.hpp"
+
 namespace rootsim::app {
 
 struct AnalyzeOptions {
@@ -39,6 +43,40 @@ struct RootRow {
   double growthRateMmPerH = 0;       // from the same root in the previous file in time; NaN for the first
   double dsMm = 0, excludeTipMm = 0, radiusMm = 0;
 };
+
+// one root of a trace file in plate coordinates (docs/experiments.md, "Traced roots")
+struct TracedRoot {
+  std::string plant, plantLabel, root, rootLabel, parent;
+  std::string key;           // plant/root ids ("#k" for a missing one): the root's identity across files
+  std::string name;          // its id, or "#k" (its position in its plant)
+  int order = 0, line = 0;   // branching order; the line of its <root> element
+  int parentIndex = -1;      // its parent in TraceFile::roots
+  Eigen::Matrix3Xd plateMm;  // points [mm]: lateral, downhill, height; origin at its plant's first root's base
+  double radiusMm = 0;       // R of the peaks' hysteresis, and where it came from
+  std::string radiusSource;
+};
+// an RSML file read for analysis: its roots in plate coordinates and how to measure them
+struct TraceFile {
+  std::string file;
+  double timeH = 0;          // the file's time_h (NaN: none)
+  double pixelMm = 0;        // a pixel's size for a pixel file [mm] (0: the file is in a physical unit)
+  bool ours = false;         // written by rootsim (its points are a run's nodes)
+  double dsMm = 0, excludeTipMm = 0;  // the shape analysis' resampling step and tip exclusion (the flags or
+                                      // the defaults of AnalyzeOptions)
+  AnalysisParams set;        // the analysis thresholds (the file's analysis.* keys, else the defaults)
+  std::vector<TracedRoot> roots;
+};
+// checks the number flags of o (SceneError naming the flag)
+void checkTraceFlags(const AnalyzeOptions& o);
+// reads one RSML file (SceneError naming file:line for bad input: no root, a pixel unit without
+// --px-per-mm, ...)
+TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o);
+// the traits of one of its roots, measured at dsMm without the last excludeTipMm (SceneError naming the
+// root's line when it has fewer than two distinct points)
+RootTraits tracedTraits(const TraceFile& tf, const TracedRoot& r, double dsMm, double excludeTipMm);
+// the root --root ID names (its id, "#k", or plant/root), or without an id the file's one primary root
+// (SceneError listing the roots when that is ambiguous or the id matches none)
+const TracedRoot& pickRoot(const TraceFile& tf, const std::string& id);
 
 // the rows of every root of every file (bad input: SceneError naming the file:line or the flag)
 std::vector<RootRow> analyzeTraces(const AnalyzeOptions& o);

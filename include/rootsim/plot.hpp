@@ -4,7 +4,8 @@
 //
 // Labels (titles, axis labels, legend entries, notes) take a small markup: _{...} sets its contents as a
 // subscript, ^{...} as a superscript (smaller, shifted); a single character may follow _ or ^ without
-// braces; a sub- and a superscript in a row stack. Text stays text in the PDF and SVG.
+// braces; a sub- and a superscript in a row stack; \_, \^ and \\ stand for themselves (literalLabel).
+// Text stays text in the PDF and SVG.
 #include <array>
 #include <string>
 #include <vector>
@@ -118,6 +119,8 @@ struct LabelLayout {
 // the layout of a label (markup above) at font size `size`, its sub- and superscripts no smaller than
 // scriptMin (same units)
 LabelLayout layoutLabel(const std::string& label, double size, bool bold = false, double scriptMin = 0);
+// text shown as it is in a label (a scene key such as tropism.twist_r_tau): its _, ^ and \ escaped
+std::string literalLabel(const std::string& text);
 
 struct SaveOptions {
   double dpi = 300;             // PNG resolution (stored in its pHYs chunk)

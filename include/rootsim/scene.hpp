@@ -27,6 +27,9 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
 std::string readSceneFile(const std::string& path, const std::string& kind = "scene file");
 Scene parseScene(const std::string& text, const std::string& sourceName,
                  const std::vector<std::string>& overrides = {});
+// the type of a scene key "section.key" as messages name it ("a number", "an integer", "true or false",
+// "a string", "an array of 3 numbers"), or "" when the schema has no such key
+std::string sceneKeyType(const std::string& key);
 // the scene of a model built in code (the figure cases), without text: every key read from the model
 // through the schema, checked like a scene file's (ranges, relations, obstacles clear of the root), and
 // the resolved text a run directory holds, the same text a scene file with these values resolves to.

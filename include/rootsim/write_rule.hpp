@@ -36,6 +36,11 @@ const FolderSpec& sweepFolder();
 const FolderSpec& framesFolder();
 // the folder of `analyze`: marker .rootsim-analysis, analysis.csv, analysis.json
 const FolderSpec& analysisFolder();
+// the folder of `compare`: marker .rootsim-compare, compare.json, compare.csv, compare.{pdf,svg,png}
+const FolderSpec& compareFolder();
+// the folder of `fit`: marker .rootsim-fit, fit.json, evaluations.csv, base.toml, design.toml, best.toml,
+// compare.* and landscape.* pictures, and runs/ (a sweep folder: its evaluations' run directories)
+const FolderSpec& fitFolder();
 // a ParaView folder (export --paraview): marker .rootsim-paraview, step_NNNNNN.vtp, root.pvd, plate.vtp,
 // open_in_paraview.py (docs/paraview.md)
 const FolderSpec& paraviewFolder();

@@ -129,8 +129,7 @@ std::string rootKey(const rsml::Plant& p, std::size_t pi, const rsml::Root& r, s
 
 }  // namespace
 
-std::vector<RootRow> analyzeTraces(const AnalyzeOptions& o) {
-  if (o.files.empty()) throw SceneError("analyze: give at least one RSML file");
+void checkTraceFlags(const AnalyzeOptions& o) {
   if (given(o.pxPerMm) && !(o.pxPerMm > 0 && std::isfinite(o.pxPerMm)))
     throw SceneError("--px-per-mm " + num(o.pxPerMm) + ": must be > 0");
   if (given(o.dsMm) && !(o.dsMm >= 0 && o.dsMm <= 10))
@@ -139,113 +138,163 @@ std::vector<RootRow> analyzeTraces(const AnalyzeOptions& o) {
     throw SceneError("--exclude-tip-mm " + num(o.excludeTipMm) + ": must be >= 0 mm");
   if (given(o.radiusMm) && !(o.radiusMm > 0 && o.radiusMm <= 100))
     throw SceneError("--radius-mm " + num(o.radiusMm) + ": must be in (0, 100] mm");
+  parseDownhill(o.downhill);
+}
+
+TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
   const Axes ax = parseDownhill(o.downhill);
+  if (!fs::is_regular_file(file)) throw SceneError(file + ": RSML file not found");
+  const rsml::Document doc = rsml::readRsml(file);
+  TraceFile tf;
+  tf.file = file;
+  // units: the reader gives millimetres, or pixels for a pixel file
+  double scale = 1.0;  // file units as read -> mm
+  if (isPixelUnit(doc.meta.unit)) {
+    if (!given(o.pxPerMm))
+      throw SceneError(file + ": its unit is " + doc.meta.unit + " with no physical scale; give --px-per-mm R");
+    scale = 1.0 / o.pxPerMm;
+    tf.pixelMm = scale;
+  } else if (given(o.pxPerMm)) {
+    throw SceneError("--px-per-mm " + num(o.pxPerMm) + ": " + file + " is in " + doc.meta.unit +
+                     ", not pixels (its scale is known)");
+  }
+  std::size_t roots = 0;
+  for (const rsml::Plant& p : doc.plants) roots += p.roots.size();
+  if (roots == 0) throw SceneError(file + ":1: no root in the file (no <plant> with a <root>)");
+  tf.ours = doc.meta.software == "rootsim";
+  tf.dsMm = given(o.dsMm) ? o.dsMm : (tf.ours ? 0.0 : kRunElementMm);
+  const double zone = sceneNumber(doc, "growth.growth_zone_mm");
+  tf.excludeTipMm = given(o.excludeTipMm) ? o.excludeTipMm : (std::isfinite(zone) ? zone : 0.0);
+  tf.set = analysisOf(doc);
+  tf.timeH = doc.hasTime ? doc.timeH : kNaN;
+  for (std::size_t pi = 0; pi < doc.plants.size(); ++pi) {
+    const rsml::Plant& plant = doc.plants[pi];
+    // every root of the plant in plate coordinates [mm], with the origin at the plant's first root's base
+    double ox = 0, oy = 0;
+    if (!plant.roots.empty()) {
+      ox = plant.roots.front().x.front();
+      oy = plant.roots.front().y.front();
+    }
+    const std::size_t first = tf.roots.size();
+    for (std::size_t ri = 0; ri < plant.roots.size(); ++ri) {
+      const rsml::Root& r = plant.roots[ri];
+      TracedRoot t;
+      t.plant = plant.id;
+      t.plantLabel = plant.label;
+      t.root = r.id;
+      t.rootLabel = r.label;
+      t.order = r.order;
+      t.line = r.line;
+      t.key = rootKey(plant, pi, r, ri);
+      t.name = r.id.empty() ? "#" + std::to_string(ri) : r.id;
+      if (r.parent >= 0) {
+        const rsml::Root& par = plant.roots[static_cast<std::size_t>(r.parent)];
+        t.parent = par.id.empty() ? "#" + std::to_string(r.parent) : par.id;
+        t.parentIndex = static_cast<int>(first) + r.parent;
+      }
+      Eigen::Matrix3Xd c(3, static_cast<Eigen::Index>(r.points()));
+      for (std::size_t k = 0; k < r.points(); ++k) {
+        const double x = (r.x[k] - ox) * scale, y = (r.y[k] - oy) * scale;
+        c(0, static_cast<Eigen::Index>(k)) = ax.lx * x + ax.ly * y;
+        c(1, static_cast<Eigen::Index>(k)) = ax.dx * x + ax.dy * y;
+        c(2, static_cast<Eigen::Index>(k)) = r.hasZ ? r.z[k] * scale : 0.0;
+      }
+      t.plateMm = std::move(c);
+      // the radius of the peaks' hysteresis
+      if (given(o.radiusMm)) {
+        t.radiusMm = o.radiusMm;
+        t.radiusSource = "--radius-mm";
+      } else if (std::isfinite(sceneNumber(doc, "root.radius_mm")) && r.order == 0) {
+        t.radiusMm = sceneNumber(doc, "root.radius_mm");
+        t.radiusSource = "root.radius_mm";
+      } else if (std::isfinite(median(r.diameterMm))) {
+        t.radiusMm = 0.5 * median(r.diameterMm) * scale;
+        t.radiusSource = "diameter";
+      } else {
+        t.radiusMm = kDefaultRadiusMm;
+        t.radiusSource = "default";
+      }
+      tf.roots.push_back(std::move(t));
+    }
+  }
+  return tf;
+}
+
+RootTraits tracedTraits(const TraceFile& tf, const TracedRoot& t, double dsMm, double excludeTipMm) {
+  try {
+    return rootTraits(t.plateMm, dsMm, excludeTipMm, t.radiusMm, tf.set);
+  } catch (const std::invalid_argument&) {
+    throw SceneError(tf.file + ":" + std::to_string(t.line) + ": root " + t.name + " has fewer than two distinct points");
+  }
+}
+
+const TracedRoot& pickRoot(const TraceFile& tf, const std::string& id) {
+  if (!id.empty()) {
+    std::vector<const TracedRoot*> hits;
+    for (const TracedRoot& r : tf.roots)
+      if (r.root == id || r.name == id || r.key == id) hits.push_back(&r);
+    if (hits.size() == 1) return *hits.front();
+    std::string ids;
+    for (const TracedRoot& r : tf.roots) ids += (ids.empty() ? "" : ", ") + r.key;
+    throw SceneError("--root " + id + ": " + (hits.empty() ? "no such root" : "several roots have this id; give plant/root") +
+                     " in " + tf.file + " (roots: " + ids + ")");
+  }
+  std::vector<const TracedRoot*> primary;
+  for (const TracedRoot& r : tf.roots)
+    if (r.order == 0) primary.push_back(&r);
+  if (primary.size() == 1) return *primary.front();
+  if (primary.empty()) return tf.roots.front();
+  std::string ids;
+  for (const TracedRoot* r : primary) ids += (ids.empty() ? "" : ", ") + r->key;
+  throw SceneError(tf.file + ": " + std::to_string(primary.size()) + " primary roots (" + ids + "); choose one with --root ID");
+}
+
+std::vector<RootRow> analyzeTraces(const AnalyzeOptions& o) {
+  if (o.files.empty()) throw SceneError("analyze: give at least one RSML file");
+  checkTraceFlags(o);
   const std::vector<double> times = parseTimes(o.times, o.files.size());
 
   std::vector<RootRow> rows;
   std::vector<std::string> keys;
   for (std::size_t fi = 0; fi < o.files.size(); ++fi) {
-    const std::string& file = o.files[fi];
-    if (!fs::is_regular_file(file)) throw SceneError(file + ": RSML file not found");
-    const rsml::Document doc = rsml::readRsml(file);
-    // units: the reader gives millimetres, or pixels for a pixel file
-    double scale = 1.0;  // file units as read -> mm
-    if (isPixelUnit(doc.meta.unit)) {
-      if (!given(o.pxPerMm))
-        throw SceneError(file + ": its unit is " + doc.meta.unit + " with no physical scale; give --px-per-mm R");
-      scale = 1.0 / o.pxPerMm;
-    } else if (given(o.pxPerMm)) {
-      throw SceneError("--px-per-mm " + num(o.pxPerMm) + ": " + file + " is in " + doc.meta.unit +
-                       ", not pixels (its scale is known)");
-    }
-    std::size_t roots = 0;
-    for (const rsml::Plant& p : doc.plants) roots += p.roots.size();
-    if (roots == 0) throw SceneError(file + ":1: no root in the file (no <plant> with a <root>)");
-    const bool ours = doc.meta.software == "rootsim";
-    const double ds = given(o.dsMm) ? o.dsMm : (ours ? 0.0 : kRunElementMm);
-    const double zone = sceneNumber(doc, "growth.growth_zone_mm");
-    const double exclude = given(o.excludeTipMm) ? o.excludeTipMm : (std::isfinite(zone) ? zone : 0.0);
-    const AnalysisParams set = analysisOf(doc);
-    const double timeH = !times.empty() ? times[fi] : doc.hasTime ? doc.timeH : kNaN;
-    for (std::size_t pi = 0; pi < doc.plants.size(); ++pi) {
-      const rsml::Plant& plant = doc.plants[pi];
-      // every root of the plant in plate coordinates [mm], with the origin at the plant's first root's base
-      std::vector<Eigen::Matrix3Xd> plate(plant.roots.size());
-      double ox = 0, oy = 0;
-      if (!plant.roots.empty()) {
-        ox = plant.roots.front().x.front();
-        oy = plant.roots.front().y.front();
-      }
-      for (std::size_t ri = 0; ri < plant.roots.size(); ++ri) {
-        const rsml::Root& r = plant.roots[ri];
-        Eigen::Matrix3Xd c(3, static_cast<Eigen::Index>(r.points()));
-        for (std::size_t k = 0; k < r.points(); ++k) {
-          const double x = (r.x[k] - ox) * scale, y = (r.y[k] - oy) * scale;
-          c(0, static_cast<Eigen::Index>(k)) = ax.lx * x + ax.ly * y;
-          c(1, static_cast<Eigen::Index>(k)) = ax.dx * x + ax.dy * y;
-          c(2, static_cast<Eigen::Index>(k)) = r.hasZ ? r.z[k] * scale : 0.0;
-        }
-        plate[ri] = std::move(c);
-      }
-      for (std::size_t ri = 0; ri < plant.roots.size(); ++ri) {
-        const rsml::Root& r = plant.roots[ri];
-        RootRow row;
-        row.file = file;
-        row.timeH = timeH;
-        row.plant = plant.id;
-        row.plantLabel = plant.label;
-        row.root = r.id;
-        row.rootLabel = r.label;
-        row.order = r.order;
-        row.points = static_cast<int>(r.points());
-        if (r.parent >= 0) {
-          const rsml::Root& par = plant.roots[static_cast<std::size_t>(r.parent)];
-          row.parent = par.id.empty() ? "#" + std::to_string(r.parent) : par.id;
-        }
-        // the radius of the peaks' hysteresis
-        double radius = kNaN;
-        if (given(o.radiusMm)) {
-          radius = o.radiusMm;
-          row.radiusSource = "--radius-mm";
-        } else if (std::isfinite(sceneNumber(doc, "root.radius_mm")) && r.order == 0) {
-          radius = sceneNumber(doc, "root.radius_mm");
-          row.radiusSource = "root.radius_mm";
-        } else if (std::isfinite(median(r.diameterMm))) {
-          radius = 0.5 * median(r.diameterMm) * scale;
-          row.radiusSource = "diameter";
-        } else {
-          radius = kDefaultRadiusMm;
-          row.radiusSource = "default";
-        }
-        RootTraits t;
-        try {
-          t = rootTraits(plate[ri], ds, exclude, radius, set);
-        } catch (const std::invalid_argument&) {
-          throw SceneError(file + ":" + std::to_string(r.line) + ": root " + (r.id.empty() ? "#" + std::to_string(ri) : r.id) +
-                           " has fewer than two distinct points");
-        }
-        row.lengthMm = t.lengthMm;
-        row.chordMm = t.chordMm;
-        row.tortuosity = t.tortuosity;
-        row.skewDeg = t.skewDeg;
-        row.insertionDeg = r.parent >= 0 ? insertionAngleDeg(plate[static_cast<std::size_t>(r.parent)], plate[ri], kInsertionSpanMm) : kNaN;
-        row.pattern = t.shape.pattern;
-        row.wavelengthMm = t.shape.wavelength / units::mm;
-        row.amplitudeMm = t.shape.amplitude / units::mm;
-        row.amplitudeHalfMm = t.shape.amplitudeHalf / units::mm;
-        row.lateralPeaks = t.shape.peaks;
-        row.waves = t.shape.waves;
-        row.skewWavesDeg = t.shape.skew / units::deg;
-        row.maxKappaPerMm = t.shape.maxKappa * units::mm;
-        row.thetaMinDeg = t.shape.thetaMin / units::deg;
-        row.thetaMaxDeg = t.shape.thetaMax / units::deg;
-        row.dsMm = ds;
-        row.excludeTipMm = exclude;
-        row.radiusMm = radius;
-        row.growthRateMmPerH = kNaN;
-        rows.push_back(row);
-        keys.push_back(rootKey(plant, pi, r, ri));
-      }
+    const TraceFile tf = readTraceFile(o.files[fi], o);
+    const double timeH = !times.empty() ? times[fi] : tf.timeH;
+    for (const TracedRoot& r : tf.roots) {
+      RootRow row;
+      row.file = tf.file;
+      row.timeH = timeH;
+      row.plant = r.plant;
+      row.plantLabel = r.plantLabel;
+      row.root = r.root;
+      row.rootLabel = r.rootLabel;
+      row.parent = r.parent;
+      row.order = r.order;
+      row.points = static_cast<int>(r.plateMm.cols());
+      row.radiusSource = r.radiusSource;
+      const RootTraits t = tracedTraits(tf, r, tf.dsMm, tf.excludeTipMm);
+      row.lengthMm = t.lengthMm;
+      row.chordMm = t.chordMm;
+      row.tortuosity = t.tortuosity;
+      row.skewDeg = t.skewDeg;
+      row.insertionDeg = r.parentIndex >= 0
+                             ? insertionAngleDeg(tf.roots[static_cast<std::size_t>(r.parentIndex)].plateMm, r.plateMm, kInsertionSpanMm)
+                             : kNaN;
+      row.pattern = t.shape.pattern;
+      row.wavelengthMm = t.shape.wavelength / units::mm;
+      row.amplitudeMm = t.shape.amplitude / units::mm;
+      row.amplitudeHalfMm = t.shape.amplitudeHalf / units::mm;
+      row.lateralPeaks = t.shape.peaks;
+      row.waves = t.shape.waves;
+      row.skewWavesDeg = t.shape.skew / units::deg;
+      row.maxKappaPerMm = t.shape.maxKappa * units::mm;
+      row.thetaMinDeg = t.shape.thetaMin / units::deg;
+      row.thetaMaxDeg = t.shape.thetaMax / units::deg;
+      row.dsMm = tf.dsMm;
+      row.excludeTipMm = tf.excludeTipMm;
+      row.radiusMm = r.radiusMm;
+      row.growthRateMmPerH = kNaN;
+      rows.push_back(row);
+      keys.push_back(r.key);
     }
   }
   // growth rates: the same root in the file nearest before in time

@@ -5,6 +5,8 @@
 #include <vector>
 
 #include "rootsim/analyze_traces.hpp"
+#include "rootsim/compare_trace.hpp"
+#include "rootsim/fit_trace.hpp"
 #include "rootsim/export_run.hpp"
 #include "rootsim/montage_runs.hpp"
 #include "rootsim/movie_look.hpp"
@@ -37,6 +39,9 @@ int montageCommand(const app::MontageOptions& o);
 int exportCommand(const app::ExportOptions& o);
 // analyze: the app library's command (rootsim_app); SceneError when it is not built
 int analyzeCommand(const app::AnalyzeOptions& o);
+// compare and fit: the app library's commands (docs/experiments.md); SceneError when it is not built
+int compareCommand(const app::CompareOptions& o);
+int fitCommand(const app::FitOptions& o);
 
 struct ModesOptions {
   std::string runDir;

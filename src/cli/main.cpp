@@ -106,6 +106,36 @@ int main(int argc, char** argv) {
   cAnalyze->add_flag("--force", analyze.force, "replace an analysis folder rootsim wrote earlier");
   cAnalyze->add_flag("--quiet", analyze.quiet, "no progress output");
 
+  // the traced root's flags, shared by compare and fit
+  auto traceFlags = [](CLI::App* c, app::TraceFlags& t) {
+    c->add_option("--root", t.root, "the traced root: its id, #k, or plant/root (default: the file's one primary root)");
+    c->add_option("--px-per-mm", t.pxPerMm, "pixels per millimetre, for a trace whose unit is pixel");
+    c->add_option("--downhill", t.downhill, "the plate's downhill in the trace: +y (default), -y, or an angle in degrees from +y towards +x");
+    c->add_option("--sigma-mm", t.sigmaMm, "position uncertainty of a traced point [mm] (default: one pixel of a pixel file, else 0.05)");
+  };
+  app::CompareOptions compare;
+  CLI::App* cCompare = app.add_subcommand("compare", "a traced root (RSML) over a run's root: picture, observables side by side, shape distances");
+  cCompare->add_option("run_dir", compare.runDir, "run directory")->required();
+  cCompare->add_option("trace", compare.trace.trace, "RSML file")->required();
+  traceFlags(cCompare, compare.trace);
+  cCompare->add_option("--at-h", compare.atH, "the run's snapshot nearest this time [h] (default: the first as long as the trace)");
+  cCompare->add_option("--out", compare.out, "output folder (default compare/<run>_vs_<trace>)");
+  cCompare->add_flag("--force", compare.force, "replace a compare folder rootsim wrote earlier");
+  cCompare->add_flag("--quiet", compare.quiet, "no progress output");
+
+  app::FitOptions fit;
+  CLI::App* cFit = app.add_subcommand("fit", "fit free scene keys to a traced root (RSML): fit.json, the best fit's picture, the landscape");
+  cFit->add_option("trace", fit.trace.trace, "RSML file")->required();
+  cFit->add_option("--scene", fit.scene, "base scene (TOML)")->required();
+  cFit->add_option("--free", fit.free, "free keys and their bounds: KEY=LO:HI[,KEY=LO:HI...]")->required();
+  traceFlags(cFit, fit.trace);
+  cFit->add_option("--objective", fit.objective, "observables (default: chi-square of skew, wavelength, amplitude) or shape (RMS distance at equal arc length)");
+  cFit->add_option("-j,--jobs", fit.jobs, "simultaneous runs");
+  cFit->add_option("--budget", fit.budget, "most evaluations (default 100)");
+  cFit->add_option("--out", fit.out, "the fit's folder (resumable: a killed fit continues where it stopped)")->required();
+  cFit->add_flag("--force", fit.force, "start again in a fit folder of another scene or trace");
+  cFit->add_flag("--quiet", fit.quiet, "no progress output");
+
   app::MontageOptions montage;
   CLI::App* cMontage = app.add_subcommand("montage", "several runs side by side on one scale and one clock");
   cMontage->add_option("run_dirs", montage.runDirs, "run directories");
@@ -176,6 +206,8 @@ int main(int argc, char** argv) {
     if (cModes->parsed()) return cli::modesCommand(modes);
     if (cExport->parsed()) return cli::exportCommand(exportOpts);
     if (cAnalyze->parsed()) return cli::analyzeCommand(analyze);
+    if (cCompare->parsed()) return cli::compareCommand(compare);
+    if (cFit->parsed()) return cli::fitCommand(fit);
     if (cFigure->parsed()) return cli::figureCommand(figure);
   } catch (const SceneError& e) {
     std::fprintf(stderr, "rootsim: error: %s\n", e.what());

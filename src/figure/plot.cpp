@@ -91,6 +91,10 @@ std::vector<Run> parseLabel(const std::string& s) {
   };
   std::string cur;
   for (size_t i = 0; i < s.size(); ++i) {
+    if (s[i] == '\\' && i + 1 < s.size() && (s[i + 1] == '_' || s[i + 1] == '^' || s[i + 1] == '\\')) {
+      cur += s[++i];  // an escaped _, ^ or backslash: itself
+      continue;
+    }
     if ((s[i] == '_' || s[i] == '^') && i + 1 < s.size()) {
       const int level = s[i] == '_' ? -1 : 1;
       std::string inner;
@@ -714,6 +718,15 @@ void saveFigure(const Figure& fig, const std::string& base, const SaveOptions& s
   if (!ec) fs::rename(svgTmp, svg, ec);
   if (!ec) fs::rename(pdfTmp, pdf, ec);
   if (ec) throw RunError("cannot rename figure files to " + base + ".{png,svg,pdf}: " + ec.message());
+}
+
+std::string literalLabel(const std::string& text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '_' || c == '^' || c == '\\') out += '\\';
+    out += c;
+  }
+  return out;
 }
 
 LabelLayout layoutLabel(const std::string& label, double size, bool bold, double scriptMin) {

@@ -389,6 +389,13 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
   return sc;
 }
 
+std::string sceneKeyType(const std::string& key) {
+  const auto dot = key.find('.');
+  if (dot == std::string::npos) return "";
+  const KeySpec* k = findKey(key.substr(0, dot), key.substr(dot + 1));
+  return k ? typeName(k->type) : "";
+}
+
 Scene sceneOf(const Model& model) {
   const std::string origin = "model " + printable(model.name);
   const Values values = valuesOf(model, origin);

@@ -97,6 +97,31 @@ bool isParaviewEntry(const fs::path&, const std::string& name) {
   return true;
 }
 
+bool isFigureFile(const std::string& base, const char* stem) {
+  for (const char* ext : {".pdf", ".svg", ".png"})
+    if (base == std::string(stem) + ext) return true;
+  return false;
+}
+
+// what `compare` writes (docs/experiments.md): compare.json, compare.csv, the picture
+bool isCompareEntry(const fs::path&, const std::string& name) {
+  const std::string base = stripTemp(name);
+  return base == ".rootsim-compare" || base == "compare.json" || base == "compare.csv" || isFigureFile(base, "compare");
+}
+
+// what `fit` writes (docs/experiments.md): its files, the best fit's picture, the landscape, and runs/,
+// the sweep folder of its evaluations
+bool isFitEntry(const fs::path& dir, const std::string& name) {
+  if (isLockFile(name)) return true;
+  const std::string base = stripTemp(name);
+  if (base == ".rootsim-fit" || base == "fit.json" || base == "evaluations.csv" || base == "base.toml" ||
+      base == "design.toml" || base == "best.toml" || isFigureFile(base, "compare") || isFigureFile(base, "landscape"))
+    return true;
+  if (name != "runs") return false;
+  std::error_code ec;
+  return fs::is_directory(fs::symlink_status(dir / name, ec)) && whyNotOurs(dir / name, sweepFolder()).empty();
+}
+
 fs::path absoluteNormal(const fs::path& p) {
   std::error_code ec;
   fs::path a = fs::weakly_canonical(fs::absolute(p, ec), ec);
@@ -199,6 +224,14 @@ const FolderSpec& framesFolder() {
 
 const FolderSpec& analysisFolder() {
   static const FolderSpec s{".rootsim-analysis", "rootsim analysis folder", isAnalysisEntry};
+  return s;
+}
+const FolderSpec& compareFolder() {
+  static const FolderSpec s{".rootsim-compare", "rootsim compare folder", isCompareEntry};
+  return s;
+}
+const FolderSpec& fitFolder() {
+  static const FolderSpec s{".rootsim-fit", "rootsim fit folder", isFitEntry};
   return s;
 }
 const FolderSpec& paraviewFolder() {

@@ -1,0 +1,34 @@
+#pragma once
+// The pictures of `rootsim compare` and `rootsim fit` (docs/experiments.md): a traced root over a simulated
+// one on the plate, and a fit's objective over two free parameters. Each is written as PDF, SVG and PNG
+// (saveFigure).
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rootsim/model.hpp"
+#include "rootsim/snapshot.hpp"
+
+namespace rootsim {
+
+// the trace (plate coordinates [mm]: lateral, downhill; aligned at the simulated root's seed) over the
+// simulated root (a snapshot of a run of model m, drawn as the figure panels draw roots: tube, +-d1
+// stripes, the plate's 1 mm grid, obstacles), and beside it both roots' lateral position along downhill.
+// title: the figure's title; caption: a line under it (distances, chi-square)
+void saveComparePanel(const Model& m, const Snapshot& sim, const Eigen::Matrix3Xd& traceMm, const std::string& title,
+                      const std::string& caption, const std::string& pathWithoutExtension);
+
+// a fit's objective over two free parameters: every run coloured by its chi-square above the lowest (the
+// start design's grid as cells), the fit, and the 1-sigma ellipse of the covariance when there is one
+// (cov null: none); beside it (zoomX, zoomY > 0) the same around the fit, +- zoomX and +- zoomY
+struct LandscapePoint {
+  double x = 0, y = 0, chi2 = 0;
+  bool design = false;  // a cell of the start design's grid (else an optimiser's or the stencil's point)
+};
+void saveLandscapePanel(const std::vector<LandscapePoint>& pts, const std::string& xKey, const std::string& yKey,
+                        double xLo, double xHi, double yLo, double yHi, int gridLevels, double bestX, double bestY,
+                        const Eigen::Matrix2d* cov, double zoomX, double zoomY, const std::string& title,
+                        const std::string& pathWithoutExtension);
+
+}  // namespace rootsim

@@ -1,0 +1,80 @@
+#pragma once
+// `rootsim compare RUN_DIR TRACE.rsml` (docs/experiments.md, "Compare"): a traced root beside a simulated
+// one, both in plate coordinates and aligned at the seed: the picture, the observables side by side with
+// the trace's uncertainties, chi-square, and two shape distances. Its pieces are what every evaluation of
+// `rootsim fit` does.
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rootsim/analyze_traces.hpp"
+#include "rootsim/model.hpp"
+#include "rootsim/snapshot.hpp"
+#include "rootsim/trace_match.hpp"
+
+namespace rootsim::app {
+
+// how to read the traced root (the flags compare and fit share)
+struct TraceFlags {
+  static constexpr double kUnset = AnalyzeOptions::kUnset;
+  std::string trace;              // the RSML file
+  std::string root;               // --root ID (default: the file's one primary root)
+  double pxPerMm = kUnset;        // --px-per-mm for a pixel file
+  std::string downhill = "+y";    // --downhill +y | -y | DEG
+  double sigmaMm = kUnset;        // --sigma-mm: a traced point's position uncertainty [mm]; default: one
+                                  // pixel of a pixel file, else 0.05 mm (one pixel of a 20 px/mm scan)
+};
+
+// a traced root made ready for comparison with runs of model m: in plate coordinates [mm] with its base
+// at the origin, measured with m's analysis (its growth zone left out, its R for the peaks' hysteresis)
+struct TraceTarget {
+  std::string file, rootKey;
+  Eigen::Matrix3Xd plateMm;
+  RootTraits traits;
+  double sigmaMm = 0;
+  std::string sigmaSource;        // "--sigma-mm", "pixel", "default"
+  double dsMm = 0;                // the trace's resampling step [mm]
+};
+// SceneError for bad input (the file, the flags, the root)
+TraceTarget loadTarget(const TraceFlags& f, const Model& m);
+
+// the simulated root of a snapshot of a run of model m, measured as the trace is
+struct SimRoot {
+  Eigen::Matrix3Xd plateMm;       // nodes in plate coordinates [mm], the seed (node 0) at the origin
+  RootTraits traits;
+  double timeH = 0;
+  int step = 0;
+};
+SimRoot simRootOf(const Model& m, const Snapshot& s);
+
+struct Comparison {
+  std::vector<Observation> obs;
+  double chi2 = 0;
+  int used = 0;                   // observables in chi2
+  double distanceMm = 0;          // arcLengthDistanceMm at 0.05 mm over the shorter root
+  double frechetMm = 0;           // frechetDistanceMm at 0.05 mm
+};
+Comparison compareRoots(const TraceTarget& t, const SimRoot& s);
+
+// a one-line summary "distance 0.12 mm (RMS at equal arc length), Frechet 0.3 mm, chi2 1.2 (3 observables)"
+std::string comparisonCaption(const Comparison& c);
+// the observables table of compare.csv (name, unit, trace, sim, sigma, residual, used, how)
+std::string observablesCsv(const Comparison& c);
+
+struct CompareOptions {
+  static constexpr double kUnset = AnalyzeOptions::kUnset;
+  std::string runDir;
+  TraceFlags trace;
+  double atH = kUnset;            // --at-h: the run's snapshot nearest this time; default: the first
+                                  // snapshot as long as the trace (the final one when none is)
+  std::string out;                // --out DIR (default compare/<run>_vs_<trace stem>)
+  bool force = false;
+  bool quiet = false;
+};
+// compare.json, compare.csv and compare.{pdf,svg,png} into --out (a compare folder, written whole); the
+// table on stdout. Returns 0.
+int compareCommand(const CompareOptions& o);
+
+}  // namespace rootsim::app

@@ -1,0 +1,68 @@
+#pragma once
+// `rootsim fit TRACE.rsml --scene BASE.toml --free KEY=LO:HI,...` (docs/experiments.md, "Fit"): the values of
+// free scene keys whose simulated root best matches a traced one. A start design (a grid over the box,
+// written as a sweep file and run as a sweep), then trust regions: runs spread over a box, a quadratic
+// response surface of the outputs (response_surface.hpp) whose minimum (NLopt's BOBYQA) centres the next,
+// smaller box; the surface's slope and the runs' scatter about it give the uncertainties and the
+// directions the trace cannot determine. Every evaluation is a run directory in OUT/runs, so a killed fit
+// resumes where it stopped.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rootsim/compare_trace.hpp"
+
+namespace rootsim::app {
+
+struct FitOptions {
+  TraceFlags trace;
+  std::string scene;                     // --scene BASE.toml
+  std::string free;                      // --free KEY=LO:HI[,KEY=LO:HI...]
+  std::string objective = "observables"; // --objective observables | shape
+  int jobs = 1;                          // -j: simultaneous runs
+  int budget = 100;                      // --budget: most evaluations (design, search and stencil together)
+  std::string out;                       // --out DIR
+  bool force = false;
+  bool quiet = false;
+};
+
+struct FreeKey {
+  std::string key;
+  double lo = 0, hi = 0;
+};
+// parses --free (SceneError naming the item: a key not in the scene schema, not a number key, a bound
+// outside its range, LO >= HI, growth.steps, or a key that changes how far the root grows)
+std::vector<FreeKey> parseFreeKeys(const std::string& text, const std::string& scenePath);
+
+struct FitEvaluation {
+  std::vector<double> x;     // the free keys' values
+  std::string phase;         // "design", "search", "stencil"
+  std::string dir;           // its run directory
+  double objective = 0;      // chi-square of its outputs against the trace's (with the model's scatter
+                             // added in the report; the trace's uncertainty alone while the fit runs)
+  double chi2 = 0;           // chi-square of the observables (trace's uncertainty alone)
+  double distanceMm = 0;     // RMS distance at equal arc length
+  std::string error;         // "" or why the run failed (its objective is then kFailedObjective)
+  Eigen::VectorXd sim;       // the outputs the objective compares (FitComponents::sim)
+  long order = 0;            // when it was asked for: the design's point index, then each batch's in turn
+};
+inline constexpr double kFailedObjective = 1e12;
+
+struct FitReport {
+  std::vector<FreeKey> keys;
+  std::vector<FitEvaluation> evaluations;  // in the order they were made
+  int best = -1;                           // index into evaluations
+  std::vector<double> sigma;               // per key (NaN: flat or at a bound)
+  std::vector<std::string> notes;          // identifiability and bounds, in words
+  std::string out;
+};
+
+// runs the fit (SceneError for bad input before anything is written; RunError when no evaluation ran)
+FitReport runFit(const FitOptions& o, const std::function<void(const std::string&)>& log);
+
+// the command: the fit, then fit.json, evaluations.csv, best.toml, compare.* and (two keys) landscape.*
+int fitCommand(const FitOptions& o);
+
+}  // namespace rootsim::app

@@ -1,0 +1,65 @@
+#pragma once
+// A simulated root against a traced one (docs/experiments.md, "Compare" and "Fit"): shape distances
+// between two centrelines in plate coordinates, the observables side by side with the uncertainty the
+// trace's resolution gives each, the chi-square objective a fit minimises, and the curvature of that
+// objective at its minimum (uncertainties, and the directions the observables cannot see). Plain
+// geometry and linear algebra: no file formats here.
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rootsim/traits.hpp"
+
+namespace rootsim {
+
+// the root-mean-square distance [mm] between the points of a and b at equal fractions of their arc
+// lengths from their first points (both in plate coordinates [mm], base first), sampled about every dsMm
+// along the longer one: arc-length alignment that a noisy trace's extra length does not shift. It sees a
+// wave's phase and a skew alike. Throws std::invalid_argument for a polyline without length or dsMm <= 0.
+double arcLengthDistanceMm(const Eigen::Matrix3Xd& a, const Eigen::Matrix3Xd& b, double dsMm);
+
+// the discrete Frechet distance [mm] between the two polylines resampled every dsMm (the shortest leash
+// that walks both, each only forwards: Eiter & Mannila 1994); O(n m) time and O(m) memory
+double frechetDistanceMm(const Eigen::Matrix3Xd& a, const Eigen::Matrix3Xd& b, double dsMm);
+
+// one observable of the trace beside the simulated root's, with the trace's standard uncertainty
+struct Observation {
+  std::string name;   // the analysis.csv column: "skew_deg", "wavelength_mm", ...
+  std::string unit;
+  double trace = 0, sim = 0;
+  double sigma = 0;   // standard uncertainty of the trace's value (same unit)
+  bool used = false;  // part of the objective (else shown only: the trace does not define it)
+  std::string why;    // how sigma was found, or why the observable is not used
+  double residual() const { return used ? (sim - trace) / sigma : 0.0; }
+};
+
+// the observables of a traced root beside a simulated root's, both measured by rootTraits. sigmaPosMm:
+// the standard uncertainty of one traced point's position (a scan's pixel: docs/experiments.md). Used in
+// the objective: the skew over whole waves (or the base-to-tip skew when the trace has no whole wave),
+// the tortuosity, and, when the trace waves, the wavelength and the peak-to-peak amplitude; each sigma
+// from the resolution and the number of waves averaged. Shown only: max curvature and the tangent range.
+std::vector<Observation> observeBoth(const RootTraits& trace, const RootTraits& sim, double sigmaPosMm);
+
+// sum of the squared residuals of the used observables
+double chiSquare(const std::vector<Observation>& obs);
+// how many observables are used
+int usedCount(const std::vector<Observation>& obs);
+
+// the outputs a fit matches (docs/experiments.md, "Fit"): the trace's values with their uncertainty and
+// the simulated root's values, one entry per output
+struct FitComponents {
+  std::vector<std::string> names;
+  Eigen::VectorXd trace, sigma, sim;  // sigma: the square root of cov's diagonal
+  Eigen::MatrixXd cov;                // the trace's values' covariance
+};
+// the observables in the objective (Observation::used); a simulated root without the waves the trace
+// has counts its wavelength and amplitude as 0
+FitComponents observableComponents(const std::vector<Observation>& obs);
+// the shape: the points at fractions k / samples (k = 1 .. samples) of each root's arc length, lateral
+// and downhill [mm] (both polylines in plate coordinates with the seed, their first point, at the
+// origin). Each traced point is known to sigmaMm, and so is the seed the trace is aligned at: its error
+// moves every point alike, a covariance sigmaMm^2 between any two lateral (or two downhill) values.
+FitComponents shapeComponents(const Eigen::Matrix3Xd& trace, const Eigen::Matrix3Xd& sim, double sigmaMm, int samples);
+
+}  // namespace rootsim

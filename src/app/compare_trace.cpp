@@ -1,0 +1,201 @@
+// `rootsim compare RUN_DIR TRACE.rsml`: a traced root beside a run's root (docs/experiments.md, "Compare").
+#include "rootsim/compare_trace.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+
+#include "rootsim/compare_panel.hpp"
+#include "rootsim/errors.hpp"
+#include "rootsim/json.hpp"
+#include "rootsim/number_text.hpp"
+#include "rootsim/plot.hpp"
+#include "rootsim/run_dir.hpp"
+#include "rootsim/scene.hpp"
+#include "rootsim/signature.hpp"
+#include "rootsim/units.hpp"
+#include "rootsim/write_rule.hpp"
+#include "run_files.hpp"
+
+namespace fs = std::filesystem;
+
+namespace rootsim::app {
+
+namespace {
+
+constexpr double kDefaultSigmaMm = 0.05;   // one pixel of a 20 px/mm plate scan [mm]
+constexpr double kDistanceStepMm = 0.05;   // the shape distances' sampling step (a run's element) [mm]
+
+bool given(double v) { return v != TraceFlags::kUnset; }
+
+}  // namespace
+
+TraceTarget loadTarget(const TraceFlags& f, const Model& m) {
+  if (given(f.sigmaMm) && !(f.sigmaMm > 0 && f.sigmaMm <= 10))
+    throw SceneError("--sigma-mm " + numberText(f.sigmaMm) + ": must be in (0, 10] mm");
+  AnalyzeOptions a;
+  a.pxPerMm = f.pxPerMm;
+  a.downhill = f.downhill;
+  // the trace is measured as the run: its growth zone left out, the run's R for the peaks' hysteresis
+  a.excludeTipMm = m.growth.zoneLength / units::mm;
+  a.radiusMm = m.rod.radius / units::mm;
+  checkTraceFlags(a);
+  const TraceFile tf = readTraceFile(f.trace, a);
+  const TracedRoot& r = pickRoot(tf, f.root);
+  TraceTarget t;
+  t.file = f.trace;
+  t.rootKey = r.key;
+  t.plateMm = r.plateMm;
+  for (int i = 0; i < t.plateMm.cols(); ++i) t.plateMm.col(i) -= r.plateMm.col(0);
+  t.dsMm = tf.dsMm;
+  AnalysisParams set = m.analysis;
+  TraceFile measured = tf;
+  measured.set = set;
+  t.traits = tracedTraits(measured, r, tf.dsMm, tf.excludeTipMm);
+  if (given(f.sigmaMm)) {
+    t.sigmaMm = f.sigmaMm;
+    t.sigmaSource = "--sigma-mm";
+  } else if (tf.pixelMm > 0) {
+    t.sigmaMm = tf.pixelMm;
+    t.sigmaSource = "pixel";
+  } else {
+    t.sigmaMm = kDefaultSigmaMm;
+    t.sigmaSource = "default";
+  }
+  return t;
+}
+
+SimRoot simRootOf(const Model& m, const Snapshot& s) {
+  const PlateFrame pf = m.env.plane.frame();
+  SimRoot r;
+  r.timeH = s.timeH;
+  r.step = s.step;
+  r.plateMm.resize(3, s.x.cols());
+  for (int i = 0; i < s.x.cols(); ++i) r.plateMm.col(i) = pf.coords(s.x.col(i) - s.x.col(0)) / units::mm;
+  // the run's nodes as they are, its growth zone left out: what summary.json measures (analyseShape)
+  r.traits = rootTraits(r.plateMm, 0.0, m.growth.zoneLength / units::mm, m.rod.radius / units::mm, m.analysis);
+  return r;
+}
+
+Comparison compareRoots(const TraceTarget& t, const SimRoot& s) {
+  Comparison c;
+  c.obs = observeBoth(t.traits, s.traits, t.sigmaMm);
+  c.chi2 = chiSquare(c.obs);
+  c.used = usedCount(c.obs);
+  c.distanceMm = arcLengthDistanceMm(t.plateMm, s.plateMm, kDistanceStepMm);
+  c.frechetMm = frechetDistanceMm(t.plateMm, s.plateMm, kDistanceStepMm);
+  return c;
+}
+
+std::string comparisonCaption(const Comparison& c) {
+  char b[256];
+  std::snprintf(b, sizeof b, "distance %.3g mm (RMS at equal arc length), Fréchet %.3g mm, χ² %.3g (%d observable%s)",
+                c.distanceMm, c.frechetMm, c.chi2, c.used, c.used == 1 ? "" : "s");
+  return b;
+}
+
+std::string observablesCsv(const Comparison& c) {
+  std::string out = "observable,unit,trace,sim,sigma,residual,used,how\n";
+  auto cell = [](double v) { return std::isfinite(v) ? numberText(v) : std::string(); };
+  for (const Observation& o : c.obs)
+    out += o.name + "," + o.unit + "," + cell(o.trace) + "," + cell(o.sim) + "," + cell(o.used ? o.sigma : std::numeric_limits<double>::quiet_NaN()) + "," +
+           cell(o.used ? o.residual() : std::numeric_limits<double>::quiet_NaN()) + "," + (o.used ? "1" : "0") + ",\"" + o.why + "\"\n";
+  return out;
+}
+
+namespace {
+
+Json observablesJson(const Comparison& c) {
+  Json j;
+  for (const Observation& o : c.obs) {
+    Json e;
+    e.str("unit", o.unit).num("trace", o.trace).num("sim", o.sim).boolean("used", o.used);
+    if (o.used) e.num("sigma", o.sigma).num("residual", o.residual());
+    e.str("how", o.why);
+    j.object(o.name, e);
+  }
+  return j;
+}
+
+void printTable(const Comparison& c) {
+  std::printf("%-18s %12s %12s %10s %9s\n", "observable", "trace", "simulation", "sigma", "residual");
+  for (const Observation& o : c.obs) {
+    if (o.used)
+      std::printf("%-18s %12.4g %12.4g %10.3g %9.3g\n", (o.name).c_str(), o.trace, o.sim, o.sigma, o.residual());
+    else
+      std::printf("%-18s %12.4g %12.4g %10s %9s\n", (o.name).c_str(), o.trace, o.sim, "-", "(shown)");
+  }
+  std::printf("%s\n", comparisonCaption(c).c_str());
+}
+
+}  // namespace
+
+int compareCommand(const CompareOptions& o) {
+  const fs::path run = o.runDir;
+  const std::string runName = fs::absolute(run).lexically_normal().filename().string();
+  const std::string outText =
+      o.out.empty() ? (fs::path("compare") / (runName + "_vs_" + fs::path(o.trace.trace).stem().string())).string() : o.out;
+  const fs::path out = checkOutputName(outText, "--out");
+  if (!fs::is_directory(run) || !whyNotOurs(run, runFolder()).empty())
+    throw SceneError(o.runDir + ": not a run directory (" + (fs::is_directory(run) ? whyNotOurs(run, runFolder()) : "not found") + ")");
+  WriteRule rule;
+  rule.force = o.force;
+  rule.inputs.push_back(WriteInput{run, {}, true});
+  rule.inputs.push_back(WriteInput{o.trace.trace, {}, true});
+  rule.inputs.push_back(workingFolder());
+  claimFolder(out, compareFolder(), rule, "--out", true);
+
+  const Scene scene = loadScene((run / "scene.toml").string());
+  const Model& m = scene.model;
+  const TraceTarget target = loadTarget(o.trace, m);
+  const std::vector<Snapshot> snaps = loadSnapshots(run);
+  int pick = static_cast<int>(snaps.size()) - 1;
+  std::string why = "the final snapshot";
+  if (o.atH != CompareOptions::kUnset) {
+    pick = snapshotNear(snapshotTimes(snaps), o.atH);
+    why = "the snapshot nearest --at-h";
+  } else {
+    // the first snapshot as long as the trace
+    for (int i = 0; i < static_cast<int>(snaps.size()); ++i)
+      if (polylineLength(snaps[static_cast<std::size_t>(i)].x) / units::mm >= target.traits.lengthMm) {
+        pick = i;
+        why = "the first snapshot as long as the trace";
+        break;
+      }
+    if (why == "the final snapshot") why = "the final snapshot (the run is shorter than the trace)";
+  }
+  const Snapshot& snap = snaps[static_cast<std::size_t>(pick)];
+  const SimRoot sim = simRootOf(m, snap);
+  const Comparison c = compareRoots(target, sim);
+
+  StagedFolder folder(out, compareFolder(), rule, "--out");
+  Json j;
+  j.str("software", outputSignatureText())
+      .str("run", o.runDir)
+      .str("trace", o.trace.trace)
+      .str("root", target.rootKey)
+      .num("time_h", sim.timeH)
+      .integer("step", sim.step)
+      .str("snapshot", why)
+      .num("sigma_mm", target.sigmaMm)
+      .str("sigma_source", target.sigmaSource)
+      .num("trace_ds_mm", target.dsMm)
+      .num("distance_mm", c.distanceMm)
+      .str("distance", "root-mean-square distance between the roots' points at equal arc length from the seed, over the shorter root")
+      .num("frechet_mm", c.frechetMm)
+      .num("chi2", c.chi2)
+      .integer("observables_used", c.used)
+      .object("observables", observablesJson(c));
+  writeFileAtomic(folder.work() / "compare.json", j.dump() + "\n");
+  writeFileAtomic(folder.work() / "compare.csv", observablesCsv(c));
+  saveComparePanel(m, snap, target.plateMm,
+                   "trace " + literalLabel(fs::path(o.trace.trace).filename().string() + " (" + target.rootKey + ")") + " over run " + literalLabel(runName) +
+                       " at " + numberText(std::round(sim.timeH * 100) / 100) + " h",
+                   comparisonCaption(c), (folder.work() / "compare").string());
+  folder.commit();
+  printTable(c);
+  if (!o.quiet) std::fprintf(stderr, "wrote %s (compare.json, compare.csv, compare.pdf/.svg/.png; %s)\n", out.c_str(), why.c_str());
+  return 0;
+}
+
+}  // namespace rootsim::app

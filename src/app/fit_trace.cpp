@@ -1,0 +1,789 @@
+// `rootsim fit`: free scene keys fitted to a traced root (docs/experiments.md, "Fit").
+#include "rootsim/fit_trace.hpp"
+
+#include <nlopt.h>
+
+#include <algorithm>
+#include <cmath>
+#include <condition_variable>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "rootsim/compare_panel.hpp"
+#include "rootsim/csv.hpp"
+#include "rootsim/errors.hpp"
+#include "rootsim/json.hpp"
+#include "rootsim/response_surface.hpp"
+#include "rootsim/number_text.hpp"
+#include "rootsim/plot.hpp"
+#include "rootsim/run_dir.hpp"
+#include "rootsim/run_scene.hpp"
+#include "rootsim/scene.hpp"
+#include "rootsim/signature.hpp"
+#include "rootsim/sweep.hpp"
+#include "rootsim/trajectory.hpp"
+#include "rootsim/units.hpp"
+#include "rootsim/write_rule.hpp"
+#include "run_files.hpp"
+
+namespace fs = std::filesystem;
+
+namespace rootsim::app {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+double parseBound(const std::string& text, const std::string& item) {
+  double v = 0;
+  std::size_t used = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (text.empty() || used != text.size() || !std::isfinite(v))
+    throw SceneError("--free " + item + ": \"" + text + "\" is not a number (KEY=LO:HI)");
+  return v;
+}
+
+// keys that change how far the root grows in a number of steps: the fit grows every evaluation to the
+// trace's length with one growth.steps
+const char* const kGrowthKeys[] = {"growth.steps", "growth.step_h", "growth.rate_per_h", "growth.growth_zone_mm",
+                                   "root.initial_length_mm", "growth.enabled"};
+
+// a file-name-safe "key=value" (as sweep directories are named)
+std::string slug(const std::string& key, const std::string& val) {
+  std::string k = key.substr(key.find('.') + 1), s;
+  for (char c : k + "=" + val) s += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '=') ? c : '_';
+  return s;
+}
+
+std::string fileText(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+}  // namespace
+
+std::vector<FreeKey> parseFreeKeys(const std::string& text, const std::string& scenePath) {
+  std::vector<FreeKey> keys;
+  if (text.empty()) throw SceneError("--free: give at least one KEY=LO:HI");
+  for (const std::string& item : splitCommas(text)) {
+    const auto eq = item.find('='), colon = item.find(':', eq == std::string::npos ? 0 : eq);
+    if (eq == std::string::npos || colon == std::string::npos)
+      throw SceneError("--free " + item + ": expected KEY=LO:HI (e.g. tropism.beta=0.05:0.5)");
+    FreeKey k;
+    k.key = item.substr(0, eq);
+    k.lo = parseBound(item.substr(eq + 1, colon - eq - 1), item);
+    k.hi = parseBound(item.substr(colon + 1), item);
+    const std::string type = sceneKeyType(k.key);
+    if (type.empty()) {
+      // the scene parser names the key and suggests one
+      try {
+        loadScene(scenePath, {k.key + "=0"});
+      } catch (const SceneError& e) {
+        throw SceneError("--free " + item + ": " + e.what());
+      }
+      throw SceneError("--free " + item + ": " + k.key + " is not a scene key");
+    }
+    if (type != "a number") throw SceneError("--free " + item + ": " + k.key + " is " + type + ", not a real number");
+    for (const char* g : kGrowthKeys)
+      if (k.key == g)
+        throw SceneError("--free " + item + ": " + k.key +
+                         " changes how far the root grows; fit grows every evaluation to the trace's length with one "
+                         "growth.steps, so it cannot be free");
+    if (!(k.lo < k.hi)) throw SceneError("--free " + item + ": LO must be below HI");
+    for (double v : {k.lo, k.hi}) {
+      try {
+        loadScene(scenePath, {k.key + "=" + numberText(v)});
+      } catch (const SceneError& e) {
+        throw SceneError("--free " + item + ": the bound " + numberText(v) + " is outside the key's range: " + e.what());
+      }
+    }
+    for (const FreeKey& o : keys)
+      if (o.key == k.key) throw SceneError("--free " + item + ": " + k.key + " is given twice");
+    keys.push_back(k);
+  }
+  return keys;
+}
+
+namespace {
+
+// the smallest trust region's half width, in design cells. A root's outputs are a sensitive function of
+// its parameters: a skewing root's skew jumps by 1-2 degrees between runs whose twist differs by 0.005
+// (docs/experiments.md). A surface fitted in a box not much wider than that chases those jumps: its
+// slopes are the jumps' and its scatter too small, and the uncertainties it gives shrink with the box.
+// A quarter of a design cell (two halvings of the first box) keeps the box wider than the jumps over the
+// measured fits (docs/experiments.md, "Validation")
+constexpr double kSmallestBox = 0.25;
+constexpr int kShapeSamples = 8;
+// trust regions at the smallest box whose minima are averaged
+constexpr int kFinalRegions = 4;   // the shape objective's points along each root
+
+// the outputs of a comparison that the objective uses
+FitComponents componentsOf(const std::string& objective, const TraceTarget& t, const SimRoot& s, const Comparison& c) {
+  return objective == "shape" ? shapeComponents(t.plateMm, s.plateMm, t.sigmaMm, kShapeSamples) : observableComponents(c.obs);
+}
+
+// chi-square of outputs sim against the trace's, with its uncertainty alone
+double chi2Of(const FitComponents& t, const Eigen::VectorXd& sim) {
+  return chiSquareOf(sim, t.trace, t.cov);
+}
+
+// one fit in progress: its evaluations (cached by their values' text, shared by the threads)
+class Fit {
+ public:
+  Fit(const FitOptions& o, std::vector<FreeKey> keys, const fs::path& out, std::string baseText, TraceTarget target,
+      const std::function<void(const std::string&)>& log)
+      : o_(o), keys_(std::move(keys)), out_(out), baseText_(std::move(baseText)), target_(std::move(target)), log_(log) {}
+
+  const std::vector<FreeKey>& keys() const { return keys_; }
+  const TraceTarget& target() const { return target_; }
+  fs::path runs() const { return out_ / "runs"; }
+  const FitComponents& traceComponents() const { return traceComp_; }
+
+  std::vector<double> xOf(const Eigen::VectorXd& u) const {
+    std::vector<double> x(keys_.size());
+    for (std::size_t i = 0; i < keys_.size(); ++i) x[i] = keys_[i].lo + std::clamp(u(static_cast<int>(i)), 0.0, 1.0) * (keys_[i].hi - keys_[i].lo);
+    return x;
+  }
+  Eigen::VectorXd uOf(const std::vector<double>& x) const {
+    Eigen::VectorXd u(static_cast<int>(keys_.size()));
+    for (std::size_t i = 0; i < keys_.size(); ++i) u(static_cast<int>(i)) = (x[i] - keys_[i].lo) / (keys_[i].hi - keys_[i].lo);
+    return u;
+  }
+  std::vector<std::string> texts(const std::vector<double>& x) const {
+    std::vector<std::string> t;
+    for (double v : x) t.push_back(numberText(v));
+    return t;
+  }
+  std::vector<std::string> overrides(const std::vector<std::string>& t) const {
+    std::vector<std::string> ov;
+    for (std::size_t i = 0; i < keys_.size(); ++i) ov.push_back(keys_[i].key + "=" + t[i]);
+    return ov;
+  }
+  Scene sceneAt(const std::vector<double>& x) const {
+    return parseScene(baseText_, (out_ / "base.toml").string(), overrides(texts(x)));
+  }
+
+  // the outputs of the run directory dir of values x (which ran, or was found complete)
+  FitEvaluation measure(const std::vector<double>& x, const std::string& phase, const fs::path& dir, const std::string& error) {
+    FitEvaluation e;
+    e.x = x;
+    e.phase = phase;
+    e.dir = dir.string();
+    e.error = error;
+    if (e.error.empty()) {
+      try {
+        const Scene sc = sceneAt(x);
+        const SimRoot sim = simRootOf(sc.model, loadSnapshots(dir).back());
+        const Comparison c = compareRoots(target_, sim);
+        const FitComponents fc = componentsOf(o_.objective, target_, sim, c);
+        {
+          std::lock_guard lk(mu_);
+          if (traceComp_.names.empty()) traceComp_ = fc;  // the trace's side: the same for every run
+        }
+        e.sim = fc.sim;
+        e.chi2 = c.chi2;
+        e.distanceMm = c.distanceMm;
+        e.objective = chi2Of(fc, fc.sim);
+      } catch (const std::exception& ex) {
+        e.error = ex.what();
+      }
+    }
+    if (!e.error.empty()) {
+      e.objective = e.chi2 = kFailedObjective;
+      e.distanceMm = kNaN;
+    }
+    return e;
+  }
+
+  // the evaluation of x: from the cache, or a run into runs/eval_<values> (another thread running the
+  // same values is waited for)
+  FitEvaluation evaluate(const std::vector<double>& x, const std::string& phase, long order) {
+    const std::vector<std::string> t = texts(x);
+    std::string key;
+    for (const std::string& s : t) key += s + ";";
+    {
+      std::unique_lock lk(mu_);
+      for (;;) {
+        auto it = cache_.find(key);
+        if (it == cache_.end()) break;
+        if (it->second >= 0) return evals_[static_cast<std::size_t>(it->second)];
+        cv_.wait(lk);  // being run by another thread
+      }
+      cache_[key] = -1;
+    }
+    std::string name = "eval";
+    for (std::size_t i = 0; i < keys_.size(); ++i) name += "_" + slug(keys_[i].key, t[i]);
+    const fs::path dir = runs() / name;
+    std::string error;
+    const Scene sc = sceneAt(x);
+    const bool whole = fs::is_directory(dir) && whyNotOurs(dir, runFolder()).empty() && whyNotWhole(dir).empty() &&
+                       fileText(dir / "scene.toml") == sc.resolvedToml;
+    if (!whole) {
+      RunDirOptions ro;
+      ro.force = true;   // a run of this fit's own folder that did not finish
+      ro.resume = true;
+      try {
+        runSceneToDir(sc, dir.string(), ro, nullptr);
+      } catch (const SceneError& ex) {
+        error = ex.what();
+      } catch (const RunError& ex) {
+        error = ex.what();
+      } catch (const RelaxError& ex) {
+        error = ex.what();
+      }
+    }
+    FitEvaluation e = measure(x, phase, dir, error);
+    e.order = order;
+    return record(e, key);
+  }
+
+  FitEvaluation record(FitEvaluation e, const std::string& key) {
+    std::lock_guard lk(mu_);
+    evals_.push_back(e);
+    cache_[key] = static_cast<int>(evals_.size()) - 1;
+    cv_.notify_all();
+    if (!o_.quiet) {
+      std::string line = "fit " + std::to_string(evals_.size()) + "/" + std::to_string(o_.budget) + " " + e.phase;
+      for (std::size_t i = 0; i < keys_.size(); ++i) line += " " + keys_[i].key + "=" + numberText(e.x[i]);
+      char b[200];
+      if (e.error.empty())
+        std::snprintf(b, sizeof b, ": chi2 %.4g against the trace's uncertainty alone (distance %.3g mm)", e.objective, e.distanceMm);
+      else
+        std::snprintf(b, sizeof b, ": FAILED (%.120s)", e.error.c_str());
+      log_(line + b);
+    }
+    return e;
+  }
+
+  void recordDesign(const std::vector<double>& x, const fs::path& dir, const std::string& error, long order) {
+    std::string key;
+    for (const std::string& s : texts(x)) key += s + ";";
+    FitEvaluation e = measure(x, "design", dir, error);
+    e.order = order;
+    record(e, key);
+  }
+
+  // runs the points (scaled) jobs at a time
+  void evaluateAll(const std::vector<Eigen::VectorXd>& us, const std::string& phase) {
+    const long base = nextOrder(static_cast<long>(us.size()));
+    std::mutex m;
+    std::size_t next = 0;
+    std::vector<std::thread> pool;
+    std::string firstError;
+    for (int j = 0; j < std::min<int>(o_.jobs, static_cast<int>(us.size())); ++j)
+      pool.emplace_back([&] {
+        for (;;) {
+          std::size_t i;
+          {
+            std::lock_guard lk(m);
+            if (next >= us.size() || !firstError.empty()) return;
+            i = next++;
+          }
+          try {
+            evaluate(xOf(us[i]), phase, base + static_cast<long>(i));
+          } catch (const std::exception& e) {
+            std::lock_guard lk(m);
+            if (firstError.empty()) firstError = e.what();
+          }
+        }
+      });
+    for (std::thread& t : pool) t.join();
+    if (!firstError.empty()) throw RunError("fit: " + firstError);
+  }
+
+  int count() {
+    std::lock_guard lk(mu_);
+    return static_cast<int>(evals_.size());
+  }
+  // every evaluation in the order they were asked for (the design's points, then each batch's), whatever
+  // order the threads finished them in: the same fit gives the same surfaces and the same files
+  std::vector<FitEvaluation> evaluations() {
+    std::lock_guard lk(mu_);
+    std::vector<FitEvaluation> e = evals_;
+    std::stable_sort(e.begin(), e.end(), [](const FitEvaluation& a, const FitEvaluation& b) { return a.order < b.order; });
+    return e;
+  }
+  // the first of `count` order numbers after the design's
+  long nextOrder(long count) {
+    std::lock_guard lk(mu_);
+    const long o = next_;
+    next_ += count;
+    return o;
+  }
+
+ private:
+  const FitOptions& o_;
+  std::vector<FreeKey> keys_;
+  fs::path out_;
+  std::string baseText_;
+  TraceTarget target_;
+  const std::function<void(const std::string&)>& log_;
+  std::mutex mu_;
+  std::condition_variable cv_;
+  std::map<std::string, int> cache_;  // values' text -> index into evals_ (-1: running)
+  std::vector<FitEvaluation> evals_;
+  FitComponents traceComp_;
+  long next_ = 1L << 40;  // order numbers after the design's point indices
+};
+
+// the radical inverse of i in base b: the Halton sequence's coordinate
+double halton(long i, int b) {
+  double f = 1, r = 0;
+  while (i > 0) {
+    f /= b;
+    r += f * static_cast<double>(i % b);
+    i /= b;
+  }
+  return r;
+}
+
+// the levels of the start design per key: k cell centres of the box
+int designLevels(int n, int budget) {
+  // about a third of the budget, at least 3 levels per key (a minimum needs neighbours on both sides)
+  int k = 3;
+  while (std::pow(k + 1, n) <= budget / 3.0) ++k;
+  return k;
+}
+
+struct SurfaceData {
+  const ResponseSurface* s;
+  const FitComponents* t;
+};
+double surfaceObjective(unsigned n, const double* u, double*, void* data) {
+  const auto* d = static_cast<const SurfaceData*>(data);
+  return surfaceChiSquare(*d->s, Eigen::Map<const Eigen::VectorXd>(u, n), d->t->trace, d->t->cov);
+}
+
+// the minimum of the surface's chi-square over the box [lo, hi] (BOBYQA from its centre and corners' midpoints)
+Eigen::VectorXd surfaceMinimum(const ResponseSurface& s, const FitComponents& t, const Eigen::VectorXd& lo,
+                               const Eigen::VectorXd& hi) {
+  const unsigned n = static_cast<unsigned>(lo.size());
+  SurfaceData d{&s, &t};
+  Eigen::VectorXd best = 0.5 * (lo + hi);
+  double bestF = surfaceChiSquare(s, best, t.trace, t.cov);
+  std::vector<Eigen::VectorXd> starts = {best};
+  for (unsigned i = 0; i < n; ++i)
+    for (double f : {0.25, 0.75}) {
+      Eigen::VectorXd st = best;
+      st(i) = lo(i) + f * (hi(i) - lo(i));
+      starts.push_back(st);
+    }
+  for (const Eigen::VectorXd& st : starts) {
+    nlopt_opt opt = nlopt_create(NLOPT_LN_BOBYQA, n);
+    nlopt_set_lower_bounds(opt, lo.data());
+    nlopt_set_upper_bounds(opt, hi.data());
+    nlopt_set_min_objective(opt, surfaceObjective, &d);
+    nlopt_set_xtol_abs1(opt, 1e-6);
+    nlopt_set_maxeval(opt, 2000);
+    Eigen::VectorXd u = st;
+    double f = 0;
+    if (nlopt_optimize(opt, u.data(), &f) > 0 && f < bestF) {
+      bestF = f;
+      best = u;
+    }
+    nlopt_destroy(opt);
+  }
+  return best;
+}
+
+std::string csvCell(double v) { return std::isfinite(v) ? numberText(v) : std::string(); }
+
+}  // namespace
+
+FitReport runFit(const FitOptions& o, const std::function<void(const std::string&)>& log) {
+  // bad input first, before anything is written
+  if (o.scene.empty()) throw SceneError("--scene: give the base scene (a TOML file)");
+  if (o.budget < 1) throw SceneError("--budget " + std::to_string(o.budget) + ": must be at least 1 evaluation");
+  if (o.jobs < 1 || o.jobs > 256) throw SceneError("-j " + std::to_string(o.jobs) + ": must be in [1, 256]");
+  if (o.objective != "observables" && o.objective != "shape")
+    throw SceneError("--objective " + o.objective + ": expected observables or shape");
+  if (o.out.empty()) throw SceneError("--out: give the fit's folder");
+  const fs::path out = checkOutputName(o.out, "--out");
+  const Scene base = loadScene(o.scene);
+  const std::vector<FreeKey> keys = parseFreeKeys(o.free, o.scene);
+  const int n = static_cast<int>(keys.size());
+  const int k = designLevels(n, o.budget);
+  const int design = static_cast<int>(std::lround(std::pow(k, n)));
+  const int terms = quadraticTerms(n);
+  // runs a trust region's surface is fitted to: enough beyond the surface's terms to estimate the
+  // scatter's covariance between the outputs
+  const int outputs = o.objective == "shape" ? 2 * kShapeSamples : 3;
+  const int regionPoints = std::max(2 * terms + 4, terms + outputs + 4);
+  if (o.budget < design + regionPoints + 1)
+    throw SceneError("--budget " + std::to_string(o.budget) + ": too small for " + std::to_string(n) + " free key(s): the start design takes " +
+                     std::to_string(design) + " runs and one trust region " + std::to_string(regionPoints + 1) +
+                     "; give at least " + std::to_string(design + regionPoints + 1));
+  const Model& bm = base.model;
+  if (!bm.growth.enabled) throw SceneError(o.scene + ": growth.enabled = false; fit grows the root to the trace's length");
+  const TraceTarget target = loadTarget(o.trace, bm);
+  if (o.objective == "observables" && usedCount(observeBoth(target.traits, target.traits, target.sigmaMm)) < n)
+    log("fit: note: the trace defines " + std::to_string(usedCount(observeBoth(target.traits, target.traits, target.sigmaMm))) +
+        " observable(s) for " + std::to_string(n) + " free key(s): some direction stays undetermined (try --objective shape)");
+  // grow every evaluation to the trace's length: L0 + steps * step * rate * Lgz
+  const double perStepMm = bm.growth.stepTime * bm.growth.rate * bm.growth.zoneLength / units::mm;
+  const double l0 = bm.initial.length / units::mm;
+  if (target.traits.lengthMm <= l0)
+    throw SceneError(o.trace.trace + ": the traced root (" + numberText(target.traits.lengthMm) +
+                     " mm) is not longer than the scene's initial root (root.initial_length_mm = " + numberText(l0) + ")");
+  const long steps = std::lround(std::ceil((target.traits.lengthMm - l0) / perStepMm - 1e-9));
+
+  WriteRule rule;
+  rule.force = o.force;
+  rule.inputs.push_back(WriteInput{o.scene, {}, true});
+  rule.inputs.push_back(WriteInput{o.trace.trace, {}, true});
+  rule.inputs.push_back(workingFolder());
+  claimFolder(out, fitFolder(), rule, "--out", false);
+  // the base scene every evaluation starts from: the scene, grown to the trace's length, without ParaView files
+  const Scene grown = loadScene(o.scene, {"growth.steps=" + std::to_string(steps), "output.vtk=false", "output.trajectory=true"});
+  const std::string baseText = "# rootsim fit: " + o.scene + " with growth.steps = " + std::to_string(steps) +
+                               " (the trace's length) and output.vtk = false\n" + grown.resolvedToml;
+  const bool stale = fs::exists(out / "base.toml") && fileText(out / "base.toml") != baseText;
+  if (stale && !o.force)
+    throw SceneError("--out " + out.string() + ": holds a fit of another scene or trace (base.toml differs); pass --force to start it again");
+  createOwnFolder(out, fitFolder());
+  const OutputLock lock(out / "fit.json", "--out " + out.string());
+  if (stale) {
+    // --force: the earlier evaluations belong to another base scene
+    std::error_code ec;
+    if (fs::is_directory(out / "runs") && whyNotOurs(out / "runs", sweepFolder()).empty()) fs::remove_all(out / "runs", ec);
+  }
+  writeFileAtomic(out / "base.toml", baseText);
+  // the start design as a sweep file: `rootsim sweep DIR/design.toml --out DIR/runs --shard K/N` runs it
+  // anywhere (SLURM), and the fit then finds its runs complete
+  std::string designText = "# rootsim fit: the start design (" + std::to_string(k) + " levels per key, cell centres of the box)\n"
+                           "[sweep]\nscene = \"base.toml\"\n\n[grid]\n";
+  for (const FreeKey& fk : keys) {
+    designText += "\"" + fk.key + "\" = [";
+    for (int i = 0; i < k; ++i) designText += (i ? ", " : "") + numberText(fk.lo + (i + 0.5) / k * (fk.hi - fk.lo));
+    designText += "]\n";
+  }
+  writeFileAtomic(out / "design.toml", designText);
+  Fit fit(o, keys, out, baseText, target, log);
+
+  // 1. the start design, as a sweep
+  const SweepPlan plan = loadSweep((out / "design.toml").string());
+  SweepOptions so;
+  so.jobs = o.jobs;
+  so.out = (out / "runs").string();
+  so.quiet = true;
+  so.force = true;  // its own runs: a point whose run failed is run again
+  so.inputs = {out / "design.toml", out / "base.toml"};
+  so.onPoint = [&](const SweepPointDone& d) {
+    std::vector<double> x;
+    for (const auto& [key, val] : d.point->grid) x.push_back(std::stod(val));
+    fit.recordDesign(x, d.dir, d.error, d.point->index);
+  };
+  runSweep(plan, so, [&](const std::string& line) {
+    if (!o.quiet && line.find("FAILED") != std::string::npos) log(line);
+  });
+  {
+    const std::vector<FitEvaluation> ev = fit.evaluations();
+    if (std::all_of(ev.begin(), ev.end(), [](const FitEvaluation& e) { return !e.error.empty(); }))
+      throw RunError("fit: every run of the start design failed; the first: " + ev.front().error);
+  }
+
+  // 2. trust regions: runs spread over a box around the best point so far, a quadratic surface of the
+  //    outputs fitted to them, its minimum the next centre; a minimum inside the box halves it (down to
+  //    kSmallestBox), one on its edge moves it. At the smallest box it stops when the minimum moves by
+  //    less than half its uncertainty, when a direction is flat, or when the budget is spent.
+  FitReport rep;
+  rep.keys = keys;
+  rep.out = out.string();
+  Eigen::VectorXd centre;
+  {
+    double bestF = std::numeric_limits<double>::infinity();
+    for (const FitEvaluation& e : fit.evaluations())
+      if (e.error.empty() && e.objective < bestF) {
+        bestF = e.objective;
+        centre = fit.uOf(e.x);
+      }
+  }
+  double rho = 1.0 / k;  // the box's half width (scaled)
+  long haltonIndex = 1;
+  ResponseSurface surface;
+  FitUncertainty unc;
+  std::vector<Eigen::VectorXd> atSmallest;   // the minima of the regions at the smallest box
+  std::vector<FitUncertainty> smallestUnc;   // and their uncertainties
+  Eigen::VectorXd ustar = centre, boxLo, boxHi;
+  bool haveSurface = false;
+  int regions = 0;
+  static const int kPrimes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37};
+  if (n > 12) throw SceneError("--free: at most 12 free keys");
+  for (; regions < 20; ++regions) {
+    const Eigen::VectorXd lo = (centre.array() - rho).max(0.0).matrix(), hi = (centre.array() + rho).min(1.0).matrix();
+    auto inBox = [&](const Eigen::VectorXd& u) {
+      return ((u.array() >= lo.array() - 1e-12) && (u.array() <= hi.array() + 1e-12)).all();
+    };
+    int have = 0;
+    for (const FitEvaluation& e : fit.evaluations()) have += e.error.empty() && inBox(fit.uOf(e.x));
+    const int left = o.budget - fit.count() - 1;
+    const int need = std::min(std::max(0, regionPoints - have), std::max(0, left));
+    if (have + need <= terms + 1) break;  // no budget for a surface here
+    std::vector<Eigen::VectorXd> batch;
+    for (int i = 0; i < need; ++i, ++haltonIndex) {
+      Eigen::VectorXd u(n);
+      for (int d = 0; d < n; ++d) u(d) = lo(d) + halton(haltonIndex, kPrimes[d]) * (hi(d) - lo(d));
+      batch.push_back(u);
+    }
+    fit.evaluateAll(batch, "region " + std::to_string(regions + 1));
+    std::vector<Eigen::VectorXd> us, ys;
+    for (const FitEvaluation& e : fit.evaluations())
+      if (e.error.empty() && inBox(fit.uOf(e.x))) {
+        us.push_back(fit.uOf(e.x));
+        ys.push_back(e.sim);
+      }
+    if (static_cast<int>(us.size()) <= terms) break;
+    surface = fitResponseSurface(us, ys, centre, rho);
+    // rounded to 1e-6 of the box: short run names, and the same names when a fit resumes
+    const Eigen::VectorXd next = (surfaceMinimum(surface, fit.traceComponents(), lo, hi) * 1e6).array().round().matrix() / 1e6;
+    unc = uncertaintyAt(surface, next, fit.traceComponents().trace, fit.traceComponents().cov);
+    haveSurface = true;
+    ustar = next;
+    boxLo = lo;
+    boxHi = hi;
+    if (!o.quiet) {
+      const std::vector<double> xs = fit.xOf(next);
+      std::string line = "fit: trust region " + std::to_string(regions + 1) + " (half width " + numberText(std::round(rho * 1e4) / 1e4) +
+                         " of the box, " + std::to_string(us.size()) + " runs): surface minimum";
+      for (int i = 0; i < n; ++i) {
+        char b[96];
+        std::snprintf(b, sizeof b, " %s=%.5g +- %.2g", keys[static_cast<std::size_t>(i)].key.c_str(), xs[static_cast<std::size_t>(i)],
+                      unc.sigma[static_cast<std::size_t>(i)] * (keys[static_cast<std::size_t>(i)].hi - keys[static_cast<std::size_t>(i)].lo));
+        line += b;
+      }
+      char b[96];
+      std::snprintf(b, sizeof b, ", chi2 %.3g for %d dof, model scatter %.3g (RMS over outputs)", unc.chi2, unc.dof,
+                    std::sqrt(surface.noiseVar().mean()));
+      log(line + b);
+    }
+    if (fit.count() < o.budget) fit.evaluate(fit.xOf(next), "minimum " + std::to_string(regions + 1), fit.nextOrder(1));
+    bool onEdge = false;
+    for (int d = 0; d < n; ++d)
+      onEdge = onEdge || (next(d) - lo(d) < 0.05 * rho && lo(d) > 0) || (hi(d) - next(d) < 0.05 * rho && hi(d) < 1);
+    centre = next;
+    const bool smallest = rho <= kSmallestBox / k * 1.0001;
+    if (smallest && !onEdge) {
+      atSmallest.push_back(next);
+      smallestUnc.push_back(unc);
+    }
+    if (fit.count() >= o.budget) break;
+    if (onEdge) continue;
+    if (!unc.flat.empty()) break;  // more runs cannot find what the trace does not determine
+    if (rho > kSmallestBox / k * 1.0001) {
+      rho = std::max(0.5 * rho, kSmallestBox / k);
+      continue;
+    }
+    // the smallest box: kFinalRegions of them, each re-centred on the last minimum; their minima scatter
+    // by what a surface of this many runs can resolve
+    if (static_cast<int>(atSmallest.size()) >= kFinalRegions) break;
+  }
+  if (!haveSurface) throw RunError("fit: the budget ran out before a surface could be fitted (raise --budget)");
+  rep.evaluations = fit.evaluations();
+  // the answer: the mean of the minima at the smallest box; its uncertainty adds their scatter (the fit's
+  // own reproducibility) to the surfaces' mean variance
+  std::vector<double> sigmaU(static_cast<std::size_t>(n), kNaN);
+  if (atSmallest.empty()) {
+    for (int i = 0; i < n; ++i) sigmaU[static_cast<std::size_t>(i)] = unc.sigma[static_cast<std::size_t>(i)];
+  } else {
+    ustar = Eigen::VectorXd::Zero(n);
+    for (const Eigen::VectorXd& m : atSmallest) ustar += m / static_cast<double>(atSmallest.size());
+    ustar = (ustar * 1e6).array().round().matrix() / 1e6;
+    for (int i = 0; i < n; ++i) {
+      double var = 0, spread = 0;
+      for (std::size_t r = 0; r < atSmallest.size(); ++r) {
+        const double s = smallestUnc[r].sigma[static_cast<std::size_t>(i)];
+        var += s * s / static_cast<double>(atSmallest.size());
+        spread += std::pow(atSmallest[r](i) - ustar(i), 2);
+      }
+      if (atSmallest.size() > 1) spread /= static_cast<double>(atSmallest.size() - 1);
+      sigmaU[static_cast<std::size_t>(i)] = std::sqrt(var + spread);  // NaN when a surface had none
+    }
+  }
+  const std::vector<double> bx = fit.xOf(ustar);
+  rep.sigma.assign(static_cast<std::size_t>(n), kNaN);
+  for (int i = 0; i < n; ++i)
+    rep.sigma[static_cast<std::size_t>(i)] = sigmaU[static_cast<std::size_t>(i)] * (keys[static_cast<std::size_t>(i)].hi - keys[static_cast<std::size_t>(i)].lo);
+  for (int i = 0; i < n; ++i) {
+    const double u = ustar(i);
+    if (u < 1e-3 || u > 1 - 1e-3)
+      rep.notes.push_back(keys[static_cast<std::size_t>(i)].key + " = " + numberText(bx[static_cast<std::size_t>(i)]) +
+                          " lies at a bound of the box: widen it (the best value may lie beyond)");
+  }
+  for (const Eigen::VectorXd& v : unc.flat) {
+    std::string dir;
+    for (int i = 0; i < n; ++i) dir += (i ? ", " : "") + keys[static_cast<std::size_t>(i)].key + " " + numberText(std::round(v(i) * 100) / 100);
+    rep.notes.push_back("flat: the objective rises by less than 1 across the whole box along (" + dir +
+                        ") (each key scaled by its box width): the trace does not determine this combination");
+  }
+  if (unc.covariance.size() == 0 && unc.flat.empty())
+    rep.notes.push_back("the surface's curvature at the minimum is singular: no uncertainty");
+  // the evaluation at the surface's minimum: the picture's run
+  rep.best = -1;
+  for (std::size_t i = 0; i < rep.evaluations.size(); ++i)
+    if (rep.evaluations[i].x == bx && rep.evaluations[i].error.empty()) rep.best = static_cast<int>(i);
+  if (rep.best < 0) {
+    fit.evaluate(bx, "minimum", fit.nextOrder(1));
+    rep.evaluations = fit.evaluations();
+    rep.best = static_cast<int>(rep.evaluations.size()) - 1;
+  }
+  // every evaluation's chi-square with the model's scatter added (the final surface's)
+  for (FitEvaluation& e : rep.evaluations)
+    if (e.error.empty()) e.objective = chiSquareOf(e.sim, fit.traceComponents().trace, totalCovariance(surface, fit.traceComponents().cov));
+  const FitEvaluation& b = rep.evaluations[static_cast<std::size_t>(rep.best)];
+
+  // 3. the outputs
+  const Scene bestScene = fit.sceneAt(b.x);
+  const std::vector<Snapshot> bestSnaps = loadSnapshots(b.dir);
+  const SimRoot bestSim = simRootOf(bestScene.model, bestSnaps.back());
+  const Comparison bc = compareRoots(target, bestSim);
+  writeFileAtomic(out / "best.toml", "# rootsim fit: the surface's minimum (" + b.dir + ")\n" + bestScene.resolvedToml);
+  std::string title = "fit of " + literalLabel(fs::path(o.trace.trace).filename().string()) + ":";
+  for (int i = 0; i < n; ++i) {
+    title += " " + literalLabel(keys[static_cast<std::size_t>(i)].key) + " = " + numberText(std::round(b.x[static_cast<std::size_t>(i)] * 1e4) / 1e4);
+    if (std::isfinite(rep.sigma[static_cast<std::size_t>(i)]))
+      title += " ± " + numberText(std::round(rep.sigma[static_cast<std::size_t>(i)] * 1e4) / 1e4);
+  }
+  saveComparePanel(bestScene.model, bestSnaps.back(), target.plateMm, title, comparisonCaption(bc), (out / "compare").string());
+  if (n == 2) {
+    std::vector<LandscapePoint> pts;
+    for (const FitEvaluation& e : rep.evaluations)
+      if (e.error.empty()) pts.push_back(LandscapePoint{e.x[0], e.x[1], e.objective, e.phase == "design"});
+    Eigen::Matrix2d cov;
+    const bool haveCov = unc.covariance.rows() == 2;
+    if (haveCov)
+      for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 2; ++c)
+          cov(r, c) = unc.covariance(r, c) * (keys[static_cast<std::size_t>(r)].hi - keys[static_cast<std::size_t>(r)].lo) *
+                      (keys[static_cast<std::size_t>(c)].hi - keys[static_cast<std::size_t>(c)].lo);
+    // the zoom: the smallest trust region, or 4 sigma when that is wider
+    const double zx = std::max(kSmallestBox / k * (keys[0].hi - keys[0].lo), 4.0 * (std::isfinite(rep.sigma[0]) ? rep.sigma[0] : 0.0));
+    const double zy = std::max(kSmallestBox / k * (keys[1].hi - keys[1].lo), 4.0 * (std::isfinite(rep.sigma[1]) ? rep.sigma[1] : 0.0));
+    saveLandscapePanel(pts, keys[0].key, keys[1].key, keys[0].lo, keys[0].hi, keys[1].lo, keys[1].hi, k, b.x[0], b.x[1],
+                       haveCov ? &cov : nullptr, zx, zy,
+                       "χ² of the " + o.objective + " with the model's scatter: " + std::to_string(rep.evaluations.size()) + " runs",
+                       (out / "landscape").string());
+  }
+  // evaluations.csv
+  std::string csv = "index,phase";
+  for (const FreeKey& fk : keys) csv += "," + fk.key;
+  csv += ",objective,chi2_observables,distance_mm,dir,error\n";
+  for (std::size_t i = 0; i < rep.evaluations.size(); ++i) {
+    const FitEvaluation& e = rep.evaluations[i];
+    csv += std::to_string(i) + "," + e.phase;
+    for (double v : e.x) csv += "," + numberText(v);
+    std::string err = e.error;
+    std::replace(err.begin(), err.end(), '"', '\'');
+    std::replace(err.begin(), err.end(), '\n', ' ');
+    csv += "," + csvCell(e.error.empty() ? e.objective : kNaN) + "," + csvCell(e.error.empty() ? e.chi2 : kNaN) + "," +
+           csvCell(e.distanceMm) + "," + fs::path(e.dir).filename().string() + ",\"" + err + "\"\n";
+  }
+  writeFileAtomic(out / "evaluations.csv", csv);
+  // fit.json
+  const FitComponents& tc = fit.traceComponents();
+  Json j;
+  j.str("software", outputSignatureText())
+      .str("trace", o.trace.trace)
+      .str("root", target.rootKey)
+      .str("scene", o.scene)
+      .integer("growth_steps", steps)
+      .num("trace_length_mm", target.traits.lengthMm)
+      .num("sigma_mm", target.sigmaMm)
+      .str("sigma_source", target.sigmaSource)
+      .str("objective", o.objective)
+      .str("method", "start design: a " + std::to_string(k) + "^" + std::to_string(n) +
+                         " grid of cell centres (a sweep: design.toml); then trust regions: " + std::to_string(regionPoints) +
+                         " runs per box (Halton points), a quadratic surface of every output fitted to them by least squares, "
+                         "its chi-square minimised in the box by NLopt's BOBYQA; the box halves around a minimum inside it "
+                         "and moves to one on its edge")
+      .str("uncertainty", "linearised surface at the minimum: covariance (J' C^-1 J)^-1 with C = the trace's covariance + the "
+                          "covariance of the runs' scatter about the surface between outputs, scaled by max(1, chi2 / dof)")
+      .integer("trust_regions", regions)
+      .num("last_box_half_width", rho)
+      .integer("evaluations", static_cast<long long>(rep.evaluations.size()))
+      .integer("budget", o.budget);
+  Json bestJ;
+  for (int i = 0; i < n; ++i) {
+    Json v;
+    v.num("value", b.x[static_cast<std::size_t>(i)]).num("sigma", rep.sigma[static_cast<std::size_t>(i)])
+        .num("lo", keys[static_cast<std::size_t>(i)].lo).num("hi", keys[static_cast<std::size_t>(i)].hi);
+    bestJ.object(keys[static_cast<std::size_t>(i)].key, v);
+  }
+  j.object("best", bestJ)
+      .num("chi2", unc.chi2)
+      .integer("dof", unc.dof)
+      .num("covariance_scale", unc.scale)
+      .str("best_run", fs::path(b.dir).filename().string())
+      .num("best_run_distance_mm", b.distanceMm);
+  if (unc.covariance.size() > 0) {
+    Json cj;
+    for (int r = 0; r < n; ++r) {
+      Json row;
+      for (int c = 0; c < n; ++c)
+        row.num(keys[static_cast<std::size_t>(c)].key, unc.covariance(r, c) * (keys[static_cast<std::size_t>(r)].hi - keys[static_cast<std::size_t>(r)].lo) *
+                                                        (keys[static_cast<std::size_t>(c)].hi - keys[static_cast<std::size_t>(c)].lo));
+      cj.object(keys[static_cast<std::size_t>(r)].key, row);
+    }
+    j.object("covariance", cj);
+  }
+  std::vector<Json> notes;
+  for (const std::string& s : rep.notes) notes.push_back(Json().str("note", s));
+  j.array("notes", notes);
+  // the outputs: the trace's value, its uncertainty, the model's scatter, the surface at the minimum
+  const Eigen::VectorXd atMin = surface.value(ustar);
+  std::vector<Json> outs;
+  for (int c = 0; c < tc.trace.size(); ++c)
+    outs.push_back(Json()
+                       .str("name", tc.names[static_cast<std::size_t>(c)])
+                       .num("trace", tc.trace(c))
+                       .num("sigma_trace", tc.sigma(c))
+                       .num("sigma_model", std::sqrt(surface.noiseCov(c, c)))
+                       .num("surface_at_best", atMin(c))
+                       .num("best_run", b.sim(c)));
+  j.array("outputs", outs);
+  Json obsJ;
+  for (const Observation& ob : bc.obs) {
+    Json e;
+    e.str("unit", ob.unit).num("trace", ob.trace).num("sim", ob.sim).boolean("used", ob.used && o.objective == "observables");
+    obsJ.object(ob.name, e);
+  }
+  j.object("best_run_observables", obsJ);
+  std::vector<Json> ev;
+  for (const FitEvaluation& e : rep.evaluations) {
+    Json x;
+    x.str("phase", e.phase);
+    for (int i = 0; i < n; ++i) x.num(keys[static_cast<std::size_t>(i)].key, e.x[static_cast<std::size_t>(i)]);
+    x.num("objective", e.error.empty() ? e.objective : kNaN).num("distance_mm", e.distanceMm).str("dir", fs::path(e.dir).filename().string());
+    if (!e.error.empty()) x.str("error", e.error);
+    ev.push_back(x);
+  }
+  j.array("evaluation_list", ev);
+  writeFileAtomic(out / "fit.json", j.dump() + "\n");
+  return rep;
+}
+
+int fitCommand(const FitOptions& o) {
+  const FitReport r = runFit(o, [&](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
+  const FitEvaluation& b = r.evaluations[static_cast<std::size_t>(r.best)];
+  for (std::size_t i = 0; i < r.keys.size(); ++i) {
+    if (std::isfinite(r.sigma[i]))
+      std::printf("%s = %.6g +- %.3g\n", r.keys[i].key.c_str(), b.x[i], r.sigma[i]);
+    else
+      std::printf("%s = %.6g (no uncertainty: see the notes)\n", r.keys[i].key.c_str(), b.x[i]);
+  }
+  std::printf("%zu runs; the best fit's run: distance %.3g mm to the trace\n", r.evaluations.size(), b.distanceMm);
+  for (const std::string& n : r.notes) std::printf("note: %s\n", n.c_str());
+  if (!o.quiet) std::fprintf(stderr, "wrote %s (fit.json, evaluations.csv, best.toml, compare.*%s)\n", r.out.c_str(),
+                             r.keys.size() == 2 ? ", landscape.*" : "");
+  return 0;
+}
+
+}  // namespace rootsim::app

@@ -1,0 +1,185 @@
+#include "rootsim/trace_match.hpp"
+
+#include <algorithm>
+#include <cstdio>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+
+#include "rootsim/units.hpp"
+
+namespace rootsim {
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+}  // namespace
+
+double arcLengthDistanceMm(const Eigen::Matrix3Xd& a, const Eigen::Matrix3Xd& b, double dsMm) {
+  if (!(dsMm > 0.0)) throw std::invalid_argument("arcLengthDistanceMm: the step must be > 0");
+  const double La = polylineLength(a), Lb = polylineLength(b);
+  if (!(La > 0.0) || !(Lb > 0.0)) throw std::invalid_argument("arcLengthDistanceMm: a polyline has no length");
+  // points at equal fractions of each length: a traced polyline's noise lengthens it, and its points then
+  // run ahead of the root's along it; fractions keep them level
+  const int n = std::max(1, static_cast<int>(std::lround(std::max(La, Lb) / dsMm)));
+  const Eigen::Matrix3Xd pa = resampleByArcLength(a, La / n), pb = resampleByArcLength(b, Lb / n);
+  const int m = static_cast<int>(std::min(pa.cols(), pb.cols()));
+  double sum = 0.0;
+  for (int i = 0; i < m; ++i) sum += (pa.col(i) - pb.col(i)).squaredNorm();
+  return std::sqrt(sum / static_cast<double>(m));
+}
+
+double frechetDistanceMm(const Eigen::Matrix3Xd& a, const Eigen::Matrix3Xd& b, double dsMm) {
+  const Eigen::Matrix3Xd pa = resampleByArcLength(a, dsMm), pb = resampleByArcLength(b, dsMm);
+  const int n = static_cast<int>(pa.cols()), m = static_cast<int>(pb.cols());
+  // c[j]: the coupling distance ending at (i, j), one row at a time
+  std::vector<double> prev(static_cast<std::size_t>(m)), cur(static_cast<std::size_t>(m));
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < m; ++j) {
+      const double d = (pa.col(i) - pb.col(j)).norm();
+      double reach;
+      if (i == 0 && j == 0) reach = d;
+      else if (i == 0) reach = std::max(cur[static_cast<std::size_t>(j - 1)], d);
+      else if (j == 0) reach = std::max(prev[0], d);
+      else
+        reach = std::max(std::min({prev[static_cast<std::size_t>(j)], prev[static_cast<std::size_t>(j - 1)],
+                                   cur[static_cast<std::size_t>(j - 1)]}),
+                         d);
+      cur[static_cast<std::size_t>(j)] = reach;
+    }
+    std::swap(prev, cur);
+  }
+  return prev[static_cast<std::size_t>(m - 1)];
+}
+
+std::vector<Observation> observeBoth(const RootTraits& t, const RootTraits& s, double sp) {
+  std::vector<Observation> obs;
+  const ShapeAnalysis& a = t.shape;
+  const double kPeak = std::max(a.maxKappa * units::mm, 1e-3);  // curvature at a peak [1/mm]
+  // a peak's downhill position: the noise moves the lateral maximum along a flat top x = A/2 - k y^2 / 2
+  // by as far as the top stays within sigma of its height
+  const double peakAlongMm = std::sqrt(2.0 * sp / kPeak);
+  const bool waves = a.peaks >= 3;  // at least one full wave: lambda and a skew over whole waves
+  {
+    Observation o{"skew_deg", "deg", 0, 0, 0, true, ""};
+    if (waves) {
+      // over whole waves: the mean direction between peaks waves * lambda apart downhill, each end known
+      // to sigma across it
+      o.trace = a.skew / units::deg;
+      o.sim = s.shape.skew / units::deg;
+      const double spanMm = std::max(a.waves * a.wavelength / units::mm, 1e-9);
+      o.sigma = std::sqrt(2.0) * sp / spanMm / units::deg;
+      o.why = "over whole waves: sqrt(2) sigma / (waves * lambda)";
+    } else {
+      o.trace = t.skewDeg;
+      o.sim = s.skewDeg;
+      o.sigma = std::sqrt(2.0) * sp / std::max(t.chordMm, 1e-9) / units::deg;
+      o.why = "base to tip (no whole wave in the trace): sqrt(2) sigma / chord";
+    }
+    obs.push_back(o);
+  }
+  {
+    Observation o{"wavelength_mm", "mm", a.wavelength / units::mm, s.shape.wavelength / units::mm, kNaN, waves, ""};
+    if (waves) {
+      // the mean of (peaks - 2) same-side distances telescopes to its end peaks' positions
+      o.sigma = 2.0 * peakAlongMm / std::max(1, a.peaks - 2);
+      o.why = "2 sqrt(2 sigma / kappa_peak) / (peaks - 2)";
+    } else {
+      o.why = "not used: fewer than 3 peaks in the trace";
+    }
+    obs.push_back(o);
+  }
+  {
+    const bool any = a.peaks >= 2;
+    Observation o{"amplitude_mm", "mm", a.amplitude / units::mm, s.shape.amplitude / units::mm, kNaN, any, ""};
+    if (any) {
+      // each of the (peaks - 1) peak-to-peak distances differs by two lateral positions
+      o.sigma = std::sqrt(2.0) * sp / std::sqrt(static_cast<double>(a.peaks - 1));
+      o.why = "sqrt(2) sigma / sqrt(peaks - 1)";
+    } else {
+      o.why = "not used: fewer than 2 peaks in the trace";
+    }
+    obs.push_back(o);
+  }
+  // shown beside the others, not fitted: a traced polyline's length, curvature and tangents carry its
+  // points' noise amplified by the point spacing (docs/experiments.md)
+  obs.push_back(Observation{"tortuosity", "", t.tortuosity, s.tortuosity, kNaN, false,
+                            "not used: the length of a noisy polyline is biased by its point spacing"});
+  obs.push_back(Observation{"max_kappa_per_mm", "1/mm", a.maxKappa * units::mm, s.shape.maxKappa * units::mm, kNaN, false,
+                            "not used: a second derivative of the traced points"});
+  obs.push_back(Observation{"theta_range_deg", "deg", (a.thetaMax - a.thetaMin) / units::deg,
+                            (s.shape.thetaMax - s.shape.thetaMin) / units::deg, kNaN, false,
+                            "not used: a first derivative of the traced points"});
+  obs.push_back(Observation{"lateral_peaks", "", double(a.peaks), double(s.shape.peaks), kNaN, false,
+                            "not used: a count (its mismatch shows in lambda and A)"});
+  obs.push_back(Observation{"length_mm", "mm", t.lengthMm, s.lengthMm, kNaN, false,
+                            "not used: the simulated root is grown to the trace's length"});
+  return obs;
+}
+
+double chiSquare(const std::vector<Observation>& obs) {
+  double c = 0.0;
+  for (const Observation& o : obs)
+    if (o.used) {
+      // a simulated root without the waves the trace has: its missing value counts as 0
+      const double sim = std::isfinite(o.sim) ? o.sim : 0.0;
+      const double r = (sim - o.trace) / o.sigma;
+      c += r * r;
+    }
+  return c;
+}
+
+int usedCount(const std::vector<Observation>& obs) {
+  return static_cast<int>(std::count_if(obs.begin(), obs.end(), [](const Observation& o) { return o.used; }));
+}
+
+FitComponents observableComponents(const std::vector<Observation>& obs) {
+  FitComponents c;
+  const int m = usedCount(obs);
+  c.trace.resize(m);
+  c.sigma.resize(m);
+  c.sim.resize(m);
+  int k = 0;
+  for (const Observation& o : obs)
+    if (o.used) {
+      c.names.push_back(o.name);
+      c.trace(k) = o.trace;
+      c.sigma(k) = o.sigma;
+      c.sim(k) = std::isfinite(o.sim) ? o.sim : 0.0;
+      ++k;
+    }
+  c.cov = c.sigma.cwiseAbs2().asDiagonal();
+  return c;
+}
+
+FitComponents shapeComponents(const Eigen::Matrix3Xd& trace, const Eigen::Matrix3Xd& sim, double sigmaMm, int samples) {
+  const double Lt = polylineLength(trace), Ls = polylineLength(sim);
+  const Eigen::Matrix3Xd pt = resampleByArcLength(trace, Lt / samples), ps = resampleByArcLength(sim, Ls / samples);
+  FitComponents c;
+  c.trace.resize(2 * samples);
+  c.sim.resize(2 * samples);
+  c.sigma = Eigen::VectorXd::Constant(2 * samples, sigmaMm);
+  for (int k = 1; k <= samples; ++k) {
+    const int at = 2 * (k - 1);
+    char name[48];
+    std::snprintf(name, sizeof name, "lateral_at_%d_pct", 100 * k / samples);
+    c.names.push_back(name);
+    std::snprintf(name, sizeof name, "downhill_at_%d_pct", 100 * k / samples);
+    c.names.push_back(name);
+    c.trace(at) = pt(0, k);
+    c.trace(at + 1) = pt(1, k);
+    c.sim(at) = ps(0, k);
+    c.sim(at + 1) = ps(1, k);
+  }
+  // each point's own error, and the seed's, common to every point of a coordinate
+  c.cov = Eigen::MatrixXd::Zero(2 * samples, 2 * samples);
+  for (int i = 0; i < 2 * samples; ++i)
+    for (int j = 0; j < 2 * samples; ++j)
+      if (i % 2 == j % 2) c.cov(i, j) = sigmaMm * sigmaMm * (i == j ? 2.0 : 1.0);
+  c.sigma = c.cov.diagonal().cwiseSqrt();
+  return c;
+}
+
+}  // namespace rootsim

@@ -157,7 +157,8 @@ int compareCommand(const CompareOptions& o) {
   } else {
     // the first snapshot as long as the trace
     for (int i = 0; i < static_cast<int>(snaps.size()); ++i)
-      if (polylineLength(snaps[static_cast<std::size_t>(i)].x) / units::mm >= target.traits.lengthMm) {
+      // (to a micrometre: a run's own export has its nodes' length up to rounding)
+      if (polylineLength(snaps[static_cast<std::size_t>(i)].x) / units::mm >= target.traits.lengthMm - 1e-3) {
         pick = i;
         why = "the first snapshot as long as the trace";
         break;

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <limits>
 #include <map>
@@ -150,7 +151,12 @@ class Fit {
 
   std::vector<double> xOf(const Eigen::VectorXd& u) const {
     std::vector<double> x(keys_.size());
-    for (std::size_t i = 0; i < keys_.size(); ++i) x[i] = keys_[i].lo + std::clamp(u(static_cast<int>(i)), 0.0, 1.0) * (keys_[i].hi - keys_[i].lo);
+    for (std::size_t i = 0; i < keys_.size(); ++i) {
+      // to 9 significant digits: the value is its own text, in the scene and in the run's name
+      char b[32];
+      std::snprintf(b, sizeof b, "%.9g", keys_[i].lo + std::clamp(u(static_cast<int>(i)), 0.0, 1.0) * (keys_[i].hi - keys_[i].lo));
+      x[i] = std::strtod(b, nullptr);
+    }
     return x;
   }
   Eigen::VectorXd uOf(const std::vector<double>& x) const {
@@ -463,7 +469,11 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
                            "[sweep]\nscene = \"base.toml\"\n\n[grid]\n";
   for (const FreeKey& fk : keys) {
     designText += "\"" + fk.key + "\" = [";
-    for (int i = 0; i < k; ++i) designText += (i ? ", " : "") + numberText(fk.lo + (i + 0.5) / k * (fk.hi - fk.lo));
+    for (int i = 0; i < k; ++i) {
+      char b[32];
+      std::snprintf(b, sizeof b, "%.9g", fk.lo + (i + 0.5) / k * (fk.hi - fk.lo));
+      designText += (i ? ", " : "") + numberText(std::strtod(b, nullptr));
+    }
     designText += "]\n";
   }
   writeFileAtomic(out / "design.toml", designText);

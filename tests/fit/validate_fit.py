@@ -12,6 +12,7 @@ unless every key comes back within --tolerance (relative) and within --coverage 
 import argparse
 import json
 import os
+import shutil
 import subprocess
 import sys
 import time
@@ -42,7 +43,10 @@ def main():
     ap.add_argument("--tolerance", type=float, default=0.10)
     ap.add_argument("--coverage", type=float, default=2.0)
     ap.add_argument("--check", action="store_true")
+    ap.add_argument("--fresh", action="store_true", help="start with an empty WORKDIR (removes what an earlier call left)")
     a = ap.parse_args()
+    if a.fresh and os.path.isdir(a.work):
+        shutil.rmtree(a.work)
     os.makedirs(a.work, exist_ok=True)
     truth = dict(kv.split("=") for kv in a.truth.split(","))
     run_dir = os.path.join(a.work, "truth")

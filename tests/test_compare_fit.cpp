@@ -1,0 +1,202 @@
+// `rootsim compare` and `rootsim fit` (src/app/compare_trace.cpp, src/app/fit_trace.cpp,
+// docs/experiments.md) end to end: a run against its own export is at distance 0 with every residual 0;
+// a fit's files, its determinism, and its resumption; bad input (exit 2, nothing written); the write rule.
+#include <doctest/doctest.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+using namespace rootsim;
+using rootsim::test::run;
+using rootsim::test::slurp;
+
+namespace {
+
+fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("compare_fit", name); }
+const std::string kData = std::string(ROOTSIM_SOURCE_DIR) + "/tests/data/rsml/";
+// a quick waving root: 0.1 mm elements and 0.1 h steps (the figures' --quick resolution), 7.1 mm long
+const std::string kQuick = " --set root.element_length_mm=0.1 --set growth.step_h=0.1 --set output.vtk=false";
+
+// the quick run and its RSML export, made once
+struct Quick {
+  fs::path run, rsml, scene;
+};
+const Quick& quick() {
+  static const Quick q = [] {
+    Quick r;
+    const fs::path d = scratch("quick");
+    r.run = d / "run";
+    r.rsml = d / "run.rsml";
+    r.scene = d / "quick.toml";
+    const auto a = run("run " + test::kScene + kQuick + " --set growth.steps=300 --out " + r.run.string() + " --quiet");
+    REQUIRE(a.code == 0);
+    REQUIRE(run("export " + r.run.string() + " --rsml " + r.rsml.string() + " --quiet").code == 0);
+    // the fit's base scene: the same scene with the quick resolution (the fit sets growth.steps)
+    std::ofstream(r.scene) << slurp(test::kScene) << "\n";
+    std::string text = slurp(r.scene);
+    text.replace(text.find("element_length_mm = 0.05"), 24, "element_length_mm = 0.1");
+    text.replace(text.find("step_h = 0.05"), 13, "step_h = 0.1");
+    std::ofstream(r.scene) << text;
+    return r;
+  }();
+  return q;
+}
+
+bool built() {
+  const auto r = run("compare /nonexistent-run " + kData + "smartroot_pixels.rsml --out /nonexistent-folder/x");
+  if (r.out.find("built without") != std::string::npos) {
+    test::skipCase("rootsim built without the app library: no compare or fit command");
+    return false;
+  }
+  return true;
+}
+
+// a number of a JSON text's "key": value
+double jsonNumber(const std::string& s, const std::string& key, std::size_t from = 0) {
+  const auto at = s.find("\"" + key + "\": ", from);
+  REQUIRE_MESSAGE(at != std::string::npos, key);
+  return std::stod(s.substr(at + key.size() + 4));
+}
+
+std::map<std::string, fs::file_time_type> runTimes(const fs::path& runs) {
+  std::map<std::string, fs::file_time_type> t;
+  for (const auto& e : fs::directory_iterator(runs))
+    if (fs::exists(e.path() / "summary.json")) t[e.path().filename().string()] = fs::last_write_time(e.path() / "summary.json");
+  return t;
+}
+
+}  // namespace
+
+TEST_CASE("compare: a run against its own export / distance 0, every residual 0, the picture and the table") {
+  if (!built()) return;
+  const fs::path d = scratch("own");
+  const auto r = run("compare " + quick().run.string() + " " + quick().rsml.string() + " --out " + (d / "c").string());
+  REQUIRE(r.code == 0);
+  const std::string js = slurp(d / "c" / "compare.json");
+  CHECK(jsonNumber(js, "distance_mm") < 1e-9);
+  CHECK(jsonNumber(js, "frechet_mm") < 1e-9);
+  CHECK(jsonNumber(js, "chi2") < 1e-12);
+  CHECK(jsonNumber(js, "observables_used") >= 2);  // it waves: the skew, lambda and A
+  CHECK(js.find("\"snapshot\": \"the first snapshot as long as the trace\"") != std::string::npos);
+  // the table on stdout and in compare.csv
+  CHECK(r.out.find("wavelength_mm") != std::string::npos);
+  const std::string csv = slurp(d / "c" / "compare.csv");
+  CHECK(csv.rfind("observable,unit,trace,sim,sigma,residual,used,how\n", 0) == 0);
+  CHECK(csv.find("\nwavelength_mm,mm,") != std::string::npos);
+  for (const char* f : {"compare.pdf", "compare.svg", "compare.png"}) CHECK(fs::file_size(d / "c" / f) > 1000);
+  // replaced only with --force, with the same bytes
+  CHECK(run("compare " + quick().run.string() + " " + quick().rsml.string() + " --out " + (d / "c").string()).code == 2);
+  const std::string before = slurp(d / "c" / "compare.json");
+  REQUIRE(run("compare " + quick().run.string() + " " + quick().rsml.string() + " --out " + (d / "c").string() + " --force --quiet").code == 0);
+  CHECK(slurp(d / "c" / "compare.json") == before);
+  // an earlier snapshot is another root: a distance and residuals
+  const auto early = run("compare " + quick().run.string() + " " + quick().rsml.string() + " --at-h 15 --out " + (d / "e").string());
+  REQUIRE(early.code == 0);
+  CHECK(jsonNumber(slurp(d / "e" / "compare.json"), "distance_mm") > 0.05);
+}
+
+TEST_CASE("fit: bad input exits 2 naming the flag, key or file, and writes nothing") {
+  if (!built()) return;
+  const fs::path d = scratch("bad");
+  {
+    std::ofstream f(d / "empty.rsml");
+    f << "<?xml version=\"1.0\"?>\n<rsml>\n<metadata><unit>mm</unit></metadata>\n<scene>\n<plant id=\"1\"/>\n</scene>\n</rsml>\n";
+  }
+  {
+    std::ofstream f(d / "pixels.rsml");
+    f << "<?xml version=\"1.0\"?>\n<rsml>\n<metadata><unit>pixel</unit><resolution>1</resolution></metadata>\n<scene>\n"
+         "<plant id=\"1\"><root id=\"1\"><geometry><polyline><point x=\"0\" y=\"0\"/><point x=\"0\" y=\"300\"/>"
+         "</polyline></geometry></root></plant>\n</scene>\n</rsml>\n";
+  }
+  const std::string trace = quick().rsml.string(), scene = " --scene " + quick().scene.string();
+  struct Case {
+    std::string args, expect;
+  };
+  const std::vector<Case> cases = {
+      {trace + scene + " --free tropism.betta=0.1:0.3", "tropism.betta"},
+      {trace + scene + " --free tropism.beta=-1:0.3", "outside the key's range"},
+      {trace + scene + " --free tropism.beta=0.3:0.1", "LO must be below HI"},
+      {trace + scene + " --free tropism.beta=0.1", "expected KEY=LO:HI"},
+      {trace + scene + " --free tropism.beta=a:0.3", "is not a number"},
+      {trace + scene + " --free tropism.sensing=0:1", "not a real number"},
+      {trace + scene + " --free growth.rate_per_h=0.1:0.3", "changes how far the root grows"},
+      {trace + scene + " --free tropism.beta=0.1:0.3,tropism.beta=0.1:0.2", "given twice"},
+      {trace + scene + " --free tropism.beta=0.1:0.3 --budget 0", "--budget 0"},
+      {trace + scene + " --free tropism.beta=0.1:0.3 --budget 5", "--budget 5: too small"},
+      {trace + scene + " --free tropism.beta=0.1:0.3 --objective nice", "--objective nice"},
+      {trace + scene + " --free tropism.beta=0.1:0.3 -j 0", "-j 0"},
+      {(d / "empty.rsml").string() + scene + " --free tropism.beta=0.1:0.3", "empty.rsml:1: no root in the file"},
+      {kData + "bad/one_point.rsml" + scene + " --free tropism.beta=0.1:0.3", "one_point.rsml:"},
+      {kData + "bad/unknown_unit.rsml" + scene + " --free tropism.beta=0.1:0.3", "unknown_unit.rsml:"},
+      {(d / "pixels.rsml").string() + scene + " --free tropism.beta=0.1:0.3", "give --px-per-mm"},
+      {kData + "openalea_micrometer.rsml" + scene + " --free tropism.beta=0.1:0.3", "2 primary roots"},
+      {kData + "openalea_micrometer.rsml --root nope" + scene + " --free tropism.beta=0.1:0.3", "--root nope: no such root"},
+      {trace + " --sigma-mm 0" + scene + " --free tropism.beta=0.1:0.3", "--sigma-mm 0"},
+      {(d / "missing.rsml").string() + scene + " --free tropism.beta=0.1:0.3", "missing.rsml: RSML file not found"},
+  };
+  for (const Case& c : cases) {
+    const auto r = run("fit " + c.args + " --out " + (d / "out").string());
+    CHECK_MESSAGE(r.code == 2, c.args << " -> " << r.out);
+    CHECK_MESSAGE(r.out.find(c.expect) != std::string::npos, c.args << " -> " << r.out);
+    CHECK_MESSAGE(!fs::exists(d / "out"), c.args);
+  }
+  // compare's own: a folder that is not a run, a trace of another root count
+  const auto notRun = run("compare " + d.string() + " " + trace + " --out " + (d / "out").string());
+  CHECK(notRun.code == 2);
+  CHECK(notRun.out.find("not a run directory") != std::string::npos);
+  CHECK(!fs::exists(d / "out"));
+}
+
+TEST_CASE("fit: the files, the same bytes from a fresh fit, and a second call that reruns nothing") {
+  if (!built()) return;
+  const fs::path d = scratch("fit");
+  // the quick root's own trace, fitted in beta and the intrinsic twist: the truth is (0.2, 0)
+  const std::string args = "fit " + quick().rsml.string() + " --scene " + quick().scene.string() +
+                           " --free tropism.beta=0.1:0.3,tropism.twist_r_tau=-0.2:0.2 --budget 60 -j 2 --quiet";
+  const auto a = run(args + " --out " + (d / "a").string());
+  REQUIRE_MESSAGE(a.code == 0, a.out);
+  for (const char* f : {"fit.json", "evaluations.csv", "best.toml", "base.toml", "design.toml", "compare.png", "compare.pdf",
+                        "landscape.png", "landscape.svg"})
+    CHECK_MESSAGE(fs::exists(d / "a" / f), f);
+  const std::string js = slurp(d / "a" / "fit.json");
+  CHECK(js.find("\"tropism.beta\": {") != std::string::npos);
+  CHECK(jsonNumber(js, "evaluations") <= 60);
+  // the trace is the run itself: the fit finds it within its own uncertainty
+  const double beta = jsonNumber(js, "value", js.find("\"tropism.beta\": {")), sb = jsonNumber(js, "sigma", js.find("\"tropism.beta\": {"));
+  CHECK(std::abs(beta - 0.2) < 0.02);
+  CHECK(std::abs(beta - 0.2) < 3 * sb);
+  // a fresh fit elsewhere: the same files, byte for byte
+  REQUIRE(run(args + " --out " + (d / "b").string()).code == 0);
+  CHECK(slurp(d / "b" / "fit.json") == js);
+  CHECK(slurp(d / "b" / "evaluations.csv") == slurp(d / "a" / "evaluations.csv"));
+  // a second call into a: every run is found complete, none runs again, the same result
+  const auto before = runTimes(d / "a" / "runs");
+  REQUIRE(run(args + " --out " + (d / "a").string()).code == 0);
+  CHECK(runTimes(d / "a" / "runs") == before);
+  CHECK(slurp(d / "a" / "fit.json") == js);
+  // the start design is a sweep file: `rootsim sweep` finds every point complete
+  const auto sw = run("sweep " + (d / "a" / "design.toml").string() + " --out " + (d / "a" / "runs").string());
+  CHECK(sw.code == 0);
+  CHECK(sw.out.find("sweep done: 0 ran") != std::string::npos);
+  // another base scene in the same folder: refused, and started again with --force
+  std::string other = slurp(quick().scene);
+  other.replace(other.find("alpha_deg = 40"), 14, "alpha_deg = 30");
+  std::ofstream(d / "other.toml") << other;
+  const std::string otherArgs = "fit " + quick().rsml.string() + " --scene " + (d / "other.toml").string() +
+                                " --free tropism.beta=0.1:0.3,tropism.twist_r_tau=-0.2:0.2 --budget 60 -j 2 --quiet --out " + (d / "a").string();
+  const auto refused = run(otherArgs);
+  CHECK(refused.code == 2);
+  CHECK(refused.out.find("holds a fit of another scene or trace") != std::string::npos);
+  CHECK(slurp(d / "a" / "fit.json") == js);
+  REQUIRE(run(otherArgs + " --force").code == 0);
+  CHECK(slurp(d / "a" / "base.toml").find("alpha_deg = 30") != std::string::npos);
+  CHECK(slurp(d / "a" / "fit.json") != js);
+}

@@ -72,9 +72,10 @@ struct CompareOptions {
   std::string out;                // --out DIR (default compare/<run>_vs_<trace stem>)
   bool force = false;
   bool quiet = false;
+  bool printTable = true;         // the observables' table on stdout (the command line's; not Python's)
 };
 // compare.json, compare.csv and compare.{pdf,svg,png} into --out (a compare folder, written whole); the
-// table on stdout. Returns 0.
-int compareCommand(const CompareOptions& o);
+// table on stdout. Returns 0; *outDir (when given): the folder written.
+int compareCommand(const CompareOptions& o, std::string* outDir = nullptr);
 
 }  // namespace rootsim::app

@@ -716,6 +716,59 @@ def analyze(files: Union[PathLike, Sequence[PathLike]], *, px_per_mm: Optional[f
     return [dict(r) for r in _c.analyze_traces(paths, opts)]
 
 
+def compare(run_dir: PathLike, trace: PathLike, *, root: Optional[str] = None, px_per_mm: Optional[float] = None,
+            downhill: Union[str, float] = "+y", sigma_mm: Optional[float] = None, at_h: Optional[float] = None,
+            out: Optional[PathLike] = None, force: bool = False, quiet: bool = True) -> Dict[str, Any]:
+    """A traced root (RSML) over a run's root, as ``rootsim compare RUN_DIR TRACE`` (docs/experiments.md;
+    the same C++ code): writes compare.json, compare.csv and the picture (compare.pdf/.svg/.png) into
+    ``out`` (default compare/<run>_vs_<trace>) and returns compare.json as a dict, with "out" added: the
+    observables side by side with the trace's uncertainties, chi2, and the shape distances
+    ("distance_mm": RMS at equal arc length; "frechet_mm").
+
+    ``root``: the traced root (id, #k or plant/root; default the file's one primary root); ``px_per_mm``:
+    for a pixel file; ``downhill``: "+y", "-y" or an angle in degrees; ``sigma_mm``: a traced point's
+    uncertainty [mm]; ``at_h``: the run's snapshot nearest this time [h] (default: the first as long as
+    the trace). Bad input raises SceneError with the command line's message. Keywords only."""
+    if not _c.have_render:
+        raise SceneError("compare: this rootsim was built without the renderer and the app library "
+                         "(ROOTSIM_BUILD_RENDER=OFF)")
+    folder = _c.compare_trace(os.fspath(run_dir), os.fspath(trace), dict(
+        root=root, px_per_mm=px_per_mm, downhill=str(downhill), sigma_mm=sigma_mm, at_h=at_h,
+        out=None if out is None else os.fspath(out), force=bool(force), quiet=bool(quiet)))
+    with open(os.path.join(folder, "compare.json"), encoding="utf-8") as f:
+        result = json.load(f)
+    result["out"] = pathlib.Path(folder)
+    return result
+
+
+def fit(trace: PathLike, *, scene: PathLike, free: Union[str, Dict[str, Sequence[float]]], out: PathLike,
+        root: Optional[str] = None, px_per_mm: Optional[float] = None, downhill: Union[str, float] = "+y",
+        sigma_mm: Optional[float] = None, objective: str = "observables", jobs: int = 1, budget: int = 100,
+        force: bool = False, quiet: bool = True) -> Dict[str, Any]:
+    """Fits free scene keys to a traced root, as ``rootsim fit TRACE --scene SCENE --free ... --out OUT``
+    (docs/experiments.md; the same C++ code). ``free``: {"tropism.beta": (0.05, 0.5), ...} or the command
+    line's "KEY=LO:HI,..." text. Every evaluation is a run directory in OUT/runs: a fit called again with
+    the same arguments finds them and runs nothing twice. Returns fit.json as a dict, with "out" added:
+    "best" maps each key to its value, sigma and bounds; "notes" says what the trace cannot determine.
+
+    ``objective``: "observables" (skew, wavelength, amplitude) or "shape" (the centreline at 8 fractions
+    of its length); ``jobs``: simultaneous runs; ``budget``: most runs. The trace's keywords as
+    rootsim.compare's. Bad input raises SceneError, a fit whose runs all fail RunError. Keywords only."""
+    if not _c.have_render:
+        raise SceneError("fit: this rootsim was built without the renderer and the app library "
+                         "(ROOTSIM_BUILD_RENDER=OFF)")
+    if not isinstance(free, str):
+        free = ",".join(f"{k}={float(lo)!r}:{float(hi)!r}" for k, (lo, hi) in free.items())
+    folder = _c.fit_trace(os.fspath(trace), dict(
+        scene=os.fspath(scene), free=free, out=os.fspath(out), root=root, px_per_mm=px_per_mm,
+        downhill=str(downhill), sigma_mm=sigma_mm, objective=objective, jobs=int(jobs), budget=int(budget),
+        force=bool(force), quiet=bool(quiet)))
+    with open(os.path.join(folder, "fit.json"), encoding="utf-8") as f:
+        result = json.load(f)
+    result["out"] = pathlib.Path(folder)
+    return result
+
+
 # ---------------------------------------------------------------------------------------------------
 # stepping
 

@@ -83,6 +83,16 @@ def analyze_traces(files: List[str], options: Dict[str, Any]) -> List[Dict[str, 
     exclude_tip_mm, radius_mm); one dict per root with analysis.csv's columns."""
     ...
 
+def compare_trace(run_dir: str, trace: str, options: Dict[str, Any]) -> str:
+    """``rootsim compare``: options by name (root, px_per_mm, downhill, sigma_mm, at_h, out, force, quiet);
+    returns the folder written."""
+    ...
+
+def fit_trace(trace: str, options: Dict[str, Any]) -> str:
+    """``rootsim fit``: options by name (scene, free, out, root, px_per_mm, downhill, sigma_mm, objective,
+    jobs, budget, force, quiet); returns the folder written."""
+    ...
+
 def render_run(run_dir: str, options: Dict[str, Any]) -> None:
     """``rootsim render``: options by name (mp4, png_dir, final_png, view, size, fps, crf, whiskers,
     transparent, overlays, camera, field_mm, inset, color_by, plot, shadows, shader_dir, force, quiet, png,

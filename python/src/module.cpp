@@ -37,6 +37,8 @@
 
 #ifdef ROOTSIM_HAVE_RENDER
 #include "rootsim/analyze_traces.hpp"
+#include "rootsim/compare_trace.hpp"
+#include "rootsim/fit_trace.hpp"
 #include "rootsim/export_run.hpp"
 #include "rootsim/render_run.hpp"
 #endif
@@ -701,6 +703,80 @@ PYBIND11_MODULE(_rootsim, m) {
         return out;
       },
       py::arg("files"), py::arg("options"));
+  // the traced root's keywords of rootsim.compare and rootsim.fit (their --root, --px-per-mm, --downhill,
+  // --sigma-mm); false for a key that is not one of them
+  auto traceOption = [](app::TraceFlags& t, const std::string& key, const py::handle v) {
+    if (key == "root") t.root = std::string(py::str(v));
+    else if (key == "px_per_mm") t.pxPerMm = v.cast<double>();
+    else if (key == "downhill") t.downhill = std::string(py::str(v));
+    else if (key == "sigma_mm") t.sigmaMm = v.cast<double>();
+    else return false;
+    return true;
+  };
+  m.def(
+      "compare_trace",
+      // rootsim.compare's keywords, as the command line's flags; returns the folder written
+      [traceOption](const std::string& runDir, const std::string& trace, const py::dict& options) {
+        app::CompareOptions o;
+        o.runDir = runDir;
+        o.trace.trace = trace;
+        o.printTable = false;
+        for (const auto& item : options) {
+          const std::string key = py::str(item.first);
+          const py::handle v = item.second;
+          if (v.is_none()) continue;
+          try {
+            if (traceOption(o.trace, key, v)) continue;
+            if (key == "at_h") o.atH = v.cast<double>();
+            else if (key == "out") o.out = std::string(py::str(v));
+            else if (key == "force") o.force = v.cast<bool>();
+            else if (key == "quiet") o.quiet = v.cast<bool>();
+            else throw SceneError("compare: unknown option " + key);
+          } catch (const py::cast_error&) {
+            throw SceneError("compare: option " + key + " has the wrong type");
+          }
+        }
+        std::string out;
+        {
+          py::gil_scoped_release nogil;
+          app::compareCommand(o, &out);
+        }
+        return out;
+      },
+      py::arg("run_dir"), py::arg("trace"), py::arg("options"));
+  m.def(
+      "fit_trace",
+      // rootsim.fit's keywords, as the command line's flags; returns the folder written
+      [traceOption](const std::string& trace, const py::dict& options) {
+        app::FitOptions o;
+        o.trace.trace = trace;
+        for (const auto& item : options) {
+          const std::string key = py::str(item.first);
+          const py::handle v = item.second;
+          if (v.is_none()) continue;
+          try {
+            if (traceOption(o.trace, key, v)) continue;
+            if (key == "scene") o.scene = std::string(py::str(v));
+            else if (key == "free") o.free = std::string(py::str(v));
+            else if (key == "objective") o.objective = std::string(py::str(v));
+            else if (key == "jobs") o.jobs = v.cast<int>();
+            else if (key == "budget") o.budget = v.cast<int>();
+            else if (key == "out") o.out = std::string(py::str(v));
+            else if (key == "force") o.force = v.cast<bool>();
+            else if (key == "quiet") o.quiet = v.cast<bool>();
+            else throw SceneError("fit: unknown option " + key);
+          } catch (const py::cast_error&) {
+            throw SceneError("fit: option " + key + " has the wrong type");
+          }
+        }
+        app::FitReport r;
+        {
+          py::gil_scoped_release nogil;
+          r = app::runFit(o, [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
+        }
+        return r.out;
+      },
+      py::arg("trace"), py::arg("options"));
 #else
   m.attr("have_render") = false;
 #endif

@@ -130,7 +130,7 @@ void printTable(const Comparison& c) {
 
 }  // namespace
 
-int compareCommand(const CompareOptions& o) {
+int compareCommand(const CompareOptions& o, std::string* outDir) {
   const fs::path run = o.runDir;
   const std::string runName = fs::absolute(run).lexically_normal().filename().string();
   const std::string outText =
@@ -194,7 +194,8 @@ int compareCommand(const CompareOptions& o) {
                        " at " + numberText(std::round(sim.timeH * 100) / 100) + " h",
                    comparisonCaption(c), (folder.work() / "compare").string());
   folder.commit();
-  printTable(c);
+  if (outDir) *outDir = out.string();
+  if (o.printTable) printTable(c);
   if (!o.quiet) std::fprintf(stderr, "wrote %s (compare.json, compare.csv, compare.pdf/.svg/.png; %s)\n", out.c_str(), why.c_str());
   return 0;
 }

@@ -1,0 +1,58 @@
+"""rootsim.compare and rootsim.fit are `rootsim compare` and `rootsim fit`: the same files, the same checks."""
+import json
+
+import pytest
+
+import rootsim
+from conftest import SOURCE, cli
+
+pytestmark = pytest.mark.skipif(not rootsim._rootsim.have_render, reason="built without the app library")
+
+QUICK = {"growth.steps": 300, "root.element_length_mm": 0.1, "growth.step_h": 0.1, "output.vtk": False}
+
+
+@pytest.fixture(scope="module")
+def quick(tmp_path_factory):
+    d = tmp_path_factory.mktemp("quick")
+    run = rootsim.run(SOURCE / "scenes/fig2b_waving.toml", set=QUICK, out=d / "run")
+    rootsim.export(run.dir, rsml=d / "run.rsml")
+    scene = d / "quick.toml"
+    text = (SOURCE / "scenes/fig2b_waving.toml").read_text()
+    scene.write_text(text.replace("element_length_mm = 0.05", "element_length_mm = 0.1").replace("step_h = 0.05", "step_h = 0.1"))
+    return run, d / "run.rsml", scene
+
+
+def test_compare_is_the_command_lines(tmp_path, quick):
+    run, trace, _ = quick
+    res = rootsim.compare(run.dir, trace, out=tmp_path / "py")
+    cli("compare", run.dir, trace, "--out", tmp_path / "cli", "--quiet")
+    assert res["out"] == tmp_path / "py"
+    del res["out"]
+    assert res == json.loads((tmp_path / "cli" / "compare.json").read_text())
+    assert res["distance_mm"] < 1e-9
+    assert res["observables"]["wavelength_mm"]["used"] is True
+    assert (tmp_path / "py" / "compare.png").stat().st_size > 1000
+
+
+def test_fit_finds_the_trace_of_its_own_scene(tmp_path, quick):
+    _, trace, scene = quick
+    res = rootsim.fit(trace, scene=scene, free={"tropism.beta": (0.1, 0.3), "tropism.twist_r_tau": (-0.2, 0.2)},
+                      budget=60, jobs=2, out=tmp_path / "fit")
+    beta = res["best"]["tropism.beta"]
+    assert abs(beta["value"] - 0.2) < 3 * beta["sigma"]
+    assert res["evaluations"] <= 60
+    # the same arguments again: every run is found, the same answer
+    again = rootsim.fit(trace, scene=scene, free="tropism.beta=0.1:0.3,tropism.twist_r_tau=-0.2:0.2", budget=60,
+                        jobs=2, out=tmp_path / "fit")
+    assert again == res
+
+
+def test_bad_options_raise_the_command_lines_message(tmp_path, quick):
+    run, trace, scene = quick
+    with pytest.raises(rootsim.SceneError, match="tropism.betta"):
+        rootsim.fit(trace, scene=scene, free={"tropism.betta": (0.1, 0.3)}, out=tmp_path / "f")
+    with pytest.raises(rootsim.SceneError, match="--budget 0"):
+        rootsim.fit(trace, scene=scene, free={"tropism.beta": (0.1, 0.3)}, budget=0, out=tmp_path / "f")
+    with pytest.raises(rootsim.SceneError, match="--sigma-mm -1"):
+        rootsim.compare(run.dir, trace, sigma_mm=-1, out=tmp_path / "c")
+    assert not (tmp_path / "f").exists() and not (tmp_path / "c").exists()

@@ -30,6 +30,7 @@ struct AnalyzeOptions {
   std::string out;                 // --out DIR (default analysis/<first file's stem>)
   bool force = false;
   bool quiet = false;
+  std::string flagPrefix = "--";   // how messages name the flags: "--px-per-mm", or render's "--trace-px-per-mm"
 };
 
 // one row of analysis.csv: a root of a plant of a file
@@ -76,7 +77,7 @@ TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o);
 RootTraits tracedTraits(const TraceFile& tf, const TracedRoot& r, double dsMm, double excludeTipMm);
 // the root --root ID names (its id, "#k", or plant/root), or without an id the file's one primary root
 // (SceneError listing the roots when that is ambiguous or the id matches none)
-const TracedRoot& pickRoot(const TraceFile& tf, const std::string& id);
+const TracedRoot& pickRoot(const TraceFile& tf, const std::string& id, const std::string& flag = "--root");
 
 // the rows of every root of every file (bad input: SceneError naming the file:line or the flag)
 std::vector<RootRow> analyzeTraces(const AnalyzeOptions& o);

@@ -25,6 +25,7 @@ struct TraceFlags {
   std::string downhill = "+y";    // --downhill +y | -y | DEG
   double sigmaMm = kUnset;        // --sigma-mm: a traced point's position uncertainty [mm]; default: one
                                   // pixel of a pixel file, else 0.05 mm (one pixel of a 20 px/mm scan)
+  std::string flagPrefix = "--";  // how messages name these flags (render's are --trace-root, ...)
 };
 
 // a traced root made ready for comparison with runs of model m: in plate coordinates [mm] with its base

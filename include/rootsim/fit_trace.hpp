@@ -22,7 +22,7 @@ struct FitOptions {
   std::string free;                      // --free KEY=LO:HI[,KEY=LO:HI...]
   std::string objective = "observables"; // --objective observables | shape
   int jobs = 1;                          // -j: simultaneous runs
-  int budget = 100;                      // --budget: most evaluations (design, search and stencil together)
+  int budget = 150;                      // --budget: most runs (the design and the trust regions together)
   std::string out;                       // --out DIR
   bool force = false;
   bool quiet = false;

@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <string>
 
+#include "rootsim/compare_trace.hpp"
 #include "rootsim/model.hpp"
 #include "rootsim/movie_look.hpp"
 
@@ -34,6 +35,9 @@ struct RenderOptions {
   bool transparent = false;  // PNG frames without the plate (alpha 0 outside the root)
   bool noOverlays = false;   // no time, scale bar or parameters
   LookOptions look;
+  // --trace FILE (with --trace-root, --trace-px-per-mm, --trace-downhill): a traced root drawn over every
+  // frame, aligned at the run's seed as `compare` aligns it (docs/experiments.md); trace.trace "" for none
+  TraceFlags trace;
   bool force = false;        // replace outputs rootsim wrote earlier (never a user's file)
   std::string shaderDir;     // development: load tube/plane shaders from here instead of the built-in copies
   bool quiet = false;

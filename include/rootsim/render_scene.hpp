@@ -45,6 +45,10 @@ struct View {
   bool showParams = true;        // alpha, beta, gamma, and R tau when nonzero
   bool showTitle = false;        // SceneInfo::title
   bool showColourBar = true;     // with colourBy: the map, its range and the field's unit
+  // a traced root drawn over the picture as a dark blue line (`render --trace`, docs/experiments.md):
+  // its points in plate (u, v) [mm], empty for none; drawn with or without the other overlays, and named
+  // "trace" in the stripe legend
+  std::vector<std::array<double, 2>> traceUvMm;
   std::string fontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";  // fonts-dejavu-core
   // the overlay font's pixel height; unset: from the view's size (overlayFontPx). A montage's tiles take
   // the montage's label size, so the common scale bar and downhill arrow match the labels

@@ -743,7 +743,7 @@ def compare(run_dir: PathLike, trace: PathLike, *, root: Optional[str] = None, p
 
 def fit(trace: PathLike, *, scene: PathLike, free: Union[str, Dict[str, Sequence[float]]], out: PathLike,
         root: Optional[str] = None, px_per_mm: Optional[float] = None, downhill: Union[str, float] = "+y",
-        sigma_mm: Optional[float] = None, objective: str = "observables", jobs: int = 1, budget: int = 100,
+        sigma_mm: Optional[float] = None, objective: str = "observables", jobs: int = 1, budget: int = 150,
         force: bool = False, quiet: bool = True) -> Dict[str, Any]:
     """Fits free scene keys to a traced root, as ``rootsim fit TRACE --scene SCENE --free ... --out OUT``
     (docs/experiments.md; the same C++ code). ``free``: {"tropism.beta": (0.05, 0.5), ...} or the command

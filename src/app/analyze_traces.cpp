@@ -54,13 +54,13 @@ struct Axes {
   double dx = 0, dy = 1;   // downhill
   double lx = 1, ly = 0;   // lateral
 };
-Axes parseDownhill(const std::string& s) {
+Axes parseDownhill(const std::string& s, const std::string& flag = "--downhill") {
   double phiDeg = 0;
   if (s == "+y" || s == "y") phiDeg = 0;
   else if (s == "-y") phiDeg = 180;
   else {
-    phiDeg = parseNumber(s, "--downhill " + s + " (+y, -y or an angle in degrees)");
-    if (std::abs(phiDeg) > 360) throw SceneError("--downhill " + s + ": the angle must be within [-360, 360] deg");
+    phiDeg = parseNumber(s, flag + " " + s + " (+y, -y or an angle in degrees)");
+    if (std::abs(phiDeg) > 360) throw SceneError(flag + " " + s + ": the angle must be within [-360, 360] deg");
   }
   const double p = phiDeg * units::deg;
   Axes a;
@@ -131,18 +131,18 @@ std::string rootKey(const rsml::Plant& p, std::size_t pi, const rsml::Root& r, s
 
 void checkTraceFlags(const AnalyzeOptions& o) {
   if (given(o.pxPerMm) && !(o.pxPerMm > 0 && std::isfinite(o.pxPerMm)))
-    throw SceneError("--px-per-mm " + num(o.pxPerMm) + ": must be > 0");
+    throw SceneError(o.flagPrefix + "px-per-mm " + num(o.pxPerMm) + ": must be > 0");
   if (given(o.dsMm) && !(o.dsMm >= 0 && o.dsMm <= 10))
     throw SceneError("--ds-mm " + num(o.dsMm) + ": must be in [0, 10] mm (0: the trace's own points)");
   if (given(o.excludeTipMm) && !(o.excludeTipMm >= 0 && std::isfinite(o.excludeTipMm)))
     throw SceneError("--exclude-tip-mm " + num(o.excludeTipMm) + ": must be >= 0 mm");
   if (given(o.radiusMm) && !(o.radiusMm > 0 && o.radiusMm <= 100))
     throw SceneError("--radius-mm " + num(o.radiusMm) + ": must be in (0, 100] mm");
-  parseDownhill(o.downhill);
+  parseDownhill(o.downhill, o.flagPrefix + "downhill");
 }
 
 TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
-  const Axes ax = parseDownhill(o.downhill);
+  const Axes ax = parseDownhill(o.downhill, o.flagPrefix + "downhill");
   if (!fs::is_regular_file(file)) throw SceneError(file + ": RSML file not found");
   const rsml::Document doc = rsml::readRsml(file);
   TraceFile tf;
@@ -151,11 +151,11 @@ TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
   double scale = 1.0;  // file units as read -> mm
   if (isPixelUnit(doc.meta.unit)) {
     if (!given(o.pxPerMm))
-      throw SceneError(file + ": its unit is " + doc.meta.unit + " with no physical scale; give --px-per-mm R");
+      throw SceneError(file + ": its unit is " + doc.meta.unit + " with no physical scale; give " + o.flagPrefix + "px-per-mm R");
     scale = 1.0 / o.pxPerMm;
     tf.pixelMm = scale;
   } else if (given(o.pxPerMm)) {
-    throw SceneError("--px-per-mm " + num(o.pxPerMm) + ": " + file + " is in " + doc.meta.unit +
+    throw SceneError(o.flagPrefix + "px-per-mm " + num(o.pxPerMm) + ": " + file + " is in " + doc.meta.unit +
                      ", not pixels (its scale is known)");
   }
   std::size_t roots = 0;
@@ -228,7 +228,7 @@ RootTraits tracedTraits(const TraceFile& tf, const TracedRoot& t, double dsMm, d
   }
 }
 
-const TracedRoot& pickRoot(const TraceFile& tf, const std::string& id) {
+const TracedRoot& pickRoot(const TraceFile& tf, const std::string& id, const std::string& flag) {
   if (!id.empty()) {
     std::vector<const TracedRoot*> hits;
     for (const TracedRoot& r : tf.roots)
@@ -236,7 +236,7 @@ const TracedRoot& pickRoot(const TraceFile& tf, const std::string& id) {
     if (hits.size() == 1) return *hits.front();
     std::string ids;
     for (const TracedRoot& r : tf.roots) ids += (ids.empty() ? "" : ", ") + r.key;
-    throw SceneError("--root " + id + ": " + (hits.empty() ? "no such root" : "several roots have this id; give plant/root") +
+    throw SceneError(flag + " " + id + ": " + (hits.empty() ? "no such root" : "several roots have this id; give plant/root") +
                      " in " + tf.file + " (roots: " + ids + ")");
   }
   std::vector<const TracedRoot*> primary;
@@ -246,7 +246,7 @@ const TracedRoot& pickRoot(const TraceFile& tf, const std::string& id) {
   if (primary.empty()) return tf.roots.front();
   std::string ids;
   for (const TracedRoot* r : primary) ids += (ids.empty() ? "" : ", ") + r->key;
-  throw SceneError(tf.file + ": " + std::to_string(primary.size()) + " primary roots (" + ids + "); choose one with --root ID");
+  throw SceneError(tf.file + ": " + std::to_string(primary.size()) + " primary roots (" + ids + "); choose one with " + flag + " ID");
 }
 
 std::vector<RootRow> analyzeTraces(const AnalyzeOptions& o) {

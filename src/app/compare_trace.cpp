@@ -32,16 +32,17 @@ bool given(double v) { return v != TraceFlags::kUnset; }
 
 TraceTarget loadTarget(const TraceFlags& f, const Model& m) {
   if (given(f.sigmaMm) && !(f.sigmaMm > 0 && f.sigmaMm <= 10))
-    throw SceneError("--sigma-mm " + numberText(f.sigmaMm) + ": must be in (0, 10] mm");
+    throw SceneError(f.flagPrefix + "sigma-mm " + numberText(f.sigmaMm) + ": must be in (0, 10] mm");
   AnalyzeOptions a;
   a.pxPerMm = f.pxPerMm;
   a.downhill = f.downhill;
   // the trace is measured as the run: its growth zone left out, the run's R for the peaks' hysteresis
   a.excludeTipMm = m.growth.zoneLength / units::mm;
   a.radiusMm = m.rod.radius / units::mm;
+  a.flagPrefix = f.flagPrefix;
   checkTraceFlags(a);
   const TraceFile tf = readTraceFile(f.trace, a);
-  const TracedRoot& r = pickRoot(tf, f.root);
+  const TracedRoot& r = pickRoot(tf, f.root, f.flagPrefix + "root");
   TraceTarget t;
   t.file = f.trace;
   t.rootKey = r.key;
@@ -54,7 +55,7 @@ TraceTarget loadTarget(const TraceFlags& f, const Model& m) {
   t.traits = tracedTraits(measured, r, tf.dsMm, tf.excludeTipMm);
   if (given(f.sigmaMm)) {
     t.sigmaMm = f.sigmaMm;
-    t.sigmaSource = "--sigma-mm";
+    t.sigmaSource = f.flagPrefix + "sigma-mm";
   } else if (tf.pixelMm > 0) {
     t.sigmaMm = tf.pixelMm;
     t.sigmaSource = "pixel";

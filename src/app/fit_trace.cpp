@@ -12,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <random>
 #include <sstream>
 #include <thread>
 
@@ -122,10 +123,12 @@ namespace {
 // slopes are the jumps' and its scatter too small, and the uncertainties it gives shrink with the box.
 // A quarter of a design cell (two halvings of the first box) keeps the box wider than the jumps over the
 // measured fits (docs/experiments.md, "Validation")
-constexpr double kSmallestBox = 0.25;
+constexpr double kSmallestBox = 0.5;
 constexpr int kShapeSamples = 8;
 // trust regions at the smallest box whose minima are averaged
-constexpr int kFinalRegions = 4;   // the shape objective's points along each root
+constexpr int kFinalRegions = 4;
+// bootstrap resamples of the runs around the answer (the surface's own estimation error)
+constexpr int kBootstrap = 200;   // the shape objective's points along each root
 
 // the outputs of a comparison that the objective uses
 FitComponents componentsOf(const std::string& objective, const TraceTarget& t, const SimRoot& s, const Comparison& c) {
@@ -598,15 +601,44 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
   }
   if (!haveSurface) throw RunError("fit: the budget ran out before a surface could be fitted (raise --budget)");
   rep.evaluations = fit.evaluations();
-  // the answer: the mean of the minima at the smallest box; its uncertainty adds their scatter (the fit's
-  // own reproducibility) to the surfaces' mean variance
+  // the answer: the mean of the minima at the smallest box. Its variance: the linearised surface's (the
+  // trace's error and the model's scatter, mean over those regions) plus the surface's own estimation
+  // error, the larger of the minima's spread over the regions and a bootstrap over the runs in the box
+  // around the answer (kBootstrap resamples, each refitted and minimised)
   std::vector<double> sigmaU(static_cast<std::size_t>(n), kNaN);
+  std::vector<double> bootSigma(static_cast<std::size_t>(n), kNaN);
   if (atSmallest.empty()) {
     for (int i = 0; i < n; ++i) sigmaU[static_cast<std::size_t>(i)] = unc.sigma[static_cast<std::size_t>(i)];
   } else {
     ustar = Eigen::VectorXd::Zero(n);
     for (const Eigen::VectorXd& m : atSmallest) ustar += m / static_cast<double>(atSmallest.size());
     ustar = (ustar * 1e6).array().round().matrix() / 1e6;
+    const Eigen::VectorXd lo = (ustar.array() - rho).max(0.0).matrix(), hi = (ustar.array() + rho).min(1.0).matrix();
+    std::vector<Eigen::VectorXd> us, ys;
+    for (const FitEvaluation& e : fit.evaluations()) {
+      const Eigen::VectorXd u = fit.uOf(e.x);
+      if (e.error.empty() && ((u.array() >= lo.array() - 1e-12) && (u.array() <= hi.array() + 1e-12)).all()) {
+        us.push_back(u);
+        ys.push_back(e.sim);
+      }
+    }
+    std::vector<Eigen::VectorXd> minima;
+    std::mt19937 gen(20241202);  // fixed: the same fit, the same bytes
+    std::uniform_int_distribution<std::size_t> pick(0, us.empty() ? 0 : us.size() - 1);
+    for (int b = 0; b < kBootstrap && static_cast<int>(us.size()) > terms + 1; ++b) {
+      std::vector<Eigen::VectorXd> bu, by;
+      for (std::size_t k2 = 0; k2 < us.size(); ++k2) {
+        const std::size_t j = pick(gen);
+        bu.push_back(us[j]);
+        by.push_back(ys[j]);
+      }
+      try {
+        const ResponseSurface rs = fitResponseSurface(bu, by, ustar, rho);
+        minima.push_back(surfaceMinimum(rs, fit.traceComponents(), lo, hi));
+      } catch (const std::invalid_argument&) {
+        // a resample without enough distinct runs: skipped
+      }
+    }
     for (int i = 0; i < n; ++i) {
       double var = 0, spread = 0;
       for (std::size_t r = 0; r < atSmallest.size(); ++r) {
@@ -615,7 +647,14 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
         spread += std::pow(atSmallest[r](i) - ustar(i), 2);
       }
       if (atSmallest.size() > 1) spread /= static_cast<double>(atSmallest.size() - 1);
-      sigmaU[static_cast<std::size_t>(i)] = std::sqrt(var + spread);  // NaN when a surface had none
+      double boot = 0;
+      if (minima.size() > 1) {
+        double mean = 0;
+        for (const Eigen::VectorXd& m : minima) mean += m(i) / static_cast<double>(minima.size());
+        for (const Eigen::VectorXd& m : minima) boot += std::pow(m(i) - mean, 2) / static_cast<double>(minima.size() - 1);
+        bootSigma[static_cast<std::size_t>(i)] = std::sqrt(boot) * (keys[static_cast<std::size_t>(i)].hi - keys[static_cast<std::size_t>(i)].lo);
+      }
+      sigmaU[static_cast<std::size_t>(i)] = std::sqrt(var + std::max(spread, boot));  // NaN when a surface had none
     }
   }
   const std::vector<double> bx = fit.xOf(ustar);
@@ -714,8 +753,10 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
                          " runs per box (Halton points), a quadratic surface of every output fitted to them by least squares, "
                          "its chi-square minimised in the box by NLopt's BOBYQA; the box halves around a minimum inside it "
                          "and moves to one on its edge")
-      .str("uncertainty", "linearised surface at the minimum: covariance (J' C^-1 J)^-1 with C = the trace's covariance + the "
-                          "covariance of the runs' scatter about the surface between outputs, scaled by max(1, chi2 / dof)")
+      .str("uncertainty", "variance = the linearised surface's, (J' C^-1 J)^-1 with C = the trace's covariance + the covariance "
+                          "of the runs' scatter about the surface, scaled by max(1, chi2 / dof), mean over the last trust "
+                          "regions; plus the surface's own estimation error: the larger of its minima's spread over those "
+                          "regions and a bootstrap of 200 resamples of the runs around the answer")
       .integer("trust_regions", regions)
       .num("last_box_half_width", rho)
       .integer("evaluations", static_cast<long long>(rep.evaluations.size()))
@@ -724,6 +765,7 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
   for (int i = 0; i < n; ++i) {
     Json v;
     v.num("value", b.x[static_cast<std::size_t>(i)]).num("sigma", rep.sigma[static_cast<std::size_t>(i)])
+        .num("sigma_bootstrap", bootSigma[static_cast<std::size_t>(i)])
         .num("lo", keys[static_cast<std::size_t>(i)].lo).num("hi", keys[static_cast<std::size_t>(i)].hi);
     bestJ.object(keys[static_cast<std::size_t>(i)].key, v);
   }

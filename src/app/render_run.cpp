@@ -162,6 +162,8 @@ int renderRunCommand(const RenderOptions& o) {
     job.view.transparent = true;
   }
   if (o.noOverlays) job.view.overlays = false;
+  if (o.trace.trace.empty() && (!o.trace.root.empty() || o.trace.pxPerMm != TraceFlags::kUnset || o.trace.downhill != "+y"))
+    throw SceneError("--trace-root, --trace-px-per-mm, --trace-downhill: describe the trace of --trace FILE; give --trace");
   checkTimeFlags(o);
   const MovieLook look = parseLook(o.look);
   if (o.transparent && (look.inset || !look.plots.empty() || look.shadows))
@@ -174,10 +176,17 @@ int renderRunCommand(const RenderOptions& o) {
   }
   const fs::path sceneFile = runDir / "scene.toml";
   if (!fs::is_regular_file(sceneFile)) throw SceneError(sceneFile.string() + ": not found (not a run directory?)");
-  const SceneInfo info = sceneInfoOf(loadScene(sceneFile.string()).model);
+  const Model model = loadScene(sceneFile.string()).model;
+  const SceneInfo info = sceneInfoOf(model);
   if (look.shadows && !info.plate)
     throw SceneError("--shadows: " + sceneFile.string() + " has no plate to cast them on (plane.enabled = false)");
   const std::vector<Snapshot> snaps = framesOf(loadSnapshots(runDir), o, job.video.fps);
+  if (!o.trace.trace.empty()) {
+    // the trace in plate (u, v): its base on the run's seed, its downhill down the plate (-v)
+    const TraceTarget t = loadTarget(o.trace, model);
+    const Vec3 seed = model.env.plane.frame().toPlateMm(snaps.front().x.col(0));
+    for (int i = 0; i < t.plateMm.cols(); ++i) job.view.traceUvMm.push_back({seed.x() + t.plateMm(0, i), seed.y() - t.plateMm(1, i)});
+  }
   if (autoSized) std::tie(job.view.width, job.view.height) = autoSizeFor(snaps, info, look);
   applyLook(look, runDir, snaps, job);
   checkFieldAgainstPlate(look, fitPlateMm(snaps, info, job));

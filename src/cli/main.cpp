@@ -72,6 +72,11 @@ int main(int argc, char** argv) {
   cRender->add_option("--shader-dir", render.shaderDir,
                       "development: load tube/plane .vert/.frag from DIR instead of the built-in shaders");
   addLookOptions(cRender, render.look);
+  cRender->add_option("--trace", render.trace.trace, "a traced root (RSML) drawn over every frame, aligned at the seed (docs/experiments.md)");
+  cRender->add_option("--trace-root", render.trace.root, "the traced root: its id, #k, or plant/root (default: the file's one primary root)");
+  cRender->add_option("--trace-px-per-mm", render.trace.pxPerMm, "pixels per millimetre, for a trace whose unit is pixel");
+  cRender->add_option("--trace-downhill", render.trace.downhill, "the plate's downhill in the trace: +y (default), -y, or an angle in degrees");
+  render.trace.flagPrefix = "--trace-";
   cRender->add_flag("--force", render.force, "replace outputs rootsim wrote earlier (never a file rootsim did not write)");
   cRender->add_flag("--quiet", render.quiet, "no progress output");
 
@@ -131,7 +136,7 @@ int main(int argc, char** argv) {
   traceFlags(cFit, fit.trace);
   cFit->add_option("--objective", fit.objective, "observables (default: chi-square of skew, wavelength, amplitude) or shape (RMS distance at equal arc length)");
   cFit->add_option("-j,--jobs", fit.jobs, "simultaneous runs");
-  cFit->add_option("--budget", fit.budget, "most evaluations (default 100)");
+  cFit->add_option("--budget", fit.budget, "most runs (default 150)");
   cFit->add_option("--out", fit.out, "the fit's folder (resumable: a killed fit continues where it stopped)")->required();
   cFit->add_flag("--force", fit.force, "start again in a fit folder of another scene or trace");
   cFit->add_flag("--quiet", fit.quiet, "no progress output");

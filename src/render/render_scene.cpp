@@ -244,7 +244,24 @@ void addArrow(RenderScene& rs, const Eigen::Vector2d& a, const Eigen::Vector2d& 
   for (double f : {0.25, 0.5, 0.75}) rs.lines.push_back({{pt(b), pt(h1 + f * (h2 - h1))}, width, kInk});
 }
 
+// the colour of a traced root's line: the figures' trace colour (compare_panel.cpp)
+constexpr std::array<std::uint8_t, 4> kTraceInk{13, 51, 140, 255};
+
+// a traced root over the picture, as a line through its projected points
+void addTrace(RenderScene& rs, const View& view) {
+  if (view.traceUvMm.size() < 2) return;
+  OverlayLine l;
+  l.widthPx = std::max(2.0f, std::round(overlayFontPx(view) / 9.0f));
+  l.colour = kTraceInk;
+  for (const auto& p : view.traceUvMm) {
+    Eigen::Vector2d px;
+    if (projectToPixel(rs, V3(p[0], p[1], 0), px)) l.points.push_back({static_cast<float>(px.x()), static_cast<float>(px.y())});
+  }
+  if (l.points.size() >= 2) rs.lines.push_back(std::move(l));
+}
+
 void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, const View& view, const Framing& framing) {
+  addTrace(rs, view);
   if (!view.overlays) return;
   // text scales with the shorter side, so portrait frames get the same text as landscape ones
   const float font = overlayFontPx(view);
@@ -281,6 +298,12 @@ void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, cons
       rs.rects.push_back({std::round(left), std::round(midY - 0.5f * sh), sw, sh, rgba8(c)});
       rs.texts.push_back({label, left + sw + 0.3f * font, midY - 0.5f * font, font, OverlayText::Anchor::TopLeft});
       left += sw + 0.3f * font + width(label, font) + 0.9f * font;
+    }
+    if (view.traceUvMm.size() >= 2) {
+      const float tw = std::round(1.3f * font), tl = std::max(2.0f, std::round(font / 9.0f));
+      rs.rects.push_back({std::round(left), std::round(midY - 0.5f * tl), tw, tl, kTraceInk});
+      rs.texts.push_back({"trace", left + tw + 0.3f * font, midY - 0.5f * font, font, OverlayText::Anchor::TopLeft});
+      left += tw + 0.3f * font + width("trace", font) + 0.9f * font;
     }
   }
   if (view.showScaleBar && rs.pxPerMm > 0) {

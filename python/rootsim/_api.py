@@ -625,8 +625,13 @@ def render(run_dir: PathLike, *, mp4: Optional[PathLike] = None, png_dir: Option
            plot: Union[str, Sequence[str], None] = None, shadows: bool = False, shader_dir: Optional[PathLike] = None,
            force: bool = False, quiet: bool = True, png: Optional[PathLike] = None,
            at_h: Optional[float] = None, frame: Optional[int] = None, from_h: Optional[float] = None,
-           to_h: Optional[float] = None, hours_per_second: Optional[float] = None) -> List[pathlib.Path]:
+           to_h: Optional[float] = None, hours_per_second: Optional[float] = None,
+           trace: Optional[PathLike] = None, trace_root: Optional[str] = None, trace_px_per_mm: Optional[float] = None,
+           trace_downhill: Union[str, float] = "+y") -> List[pathlib.Path]:
     """Renders a saved run, as ``rootsim render RUN_DIR`` with the same options (the same C++ code).
+
+    ``trace``: a traced root (RSML) drawn over every frame, aligned at the run's seed (``--trace``; its
+    ``trace_root``, ``trace_px_per_mm``, ``trace_downhill`` as ``--trace-root`` ...; docs/experiments.md).
 
     Writes only what is asked for: ``mp4`` (H.264 movie), ``png_dir`` (every frame as PNG), ``final_png``
     (the movie's last frame, the same look); with none of them, RUN_DIR/movie.mp4 and RUN_DIR/final_top.png.
@@ -656,7 +661,9 @@ def render(run_dir: PathLike, *, mp4: Optional[PathLike] = None, png_dir: Option
         plot=plot or "", shadows=bool(shadows), shader_dir=s(shader_dir), force=bool(force), quiet=bool(quiet),
         png=s(png), at_h=None if at_h is None else float(at_h), frame=None if frame is None else int(frame),
         from_h=None if from_h is None else float(from_h), to_h=None if to_h is None else float(to_h),
-        hours_per_second=None if hours_per_second is None else float(hours_per_second)))
+        hours_per_second=None if hours_per_second is None else float(hours_per_second), trace=s(trace),
+        trace_root=trace_root, trace_px_per_mm=None if trace_px_per_mm is None else float(trace_px_per_mm),
+        trace_downhill=str(trace_downhill)))
     if png is not None:
         return [pathlib.Path(png)]
     if mp4 is None and png_dir is None and final_png is None:

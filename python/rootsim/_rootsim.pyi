@@ -96,5 +96,5 @@ def fit_trace(trace: str, options: Dict[str, Any]) -> str:
 def render_run(run_dir: str, options: Dict[str, Any]) -> None:
     """``rootsim render``: options by name (mp4, png_dir, final_png, view, size, fps, crf, whiskers,
     transparent, overlays, camera, field_mm, inset, color_by, plot, shadows, shader_dir, force, quiet, png,
-    at_h, frame, from_h, to_h, hours_per_second)."""
+    at_h, frame, from_h, to_h, hours_per_second, trace, trace_root, trace_px_per_mm, trace_downhill)."""
     ...

@@ -486,6 +486,21 @@ class SweepRunner {
   std::thread thread_;
 };
 
+// rootsim.render's, export's, analyze's, compare's and fit's keywords, one at a time: set(key, value)
+// takes one (value may be None) and returns false for a name it does not know; an unknown name or a
+// value of the wrong type is a SceneError naming the command, as the command line's bad flags are
+template <class Set>
+void readOptions(const py::dict& options, const std::string& command, Set set) {
+  for (const auto& item : options) {
+    const std::string key = py::str(item.first);
+    try {
+      if (!set(key, item.second)) throw SceneError(command + ": unknown option " + key);
+    } catch (const py::cast_error&) {
+      throw SceneError(command + ": option " + key + " has the wrong type");
+    }
+  }
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_rootsim, m) {
@@ -586,46 +601,46 @@ PYBIND11_MODULE(_rootsim, m) {
       [](const std::string& runDir, const py::dict& options) {
         app::RenderOptions o;
         o.runDir = runDir;
-        for (const auto& item : options) {
-          const std::string key = py::str(item.first);
-          const py::handle v = item.second;
+        o.trace.flagPrefix = "--trace-";
+        readOptions(options, "render", [&](const std::string& key, const py::handle v) {
           auto text = [&] { return v.is_none() ? std::string() : std::string(py::str(v)); };
-          try {
-            if (key == "mp4") o.mp4 = text();
-            else if (key == "png_dir") o.pngDir = text();
-            else if (key == "final_png") o.finalPng = text();
-            else if (key == "png") o.png = text();
-            else if (key == "at_h") { if (!v.is_none()) o.atH = v.cast<double>(); }
-            else if (key == "frame") {
-              o.frameGiven = !v.is_none();
-              if (o.frameGiven) o.frame = v.cast<int>();
-            }
-            else if (key == "from_h") { if (!v.is_none()) o.fromH = v.cast<double>(); }
-            else if (key == "to_h") { if (!v.is_none()) o.toH = v.cast<double>(); }
-            else if (key == "hours_per_second") { if (!v.is_none()) o.hoursPerSecond = v.cast<double>(); }
-            else if (key == "view") o.view = v.cast<std::string>();
-            else if (key == "size") o.size = v.cast<std::string>();
-            else if (key == "fps") o.fps = v.cast<int>();
-            else if (key == "crf") o.crf = v.cast<int>();
-            else if (key == "whiskers") o.whiskers = v.cast<bool>();
-            else if (key == "transparent") o.transparent = v.cast<bool>();
-            else if (key == "overlays") o.noOverlays = !v.cast<bool>();
-            else if (key == "camera") o.look.camera = v.cast<std::string>();
-            else if (key == "field_mm") {
-              o.look.fieldGiven = !v.is_none();
-              if (o.look.fieldGiven) o.look.fieldMm = v.cast<double>();
-            } else if (key == "inset") o.look.inset = v.cast<bool>();
-            else if (key == "color_by") o.look.colorBy = v.cast<std::string>();
-            else if (key == "plot") o.look.plot = text();
-            else if (key == "shadows") o.look.shadows = v.cast<bool>();
-            else if (key == "shader_dir") o.shaderDir = text();
-            else if (key == "force") o.force = v.cast<bool>();
-            else if (key == "quiet") o.quiet = v.cast<bool>();
-            else throw SceneError("render: unknown option " + key);
-          } catch (const py::cast_error&) {
-            throw SceneError("render: option " + key + " has the wrong type");
+          if (key == "mp4") o.mp4 = text();
+          else if (key == "png_dir") o.pngDir = text();
+          else if (key == "final_png") o.finalPng = text();
+          else if (key == "png") o.png = text();
+          else if (key == "at_h") { if (!v.is_none()) o.atH = v.cast<double>(); }
+          else if (key == "frame") {
+            o.frameGiven = !v.is_none();
+            if (o.frameGiven) o.frame = v.cast<int>();
           }
-        }
+          else if (key == "from_h") { if (!v.is_none()) o.fromH = v.cast<double>(); }
+          else if (key == "to_h") { if (!v.is_none()) o.toH = v.cast<double>(); }
+          else if (key == "hours_per_second") { if (!v.is_none()) o.hoursPerSecond = v.cast<double>(); }
+          else if (key == "view") o.view = v.cast<std::string>();
+          else if (key == "size") o.size = v.cast<std::string>();
+          else if (key == "fps") o.fps = v.cast<int>();
+          else if (key == "crf") o.crf = v.cast<int>();
+          else if (key == "whiskers") o.whiskers = v.cast<bool>();
+          else if (key == "transparent") o.transparent = v.cast<bool>();
+          else if (key == "overlays") o.noOverlays = !v.cast<bool>();
+          else if (key == "camera") o.look.camera = v.cast<std::string>();
+          else if (key == "field_mm") {
+            o.look.fieldGiven = !v.is_none();
+            if (o.look.fieldGiven) o.look.fieldMm = v.cast<double>();
+          } else if (key == "inset") o.look.inset = v.cast<bool>();
+          else if (key == "color_by") o.look.colorBy = v.cast<std::string>();
+          else if (key == "plot") o.look.plot = text();
+          else if (key == "shadows") o.look.shadows = v.cast<bool>();
+          else if (key == "shader_dir") o.shaderDir = text();
+          else if (key == "trace") o.trace.trace = text();
+          else if (key == "trace_root") o.trace.root = text();
+          else if (key == "trace_px_per_mm") { if (!v.is_none()) o.trace.pxPerMm = v.cast<double>(); }
+          else if (key == "trace_downhill") o.trace.downhill = v.is_none() ? std::string("+y") : std::string(py::str(v));
+          else if (key == "force") o.force = v.cast<bool>();
+          else if (key == "quiet") o.quiet = v.cast<bool>();
+          else return false;
+          return true;
+        });
         py::gil_scoped_release nogil;
         app::renderRunCommand(o);
       },
@@ -637,23 +652,18 @@ PYBIND11_MODULE(_rootsim, m) {
       [](const std::string& runDir, const py::dict& options) {
         app::ExportOptions o;
         o.runDir = runDir;
-        for (const auto& item : options) {
-          const std::string key = py::str(item.first);
-          const py::handle v = item.second;
+        readOptions(options, "export", [&](const std::string& key, const py::handle v) {
           auto text = [&] { return v.is_none() ? std::string() : std::string(py::str(v)); };
-          try {
-            if (key == "rsml") o.rsml = text();
-            else if (key == "gltf") o.gltf = text();
-            else if (key == "paraview") o.paraview = text();
-            else if (key == "at_h") { if (!v.is_none()) o.atH = v.cast<double>(); }
-            else if (key == "every_h") { if (!v.is_none()) o.everyH = v.cast<double>(); }
-            else if (key == "force") o.force = v.cast<bool>();
-            else if (key == "quiet") o.quiet = v.cast<bool>();
-            else throw SceneError("export: unknown option " + key);
-          } catch (const py::cast_error&) {
-            throw SceneError("export: option " + key + " has the wrong type");
-          }
-        }
+          if (key == "rsml") o.rsml = text();
+          else if (key == "gltf") o.gltf = text();
+          else if (key == "paraview") o.paraview = text();
+          else if (key == "at_h") { if (!v.is_none()) o.atH = v.cast<double>(); }
+          else if (key == "every_h") { if (!v.is_none()) o.everyH = v.cast<double>(); }
+          else if (key == "force") o.force = v.cast<bool>();
+          else if (key == "quiet") o.quiet = v.cast<bool>();
+          else return false;
+          return true;
+        });
         std::vector<fs::path> written;
         {
           py::gil_scoped_release nogil;
@@ -670,22 +680,17 @@ PYBIND11_MODULE(_rootsim, m) {
       [](const std::vector<std::string>& files, const py::dict& options) {
         app::AnalyzeOptions o;
         o.files = files;
-        for (const auto& item : options) {
-          const std::string key = py::str(item.first);
-          const py::handle v = item.second;
-          if (v.is_none()) continue;
-          try {
-            if (key == "px_per_mm") o.pxPerMm = v.cast<double>();
-            else if (key == "downhill") o.downhill = std::string(py::str(v));
-            else if (key == "times") o.times = std::string(py::str(v));
-            else if (key == "ds_mm") o.dsMm = v.cast<double>();
-            else if (key == "exclude_tip_mm") o.excludeTipMm = v.cast<double>();
-            else if (key == "radius_mm") o.radiusMm = v.cast<double>();
-            else throw SceneError("analyze: unknown option " + key);
-          } catch (const py::cast_error&) {
-            throw SceneError("analyze: option " + key + " has the wrong type");
-          }
-        }
+        readOptions(options, "analyze", [&](const std::string& key, const py::handle v) {
+          if (v.is_none()) return true;
+          if (key == "px_per_mm") o.pxPerMm = v.cast<double>();
+          else if (key == "downhill") o.downhill = std::string(py::str(v));
+          else if (key == "times") o.times = std::string(py::str(v));
+          else if (key == "ds_mm") o.dsMm = v.cast<double>();
+          else if (key == "exclude_tip_mm") o.excludeTipMm = v.cast<double>();
+          else if (key == "radius_mm") o.radiusMm = v.cast<double>();
+          else return false;
+          return true;
+        });
         std::vector<app::RootRow> rows;
         {
           py::gil_scoped_release nogil;
@@ -721,21 +726,16 @@ PYBIND11_MODULE(_rootsim, m) {
         o.runDir = runDir;
         o.trace.trace = trace;
         o.printTable = false;
-        for (const auto& item : options) {
-          const std::string key = py::str(item.first);
-          const py::handle v = item.second;
-          if (v.is_none()) continue;
-          try {
-            if (traceOption(o.trace, key, v)) continue;
-            if (key == "at_h") o.atH = v.cast<double>();
-            else if (key == "out") o.out = std::string(py::str(v));
-            else if (key == "force") o.force = v.cast<bool>();
-            else if (key == "quiet") o.quiet = v.cast<bool>();
-            else throw SceneError("compare: unknown option " + key);
-          } catch (const py::cast_error&) {
-            throw SceneError("compare: option " + key + " has the wrong type");
-          }
-        }
+        readOptions(options, "compare", [&](const std::string& key, const py::handle v) {
+          if (v.is_none()) return true;
+          if (traceOption(o.trace, key, v)) return true;
+          if (key == "at_h") o.atH = v.cast<double>();
+          else if (key == "out") o.out = std::string(py::str(v));
+          else if (key == "force") o.force = v.cast<bool>();
+          else if (key == "quiet") o.quiet = v.cast<bool>();
+          else return false;
+          return true;
+        });
         std::string out;
         {
           py::gil_scoped_release nogil;
@@ -750,25 +750,20 @@ PYBIND11_MODULE(_rootsim, m) {
       [traceOption](const std::string& trace, const py::dict& options) {
         app::FitOptions o;
         o.trace.trace = trace;
-        for (const auto& item : options) {
-          const std::string key = py::str(item.first);
-          const py::handle v = item.second;
-          if (v.is_none()) continue;
-          try {
-            if (traceOption(o.trace, key, v)) continue;
-            if (key == "scene") o.scene = std::string(py::str(v));
-            else if (key == "free") o.free = std::string(py::str(v));
-            else if (key == "objective") o.objective = std::string(py::str(v));
-            else if (key == "jobs") o.jobs = v.cast<int>();
-            else if (key == "budget") o.budget = v.cast<int>();
-            else if (key == "out") o.out = std::string(py::str(v));
-            else if (key == "force") o.force = v.cast<bool>();
-            else if (key == "quiet") o.quiet = v.cast<bool>();
-            else throw SceneError("fit: unknown option " + key);
-          } catch (const py::cast_error&) {
-            throw SceneError("fit: option " + key + " has the wrong type");
-          }
-        }
+        readOptions(options, "fit", [&](const std::string& key, const py::handle v) {
+          if (v.is_none()) return true;
+          if (traceOption(o.trace, key, v)) return true;
+          if (key == "scene") o.scene = std::string(py::str(v));
+          else if (key == "free") o.free = std::string(py::str(v));
+          else if (key == "objective") o.objective = std::string(py::str(v));
+          else if (key == "jobs") o.jobs = v.cast<int>();
+          else if (key == "budget") o.budget = v.cast<int>();
+          else if (key == "out") o.out = std::string(py::str(v));
+          else if (key == "force") o.force = v.cast<bool>();
+          else if (key == "quiet") o.quiet = v.cast<bool>();
+          else return false;
+          return true;
+        });
         app::FitReport r;
         {
           py::gil_scoped_release nogil;

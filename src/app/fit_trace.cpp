@@ -123,7 +123,7 @@ namespace {
 // slopes are the jumps' and its scatter too small, and the uncertainties it gives shrink with the box.
 // A quarter of a design cell (two halvings of the first box) keeps the box wider than the jumps over the
 // measured fits (docs/experiments.md, "Validation")
-constexpr double kSmallestBox = 0.5;
+constexpr double kSmallestBox = 0.25;
 constexpr int kShapeSamples = 8;
 // trust regions at the smallest box whose minima are averaged
 constexpr int kFinalRegions = 4;

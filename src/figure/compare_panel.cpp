@@ -53,31 +53,11 @@ void saveComparePanel(const Model& m, const Snapshot& sim, const Eigen::Matrix3X
   };
   for (std::size_t i = 0; i < tube.x.size(); ++i) grow(tube.x[i], tube.y[i]);
   for (std::size_t i = 0; i < tr.x.size(); ++i) grow(tr.x[i], tr.y[i]);
-  PlateWindow win{x0 - 1.0, x1 + 1.0, y0 - 1.0, y1 + 1.0};
-  // plate views keep one scale: widen the narrow side to the plot area's aspect
+  const PlateWindow win{x0 - 1.0, x1 + 1.0, y0 - 1.0, y1 + 1.0};
   f.axes.push_back(plate);
   fig::fitHeight(f, f.axes[0], std::clamp(fig::plateAspect(win), 0.6, 2.2), 500, 1100);
   Axes& ax = f.axes[0];
-  const double aspect = plotAspect(f, ax);
-  const double lw = win.lateralMax - win.lateralMin, dh = win.downhillMax - win.downhillMin;
-  if (dh / lw > aspect) {
-    const double cx = 0.5 * (win.lateralMin + win.lateralMax), half = 0.5 * dh / aspect;
-    win.lateralMin = cx - half;
-    win.lateralMax = cx + half;
-  } else {
-    const double cy = 0.5 * (win.downhillMin + win.downhillMax), half = 0.5 * lw * aspect;
-    win.downhillMin = cy - half;
-    win.downhillMax = cy + half;
-  }
-  ax.equalAspect = true;
-  ax.yDown = true;
-  ax.autoX = ax.autoY = false;
-  ax.xmin = win.lateralMin;
-  ax.xmax = win.lateralMax;
-  ax.ymin = win.downhillMin;
-  ax.ymax = win.downhillMax;
-  ax.grid = false;
-  ax.plateGridPitch = 1.0;
+  fig::setPlateAxes(f, ax, win);
   ax.obstacles = fig::obstaclesOf(sceneInfoOf(m));
   ax.tubes.push_back(tube);
   ax.series.push_back(tr);

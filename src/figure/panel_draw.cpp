@@ -102,7 +102,7 @@ std::vector<Obstacle2D> obstaclesOf(const SceneInfo& info) {
   return out;
 }
 
-void addRoot(const Ctx& c, const Figure& f, Axes& ax, const Snapshot& sn, const Case& k, PlateWindow win) {
+void setPlateAxes(const Figure& f, Axes& ax, PlateWindow win) {
   // widen the window to the plot area's aspect, so the root fills the axes at one scale
   const double aspect = plotAspect(f, ax);
   const double lw = win.lateralMax - win.lateralMin, dh = win.downhillMax - win.downhillMin;
@@ -124,6 +124,10 @@ void addRoot(const Ctx& c, const Figure& f, Axes& ax, const Snapshot& sn, const 
   ax.ymax = win.downhillMax;
   ax.grid = false;  // the plate's grid instead
   ax.plateGridPitch = 1.0;
+}
+
+void addRoot(const Ctx& c, const Figure& f, Axes& ax, const Snapshot& sn, const Case& k, PlateWindow win) {
+  setPlateAxes(f, ax, win);
   ax.obstacles = obstaclesOf(infoOf(c, k));
   ax.tubes.push_back(tubeOf(sn, k.alpha));
 }

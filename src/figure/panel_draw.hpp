@@ -26,6 +26,10 @@ Tube tubeOf(const Snapshot& sn, double alphaDeg);
 // the obstacles of a scene seen from above in plate coordinates [mm] (lateral, downhill)
 std::vector<Obstacle2D> obstaclesOf(const SceneInfo& info);
 
+// axes ax of figure f as a plate view of window win: the window widened to the axes' plot aspect (one
+// scale), downhill down, axes in mm, the plate's 1 mm grid instead of the axes' grid
+void setPlateAxes(const Figure& f, Axes& ax, PlateWindow win);
+
 // one root on the plate in an axes of f (downhill down, axes in mm), window win widened to the axes'
 // aspect, on the plate's 1 mm grid with the case's obstacles (the axes' ticks as they are, without their grid)
 void addRoot(const Ctx& c, const Figure& f, Axes& ax, const Snapshot& sn, const Case& k, PlateWindow win);

@@ -75,9 +75,10 @@ def main():
         b = fit["best"][k]
         err = b["value"] - t
         rel = abs(err) / abs(t)
-        sig = b["sigma"]
-        z = abs(err) / sig if sig and sig > 0 else float("inf")
-        print(f"{k}: truth {t:g}, fitted {b['value']:.4g} +- {sig:.2g}, error {100 * rel:.1f} %, {z:.2f} sigma")
+        sig = b["sigma"]  # None (JSON null): no uncertainty, a flat direction
+        z = abs(err) / sig if sig else float("inf")
+        shown = f"+- {sig:.2g}" if sig else "(no uncertainty)"
+        print(f"{k}: truth {t:g}, fitted {b['value']:.4g} {shown}, error {100 * rel:.1f} %, {z:.2f} sigma")
         if rel > a.tolerance or not z <= a.coverage:
             ok = False
     for n in fit["notes"]:

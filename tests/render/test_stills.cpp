@@ -5,6 +5,8 @@
 
 #include "../test_support.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -286,4 +288,51 @@ TEST_CASE("stills: run --movie --field-mm alone sizes the default inset - and wi
     CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 1);
     CHECK_FALSE(fs::exists(r2));
   }
+}
+
+TEST_CASE("stills: --trace draws the traced root over the picture / its own export lies on the root, a turned one beside it") {
+  const fs::path d = rtest::scratch("trace");
+  const TinyRun t = tinyRun(d);
+  const fs::path own = d / "own.rsml";
+  REQUIRE(run("export " + t.dir.string() + " --rsml " + own.string() + " --quiet").code == 0);
+  // the trace's ink (render_scene.cpp kTraceInk)
+  auto ink = [](const Image& img, int& minX, int& maxX) {
+    int n = 0;
+    minX = img.width;
+    maxX = -1;
+    for (int y = 0; y < img.height; ++y)
+      for (int x = 0; x < img.width; ++x) {
+        const std::uint8_t* p = &img.rgba[4 * (static_cast<std::size_t>(y) * img.width + x)];
+        if (std::abs(p[0] - 13) < 12 && std::abs(p[1] - 51) < 12 && std::abs(p[2] - 140) < 12) {
+          ++n;
+          minX = std::min(minX, x);
+          maxX = std::max(maxX, x);
+        }
+      }
+    return n;
+  };
+  const fs::path plain = d / "plain.png", traced = d / "traced.png", turned = d / "turned.png";
+  const std::string still = " --size 640x360 --at-h 2 --quiet --png ";
+  REQUIRE(run("render " + t.dir.string() + still + plain.string()).code == 0);
+  const Result r = run("render " + t.dir.string() + " --trace " + own.string() + still + traced.string());
+  REQUIRE_MESSAGE(r.code == 0, r.out);
+  int x0 = 0, x1 = 0;
+  CHECK(ink(readPng(plain.string()), x0, x1) == 0);
+  const Image a = readPng(traced.string());
+  const int onRoot = ink(a, x0, x1);
+  CHECK(onRoot > 100);  // the line, and the legend's swatch
+  // the same trace turned by 90 degrees (--trace-downhill 90: its +x is downhill) lies across the plate
+  const Result r2 = run("render " + t.dir.string() + " --trace " + own.string() + " --trace-downhill 90" + still + turned.string());
+  REQUIRE_MESSAGE(r2.code == 0, r2.out);
+  int y0 = 0, y1 = 0;
+  CHECK(ink(readPng(turned.string()), y0, y1) > 100);
+  CHECK(readPng(turned.string()).rgba != a.rgba);
+  // its flags without --trace, and a bad one, exit 2 naming them
+  const Result bad = run("render " + t.dir.string() + " --trace-root 1" + still + (d / "x.png").string());
+  CHECK(bad.code == 2);
+  CHECK(bad.out.find("give --trace") != std::string::npos);
+  const Result badRoot = run("render " + t.dir.string() + " --trace " + own.string() + " --trace-root 7" + still + (d / "x.png").string());
+  CHECK(badRoot.code == 2);
+  CHECK(badRoot.out.find("--trace-root 7: no such root") != std::string::npos);
+  CHECK_FALSE(fs::exists(d / "x.png"));
 }

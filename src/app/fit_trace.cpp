@@ -121,9 +121,9 @@ namespace {
 // its parameters: a skewing root's skew jumps by 1-2 degrees between runs whose twist differs by 0.005
 // (docs/experiments.md). A surface fitted in a box not much wider than that chases those jumps: its
 // slopes are the jumps' and its scatter too small, and the uncertainties it gives shrink with the box.
-// A quarter of a design cell (two halvings of the first box) keeps the box wider than the jumps over the
-// measured fits (docs/experiments.md, "Validation")
-constexpr double kSmallestBox = 0.25;
+// Half a design cell (one halving of the first box): over the synthetic traces of docs/experiments.md
+// ("Validation") it covered the truth within 2 sigma more often than a quarter cell did.
+constexpr double kSmallestBox = 0.5;
 constexpr int kShapeSamples = 8;
 // trust regions at the smallest box whose minima are averaged
 constexpr int kFinalRegions = 4;
@@ -701,7 +701,10 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
     if (std::isfinite(rep.sigma[static_cast<std::size_t>(i)]))
       title += " ± " + numberText(std::round(rep.sigma[static_cast<std::size_t>(i)] * 1e4) / 1e4);
   }
-  saveComparePanel(bestScene.model, bestSnaps.back(), target.plateMm, title, comparisonCaption(bc), (out / "compare").string());
+  char caption[200];
+  std::snprintf(caption, sizeof caption, "distance %.3g mm (RMS at equal arc length), Fréchet %.3g mm, the fit's χ² %.3g for %d dof",
+                bc.distanceMm, bc.frechetMm, unc.chi2, unc.dof);
+  saveComparePanel(bestScene.model, bestSnaps.back(), target.plateMm, title, caption, (out / "compare").string());
   if (n == 2) {
     std::vector<LandscapePoint> pts;
     for (const FitEvaluation& e : rep.evaluations)
@@ -752,7 +755,8 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
                          " grid of cell centres (a sweep: design.toml); then trust regions: " + std::to_string(regionPoints) +
                          " runs per box (Halton points), a quadratic surface of every output fitted to them by least squares, "
                          "its chi-square minimised in the box by NLopt's BOBYQA; the box halves around a minimum inside it "
-                         "and moves to one on its edge")
+                         "(down to half a design cell) and moves to one on its edge; the answer is the mean of the minima of "
+                         "the last 4 boxes")
       .str("uncertainty", "variance = the linearised surface's, (J' C^-1 J)^-1 with C = the trace's covariance + the covariance "
                           "of the runs' scatter about the surface, scaled by max(1, chi2 / dof), mean over the last trust "
                           "regions; plus the surface's own estimation error: the larger of its minima's spread over those "

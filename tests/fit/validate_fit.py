@@ -40,7 +40,9 @@ def main():
     ap.add_argument("--budget", type=int, default=150)
     ap.add_argument("--jobs", type=int, default=2)
     ap.add_argument("--seed", type=int, default=1)
-    ap.add_argument("--tolerance", type=float, default=0.10)
+    ap.add_argument("--tolerance", type=float, default=0.10, help="relative error allowed for every key")
+    ap.add_argument("--identifiable", default=None,
+                    help="KEY,... the keys held to --tolerance (default: all); the others only to --coverage")
     ap.add_argument("--coverage", type=float, default=2.0)
     ap.add_argument("--check", action="store_true")
     ap.add_argument("--fresh", action="store_true", help="start with an empty WORKDIR (removes what an earlier call left)")
@@ -79,7 +81,8 @@ def main():
         z = abs(err) / sig if sig else float("inf")
         shown = f"+- {sig:.2g}" if sig else "(no uncertainty)"
         print(f"{k}: truth {t:g}, fitted {b['value']:.4g} {shown}, error {100 * rel:.1f} %, {z:.2f} sigma")
-        if rel > a.tolerance or not z <= a.coverage:
+        held = a.identifiable is None or k in a.identifiable.split(",")
+        if (held and rel > a.tolerance) or not z <= a.coverage:
             ok = False
     for n in fit["notes"]:
         print("note:", n["note"])

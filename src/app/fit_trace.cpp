@@ -427,10 +427,11 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
   // scatter's covariance between the outputs
   const int outputs = o.objective == "shape" ? 2 * kShapeSamples : 3;
   const int regionPoints = std::max(2 * terms + 4, terms + outputs + 4);
-  if (o.budget < design + regionPoints + 1)
+  // the budget: the design, a trust region's runs and its minimum's, and the answer's run
+  if (o.budget < design + regionPoints + 2)
     throw SceneError("--budget " + std::to_string(o.budget) + ": too small for " + std::to_string(n) + " free key(s): the start design takes " +
-                     std::to_string(design) + " runs and one trust region " + std::to_string(regionPoints + 1) +
-                     "; give at least " + std::to_string(design + regionPoints + 1));
+                     std::to_string(design) + " runs and one trust region " + std::to_string(regionPoints + 2) +
+                     "; give at least " + std::to_string(design + regionPoints + 2));
   const Model& bm = base.model;
   if (!bm.growth.enabled) throw SceneError(o.scene + ": growth.enabled = false; fit grows the root to the trace's length");
   const TraceTarget target = loadTarget(o.trace, bm);
@@ -538,7 +539,8 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
     };
     int have = 0;
     for (const FitEvaluation& e : fit.evaluations()) have += e.error.empty() && inBox(fit.uOf(e.x));
-    const int left = o.budget - fit.count() - 1;
+    // kept back: this region's minimum and the answer's run
+    const int left = o.budget - fit.count() - 2;
     const int need = std::min(std::max(0, regionPoints - have), std::max(0, left));
     if (have + need <= terms + 1) break;  // no budget for a surface here
     std::vector<Eigen::VectorXd> batch;
@@ -578,7 +580,7 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
                     std::sqrt(surface.noiseVar().mean()));
       log(line + b);
     }
-    if (fit.count() < o.budget) fit.evaluate(fit.xOf(next), "minimum " + std::to_string(regions + 1), fit.nextOrder(1));
+    if (fit.count() < o.budget - 1) fit.evaluate(fit.xOf(next), "minimum " + std::to_string(regions + 1), fit.nextOrder(1));
     bool onEdge = false;
     for (int d = 0; d < n; ++d)
       onEdge = onEdge || (next(d) - lo(d) < 0.05 * rho && lo(d) > 0) || (hi(d) - next(d) < 0.05 * rho && hi(d) < 1);
@@ -588,7 +590,7 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
       atSmallest.push_back(next);
       smallestUnc.push_back(unc);
     }
-    if (fit.count() >= o.budget) break;
+    if (fit.count() >= o.budget - 1) break;
     if (onEdge) continue;
     if (!unc.flat.empty()) break;  // more runs cannot find what the trace does not determine
     if (rho > kSmallestBox / k * 1.0001) {

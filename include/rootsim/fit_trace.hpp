@@ -59,10 +59,11 @@ struct FitReport {
   std::string out;
 };
 
-// runs the fit (SceneError for bad input before anything is written; RunError when no evaluation ran)
+// runs the fit and writes its folder (fit.json, evaluations.csv, best.toml, compare.*, and for two keys
+// landscape.*); SceneError for bad input before anything is written, RunError when no evaluation ran
 FitReport runFit(const FitOptions& o, const std::function<void(const std::string&)>& log);
 
-// the command: the fit, then fit.json, evaluations.csv, best.toml, compare.* and (two keys) landscape.*
+// the command: runFit, then the values and notes on stdout
 int fitCommand(const FitOptions& o);
 
 }  // namespace rootsim::app

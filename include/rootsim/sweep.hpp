@@ -84,6 +84,10 @@ struct SweepResult {
 SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
                      const std::function<void(const std::string&)>& log);
 
+// a file-name-safe "key=value" for a run directory's name: the key without its section, characters other
+// than letters, digits, '.', '-' and '=' as '_' (sweep points; fit's evaluations)
+std::string runNameSlug(const std::string& key, const std::string& val);
+
 // "K/N" -> (K, N); throws SceneError
 std::pair<int, int> parseShard(const std::string& text);
 

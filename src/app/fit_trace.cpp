@@ -59,13 +59,6 @@ double parseBound(const std::string& text, const std::string& item) {
 const char* const kGrowthKeys[] = {"growth.steps", "growth.step_h", "growth.rate_per_h", "growth.growth_zone_mm",
                                    "root.initial_length_mm", "growth.enabled"};
 
-// a file-name-safe "key=value" (as sweep directories are named)
-std::string slug(const std::string& key, const std::string& val) {
-  std::string k = key.substr(key.find('.') + 1), s;
-  for (char c : k + "=" + val) s += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '=') ? c : '_';
-  return s;
-}
-
 std::string fileText(const fs::path& p) {
   std::ifstream in(p, std::ios::binary);
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -148,7 +141,6 @@ class Fit {
       : o_(o), keys_(std::move(keys)), out_(out), baseText_(std::move(baseText)), target_(std::move(target)), log_(log) {}
 
   const std::vector<FreeKey>& keys() const { return keys_; }
-  const TraceTarget& target() const { return target_; }
   fs::path runs() const { return out_ / "runs"; }
   const FitComponents& traceComponents() const { return traceComp_; }
 
@@ -230,7 +222,7 @@ class Fit {
       cache_[key] = -1;
     }
     std::string name = "eval";
-    for (std::size_t i = 0; i < keys_.size(); ++i) name += "_" + slug(keys_[i].key, t[i]);
+    for (std::size_t i = 0; i < keys_.size(); ++i) name += "_" + runNameSlug(keys_[i].key, t[i]);
     const fs::path dir = runs() / name;
     std::string error;
     const Scene sc = sceneAt(x);

@@ -46,12 +46,6 @@ std::string valueText(const toml::node& n, const std::string& loc) {
   }
   throw SceneError(loc + ": expected a number, string, boolean or array");
 }
-// a file-name-safe rendering of "key=value"
-std::string slug(const std::string& key, const std::string& val) {
-  std::string k = key.substr(key.find('.') + 1), s;
-  for (char c : k + "=" + val) s += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '=') ? c : '_';
-  return s;
-}
 // a run-directory name short enough for every file system (255 bytes per name, with room for the
 // ".incomplete" / ".partial" / ".replaced" siblings): a longer one keeps its first bytes and gets a hash
 // of the whole name (FNV-1a, the same on every machine, so shards and reruns agree)
@@ -65,6 +59,12 @@ std::string shortName(const std::string& name) {
   return name.substr(0, kMax - std::strlen(tail)) + tail;
 }
 }  // namespace
+
+std::string runNameSlug(const std::string& key, const std::string& val) {
+  std::string k = key.substr(key.find('.') + 1), s;
+  for (char c : k + "=" + val) s += (std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '=') ? c : '_';
+  return s;
+}
 
 std::pair<int, int> parseShard(const std::string& text) {
   int k = 0, n = 0;
@@ -179,7 +179,7 @@ SweepPlan loadSweep(const std::string& path) {
     for (size_t d = 0; d < values.size(); ++d) {
       p.grid.emplace_back(plan.gridKeys[d], values[d][idx[d]]);
       p.overrides.push_back(plan.gridKeys[d] + "=" + values[d][idx[d]]);
-      p.dirName += "_" + slug(plan.gridKeys[d], values[d][idx[d]]);
+      p.dirName += "_" + runNameSlug(plan.gridKeys[d], values[d][idx[d]]);
     }
     p.dirName = shortName(p.dirName);
     p.overrides.insert(p.overrides.end(), fixed.begin(), fixed.end());

@@ -30,6 +30,22 @@ struct PairStiffness {
   Eigen::Matrix<double, 12, 12> K;
 };
 
+// the other roots on a plate as one root's contact pieces see them (docs/model.md, "A plate of roots"):
+// their elements as capsules, in this root's own frame, fixed during one relaxation; set by the plate
+// (plate.cpp) before each relaxation, empty for a root alone
+struct NeighbourCapsules {
+  Eigen::Matrix3Xd a, b;                  // ends of each capsule's centreline, this root's frame [m]
+  Eigen::VectorXd radius;                 // each capsule's radius [m]
+  std::vector<std::uint8_t> first;        // 1 where this root is the pair's first root (lower plate index):
+                                          // a pair's force is always computed in the first root's order, so
+                                          // the two roots feel exactly opposite forces
+  std::vector<std::array<int, 2>> pairs;  // candidate pairs (element of this root, capsule), within
+                                          // R + r + skin when listed
+  std::vector<std::array<int, 2>> source; // (root, element) each capsule was read from (the plate's)
+  bool empty() const { return pairs.empty(); }
+  void clear() { pairs.clear(); }
+};
+
 // scratch memory of the contact pieces, sized once per element count (resize) so that a force
 // evaluation allocates nothing
 struct ContactWorkspace {
@@ -53,6 +69,8 @@ struct ContactWorkspace {
   std::vector<std::uint8_t> contactNode;  // markSelfContactNodes: 1 for nodes of pairs in contact (n+1)
   std::vector<std::uint8_t> elementFlag;  // scratch of countContacts (n)
   std::vector<PairStiffness> stiffness;   // selfContactStiffness: one per pair in contact (grows once)
+  NeighbourCapsules neighbours;           // other roots on a plate (not scratch: the plate's input, kept
+                                          // by resize; not in fields(): plates are not checkpointed)
 
   void resize(int n);
   void invalidate() { builtElements = -1; }
@@ -74,6 +92,22 @@ void addObstacleContact(const RodParams& p, const Environment& env, const RodSta
 void addSelfContact(const RodParams& p, const Environment& env, const RodState& s, bool damping,
                     ContactWorkspace& cw, Eigen::Matrix3Xd& force);
 inline constexpr double kSelfExclusionRadii = 3.0;
+
+// contact with other roots (cw.neighbours): the self-contact law between this root's elements and each
+// listed capsule, closer than R + r between the contact points; the force on this root only (the other
+// root feels the opposite force when it relaxes)
+void addNeighbourContact(const RodParams& p, const Environment& env, const RodState& s, bool damping,
+                         ContactWorkspace& cw, Eigen::Matrix3Xd& force);
+
+// the contact of one element (a0-a1, radius ra) of root A with one capsule (b0-b1, radius rb) of root
+// B, A before B on the plate: the force on A's segment and the weights of its two nodes (B feels -F
+// at weights 1 - sb, sb); false when they do not touch
+struct RootPairForce {
+  Vec3 F = Vec3::Zero();
+  double sa = 0, sb = 0;
+};
+bool rootPairForce(double ra, double rb, double k, const Vec3& up, const Vec3& a0, const Vec3& a1, const Vec3& b0,
+                   const Vec3& b1, RootPairForce& out);
 
 // Coulomb friction on the plate and on obstacles from the committed stick points (needs the obstacle
 // normal forces of addObstacleContact in cw); adhered nodes are excluded

@@ -12,9 +12,12 @@ struct InitialShape {
   double perturbation = 1e-6;     // lateral node displacement amplitude / R (seeded; docs/model.md,
                                   // Environment)
   std::uint64_t seed = 1;         // seed of the perturbation
+  double angle = 0.0;             // initial direction from downhill, in the plate [rad], positive towards
+                                  // +lateral like theta: a seedling's (docs/plate.md); not a scene key
 };
 
-// base of the centreline at R n, axis along the downhill direction, d1 = x, d2 = n, d3 = downhill;
+// base of the centreline at R n, axis along the downhill direction, d1 = x, d2 = n, d3 = downhill
+// (turned by shape.angle about n: d3 = cos a downhill + sin a x, d1 = d2 x d3);
 // nodes 2.. are displaced laterally by perturbation * R * u, u uniform in [-1, 1] from a splitmix64
 // stream of the seed (bit-identical on every platform)
 RodState makeInitialRod(const RodParams& p, const Plane& plane, const InitialShape& shape);

@@ -49,6 +49,12 @@ struct View {
   // its points in plate (u, v) [mm], empty for none; drawn with or without the other overlays, and named
   // "trace" in the stripe legend
   std::vector<std::array<double, 2>> traceUvMm;
+  // a plate's whole plate (`render --plate-view`, docs/plate.md): the plate drawn over this rectangle
+  // (u0, v0, u1, v1) [mm] only, outlined, on a grey surround; unset: the plate fills the picture
+  std::optional<std::array<double, 4>> plateRectMm;
+  // a scanner's look (`render --scan`): light roots without stripes on a dark plate without a grid,
+  // no overlays (what a plate-scan pipeline reads)
+  bool scanLook = false;
   std::string fontPath = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";  // fonts-dejavu-core
   // the overlay font's pixel height; unset: from the view's size (overlayFontPx). A montage's tiles take
   // the montage's label size, so the common scale bar and downhill arrow match the labels

@@ -52,6 +52,10 @@ std::filesystem::path normaliseOutDir(const std::string& text);
 // wrote, else what is missing or cut short
 std::string whyNotWhole(const std::filesystem::path& dir);
 
+// marks a finished run directory written inside another (a plate's roots/NAME): its marker, listing
+// every file and its size, as RunDir::commit writes it
+void markRunFolder(const std::filesystem::path& dir);
+
 class RunDir {
  public:
   // validates the output path (see above) and creates DIR.partial; throws SceneError (exit 2)

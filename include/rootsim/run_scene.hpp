@@ -15,4 +15,10 @@ namespace rootsim {
 double runSceneToDir(const Scene& scene, const std::string& outDir, const RunDirOptions& dirOptions,
                      const std::function<void(const StepRecord&, int total)>& progress);
 
+// a plate scene's run (runSceneToDir calls it for a scene with seedlings; docs/plate.md, Outputs): a
+// folder roots/NAME per root, each a run directory of that root alone, and the plate's files beside
+// them. A plate has no checkpoints: an interrupted plate run starts again
+double runPlateToDir(const Scene& scene, const std::string& outDir, const RunDirOptions& dirOptions,
+                     const std::function<void(const StepRecord&, int total)>& progress);
+
 }  // namespace rootsim

@@ -6,6 +6,7 @@
 
 #include "rootsim/errors.hpp"
 #include "rootsim/model.hpp"
+#include "rootsim/plate.hpp"
 
 namespace rootsim {
 
@@ -14,9 +15,15 @@ namespace rootsim {
 inline constexpr double kMaxElements = 20000;
 
 struct Scene {
+  // the root's model; for a plate ([[seedling]] tables, docs/plate.md) the plate-wide keys' model, or
+  // the seedling's model when the plate has one seedling (a plate run's roots/NAME/scene.toml)
   Model model;
+  PlateSpec plate;           // the seedlings (none: a scene of one root alone)
   std::string path;          // file it came from ("" for text)
   std::string resolvedToml;  // every key with its value, defaults filled in
+  std::vector<std::string> rootToml;  // a plate's: each seedling's own resolved scene (the plate with that
+                                      // seedling alone), its roots/NAME/scene.toml
+  bool isPlate() const { return !plate.seedlings.empty(); }
 };
 
 // reads and validates a scene; overrides are "section.key=value" (TOML value syntax; bare words are
@@ -25,6 +32,9 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
 // the text of a scene (or sweep) file: a regular file of at most 1 MiB (a device or FIFO would be read forever or
 // block); throws SceneError
 std::string readSceneFile(const std::string& path, const std::string& kind = "scene file");
+// the model of a scene that holds one root (a single-root scene, or a plate of one seedling); throws
+// SceneError naming `what` for a plate of several roots ("render: RUN is a plate of 6 roots: ...")
+const Model& singleRootModel(const Scene& sc, const std::string& what);
 Scene parseScene(const std::string& text, const std::string& sourceName,
                  const std::vector<std::string>& overrides = {});
 // the type of a scene key "section.key" as messages name it ("a number", "an integer", "true or false",

@@ -2,6 +2,7 @@
 // The run loop (docs/architecture.md, Data flow): for each growth step grow -> relax -> observe. No I/O here.
 #include <array>
 #include <limits>
+#include <memory>
 #include <vector>
 
 #include "rootsim/analysis.hpp"
@@ -102,6 +103,22 @@ class Simulation {
   // the growth step
   const StepRecord& growthStep();
 
+  // relaxes the current state again, without growing (a plate: another root it touches has moved since):
+  // the same growth step's equilibrium with the contact forces as they are now. The step's record adds the
+  // solver's work; friction's stick points stay where the step's first equilibrium committed them
+  const StepRecord& relaxAgain();
+  // a plate's roots that touch relax together, explicitly, one sub-step of each in turn (plate.cpp):
+  // beginJoint starts this root's explicit relaxation (over its Newton window, as Newton's fallback
+  // does), jointStep takes one sub-step and says whether the root is in equilibrium, endJoint adds the
+  // sub-steps to the step's record; relaxAgain then confirms the equilibrium
+  void beginJoint();
+  bool jointStep();
+  long jointSubsteps() const;
+  void endJoint();
+  // the other roots on a plate as this root's contact pieces see them (ContactWorkspace::neighbours)
+  NeighbourCapsules& neighbours() { return ws_.contact.neighbours; }
+  const NeighbourCapsules& neighbours() const { return ws_.contact.neighbours; }
+
   // changes the tropism parameters (beta, gamma, sensing, twist, circumnutation) between growth steps:
   // the next growthStep uses them (an experiment that changes gravity's effect half-way). The caller
   // validates them (the scene schema's ranges); the rest of the model stays constant.
@@ -132,6 +149,7 @@ class Simulation {
   NewtonWorkspace nw_;
   SimulationProgress p_;
   ContactWorkspace observed_;   // contact counts' own scratch (the solver's list stays untouched)
+  std::unique_ptr<DynamicRelaxation> joint_;  // a plate's joint relaxation under way (beginJoint)
 };
 
 }  // namespace rootsim

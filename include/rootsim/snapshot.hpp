@@ -23,8 +23,19 @@ struct Snapshot {
   // |contact force| on each node from the plate (with friction), from self-contact and from obstacles
   // (with friction) [N] (3 x n+1); empty when the trajectory did not record it
   Eigen::Matrix3Xd contactForce;
+  // a plate's roots in one snapshot (mergeRoots): the first node of each root after the first; the
+  // element before each such node joins two roots and is not part of either (empty: one root)
+  std::vector<int> rootStarts;
   int elements() const { return static_cast<int>(radius.size()); }
 };
+
+// the roots of a plate as one snapshot (the renderer draws each root as its own tube): their nodes in
+// turn, each root's positions as given (already in one frame), the joining elements' fields copied
+// from the next root's first element. Step and time are the first root's.
+Snapshot mergeRoots(const std::vector<Snapshot>& roots);
+// root k of a merged snapshot (k from 0), as a snapshot of its own; the snapshot itself for one root
+Snapshot rootOf(const Snapshot& merged, int k);
+inline int rootCount(const Snapshot& s) { return static_cast<int>(s.rootStarts.size()) + 1; }
 
 struct RodParams;
 struct RodState;

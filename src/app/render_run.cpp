@@ -3,6 +3,7 @@
 #include "rootsim/render_run.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <optional>
 #include <tuple>
@@ -78,14 +79,15 @@ std::string num(double v) { return flagNumber(v); }
 bool given(double v) { return v != RenderOptions::kUnset; }
 
 // the flags of a still and of a time window, checked before anything is read
-void checkTimeFlags(const RenderOptions& o) {
+// (scan: --scan's picture, the last snapshot unless --at-h or --frame says)
+void checkTimeFlags(const RenderOptions& o, bool scan) {
   const bool still = !o.png.empty() || given(o.atH) || o.frameGiven;
   if (given(o.atH) && o.frameGiven) throw SceneError("--at-h " + num(o.atH) + ": give --at-h or --frame, not both");
   if (still) {
     if (o.png.empty())
       throw SceneError(std::string(given(o.atH) ? "--at-h " + num(o.atH) : "--frame " + std::to_string(o.frame)) +
                        ": writes a still; add --png FILE");
-    if (!given(o.atH) && !o.frameGiven) throw SceneError("--png " + o.png + ": a still; add --at-h H or --frame N");
+    if (!scan && !given(o.atH) && !o.frameGiven) throw SceneError("--png " + o.png + ": a still; add --at-h H or --frame N");
     if (!o.mp4.empty() || !o.pngDir.empty() || !o.finalPng.empty())
       throw SceneError("--png " + o.png + ": a still is one picture; not with --mp4, --png-dir or --final-png");
     if (given(o.hoursPerSecond))
@@ -164,7 +166,14 @@ int renderRunCommand(const RenderOptions& o) {
   if (o.noOverlays) job.view.overlays = false;
   if (o.trace.trace.empty() && (!o.trace.root.empty() || o.trace.pxPerMm != TraceFlags::kUnset || o.trace.downhill != "+y"))
     throw SceneError("--trace-root, --trace-px-per-mm, --trace-downhill: describe the trace of --trace FILE; give --trace");
-  checkTimeFlags(o);
+  const bool scan = given(o.scanPxPerMm);
+  if (scan) {
+    if (!(o.scanPxPerMm > 0 && o.scanPxPerMm <= 200))
+      throw SceneError("--scan " + num(o.scanPxPerMm) + ": pixels per mm must be in (0, 200]");
+    if (o.png.empty()) throw SceneError("--scan " + num(o.scanPxPerMm) + ": a picture; add --png FILE");
+    if (o.plateView) throw SceneError("--scan: shows the whole plate already; drop --plate-view");
+  }
+  checkTimeFlags(o, scan);
   const MovieLook look = parseLook(o.look);
   if (o.transparent && (look.inset || !look.plots.empty() || look.shadows))
     throw SceneError("--transparent: frames of the root alone, without a plate; not with --inset, --plot or --shadows");
@@ -176,21 +185,53 @@ int renderRunCommand(const RenderOptions& o) {
   }
   const fs::path sceneFile = runDir / "scene.toml";
   if (!fs::is_regular_file(sceneFile)) throw SceneError(sceneFile.string() + ": not found (not a run directory?)");
-  const Model model = loadScene(sceneFile.string()).model;
+  const Scene scene = loadScene(sceneFile.string());
+  const bool plate = isPlateRun(runDir);
+  if (!plate && (o.plateView || scan))
+    throw SceneError(std::string(o.plateView ? "--plate-view" : "--scan") + ": " + o.runDir + " is a run of one root, not a plate's");
+  // a plate: the plate-wide model (its obstacles in plate coordinates), the followed root's growth zone
+  Model model = scene.model;
+  for (const Seedling& sd : scene.plate.seedlings)
+    if (plate && sd.name == o.root) model.growth.zoneLength = sd.model.growth.zoneLength;
   const SceneInfo info = sceneInfoOf(model);
   if (look.shadows && !info.plate)
     throw SceneError("--shadows: " + sceneFile.string() + " has no plate to cast them on (plane.enabled = false)");
-  const std::vector<Snapshot> snaps = framesOf(loadSnapshots(runDir), o, job.video.fps);
+  const std::vector<Snapshot> snaps = framesOf(loadSnapshots(runDir, o.root), o, job.video.fps);
+  if (plate && !o.trace.trace.empty()) throw SceneError("--trace: aligns at one root's seed; render the root's folder roots/NAME");
+  if (plate && (o.plateView || scan)) {
+    // the whole plate: (u, v) = (lateral, -downhill) over [0, width] x [-length, 0]
+    const double w = scene.plate.params.width / units::mm, l = scene.plate.params.length / units::mm;
+    job.view.plateRectMm = std::array<double, 4>{0.0, -l, w, 0.0};
+    job.view.centreMm = std::array<double, 2>{0.5 * w, -0.5 * l};
+    if (scan) {
+      const auto px = [&](double mm) { return 2 * static_cast<int>(std::lround(0.5 * mm * o.scanPxPerMm)); };
+      if (px(w) > 16384 || px(l) > 16384)
+        throw SceneError("--scan " + num(o.scanPxPerMm) + ": a picture of " + std::to_string(px(w)) + "x" + std::to_string(px(l)) +
+                         " px; at most 16384 on a side");
+      job.view.width = std::max(2, px(w));
+      job.view.height = std::max(2, px(l));
+      job.view.widthMm = w;
+      job.view.marginMm = 0.0;
+      job.view.scanLook = true;
+      job.view.overlays = false;
+    } else {
+      if (autoSized) {
+        job.view.width = 1080;
+        job.view.height = 2 * static_cast<int>(std::lround(540.0 * l / w));
+      }
+      job.view.widthMm = 1.15 * std::max(w, l * job.view.width / job.view.height);  // room for the overlays
+    }
+  }
   if (!o.trace.trace.empty()) {
     // the trace in plate (u, v): its base on the run's seed, its downhill down the plate (-v)
     const TraceTarget t = loadTarget(o.trace, model);
     const Vec3 seed = model.env.plane.frame().toPlateMm(snaps.front().x.col(0));
     for (int i = 0; i < t.plateMm.cols(); ++i) job.view.traceUvMm.push_back({seed.x() + t.plateMm(0, i), seed.y() - t.plateMm(1, i)});
   }
-  if (autoSized) std::tie(job.view.width, job.view.height) = autoSizeFor(snaps, info, look);
+  if (autoSized && !job.view.plateRectMm) std::tie(job.view.width, job.view.height) = autoSizeFor(snaps, info, look);
   applyLook(look, runDir, snaps, job);
   checkFieldAgainstPlate(look, fitPlateMm(snaps, info, job));
-  const int still = o.png.empty() ? -1 : stillFrame(snaps, o);
+  const int still = o.png.empty() ? -1 : (scan && !given(o.atH) && !o.frameGiven ? static_cast<int>(snaps.size()) - 1 : stillFrame(snaps, o));
   // the write rule, once the flags and the run are known good: the run directory is read and receives
   // only its own movie.mp4 and final_top.png
   WriteRule rule;

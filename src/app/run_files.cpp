@@ -1,23 +1,74 @@
 // what `render` and `montage` read from a run directory and how they claim their outputs
 #include "run_files.hpp"
 
+#include <cstdint>
 #include <cstdio>
 #include <utility>
 
 #include "rootsim/errors.hpp"
+#include "rootsim/scene.hpp"
 #include "rootsim/trajectory.hpp"
 
 namespace fs = std::filesystem;
 
 namespace rootsim::app {
 
-std::vector<Snapshot> loadSnapshots(const fs::path& runDir) {
+namespace {
+std::vector<Snapshot> loadOne(const fs::path& runDir) {
   const fs::path traj = trajectoryPath(runDir);  // trajectory.bin, or trajectory.csv
   if (!fs::is_regular_file(traj))
     throw SceneError(traj.string() + ": not found (a run directory written with output.trajectory = true)");
   std::vector<Snapshot> snaps = readTrajectory(traj);
   if (snaps.empty()) throw SceneError(traj.string() + ": no snapshots to render");
   return snaps;
+}
+}  // namespace
+
+bool isPlateRun(const fs::path& runDir) {
+  std::error_code ec;
+  return fs::is_directory(runDir / "roots", ec) && fs::is_regular_file(runDir / "scene.toml", ec) &&
+         loadScene((runDir / "scene.toml").string()).isPlate();
+}
+
+std::vector<Snapshot> loadSnapshots(const fs::path& runDir, const std::string& last) {
+  if (!isPlateRun(runDir)) {
+    if (!last.empty())
+      throw SceneError("--root " + last + ": " + runDir.string() + " is a run of one root (--root picks a root of a plate's run)");
+    return loadOne(runDir);
+  }
+  const Scene sc = loadScene((runDir / "scene.toml").string());
+  const std::vector<Seedling>& seeds = sc.plate.seedlings;
+  std::vector<int> order;
+  for (int r = 0; r < static_cast<int>(seeds.size()); ++r)
+    if (seeds[static_cast<size_t>(r)].name != last) order.push_back(r);
+  if (!last.empty()) {
+    if (order.size() == seeds.size()) {
+      std::string names;
+      for (const Seedling& sd : seeds) names += (names.empty() ? "" : ", ") + sd.name;
+      throw SceneError("--root " + last + ": " + runDir.string() + " has no such root (its roots: " + names + ")");
+    }
+    for (int r = 0; r < static_cast<int>(seeds.size()); ++r)
+      if (seeds[static_cast<size_t>(r)].name == last) order.push_back(r);
+  }
+  // each root's snapshots in plate coordinates (its frame's origin at its seedling's place)
+  const PlateFrame pf = sc.model.env.plane.frame();
+  std::vector<std::vector<Snapshot>> roots;
+  size_t count = SIZE_MAX;
+  for (int r : order) {
+    const Seedling& sd = seeds[static_cast<size_t>(r)];
+    std::vector<Snapshot> snaps = loadOne(runDir / "roots" / sd.name);
+    const Vec3 offset = sd.position.x() * pf.lateral + sd.position.y() * pf.downhill;
+    for (Snapshot& s : snaps) s.x.colwise() += offset;
+    count = std::min(count, snaps.size());
+    roots.push_back(std::move(snaps));
+  }
+  std::vector<Snapshot> merged;
+  std::vector<Snapshot> one(roots.size());
+  for (size_t k = 0; k < count; ++k) {
+    for (size_t r = 0; r < roots.size(); ++r) one[r] = std::move(roots[r][k]);
+    merged.push_back(mergeRoots(one));
+  }
+  return merged;
 }
 
 std::vector<double> snapshotTimes(const std::vector<Snapshot>& snaps) {

@@ -10,8 +10,14 @@
 
 namespace rootsim::app {
 
-// the run's trajectory (trajectory.bin, or trajectory.csv); SceneError when it is missing or empty
-std::vector<Snapshot> loadSnapshots(const std::filesystem::path& runDir);
+// the run's trajectory (trajectory.bin, or trajectory.csv); SceneError when it is missing or empty.
+// A plate's run (docs/plate.md): every root's trajectory in plate coordinates, merged per snapshot
+// (Snapshot::rootStarts), the root named `last` drawn last (the follow camera follows the last root;
+// "": the seedlings' order); SceneError naming --root for a root the plate does not have, or for a
+// run of one root
+std::vector<Snapshot> loadSnapshots(const std::filesystem::path& runDir, const std::string& last = "");
+// true for a plate's run directory (a plate scene with its roots/ folder)
+bool isPlateRun(const std::filesystem::path& runDir);
 
 // the growth times of the snapshots [h]
 std::vector<double> snapshotTimes(const std::vector<Snapshot>& snaps);

@@ -44,6 +44,10 @@ std::string fileList(const fs::path& dir) {
 }
 }  // namespace
 
+void markRunFolder(const fs::path& dir) {
+  writeFileAtomic(dir / kRunMarker, std::string("rootsim run directory ") + kVersion + "\n" + fileList(dir));
+}
+
 fs::path normaliseOutDir(const std::string& text) { return checkOutputName(text, "--out"); }
 
 std::string whyNotWhole(const fs::path& dir) {

@@ -20,15 +20,134 @@
 #include "rootsim/run_seams.hpp"
 #include "rootsim/run_watch.hpp"
 #include "rootsim/version.hpp"
+#include "root_outputs.hpp"
 
 namespace fs = std::filesystem;
 
 namespace rootsim {
 
-namespace {
+using namespace detail;
 
+namespace {
 double now() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+}  // namespace
+
+namespace detail {
+
+RootStreams::RootStreams(const fs::path& w, const Model& m, const WriterPositions* p, const Vec3& vtkOffset)
+    : vtkOffset_(vtkOffset) {
+  const bool traj = m.output.trajectory;
+  const bool csv = traj && m.output.trajectoryFormat != TrajectoryFormat::Binary;
+  const bool bin = traj && m.output.trajectoryFormat != TrajectoryFormat::Csv;
+  if (p) {
+    ts_ = std::make_unique<TimeseriesWriter>(w / "timeseries.csv", p->timeseriesBytes);
+    if (csv) tr_ = std::make_unique<TrajectoryWriter>(w / "trajectory.csv", p->trajectoryBytes, p->trajectoryFrames);
+    if (bin) tb_ = std::make_unique<TrajectoryBinaryWriter>(w / "trajectory.bin", p->trajectoryBinaryBytes, p->trajectoryFrames);
+    if (m.output.vtk) vtk_ = std::make_unique<VtkSeriesWriter>(w, sceneInfoOf(m), p->vtkEntries);
+  } else {
+    ts_ = std::make_unique<TimeseriesWriter>(w / "timeseries.csv");
+    if (csv) tr_ = std::make_unique<TrajectoryWriter>(w / "trajectory.csv");
+    if (bin) tb_ = std::make_unique<TrajectoryBinaryWriter>(w / "trajectory.bin");
+    if (m.output.vtk) vtk_ = std::make_unique<VtkSeriesWriter>(w, sceneInfoOf(m));
+  }
+}
+
+void RootStreams::add(const Simulation& sim) {
+  ts_->add(sim.last());
+  if (tr_ || tb_ || vtk_) {
+    const Snapshot sn = sim.snapshot();
+    if (tr_) tr_->add(sn);
+    if (tb_) tb_->add(sn);
+    if (vtk_ && vtkOffset_.isZero(0.0)) {
+      vtk_->add(sn);
+    } else if (vtk_) {
+      Snapshot moved = sn;
+      moved.x.colwise() += vtkOffset_;
+      vtk_->add(moved);
+    }
+  }
+}
+
+WriterPositions RootStreams::positions() const {
+  WriterPositions p;
+  p.timeseriesBytes = ts_->bytes();
+  if (tr_) p.trajectoryBytes = tr_->bytes();
+  if (tb_) p.trajectoryBinaryBytes = tb_->bytes();
+  p.trajectoryFrames = tr_ ? tr_->frames() : (tb_ ? tb_->frames() : 0);
+  if (vtk_) p.vtkEntries = vtk_->entries();
+  return p;
+}
+
+void RootStreams::close() {
+  ts_->close();
+  if (tr_) tr_->close();
+  if (tb_) tb_->close();
+  if (vtk_) vtk_->close();
+}
+
+void RootStreams::closeQuietly() {
+  auto quietly = [](auto&& close) {
+    try {
+      close();
+    } catch (const std::exception&) {
+      // a writer that cannot close (the disk that failed the run) keeps nothing; the others still do
+    }
+  };
+  quietly([&] { ts_->close(); });
+  if (tr_) quietly([&] { tr_->close(); });
+  if (tb_) quietly([&] { tb_->close(); });
+  if (vtk_) quietly([&] { vtk_->close(); });
+}
+
+RootFinal finishRoot(const Model& m, const Simulation& sim, const RunWatch& watch, double wall) {
+  RootFinal f;
+  f.shape = shapeCsv(m, sim.state(), sim.strains());
+  // summary.json and the one-row result.csv (what sweep tables are made of)
+  const StepRecord& r = sim.last();
+  Json j;
+  j.str("rootsim_version", kVersion).str("scene", m.name).str("status", "complete");
+  j.integer("steps", sim.step()).num("time_h", r.timeH).num("length_mm", r.length / units::mm);
+  j.integer("elements", r.elements).integer("total_substeps", sim.totalSubsteps());
+  j.integer("max_substeps_per_step", watch.maxSubsteps);
+  j.num("theta_tip_deg", r.thetaTip / units::deg);
+  Json tip;
+  tip.num("x_mm", r.tip.x() / units::mm).num("y_mm", r.tip.y() / units::mm).num("z_mm", r.tip.z() / units::mm);
+  j.object("tip", tip);
+  // contact (docs/model.md, Contact and friction): zero when self-contact, friction and obstacles are off
+  Json contact;
+  contact.integer("self_contacts", r.selfContacts)
+      .integer("max_self_contacts", watch.maxSelfContacts)
+      .num("min_self_distance_r", watch.minSelfDistance)
+      .integer("obstacle_contacts", r.obstacleContacts)
+      .integer("slip_events", r.slipEvents)
+      .num("frictional_work_j", r.frictionWork);
+  j.object("contact", contact);
+  const double snapOrTurn = m.env.plane.enabled ? watch.snapFirst : watch.snapVertical;
+  std::optional<ShapeAnalysis> shape;
+  if (m.growth.enabled) shape = analyseShape(m, sim.state());
+  f.res = makeResult(m, sim, shape ? &*shape : nullptr, snapOrTurn);
+  const RunResult& res = f.res;
+  if (shape) {
+    j.str("pattern", res.pattern)
+        .num("wavelength_mm", res.wavelengthMm)
+        .num("amplitude_mm", res.amplitudeMm)
+        .num("amplitude_half_mm", res.amplitudeHalfMm)
+        .integer("lateral_peaks", static_cast<long>(res.lateralPeaks))
+        .num("skew_deg", res.skewDeg)
+        .num("max_kappa_per_mm", res.maxKappaPerMm)
+        .num("theta_min_deg", res.thetaMinDeg)
+        .num("theta_max_deg", res.thetaMaxDeg)
+        .num(m.env.plane.enabled ? "first_snap_h" : "turning_time_h", snapOrTurn);
+    j.object("theory", theoryJson(theoryFor(m)));
+  } else {
+    j.num("residual_force_n", r.residualForce);
+  }
+  j.num("wall_time_s", wall);
+  f.summary = j.dump() + "\n";
+  f.result = resultCsv(res);
+  return f;
 }
 
 // what to do with an interrupted run DIR.partial when resuming: continue it from its checkpoint (ck
@@ -88,6 +207,10 @@ PartialRun resumePlan(const Scene& sc, const std::string& outDir, std::uint64_t 
   return PartialRun::Continue;
 }
 
+}  // namespace detail
+
+namespace {
+
 // leftovers of atomic writes a kill interrupted (the streams being continued excepted)
 void removeStaleTemps(const fs::path& work) {
   std::error_code ec;
@@ -108,6 +231,7 @@ void removeStaleTemps(const fs::path& work) {
 
 double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOptions& dirOptions,
                      const std::function<void(const StepRecord&, int total)>& progress) {
+  if (sc.isPlate()) return runPlateToDir(sc, outDir, dirOptions, progress);
   const Model& m = sc.model;
   const std::uint64_t hash = sceneHash(sc.resolvedToml);
   std::optional<RunCheckpoint> ck;
@@ -123,14 +247,8 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
   const StepSeams seams = stepSeams();
   try {
     const fs::path w = rd.work();
-    const bool traj = m.output.trajectory;
-    const bool csv = traj && m.output.trajectoryFormat != TrajectoryFormat::Binary;
-    const bool bin = traj && m.output.trajectoryFormat != TrajectoryFormat::Csv;
     std::unique_ptr<Simulation> simp;
-    std::unique_ptr<TimeseriesWriter> ts;
-    std::unique_ptr<TrajectoryWriter> tr;
-    std::unique_ptr<TrajectoryBinaryWriter> tb;
-    std::unique_ptr<VtkSeriesWriter> vtk;
+    std::unique_ptr<RootStreams> out;
     RunWatch watch;
     double wallBefore = 0;         // wall time of earlier attempts (resumed) [s]
     int first = 1;                 // the first growth step this process runs
@@ -138,34 +256,18 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
       // resumed: the state, the solvers' memory and the writers where the checkpoint saw them
       removeStaleTemps(w);
       simp = std::make_unique<Simulation>(m, ck->state, ck->carry);
-      const WriterPositions& p = ck->writers;
-      ts = std::make_unique<TimeseriesWriter>(w / "timeseries.csv", p.timeseriesBytes);
-      if (csv) tr = std::make_unique<TrajectoryWriter>(w / "trajectory.csv", p.trajectoryBytes, p.trajectoryFrames);
-      if (bin) tb = std::make_unique<TrajectoryBinaryWriter>(w / "trajectory.bin", p.trajectoryBinaryBytes, p.trajectoryFrames);
-      if (m.output.vtk) vtk = std::make_unique<VtkSeriesWriter>(w, sceneInfoOf(m), p.vtkEntries);
+      out = std::make_unique<RootStreams>(w, m, &ck->writers);
       watch = ck->acc.watch;
       wallBefore = ck->acc.wallBefore;
       first = ck->step + 1;
     } else {
       rd.write("scene.toml", sc.resolvedToml);
       simp = std::make_unique<Simulation>(m);
-      ts = std::make_unique<TimeseriesWriter>(w / "timeseries.csv");
-      if (csv) tr = std::make_unique<TrajectoryWriter>(w / "trajectory.csv");
-      if (bin) tb = std::make_unique<TrajectoryBinaryWriter>(w / "trajectory.bin");
-      if (m.output.vtk) vtk = std::make_unique<VtkSeriesWriter>(w, sceneInfoOf(m));
+      out = std::make_unique<RootStreams>(w, m);
     }
     Simulation& sim = *simp;
-    auto record = [&]() {
-      ts->add(sim.last());
-      if (tr || tb || vtk) {
-        const Snapshot sn = sim.snapshot();
-        if (tr) tr->add(sn);
-        if (tb) tb->add(sn);
-        if (vtk) vtk->add(sn);
-      }
-    };
     if (!ck) {
-      record();
+      out->add(sim);
       watch.start(sim.last());
     }
     // a checkpoint: everything carried to the next step, and where the files stand (each add() flushed)
@@ -176,11 +278,7 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
       c.state = sim.state();
       c.carry = sim.carry();
       c.acc = {watch, wallBefore + (now() - t0)};
-      c.writers.timeseriesBytes = ts->bytes();
-      if (tr) c.writers.trajectoryBytes = tr->bytes();
-      if (tb) c.writers.trajectoryBinaryBytes = tb->bytes();
-      c.writers.trajectoryFrames = tr ? tr->frames() : (tb ? tb->frames() : 0);
-      if (vtk) c.writers.vtkEntries = vtk->entries();
+      c.writers = out->positions();
       writeCheckpoint(w / kCheckpointFile, c);
     };
     double lastCheckpoint = now();
@@ -189,25 +287,12 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     // time series and trajectory up to the last output step before the failure, the ParaView series. The
     // directory becomes DIR.incomplete with ERROR.txt (RunDir::fail), which marks it. (A stop on purpose
     // leaves DIR.partial as a kill does, its files where the checkpoint expects them.)
-    auto keepPartial = [&] {
-      auto quietly = [](auto&& close) {
-        try {
-          close();
-        } catch (const std::exception&) {
-          // a writer that cannot close (the disk that failed the run) keeps nothing; the others still do
-        }
-      };
-      quietly([&] { ts->close(); });
-      if (tr) quietly([&] { tr->close(); });
-      if (tb) quietly([&] { tb->close(); });
-      if (vtk) quietly([&] { vtk->close(); });
-    };
     try {
       for (int k = first; k <= steps; ++k) {
         const StepRecord& r = sim.growthStep();
         watch.see(r);
         try {
-          if (k % m.output.everySteps == 0 || k == steps) record();
+          if (k % m.output.everySteps == 0 || k == steps) out->add(sim);
           const bool due = seams.checkpointAfter ? seams.checkpointAfter(k)
                                                  : now() - lastCheckpoint >= m.output.checkpointEvery;
           if (k < steps && due) {
@@ -224,61 +309,18 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     } catch (const RunInterrupted&) {
       throw;
     } catch (const std::exception&) {
-      keepPartial();
+      out->closeQuietly();
       throw;
     }
-    ts->close();
-    if (tr) tr->close();
-    if (tb) tb->close();
-    if (vtk) vtk->close();
+    out->close();
     // the finished run holds no checkpoint: it is the same as a run never interrupted
     std::error_code ec;
     fs::remove(w / kCheckpointFile, ec);
-    rd.write("shape.csv", shapeCsv(m, sim.state(), sim.strains()));
     const double wall = wallBefore + (now() - t0);
-
-    // summary.json and the one-row result.csv (what sweep tables are made of)
-    const StepRecord& r = sim.last();
-    Json j;
-    j.str("rootsim_version", kVersion).str("scene", m.name).str("status", "complete");
-    j.integer("steps", sim.step()).num("time_h", r.timeH).num("length_mm", r.length / units::mm);
-    j.integer("elements", r.elements).integer("total_substeps", sim.totalSubsteps());
-    j.integer("max_substeps_per_step", watch.maxSubsteps);
-    j.num("theta_tip_deg", r.thetaTip / units::deg);
-    Json tip;
-    tip.num("x_mm", r.tip.x() / units::mm).num("y_mm", r.tip.y() / units::mm).num("z_mm", r.tip.z() / units::mm);
-    j.object("tip", tip);
-    // contact (docs/model.md, Contact and friction): zero when self-contact, friction and obstacles are off
-    Json contact;
-    contact.integer("self_contacts", r.selfContacts)
-        .integer("max_self_contacts", watch.maxSelfContacts)
-        .num("min_self_distance_r", watch.minSelfDistance)
-        .integer("obstacle_contacts", r.obstacleContacts)
-        .integer("slip_events", r.slipEvents)
-        .num("frictional_work_j", r.frictionWork);
-    j.object("contact", contact);
-    const double snapOrTurn = m.env.plane.enabled ? watch.snapFirst : watch.snapVertical;
-    std::optional<ShapeAnalysis> shape;
-    if (m.growth.enabled) shape = analyseShape(m, sim.state());
-    const RunResult res = makeResult(m, sim, shape ? &*shape : nullptr, snapOrTurn);
-    if (shape) {
-      j.str("pattern", res.pattern)
-          .num("wavelength_mm", res.wavelengthMm)
-          .num("amplitude_mm", res.amplitudeMm)
-          .num("amplitude_half_mm", res.amplitudeHalfMm)
-          .integer("lateral_peaks", static_cast<long>(res.lateralPeaks))
-          .num("skew_deg", res.skewDeg)
-          .num("max_kappa_per_mm", res.maxKappaPerMm)
-          .num("theta_min_deg", res.thetaMinDeg)
-          .num("theta_max_deg", res.thetaMaxDeg)
-          .num(m.env.plane.enabled ? "first_snap_h" : "turning_time_h", snapOrTurn);
-      j.object("theory", theoryJson(theoryFor(m)));
-    } else {
-      j.num("residual_force_n", r.residualForce);
-    }
-    j.num("wall_time_s", wall);
-    rd.write("summary.json", j.dump() + "\n");
-    rd.write("result.csv", resultCsv(res));
+    const RootFinal f = finishRoot(m, sim, watch, wall);
+    rd.write("shape.csv", f.shape);
+    rd.write("summary.json", f.summary);
+    rd.write("result.csv", f.result);
     rd.commit();
     return wall;
   } catch (const RunInterrupted&) {

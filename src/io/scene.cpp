@@ -13,44 +13,16 @@
 
 #include "rootsim/contact.hpp"
 #include "rootsim/scene.hpp"
+#include "plate_scene.hpp"
 #include "scene_schema.hpp"
+#include "scene_toml.hpp"
 #include "toml_guard.hpp"
 
 namespace rootsim {
 
 using namespace detail;
 
-namespace {
-
-const KeySpec* findKey(const std::string& section, const std::string& key) {
-  for (const auto& k : schema())
-    if (k.section == section && k.key == key) return &k;
-  return nullptr;
-}
-
-// " (did you mean ...?)" for a near miss, "" otherwise
-std::string suggestKey(const std::string& section, const std::string& key) {
-  std::string best;
-  int bestD = 1 << 30;
-  for (const auto& k : schema()) {
-    // same section: compare keys; other sections: an exact key name elsewhere is a strong hint
-    const int d = k.section == section ? editDistance(key, k.key) : (k.key == key ? 0 : 1 << 20);
-    if (d < bestD) { bestD = d; best = k.full(); }
-  }
-  if (bestD <= std::max<int>(2, static_cast<int>(key.size()) / 3)) return " (did you mean " + best + "?)";
-  return "";
-}
-
-std::string suggestSection(const std::string& section) {
-  std::string best;
-  int bestD = 1 << 30;
-  for (const auto& s : sections()) {
-    const int d = editDistance(section, s);
-    if (d < bestD) { bestD = d; best = s; }
-  }
-  if (bestD <= std::max<int>(2, static_cast<int>(section.size()) / 3)) return " (did you mean [" + best + "]?)";
-  return "";
-}
+namespace detail {
 
 std::string describeNode(const toml::node& n) {
   std::ostringstream os;
@@ -63,6 +35,8 @@ std::string describeNode(const toml::node& n) {
   else os << "a date/time";
   return os.str();
 }
+
+namespace {
 
 // the text of the number a node was parsed from (src: the text toml++ parsed), "" when not found
 std::string numberText(const std::string& src, const toml::source_position& p) {
@@ -89,6 +63,8 @@ std::string underflowed(const toml::node& n, const std::string& src) {
   return "(got " + (text.empty() ? formatNumber(d, false) : printable(text)) + ", which a double holds only as " +
          formatNumber(d, false) + ": non-zero magnitudes below 2.2250738585072014e-308 underflow)";
 }
+
+}  // namespace
 
 // converts a TOML node to a value of the key's type, or returns the reason it cannot; src is the text
 // toml++ parsed n from (for the digits of a number that underflowed)
@@ -140,8 +116,42 @@ std::string convert(const KeySpec& k, const toml::node& n, Value& out, const std
   return "";
 }
 
+const KeySpec* findKey(const std::string& section, const std::string& key) {
+  for (const auto& k : schema())
+    if (k.section == section && k.key == key) return &k;
+  return nullptr;
+}
+
 std::string where(const std::string& source, const toml::source_region& r) {
   return printable(source) + ":" + std::to_string(r.begin.line);
+}
+
+}  // namespace detail
+
+namespace {
+
+// " (did you mean ...?)" for a near miss, "" otherwise
+std::string suggestKey(const std::string& section, const std::string& key) {
+  std::string best;
+  int bestD = 1 << 30;
+  for (const auto& k : schema()) {
+    // same section: compare keys; other sections: an exact key name elsewhere is a strong hint
+    const int d = k.section == section ? editDistance(key, k.key) : (k.key == key ? 0 : 1 << 20);
+    if (d < bestD) { bestD = d; best = k.full(); }
+  }
+  if (bestD <= std::max<int>(2, static_cast<int>(key.size()) / 3)) return " (did you mean " + best + "?)";
+  return "";
+}
+
+std::string suggestSection(const std::string& section) {
+  std::string best;
+  int bestD = 1 << 30;
+  for (const auto& s : sections()) {
+    const int d = editDistance(section, s);
+    if (d < bestD) { bestD = d; best = s; }
+  }
+  if (bestD <= std::max<int>(2, static_cast<int>(section.size()) / 3)) return " (did you mean [" + best + "]?)";
+  return "";
 }
 
 // [[obstacle]] tables (docs/model.md, Contact and friction): one per obstacle, checked key by key like the
@@ -354,6 +364,7 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
       obstacles = parseObstacles(sourceName, skey, snode);
       continue;
     }
+    if (isPlateTable(section)) continue;  // parsePlateTables, once the plate-wide values are known
     bool known = false;
     for (const auto& s : sections()) known |= s == section;
     if (!known) {
@@ -382,11 +393,26 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
   std::string name = std::filesystem::path(sourceName).stem().string();
   Scene sc;
   sc.model = buildModel(values, name);
-  checkObstacleClearance(sc.model, obstacles);
-  for (const ParsedObstacle& po : obstacles) sc.model.env.obstacles.push_back(po.o);
+  std::vector<Obstacle> obs;
+  for (const ParsedObstacle& po : obstacles) obs.push_back(po.o);
+  PlateTables plate = parsePlateTables(root, sourceName, text, values, name, obs);
+  // a plate's obstacles are in plate coordinates, each seedling checks them against its own root
+  if (plate.spec.seedlings.empty()) checkObstacleClearance(sc.model, obstacles);
+  sc.model.env.obstacles = obs;
   sc.path = sourceName;
-  sc.resolvedToml = resolvedToml(values, name) + obstaclesToml(sc.model.env.obstacles);
+  const std::string head = resolvedToml(values, name) + obstaclesToml(obs);
+  sc.resolvedToml = head + plate.toml;
+  for (const std::string& t : plate.rootToml) sc.rootToml.push_back(head + t);
+  sc.plate = std::move(plate.spec);
+  if (sc.plate.seedlings.size() == 1) sc.model = sc.plate.seedlings.front().model;
   return sc;
+}
+
+const Model& singleRootModel(const Scene& sc, const std::string& what) {
+  if (sc.plate.seedlings.size() > 1)
+    throw SceneError(what + " is a plate of " + std::to_string(sc.plate.seedlings.size()) +
+                     " roots; this command takes one root: pass its folder roots/NAME (docs/plate.md)");
+  return sc.model;
 }
 
 std::string sceneKeyType(const std::string& key) {

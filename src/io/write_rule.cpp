@@ -51,10 +51,24 @@ constexpr std::array<const char*, 17> kRunEntries = {
     "shape.csv",      "summary.json",   "result.csv",     "trajectory.csv", "trajectory.pvd", "vtk",
     "movie.mp4",      "final_top.png",  "ERROR.txt",      "checkpoint.bin", "movie.mp4.partial"};
 
-bool isRunEntry(const fs::path&, const std::string& name) {
+// and what a plate's run writes besides (docs/plate.md, Outputs): roots/ holds one run directory per root
+constexpr std::array<const char*, 5> kPlateEntries = {"plate.csv", "plate_timeseries.csv", "plate.pvd", "plate_view.png",
+                                                      "plate_scan.png"};
+
+bool isRunEntry(const fs::path& dir, const std::string& name) {
   const std::string base = stripTemp(name);
   for (const char* e : kRunEntries)
     if (base == e) return true;
+  for (const char* e : kPlateEntries)
+    if (base == e) return true;
+  if (name == "roots") {
+    std::error_code ec;
+    const fs::path roots = dir / name;
+    if (!fs::is_directory(fs::symlink_status(roots, ec))) return false;
+    for (const auto& e : fs::directory_iterator(roots, ec))
+      if (!whyNotOurs(e.path(), runFolder()).empty()) return false;
+    return !ec;
+  }
   return false;
 }
 

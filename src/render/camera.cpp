@@ -44,7 +44,9 @@ Eigen::Vector2d tipRegionCentre(const Snapshot& s, const PlateFrame& pf, double 
   Eigen::Vector2d acc = Eigen::Vector2d::Zero();
   double got = 0.0;
   Eigen::Vector3d b = pf.toPlateMm(s.x.col(nn - 1));
-  for (long i = nn - 1; i > 0 && got < lengthMm; --i) {
+  // the last root's nodes only (a plate's snapshot: the followed root is the last)
+  const long first = s.rootStarts.empty() ? 0 : s.rootStarts.back();
+  for (long i = nn - 1; i > first && got < lengthMm; --i) {
     const Eigen::Vector3d a = pf.toPlateMm(s.x.col(i - 1));
     const double len = (b - a).head<2>().norm();
     if (len > 0) {

@@ -67,6 +67,17 @@ std::string colourFieldLabel(ColourField f) {
 }
 
 Eigen::VectorXd nodeField(const Snapshot& s, const SceneInfo& info, ColourField f) {
+  if (!s.rootStarts.empty()) {
+    // a plate's roots: each root's field, in turn (nothing across the elements that join them)
+    Eigen::VectorXd all(s.x.cols());
+    long at = 0;
+    for (int k = 0; k < rootCount(s); ++k) {
+      const Eigen::VectorXd v = nodeField(rootOf(s, k), info, f);
+      all.segment(at, v.size()) = v;
+      at += v.size();
+    }
+    return all;
+  }
   const int n = s.elements();
   switch (f) {
     case ColourField::None:

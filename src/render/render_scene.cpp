@@ -458,18 +458,23 @@ RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const 
 
   // the root
   const PlateFrame pf = PlateFrame::tilted(info.alphaDeg * units::deg);
-  const std::vector<Ring> rings = tubeRings(snap, pf);
-  rs.vertices.reserve(static_cast<size_t>((rings.size() + kTipRings + 2) * kSides));
+  rs.vertices.reserve(static_cast<size_t>((snap.x.cols() + rootCount(snap) * (kTipRings + 2)) * kSides));
   rs.indices.reserve(rs.vertices.capacity() * 6);
-  std::vector<std::array<float, 3>> ringColour;
-  if (view.colourBy != ColourField::None) {
-    const Eigen::VectorXd field = nodeField(snap, info, view.colourBy);
-    const auto [lo, hi] = view.colourRange;
-    if (!(hi > lo)) throw RenderError("render view: colourRange must be increasing");
-    for (double v : field) ringColour.push_back(fieldColour(view.colourBy, v, view.colourRange));
+  // each root its own tube (a plate's roots: Snapshot::rootStarts)
+  for (int k = 0; k < rootCount(snap); ++k) {
+    const Snapshot part = rootCount(snap) == 1 ? Snapshot{} : rootOf(snap, k);
+    const Snapshot& root = rootCount(snap) == 1 ? snap : part;
+    const std::vector<Ring> rings = tubeRings(root, pf);
+    std::vector<std::array<float, 3>> ringColour;
+    if (view.colourBy != ColourField::None) {
+      const Eigen::VectorXd field = nodeField(root, info, view.colourBy);
+      const auto [lo, hi] = view.colourRange;
+      if (!(hi > lo)) throw RenderError("render view: colourRange must be increasing");
+      for (double v : field) ringColour.push_back(fieldColour(view.colourBy, v, view.colourRange));
+    }
+    addTube(rs, rings, ringColour);
+    if (view.whiskers) addWhiskers(rs, rings);
   }
-  addTube(rs, rings, ringColour);
-  if (view.whiskers) addWhiskers(rs, rings);
   addObstacleMeshes(info, rs);
 
   // camera
@@ -546,6 +551,30 @@ RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const 
 
   // grid lines that stay visible on big pictures
   rs.plate.lineWidthPx = std::max(1.0f, static_cast<float>(std::min(view.width, view.height)) / 1080.0f);
+  if (view.plateRectMm && rs.plate.visible) {
+    // the whole plate: its own extent on a grey surround, outlined
+    const auto [u0, v0, u1, v1] = *view.plateRectMm;
+    rs.plate.u0 = static_cast<float>(u0), rs.plate.v0 = static_cast<float>(v0);
+    rs.plate.u1 = static_cast<float>(u1), rs.plate.v1 = static_cast<float>(v1);
+    rs.background = {0.78f, 0.78f, 0.78f, 1};
+    OverlayLine l;
+    l.widthPx = std::max(1.5f, rs.plate.lineWidthPx * 1.5f);
+    l.colour = {60, 60, 60, 255};
+    for (const auto& [u, v] : {std::pair{u0, v0}, {u1, v0}, {u1, v1}, {u0, v1}, {u0, v0}}) {
+      Eigen::Vector2d px;
+      if (projectToPixel(rs, V3(u, v, 0), px)) l.points.push_back({static_cast<float>(px.x()), static_cast<float>(px.y())});
+    }
+    if (l.points.size() == 5) rs.lines.push_back(std::move(l));
+  }
+  if (view.scanLook) {
+    // light roots on a dark plate, no stripes, no grid: a scanner's picture of the plate
+    rs.material.body = {0.92f, 0.91f, 0.86f};
+    rs.material.plus = rs.material.minus = rs.material.body;
+    rs.plate.colour = {0.05f, 0.05f, 0.06f};
+    rs.plate.line = rs.plate.major = rs.plate.colour;
+    rs.background = {0.0f, 0.0f, 0.0f, 1};
+    rs.shadows = false;
+  }
   addOverlays(rs, snap, info, view, framing);
   return rs;
 }

@@ -74,6 +74,46 @@ void addSelfContact(const RodParams& p, const Environment& env, const RodState& 
   }
 }
 
+bool rootPairForce(double ra, double rb, double k, const Vec3& up, const Vec3& a0, const Vec3& a1, const Vec3& b0,
+                   const Vec3& b1, RootPairForce& out) {
+  // the self-contact law with the contact distance ra + rb (pairContact's 2R)
+  PairContact g;
+  if (!pairContact(0.5 * (ra + rb), k, up, a0, a1, b0, b1, g)) return false;
+  out.F = g.fn * g.nrm;
+  out.sa = g.sa;
+  out.sb = g.sb;
+  return true;
+}
+
+void addNeighbourContact(const RodParams& p, const Environment& env, const RodState& s, bool damping,
+                         ContactWorkspace& cw, Eigen::Matrix3Xd& force) {
+  const NeighbourCapsules& nb = cw.neighbours;
+  const double k = env.selfContact.k, c = env.plane.c;
+  const Vec3 up = env.plane.normal();
+  RootPairForce pf;
+  for (const auto& [i, j] : nb.pairs) {
+    const Vec3 x0 = s.x.col(i), x1 = s.x.col(i + 1), b0 = nb.a.col(j), b1 = nb.b.col(j);
+    double w0 = 0, w1 = 0;
+    Vec3 F;
+    if (nb.first[static_cast<size_t>(j)]) {
+      if (!rootPairForce(p.radius, nb.radius[j], k, up, x0, x1, b0, b1, pf)) continue;
+      F = pf.F;
+      w1 = pf.sa;
+    } else {
+      if (!rootPairForce(nb.radius[j], p.radius, k, up, b0, b1, x0, x1, pf)) continue;
+      F = -pf.F;
+      w1 = pf.sb;
+    }
+    w0 = 1.0 - w1;
+    if (damping) {
+      const Vec3 nrm = F.normalized();
+      F -= c * (w0 * s.v.col(i) + w1 * s.v.col(i + 1)).dot(nrm) * nrm;
+    }
+    force.col(i) += w0 * F;
+    force.col(i + 1) += w1 * F;
+  }
+}
+
 void addFriction(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw,
                  Eigen::Matrix3Xd& force) {
   if (env.plane.enabled) addPlateFriction(p, env, s, force);

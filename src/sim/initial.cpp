@@ -15,7 +15,15 @@ double splitmixUniform(std::uint64_t& state) {
 RodState makeInitialRod(const RodParams& p, const Plane& plane, const InitialShape& shape) {
   const int n = std::max(2, static_cast<int>(std::ceil(shape.length / shape.elementLength - 1e-9)));
   const double l = shape.length / n;
-  const Vec3 nh = plane.normal(), down = plane.downhill(), lat = plane.lateral();
+  const Vec3 nh = plane.normal();
+  Vec3 down = plane.downhill(), lat = plane.lateral();
+  if (shape.angle != 0.0) {
+    // a seedling sown at an angle: the same straight rod turned about the plate's normal
+    const double c = std::cos(shape.angle), sn = std::sin(shape.angle);
+    const Vec3 d3 = c * down + sn * lat;
+    lat = nh.cross(d3);
+    down = d3;
+  }
   RodState s;
   s.resize(n);
   std::uint64_t rng = shape.seed;

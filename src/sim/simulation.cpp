@@ -105,6 +105,40 @@ const StepRecord& Simulation::growthStep() {
   return p_.last;
 }
 
+const StepRecord& Simulation::relaxAgain() {
+  int unstable = 0;
+  const RelaxResult r = relaxStable(p_.step, unstable);
+  p_.totalSubsteps += r.substeps;
+  p_.totalIterations += r.iterations;
+  const StepRecord before = p_.last;
+  observe(r, before.splits, before.unstable + unstable);
+  p_.last.substeps += before.substeps;
+  p_.last.iterations += before.iterations;
+  return p_.last;
+}
+
+void Simulation::beginJoint() {
+  joint_ = std::make_unique<DynamicRelaxation>(m_.rod, m_.env, m_.solver, s_, ws_, windowStart());
+}
+
+bool Simulation::jointStep() {
+  if (joint_->result().substeps >= m_.solver.maxSubsteps) {
+    std::ostringstream os;
+    os << "growth step " << p_.step << ": relaxing together with the roots it touches: " << joint_->describeFailure();
+    throw RelaxError(os.str());
+  }
+  return joint_->step();
+}
+
+long Simulation::jointSubsteps() const { return joint_ ? joint_->result().substeps : 0; }
+
+void Simulation::endJoint() {
+  const long n = joint_->result().substeps;
+  p_.totalSubsteps += n;
+  p_.last.substeps += n;
+  joint_.reset();
+}
+
 int Simulation::windowStart() {
   // the active window (docs/model.md, "Newton solver"): the growth zone, solver.window_mm of mature root behind
   // it, and the tip; the rest is adhered and frozen
@@ -118,6 +152,9 @@ int Simulation::windowStart() {
   // frozen). Turns that only older turns touch stay frozen: reaching back to the oldest touch of all,
   // two of the dearest coils of the full figure set (alpha 60, beta 1; alpha 90, beta 1 apical) took 8-9 %
   // longer for the same pattern, lambda and A to 0.1 %, and 12 other coils the same time and results
+  // other roots on a plate: back to the oldest element near one (the roots it presses on yield, as the
+  // turns of a coil do)
+  for (const auto& pr : ws_.contact.neighbours.pairs) first = std::min(first, pr[0]);
   return std::min(first, firstNodeNearContact(m_.rod, m_.env, s_, ws_.contact, first));
 }
 

@@ -1,5 +1,7 @@
 #include "rootsim/snapshot.hpp"
 
+#include <algorithm>
+
 #include "rootsim/assert.hpp"
 #include "rootsim/model.hpp"
 #include "rootsim/rod.hpp"
@@ -47,6 +49,73 @@ SceneInfo sceneInfoOf(const Model& m) {
     si.obstacles.push_back(sh);
   }
   return si;
+}
+
+Snapshot mergeRoots(const std::vector<Snapshot>& roots) {
+  Snapshot m;
+  if (roots.empty()) return m;
+  m.step = roots.front().step;
+  m.timeH = roots.front().timeH;
+  long nodes = 0;
+  for (const Snapshot& r : roots) nodes += r.x.cols();
+  const long elements = nodes - 1;
+  const bool fields = std::all_of(roots.begin(), roots.end(), [](const Snapshot& r) { return r.kappa0.size() > 0; });
+  const bool contact = std::all_of(roots.begin(), roots.end(), [](const Snapshot& r) { return r.contactForce.cols() > 0; });
+  m.x.resize(3, nodes);
+  m.d1.resize(3, elements);
+  m.d3.resize(3, elements);
+  m.radius.resize(elements);
+  if (fields) {
+    m.kappa0.resize(nodes);
+    m.plateForce.resize(nodes);
+  }
+  if (contact) m.contactForce.resize(3, nodes);
+  long node = 0, element = 0;
+  for (size_t k = 0; k < roots.size(); ++k) {
+    const Snapshot& r = roots[k];
+    const long nn = r.x.cols(), ne = r.radius.size();
+    if (k > 0) {
+      m.rootStarts.push_back(static_cast<int>(node));
+      // the joining element: the next root's first element's fields
+      m.d1.col(element) = r.d1.col(0);
+      m.d3.col(element) = r.d3.col(0);
+      m.radius[element] = r.radius[0];
+      ++element;
+    }
+    m.x.middleCols(node, nn) = r.x;
+    m.d1.middleCols(element, ne) = r.d1;
+    m.d3.middleCols(element, ne) = r.d3;
+    m.radius.segment(element, ne) = r.radius;
+    if (fields) {
+      m.kappa0.segment(node, nn) = r.kappa0;
+      m.plateForce.segment(node, nn) = r.plateForce;
+    }
+    if (contact) m.contactForce.middleCols(node, nn) = r.contactForce;
+    node += nn;
+    element += ne;
+  }
+  return m;
+}
+
+Snapshot rootOf(const Snapshot& m, int k) {
+  if (m.rootStarts.empty()) return m;
+  const long first = k == 0 ? 0 : m.rootStarts[static_cast<size_t>(k - 1)];
+  const long end = k + 1 < rootCount(m) ? m.rootStarts[static_cast<size_t>(k)] : m.x.cols();
+  const long nn = end - first, ne = nn - 1;
+  Snapshot r;
+  r.step = m.step;
+  r.timeH = m.timeH;
+  r.x = m.x.middleCols(first, nn);
+  // root k's elements start after the k joining elements before it
+  r.d1 = m.d1.middleCols(first, ne);
+  r.d3 = m.d3.middleCols(first, ne);
+  r.radius = m.radius.segment(first, ne);
+  if (m.kappa0.size() > 0) {
+    r.kappa0 = m.kappa0.segment(first, nn);
+    r.plateForce = m.plateForce.segment(first, nn);
+  }
+  if (m.contactForce.cols() > 0) r.contactForce = m.contactForce.middleCols(first, nn);
+  return r;
 }
 
 }  // namespace rootsim

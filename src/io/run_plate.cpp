@@ -1,0 +1,176 @@
+// A plate scene -> one run directory (docs/plate.md, Outputs): roots/NAME per root, each a run directory
+// of that root alone (its own frame), and the plate's summary, time series and ParaView series.
+#include <chrono>
+#include <memory>
+
+#include "rootsim/csv.hpp"
+#include "rootsim/errors.hpp"
+#include "rootsim/json.hpp"
+#include "rootsim/plate.hpp"
+#include "rootsim/run_scene.hpp"
+#include "rootsim/units.hpp"
+#include "rootsim/version.hpp"
+#include "root_outputs.hpp"
+#include "scene_schema.hpp"
+
+namespace fs = std::filesystem;
+
+namespace rootsim {
+
+using namespace detail;
+
+namespace {
+
+double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+std::string csvText(const std::string& s) {
+  std::string q = "\"";
+  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return q + "\"";
+}
+
+// the plate's time series: one row per output step
+std::string plateSeriesHeader() { return "step,time_h,touching_pairs,min_gap_over_contact,sweeps\n"; }
+std::string plateSeriesRow(const PlateStepRecord& r) {
+  return std::to_string(r.step) + "," + formatNumber(r.timeH, false) + "," + std::to_string(r.touchingPairs) + "," +
+         (std::isnan(r.minGap) ? std::string("") : formatNumber(r.minGap, false)) + "," + std::to_string(r.sweeps) + "\n";
+}
+
+}  // namespace
+
+double runPlateToDir(const Scene& sc, const std::string& outDir, const RunDirOptions& dirOptions,
+                     const std::function<void(const StepRecord&, int total)>& progress) {
+  const PlateSpec& spec = sc.plate;
+  std::optional<RunCheckpoint> ck;
+  // a plate writes no checkpoint: an interrupted plate run (DIR.partial) is discarded and started again
+  const PartialRun partial =
+      dirOptions.resume ? resumePlan(sc, outDir, sceneHash(sc.resolvedToml), dirOptions.force, ck) : PartialRun::Refuse;
+  RunDir rd(outDir, dirOptions, partial);
+  if (dirOptions.note && partial == PartialRun::Discard)
+    dirOptions.note("a plate has no checkpoints: starting " + rd.final().string() + " again");
+  const double t0 = now();
+  try {
+    const fs::path w = rd.work();
+    rd.write("scene.toml", sc.resolvedToml);
+    fs::create_directories(w / "roots");
+    std::vector<fs::path> dirs;
+    for (size_t r = 0; r < spec.seedlings.size(); ++r) {
+      const fs::path d = w / "roots" / spec.seedlings[r].name;
+      fs::create_directories(d);
+      markRunFolder(d);  // first, as every run directory's (again at the end, with its files listed)
+      writeFileAtomic(d / "scene.toml", sc.rootToml[r]);
+      dirs.push_back(d);
+    }
+    PlateSimulation plate(spec.params, spec.seedlings);
+    const int n = plate.size();
+    std::vector<std::unique_ptr<RootStreams>> out;
+    std::vector<RunWatch> watch(static_cast<size_t>(n));
+    for (int r = 0; r < n; ++r)
+      out.push_back(std::make_unique<RootStreams>(dirs[static_cast<size_t>(r)], plate.seedling(r).model, nullptr,
+                                                  plate.offset(r)));
+    AtomicFile series(w / "plate_timeseries.csv");
+    series.stream() << plateSeriesHeader();
+    auto record = [&] {
+      for (int r = 0; r < n; ++r) out[static_cast<size_t>(r)]->add(plate.root(r));
+      series.stream() << plateSeriesRow(plate.last());
+      series.flush();
+    };
+    record();
+    for (int r = 0; r < n; ++r) watch[static_cast<size_t>(r)].start(plate.root(r).last());
+    const Model& m0 = plate.seedling(0).model;
+    const int steps = m0.growth.enabled ? m0.growth.steps : 0;
+    int maxSweeps = 1;
+    double minGap = std::numeric_limits<double>::quiet_NaN();
+    try {
+      for (int k = 1; k <= steps; ++k) {
+        const PlateStepRecord& pr = plate.growthStep();
+        maxSweeps = std::max(maxSweeps, pr.sweeps);
+        if (!std::isnan(pr.minGap) && !(pr.minGap >= minGap)) minGap = pr.minGap;
+        for (int r = 0; r < n; ++r) watch[static_cast<size_t>(r)].see(plate.root(r).last());
+        if (k % m0.output.everySteps == 0 || k == steps) record();
+        if (progress) progress(plate.root(0).last(), steps);
+      }
+    } catch (const RunInterrupted&) {
+      throw;
+    } catch (const std::exception&) {
+      for (auto& o : out) o->closeQuietly();
+      try {
+        series.close();
+      } catch (const std::exception&) {
+      }
+      throw;
+    }
+    std::vector<std::vector<std::pair<double, std::string>>> vtkEntries;
+    for (auto& o : out) {
+      vtkEntries.push_back(o->positions().vtkEntries);
+      o->close();
+    }
+    series.close();
+    const double wall = now() - t0;
+
+    // each root's folder is a finished run directory of that root alone
+    std::string table;
+    std::vector<Json> roots;
+    for (int r = 0; r < n; ++r) {
+      const Seedling& sd = plate.seedling(r);
+      const fs::path& d = dirs[static_cast<size_t>(r)];
+      const RootFinal f = finishRoot(sd.model, plate.root(r), watch[static_cast<size_t>(r)], wall);
+      writeFileAtomic(d / "shape.csv", f.shape);
+      writeFileAtomic(d / "summary.json", f.summary);
+      writeFileAtomic(d / "result.csv", f.result);
+      markRunFolder(d);
+      // plate.csv: the seedling, then its result.csv row
+      std::string overrides;
+      for (const std::string& o : sd.overrides) overrides += (overrides.empty() ? "" : ";") + o;
+      const std::string res = f.result;
+      const auto nl = res.find('\n');
+      if (r == 0)
+        table += "root,genotype,position_lateral_mm,position_downhill_mm,angle_deg,overrides," + res.substr(0, nl) + "\n";
+      std::string row = res.substr(nl + 1);
+      if (!row.empty() && row.back() == '\n') row.pop_back();
+      table += csvText(sd.name) + "," + csvText(sd.genotype) + "," + formatNumber(sd.position.x() / units::mm, false) +
+               "," + formatNumber(sd.position.y() / units::mm, false) + "," +
+               formatNumber(sd.model.initial.angle / units::deg, false) + "," + csvText(overrides) + "," + row + "\n";
+      Json j;
+      j.str("name", sd.name).str("genotype", sd.genotype).str("folder", "roots/" + sd.name);
+      j.num("position_lateral_mm", sd.position.x() / units::mm).num("position_downhill_mm", sd.position.y() / units::mm);
+      j.num("angle_deg", sd.model.initial.angle / units::deg).str("overrides", overrides);
+      roots.push_back(j);
+    }
+    rd.write("plate.csv", table);
+
+    // plate.pvd: every root's ParaView series as the parts of one (their snapshots are in plate coordinates)
+    if (m0.output.vtk) {
+      std::string pvd = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+      for (int r = 0; r < n; ++r) {
+        const std::string& name = plate.seedling(r).name;
+        for (const auto& [t, file] : vtkEntries[static_cast<size_t>(r)])
+          pvd += "  <DataSet timestep=\"" + formatNumber(t, false) + "\" part=\"" + std::to_string(r) + "\" name=\"" + name +
+                 "\" file=\"roots/" + name + "/" + file + "\"/>\n";
+      }
+      pvd += "</Collection>\n</VTKFile>\n";
+      rd.write("plate.pvd", pvd);
+    }
+
+    Json j;
+    j.str("rootsim_version", kVersion).str("scene", sc.model.name).str("status", "complete");
+    j.str("kind", "plate").integer("roots", n).integer("steps", steps);
+    j.num("time_h", plate.last().timeH);
+    j.num("plate_width_mm", spec.params.width / units::mm).num("plate_length_mm", spec.params.length / units::mm);
+    j.integer("max_sweeps_per_step", maxSweeps).num("min_gap_over_contact", minGap);
+    j.array("seedlings", roots);
+    j.num("wall_time_s", wall);
+    rd.write("summary.json", j.dump() + "\n");
+    rd.commit();
+    return wall;
+  } catch (const RunInterrupted&) {
+    throw;
+  } catch (const std::exception& e) {
+    rd.fail(e.what());
+    throw;
+  }
+}
+
+}  // namespace rootsim

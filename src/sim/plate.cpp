@@ -1,0 +1,302 @@
+// A plate of roots (docs/plate.md): each root relaxes in its own frame with the other roots near it as
+// capsules it cannot enter (ContactWorkspace::neighbours); roots that touch are re-relaxed in sweeps
+// until none moves, so every root is in equilibrium with the others' final shapes.
+#include "rootsim/plate.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "rootsim/contact.hpp"
+#include "rootsim/tolerance.hpp"
+#include "rootsim/units.hpp"
+
+namespace rootsim {
+
+namespace {
+
+// Verlet skin of the lists between roots, in contact distances Ra + Rb: a capsule is listed for an
+// element within Ra + Rb + skin; the lists are built again before every relaxation, so the skin only
+// covers what one relaxation moves (a growth step's snap: checked after it by the next sweep)
+constexpr double kPlateSkin = 1.0;
+// Newton sweeps before the roots in contact relax together; joint relaxations before a step fails;
+// sub-steps of a joint relaxation between its lists' rebuilds
+constexpr int kNewtonSweeps = 4;
+constexpr int kJointRelaxations = 3;
+constexpr long kJointRelist = 256;
+
+long long cellKey(long long cx, long long cy) { return (cx + (1LL << 30)) * (1LL << 31) + (cy + (1LL << 30)); }
+
+RelaxError namedError(const std::string& root, const std::exception& e) {
+  return RelaxError("seedling " + root + ": " + e.what());
+}
+
+}  // namespace
+
+PlateSimulation::PlateSimulation(const PlateParams& plate, std::vector<Seedling> seedlings)
+    : plate_(plate), seedlings_(std::move(seedlings)) {
+  frame_ = seedlings_.empty() ? PlateFrame{} : seedlings_.front().model.env.plane.frame();
+  for (const Seedling& sd : seedlings_) offset_.push_back(sd.position.x() * frame_.lateral + sd.position.y() * frame_.downhill);
+  // each root is built (and relaxed once) alone: the initial roots lie apart (checked by the scene)
+  for (const Seedling& sd : seedlings_) {
+    try {
+      roots_.push_back(std::make_unique<Simulation>(sd.model));
+    } catch (const RelaxError& e) {
+      throw namedError(sd.name, e);
+    }
+  }
+  last_ = observe(1);
+}
+
+Vec3 PlateSimulation::offset(int r) const { return offset_[static_cast<size_t>(r)]; }
+
+void PlateSimulation::indexElements() {
+  grid_.clear();
+  firstElement_.clear();
+  double reach = 0;
+  int total = 0;
+  for (int r = 0; r < size(); ++r) {
+    const Eigen::Matrix3Xd& x = root(r).state().x;
+    firstElement_.push_back(total);
+    total += static_cast<int>(x.cols()) - 1;
+    const double R = seedling(r).model.rod.radius;
+    for (int i = 0; i + 1 < x.cols(); ++i) reach = std::max(reach, (x.col(i + 1) - x.col(i)).norm() + 2.0 * R);
+  }
+  // two elements within Ra + Rb + skin of each other have midpoints within half their lengths plus that:
+  // at most `reach` (each term at most half of it), with the skin of the larger radius
+  double rMax = 0;
+  for (const Seedling& sd : seedlings_) rMax = std::max(rMax, sd.model.rod.radius);
+  cellSize_ = reach + 2.0 * kPlateSkin * rMax;
+  for (int r = 0; r < size(); ++r) {
+    const Eigen::Matrix3Xd& x = root(r).state().x;
+    for (int i = 0; i + 1 < x.cols(); ++i) {
+      const Vec3 mid = 0.5 * (x.col(i) + x.col(i + 1)) + offset(r);
+      const auto cx = static_cast<long long>(std::floor(frame_.lateral.dot(mid) / cellSize_));
+      const auto cy = static_cast<long long>(std::floor(frame_.downhill.dot(mid) / cellSize_));
+      grid_.push_back({cellKey(cx, cy), r, i});
+    }
+  }
+  std::sort(grid_.begin(), grid_.end(), [](const Element& a, const Element& b) {
+    return a.cell != b.cell ? a.cell < b.cell : (a.root != b.root ? a.root < b.root : a.index < b.index);
+  });
+  capsuleOf_.assign(static_cast<size_t>(total), -1);
+}
+
+void PlateSimulation::listNeighbours(int r) {
+  NeighbourCapsules& nb = roots_[static_cast<size_t>(r)]->neighbours();
+  nb.pairs.clear();
+  const RodState& s = root(r).state();
+  const double Ra = seedling(r).model.rod.radius;
+  std::vector<int> capsules;  // global element indices, in the order they are first listed
+  for (int i = 0; i < s.elements(); ++i) {
+    const Vec3 a0 = s.x.col(i) + offset(r), a1 = s.x.col(i + 1) + offset(r);
+    const Vec3 mid = 0.5 * (a0 + a1);
+    const double ha = 0.5 * (a1 - a0).norm();
+    const auto cx = static_cast<long long>(std::floor(frame_.lateral.dot(mid) / cellSize_));
+    const auto cy = static_cast<long long>(std::floor(frame_.downhill.dot(mid) / cellSize_));
+    for (long long dx = -1; dx <= 1; ++dx)
+      for (long long dy = -1; dy <= 1; ++dy) {
+        const long long key = cellKey(cx + dx, cy + dy);
+        auto it = std::lower_bound(grid_.begin(), grid_.end(), key, [](const Element& e, long long k) { return e.cell < k; });
+        for (; it != grid_.end() && it->cell == key; ++it) {
+          if (it->root == r) continue;
+          const Eigen::Matrix3Xd& o = root(it->root).state().x;
+          const Vec3 b0 = o.col(it->index) + offset(it->root), b1 = o.col(it->index + 1) + offset(it->root);
+          const double Rb = seedling(it->root).model.rod.radius;
+          const double hb = 0.5 * (b1 - b0).norm();
+          if ((0.5 * (b0 + b1) - mid).norm() >= ha + hb + (1.0 + kPlateSkin) * (Ra + Rb)) continue;
+          const int g = firstElement_[static_cast<size_t>(it->root)] + it->index;
+          int& c = capsuleOf_[static_cast<size_t>(g)];
+          if (c < 0) {
+            c = static_cast<int>(capsules.size());
+            capsules.push_back(g);
+          }
+          nb.pairs.push_back({i, c});
+        }
+      }
+  }
+  std::sort(nb.pairs.begin(), nb.pairs.end());
+  const int m = static_cast<int>(capsules.size());
+  nb.a.resize(3, m);
+  nb.b.resize(3, m);
+  nb.radius.resize(m);
+  nb.first.assign(static_cast<size_t>(m), 0);
+  nb.source.resize(static_cast<size_t>(m));
+  for (int c = 0; c < m; ++c) {
+    const int g = capsules[static_cast<size_t>(c)];
+    capsuleOf_[static_cast<size_t>(g)] = -1;
+    const int o = static_cast<int>(std::upper_bound(firstElement_.begin(), firstElement_.end(), g) - firstElement_.begin()) - 1;
+    const int j = g - firstElement_[static_cast<size_t>(o)];
+    const Eigen::Matrix3Xd& os = root(o).state().x;
+    // the other root's capsule in this root's frame
+    const Vec3 shift = offset(o) - offset(r);
+    nb.a.col(c) = os.col(j) + shift;
+    nb.b.col(c) = os.col(j + 1) + shift;
+    nb.radius[c] = seedling(o).model.rod.radius;
+    nb.first[static_cast<size_t>(c)] = r < o ? 1 : 0;
+    nb.source[static_cast<size_t>(c)] = {o, j};
+  }
+}
+
+void PlateSimulation::refreshCapsules(int r) {
+  NeighbourCapsules& nb = roots_[static_cast<size_t>(r)]->neighbours();
+  for (size_t c = 0; c < nb.source.size(); ++c) {
+    const auto [o, j] = nb.source[c];
+    const Eigen::Matrix3Xd& x = root(o).state().x;
+    const Vec3 shift = offset(o) - offset(r);
+    nb.a.col(static_cast<int>(c)) = x.col(j) + shift;
+    nb.b.col(static_cast<int>(c)) = x.col(j + 1) + shift;
+  }
+}
+
+double PlateSimulation::sweep() {
+  double change = 0;
+  indexElements();
+  for (int r = 0; r < size(); ++r) {
+    listNeighbours(r);
+    Simulation& sim = *roots_[static_cast<size_t>(r)];
+    if (sim.neighbours().empty()) continue;
+    before_ = sim.state().x;
+    try {
+      sim.relaxAgain();
+    } catch (const RelaxError& e) {
+      throw namedError(seedling(r).name, e);
+    }
+    change = std::max(change, (sim.state().x - before_).cwiseAbs().maxCoeff());
+  }
+  return change;
+}
+
+void PlateSimulation::relaxJointly() {
+  indexElements();
+  std::vector<int> cluster;
+  for (int r = 0; r < size(); ++r) {
+    listNeighbours(r);
+    if (!roots_[static_cast<size_t>(r)]->neighbours().empty()) cluster.push_back(r);
+  }
+  for (int r : cluster) roots_[static_cast<size_t>(r)]->beginJoint();
+  try {
+    for (long sub = 1;; ++sub) {
+      bool all = true;
+      for (int r : cluster) {
+        refreshCapsules(r);
+        all &= roots_[static_cast<size_t>(r)]->jointStep();
+      }
+      if (all) break;
+      // the lists again now and then: the roots move further in one relaxation than in a Newton step
+      if (sub % kJointRelist == 0) {
+        indexElements();
+        for (int r : cluster) listNeighbours(r);
+      }
+    }
+  } catch (const RelaxError& e) {
+    for (int r : cluster) roots_[static_cast<size_t>(r)]->endJoint();
+    throw RelaxError(std::string("the roots in contact (") + seedling(cluster.front()).name + ", ...): " + e.what());
+  }
+  for (int r : cluster) roots_[static_cast<size_t>(r)]->endJoint();
+}
+
+const PlateStepRecord& PlateSimulation::growthStep() {
+  const int n = size();
+  // the first sweep: every root grows and relaxes, seeing the others as they stand (the roots before
+  // it at this step's equilibrium, the roots after it at the last one's). The grid is indexed once per
+  // sweep (O(elements) in all); a capsule is read where it is now, and what moved further than the skin
+  // since is caught by the next sweep's grid
+  if (n > 1) indexElements();
+  for (int r = 0; r < n; ++r) {
+    if (n > 1) listNeighbours(r);
+    try {
+      roots_[static_cast<size_t>(r)]->growthStep();
+    } catch (const RelaxError& e) {
+      throw namedError(seedling(r).name, e);
+    }
+  }
+  // then the roots within reach of another relax again (Newton), each against the others as they stand,
+  // until a sweep moves none of them by more than a displacement whose contact force is half the
+  // equilibrium tolerance: each is then in equilibrium with the others' final shapes. Two soft roots
+  // pressed together converge slowly so (measured on the collision scene: the shapes change by the same
+  // 4e-7 m sweep after sweep, the pair creeping sideways); after kNewtonSweeps the roots in contact relax
+  // together explicitly, every root one sub-step in turn, and Newton confirms
+  double tolerance = std::numeric_limits<double>::infinity();
+  for (int r = 0; r < n; ++r) {
+    const Model& m = seedling(r).model;
+    tolerance = std::min(tolerance, 0.5 * equilibriumTolerance(m.rod, m.env, m.solver, root(r).state()).force / m.env.selfContact.k);
+  }
+  int sweeps = 1;
+  for (int joint = 0; n > 1;) {
+    const double change = sweep();
+    ++sweeps;
+    if (change <= tolerance) break;
+    if (sweeps % kNewtonSweeps == 0) {
+      if (joint == kJointRelaxations) {
+        std::ostringstream os;
+        os << "growth step " << root(0).step() << ": the roots in contact did not settle (" << kJointRelaxations
+           << " joint relaxations; Newton still moves them by " << change << " m, tolerance " << tolerance << " m)";
+        throw RelaxError(os.str());
+      }
+      relaxJointly();
+      ++joint;
+    }
+  }
+  // every root's lists as the final shapes stand (what the contact counts read)
+  if (n > 1) {
+    indexElements();
+    for (int r = 0; r < n; ++r) listNeighbours(r);
+  }
+  last_ = observe(sweeps);
+  return last_;
+}
+
+PlateStepRecord PlateSimulation::observe(int sweeps) const {
+  PlateStepRecord rec;
+  rec.step = size() > 0 ? root(0).step() : 0;
+  rec.timeH = size() > 0 ? root(0).state().time / units::hour : 0.0;
+  rec.sweeps = sweeps;
+  for (int r = 0; r < size(); ++r) {
+    const Simulation& sim = root(r);
+    const NeighbourCapsules& nb = sim.neighbours();
+    const RodState& s = sim.state();
+    const double Ra = seedling(r).model.rod.radius;
+    for (const auto& [i, c] : nb.pairs) {
+      if (!nb.first[static_cast<size_t>(c)]) continue;  // each pair once, from its first root
+      double sa = 0, sb = 0;
+      contactSegmentPoints(s.x.col(i), s.x.col(i + 1), nb.a.col(c), nb.b.col(c), sa, sb);
+      const Vec3 pa = s.x.col(i) + sa * (s.x.col(i + 1) - s.x.col(i));
+      const Vec3 pb = nb.a.col(c) + sb * (nb.b.col(c) - nb.a.col(c));
+      const double gap = (pa - pb).norm() / (Ra + nb.radius[c]);
+      rec.touchingPairs += gap < 1.0;
+      if (std::isnan(rec.minGap) || gap < rec.minGap) rec.minGap = gap;
+    }
+  }
+  return rec;
+}
+
+RootPairForces PlateSimulation::pairForces(int a, int b) const {
+  if (a > b) {
+    RootPairForces f = pairForces(b, a);
+    std::swap(f.onA, f.onB);
+    return f;
+  }
+  const RodState& sa = root(a).state();
+  const RodState& sb = root(b).state();
+  const double Ra = seedling(a).model.rod.radius, Rb = seedling(b).model.rod.radius;
+  const double k = seedling(a).model.env.selfContact.k;
+  RootPairForces f;
+  f.onA = Eigen::Matrix3Xd::Zero(3, sa.nodes());
+  f.onB = Eigen::Matrix3Xd::Zero(3, sb.nodes());
+  RootPairForce pf;
+  for (int i = 0; i < sa.elements(); ++i)
+    for (int j = 0; j < sb.elements(); ++j) {
+      if (!rootPairForce(Ra, Rb, k, frame_.normal, sa.x.col(i) + offset(a), sa.x.col(i + 1) + offset(a),
+                         sb.x.col(j) + offset(b), sb.x.col(j + 1) + offset(b), pf))
+        continue;
+      ++f.contacts;
+      f.onA.col(i) += (1.0 - pf.sa) * pf.F;
+      f.onA.col(i + 1) += pf.sa * pf.F;
+      f.onB.col(j) -= (1.0 - pf.sb) * pf.F;
+      f.onB.col(j + 1) -= pf.sb * pf.F;
+    }
+  return f;
+}
+
+}  // namespace rootsim

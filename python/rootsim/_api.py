@@ -252,6 +252,7 @@ class Run:
     @cached_property
     def timeseries(self) -> Dict[str, np.ndarray]:
         """timeseries.csv's columns. Units: named in each column (time_h, length_mm, theta_tip_deg, ...)."""
+        self._one_root("timeseries")
         return _c.read_csv(str(self.dir / "timeseries.csv"))
 
     @cached_property
@@ -260,6 +261,7 @@ class Run:
 
         Units: named in each column (s_mm, x_mm, kappa1_per_mm, radius_mm; stretch and directors are
         dimensionless)."""
+        self._one_root("shape")
         cols = _c.read_csv(str(self.dir / "shape.csv"))
         if not all(c in cols for c in _PLATE_COLUMNS):  # an older shape.csv: the same coordinates, here
             lab = np.column_stack([cols["x_mm"], cols["y_mm"], cols["z_mm"]])
@@ -271,6 +273,7 @@ class Run:
     @cached_property
     def frames(self) -> List[Frame]:
         """The trajectory's snapshots. Units: trajectory.csv's (mm, h, 1/mm, N), named in each field."""
+        self._one_root("frames")
         return [Frame(**f) for f in _c.read_trajectory(str(self.dir / "trajectory.csv"), self.scene._scene)]
 
     @cached_property
@@ -282,6 +285,7 @@ class Run:
     @cached_property
     def result(self) -> Dict[str, Any]:
         """result.csv's row. Units: named in each column, as the sweep table's."""
+        self._one_root("result")
         return _c.read_result(str(self.dir / "result.csv"))
 
     @cached_property
@@ -290,6 +294,37 @@ class Run:
         # the resolved scene.toml, named as the run's scene (a file named scene.toml would be "scene")
         text = (self.dir / "scene.toml").read_text(encoding="utf-8")
         return Scene.from_toml(text, name=self.summary.get("scene", "scene"))
+
+    def _one_root(self, what: str) -> None:
+        if self.is_plate:
+            names = ", ".join(sd["name"] for sd in self.summary["seedlings"])
+            raise SceneError(f"{self.dir}: a plate's run has no {what} of its own; each root's: "
+                             f"run.roots[NAME].{what} (roots: {names})")
+
+    @property
+    def is_plate(self) -> bool:
+        """True for a plate's run (a scene with ``[[seedling]]`` tables, docs/plate.md)."""
+        return self.summary.get("kind") == "plate"
+
+    @cached_property
+    def roots(self) -> Dict[str, "Run"]:
+        """A plate's roots: seedling name -> the ``Run`` of its folder ``roots/NAME`` (in the scene's order),
+        each read as a run of that root alone (positions in its own frame, its base's foot at the origin;
+        ``plate_seedlings`` gives where each is sown). Empty for a run of one root."""
+        if not self.is_plate:
+            return {}
+        out: Dict[str, Run] = {}
+        for sd in self.summary["seedlings"]:
+            r = Run(self.dir / sd["folder"])
+            r._tmp = self._tmp  # a temporary plate run stays alive as long as its roots
+            out[sd["name"]] = r
+        return out
+
+    @property
+    def plate_seedlings(self) -> List[Dict[str, Any]]:
+        """A plate's seedlings as summary.json lists them: name, genotype, folder, position_lateral_mm,
+        position_downhill_mm, angle_deg, overrides. Units: named in each key (mm, deg). Empty for one root."""
+        return list(self.summary.get("seedlings", [])) if self.is_plate else []
 
     def render(self, **options: Any) -> List[pathlib.Path]:
         """``rootsim.render(self.dir, **options)``: keyword options only (units: ``field_mm`` in mm)."""

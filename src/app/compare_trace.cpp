@@ -147,7 +147,7 @@ int compareCommand(const CompareOptions& o, std::string* outDir) {
   claimFolder(out, compareFolder(), rule, "--out", true);
 
   const Scene scene = loadScene((run / "scene.toml").string());
-  const Model& m = scene.model;
+  const Model& m = singleRootModel(scene, "compare: " + o.runDir);
   const TraceTarget target = loadTarget(o.trace, m);
   const std::vector<Snapshot> snaps = loadSnapshots(run);
   int pick = static_cast<int>(snaps.size()) - 1;

@@ -328,6 +328,40 @@ rsml::Document rsmlOf(const RunData& d, const Snapshot& s, int sequenceIndex) {
   return doc;
 }
 
+// a plate's RSML (docs/plate.md): one plant per seedling, its root in plate coordinates from the plate's
+// origin; each root's document as rsmlOf writes it, the plants gathered into the first's
+rsml::Document plateRsmlOf(const Scene& plate, const std::vector<RunData>& roots, std::size_t pick, int sequenceIndex) {
+  rsml::Document doc;
+  for (std::size_t r = 0; r < roots.size(); ++r) {
+    const Seedling& sd = plate.plate.seedlings[r];
+    const Snapshot& s = roots[r].snaps[pick];
+    rsml::Document one = rsmlOf(roots[r], s, sequenceIndex);
+    rsml::Plant plant = std::move(one.plants.front());
+    plant.id = std::to_string(r + 1);
+    plant.label = sd.name;
+    plant.properties.push_back(textProperty("genotype", sd.genotype));
+    std::string overrides;
+    for (const std::string& o : sd.overrides) overrides += (overrides.empty() ? "" : ";") + o;
+    plant.properties.push_back(textProperty("overrides", overrides));
+    for (rsml::Root& root : plant.roots) {
+      root.id = std::to_string(r + 1) + "." + root.id;
+      for (double& x : root.x) x += sd.position.x() / units::mm;
+      for (double& y : root.y) y += sd.position.y() / units::mm;
+    }
+    if (r == 0) {
+      doc = std::move(one);
+      doc.plants.clear();
+      // the plate's keys (each plant's own are its overrides)
+      doc.sceneProperties.erase(doc.sceneProperties.begin() + 3, doc.sceneProperties.end());
+      for (const SceneValue& v : sceneValues(plate.model))
+        if (v.key.find('[') == std::string::npos) doc.sceneProperties.push_back(textProperty(v.key, sceneText(v.text)));
+      doc.comment += " (a plate of " + std::to_string(roots.size()) + " roots, plate coordinates)";
+    }
+    doc.plants.push_back(std::move(plant));
+  }
+  return doc;
+}
+
 }  // namespace
 
 int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
@@ -341,7 +375,18 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
   if (given(o.everyH) && !(o.everyH > 0 && std::isfinite(o.everyH)))
     throw SceneError("--every-h " + flagNumber(o.everyH) + ": must be > 0 h");
   if (!fs::is_directory(runDir)) throw SceneError(o.runDir + ": run directory not found");
-  const RunData data = readRun(runDir);
+  // a plate's run: the RSML of every root, one plant per seedling; glTF and ParaView take one root's folder
+  const bool plate = isPlateRun(runDir);
+  if (plate && (!o.gltf.empty() || !o.paraview.empty()))
+    throw SceneError(std::string(o.gltf.empty() ? "--paraview " : "--gltf ") + runDir.string() +
+                     ": a plate's run; export one root's folder roots/NAME (the whole plate is written as RSML only)");
+  Scene plateScene;
+  std::vector<RunData> roots;
+  if (plate) {
+    plateScene = loadScene((runDir / "scene.toml").string());
+    for (const Seedling& sd : plateScene.plate.seedlings) roots.push_back(readRun(runDir / "roots" / sd.name));
+  }
+  const RunData data = plate ? roots.front() : readRun(runDir);
   const std::vector<Pick> picks = pickSnapshots(data.snaps, o);
   const bool series = given(o.everyH);
 
@@ -394,7 +439,9 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
   // every check passed: write
   for (std::size_t k = 0; k < rsmlFiles.size(); ++k) {
     const Snapshot& s = data.snaps[static_cast<std::size_t>(picks[k].index)];
-    writeFileAtomic(rsmlFiles[k], rsml::writeRsml(rsmlOf(data, s, series ? static_cast<int>(k) : -1)));
+    const int seq = series ? static_cast<int>(k) : -1;
+    writeFileAtomic(rsmlFiles[k], rsml::writeRsml(plate ? plateRsmlOf(plateScene, roots, static_cast<std::size_t>(picks[k].index), seq)
+                                                        : rsmlOf(data, s, seq)));
     if (written) written->push_back(rsmlFiles[k]);
     if (!o.quiet) std::fprintf(stderr, "wrote %s (growth step %d, %g h)\n", rsmlFiles[k].c_str(), s.step, s.timeH);
   }

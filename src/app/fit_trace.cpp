@@ -410,6 +410,8 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
   if (o.out.empty()) throw SceneError("--out: give the fit's folder");
   const fs::path out = checkOutputName(o.out, "--out");
   const Scene base = loadScene(o.scene);
+  if (base.isPlate())
+    throw SceneError("--scene " + o.scene + ": a plate's scene; fit takes the scene of one root (docs/experiments.md)");
   const std::vector<FreeKey> keys = parseFreeKeys(o.free, o.scene);
   const int n = static_cast<int>(keys.size());
   const int k = designLevels(n, o.budget);

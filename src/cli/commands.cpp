@@ -190,7 +190,7 @@ int modesCommand(const ModesOptions& o) {
   claimFile(dir / "modes.vtp", rule, "modes");
   // the final state is not stored; the run is repeated from its resolved scene (same scene, same bytes)
   const Scene sc = loadScene((dir / "scene.toml").string());
-  Simulation sim(sc.model);
+  Simulation sim(singleRootModel(sc, "modes: " + o.runDir));
   const int steps = sc.model.growth.enabled ? sc.model.growth.steps : 0;
   Progress pr(steps, o.quiet || steps == 0, "modes: repeating " + sc.model.name);
   for (int k = 1; k <= steps; ++k) {

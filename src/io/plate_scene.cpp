@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <map>
 #include <numbers>
@@ -79,6 +80,13 @@ double normalDraw(std::uint64_t& state) {
 
 double draw(const Spread& s, std::uint64_t& state) {
   return s.law == Spread::Law::Normal ? s.width * normalDraw(state) : s.width * splitmixUniform(state);
+}
+
+// a length in a message [m -> "0.15 mm"]
+std::string mmText(double m) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.4g mm", m / units::mm);
+  return b;
 }
 
 std::string mm2(const Eigen::Vector2d& p) {
@@ -208,14 +216,24 @@ PlateTables parsePlateTables(const toml::table& root, const std::string& sourceN
       if (key == "name" || key == "genotype") {
         if (!n.is_string()) throw SceneError(loc + ": " + ps.where + "." + key + " must be a string (got " + describeNode(n) + ")");
         const std::string v = *n.value<std::string>();
-        // a name is a folder of the run directory
-        const bool ok = !v.empty() && v.size() <= 64 && v != "." && v != ".." &&
-                        std::all_of(v.begin(), v.end(), [](char c) {
-                          return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
-                        });
-        if (!ok)
-          throw SceneError(loc + ": " + ps.where + "." + key + " must be 1-64 letters, digits, '_', '-' or '.' (got \"" +
-                           printable(v) + "\")");
+        if (key == "name") {
+          // a name is a folder of the run directory
+          const bool ok = !v.empty() && v.size() <= 64 && v != "." && v != ".." &&
+                          std::all_of(v.begin(), v.end(), [](char c) {
+                            return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+                          });
+          if (!ok)
+            throw SceneError(loc + ": " + ps.where + ".name must be 1-64 letters, digits, '_', '-' or '.' (got \"" +
+                             printable(v) + "\")");
+        } else {
+          // a label in CSV and JSON: printable, no quotes or backslashes
+          const bool ok = v.size() <= 64 && std::all_of(v.begin(), v.end(), [](char c) {
+                            return c >= 32 && c < 127 && c != '"' && c != '\\';
+                          });
+          if (!ok)
+            throw SceneError(loc + ": " + ps.where + ".genotype must be at most 64 printable characters without quotes "
+                             "or backslashes (got \"" + printable(v) + "\")");
+        }
         (key == "name" ? ps.sd.name : ps.sd.genotype) = v;
       } else if (key == "position_mm") {
         const toml::array* a = n.as_array();
@@ -314,9 +332,8 @@ PlateTables parsePlateTables(const toml::table& root, const std::string& sourceN
       const double d = segmentDistance(seg, initial[j]);
       if (d < R + Rj)
         throw SceneError(ps.positionLoc + ": " + ps.where + ".position_mm " + mm2(ps.sd.position) + ": " + ps.sd.name +
-                         "'s initial root comes within " + formatNumber(d / units::mm, false) + " mm of " +
-                         seeds[j].where + " (" + seeds[j].sd.name + "), closer than their radii's sum " +
-                         formatNumber((R + Rj) / units::mm, false) + " mm");
+                         "'s initial root comes within " + mmText(d) + " of " +
+                         seeds[j].where + " (" + seeds[j].sd.name + "), closer than their radii's sum " + mmText(R + Rj));
     }
     for (size_t o = 0; o < obstacles.size(); ++o) {
       const Obstacle& ob = obstacles[o];
@@ -341,17 +358,9 @@ PlateTables parsePlateTables(const toml::table& root, const std::string& sourceN
   std::ostringstream plate;
   plate << "\n[plate]\nwidth_mm = " << formatNumber(pp.width / units::mm, false)
         << "\nlength_mm = " << formatNumber(pp.length / units::mm, false) << "\n";
-  std::string population;
-  if (popNode) {
-    std::ostringstream os;
-    os << "\n# [population] seed = " << popSeed << " drew these values into each seedling:";
-    for (const auto& [full, s] : spreads)
-      os << " " << full << " (" << (s.law == Spread::Law::Normal ? "normal_sd " : "uniform_half_width ")
-         << formatNumber(s.width, false) << ")";
-    os << "\n";
-    population = os.str();
-  }
-  std::string all = plate.str() + population;
+  // the drawn values stand in each seedling's set: the resolved text loads to the same plate without
+  // drawing again, and round-trips (no [population] in it)
+  std::string all = plate.str();
   for (ParsedSeedling& ps : seeds) {
     std::ostringstream os;
     os << "\n[[seedling]]\nname = \"" << ps.sd.name << "\"\n";

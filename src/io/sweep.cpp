@@ -186,6 +186,8 @@ SweepPlan loadSweep(const std::string& path) {
     // validate now: a typo in the grid fails before any run starts
     try {
       const Scene point = parseScene(baseText, plan.scenePath, p.overrides);
+      if (point.isPlate())
+        throw SceneError(plan.scenePath + ": a plate's scene; a sweep runs scenes of one root (docs/plate.md)");
       p.grows = point.model.growth.enabled;
       p.resolvedToml = point.resolvedToml;
     } catch (const SceneError& e) {

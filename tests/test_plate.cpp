@@ -1,0 +1,116 @@
+// a plate of roots (src/sim/plate.cpp; docs/plate.md): roots apart are the single root's run, roots
+// that meet push each other and never pass through, the contact between roots is action and reaction
+#include <doctest/doctest.h>
+
+#include <cmath>
+
+#include "rootsim/analysis.hpp"
+#include "rootsim/contact.hpp"
+#include "rootsim/plate.hpp"
+#include "rootsim/units.hpp"
+
+using namespace rootsim;
+
+namespace {
+
+// the paper's waving root (Fig. 2B: alpha = 40 deg, beta = 0.2, gamma = 0.1) at its physical parameters
+Model waving() {
+  Model m = defaultModel();
+  m.env.plane.alpha = 40 * units::deg;
+  m.tropism.beta = 0.2;
+  m.tropism.gamma = 0.1;
+  m.initial.elementLength = 0.05 * units::mm;
+  completeModel(m);
+  return m;
+}
+
+Seedling sow(const std::string& name, double lateralMm, double downhillMm, const Model& m, double angleDeg = 0) {
+  Seedling s;
+  s.name = name;
+  s.position = Eigen::Vector2d(lateralMm, downhillMm) * units::mm;
+  s.model = m;
+  s.model.initial.angle = angleDeg * units::deg;
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("plate: contact between roots is the self-contact law with the sum of the radii") {
+  // two crossing segments, one above the other along the normal: the force is k (Ra + Rb - d) along it
+  const double ra = 0.1e-3, rb = 0.06e-3, k = 1000, d = 0.12e-3;
+  const Vec3 up(0, 0, 1);
+  RootPairForce pf;
+  REQUIRE(rootPairForce(ra, rb, k, up, Vec3(-1e-3, 0, d), Vec3(1e-3, 0, d), Vec3(0, -1e-3, 0), Vec3(0, 1e-3, 0), pf));
+  CHECK(pf.F.x() == doctest::Approx(0).epsilon(1e-12));
+  CHECK(pf.F.z() == doctest::Approx(k * (ra + rb - d)).epsilon(1e-12));
+  CHECK(pf.sa == doctest::Approx(0.5));
+  CHECK(pf.sb == doctest::Approx(0.5));
+  // just out of reach: no force
+  CHECK_FALSE(rootPairForce(ra, rb, k, up, Vec3(-1e-3, 0, ra + rb + 1e-12), Vec3(1e-3, 0, ra + rb + 1e-12),
+                            Vec3(0, -1e-3, 0), Vec3(0, 1e-3, 0), pf));
+}
+
+TEST_CASE("plate: N identical seedlings far apart grow N copies of the single root's run") {
+  const Model m = waving();
+  const int steps = 700;  // 35 h: the root waves (its first snap comes at ~10 h)
+  Simulation single(m);
+  for (int k = 0; k < steps; ++k) single.growthStep();
+  const ShapeAnalysis want = analyseShape(m, single.state());
+  REQUIRE(want.peaks >= 3);
+  PlateSimulation plate(PlateParams{}, {sow("a", 10, 5, m), sow("b", 40, 5, m), sow("c", 70, 20, m)});
+  for (int k = 0; k < steps; ++k) plate.growthStep();
+  CHECK(plate.last().sweeps == 2);          // one sweep grew them, one found nobody within reach
+  CHECK(std::isnan(plate.last().minGap));  // never within reach
+  for (int r = 0; r < plate.size(); ++r) {
+    const RodState& s = plate.root(r).state();
+    REQUIRE(s.nodes() == single.state().nodes());
+    // in plate coordinates: the single root's nodes moved to the seedling's place
+    const Eigen::Matrix3Xd onPlate = s.x.colwise() + plate.offset(r);
+    const Eigen::Matrix3Xd expected = single.state().x.colwise() + plate.offset(r);
+    const double diffMm = (onPlate - expected).cwiseAbs().maxCoeff() / units::mm;
+    INFO("root " << plate.seedling(r).name << ": largest difference " << diffMm << " mm");
+    CHECK(diffMm <= 1e-12);
+    const ShapeAnalysis got = analyseShape(plate.seedling(r).model, s);
+    CHECK(got.pattern == want.pattern);
+    CHECK(got.wavelength == want.wavelength);
+    CHECK(got.amplitude == want.amplitude);
+  }
+}
+
+TEST_CASE("plate: two roots grown into each other push each other and never pass through") {
+  // one root grows downhill; the other, sown 3 mm to its right pointing across the plate with a weak
+  // gravitropism (beta = 0.02), grows into it (the shipped scene plate_collision.toml)
+  const Model m = waving();
+  Model across = m;
+  across.tropism.beta = 0.02;
+  PlateSimulation plate(PlateParams{}, {sow("down", 20, 5, m), sow("across", 23, 7, across, -90)});
+  double closest = 1e300;
+  int touching = 0;
+  for (int k = 0; k < 330; ++k) {
+    const PlateStepRecord& r = plate.growthStep();
+    if (!std::isnan(r.minGap)) closest = std::min(closest, r.minGap);
+    touching = std::max(touching, r.touchingPairs);
+  }
+  INFO("closest approach of the centrelines: " << closest << " (Ra + Rb); most element pairs touching: " << touching);
+  REQUIRE(touching > 0);  // they did meet
+  // a penalty contact: they overlap by the contact depth F/k only (measured: 1.5 % of Ra + Rb)
+  CHECK(closest >= 0.95);
+  // action and reaction: the forces between the two roots have no net force and no net moment
+  const RootPairForces f = plate.pairForces(0, 1);
+  REQUIRE(f.contacts > 0);
+  Vec3 net = Vec3::Zero(), moment = Vec3::Zero();
+  double largest = 0;
+  auto add = [&](const Eigen::Matrix3Xd& force, int r) {
+    const Eigen::Matrix3Xd x = plate.root(r).state().x.colwise() + plate.offset(r);
+    for (int i = 0; i < force.cols(); ++i) {
+      net += force.col(i);
+      moment += Vec3(x.col(i)).cross(Vec3(force.col(i)));
+      largest = std::max(largest, force.col(i).norm());
+    }
+  };
+  add(f.onA, 0);
+  add(f.onB, 1);
+  INFO("net force " << net.transpose() << " N, net moment " << moment.transpose() << " N m, largest node force " << largest);
+  CHECK(net.norm() <= 1e-12 * largest);
+  CHECK(moment.norm() <= 1e-12 * largest * 0.1);  // positions ~ 0.03 m from the plate's origin
+}

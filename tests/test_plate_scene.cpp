@@ -1,0 +1,182 @@
+// plate scenes and plate runs (src/io/plate_scene.cpp, src/io/run_plate.cpp; docs/plate.md): the tables'
+// checks name file:line:key, a seedling's override changes that seedling only, [population] draws
+// repeat from the seed and are written into the resolved scene, a plate run's folders
+#include <doctest/doctest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "rootsim/outputs.hpp"
+#include "rootsim/run_scene.hpp"
+#include "rootsim/scene.hpp"
+#include "rootsim/simulation.hpp"
+#include "rootsim/units.hpp"
+#include "scene_support.hpp"
+#include "test_support.hpp"
+
+using namespace rootsim;
+using rootsim::test::errorOf;
+using rootsim::test::slurp;
+
+namespace fs = std::filesystem;
+
+namespace {
+
+// a short plate: the paper's waving root, 120 growth steps
+const std::string kHead = R"([root]
+radius_mm = 0.1
+initial_length_mm = 1.1
+element_length_mm = 0.05
+[growth]
+steps = 120
+[tropism]
+beta = 0.2
+[plane]
+alpha_deg = 40
+[output]
+every_steps = 20
+vtk = false
+[plate]
+width_mm = 60
+length_mm = 40
+)";
+
+std::string seedling(const std::string& name, double x, double y, const std::string& extra = "") {
+  std::ostringstream os;
+  os << "\n[[seedling]]\nname = \"" << name << "\"\nposition_mm = [" << x << ", " << y << "]\n" << extra;
+  return os.str();
+}
+
+
+}  // namespace
+
+TEST_CASE("plate scenes: bad seedlings are refused naming file:line and the key") {
+  // two seedlings closer than their radii's sum (0.2 mm): line 20 is the second's position_mm
+  const std::string close = kHead + seedling("a", 20, 5) + seedling("b", 20.15, 5);
+  CHECK(errorOf(close).find("scenes/t.toml:24: seedling[2].position_mm [20.15, 5.0]: b's initial root comes within") == 0);
+  // off the plate (60 x 40 mm): its initial root must lie at least R inside every edge
+  CHECK(errorOf(kHead + seedling("a", 59.95, 5)).find("scenes/t.toml:20: seedling[1].position_mm [59.95, 5.0] puts a's "
+                                                      "initial root off the plate") == 0);
+  CHECK(errorOf(kHead + seedling("a", 20, 39.5)).find("off the plate") != std::string::npos);
+  // an unknown key in an override, with a suggestion
+  const std::string typo = kHead + seedling("a", 20, 5, "[seedling.set]\n\"tropism.betta\" = 0.3\n");
+  CHECK(errorOf(typo) == "scenes/t.toml:22: unknown key seedling[1].set.tropism.betta (did you mean tropism.beta?)");
+  // a key that is the plate's, not a seedling's
+  CHECK(errorOf(kHead + seedling("a", 20, 5, "set = { \"plane.alpha_deg\" = 30 }\n")).find(
+            "seedling[1].set.plane.alpha_deg is the plate's") != std::string::npos);
+  CHECK(errorOf(kHead + seedling("a", 20, 5, "set = { \"growth.steps\" = 30 }\n")).find(
+            "every root grows in the same steps") != std::string::npos);
+  // a value out of the key's range, named with the seedling
+  CHECK(errorOf(kHead + seedling("a", 20, 5, "[seedling.set.tropism]\nbeta = -1\n")).find(
+            "scenes/t.toml:22: seedling[1].set.tropism.beta must be") == 0);
+  // unknown seedling key, missing name or position, a name taken twice, a name that is no folder
+  CHECK(errorOf(kHead + seedling("a", 20, 5, "angle = 3\n")) ==
+        "scenes/t.toml:21: unknown key seedling[1].angle (seedling keys: name, genotype, position_mm, angle_deg, set)");
+  CHECK(errorOf(kHead + "\n[[seedling]]\nposition_mm = [20, 5]\n").find("seedling[1].name is missing") != std::string::npos);
+  CHECK(errorOf(kHead + "\n[[seedling]]\nname = \"a\"\n").find("seedling[1].position_mm is missing") != std::string::npos);
+  CHECK(errorOf(kHead + seedling("a", 20, 5) + seedling("a", 40, 5)).find("\"a\" is taken by seedling[1]") != std::string::npos);
+  CHECK(errorOf(kHead + seedling("../x", 20, 5)).find("seedling[1].name must be 1-64 letters") != std::string::npos);
+  // [plate] and [population] need seedlings; their own keys are checked
+  CHECK(errorOf("[plate]\nwidth_mm = 50\n").find("scenes/t.toml:1: [plate] without any [[seedling]]") == 0);
+  CHECK(errorOf(kHead + "depth_mm = 3\n" + seedling("a", 20, 5)).find("unknown key plate.depth_mm") != std::string::npos);
+  CHECK(errorOf(kHead + seedling("a", 20, 5) + "\n[population.spread]\n\"tropism.beta\" = { sd = 0.1 }\n")
+            .find("population.spread.tropism.beta must be { normal_sd = S } or { uniform_half_width = W }") != std::string::npos);
+  CHECK(errorOf(kHead + seedling("a", 20, 5) + "\n[population.spread]\n\"tropism.sensing\" = { normal_sd = 0.1 }\n")
+            .find("only number keys vary") != std::string::npos);
+}
+
+TEST_CASE("plate scenes: a seedling's override changes that seedling only, and the resolved scene holds it") {
+  const std::string text = kHead + seedling("wt", 15, 5) + seedling("mutant", 35, 5, "[seedling.set]\n\"tropism.beta\" = 0.3\n");
+  const Scene sc = parseScene(text, "scenes/plate.toml");
+  REQUIRE(sc.plate.seedlings.size() == 2);
+  const Model& wt = sc.plate.seedlings[0].model;
+  const Model& mu = sc.plate.seedlings[1].model;
+  CHECK(wt.tropism.beta == 0.2);
+  CHECK(mu.tropism.beta == 0.3);
+  CHECK(sc.plate.seedlings[0].overrides.empty());
+  CHECK(sc.plate.seedlings[1].overrides == std::vector<std::string>{"tropism.beta=0.3"});
+  // everything else is the plate's: the models' resolved keys differ in that one key
+  const std::vector<SceneValue> a = sceneValues(wt), b = sceneValues(mu);
+  REQUIRE(a.size() == b.size());
+  int differ = 0;
+  for (size_t i = 0; i < a.size(); ++i)
+    if (a[i].text != b[i].text) {
+      ++differ;
+      CHECK(a[i].key == "tropism.beta");
+    }
+  CHECK(differ == 1);
+  // the resolved scene parses to the same plate
+  const Scene again = parseScene(sc.resolvedToml, "scenes/plate.toml");
+  CHECK(again.resolvedToml == sc.resolvedToml);
+  CHECK(again.plate.seedlings[1].model.tropism.beta == 0.3);
+  // a scene without seedlings is a single root, as before
+  const Scene single = parseScene(kHead.substr(0, kHead.find("[plate]")), "scenes/one.toml");
+  CHECK_FALSE(single.isPlate());
+  CHECK(single.resolvedToml.find("[plate]") == std::string::npos);
+}
+
+TEST_CASE("plate scenes: population draws repeat from the seed and are written into the resolved scene") {
+  std::string text = kHead + "\n[population]\nseed = 11\n[population.spread]\n\"tropism.beta\" = { normal_sd = 0.03 }\n"
+                             "\"tropism.twist_r_tau\" = { uniform_half_width = 0.1 }\nangle_deg = { normal_sd = 4 }\n";
+  for (int k = 0; k < 5; ++k) text += seedling("s" + std::to_string(k), 8 + 10 * k, 5);
+  const Scene a = parseScene(text, "scenes/p.toml"), b = parseScene(text, "scenes/p.toml");
+  CHECK(a.resolvedToml == b.resolvedToml);
+  double lo = 1e9, hi = -1e9;
+  for (int k = 0; k < 5; ++k) {
+    const Model& m = a.plate.seedlings[static_cast<size_t>(k)].model;
+    CHECK(m.tropism.beta == b.plate.seedlings[static_cast<size_t>(k)].model.tropism.beta);
+    CHECK(std::abs(m.tropism.rTau) <= 0.1);
+    lo = std::min(lo, m.tropism.beta);
+    hi = std::max(hi, m.tropism.beta);
+  }
+  CHECK(hi > lo);  // five draws, not one value
+  // another seed, another plate
+  std::string other = text;
+  other.replace(other.find("seed = 11"), 9, "seed = 12");
+  CHECK(parseScene(other, "scenes/p.toml").plate.seedlings[0].model.tropism.beta != a.plate.seedlings[0].model.tropism.beta);
+  // the drawn values are in the resolved scene: it loads to the same models without drawing again
+  const Scene resolved = parseScene(a.resolvedToml, "scenes/p.toml");
+  for (int k = 0; k < 5; ++k) {
+    const auto u = static_cast<size_t>(k);
+    CHECK(resolved.plate.seedlings[u].model.tropism.beta == a.plate.seedlings[u].model.tropism.beta);
+    CHECK(resolved.plate.seedlings[u].model.tropism.rTau == a.plate.seedlings[u].model.tropism.rTau);
+    CHECK(resolved.plate.seedlings[u].model.initial.angle == a.plate.seedlings[u].model.initial.angle);
+  }
+  CHECK(a.resolvedToml.find("[population]") == std::string::npos);  // the draws are made: the values stand
+}
+
+TEST_CASE("plate runs: a folder per root, each a run directory of that root alone; plate.csv names overrides") {
+  const fs::path dir = test::scratchDir("plate", "run");
+  const std::string text = kHead + seedling("wt", 15, 5) + seedling("mutant", 35, 5, "set = { \"tropism.beta\" = 0.3 }\n");
+  const Scene sc = parseScene(text, "scenes/plate.toml");
+  runSceneToDir(sc, (dir / "run").string(), RunDirOptions{}, nullptr);
+  for (const char* f : {"scene.toml", "summary.json", "plate.csv", "plate_timeseries.csv", ".rootsim-run"})
+    CHECK(fs::is_regular_file(dir / "run" / f));
+  // each root's folder: its own scene (the plate with that seedling alone) and the files of a run
+  for (const char* name : {"wt", "mutant"}) {
+    const fs::path r = dir / "run" / "roots" / name;
+    for (const char* f : {"scene.toml", "summary.json", "result.csv", "timeseries.csv", "shape.csv", "trajectory.bin", ".rootsim-run"})
+      CHECK(fs::is_regular_file(r / f));
+    CHECK(whyNotWhole(r).empty());
+    const Scene own = loadScene((r / "scene.toml").string());
+    CHECK(own.plate.seedlings.size() == 1);
+    CHECK(own.model.tropism.beta == (std::string(name) == "wt" ? 0.2 : 0.3));
+  }
+  // the wild type's shape is the single root's run (roots apart): same bytes of shape.csv
+  Scene single = parseScene(kHead.substr(0, kHead.find("[plate]")), "scenes/plate.toml");
+  Simulation sim(single.model);
+  for (int k = 0; k < single.model.growth.steps; ++k) sim.growthStep();
+  CHECK(slurp(dir / "run" / "roots" / "wt" / "shape.csv") == shapeCsv(single.model, sim.state(), sim.strains()));
+  const std::string table = slurp(dir / "run" / "plate.csv");
+  CHECK(table.rfind("root,genotype,position_lateral_mm,position_downhill_mm,angle_deg,overrides,scene,status,", 0) == 0);
+  CHECK(table.find("\"mutant\",\"\",35.0,5.0,0.0,\"tropism.beta=0.3\",") != std::string::npos);
+  // the same scene again: the same bytes in every root's files (same scene and seed, same bytes)
+  runSceneToDir(sc, (dir / "again").string(), RunDirOptions{}, nullptr);
+  for (const char* f : {"roots/mutant/shape.csv", "roots/mutant/timeseries.csv", "plate.csv", "plate_timeseries.csv"})
+    CHECK(slurp(dir / "run" / f) == slurp(dir / "again" / f));
+  // a plate's run directory is rootsim's: --force replaces it
+  RunDirOptions force;
+  force.force = true;
+  CHECK_NOTHROW(runSceneToDir(sc, (dir / "run").string(), force, nullptr));
+}

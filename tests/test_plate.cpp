@@ -114,3 +114,48 @@ TEST_CASE("plate: two roots grown into each other push each other and never pass
   CHECK(net.norm() <= 1e-12 * largest);
   CHECK(moment.norm() <= 1e-12 * largest * 0.1);  // positions ~ 0.03 m from the plate's origin
 }
+
+TEST_CASE("plate: lateral roots emerge at the asked spacing and, on a vertical plate, settle at their set-point angle") {
+  // a vertical plate (alpha = 0): the primary grows straight down; its laterals start at 85 degrees from
+  // it, alternating sides, and turn to their gravitropic set-point angle of 50 degrees from gravity
+  Model m = waving();
+  m.env.plane.alpha = 0.0;
+  completeModel(m);
+  PlateParams pp;
+  LateralParams& lp = pp.laterals;
+  lp.enabled = true;
+  lp.first = 3e-3;
+  lp.spacing = 2e-3;
+  lp.apicalUnbranched = 4e-3;
+  lp.insertion = 85 * units::deg;
+  lp.setPoint = 50 * units::deg;
+  PlateSimulation plate(pp, {sow("p", 20, 3, m)});
+  for (int k = 0; k < 2600; ++k) plate.growthStep();
+  REQUIRE(plate.size() >= 4);
+  const double h = m.initial.elementLength;
+  for (int r = 1; r < plate.size(); ++r) {
+    const Seedling& sd = plate.seedling(r);
+    CHECK(sd.parent == 0);
+    CHECK(sd.order == 1);
+    // the k-th site at first + k spacing along the parent, at its nearest node: within half an element
+    // (elements are split beyond growth.split_factor h)
+    CHECK(std::abs(sd.siteS - (lp.first + (r - 1) * lp.spacing)) <= 0.5 * m.growth.splitFactor * h);
+    // alternating sides: +85, -85, +85 ... degrees from the parent (straight down here)
+    CHECK(sd.model.initial.angle / units::deg == doctest::Approx((r % 2 == 1 ? 1 : -1) * 85.0).epsilon(1e-3));
+    // the lateral's base sits where the parent's node at the site is (the parent grew straight down)
+    const double depth = (plate.offset(r) - plate.offset(0)).dot(Vec3(0, 0, -1));
+    CHECK(std::abs(depth - sd.siteS) <= 1e-3 * sd.siteS);
+  }
+  // the laterals long enough to have turned (grown 5 mm) point at the set-point angle, on their own side
+  int judged = 0;
+  for (int r = 1; r < plate.size(); ++r) {
+    const RodState& s = plate.root(r).state();
+    if (s.restLength() < 5e-3) continue;
+    ++judged;
+    const double theta = plate.root(r).last().thetaTip / units::deg;
+    INFO(plate.seedling(r).name << ": tip angle " << theta << " deg after " << s.restLength() / units::mm << " mm");
+    CHECK(std::abs(std::abs(theta) - 50.0) <= 5.0);
+    CHECK(theta * plate.seedling(r).model.initial.angle > 0.0);
+  }
+  CHECK(judged >= 2);
+}

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "rootsim/outputs.hpp"
+#include "rootsim/rsml.hpp"
 #include "rootsim/run_scene.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/simulation.hpp"
@@ -72,7 +73,7 @@ TEST_CASE("plate scenes: bad seedlings are refused naming file:line and the key"
             "scenes/t.toml:22: seedling[1].set.tropism.beta must be") == 0);
   // unknown seedling key, missing name or position, a name taken twice, a name that is no folder
   CHECK(errorOf(kHead + seedling("a", 20, 5, "angle = 3\n")) ==
-        "scenes/t.toml:21: unknown key seedling[1].angle (seedling keys: name, genotype, position_mm, angle_deg, set)");
+        "scenes/t.toml:21: unknown key seedling[1].angle (seedling keys: name, genotype, position_mm, angle_deg, set_point_deg, set)");
   CHECK(errorOf(kHead + "\n[[seedling]]\nposition_mm = [20, 5]\n").find("seedling[1].name is missing") != std::string::npos);
   CHECK(errorOf(kHead + "\n[[seedling]]\nname = \"a\"\n").find("seedling[1].position_mm is missing") != std::string::npos);
   CHECK(errorOf(kHead + seedling("a", 20, 5) + seedling("a", 40, 5)).find("\"a\" is taken by seedling[1]") != std::string::npos);
@@ -169,8 +170,8 @@ TEST_CASE("plate runs: a folder per root, each a run directory of that root alon
   for (int k = 0; k < single.model.growth.steps; ++k) sim.growthStep();
   CHECK(slurp(dir / "run" / "roots" / "wt" / "shape.csv") == shapeCsv(single.model, sim.state(), sim.strains()));
   const std::string table = slurp(dir / "run" / "plate.csv");
-  CHECK(table.rfind("root,genotype,position_lateral_mm,position_downhill_mm,angle_deg,overrides,scene,status,", 0) == 0);
-  CHECK(table.find("\"mutant\",\"\",35.0,5.0,0.0,\"tropism.beta=0.3\",") != std::string::npos);
+  CHECK(table.rfind("root,genotype,parent,order,emerged_h,position_lateral_mm,position_downhill_mm,angle_deg,set_point_deg,overrides,scene,status,", 0) == 0);
+  CHECK(table.find("\"mutant\",\"\",\"\",0,0.0,35.0,5.0,0.0,0.0,\"tropism.beta=0.3\",") != std::string::npos);
   // the same scene again: the same bytes in every root's files (same scene and seed, same bytes)
   runSceneToDir(sc, (dir / "again").string(), RunDirOptions{}, nullptr);
   for (const char* f : {"roots/mutant/shape.csv", "roots/mutant/timeseries.csv", "plate.csv", "plate_timeseries.csv"})
@@ -179,4 +180,58 @@ TEST_CASE("plate runs: a folder per root, each a run directory of that root alon
   RunDirOptions force;
   force.force = true;
   CHECK_NOTHROW(runSceneToDir(sc, (dir / "run").string(), force, nullptr));
+}
+
+TEST_CASE("plate scenes: [laterals] keys are checked naming file:line and the key") {
+  CHECK(errorOf(kHead + "\n[laterals]\nspacing_mm = 0\n" + seedling("a", 20, 5)) ==
+        "scenes/t.toml:19: laterals.spacing_mm must be in (0, 1000] (got 0)");
+  CHECK(errorOf(kHead + "\n[laterals]\nspacing_mm = -2\n" + seedling("a", 20, 5)).find("laterals.spacing_mm must be in (0, 1000]") !=
+        std::string::npos);
+  CHECK(errorOf(kHead + "\n[laterals]\nset_point_dg = 30\n" + seedling("a", 20, 5)).find(
+            "scenes/t.toml:19: unknown key laterals.set_point_dg (did you mean set_point_deg?)") == 0);
+  CHECK(errorOf(kHead + "\n[laterals]\nsides = \"left\"\n" + seedling("a", 20, 5)).find("laterals.sides must be one of") !=
+        std::string::npos);
+  CHECK(errorOf(kHead + "\n[laterals]\nmax_order = 0\n" + seedling("a", 20, 5)).find("laterals.max_order must be in [1, 4]") !=
+        std::string::npos);
+  CHECK(errorOf(kHead + "\n[laterals]\ninitial_length_mm = 0.05\n" + seedling("a", 20, 5)).find("shorter than two elements") !=
+        std::string::npos);
+  CHECK(errorOf("[laterals]\nenabled = true\n").find("[laterals] without any [[seedling]]") != std::string::npos);
+  // a resolved scene with laterals round-trips
+  const Scene sc = parseScene(kHead + "\n[laterals]\nenabled = true\nset_point_deg = 45\n" + seedling("a", 20, 5), "scenes/l.toml");
+  CHECK(sc.plate.params.laterals.enabled);
+  CHECK(parseScene(sc.resolvedToml, "scenes/l.toml").resolvedToml == sc.resolvedToml);
+}
+
+TEST_CASE("plate runs: lateral roots get their folders, rows in plate.csv and plants' roots in the plate's RSML") {
+  const fs::path dir = test::scratchDir("plate", "laterals");
+  const std::string text = kHead +
+                           "\n[laterals]\nenabled = true\nfirst_mm = 0.5\nspacing_mm = 0.5\napical_unbranched_mm = 1.0\n" +
+                           seedling("wt", 15, 5) + seedling("mu", 35, 5, "set = { \"tropism.beta\" = 0.3 }\n");
+  const Scene sc = parseScene(text, "scenes/plate.toml");
+  runSceneToDir(sc, (dir / "run").string(), RunDirOptions{}, nullptr);
+  // two sites each (the roots grow to 2.3 mm: sites at 0.5 and 1.0 mm open once the tip is 1 mm beyond)
+  for (const char* name : {"wt.1", "wt.2", "mu.1", "mu.2"}) {
+    const fs::path r = dir / "run" / "roots" / name;
+    REQUIRE(fs::is_regular_file(r / "scene.toml"));
+    CHECK(whyNotWhole(r).empty());
+    const Scene own = loadScene((r / "scene.toml").string());
+    REQUIRE(own.plate.seedlings.size() == 1);
+    CHECK(own.model.rod.radius == doctest::Approx(0.06e-3));
+    CHECK(own.model.tropism.setPoint == doctest::Approx(60 * units::deg));
+  }
+  CHECK_FALSE(fs::exists(dir / "run" / "roots" / "wt.3"));
+  const std::string table = slurp(dir / "run" / "plate.csv");
+  CHECK(table.find("\"wt.2\",\"\",\"wt\",1,") != std::string::npos);
+  // the plate's RSML: a plant per seedling, its laterals nested in it
+  const test::Result ex = test::run("export " + (dir / "run").string() + " --rsml " + (dir / "plate.rsml").string() + " --quiet");
+  REQUIRE(ex.code == 0);
+  const rsml::Document doc = rsml::readRsml(dir / "plate.rsml");
+  REQUIRE(doc.plants.size() == 2);
+  REQUIRE(doc.plants[0].roots.size() == 3);
+  CHECK(doc.plants[0].label == "wt");
+  CHECK(doc.plants[0].roots[1].parent == 0);
+  CHECK(doc.plants[0].roots[1].order == 1);
+  // in plate coordinates: the mutant's base is at its place on the plate
+  CHECK(doc.plants[1].roots[0].x.front() == doctest::Approx(35.0).epsilon(1e-9));
+  CHECK(doc.plants[1].roots[0].y.front() == doctest::Approx(5.0).epsilon(1e-9));
 }

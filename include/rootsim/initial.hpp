@@ -14,6 +14,8 @@ struct InitialShape {
   std::uint64_t seed = 1;         // seed of the perturbation
   double angle = 0.0;             // initial direction from downhill, in the plate [rad], positive towards
                                   // +lateral like theta: a seedling's (docs/plate.md); not a scene key
+  double startTime = 0.0;         // growth time of the initial state [s]: a lateral root's emergence on
+                                  // a plate (its times are the plate's); not a scene key
 };
 
 // base of the centreline at R n, axis along the downhill direction, d1 = x, d2 = n, d3 = downhill

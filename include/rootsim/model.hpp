@@ -27,6 +27,10 @@ struct TropismParams {
   double rTau = 0.0;               // intrinsic twist R tau (dimensionless)
   double cnGain = 0.0;             // circumnutation gain lambda_cn
   double cnPeriod = 1.0 * units::hour;  // circumnutation period [s]
+  // gravitropic set-point angle phi_s (docs/plate.md, Lateral roots): the organ grows towards
+  // g_s = cos(phi_s) g + sin(phi_s) h, h the horizontal direction of its apex's tangent; 0: towards g
+  // (the primary root's law). A lateral root's; a plate seedling's set_point_deg, not a scene key
+  double setPoint = 0.0;           // [rad]
 };
 
 struct AnalysisParams {

@@ -1,6 +1,7 @@
 #pragma once
 // A plate of roots (docs/plate.md): seedlings sown on one tilted plate, each a root of its own (a
 // Simulation in its own frame, its base at the frame's origin), and the contact between them. No I/O here.
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -19,6 +20,31 @@ struct Seedling {
   std::string genotype;                                // a label the plate summary groups by ("" none)
   std::vector<std::string> overrides;                  // its keys that differ from the plate's, as
                                                        // "section.key=value" (set or drawn), for the summary
+  // a lateral root's: its parent (index in the plate), order (0: a seedling), the parent's rest arc
+  // length at the junction [m], when it emerged [h]
+  int parent = -1;
+  int order = 0;
+  double siteS = 0.0;
+  double emergedH = 0.0;
+};
+
+// lateral roots (docs/plate.md, Lateral roots): where they emerge along a parent, and their own root
+struct LateralParams {
+  bool enabled = false;
+  double first = 5e-3;             // the first site, from the parent's base along its rest arc length [m]
+  double spacing = 2e-3;           // between sites [m]
+  double apicalUnbranched = 5e-3;  // a site emerges once the parent's tip is this far beyond it [m]
+  double delay = 0.0;              // and this long after that [s]
+  bool alternate = true;           // sides alternate (+lateral side first); false: drawn from seed
+  std::uint64_t seed = 1;          // the sides' draws
+  double insertion = 60.0 * units::deg;  // angle from the parent's tangent [rad]
+  double radius = 0.06e-3;         // the lateral's R [m] (0.6 of the primary's)
+  double rate = 0.1 / units::hour; // its relative growth rate in the zone [1/s] (half the primary's)
+  double zoneLength = 0.6e-3;      // its growth zone [m]
+  double initialLength = 0.3e-3;   // its length at emergence [m]
+  double beta = 0.1, gamma = 0.1, rTau = 0.0;
+  double setPoint = 60.0 * units::deg;  // its gravitropic set-point angle [rad]
+  int maxOrder = 1;                // laterals of laterals up to this order (1: laterals of the primary only)
 };
 
 struct PlateParams {
@@ -27,12 +53,15 @@ struct PlateParams {
   // most sweeps of the roots in contact within one growth step before the step fails (docs/plate.md,
   // Solving)
   int maxSweeps = 100;
+  LateralParams laterals;
 };
 
 // a plate as a scene describes it: the plate and its seedlings (an empty list: a scene of one root alone)
 struct PlateSpec {
   PlateParams params;
   std::vector<Seedling> seedlings;
+  Model base;              // the plate-wide keys' model (obstacles in plate coordinates)
+  std::string headToml;    // the resolved text of the plate-wide keys and obstacles (a root's scene starts so)
 };
 
 // one row of the plate's time series
@@ -66,6 +95,8 @@ class PlateSimulation {
   // sweeps re-relax the roots another root touches until none moves (docs/plate.md, Solving); throws
   // RelaxError naming the root
   const PlateStepRecord& growthStep();
+  // the roots that emerged in the last growth step (indices; the plate's roots grow by them)
+  const std::vector<int>& emerged() const { return emerged_; }
 
   int size() const { return static_cast<int>(roots_.size()); }
   const Simulation& root(int r) const { return *roots_[static_cast<size_t>(r)]; }
@@ -88,6 +119,11 @@ class PlateSimulation {
   // the roots within reach of another relax together, explicitly, one sub-step each in turn
   void relaxJointly();
   PlateStepRecord observe(int sweeps) const;
+  // the lateral roots whose sites the last growth step opened (docs/plate.md, Lateral roots)
+  void emergeLaterals();
+  // pairs of root r's element i and root o's element j that contact skips: within 3 (Ra + Rb) of arc
+  // length of a lateral's junction with its parent, on both
+  bool nearJunction(int r, int i, int o, int j) const;
 
   PlateParams plate_;
   std::vector<Seedling> seedlings_;
@@ -104,7 +140,10 @@ class PlateSimulation {
   std::vector<Element> grid_;
   std::vector<int> firstElement_;  // global index of each root's element 0
   Eigen::Matrix3Xd before_;        // a sweep's scratch: a root's nodes before it relaxed again
-  std::vector<int> capsuleOf_;     // global element -> capsule index in the list being built (-1: none)
+  std::vector<int> capsuleOf_;
+  std::vector<int> nextSite_;      // per root: the index of its next lateral site
+  std::vector<int> emerged_;
+  std::uint64_t sideStream_ = 1;   // the sides' draws (LateralParams::alternate false)     // global element -> capsule index in the list being built (-1: none)
   double cellSize_ = 0;
 };
 

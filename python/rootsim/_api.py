@@ -297,7 +297,7 @@ class Run:
 
     def _one_root(self, what: str) -> None:
         if self.is_plate:
-            names = ", ".join(sd["name"] for sd in self.summary["seedlings"])
+            names = ", ".join(sd["name"] for sd in self.summary["roots"])
             raise SceneError(f"{self.dir}: a plate's run has no {what} of its own; each root's: "
                              f"run.roots[NAME].{what} (roots: {names})")
 
@@ -308,23 +308,25 @@ class Run:
 
     @cached_property
     def roots(self) -> Dict[str, "Run"]:
-        """A plate's roots: seedling name -> the ``Run`` of its folder ``roots/NAME`` (in the scene's order),
-        each read as a run of that root alone (positions in its own frame, its base's foot at the origin;
-        ``plate_seedlings`` gives where each is sown). Empty for a run of one root."""
+        """A plate's roots: name -> the ``Run`` of its folder ``roots/NAME``: the seedlings in the scene's
+        order, then the lateral roots (``s1.3``: the third lateral of s1) as they emerged. Each is read as a
+        run of that root alone (positions in its own frame, its base's foot at the origin; ``plate_roots``
+        gives where each is). Empty for a run of one root."""
         if not self.is_plate:
             return {}
         out: Dict[str, Run] = {}
-        for sd in self.summary["seedlings"]:
+        for sd in self.summary["roots"]:
             r = Run(self.dir / sd["folder"])
             r._tmp = self._tmp  # a temporary plate run stays alive as long as its roots
             out[sd["name"]] = r
         return out
 
     @property
-    def plate_seedlings(self) -> List[Dict[str, Any]]:
-        """A plate's seedlings as summary.json lists them: name, genotype, folder, position_lateral_mm,
-        position_downhill_mm, angle_deg, overrides. Units: named in each key (mm, deg). Empty for one root."""
-        return list(self.summary.get("seedlings", [])) if self.is_plate else []
+    def plate_roots(self) -> List[Dict[str, Any]]:
+        """A plate's roots as summary.json lists them: name, genotype, parent ("" for a seedling), order,
+        emerged_h, set_point_deg, folder, position_lateral_mm, position_downhill_mm, angle_deg, overrides.
+        Units: named in each key (mm, deg, h). Empty for one root."""
+        return list(self.summary.get("roots", [])) if self.is_plate else []
 
     def render(self, **options: Any) -> List[pathlib.Path]:
         """``rootsim.render(self.dir, **options)``: keyword options only (units: ``field_mm`` in mm)."""

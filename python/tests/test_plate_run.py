@@ -13,7 +13,7 @@ def test_a_plate_run_gives_each_root(tmp_path):
     r = rootsim.run(SCENE, set={"growth.steps": 40, "output.vtk": False}, out=tmp_path / "plate")
     assert r.is_plate
     assert list(r.roots) == ["wt1", "wt2", "wt3", "tw1", "tw2", "tw3"]
-    seeds = {sd["name"]: sd for sd in r.plate_seedlings}
+    seeds = {sd["name"]: sd for sd in r.plate_roots}
     assert seeds["tw1"]["genotype"] == "twisted"
     assert seeds["tw1"]["position_lateral_mm"] == 51.0
     assert "tropism.twist_r_tau=0.4" in seeds["tw1"]["overrides"]
@@ -36,4 +36,4 @@ def test_a_single_root_has_no_roots(tmp_path):
     r = rootsim.run(SOURCE / "scenes/fig2a_alpha40.toml", set={"growth.steps": 5}, out=tmp_path / "one")
     assert not r.is_plate
     assert r.roots == {}
-    assert r.plate_seedlings == []
+    assert r.plate_roots == []

@@ -328,36 +328,57 @@ rsml::Document rsmlOf(const RunData& d, const Snapshot& s, int sequenceIndex) {
   return doc;
 }
 
-// a plate's RSML (docs/plate.md): one plant per seedling, its root in plate coordinates from the plate's
-// origin; each root's document as rsmlOf writes it, the plants gathered into the first's
-rsml::Document plateRsmlOf(const Scene& plate, const std::vector<RunData>& roots, std::size_t pick, int sequenceIndex) {
+// a plate's RSML (docs/plate.md): one plant per seedling, its lateral roots nested in it, every root in
+// plate coordinates from the plate's origin; each root as rsmlOf writes it. pick: the snapshot of the
+// seedlings (a lateral root has the plate's last snapshots only; one that had not emerged is left out)
+rsml::Document plateRsmlOf(const Scene& plate, const std::vector<PlateRoot>& roots, const std::vector<RunData>& data,
+                           std::size_t pick, int sequenceIndex) {
   rsml::Document doc;
+  std::size_t count = 0;
+  for (const RunData& d : data) count = std::max(count, d.snaps.size());
+  std::vector<std::pair<int, int>> where(roots.size(), {-1, -1});  // root -> (plant, index in the plant)
   for (std::size_t r = 0; r < roots.size(); ++r) {
-    const Seedling& sd = plate.plate.seedlings[r];
-    const Snapshot& s = roots[r].snaps[pick];
-    rsml::Document one = rsmlOf(roots[r], s, sequenceIndex);
-    rsml::Plant plant = std::move(one.plants.front());
-    plant.id = std::to_string(r + 1);
-    plant.label = sd.name;
-    plant.properties.push_back(textProperty("genotype", sd.genotype));
-    std::string overrides;
-    for (const std::string& o : sd.overrides) overrides += (overrides.empty() ? "" : ";") + o;
-    plant.properties.push_back(textProperty("overrides", overrides));
-    for (rsml::Root& root : plant.roots) {
-      root.id = std::to_string(r + 1) + "." + root.id;
-      for (double& x : root.x) x += sd.position.x() / units::mm;
-      for (double& y : root.y) y += sd.position.y() / units::mm;
-    }
-    if (r == 0) {
+    const PlateRoot& pr = roots[r];
+    const RunData& d = data[r];
+    if (pick + d.snaps.size() < count) continue;  // not emerged yet
+    rsml::Document one = rsmlOf(d, d.snaps[pick + d.snaps.size() - count], sequenceIndex);
+    rsml::Root root = std::move(one.plants.front().roots.front());
+    root.label = pr.parent.empty() ? "primary" : "lateral";
+    for (double& x : root.x) x += pr.seedling.position.x() / units::mm;
+    for (double& y : root.y) y += pr.seedling.position.y() / units::mm;
+    if (doc.plants.empty()) {
       doc = std::move(one);
       doc.plants.clear();
       // the plate's keys (each plant's own are its overrides)
       doc.sceneProperties.erase(doc.sceneProperties.begin() + 3, doc.sceneProperties.end());
-      for (const SceneValue& v : sceneValues(plate.model))
+      for (const SceneValue& v : sceneValues(plate.plate.base))
         if (v.key.find('[') == std::string::npos) doc.sceneProperties.push_back(textProperty(v.key, sceneText(v.text)));
-      doc.comment += " (a plate of " + std::to_string(roots.size()) + " roots, plate coordinates)";
+      doc.comment += " (a plate, plate coordinates from the plate's origin)";
     }
-    doc.plants.push_back(std::move(plant));
+    if (pr.parent.empty()) {
+      rsml::Plant plant;
+      plant.id = std::to_string(doc.plants.size() + 1);
+      plant.label = pr.name;
+      plant.properties.push_back(textProperty("genotype", pr.seedling.genotype));
+      std::string overrides;
+      for (const std::string& o : pr.seedling.overrides) overrides += (overrides.empty() ? "" : ";") + o;
+      plant.properties.push_back(textProperty("overrides", overrides));
+      root.id = plant.id + ".1";
+      plant.roots.push_back(std::move(root));
+      where[r] = {static_cast<int>(doc.plants.size()), 0};
+      doc.plants.push_back(std::move(plant));
+      continue;
+    }
+    std::size_t p = 0;
+    while (p < roots.size() && roots[p].name != pr.parent) ++p;
+    if (p == roots.size() || where[p].first < 0) continue;
+    rsml::Plant& plant = doc.plants[static_cast<std::size_t>(where[p].first)];
+    root.parent = where[p].second;
+    root.order = plant.roots[static_cast<std::size_t>(root.parent)].order + 1;
+    root.id = plant.id + "." + std::to_string(plant.roots.size() + 1);
+    root.properties.push_back(textProperty("name", pr.name));
+    where[r] = {where[p].first, static_cast<int>(plant.roots.size())};
+    plant.roots.push_back(std::move(root));
   }
   return doc;
 }
@@ -381,10 +402,12 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
     throw SceneError(std::string(o.gltf.empty() ? "--paraview " : "--gltf ") + runDir.string() +
                      ": a plate's run; export one root's folder roots/NAME (the whole plate is written as RSML only)");
   Scene plateScene;
+  std::vector<PlateRoot> plateRootList;
   std::vector<RunData> roots;
   if (plate) {
     plateScene = loadScene((runDir / "scene.toml").string());
-    for (const Seedling& sd : plateScene.plate.seedlings) roots.push_back(readRun(runDir / "roots" / sd.name));
+    plateRootList = plateRoots(runDir);
+    for (const PlateRoot& r : plateRootList) roots.push_back(readRun(r.dir));
   }
   const RunData data = plate ? roots.front() : readRun(runDir);
   const std::vector<Pick> picks = pickSnapshots(data.snaps, o);
@@ -440,7 +463,7 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
   for (std::size_t k = 0; k < rsmlFiles.size(); ++k) {
     const Snapshot& s = data.snaps[static_cast<std::size_t>(picks[k].index)];
     const int seq = series ? static_cast<int>(k) : -1;
-    writeFileAtomic(rsmlFiles[k], rsml::writeRsml(plate ? plateRsmlOf(plateScene, roots, static_cast<std::size_t>(picks[k].index), seq)
+    writeFileAtomic(rsmlFiles[k], rsml::writeRsml(plate ? plateRsmlOf(plateScene, plateRootList, roots, static_cast<std::size_t>(picks[k].index), seq)
                                                         : rsmlOf(data, s, seq)));
     if (written) written->push_back(rsmlFiles[k]);
     if (!o.quiet) std::fprintf(stderr, "wrote %s (growth step %d, %g h)\n", rsmlFiles[k].c_str(), s.step, s.timeH);

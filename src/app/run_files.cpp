@@ -1,6 +1,7 @@
 // what `render` and `montage` read from a run directory and how they claim their outputs
 #include "run_files.hpp"
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <utility>
@@ -30,43 +31,71 @@ bool isPlateRun(const fs::path& runDir) {
          loadScene((runDir / "scene.toml").string()).isPlate();
 }
 
+std::vector<PlateRoot> plateRoots(const fs::path& runDir) {
+  const Scene sc = loadScene((runDir / "scene.toml").string());
+  std::vector<std::string> names;
+  for (const Seedling& sd : sc.plate.seedlings) names.push_back(sd.name);
+  // the lateral roots: the folders that are no seedling's (a lateral's name is its parent's and ".K")
+  std::vector<std::string> laterals;
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(runDir / "roots", ec)) {
+    const std::string n = e.path().filename().string();
+    if (std::find(names.begin(), names.end(), n) == names.end()) laterals.push_back(n);
+  }
+  std::sort(laterals.begin(), laterals.end());
+  names.insert(names.end(), laterals.begin(), laterals.end());
+  std::vector<PlateRoot> out;
+  for (const std::string& n : names) {
+    PlateRoot r;
+    r.name = n;
+    r.dir = runDir / "roots" / n;
+    const Scene own = loadScene((r.dir / "scene.toml").string());
+    if (own.plate.seedlings.size() != 1)
+      throw SceneError((r.dir / "scene.toml").string() + ": not the scene of one root of a plate");
+    r.seedling = own.plate.seedlings.front();
+    const auto dot = n.rfind('.');
+    if (dot != std::string::npos) r.parent = n.substr(0, dot);
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
 std::vector<Snapshot> loadSnapshots(const fs::path& runDir, const std::string& last) {
   if (!isPlateRun(runDir)) {
     if (!last.empty())
       throw SceneError("--root " + last + ": " + runDir.string() + " is a run of one root (--root picks a root of a plate's run)");
     return loadOne(runDir);
   }
-  const Scene sc = loadScene((runDir / "scene.toml").string());
-  const std::vector<Seedling>& seeds = sc.plate.seedlings;
-  std::vector<int> order;
-  for (int r = 0; r < static_cast<int>(seeds.size()); ++r)
-    if (seeds[static_cast<size_t>(r)].name != last) order.push_back(r);
+  std::vector<PlateRoot> roots = plateRoots(runDir);
   if (!last.empty()) {
-    if (order.size() == seeds.size()) {
+    auto it = std::find_if(roots.begin(), roots.end(), [&](const PlateRoot& r) { return r.name == last; });
+    if (it == roots.end()) {
       std::string names;
-      for (const Seedling& sd : seeds) names += (names.empty() ? "" : ", ") + sd.name;
+      for (const PlateRoot& r : roots) names += (names.empty() ? "" : ", ") + r.name;
       throw SceneError("--root " + last + ": " + runDir.string() + " has no such root (its roots: " + names + ")");
     }
-    for (int r = 0; r < static_cast<int>(seeds.size()); ++r)
-      if (seeds[static_cast<size_t>(r)].name == last) order.push_back(r);
+    std::rotate(it, it + 1, roots.end());  // the followed root last
   }
-  // each root's snapshots in plate coordinates (its frame's origin at its seedling's place)
-  const PlateFrame pf = sc.model.env.plane.frame();
-  std::vector<std::vector<Snapshot>> roots;
-  size_t count = SIZE_MAX;
-  for (int r : order) {
-    const Seedling& sd = seeds[static_cast<size_t>(r)];
-    std::vector<Snapshot> snaps = loadOne(runDir / "roots" / sd.name);
-    const Vec3 offset = sd.position.x() * pf.lateral + sd.position.y() * pf.downhill;
-    for (Snapshot& s : snaps) s.x.colwise() += offset;
-    count = std::min(count, snaps.size());
-    roots.push_back(std::move(snaps));
+  // each root's snapshots in plate coordinates (its frame's origin at its place on the plate); a lateral
+  // root's snapshots are the plate's last ones (it was recorded from the first output step after it emerged)
+  const PlateFrame pf = loadScene((runDir / "scene.toml").string()).model.env.plane.frame();
+  std::vector<std::vector<Snapshot>> snaps;
+  size_t count = 0;
+  for (const PlateRoot& r : roots) {
+    std::vector<Snapshot> s = loadOne(r.dir);
+    const Vec3 offset = r.seedling.position.x() * pf.lateral + r.seedling.position.y() * pf.downhill;
+    for (Snapshot& one : s) one.x.colwise() += offset;
+    count = std::max(count, s.size());
+    snaps.push_back(std::move(s));
   }
   std::vector<Snapshot> merged;
-  std::vector<Snapshot> one(roots.size());
   for (size_t k = 0; k < count; ++k) {
-    for (size_t r = 0; r < roots.size(); ++r) one[r] = std::move(roots[r][k]);
-    merged.push_back(mergeRoots(one));
+    std::vector<Snapshot> present;
+    for (const std::vector<Snapshot>& s : snaps)
+      if (k + s.size() >= count) present.push_back(s[k + s.size() - count]);
+    Snapshot m = mergeRoots(present);
+    m.timeH = present.front().timeH;
+    merged.push_back(std::move(m));
   }
   return merged;
 }

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "rootsim/movie.hpp"
+#include "rootsim/plate.hpp"
 #include "rootsim/snapshot.hpp"
 #include "rootsim/write_rule.hpp"
 
@@ -18,6 +19,15 @@ namespace rootsim::app {
 std::vector<Snapshot> loadSnapshots(const std::filesystem::path& runDir, const std::string& last = "");
 // true for a plate's run directory (a plate scene with its roots/ folder)
 bool isPlateRun(const std::filesystem::path& runDir);
+// a plate run's roots (docs/plate.md, Outputs): the seedlings in the scene's order, then the lateral roots
+// by name; each with its folder, its parent's name ("" for a seedling) and its seedling as its folder's
+// scene.toml describes it (place, angle, model)
+struct PlateRoot {
+  std::string name, parent;
+  std::filesystem::path dir;
+  Seedling seedling;
+};
+std::vector<PlateRoot> plateRoots(const std::filesystem::path& runDir);
 
 // the growth times of the snapshots [h]
 std::vector<double> snapshotTimes(const std::vector<Snapshot>& snaps);

@@ -82,6 +82,13 @@ double draw(const Spread& s, std::uint64_t& state) {
   return s.law == Spread::Law::Normal ? s.width * normalDraw(state) : s.width * splitmixUniform(state);
 }
 
+// a number in a message (%g: "0", "1000", "0.15")
+std::string shortNumber(double x) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", x);
+  return b;
+}
+
 // a length in a message [m -> "0.15 mm"]
 std::string mmText(double m) {
   char b[32];
@@ -110,6 +117,7 @@ double segmentDistance(const Segment2& p, const Segment2& q) {
 struct ParsedSeedling {
   Seedling sd;
   double angleDeg = 0;
+  double setPointDeg = 0;
   std::string where, loc, positionLoc;
   std::map<std::string, Value> set;  // by full key: the seedling's own values (drawn ones included)
 };
@@ -117,7 +125,7 @@ struct ParsedSeedling {
 }  // namespace
 
 bool isPlateTable(const std::string& section) {
-  return section == "plate" || section == "population" || section == "seedling";
+  return section == "plate" || section == "population" || section == "seedling" || section == "laterals";
 }
 
 PlateTables parsePlateTables(const toml::table& root, const std::string& sourceName, const std::string& text,
@@ -126,11 +134,12 @@ PlateTables parsePlateTables(const toml::table& root, const std::string& sourceN
   const toml::node* plateNode = root.get("plate");
   const toml::node* popNode = root.get("population");
   const toml::node* seedNode = root.get("seedling");
-  if (!plateNode && !popNode && !seedNode) return out;
+  const toml::node* latNode0 = root.get("laterals");
+  if (!plateNode && !popNode && !seedNode && !latNode0) return out;
   auto locOf = [&](const toml::node& n) { return where(sourceName, n.source()); };
   if (!seedNode) {
-    const toml::node& n = plateNode ? *plateNode : *popNode;
-    throw SceneError(locOf(n) + ": [" + std::string(plateNode ? "plate" : "population") +
+    const toml::node& n = plateNode ? *plateNode : (popNode ? *popNode : *latNode0);
+    throw SceneError(locOf(n) + ": [" + std::string(plateNode ? "plate" : (popNode ? "population" : "laterals")) +
                      "] without any [[seedling]]: a plate needs at least one seedling (docs/plate.md)");
   }
 
@@ -195,11 +204,76 @@ PlateTables parsePlateTables(const toml::table& root, const std::string& sourceN
     }
   }
 
+  // [laterals]
+  if (const toml::node* latNode = root.get("laterals")) {
+    const toml::table* t = latNode->as_table();
+    if (!t) throw SceneError(locOf(*latNode) + ": laterals must be a table ([laterals]), got " + describeNode(*latNode));
+    LateralParams& lp = pp.laterals;
+    static const std::vector<std::string> latKeys = {
+        "enabled", "first_mm", "spacing_mm", "apical_unbranched_mm", "delay_h", "sides", "seed", "insertion_deg",
+        "radius_mm", "rate_per_h", "growth_zone_mm", "initial_length_mm", "beta", "gamma", "twist_r_tau",
+        "set_point_deg", "max_order"};
+    for (auto&& [k, n] : *t) {
+      const std::string key(k.str()), loc = where(sourceName, k.source()), full = "laterals." + key;
+      // a number in (lo, hi] (or [lo, hi] when closedLo), times its unit
+      auto num = [&](double lo, double hi, bool closedLo, double unit) {
+        const double x = number(n, loc, full);
+        if (!(closedLo ? x >= lo : x > lo) || !(x <= hi))
+          throw SceneError(loc + ": " + full + " must be in " + (closedLo ? "[" : "(") + shortNumber(lo) + ", " + shortNumber(hi) +
+                           "] (got " + shortNumber(x) + ")");
+        return x * unit;
+      };
+      if (key == "enabled") {
+        if (!n.is_boolean()) throw SceneError(loc + ": " + full + " must be true or false (got " + describeNode(n) + ")");
+        lp.enabled = *n.value<bool>();
+      } else if (key == "sides") {
+        const std::string v = n.is_string() ? *n.value<std::string>() : std::string();
+        if (v != "alternate" && v != "random")
+          throw SceneError(loc + ": " + full + " must be one of \"alternate\", \"random\" (got " + describeNode(n) + ")");
+        lp.alternate = v == "alternate";
+      } else if (key == "seed" || key == "max_order") {
+        if (!n.is_integer()) throw SceneError(loc + ": " + full + " must be an integer (got " + describeNode(n) + ")");
+        const std::int64_t v = *n.value<int64_t>();
+        if (key == "seed") {
+          if (v < 0) throw SceneError(loc + ": " + full + " must be >= 0 (got " + std::to_string(v) + ")");
+          lp.seed = static_cast<std::uint64_t>(v);
+        } else {
+          if (v < 1 || v > 4) throw SceneError(loc + ": " + full + " must be in [1, 4] (got " + std::to_string(v) + ")");
+          lp.maxOrder = static_cast<int>(v);
+        }
+      } else if (key == "first_mm") lp.first = num(0, 1000, true, units::mm);
+      else if (key == "spacing_mm") lp.spacing = num(0, 1000, false, units::mm);
+      else if (key == "apical_unbranched_mm") lp.apicalUnbranched = num(0, 1000, true, units::mm);
+      else if (key == "delay_h") lp.delay = num(0, 1000, true, units::hour);
+      else if (key == "insertion_deg") lp.insertion = num(0, 180, false, units::deg);
+      else if (key == "radius_mm") lp.radius = num(0, 100, false, units::mm);
+      else if (key == "rate_per_h") lp.rate = num(0, 10, false, 1.0 / units::hour);
+      else if (key == "growth_zone_mm") lp.zoneLength = num(0, 1000, false, units::mm);
+      else if (key == "initial_length_mm") lp.initialLength = num(0, 1000, false, units::mm);
+      else if (key == "beta") lp.beta = num(0, 100, true, 1.0);
+      else if (key == "gamma") lp.gamma = num(0, 100, true, 1.0);
+      else if (key == "twist_r_tau") lp.rTau = num(-10, 10, true, 1.0);
+      else if (key == "set_point_deg") lp.setPoint = num(0, 180, true, units::deg);
+      else
+        throw SceneError(loc + ": unknown key laterals." + printable(key) + suggestFrom(key, latKeys) + " (laterals keys: " +
+                         [] {
+                           std::string all;
+                           for (const auto& c : latKeys) all += (all.empty() ? "" : ", ") + c;
+                           return all;
+                         }() + ")");
+    }
+    // a lateral of at least two elements of the plate's element length
+    const double h = base.at("root.element_length_mm").num * units::mm;
+    if (lp.initialLength < 2.0 * h)
+      throw SceneError(locOf(*latNode) + ": laterals.initial_length_mm " + formatNumber(lp.initialLength / units::mm, false) +
+                       " mm is shorter than two elements of root.element_length_mm = " + formatNumber(h / units::mm, false) + " mm");
+  }
+
   // [[seedling]]
   const toml::array* arr = seedNode->as_array();
   if (!arr || !arr->is_array_of_tables())
     throw SceneError(locOf(*seedNode) + ": seedling must be an array of tables ([[seedling]]), got " + describeNode(*seedNode));
-  static const std::vector<std::string> keys = {"name", "genotype", "position_mm", "angle_deg", "set"};
+  static const std::vector<std::string> keys = {"name", "genotype", "position_mm", "angle_deg", "set_point_deg", "set"};
   std::vector<ParsedSeedling> seeds;
   std::uint64_t stream = popSeed;
   for (const toml::node& tn : *arr) {
@@ -212,7 +286,7 @@ PlateTables parsePlateTables(const toml::table& root, const std::string& sourceN
       const std::string key(k.str()), loc = where(sourceName, k.source());
       if (std::find(keys.begin(), keys.end(), key) == keys.end())
         throw SceneError(loc + ": unknown key " + ps.where + "." + printable(key) + suggestFrom(key, keys) +
-                         " (seedling keys: name, genotype, position_mm, angle_deg, set)");
+                         " (seedling keys: name, genotype, position_mm, angle_deg, set_point_deg, set)");
       if (key == "name" || key == "genotype") {
         if (!n.is_string()) throw SceneError(loc + ": " + ps.where + "." + key + " must be a string (got " + describeNode(n) + ")");
         const std::string v = *n.value<std::string>();
@@ -244,6 +318,10 @@ PlateTables parsePlateTables(const toml::table& root, const std::string& sourceN
                                          number(*a->get(1), loc, ps.where + ".position_mm")) * units::mm;
         ps.positionLoc = loc;
         havePosition = true;
+      } else if (key == "set_point_deg") {
+        ps.setPointDeg = number(n, loc, ps.where + ".set_point_deg");
+        if (!(ps.setPointDeg >= 0 && ps.setPointDeg < 180))
+          throw SceneError(loc + ": " + ps.where + ".set_point_deg must be in [0, 180) (got " + formatNumber(ps.setPointDeg, false) + ")");
       } else if (key == "angle_deg") {
         ps.angleDeg = number(n, loc, ps.where + ".angle_deg");
         if (!(std::abs(ps.angleDeg) <= 180))
@@ -272,9 +350,19 @@ PlateTables parsePlateTables(const toml::table& root, const std::string& sourceN
     }
     if (ps.sd.name.empty()) throw SceneError(ps.loc + ": " + ps.where + ".name is missing (each seedling is named)");
     if (!havePosition) throw SceneError(ps.loc + ": " + ps.where + ".position_mm is missing");
-    for (const ParsedSeedling& o : seeds)
+    for (const ParsedSeedling& o : seeds) {
       if (o.sd.name == ps.sd.name)
         throw SceneError(ps.loc + ": " + ps.where + ".name \"" + ps.sd.name + "\" is taken by " + o.where);
+      // a lateral root is named after its parent, NAME.K: no seedling may take such a name
+      for (const auto& [a, b] : {std::pair<const std::string*, const std::string*>{&o.sd.name, &ps.sd.name},
+                                  std::pair<const std::string*, const std::string*>{&ps.sd.name, &o.sd.name}}) {
+        const std::string& n = *b;
+        if (pp.laterals.enabled && n.size() > a->size() + 1 && n.compare(0, a->size() + 1, *a + ".") == 0 &&
+            std::all_of(n.begin() + static_cast<long>(a->size()) + 1, n.end(), [](char c) { return c >= '0' && c <= '9'; }))
+          throw SceneError(ps.loc + ": " + ps.where + ".name: \"" + n + "\" is the name of a lateral root of " + *a +
+                           " ([laterals] names them NAME.1, NAME.2, ...)");
+      }
+    }
     // population: each seedling draws its keys in turn from one seeded stream
     for (const auto& [full, s] : spreads) {
       auto redraw = [&](const std::function<bool(double)>& accept, double centre) {
@@ -318,6 +406,7 @@ PlateTables parsePlateTables(const toml::table& root, const std::string& sourceN
       throw SceneError(std::string(e.what()) + " (in " + ps.where + ", " + ps.sd.name + ")");
     }
     m.initial.angle = ps.angleDeg * units::deg;
+    m.tropism.setPoint = ps.setPointDeg * units::deg;
     const double R = m.rod.radius;
     const Segment2 seg = initialSegment(ps.sd.position, m.initial.angle, m.initial.length);
     // on the plate, whole: base and initial tip at least R inside every edge
@@ -354,31 +443,59 @@ PlateTables parsePlateTables(const toml::table& root, const std::string& sourceN
     ps.sd.model = m;
   }
 
-  // the resolved text: the plate, then each seedling with its final values
-  std::ostringstream plate;
-  plate << "\n[plate]\nwidth_mm = " << formatNumber(pp.width / units::mm, false)
-        << "\nlength_mm = " << formatNumber(pp.length / units::mm, false) << "\n";
-  // the drawn values stand in each seedling's set: the resolved text loads to the same plate without
-  // drawing again, and round-trips (no [population] in it)
-  std::string all = plate.str();
+  // the resolved text: the plate, the laterals, then each seedling with its final values. The drawn
+  // values stand in each seedling's set: the resolved text loads to the same plate without drawing
+  // again, and round-trips (no [population] in it)
+  out.spec.base = buildModel(base, name);
+  out.spec.base.env.obstacles = obstacles;
+  const std::string plate = plateTableToml(pp);
+  std::string all = plate;
+  if (root.get("laterals")) all += lateralsToml(pp.laterals);
   for (ParsedSeedling& ps : seeds) {
-    std::ostringstream os;
-    os << "\n[[seedling]]\nname = \"" << ps.sd.name << "\"\n";
-    if (!ps.sd.genotype.empty()) os << "genotype = \"" << ps.sd.genotype << "\"\n";
-    os << "position_mm = " << mm2(ps.sd.position) << "\nangle_deg = " << formatNumber(ps.angleDeg, false) << "\n";
-    if (!ps.set.empty()) {
-      os << "\n[seedling.set]\n";
-      for (const auto& [full, val] : ps.set) {
-        const auto dot = full.find('.');
-        os << "\"" << full << "\" = " << tomlText(*findKey(full.substr(0, dot), full.substr(dot + 1)), val) << "\n";
-      }
-    }
-    all += os.str();
-    out.rootToml.push_back(plate.str() + os.str());
+    const std::string table = seedlingToml(ps.sd, out.spec.base);
+    all += table;
+    out.rootToml.push_back(plate + table);
     out.spec.seedlings.push_back(std::move(ps.sd));
   }
   out.toml = all;
   return out;
+}
+
+std::string plateTableToml(const PlateParams& pp) {
+  return "\n[plate]\nwidth_mm = " + formatNumber(pp.width / units::mm, false) +
+         "\nlength_mm = " + formatNumber(pp.length / units::mm, false) + "\n";
+}
+
+std::string lateralsToml(const LateralParams& lp) {
+  std::ostringstream os;
+  auto n = [](double x) { return formatNumber(x, false); };
+  os << "\n[laterals]\nenabled = " << (lp.enabled ? "true" : "false") << "\nfirst_mm = " << n(lp.first / units::mm)
+     << "\nspacing_mm = " << n(lp.spacing / units::mm) << "\napical_unbranched_mm = " << n(lp.apicalUnbranched / units::mm)
+     << "\ndelay_h = " << n(lp.delay / units::hour) << "\nsides = \"" << (lp.alternate ? "alternate" : "random")
+     << "\"\nseed = " << lp.seed << "\ninsertion_deg = " << n(lp.insertion / units::deg)
+     << "\nradius_mm = " << n(lp.radius / units::mm) << "\nrate_per_h = " << n(lp.rate * units::hour)
+     << "\ngrowth_zone_mm = " << n(lp.zoneLength / units::mm) << "\ninitial_length_mm = " << n(lp.initialLength / units::mm)
+     << "\nbeta = " << n(lp.beta) << "\ngamma = " << n(lp.gamma) << "\ntwist_r_tau = " << n(lp.rTau)
+     << "\nset_point_deg = " << n(lp.setPoint / units::deg) << "\nmax_order = " << lp.maxOrder << "\n";
+  return os.str();
+}
+
+std::string seedlingToml(const Seedling& sd, const Model& base) {
+  std::ostringstream os;
+  os << "\n[[seedling]]\nname = \"" << sd.name << "\"\n";
+  if (!sd.genotype.empty()) os << "genotype = \"" << sd.genotype << "\"\n";
+  os << "position_mm = " << mm2(sd.position) << "\nangle_deg = " << formatNumber(sd.model.initial.angle / units::deg, false) << "\n";
+  if (sd.model.tropism.setPoint != 0.0) os << "set_point_deg = " << formatNumber(sd.model.tropism.setPoint / units::deg, false) << "\n";
+  // its keys that differ from the plate's
+  const Values mine = valuesOf(sd.model, ""), plates = valuesOf(base, "");
+  std::string set;
+  for (const KeySpec& k : schema()) {
+    if (!whyNotSeedlingKey(k).empty()) continue;
+    const std::string a = tomlText(k, mine.at(k.full())), b = tomlText(k, plates.at(k.full()));
+    if (a != b) set += "\"" + k.full() + "\" = " + a + "\n";
+  }
+  if (!set.empty()) os << "\n[seedling.set]\n" << set;
+  return os.str();
 }
 
 }  // namespace rootsim::detail

@@ -26,4 +26,10 @@ struct PlateTables {
 PlateTables parsePlateTables(const toml::table& root, const std::string& sourceName, const std::string& text,
                              const Values& base, const std::string& name, const std::vector<Obstacle>& obstacles);
 
+// the resolved text of the plate's tables: [plate], [laterals], and a root's [[seedling]] table (its
+// place, angle, set-point and the keys of its model that differ from the plate-wide model base's)
+std::string plateTableToml(const PlateParams& pp);
+std::string lateralsToml(const LateralParams& lp);
+std::string seedlingToml(const Seedling& sd, const Model& base);
+
 }  // namespace rootsim::detail

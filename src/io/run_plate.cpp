@@ -1,5 +1,6 @@
 // A plate scene -> one run directory (docs/plate.md, Outputs): roots/NAME per root, each a run directory
 // of that root alone (its own frame), and the plate's summary, time series and ParaView series.
+#include <algorithm>
 #include <chrono>
 #include <memory>
 
@@ -11,6 +12,7 @@
 #include "rootsim/units.hpp"
 #include "rootsim/version.hpp"
 #include "root_outputs.hpp"
+#include "plate_scene.hpp"
 #include "scene_schema.hpp"
 
 namespace fs = std::filesystem;
@@ -73,13 +75,26 @@ double runPlateToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     AtomicFile series(w / "plate_timeseries.csv");
     series.stream() << plateSeriesHeader();
     auto record = [&] {
-      for (int r = 0; r < n; ++r) out[static_cast<size_t>(r)]->add(plate.root(r));
+      for (int r = 0; r < plate.size(); ++r) out[static_cast<size_t>(r)]->add(plate.root(r));
       series.stream() << plateSeriesRow(plate.last());
       series.flush();
     };
     record();
     for (int r = 0; r < n; ++r) watch[static_cast<size_t>(r)].start(plate.root(r).last());
-    const Model& m0 = plate.seedling(0).model;
+    // a lateral root that emerged: its folder, its scene (the plate with it alone), its streams (its first
+    // snapshot at the next output step, so that every root's snapshots fall on the plate's output steps)
+    auto open = [&](int r) {
+      const Seedling& sd = plate.seedling(r);
+      const fs::path d = w / "roots" / sd.name;
+      fs::create_directories(d);
+      markRunFolder(d);
+      writeFileAtomic(d / "scene.toml", spec.headToml + plateTableToml(spec.params) + seedlingToml(sd, spec.base));
+      dirs.push_back(d);
+      out.push_back(std::make_unique<RootStreams>(d, sd.model, nullptr, plate.offset(r)));
+      watch.emplace_back();
+      watch.back().start(plate.root(r).last());
+    };
+    const Model m0 = plate.seedling(0).model;  // a copy: the plate's roots grow as laterals emerge
     const int steps = m0.growth.enabled ? m0.growth.steps : 0;
     int maxSweeps = 1;
     double minGap = std::numeric_limits<double>::quiet_NaN();
@@ -88,7 +103,10 @@ double runPlateToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
         const PlateStepRecord& pr = plate.growthStep();
         maxSweeps = std::max(maxSweeps, pr.sweeps);
         if (!std::isnan(pr.minGap) && !(pr.minGap >= minGap)) minGap = pr.minGap;
-        for (int r = 0; r < n; ++r) watch[static_cast<size_t>(r)].see(plate.root(r).last());
+        for (int r : plate.emerged()) open(r);
+        for (int r = 0; r < plate.size(); ++r)
+          if (std::find(plate.emerged().begin(), plate.emerged().end(), r) == plate.emerged().end())
+            watch[static_cast<size_t>(r)].see(plate.root(r).last());
         if (k % m0.output.everySteps == 0 || k == steps) record();
         if (progress) progress(plate.root(0).last(), steps);
       }
@@ -113,7 +131,7 @@ double runPlateToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     // each root's folder is a finished run directory of that root alone
     std::string table;
     std::vector<Json> roots;
-    for (int r = 0; r < n; ++r) {
+    for (int r = 0; r < plate.size(); ++r) {
       const Seedling& sd = plate.seedling(r);
       const fs::path& d = dirs[static_cast<size_t>(r)];
       const RootFinal f = finishRoot(sd.model, plate.root(r), watch[static_cast<size_t>(r)], wall);
@@ -127,14 +145,19 @@ double runPlateToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
       const std::string res = f.result;
       const auto nl = res.find('\n');
       if (r == 0)
-        table += "root,genotype,position_lateral_mm,position_downhill_mm,angle_deg,overrides," + res.substr(0, nl) + "\n";
+        table += "root,genotype,parent,order,emerged_h,position_lateral_mm,position_downhill_mm,angle_deg,set_point_deg,overrides," +
+                 res.substr(0, nl) + "\n";
       std::string row = res.substr(nl + 1);
       if (!row.empty() && row.back() == '\n') row.pop_back();
-      table += csvText(sd.name) + "," + csvText(sd.genotype) + "," + formatNumber(sd.position.x() / units::mm, false) +
-               "," + formatNumber(sd.position.y() / units::mm, false) + "," +
-               formatNumber(sd.model.initial.angle / units::deg, false) + "," + csvText(overrides) + "," + row + "\n";
+      const std::string parent = sd.parent >= 0 ? plate.seedling(sd.parent).name : "";
+      table += csvText(sd.name) + "," + csvText(sd.genotype) + "," + csvText(parent) + "," + std::to_string(sd.order) + "," +
+               formatNumber(sd.emergedH, false) + "," + formatNumber(sd.position.x() / units::mm, false) + "," +
+               formatNumber(sd.position.y() / units::mm, false) + "," + formatNumber(sd.model.initial.angle / units::deg, false) +
+               "," + formatNumber(sd.model.tropism.setPoint / units::deg, false) + "," + csvText(overrides) + "," + row + "\n";
       Json j;
-      j.str("name", sd.name).str("genotype", sd.genotype).str("folder", "roots/" + sd.name);
+      j.str("name", sd.name).str("genotype", sd.genotype).str("parent", parent).integer("order", sd.order);
+      j.num("emerged_h", sd.emergedH).num("set_point_deg", sd.model.tropism.setPoint / units::deg);
+      j.str("folder", "roots/" + sd.name);
       j.num("position_lateral_mm", sd.position.x() / units::mm).num("position_downhill_mm", sd.position.y() / units::mm);
       j.num("angle_deg", sd.model.initial.angle / units::deg).str("overrides", overrides);
       roots.push_back(j);
@@ -144,7 +167,7 @@ double runPlateToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     // plate.pvd: every root's ParaView series as the parts of one (their snapshots are in plate coordinates)
     if (m0.output.vtk) {
       std::string pvd = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
-      for (int r = 0; r < n; ++r) {
+      for (int r = 0; r < plate.size(); ++r) {
         const std::string& name = plate.seedling(r).name;
         for (const auto& [t, file] : vtkEntries[static_cast<size_t>(r)])
           pvd += "  <DataSet timestep=\"" + formatNumber(t, false) + "\" part=\"" + std::to_string(r) + "\" name=\"" + name +
@@ -156,11 +179,11 @@ double runPlateToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
 
     Json j;
     j.str("rootsim_version", kVersion).str("scene", sc.model.name).str("status", "complete");
-    j.str("kind", "plate").integer("roots", n).integer("steps", steps);
+    j.str("kind", "plate").integer("seedlings", n).integer("laterals", plate.size() - n).integer("steps", steps);
     j.num("time_h", plate.last().timeH);
     j.num("plate_width_mm", spec.params.width / units::mm).num("plate_length_mm", spec.params.length / units::mm);
     j.integer("max_sweeps_per_step", maxSweeps).num("min_gap_over_contact", minGap);
-    j.array("seedlings", roots);
+    j.array("roots", roots);
     j.num("wall_time_s", wall);
     rd.write("summary.json", j.dump() + "\n");
     rd.commit();

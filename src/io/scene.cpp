@@ -404,6 +404,7 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
   sc.resolvedToml = head + plate.toml;
   for (const std::string& t : plate.rootToml) sc.rootToml.push_back(head + t);
   sc.plate = std::move(plate.spec);
+  sc.plate.headToml = head;
   if (sc.plate.seedlings.size() == 1) sc.model = sc.plate.seedlings.front().model;
   return sc;
 }

@@ -76,7 +76,16 @@ void updateIntrinsicCurvature(const Model& m, RodState& s, const RodStrains& k, 
   const double R = m.rod.radius;
   const double rate = m.growth.rate;  // eps_g in the zone
   const TropismParams& tp = m.tropism;
-  const Vec3 g(0.0, 0.0, -1.0);
+  Vec3 g(0.0, 0.0, -1.0);
+  if (tp.setPoint != 0.0) {
+    // the set-point direction g_s = cos(phi_s) g + sin(phi_s) h, h the horizontal direction of the
+    // apex's tangent; an apex along g takes the side the organ started towards (its initial angle's)
+    const Vec3 t = s.Q[static_cast<size_t>(n - 1)].row(2).transpose();
+    Vec3 h = t - t.dot(g) * g;
+    const double hn = h.norm();
+    h = hn > 1e-9 ? Vec3(h / hn) : Vec3((m.initial.angle < 0.0 ? -1.0 : 1.0) * m.env.plane.lateral());
+    g = std::cos(tp.setPoint) * g + std::sin(tp.setPoint) * h;
+  }
   // apical sensing: gravity's components in the apex frame, reused as components in the local frame
   const Vec3 gApex = s.Q[static_cast<size_t>(n - 1)] * g;
   // circumnutation: a twist-free (Bishop) frame parallel-transported from the base

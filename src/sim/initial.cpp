@@ -43,7 +43,7 @@ RodState makeInitialRod(const RodParams& p, const Plane& plane, const InitialSha
   s.l0.setConstant(l);
   s.kappa0.setZero();
   s.anchor = s.x;
-  s.time = 0.0;
+  s.time = shape.startTime;
   return s;
 }
 

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "rootsim/contact.hpp"
+#include "rootsim/initial.hpp"
 #include "rootsim/tolerance.hpp"
 #include "rootsim/units.hpp"
 
@@ -45,6 +46,8 @@ PlateSimulation::PlateSimulation(const PlateParams& plate, std::vector<Seedling>
       throw namedError(sd.name, e);
     }
   }
+  nextSite_.assign(roots_.size(), 0);
+  sideStream_ = plate_.laterals.seed;
   last_ = observe(1);
 }
 
@@ -105,6 +108,7 @@ void PlateSimulation::listNeighbours(int r) {
           const double Rb = seedling(it->root).model.rod.radius;
           const double hb = 0.5 * (b1 - b0).norm();
           if ((0.5 * (b0 + b1) - mid).norm() >= ha + hb + (1.0 + kPlateSkin) * (Ra + Rb)) continue;
+          if (nearJunction(r, i, it->root, it->index)) continue;
           const int g = firstElement_[static_cast<size_t>(it->root)] + it->index;
           int& c = capsuleOf_[static_cast<size_t>(g)];
           if (c < 0) {
@@ -238,13 +242,92 @@ const PlateStepRecord& PlateSimulation::growthStep() {
       ++joint;
     }
   }
+  emergeLaterals();
   // every root's lists as the final shapes stand (what the contact counts read)
-  if (n > 1) {
+  if (size() > 1) {
     indexElements();
-    for (int r = 0; r < n; ++r) listNeighbours(r);
+    for (int r = 0; r < size(); ++r) listNeighbours(r);
   }
   last_ = observe(sweeps);
   return last_;
+}
+
+bool PlateSimulation::nearJunction(int r, int i, int o, int j) const {
+  auto near = [&](int lat, int li, int par, int pj) {
+    const Seedling& sd = seedling(lat);
+    if (sd.parent != par) return false;
+    const double reach = 3.0 * (sd.model.rod.radius + seedling(par).model.rod.radius);
+    const RodState& ls = root(lat).state();
+    const RodState& ps = root(par).state();
+    return 0.5 * (ls.S[li] + ls.S[li + 1]) < reach && std::abs(0.5 * (ps.S[pj] + ps.S[pj + 1]) - sd.siteS) < reach;
+  };
+  return near(r, i, o, j) || near(o, j, r, i);
+}
+
+void PlateSimulation::emergeLaterals() {
+  emerged_.clear();
+  const LateralParams& lp = plate_.laterals;
+  if (!lp.enabled) return;
+  const int existing = size();
+  for (int r = 0; r < existing; ++r) {
+    const Seedling parent = seedling(r);  // a copy: seedlings_ grows below
+    if (parent.order >= lp.maxOrder) continue;
+    for (;;) {
+      const RodState& s = root(r).state();
+      const int k = nextSite_[static_cast<size_t>(r)];
+      const double site = lp.first + k * lp.spacing;
+      // the site emerges once the parent's tip is apicalUnbranched beyond it, and delay after that (the
+      // parent's tip advances by its zone's growth, rate * zone per second)
+      const double beyond = s.restLength() - site - lp.apicalUnbranched;
+      if (beyond < 0.0) break;
+      if (lp.delay > 0.0 && beyond < lp.delay * parent.model.growth.rate * parent.model.growth.zoneLength) break;
+      ++nextSite_[static_cast<size_t>(r)];
+      // the parent's node at the site, and its direction in the plate there
+      int i = 1;
+      while (i < s.nodes() - 2 && s.S[i] < site) ++i;
+      if (i > 1 && site - s.S[i - 1] < s.S[i] - site) --i;  // the nearer node: within half an element
+      const Vec3 p = s.x.col(i) + offset(r);
+      const Vec3 t = s.x.col(i + 1) - s.x.col(i - 1);
+      const double theta = std::atan2(frame_.downhill.cross(t).dot(frame_.normal), t.dot(frame_.downhill));
+      const double side = lp.alternate ? (k % 2 == 0 ? 1.0 : -1.0) : (splitmixUniform(sideStream_) < 0.0 ? -1.0 : 1.0);
+      Seedling sd;
+      sd.name = parent.name + "." + std::to_string(k + 1);
+      sd.genotype = parent.genotype;
+      sd.position = Eigen::Vector2d(frame_.lateral.dot(p), frame_.downhill.dot(p));
+      sd.parent = r;
+      sd.order = parent.order + 1;
+      sd.siteS = s.S[i];
+      sd.emergedH = s.time / units::hour;
+      Model& m = sd.model;
+      m = parent.model;
+      m.rod.radius = lp.radius;
+      m.growth.rate = lp.rate;
+      m.growth.zoneLength = lp.zoneLength;
+      m.tropism.beta = lp.beta;
+      m.tropism.gamma = lp.gamma;
+      m.tropism.rTau = lp.rTau;
+      m.tropism.setPoint = lp.setPoint;
+      m.initial.length = lp.initialLength;
+      m.initial.angle = std::remainder(theta + side * lp.insertion, 2.0 * units::pi);
+      m.initial.startTime = s.time;
+      // the obstacles in the lateral's own frame (from the parent's)
+      const Eigen::Vector2d shift = sd.position - parent.position;
+      for (Obstacle& ob : m.env.obstacles) {
+        ob.from -= shift;
+        ob.to -= shift;
+      }
+      completeModel(m);
+      try {
+        roots_.push_back(std::make_unique<Simulation>(m));
+      } catch (const RelaxError& e) {
+        throw namedError(sd.name, e);
+      }
+      offset_.push_back(sd.position.x() * frame_.lateral + sd.position.y() * frame_.downhill);
+      seedlings_.push_back(std::move(sd));
+      nextSite_.push_back(0);
+      emerged_.push_back(size() - 1);
+    }
+  }
 }
 
 PlateStepRecord PlateSimulation::observe(int sweeps) const {
@@ -287,6 +370,7 @@ RootPairForces PlateSimulation::pairForces(int a, int b) const {
   RootPairForce pf;
   for (int i = 0; i < sa.elements(); ++i)
     for (int j = 0; j < sb.elements(); ++j) {
+      if (nearJunction(a, i, b, j)) continue;
       if (!rootPairForce(Ra, Rb, k, frame_.normal, sa.x.col(i) + offset(a), sa.x.col(i + 1) + offset(a),
                          sb.x.col(j) + offset(b), sb.x.col(j + 1) + offset(b), pf))
         continue;

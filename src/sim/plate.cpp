@@ -310,6 +310,10 @@ void PlateSimulation::emergeLaterals() {
       m.initial.length = lp.initialLength;
       m.initial.angle = std::remainder(theta + side * lp.insertion, 2.0 * units::pi);
       m.initial.startTime = s.time;
+      // its own initial perturbation (each organ its own noise: with its parent's, every lateral would lean
+      // the same way relative to its frame, and the laterals of one side would all curl back)
+      std::uint64_t seed = parent.model.initial.seed ^ (0x9e3779b97f4a7c15ULL * static_cast<std::uint64_t>(k + 1));
+      m.initial.seed = static_cast<std::uint64_t>((splitmixUniform(seed) + 1.0) * 0x1.0p51);
       // the obstacles in the lateral's own frame (from the parent's)
       const Eigen::Vector2d shift = sd.position - parent.position;
       for (Obstacle& ob : m.env.obstacles) {

@@ -141,6 +141,8 @@ class PlateSimulation {
   std::vector<int> firstElement_;  // global index of each root's element 0
   Eigen::Matrix3Xd before_;        // a sweep's scratch: a root's nodes before it relaxed again
   std::vector<int> capsuleOf_;
+  std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> boxes_;  // each root's box in the plate, widened
+  std::vector<char> near_;         // the root's box overlaps another's: it is in the grid
   std::vector<int> nextSite_;      // per root: the index of its next lateral site
   std::vector<int> emerged_;
   std::uint64_t sideStream_ = 1;   // the sides' draws (LateralParams::alternate false)     // global element -> capsule index in the list being built (-1: none)

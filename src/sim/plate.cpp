@@ -54,6 +54,30 @@ PlateSimulation::PlateSimulation(const PlateParams& plate, std::vector<Seedling>
 Vec3 PlateSimulation::offset(int r) const { return offset_[static_cast<size_t>(r)]; }
 
 void PlateSimulation::indexElements() {
+  // which roots come within reach of another at all: their boxes in the plate, each widened by its reach
+  // (1 + skin) R, overlap (O(nodes) and O(roots^2) box tests; roots apart skip the grid entirely)
+  const int n = size();
+  boxes_.resize(static_cast<size_t>(n));
+  for (int r = 0; r < n; ++r) {
+    const Eigen::Matrix3Xd& x = root(r).state().x;
+    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
+    for (int i = 0; i < x.cols(); ++i) {
+      const Vec3 p = x.col(i) + offset(r);
+      const Eigen::Vector2d q(frame_.lateral.dot(p), frame_.downhill.dot(p));
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+    const double w = (1.0 + kPlateSkin) * seedling(r).model.rod.radius;
+    boxes_[static_cast<size_t>(r)] = {lo.array() - w, hi.array() + w};
+  }
+  near_.assign(static_cast<size_t>(n), 0);
+  for (int a = 0; a < n; ++a)
+    for (int b = a + 1; b < n; ++b) {
+      const auto& A = boxes_[static_cast<size_t>(a)];
+      const auto& B = boxes_[static_cast<size_t>(b)];
+      if ((A.first.array() <= B.second.array()).all() && (B.first.array() <= A.second.array()).all())
+        near_[static_cast<size_t>(a)] = near_[static_cast<size_t>(b)] = 1;
+    }
   grid_.clear();
   firstElement_.clear();
   double reach = 0;
@@ -62,6 +86,7 @@ void PlateSimulation::indexElements() {
     const Eigen::Matrix3Xd& x = root(r).state().x;
     firstElement_.push_back(total);
     total += static_cast<int>(x.cols()) - 1;
+    if (!near_[static_cast<size_t>(r)]) continue;
     const double R = seedling(r).model.rod.radius;
     for (int i = 0; i + 1 < x.cols(); ++i) reach = std::max(reach, (x.col(i + 1) - x.col(i)).norm() + 2.0 * R);
   }
@@ -71,6 +96,7 @@ void PlateSimulation::indexElements() {
   for (const Seedling& sd : seedlings_) rMax = std::max(rMax, sd.model.rod.radius);
   cellSize_ = reach + 2.0 * kPlateSkin * rMax;
   for (int r = 0; r < size(); ++r) {
+    if (!near_[static_cast<size_t>(r)]) continue;
     const Eigen::Matrix3Xd& x = root(r).state().x;
     for (int i = 0; i + 1 < x.cols(); ++i) {
       const Vec3 mid = 0.5 * (x.col(i) + x.col(i + 1)) + offset(r);
@@ -88,6 +114,10 @@ void PlateSimulation::indexElements() {
 void PlateSimulation::listNeighbours(int r) {
   NeighbourCapsules& nb = roots_[static_cast<size_t>(r)]->neighbours();
   nb.pairs.clear();
+  if (!near_[static_cast<size_t>(r)]) {
+    nb.source.clear();
+    return;
+  }
   const RodState& s = root(r).state();
   const double Ra = seedling(r).model.rod.radius;
   std::vector<int> capsules;  // global element indices, in the order they are first listed

@@ -336,3 +336,44 @@ TEST_CASE("stills: --trace draws the traced root over the picture / its own expo
   CHECK(badRoot.out.find("--trace-root 7: no such root") != std::string::npos);
   CHECK_FALSE(fs::exists(d / "x.png"));
 }
+
+TEST_CASE("stills: a plate's run draws every root; --scan is the plate at PX px/mm with the roots where they are sown") {
+  const fs::path d = rootsim::test::scratchDir("stills", "plate");
+  // the collision scene, coarsened: two seedlings on a 40 x 40 mm plate at [20, 5] and [23, 7] mm
+  const Result ran = run("run " + std::string(ROOTSIM_SOURCE_DIR) +
+                         "/scenes/plate_collision.toml --set growth.steps=60 --quiet --out " + (d / "plate").string());
+  REQUIRE_MESSAGE(ran.code == 0, ran.out);
+  const Result scan = run("render " + (d / "plate").string() + " --scan 10 --png " + (d / "scan.png").string() + " --quiet");
+  REQUIRE_MESSAGE(scan.code == 0, scan.out);
+  const Image img = readPng((d / "scan.png").string());
+  CHECK(img.width == 400);   // 40 mm at 10 px/mm
+  CHECK(img.height == 400);
+  auto lum = [&](double lateralMm, double downhillMm) {
+    const int x = static_cast<int>(lateralMm * 10), y = static_cast<int>(downhillMm * 10);
+    const std::uint8_t* p = &img.rgba[4 * (static_cast<size_t>(y) * img.width + static_cast<size_t>(x))];
+    return (p[0] + p[1] + p[2]) / 3;
+  };
+  // light roots: "down" from [20, 5] straight downhill, "across" from [23, 7] towards -lateral; dark plate
+  CHECK(lum(20.0, 5.6) > 150);
+  CHECK(lum(22.4, 7.0) > 150);
+  CHECK(lum(10.0, 30.0) < 30);
+  CHECK(lum(30.0, 20.0) < 30);
+  // the plate view and --root; errors name the flag
+  CHECK(run("render " + (d / "plate").string() + " --plate-view --png " + (d / "view.png").string() + " --at-h 3 --quiet").code == 0);
+  CHECK(readPng((d / "view.png").string()).width == 1080);
+  CHECK(run("render " + (d / "plate").string() + " --root down --camera follow --png " + (d / "follow.png").string() +
+            " --at-h 3 --quiet").code == 0);
+  const Result noRoot = run("render " + (d / "plate").string() + " --root sideways --png " + (d / "x.png").string() + " --at-h 3");
+  CHECK(noRoot.code == 2);
+  CHECK(noRoot.out.find("--root sideways: ") != std::string::npos);
+  CHECK(noRoot.out.find("(its roots: down, across)") != std::string::npos);
+  const Result noPng = run("render " + (d / "plate").string() + " --scan 10");
+  CHECK(noPng.code == 2);
+  CHECK(noPng.out.find("add --png FILE") != std::string::npos);
+  // a run of one root has no plate to scan, and each root's folder is a run of one root
+  const Result one = run("render " + (d / "plate" / "roots" / "down").string() + " --scan 10 --png " + (d / "y.png").string());
+  CHECK(one.code == 2);
+  CHECK(one.out.find("a run of one root") != std::string::npos);
+  CHECK_FALSE(fs::exists(d / "x.png"));
+  CHECK_FALSE(fs::exists(d / "y.png"));
+}

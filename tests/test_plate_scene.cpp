@@ -147,7 +147,7 @@ TEST_CASE("plate scenes: population draws repeat from the seed and are written i
   CHECK(a.resolvedToml.find("[population]") == std::string::npos);  // the draws are made: the values stand
 }
 
-TEST_CASE("plate runs: a folder per root, each a run directory of that root alone; plate.csv names overrides") {
+TEST_CASE("plate runs: a folder per root, each a run directory of that root alone, and plate.csv names overrides") {
   const fs::path dir = test::scratchDir("plate", "run");
   const std::string text = kHead + seedling("wt", 15, 5) + seedling("mutant", 35, 5, "set = { \"tropism.beta\" = 0.3 }\n");
   const Scene sc = parseScene(text, "scenes/plate.toml");

@@ -337,7 +337,7 @@ TEST_CASE("stills: --trace draws the traced root over the picture / its own expo
   CHECK_FALSE(fs::exists(d / "x.png"));
 }
 
-TEST_CASE("stills: a plate's run draws every root; --scan is the plate at PX px/mm with the roots where they are sown") {
+TEST_CASE("stills: a plate's run draws every root, and --scan is the plate at PX px/mm with the roots where they are sown") {
   const fs::path d = rootsim::test::scratchDir("stills", "plate");
   // the collision scene, coarsened: two seedlings on a 40 x 40 mm plate at [20, 5] and [23, 7] mm
   const Result ran = run("run " + std::string(ROOTSIM_SOURCE_DIR) +

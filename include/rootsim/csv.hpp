@@ -44,6 +44,8 @@ class TimeseriesWriter {
 // the cells of a comma-separated line, a trailing comma giving an empty last cell (result.csv rows, the
 // CLI's comma lists)
 std::vector<std::string> splitCommas(const std::string& line);
+// a text field of a CSV row: as it is, or quoted (quotes doubled) when it holds a comma, quote or newline
+std::string csvField(const std::string& s);
 
 struct CsvColumns {
   std::vector<std::string> names;

@@ -321,13 +321,6 @@ struct Column {
   double (*number)(const RootRow&);
 };
 
-std::string csvText(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string o = "\"";
-  for (char c : s) o += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return o + "\"";
-}
-
 // the columns of analysis.csv and the keys of analysis.json, one table (docs/experiments.md)
 const std::vector<Column>& columns() {
   static const std::vector<Column> c = {
@@ -384,7 +377,7 @@ std::string analysisCsv(const std::vector<RootRow>& rows) {
     for (const Column& c : columns()) {
       if (!first) out += ",";
       first = false;
-      if (c.text) out += csvText(c.text(r));
+      if (c.text) out += csvField(c.text(r));
       else if (std::isfinite(c.number(r))) out += numberText(c.number(r));
       // NaN and infinities: an empty cell
     }

@@ -130,4 +130,11 @@ CsvColumns readCsvColumns(const fs::path& path) {
   return t;
 }
 
+std::string csvField(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string o = "\"";
+  for (char c : s) o += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return o + "\"";
+}
+
 }  // namespace rootsim

@@ -213,7 +213,8 @@ PlateTables parsePlateTables(const toml::table& root, const std::string& sourceN
         "enabled", "first_mm", "spacing_mm", "apical_unbranched_mm", "delay_h", "sides", "seed", "insertion_deg",
         "radius_mm", "rate_per_h", "growth_zone_mm", "initial_length_mm", "beta", "gamma", "twist_r_tau",
         "set_point_deg", "max_order"};
-    for (auto&& [k, n] : *t) {
+    for (auto&& [k, node] : *t) {
+      const toml::node& n = node;  // (a lambda below reads it: clang captures no structured binding)
       const std::string key(k.str()), loc = where(sourceName, k.source()), full = "laterals." + key;
       // a number in (lo, hi] (or [lo, hi] when closedLo), times its unit
       auto num = [&](double lo, double hi, bool closedLo, double unit) {
@@ -364,7 +365,9 @@ PlateTables parsePlateTables(const toml::table& root, const std::string& sourceN
       }
     }
     // population: each seedling draws its keys in turn from one seeded stream
-    for (const auto& [full, s] : spreads) {
+    for (const auto& entry : spreads) {
+      const std::string& full = entry.first;  // (named: the lambdas below read them)
+      const Spread& s = entry.second;
       auto redraw = [&](const std::function<bool(double)>& accept, double centre) {
         for (int tries = 0; tries < 1000; ++tries) {
           const double x = centre + draw(s, stream);
@@ -381,7 +384,7 @@ PlateTables parsePlateTables(const toml::table& root, const std::string& sourceN
       const KeySpec& ks = *findKey(full.substr(0, dot), full.substr(dot + 1));
       Value v = ps.set.count(full) ? ps.set[full] : base.at(full);
       const double centre = v.num;
-      v.num = redraw([&](double x) { Value t = v; t.num = x; return checkValue(ks, t).empty(); }, centre);
+      v.num = redraw([&](double x) { Value trial = v; trial.num = x; return checkValue(ks, trial).empty(); }, centre);
       v.origin = s.loc + " (drawn)";
       ps.set[full] = v;
     }

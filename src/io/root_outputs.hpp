@@ -1,6 +1,7 @@
 #pragma once
 // internal: what one growing root writes into its folder (docs/outputs.md), shared by a run of one root
 // (run_scene.cpp) and a plate's roots (run_plate.cpp)
+#include <chrono>
 #include <filesystem>
 #include <memory>
 #include <optional>
@@ -17,6 +18,11 @@
 #include "rootsim/vtk.hpp"
 
 namespace rootsim::detail {
+
+// a monotonic clock [s], for a run's wall time
+inline double now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
 
 // the files a root streams while it grows: its time series, its trajectory (CSV and/or binary) and
 // its ParaView series, as output.* asks; opened new, or where a checkpoint saw them

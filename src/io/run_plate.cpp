@@ -23,16 +23,6 @@ using namespace detail;
 
 namespace {
 
-double now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-std::string csvText(const std::string& s) {
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
 // the plate's time series: one row per output step
 std::string plateSeriesHeader() { return "step,time_h,touching_pairs,min_gap_over_contact,sweeps\n"; }
 std::string plateSeriesRow(const PlateStepRecord& r) {
@@ -150,10 +140,10 @@ double runPlateToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
       std::string row = res.substr(nl + 1);
       if (!row.empty() && row.back() == '\n') row.pop_back();
       const std::string parent = sd.parent >= 0 ? plate.seedling(sd.parent).name : "";
-      table += csvText(sd.name) + "," + csvText(sd.genotype) + "," + csvText(parent) + "," + std::to_string(sd.order) + "," +
+      table += csvField(sd.name) + "," + csvField(sd.genotype) + "," + csvField(parent) + "," + std::to_string(sd.order) + "," +
                formatNumber(sd.emergedH, false) + "," + formatNumber(sd.position.x() / units::mm, false) + "," +
                formatNumber(sd.position.y() / units::mm, false) + "," + formatNumber(sd.model.initial.angle / units::deg, false) +
-               "," + formatNumber(sd.model.tropism.setPoint / units::deg, false) + "," + csvText(overrides) + "," + row + "\n";
+               "," + formatNumber(sd.model.tropism.setPoint / units::deg, false) + "," + csvField(overrides) + "," + row + "\n";
       Json j;
       j.str("name", sd.name).str("genotype", sd.genotype).str("parent", parent).integer("order", sd.order);
       j.num("emerged_h", sd.emergedH).num("set_point_deg", sd.model.tropism.setPoint / units::deg);

@@ -28,12 +28,6 @@ namespace rootsim {
 
 using namespace detail;
 
-namespace {
-double now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-}  // namespace
-
 namespace detail {
 
 RootStreams::RootStreams(const fs::path& w, const Model& m, const WriterPositions* p, const Vec3& vtkOffset)

@@ -235,3 +235,24 @@ TEST_CASE("plate runs: lateral roots get their folders, rows in plate.csv and pl
   CHECK(doc.plants[1].roots[0].x.front() == doctest::Approx(35.0).epsilon(1e-9));
   CHECK(doc.plants[1].roots[0].y.front() == doctest::Approx(5.0).epsilon(1e-9));
 }
+
+TEST_CASE("plate runs: the commands of one root refuse a plate, naming what to pass") {
+  const fs::path dir = test::scratchDir("plate", "refuse");
+  const std::string scene = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/plate_collision.toml";
+  REQUIRE(test::run("run " + scene + " --set growth.steps=10 --quiet --out " + (dir / "run").string()).code == 0);
+  const test::Result modes = test::run("modes " + (dir / "run").string());
+  CHECK(modes.code == 2);
+  CHECK(modes.out.find("is a plate of 2 roots; this command takes one root: pass its folder roots/NAME") != std::string::npos);
+  const test::Result gltf = test::run("export " + (dir / "run").string() + " --gltf " + (dir / "p.glb").string());
+  CHECK(gltf.code == 2);
+  CHECK(gltf.out.find("a plate's run; export one root's folder roots/NAME") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "p.glb"));
+  // each root's folder is a run of one root: the same commands take it
+  CHECK(test::run("modes " + (dir / "run" / "roots" / "down").string() + " --quiet").code == 0);
+  // a sweep and a fit take scenes of one root
+  {
+    std::ofstream f(dir / "sweep.toml");
+    f << "[sweep]\nscene = \"" << scene << "\"\n[grid]\n\"tropism.beta\" = [0.1, 0.2]\n";
+  }
+  CHECK(test::sweepError(dir / "sweep.toml").find("a plate's scene; a sweep runs scenes of one root") != std::string::npos);
+}

@@ -1,4 +1,4 @@
-// rootsim._rootsim: the C++ side of the Python package (issue 14). Thin: it calls the library the command
+// rootsim._rootsim: the C++ side of the Python package. Thin: it calls the library the command
 // line calls (loadScene, runSceneToDir, the run-directory readers, runSweep, the `render` command) and turns
 // its results into numpy arrays and dicts, in the units of the run directory's files (lengths mm, time h,
 // angles deg, forces N; docs/python.md, Units). The Python layer (rootsim/_api.py) adds the user-facing API.

@@ -3,6 +3,7 @@
 // a fit's files, its determinism, and its resumption; bad input (exit 2, nothing written); the write rule.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -101,6 +102,46 @@ TEST_CASE("compare: a run against its own export / distance 0, every residual 0,
   const auto early = run("compare " + quick().run.string() + " " + quick().rsml.string() + " --at-h 15 --out " + (d / "e").string());
   REQUIRE(early.code == 0);
   CHECK(jsonNumber(slurp(d / "e" / "compare.json"), "distance_mm") > 0.05);
+}
+
+TEST_CASE("compare: a 2D+t trace against the run at each observation time / timelapse.csv and compare.json's time_lapse") {
+  if (!built()) return;
+  const fs::path d = scratch("lapse");
+  // RootSystemTracker's 2D+t test file (0, 6, 12, 18 h): its primary is 1, 2, 4, 6 mm long then
+  const auto r = run("compare " + quick().run.string() + " " + kData + "rst_2dt.rsml --root 1/1.1 --quiet --out " + (d / "c").string());
+  REQUIRE_MESSAGE(r.code == 0, r.out);
+  std::ifstream in(d / "c" / "timelapse.csv");
+  std::string line;
+  std::getline(in, line);
+  CHECK(line.rfind("time_h,snapshot_h,trace_length_mm,run_length_mm,", 0) == 0);
+  const double hours[] = {0, 6, 12, 18}, lengths[] = {1, 2, 4, 6};
+  double previous = 0;
+  for (int k = 0; k < 4; ++k) {
+    REQUIRE(std::getline(in, line));
+    std::vector<double> v;
+    std::size_t from = 0;
+    while (from <= line.size()) {
+      const std::size_t comma = std::min(line.find(',', from), line.size());
+      v.push_back(std::stod(line.substr(from, comma - from)));
+      from = comma + 1;
+    }
+    REQUIRE(v.size() == 11);
+    CHECK(v[0] == hours[k]);
+    CHECK(std::abs(v[1] - hours[k]) <= 0.5);              // the run's snapshot nearest that time
+    CHECK(v[2] == doctest::Approx(lengths[k]));            // the trace as it was then
+    // the run's root then: 0.2 mm/h from about 1 mm (fig2b: rate_per_h 0.2, growth zone 1 mm)
+    CHECK(v[3] == doctest::Approx(1.0 + 0.2 * v[1]).epsilon(0.1));
+    CHECK(v[3] > previous);
+    previous = v[3];
+    CHECK(v[10] >= 0);
+  }
+  CHECK_FALSE(std::getline(in, line));
+  const std::string json = slurp(d / "c" / "compare.json");
+  CHECK(json.find("\"time_lapse\": [") != std::string::npos);
+  // a trace of one time has none
+  REQUIRE(run("compare " + quick().run.string() + " " + quick().rsml.string() + " --quiet --out " + (d / "one").string()).code == 0);
+  CHECK_FALSE(fs::exists(d / "one" / "timelapse.csv"));
+  CHECK(slurp(d / "one" / "compare.json").find("time_lapse") == std::string::npos);
 }
 
 TEST_CASE("fit: bad input exits 2 naming the flag, key or file, and writes nothing") {

@@ -14,7 +14,6 @@
 #include "rootsim/movie.hpp"
 #include "rootsim/render_scene.hpp"
 #include "rootsim/scene.hpp"
-#include "rootsim/trace_growth.hpp"
 #include "rootsim/units.hpp"
 #include "rootsim/write_rule.hpp"
 #include "run_files.hpp"
@@ -24,19 +23,6 @@ namespace fs = std::filesystem;
 namespace rootsim::app {
 
 namespace {
-
-// the hours at which a 2D+t trace's root reached each of its points (trace_growth.hpp); empty for a trace
-// without times
-std::vector<double> traceTimesOf(const TraceFlags& f, const std::string& rootKey) {
-  AnalyzeOptions a;
-  a.pxPerMm = f.pxPerMm;
-  a.downhill = f.downhill;
-  a.flagPrefix = f.flagPrefix;
-  const TraceFile tf = readTraceFile(f.trace, a);
-  for (const TracedRoot& r : tf.roots)
-    if (r.key == rootKey) return pointTimesH(tf, r);
-  return {};
-}
 
 // "auto": 1280x720 for a root that spreads sideways, 720x1280 for one that grows mostly downhill
 // (a long waving root in a landscape frame is a thin line); the top view's bounding box decides
@@ -241,7 +227,7 @@ int renderRunCommand(const RenderOptions& o) {
     const TraceTarget t = loadTarget(o.trace, model);
     const Vec3 seed = model.env.plane.frame().toPlateMm(snaps.front().x.col(0));
     for (int i = 0; i < t.plateMm.cols(); ++i) job.view.traceUvMm.push_back({seed.x() + t.plateMm(0, i), seed.y() - t.plateMm(1, i)});
-    job.view.traceTimeH = traceTimesOf(o.trace, t.rootKey);  // a time-lapse grows with the frames
+    job.view.traceTimeH = t.timesH;  // a time-lapse trace grows with the frames
   }
   if (autoSized && !job.view.plateRectMm) std::tie(job.view.width, job.view.height) = autoSizeFor(snaps, info, look);
   applyLook(look, runDir, snaps, job);

@@ -162,6 +162,13 @@ std::vector<double> pointTimesH(const TraceFile& tf, const TracedRoot& r) {
   return h;
 }
 
+Eigen::Matrix3Xd polylineAtTime(const Eigen::Matrix3Xd& p, const std::vector<double>& timesH, double tH) {
+  TracedRoot r;
+  r.plateMm = p;
+  r.timeIndex = timesH;  // any non-decreasing clock: the same interpolation as an observation index
+  return rootAtObservation(r, tH);
+}
+
 double tipAngleDeg(const Eigen::Matrix3Xd& p, double pixelMm) {
   const double len = polylineLength(p);
   if (!(len > 0)) return kNaN;

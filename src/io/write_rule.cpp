@@ -121,7 +121,8 @@ bool isFigureFile(const std::string& base, const char* stem) {
 // what `compare` writes (docs/experiments.md): compare.json, compare.csv, the picture
 bool isCompareEntry(const fs::path&, const std::string& name) {
   const std::string base = stripTemp(name);
-  return base == ".rootsim-compare" || base == "compare.json" || base == "compare.csv" || isFigureFile(base, "compare");
+  return base == ".rootsim-compare" || base == "compare.json" || base == "compare.csv" || base == "timelapse.csv" ||
+         isFigureFile(base, "compare");
 }
 
 // what `fit` writes (docs/experiments.md): its files, the best fit's picture, the landscape, and runs/,

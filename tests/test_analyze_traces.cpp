@@ -178,7 +178,7 @@ TEST_CASE("analyze: pixel units need --px-per-mm - and --downhill -y reads a pla
   file("down.rsml", -1);
   const auto bad = run("analyze " + (d / "up.rsml").string() + " --out " + (d / "x").string());
   CHECK(bad.code == 2);
-  CHECK(bad.out.find("up.rsml: its unit is pixel") != std::string::npos);
+  CHECK(bad.out.find("up.rsml:3: its unit is pixel") != std::string::npos);
   CHECK(bad.out.find("--px-per-mm") != std::string::npos);
   CHECK_FALSE(fs::exists(d / "x"));
   REQUIRE(run("analyze " + (d / "up.rsml").string() + " --px-per-mm 20 --out " + (d / "up").string()).code == 0);
@@ -525,7 +525,8 @@ TEST_CASE("analyze: the real files of ../shared/data/rsml / what each says with 
   for (const char* f : {"2012_11_19_18h00_chl110_1_1.rsml", "arabidopsis-simple.rsml"}) {
     const auto e = run("analyze " + (data / f).string() + " --out " + (d / "x").string());
     CHECK(e.code == 2);
-    CHECK(e.out.find("its unit is pixel with no physical scale; give --px-per-mm R") != std::string::npos);
+    CHECK(e.out.find((data / f).string() + ":5: its unit is pixel with no physical scale (no resolution or size in the file); give --px-per-mm R") !=
+          std::string::npos);
     CHECK_FALSE(fs::exists(d / "x"));
   }
   REQUIRE(run("analyze " + (data / "2012_11_19_18h00_chl110_1_1.rsml").string() + " --px-per-mm 24 --out " + (d / "oa").string()).code == 0);

@@ -145,7 +145,8 @@ TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
   double scale = 1.0;  // file units as read -> mm
   if (rsml::isPixelUnit(doc.meta.unit)) {
     if (!given(o.pxPerMm))
-      throw SceneError(file + ": its unit is " + doc.meta.unit + " with no physical scale; give " + o.flagPrefix + "px-per-mm R");
+      throw SceneError(file + ":" + std::to_string(std::max(doc.meta.unitLine, 1)) + ": its unit is " + doc.meta.unit +
+                       " with no physical scale (no resolution or size in the file); give " + o.flagPrefix + "px-per-mm R");
     scale = 1.0 / o.pxPerMm;
     tf.pixelMm = scale;
   } else if (given(o.pxPerMm)) {

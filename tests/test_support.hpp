@@ -133,7 +133,7 @@ inline void checkSameRun(const std::filesystem::path& a, const std::filesystem::
   auto files = [](const std::filesystem::path& dir) {
     std::map<std::string, std::string> out = fileTree(dir);
     for (auto& [rel, bytes] : out)
-      if (rel == "summary.json" || rel.size() > 13 && rel.compare(rel.size() - 13, 13, "/summary.json") == 0)
+      if (rel == "summary.json" || (rel.size() > 13 && rel.compare(rel.size() - 13, 13, "/summary.json") == 0))
         bytes = stripWall(bytes);
     return out;
   };

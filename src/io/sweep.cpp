@@ -288,10 +288,10 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
   // refused, and refuses them); one shard started twice is refused (each point's run directory is
   // locked as well, so overlapping shardings never write one point twice)
   const OutputLock folderLock = lockOutput(out, "--out", LockMode::Shared);
-  const OutputLock shardLock = lockOutput(out / ("shard-" + std::to_string(opt.shard) + "-of-" + std::to_string(opt.shards)),
-                                          "--out " + out.string() + " shard");
   claimFolder(out, sweepFolder(), rule, "--out", false);
   createOwnFolder(out, sweepFolder());
+  const OutputLock shardLock = lockOutput(out / ("shard-" + std::to_string(opt.shard) + "-of-" + std::to_string(opt.shards)),
+                                          "--out " + out.string() + " shard");
   std::vector<const SweepPoint*> pending;
   SweepResult res;
   int stale = 0;

@@ -2,6 +2,7 @@
 #include "rootsim/write_rule.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -500,10 +501,20 @@ std::map<std::string, HeldLock>& heldLocks() {
 }
 
 std::string holderOf(const fs::path& lockFile) {
+  // "rootsim lock <pid>" per holder: those still alive (a shard that ended leaves its line behind)
   std::ifstream in(lockFile);
-  std::string word, pid;
-  in >> word >> word >> pid;  // "rootsim lock <pid>"
-  return pid.empty() ? std::string("unknown") : pid;
+  std::string line, pids, last;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string a, b;
+    long pid = 0;
+    if (!(words >> a >> b >> pid) || pid <= 0) continue;
+    last = std::to_string(pid);
+    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno != EPERM) continue;  // gone, or on another host
+    if ((", " + pids + ",").find(" " + last + ",") == std::string::npos) pids += (pids.empty() ? "" : ", ") + last;
+  }
+  if (pids.empty()) pids = last;
+  return pids.empty() ? std::string("unknown") : pids;
 }
 
 }  // namespace
@@ -810,9 +821,13 @@ OutputLock::OutputLock(const fs::path& path, const std::string& flag, LockMode m
     }
     struct stat a {}, b {};
     if (::fstat(fd, &a) == 0 && ::stat(file.c_str(), &b) == 0 && a.st_ino == b.st_ino && a.st_dev == b.st_dev) {
+      // the PID is for messages only: a lock whose file cannot hold it still locks. Shared holders (the
+      // shards of a sweep) each add theirs; messages name those still alive
       const std::string text = "rootsim lock " + std::to_string(::getpid()) + "\n";
-      if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, text.data(), text.size(), 0) != static_cast<ssize_t>(text.size())) {
-        // the PID is for messages only: a lock whose file cannot hold it still locks
+      if (mode == LockMode::Exclusive) {
+        if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, text.data(), text.size(), 0) != static_cast<ssize_t>(text.size())) {
+        }
+      } else if (::lseek(fd, 0, SEEK_END) < 0 || ::write(fd, text.data(), text.size()) != static_cast<ssize_t>(text.size())) {
       }
       held[key] = HeldLock{fd, 1, std::this_thread::get_id()};
       key_ = key;

@@ -223,6 +223,29 @@ TEST_CASE("fit: the files, the same bytes from a fresh fit, and a second call th
   REQUIRE(run(args + " --out " + (d / "a").string()).code == 0);
   CHECK(runTimes(d / "a" / "runs") == before);
   CHECK(slurp(d / "a" / "fit.json") == js);
+  // the same fit with any setting changed: refused before any work, the earlier fit left as it was
+  std::string budget61 = args;
+  budget61.replace(budget61.find("--budget 60"), 11, "--budget 61");
+  for (const std::string& changed : {budget61, args + " --objective shape", args + " --sigma-mm 0.1"}) {
+    INFO(changed);
+    const auto differs = run(changed + " --out " + (d / "a").string());
+    CHECK(differs.code == 2);
+    CHECK(differs.out.find("holds a fit of another scene, trace or settings") != std::string::npos);
+    CHECK(differs.out.find("pass --force") != std::string::npos);
+    CHECK(slurp(d / "a" / "fit.json") == js);
+  }
+  {
+    const std::string bounds = "fit " + quick().rsml.string() + " --scene " + quick().scene.string() +
+                               " --free tropism.beta=0.1:0.35,tropism.twist_r_tau=-0.2:0.2 --budget 60 -j 2 --quiet";
+    const std::string keys = "fit " + quick().rsml.string() + " --scene " + quick().scene.string() +
+                             " --free tropism.beta=0.1:0.3 --budget 60 -j 2 --quiet";
+    for (const std::string& other : {bounds, keys}) {
+      const auto differs = run(other + " --out " + (d / "a").string());
+      CHECK(differs.code == 2);
+      CHECK(differs.out.find("holds a fit of another scene, trace or settings") != std::string::npos);
+      CHECK(slurp(d / "a" / "fit.json") == js);
+    }
+  }
   // the start design is a sweep file: `rootsim sweep` finds every point complete
   const auto sw = run("sweep " + (d / "a" / "design.toml").string() + " --out " + (d / "a" / "runs").string());
   CHECK(sw.code == 0);
@@ -235,7 +258,7 @@ TEST_CASE("fit: the files, the same bytes from a fresh fit, and a second call th
                                 " --free tropism.beta=0.1:0.3,tropism.twist_r_tau=-0.2:0.2 --budget 60 -j 2 --quiet --out " + (d / "a").string();
   const auto refused = run(otherArgs);
   CHECK(refused.code == 2);
-  CHECK(refused.out.find("holds a fit of another scene or trace") != std::string::npos);
+  CHECK(refused.out.find("holds a fit of another scene, trace or settings") != std::string::npos);
   CHECK(slurp(d / "a" / "fit.json") == js);
   REQUIRE(run(otherArgs + " --force").code == 0);
   CHECK(slurp(d / "a" / "base.toml").find("alpha_deg = 30") != std::string::npos);

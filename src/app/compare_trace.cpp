@@ -178,6 +178,9 @@ int compareCommand(const CompareOptions& o, std::string* outDir) {
   const std::string outText =
       o.out.empty() ? (fs::path("compare") / (runName + "_vs_" + fs::path(o.trace.trace).stem().string())).string() : o.out;
   const fs::path out = checkOutputName(outText, "--out");
+  if (const std::string why = whyUnfinished(run); !why.empty()) throw SceneError(o.runDir + ": " + why);
+  // locked before any work (the StagedFolder below takes it again)
+  const OutputLock lock = lockOutput(out, "--out");
   if (!fs::is_directory(run) || !whyNotOurs(run, runFolder()).empty())
     throw SceneError(o.runDir + ": not a run directory (" + (fs::is_directory(run) ? whyNotOurs(run, runFolder()) : "not found") + ")");
   WriteRule rule;

@@ -860,7 +860,7 @@ std::string whyUnfinished(const fs::path& dir) {
     ::close(fd);
   }
   if (held) return partial.string() + " is being written by PID " + holderOf(lockFileOf(base)) + "; wait for it to finish";
-  if (isPartial)
+  if (isPartial || !fs::exists(fs::symlink_status(base, ec)))
     return partial.string() + " is an interrupted run (no process is writing it): continue it with `rootsim run SCENE --out " +
            base.string() + " --resume`, or read a finished run";
   return "";

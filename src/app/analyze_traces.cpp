@@ -222,7 +222,8 @@ TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
 
 RootTraits tracedTraits(const TraceFile& tf, const TracedRoot& t, double dsMm, double excludeTipMm) {
   try {
-    return rootTraits(t.plateMm, dsMm, excludeTipMm, t.radiusMm, tf.set);
+    return tf.ours ? rootTraits(t.plateMm, dsMm, excludeTipMm, t.radiusMm, tf.set)
+                   : traceTraits(t.plateMm, dsMm, excludeTipMm, t.radiusMm, tf.set);
   } catch (const std::invalid_argument&) {
     throw SceneError(tf.file + ":" + std::to_string(t.line) + ": root " + t.name + " has fewer than two distinct points");
   }
@@ -248,6 +249,25 @@ const TracedRoot& pickRoot(const TraceFile& tf, const std::string& id, const std
   for (const TracedRoot* r : primary) ids += (ids.empty() ? "" : ", ") + r->key;
   throw SceneError(tf.file + ": " + std::to_string(primary.size()) + " primary roots (" + ids + "); choose one with " + flag + " ID");
 }
+
+namespace {
+
+// the row's noise-aware cells and the field's traits: lambda and A are empty, with the reason, where the
+// shape analysis found too few peaks to measure them (docs/experiments.md, "Noise")
+void fillNoiseTraits(RootRow& row, const RootTraits& t) {
+  row.noiseMm = t.noiseMm;
+  row.smoothingMm = t.smoothingMm;
+  row.peakThresholdMm = t.shape.hysteresis / units::mm;
+  row.wavesNote = t.wavesNote;
+  if (t.shape.peaks < 3) row.wavelengthMm = kNaN;
+  if (t.shape.peaks < 2) row.amplitudeMm = row.amplitudeHalfMm = kNaN;
+  row.straightness = t.straightness;
+  row.hgi = t.hgi;
+  row.vgi = t.vgi;
+  row.thetaTipDeg = t.thetaTipDeg;
+}
+
+}  // namespace
 
 std::vector<RootRow> analyzeTraces(const AnalyzeOptions& o) {
   if (o.files.empty()) throw SceneError("analyze: give at least one RSML file");
@@ -293,6 +313,7 @@ std::vector<RootRow> analyzeTraces(const AnalyzeOptions& o) {
       row.excludeTipMm = tf.excludeTipMm;
       row.radiusMm = r.radiusMm;
       row.growthRateMmPerH = kNaN;
+      fillNoiseTraits(row, t);
       rows.push_back(row);
       keys.push_back(r.key);
     }
@@ -348,6 +369,14 @@ const std::vector<Column>& columns() {
       {"max_kappa_per_mm", "1/mm", nullptr, [](const RootRow& r) { return r.maxKappaPerMm; }},
       {"theta_min_deg", "deg", nullptr, [](const RootRow& r) { return r.thetaMinDeg; }},
       {"theta_max_deg", "deg", nullptr, [](const RootRow& r) { return r.thetaMaxDeg; }},
+      {"waves_note", "", [](const RootRow& r) { return r.wavesNote; }, nullptr},
+      {"noise_mm", "mm", nullptr, [](const RootRow& r) { return r.noiseMm; }},
+      {"smoothing_mm", "mm", nullptr, [](const RootRow& r) { return r.smoothingMm; }},
+      {"peak_threshold_mm", "mm", nullptr, [](const RootRow& r) { return r.peakThresholdMm; }},
+      {"theta_tip_deg", "deg", nullptr, [](const RootRow& r) { return r.thetaTipDeg; }},
+      {"straightness", "", nullptr, [](const RootRow& r) { return r.straightness; }},
+      {"hgi", "", nullptr, [](const RootRow& r) { return r.hgi; }},
+      {"vgi", "", nullptr, [](const RootRow& r) { return r.vgi; }},
       {"growth_rate_mm_per_h", "mm/h", nullptr, [](const RootRow& r) { return r.growthRateMmPerH; }},
       {"ds_mm", "mm", nullptr, [](const RootRow& r) { return r.dsMm; }},
       {"exclude_tip_mm", "mm", nullptr, [](const RootRow& r) { return r.excludeTipMm; }},
@@ -405,12 +434,19 @@ std::string analysisJson(const std::vector<RootRow>& rows) {
 }
 
 std::string summaryLine(const RootRow& r) {
-  char b[512];
+  char b[640];
   auto f = [](double v) { return std::isfinite(v) ? v : 0.0; };
-  std::snprintf(b, sizeof b, "%s %s/%s%s: %s, length %.3g mm, skew %.3g deg (base-tip), tortuosity %.4g, lambda %.3g mm, A %.3g mm, %d peaks",
+  char waves[256];
+  if (std::isfinite(r.wavelengthMm))
+    std::snprintf(waves, sizeof waves, "lambda %.3g mm, A %.3g mm", r.wavelengthMm, r.amplitudeMm);
+  else if (std::isfinite(r.amplitudeMm))
+    std::snprintf(waves, sizeof waves, "A %.3g mm (%s)", r.amplitudeMm, r.wavesNote.c_str());
+  else
+    std::snprintf(waves, sizeof waves, "lambda, A: %s", r.wavesNote.c_str());
+  std::snprintf(b, sizeof b, "%s %s/%s%s: %s, length %.3g mm, skew %.3g deg (base-tip), tortuosity %.4g, %s, %d peaks, noise %.2g mm",
                 fs::path(r.file).filename().c_str(), r.plant.empty() ? "-" : r.plant.c_str(),
                 r.root.empty() ? "-" : r.root.c_str(), r.order > 0 ? (" (order " + std::to_string(r.order) + ")").c_str() : "",
-                r.pattern.c_str(), r.lengthMm, r.skewDeg, f(r.tortuosity), r.wavelengthMm, r.amplitudeMm, r.lateralPeaks);
+                r.pattern.c_str(), r.lengthMm, r.skewDeg, f(r.tortuosity), waves, r.lateralPeaks, f(r.noiseMm));
   return b;
 }
 

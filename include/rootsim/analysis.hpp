@@ -1,6 +1,7 @@
 #pragma once
 // Observables (docs/model.md, Observables).
 #include <string>
+#include <vector>
 
 #include "rootsim/model.hpp"
 
@@ -55,6 +56,7 @@ struct ShapeAnalysis {
                               //   peaks) or at least analysis.skew_min_waves full waves
   double maxKappa = 0;        // max curvature of the shape projected on the plane [1/m]
   double thetaMin = 0, thetaMax = 0;  // range of the unwrapped planar tangent angle [rad]
+  std::vector<int> peakNodes; // the columns of the centreline at the peaks, in order along it
   double hysteresis = 0;      // the peaks' hysteresis used: the larger of analysis.wave_min_amplitude_r * R
                               //   and the noise threshold given to analyseCentreline [m]
 };

@@ -48,6 +48,10 @@ struct RootRow {
                                      // half-width, the peaks' hysteresis used [mm]
   std::string wavesNote;             // why wavelength_mm (and amplitude_mm) are empty
   double straightness = 0, hgi = 0, vgi = 0, thetaTipDeg = 0;
+  Eigen::Matrix3Xd traceMm;          // the file's points, plate coordinates [mm]
+  Eigen::Matrix3Xd curveMm;          // the curve measured (smoothed for a trace), plate coordinates [mm]
+  std::vector<int> peakNodes;        // its columns at the counted peaks
+  int matureLast = 0;                // its last column in the shape analysis
 };
 
 // one root of a trace file in plate coordinates (docs/experiments.md, "Traced roots")

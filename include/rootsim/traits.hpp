@@ -36,7 +36,7 @@ Eigen::Matrix3Xd plateMmToLab(const Eigen::Matrix3Xd& plateMm, const PlateFrame&
 // (lateral, downhill) plane.
 struct TraceNoise {
   double sigma = std::numeric_limits<double>::quiet_NaN();  // one point's position noise per coordinate [unit
-                                                            // of p]; NaN: fewer than 5 distinct points
+                                                            // of p]; NaN: fewer than 9 distinct points
   double spacing = 0;  // median distance between consecutive distinct points [unit of p]
   int residuals = 0;   // residuals inside the clip
   std::vector<int> outliers;  // the distinct points outside the clip (snaps), in order
@@ -57,7 +57,7 @@ struct TraceSmoothing {
 TraceSmoothing smoothTrace(const Eigen::Matrix3Xd& p, double ds);
 
 // the noise threshold of a traced root's peaks, in sigma: an excursion between neighbouring opposite
-// peaks of the smoothed curve counts only above kNoisePeakK * sigma (docs/model.md section 15)
+// peaks of the smoothed curve counts only above kNoisePeakK * sigma (docs/experiments.md, "Noise")
 inline constexpr double kNoisePeakK = 3.0;
 
 struct RootTraits {
@@ -70,7 +70,7 @@ struct RootTraits {
   double dsMm = 0;              // the resampling step of the shape analysis [mm]; 0: the trace's own points
   ShapeAnalysis shape;          // the run observables of the mature part (SI units as analysis.hpp)
   double noiseMm = std::numeric_limits<double>::quiet_NaN();  // the points' position noise sigma
-                                // (estimateTraceNoise) [mm]; NaN: fewer than 5 distinct points
+                                // (estimateTraceNoise) [mm]; NaN: fewer than 9 distinct points
   double smoothingMm = 0;       // half-width of the smoothing windows [mm]; 0: measured as it is
   double noiseThresholdMm = 0;  // kNoisePeakK * sigma, the excursion a peak needs beyond the hysteresis of
                                 // R [mm]; 0: no noise threshold (a run, or no estimate)

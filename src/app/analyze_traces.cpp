@@ -265,6 +265,9 @@ void fillNoiseTraits(RootRow& row, const RootTraits& t) {
   row.hgi = t.hgi;
   row.vgi = t.vgi;
   row.thetaTipDeg = t.thetaTipDeg;
+  row.curveMm = t.curveMm;
+  row.peakNodes = t.shape.peakNodes;
+  row.matureLast = t.matureLast;
 }
 
 }  // namespace
@@ -314,6 +317,7 @@ std::vector<RootRow> analyzeTraces(const AnalyzeOptions& o) {
       row.radiusMm = r.radiusMm;
       row.growthRateMmPerH = kNaN;
       fillNoiseTraits(row, t);
+      row.traceMm = r.plateMm;
       rows.push_back(row);
       keys.push_back(r.key);
     }
@@ -415,6 +419,25 @@ std::string analysisCsv(const std::vector<RootRow>& rows) {
   return out;
 }
 
+// curves.csv: each root's points as the file gives them (kind "trace") and the curve it was measured on
+// (kind "measured": smoothed for a trace), with the measured curve's mature part and counted peaks
+std::string curvesCsv(const std::vector<RootRow>& rows) {
+  std::string out = "file,plant,root,kind,point,lateral_mm,downhill_mm,mature,peak\n";
+  for (const RootRow& r : rows) {
+    const std::string head = csvField(r.file) + "," + csvField(r.plant) + "," + csvField(r.root) + ",";
+    for (int i = 0; i < r.traceMm.cols(); ++i)
+      out += head + "trace," + std::to_string(i) + "," + numberText(r.traceMm(0, i)) + "," + numberText(r.traceMm(1, i)) + ",,\n";
+    std::size_t next = 0;
+    for (int i = 0; i < r.curveMm.cols(); ++i) {
+      const bool peak = next < r.peakNodes.size() && r.peakNodes[next] == i;
+      if (peak) ++next;
+      out += head + "measured," + std::to_string(i) + "," + numberText(r.curveMm(0, i)) + "," + numberText(r.curveMm(1, i)) + "," +
+             (i <= r.matureLast ? "1" : "0") + "," + (peak ? "1" : "0") + "\n";
+    }
+  }
+  return out;
+}
+
 std::string analysisJson(const std::vector<RootRow>& rows) {
   std::vector<Json> items;
   for (const RootRow& r : rows) {
@@ -443,10 +466,12 @@ std::string summaryLine(const RootRow& r) {
     std::snprintf(waves, sizeof waves, "A %.3g mm (%s)", r.amplitudeMm, r.wavesNote.c_str());
   else
     std::snprintf(waves, sizeof waves, "lambda, A: %s", r.wavesNote.c_str());
-  std::snprintf(b, sizeof b, "%s %s/%s%s: %s, length %.3g mm, skew %.3g deg (base-tip), tortuosity %.4g, %s, %d peaks, noise %.2g mm",
+  char noise[48] = "noise unknown (fewer than 9 points)";
+  if (std::isfinite(r.noiseMm)) std::snprintf(noise, sizeof noise, "noise %.2g mm", r.noiseMm);
+  std::snprintf(b, sizeof b, "%s %s/%s%s: %s, length %.3g mm, skew %.3g deg (base-tip), tortuosity %.4g, %s, %d peaks, %s",
                 fs::path(r.file).filename().c_str(), r.plant.empty() ? "-" : r.plant.c_str(),
                 r.root.empty() ? "-" : r.root.c_str(), r.order > 0 ? (" (order " + std::to_string(r.order) + ")").c_str() : "",
-                r.pattern.c_str(), r.lengthMm, r.skewDeg, f(r.tortuosity), waves, r.lateralPeaks, f(r.noiseMm));
+                r.pattern.c_str(), r.lengthMm, r.skewDeg, f(r.tortuosity), waves, r.lateralPeaks, noise);
   return b;
 }
 
@@ -465,10 +490,11 @@ int analyzeCommand(const AnalyzeOptions& o) {
   const std::vector<RootRow> rows = analyzeTraces(o);
   StagedFolder folder(out, analysisFolder(), rule, "--out");
   writeFileAtomic(folder.work() / "analysis.csv", analysisCsv(rows));
+  writeFileAtomic(folder.work() / "curves.csv", curvesCsv(rows));
   writeFileAtomic(folder.work() / "analysis.json", analysisJson(rows));
   folder.commit();
   for (const RootRow& r : rows) std::printf("%s\n", summaryLine(r).c_str());
-  if (!o.quiet) std::fprintf(stderr, "wrote %s (analysis.csv, analysis.json: %zu roots)\n", out.c_str(), rows.size());
+  if (!o.quiet) std::fprintf(stderr, "wrote %s (analysis.csv, analysis.json, curves.csv: %zu roots)\n", out.c_str(), rows.size());
   return 0;
 }
 

@@ -188,6 +188,7 @@ ShapeAnalysis analyseCentreline(const Eigen::Matrix3Xd& x, int last, const Plane
   }
   const size_t np = ext.size();
   a.peaks = static_cast<int>(np);
+  a.peakNodes = ext;
   a.waves = np >= 1 ? 0.5 * static_cast<double>(np - 1) : 0.0;
   auto U = [&](size_t k) { return u[static_cast<size_t>(ext[k])]; };
   auto W = [&](size_t k) { return w[static_cast<size_t>(ext[k])]; };

@@ -155,7 +155,7 @@ RootTraits measure(const Eigen::Matrix3Xd& q, const Eigen::Matrix3Xd& curve, dou
     t.vgi = d.y() / t.curveLengthMm;
   }
   t.thetaTipDeg = planarAngle(plane, plateMmToLab(curve.col(curve.cols() - 1) - curve.col(curve.cols() - 2), frame).col(0)) / units::deg;
-  // why the waves are not numbers
+  // why the waves are not numbers (no commas: a CSV cell)
   if (t.shape.peaks < 3) {
     char b[200];
     const double hysteresisMm = t.shape.hysteresis / units::mm;
@@ -179,7 +179,9 @@ TraceNoise estimateTraceNoise(const Eigen::Matrix3Xd& p) {
   std::vector<double> gaps;
   for (int i = 1; i < n; ++i) gaps.push_back((q.col(i) - q.col(i - 1)).norm());
   out.spacing = medianOf(gaps);
-  if (n < 5) return out;
+  // at least 5 residuals: a sigma from fewer is a guess
+  constexpr int kMinPoints = 9;
+  if (n < kMinPoints) return out;
   // r[i - 2]: point i against the cubic through i-2, i-1, i+1, i+2, in the frame of its stencil's chord
   // (i-2 to i+2): the neighbours' positions along the chord are the abscissae, their offsets across it
   // the ordinates, point i the origin. A noisy polyline's own arc length would run ahead where its noise

@@ -62,3 +62,5 @@ def test_rows_carry_the_noise_and_the_fields_traits(tmp_path):
     # the tip's displacement over the length, across and along downhill
     assert row["hgi"] == pytest.approx(0.5 / math.hypot(0.5, 2), rel=0.05)
     assert row["vgi"] == pytest.approx(2 / math.hypot(0.5, 2), rel=0.02)
+    got = rootsim.analyze(f, px_per_mm=20)
+    assert got.columns["noise_mm"].shape == (1,) and got.columns["straightness"][0] == row["straightness"]

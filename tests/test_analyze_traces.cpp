@@ -262,7 +262,10 @@ TEST_CASE("analyze: a root traced at 1 px of jitter - the straight one is straig
   CHECK(number(s, "straightness") > 0.995);
   CHECK(number(s, "hgi") == doctest::Approx(std::sin(3.0 * std::numbers::pi / 180)).epsilon(0.2));
   CHECK(number(s, "vgi") == doctest::Approx(std::cos(3.0 * std::numbers::pi / 180)).epsilon(0.005));
-  CHECK(std::abs(number(s, "theta_tip_deg") - 3.0) < 5.0);
+  // the tip angle: the slope of a one-sided quadratic fit at the tip, over the smoothing's ~3 mm of ~18
+  // points with sigma 0.045 mm, has a standard error of about 4 degrees; pixel steps would give multiples
+  // of atan(1/4) = 14 degrees
+  CHECK(std::abs(number(s, "theta_tip_deg") - 3.0) < 12.0);
   CHECK(number(s, "max_kappa_per_mm") < 0.5);  // the raw trace's turns of whole pixels gave ~10 /mm
   const auto& w = rows[1];
   CHECK(w.at("pattern") == "waving");

@@ -746,3 +746,34 @@ TEST_CASE("analyze: the synthetic 2D+t plate cut into dated files gives the time
   CHECK(ids.size() == tracks.size());
   CHECK(ids.size() == 21);
 }
+
+TEST_CASE("analyze: the real files' noise / whole-pixel rounding on the openalea plate, the 2D+t plate's injected jitter") {
+  if (!analyzeBuilt()) return;
+  const fs::path data = sharedData();
+  if (data.empty()) return;
+  const fs::path d = scratch("realnoise");
+  // openalea: whole pixels every 5 px down the image, read at 24 px/mm. The primaries' noise is the
+  // rounding's 1/sqrt(12) = 0.29 px; their smoothed curves bend at most ~2 /mm (the raw pixel steps
+  // turned by 5-10 /mm) and their tip angles are no longer arctangents of pixel steps only
+  REQUIRE(run("analyze " + (data / "2012_11_19_18h00_chl110_1_1.rsml").string() + " --px-per-mm 24 --out " + (d / "oa").string()).code == 0);
+  int primaries = 0;
+  for (const auto& row : readRows(d / "oa" / "analysis.csv")) {
+    if (row.at("order") != "0") continue;
+    ++primaries;
+    CAPTURE(row.at("root"));
+    const double sigmaPx = number(row, "noise_mm") * 24;
+    CHECK(sigmaPx > 0.2);
+    CHECK(sigmaPx < 0.35);
+    CHECK(number(row, "max_kappa_per_mm") < 2.5);
+    CHECK(number(row, "smoothing_mm") > 0.5);
+    CHECK(number(row, "peak_threshold_mm") == doctest::Approx(0.05));  // 0.5 R: above 3 sigma here
+  }
+  CHECK(primaries == 5);
+  // the 2D+t plate: 0.6 px of jitter on 76 um pixels, rounded: sqrt(0.36 + 1/12) px = 0.0506 mm
+  REQUIRE(run("analyze " + (data / "synthetic_2dt_plate.rsml").string() + " --out " + (d / "rst").string()).code == 0);
+  for (const auto& row : readRows(d / "rst" / "analysis.csv"))
+    if (row.at("order") == "0") {
+      CAPTURE(row.at("root"));
+      CHECK(number(row, "noise_mm") == doctest::Approx(0.0506).epsilon(0.2));
+    }
+}

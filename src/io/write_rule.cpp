@@ -107,7 +107,7 @@ bool isFrameEntry(const fs::path&, const std::string& name) {
 bool isAnalysisEntry(const fs::path&, const std::string& name) {
   const std::string base = stripTemp(name);
   return base == ".rootsim-analysis" || base == "analysis.csv" || base == "analysis.json" || base == "plants.csv" ||
-         base == "plants.json" || base == "growth.csv" || base == "growth.json";
+         base == "plants.json" || base == "growth.csv" || base == "growth.json" || base == "curves.csv";
 }
 
 // what `export --paraview DIR` writes (docs/paraview.md): step_NNNNNN.vtp, root.pvd, plate.vtp, the script

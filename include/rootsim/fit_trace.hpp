@@ -58,8 +58,7 @@ inline constexpr double kFailedObjective = 1e12;
 struct FixedKey {
   std::string key;     // "plane.alpha_deg", or "tip_speed_mm_per_h" (growth.rate_per_h * growth.growth_zone_mm)
   std::string value;   // as the resolved scene writes it
-  std::string source;  // "scene" (the base scene sets another value than the default), "default", or how
-                       // a derived value is made
+  std::string source;  // "scene" (the base scene file sets it), "default", or how a derived value is made
 };
 
 struct FitReport {

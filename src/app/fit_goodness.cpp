@@ -41,14 +41,15 @@ std::string mm(double v) {
 
 }  // namespace
 
-std::vector<FixedKey> sceneFixedKeys(const Model& base, const std::vector<FreeKey>& free) {
-  const std::vector<SceneValue> values = sceneValues(base), defaults = sceneValues(defaultModel());
+std::vector<FixedKey> sceneFixedKeys(const Model& base, const std::vector<FreeKey>& free, const std::vector<std::string>& fileKeys) {
+  const std::vector<SceneValue> values = sceneValues(base);
   std::vector<FixedKey> fixed;
   for (const char* key : kShapingKeys) {
     if (std::any_of(free.begin(), free.end(), [&](const FreeKey& f) { return f.key == key; })) continue;
     const std::string v = valueOf(values, key);
     if (v.empty()) continue;
-    fixed.push_back(FixedKey{key, v, v == valueOf(defaults, key) ? "default" : "scene"});
+    const bool set = std::find(fileKeys.begin(), fileKeys.end(), key) != fileKeys.end();
+    fixed.push_back(FixedKey{key, v, set ? "scene" : "default"});
     if (fixed.back().key == "growth.growth_zone_mm") {
       // the tip speed v = rate * Lgz: what a time-lapse measures
       const double speed = base.growth.rate * base.growth.zoneLength / (units::mm / units::hour);
@@ -131,14 +132,14 @@ std::string misfitSentence(const TraceTarget& target, const std::vector<FitEvalu
 }
 
 void chooseAnswer(FitReport& rep, const TraceTarget& target, const FitComponents& trace, const Model& base,
-                  const std::function<double(const FitEvaluation&)>& answerChi2) {
+                  const std::vector<std::string>& fileKeys, const std::function<double(const FitEvaluation&)>& answerChi2) {
   std::vector<double> objectives;
   for (const FitEvaluation& e : rep.evaluations)
     objectives.push_back(e.error.empty() ? e.objective : std::numeric_limits<double>::quiet_NaN());
   rep.best = answerIndex(objectives, rep.surfaceRun);
   const FitEvaluation& b = rep.evaluations[static_cast<std::size_t>(rep.best)];
   rep.goodness = goodnessOf(answerChi2(b), static_cast<int>(trace.trace.size()), static_cast<int>(rep.keys.size()));
-  rep.fixed = sceneFixedKeys(base, rep.keys);
+  rep.fixed = sceneFixedKeys(base, rep.keys, fileKeys);
   rep.misfit = rep.goodness.verdict == "poor" ? misfitSentence(target, rep.evaluations, b, trace, rep.fixed) : std::string();
 }
 

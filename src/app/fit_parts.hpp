@@ -23,8 +23,8 @@ namespace rootsim::app {
 inline constexpr double kSmallestBox = 0.5;
 
 // the fixed keys of the base model that shape a fit's answer, the plate's tilt and the growth first, the
-// free keys left out
-std::vector<FixedKey> sceneFixedKeys(const Model& base, const std::vector<FreeKey>& free);
+// free keys left out; fileKeys: the keys the base scene file sets (sceneFileKeys), the others are defaults
+std::vector<FixedKey> sceneFixedKeys(const Model& base, const std::vector<FreeKey>& free, const std::vector<std::string>& fileKeys);
 // "plane.alpha_deg = 40 (scene), growth.rate_per_h = 0.2 (default), ..."
 std::string fixedKeysText(const std::vector<FixedKey>& fixed);
 
@@ -38,7 +38,7 @@ std::string misfitSentence(const TraceTarget& target, const std::vector<FitEvalu
 // a tie), its goodness against the trace's uncertainty alone (answerChi2: the answer's chi-square against
 // the trace as a trace of its run would scatter), the fixed keys, and for a poor fit the sentence
 void chooseAnswer(FitReport& rep, const TraceTarget& target, const FitComponents& trace, const Model& base,
-                  const std::function<double(const FitEvaluation&)>& answerChi2);
+                  const std::vector<std::string>& fileKeys, const std::function<double(const FitEvaluation&)>& answerChi2);
 
 // what the files of a fit folder are made of
 struct FitOutcome {

@@ -96,7 +96,8 @@ bool isFrameEntry(const fs::path&, const std::string& name) {
 // what `analyze` writes into its folder (docs/experiments.md)
 bool isAnalysisEntry(const fs::path&, const std::string& name) {
   const std::string base = stripTemp(name);
-  return base == ".rootsim-analysis" || base == "analysis.csv" || base == "analysis.json";
+  return base == ".rootsim-analysis" || base == "analysis.csv" || base == "analysis.json" || base == "plants.csv" ||
+         base == "plants.json" || base == "growth.csv" || base == "growth.json";
 }
 
 // what `export --paraview DIR` writes (docs/paraview.md): step_NNNNNN.vtp, root.pvd, plate.vtp, the script

@@ -236,6 +236,10 @@ TEST_CASE("fit: the files, the same bytes from a fresh fit, and a second call th
   CHECK(fixed.find("\"tip_speed_mm_per_h\": {") != std::string::npos);
   CHECK(fixed.find("\"tropism.gamma\": {") != std::string::npos);
   CHECK(fixed.find("\"tropism.beta\"") == std::string::npos);  // a free key is not fixed
+  // a key the scene file leaves out is the default's
+  const auto cn = fixed.find("\"tropism.circumnutation_gain\": {");
+  REQUIRE(cn != std::string::npos);
+  CHECK(jsonString(fixed, "source", cn) == "default");
   CHECK(a.out.find("fixed: plane.alpha_deg = 40.0 (scene), growth.rate_per_h = ") != std::string::npos);
   // a fresh fit elsewhere: the same files, byte for byte
   REQUIRE(run(args + " --out " + (d / "b").string()).code == 0);

@@ -50,6 +50,7 @@ struct FitEvaluation {
   Eigen::VectorXd sim;       // the outputs the objective compares (FitComponents::sim)
   std::string pattern;       // its root's pattern (straight, waving, coiling, skewing)
   double amplitudeMm = 0;    // its root's peak-to-peak amplitude [mm] (0 without waves)
+  double straightness = 0;   // its root's chord / length
   long order = 0;            // when it was asked for: the design's point index, then each batch's in turn
 };
 inline constexpr double kFailedObjective = 1e12;

@@ -53,7 +53,9 @@ std::vector<FixedKey> sceneFixedKeys(const Model& base, const std::vector<FreeKe
     if (fixed.back().key == "growth.growth_zone_mm") {
       // the tip speed v = rate * Lgz: what a time-lapse measures
       const double speed = base.growth.rate * base.growth.zoneLength / (units::mm / units::hour);
-      fixed.push_back(FixedKey{"tip_speed_mm_per_h", numberText(speed), "growth.rate_per_h * growth.growth_zone_mm"});
+      char b[32];
+      std::snprintf(b, sizeof b, "%.6g", speed);  // a product: to the scene values' own digits
+      fixed.push_back(FixedKey{"tip_speed_mm_per_h", b, "growth.rate_per_h * growth.growth_zone_mm"});
     }
   }
   return fixed;
@@ -71,11 +73,14 @@ std::string misfitSentence(const TraceTarget& target, const std::vector<FitEvalu
   // what the runs did: how many wave, their amplitudes, their most common pattern
   int runs = 0, waving = 0;
   double aLo = std::numeric_limits<double>::infinity(), aHi = 0;
+  double sLo = std::numeric_limits<double>::infinity(), sHi = 0;  // the runs' straightness
   std::map<std::string, int> patterns;
   for (const FitEvaluation& e : evaluations) {
     if (!e.error.empty()) continue;
     ++runs;
     ++patterns[e.pattern];
+    sLo = std::min(sLo, e.straightness);
+    sHi = std::max(sHi, e.straightness);
     if (e.pattern == "waving") {
       ++waving;
       aLo = std::min(aLo, e.amplitudeMm);
@@ -98,6 +103,12 @@ std::string misfitSentence(const TraceTarget& target, const std::vector<FitEvalu
   } else if (traceWaves && waving == 0 && runs > 0) {
     what = "the trace waves (lambda " + mm(ts.wavelength / units::mm) + " mm, A " + mm(ts.amplitude / units::mm) +
            " mm), no run does (" + (most == runs ? "every run is " : "most runs are ") + common + ")";
+  } else if (const double st = target.traits.chordMm / target.traits.lengthMm; runs > 0 && (st > sHi || st < sLo)) {
+    // straighter than every run (or less): the waves' amplitude and the skew do not come out of these keys
+    char b[200];
+    std::snprintf(b, sizeof b, "the trace is %s than every run (chord / length %.4f; the runs' %.4f-%.4f)",
+                  st > sHi ? "straighter" : "less straight", st, sLo, sHi);
+    what = b;
   } else {
     // the output the answer's run misses most, in units of the trace's uncertainty
     int worst = -1;
@@ -114,10 +125,8 @@ std::string misfitSentence(const TraceTarget& target, const std::vector<FitEvalu
       std::snprintf(b, sizeof b, "the answer's run misses %s by %.3g sigma (trace %.4g, run %.4g)",
                     trace.names[static_cast<std::size_t>(worst)].c_str(), z, trace.trace(worst), answer.sim(worst));
       what = b;
-      // a wavelength or a position along the root: the tip speed sets how far the root grows per swing
-      if (trace.names[static_cast<std::size_t>(worst)].find("wavelength") != std::string::npos ||
-          trace.names[static_cast<std::size_t>(worst)].find("downhill") != std::string::npos)
-        suggest = "growth.rate_per_h";
+      // a wavelength: the tip speed sets how far the root grows per swing
+      if (trace.names[static_cast<std::size_t>(worst)].find("wavelength") != std::string::npos) suggest = "growth.rate_per_h";
     }
   }
   std::string check;

@@ -195,6 +195,7 @@ class Fit {
         e.objective = e.chi2Trace = chi2Of(fc, fc.sim);
         e.pattern = sim.traits.shape.pattern;
         e.amplitudeMm = sim.traits.shape.amplitude / units::mm;
+        e.straightness = sim.traits.chordMm / sim.traits.lengthMm;
       } catch (const std::exception& ex) {
         e.error = ex.what();
       }

@@ -69,7 +69,7 @@ std::string fixedKeysText(const std::vector<FixedKey>& fixed) {
 }
 
 std::string misfitSentence(const TraceTarget& target, const std::vector<FitEvaluation>& evaluations, const FitEvaluation& answer,
-                           const FitComponents& trace, const std::vector<FixedKey>& fixed) {
+                           const FitComponents& trace, const Eigen::VectorXd& modelSigma, const std::vector<FixedKey>& fixed) {
   // what the runs did: how many wave, their amplitudes, their most common pattern
   int runs = 0, waving = 0;
   double aLo = std::numeric_limits<double>::infinity(), aHi = 0;
@@ -122,8 +122,11 @@ std::string misfitSentence(const TraceTarget& target, const std::vector<FitEvalu
     }
     if (worst >= 0) {
       char b[200];
-      std::snprintf(b, sizeof b, "the answer's run misses %s by %.3g sigma (trace %.4g, run %.4g)",
-                    trace.names[static_cast<std::size_t>(worst)].c_str(), z, trace.trace(worst), answer.sim(worst));
+      // beside it, how far runs near the answer scatter there: a model whose runs scatter by more than the
+      // trace's uncertainty cannot reproduce it to that uncertainty, whatever its keys
+      std::snprintf(b, sizeof b, "the answer's run misses %s by %.3g sigma (trace %.4g, run %.4g; the runs near the answer scatter by %.2g there)",
+                    trace.names[static_cast<std::size_t>(worst)].c_str(), z, trace.trace(worst), answer.sim(worst),
+                    worst < modelSigma.size() ? modelSigma(worst) : std::numeric_limits<double>::quiet_NaN());
       what = b;
       // a wavelength: the tip speed sets how far the root grows per swing
       if (trace.names[static_cast<std::size_t>(worst)].find("wavelength") != std::string::npos) suggest = "growth.rate_per_h";
@@ -140,8 +143,9 @@ std::string misfitSentence(const TraceTarget& target, const std::vector<FitEvalu
   return "the model with these free keys and this scene does not reproduce the trace: " + what + check;
 }
 
-void chooseAnswer(FitReport& rep, const TraceTarget& target, const FitComponents& trace, const Model& base,
-                  const std::vector<std::string>& fileKeys, const std::function<double(const FitEvaluation&)>& answerChi2) {
+void chooseAnswer(FitReport& rep, const TraceTarget& target, const FitComponents& trace, const Eigen::VectorXd& modelSigma,
+                  const Model& base, const std::vector<std::string>& fileKeys,
+                  const std::function<double(const FitEvaluation&)>& answerChi2) {
   std::vector<double> objectives;
   for (const FitEvaluation& e : rep.evaluations)
     objectives.push_back(e.error.empty() ? e.objective : std::numeric_limits<double>::quiet_NaN());
@@ -149,7 +153,7 @@ void chooseAnswer(FitReport& rep, const TraceTarget& target, const FitComponents
   const FitEvaluation& b = rep.evaluations[static_cast<std::size_t>(rep.best)];
   rep.goodness = goodnessOf(answerChi2(b), static_cast<int>(trace.trace.size()), static_cast<int>(rep.keys.size()));
   rep.fixed = sceneFixedKeys(base, rep.keys, fileKeys);
-  rep.misfit = rep.goodness.verdict == "poor" ? misfitSentence(target, rep.evaluations, b, trace, rep.fixed) : std::string();
+  rep.misfit = rep.goodness.verdict == "poor" ? misfitSentence(target, rep.evaluations, b, trace, modelSigma, rep.fixed) : std::string();
 }
 
 }  // namespace rootsim::app

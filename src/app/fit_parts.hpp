@@ -31,14 +31,16 @@ std::string fixedKeysText(const std::vector<FixedKey>& fixed);
 // what a poor fit's model could not reproduce, and the fixed key to check or free, in one line: "the model
 // with these free keys and this scene does not reproduce the trace: the trace is straight, every run waves
 // (A 0.8-1.2 mm); check plane.alpha_deg (40, scene) or free it"
+// (modelSigma: the runs' scatter about the response surface per output, shown beside the output missed most)
 std::string misfitSentence(const TraceTarget& target, const std::vector<FitEvaluation>& evaluations, const FitEvaluation& answer,
-                           const FitComponents& trace, const std::vector<FixedKey>& fixed);
+                           const FitComponents& trace, const Eigen::VectorXd& modelSigma, const std::vector<FixedKey>& fixed);
 
 // the answer among the evaluations: rep.best (answerIndex over the objectives, rep.surfaceRun preferred on
 // a tie), its goodness against the trace's uncertainty alone (answerChi2: the answer's chi-square against
 // the trace as a trace of its run would scatter), the fixed keys, and for a poor fit the sentence
-void chooseAnswer(FitReport& rep, const TraceTarget& target, const FitComponents& trace, const Model& base,
-                  const std::vector<std::string>& fileKeys, const std::function<double(const FitEvaluation&)>& answerChi2);
+void chooseAnswer(FitReport& rep, const TraceTarget& target, const FitComponents& trace, const Eigen::VectorXd& modelSigma,
+                  const Model& base, const std::vector<std::string>& fileKeys,
+                  const std::function<double(const FitEvaluation&)>& answerChi2);
 
 // what the files of a fit folder are made of
 struct FitOutcome {

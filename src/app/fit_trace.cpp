@@ -694,7 +694,7 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
   // the goodness: the shape's against the covariance a trace of the answer's run would have (its points'
   // noise propagated through the sampling: the null hypothesis that the run is the root), the observables'
   // against their uncertainties
-  chooseAnswer(rep, target, tc, bm, sceneFileKeys(o.scene), [&](const FitEvaluation& e) {
+  chooseAnswer(rep, target, tc, surface.noiseVar().cwiseSqrt(), bm, sceneFileKeys(o.scene), [&](const FitEvaluation& e) {
     if (o.objective != "shape") return e.chi2Trace;
     const SimRoot sim = simRootOf(fit.sceneAt(e.x).model, loadSnapshots(e.dir).back());
     return chiSquareOf(e.sim, tc.trace, shapeNoiseCovariance(tracedLike(sim.plateMm, target.plateMm), target.sigmaMm, kShapeSamples));

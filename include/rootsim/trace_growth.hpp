@@ -44,6 +44,12 @@ struct GrowthRow {
 // a 2D+t root at (fractional) observation k: its polyline up to coord_t = k, the last point interpolated
 // linearly in coord_t between the two points around k; no columns when the root had not started at k
 Eigen::Matrix3Xd rootAtObservation(const TracedRoot& r, double k);
+// a 2D+t root's points' times [h]: each point's coord_t turned into hours between the observation times
+// around it (linearly); empty for a root of a file without times
+std::vector<double> pointTimesH(const TraceFile& tf, const TracedRoot& r);
+// the polyline p (points reached at the hours timesH, never decreasing) as it was at time tH: the points
+// reached by then and the last one interpolated linearly in time; no columns before the first point
+Eigen::Matrix3Xd polylineAtTime(const Eigen::Matrix3Xd& p, const std::vector<double>& timesH, double tH);
 // the tip's direction [deg] from downhill, signed as theta (towards +lateral positive), over the last
 // span of arc length: max(0.5 mm, 10 pixels), at most half the root (a tracer's pixel steps average out)
 double tipAngleDeg(const Eigen::Matrix3Xd& plateMm, double pixelMm);

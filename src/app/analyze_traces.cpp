@@ -465,6 +465,8 @@ int analyzeCommand(const AnalyzeOptions& o) {
   const std::string outText =
       o.out.empty() ? (fs::path("analysis") / fs::path(o.files.empty() ? std::string("analysis") : o.files.front()).stem()).string() : o.out;
   const fs::path out = checkOutputName(outText, "--out");
+  // locked before any work (the StagedFolder below takes it again)
+  const OutputLock lock = lockOutput(out, "--out");
   WriteRule rule;
   rule.force = o.force;
   for (const std::string& f : o.files) rule.inputs.push_back(WriteInput{f, {}, true});

@@ -14,6 +14,7 @@
 #include "rootsim/scene.hpp"
 #include "rootsim/signature.hpp"
 #include "rootsim/trajectory.hpp"
+#include "rootsim/write_rule.hpp"
 #include "run_files.hpp"
 
 namespace fs = std::filesystem;
@@ -49,6 +50,7 @@ void writeFitOutputs(const FitOutcome& f, const FitReport& rep, const Scene& bes
   const Comparison bc = compareRoots(target, bestSim);
   const std::string why = rep.best == rep.surfaceRun ? "the surface's minimum" : "the fit's best run, better by the objective than the surface's minimum's";
   writeFileAtomic(out / "best.toml", "# rootsim fit: " + why + " (" + b.dir + ")\n" + bestScene.resolvedToml);
+  recordWritten({out / "best.toml"});
   // the picture: the answer, the trace over its run, and its goodness
   std::string title = "fit of " + literalLabel(fs::path(o.trace.trace).filename().string()) + ":";
   for (int i = 0; i < n; ++i) {
@@ -93,6 +95,7 @@ void writeFitOutputs(const FitOutcome& f, const FitReport& rep, const Scene& bes
            ",\"" + err + "\"\n";
   }
   writeFileAtomic(out / "evaluations.csv", csv);
+  recordWritten({out / "evaluations.csv"});
   // fit.json
   const FitComponents& tc = f.trace;
   const FitUncertainty& unc = f.unc;
@@ -195,6 +198,7 @@ void writeFitOutputs(const FitOutcome& f, const FitReport& rep, const Scene& bes
   }
   j.array("evaluation_list", ev);
   writeFileAtomic(out / "fit.json", j.dump() + "\n");
+  recordWritten({out / "fit.json"});
 }
 
 }  // namespace rootsim::app

@@ -150,6 +150,25 @@ Eigen::Matrix3Xd rootAtObservation(const TracedRoot& r, double k) {
   return p;
 }
 
+std::vector<double> pointTimesH(const TraceFile& tf, const TracedRoot& r) {
+  std::vector<double> h;
+  const std::vector<double>& obs = tf.observationTimesH;
+  if (obs.empty() || r.timeIndex.size() != static_cast<std::size_t>(r.plateMm.cols())) return h;
+  for (double k : r.timeIndex) {
+    const auto lo = static_cast<std::size_t>(std::clamp(std::floor(k), 0.0, static_cast<double>(obs.size() - 1)));
+    const std::size_t hi = std::min(lo + 1, obs.size() - 1);
+    h.push_back(obs[lo] + (k - static_cast<double>(lo)) * (obs[hi] - obs[lo]));
+  }
+  return h;
+}
+
+Eigen::Matrix3Xd polylineAtTime(const Eigen::Matrix3Xd& p, const std::vector<double>& timesH, double tH) {
+  TracedRoot r;
+  r.plateMm = p;
+  r.timeIndex = timesH;  // any non-decreasing clock: the same interpolation as an observation index
+  return rootAtObservation(r, tH);
+}
+
 double tipAngleDeg(const Eigen::Matrix3Xd& p, double pixelMm) {
   const double len = polylineLength(p);
   if (!(len > 0)) return kNaN;

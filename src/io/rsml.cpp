@@ -13,8 +13,10 @@
 #include <sstream>
 #include <system_error>
 
+#include "rootsim/content_hash.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/number_text.hpp"
+#include "rootsim/signature.hpp"
 
 namespace fs = std::filesystem;
 
@@ -573,7 +575,16 @@ std::string writeRsml(const Document& doc) {
     o << "    </plant>\n";
   }
   o << "  </scene>\n</rsml>\n";
-  return o.str();
+  // rootsim's signature on line 2 carries the SHA-256 of every byte after it: the write rule
+  // (write_rule.hpp) replaces the file only while it is as written
+  std::string text = o.str();
+  const std::string sig = std::string("<!-- ") + outputSignatureText();
+  const auto l1 = text.find('\n');
+  if (text.compare(l1 + 1, sig.size(), sig) == 0) {
+    const auto l2 = text.find('\n', l1 + 1);
+    text.insert(l1 + 1 + sig.size(), " sha256:" + sha256Hex(std::string_view(text).substr(l2 + 1)));
+  }
+  return text;
 }
 
 }  // namespace rootsim::rsml

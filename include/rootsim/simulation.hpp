@@ -115,6 +115,10 @@ class Simulation {
   bool jointStep();
   long jointSubsteps() const;
   void endJoint();
+  // this root as one block of a plate's coupled Newton system (relaxNewtonCoupled: its window as its own
+  // relaxation's, its state and Newton memory); addCoupled adds that relaxation's iterations to the step
+  CoupledRoot coupled(int plateIndex);
+  void addCoupled(const RelaxResult& r);
   // the other roots on a plate as this root's contact pieces see them (ContactWorkspace::neighbours)
   NeighbourCapsules& neighbours() { return ws_.contact.neighbours; }
   const NeighbourCapsules& neighbours() const { return ws_.contact.neighbours; }

@@ -1,10 +1,13 @@
 // A plate of roots (docs/plate.md): each root relaxes in its own frame with the other roots near it as
-// capsules it cannot enter (ContactWorkspace::neighbours); roots that touch are re-relaxed in sweeps
-// until none moves, so every root is in equilibrium with the others' final shapes.
+// capsules it cannot enter (ContactWorkspace::neighbours); the roots within reach of another then relax
+// together as one Newton system (relaxNewtonCoupled), so every root is in equilibrium with the others'
+// final shapes.
 #include "rootsim/plate.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <sstream>
 
 #include "rootsim/contact.hpp"
@@ -20,9 +23,8 @@ namespace {
 // element within Ra + Rb + skin; the lists are built again before every relaxation, so the skin only
 // covers what one relaxation moves (a growth step's snap: checked after it by the next sweep)
 constexpr double kPlateSkin = 1.0;
-// Newton sweeps before the roots in contact relax together; joint relaxations before a step fails;
-// sub-steps of a joint relaxation between its lists' rebuilds
-constexpr int kNewtonSweeps = 4;
+// explicit joint relaxations (after the coupled Newton stalled) before a step fails; sub-steps of a joint
+// relaxation between its lists' rebuilds
 constexpr int kJointRelaxations = 3;
 constexpr long kJointRelist = 256;
 
@@ -201,6 +203,54 @@ double PlateSimulation::sweep() {
   return change;
 }
 
+void PlateSimulation::listCluster() {
+  indexElements();
+  cluster_.clear();
+  for (int r = 0; r < size(); ++r) {
+    listNeighbours(r);
+    if (!roots_[static_cast<size_t>(r)]->neighbours().empty()) cluster_.push_back(roots_[static_cast<size_t>(r)]->coupled(r));
+  }
+}
+
+RelaxResult PlateSimulation::relaxCoupled() {
+  listCluster();
+  if (cluster_.empty()) return RelaxResult{};
+  const std::function<void()> refresh = [this] {
+    for (const CoupledRoot& c : cluster_) refreshCapsules(c.plateIndex);
+  };
+  RelaxResult r;
+  try {
+    r = relaxNewtonCoupled(cluster_, refresh, coupled_);
+  } catch (const RelaxError& e) {
+    throw RelaxError("growth step " + std::to_string(root(0).step()) + ": the roots in contact (" +
+                     seedling(cluster_.front().plateIndex).name + ", ...): " + e.what());
+  }
+  for (const CoupledRoot& c : cluster_) roots_[static_cast<size_t>(c.plateIndex)]->addCoupled(r);
+  return r;
+}
+
+Eigen::MatrixXd PlateSimulation::coupledJacobian() {
+  listCluster();
+  const std::function<void()> refresh = [this] {
+    for (const CoupledRoot& c : cluster_) refreshCapsules(c.plateIndex);
+  };
+  return cluster_.empty() ? Eigen::MatrixXd() : coupledStiffness(cluster_, refresh, coupled_);
+}
+
+Eigen::VectorXd PlateSimulation::coupledResidual(int k, double h) {
+  listCluster();
+  const std::function<void()> refresh = [this] {
+    for (const CoupledRoot& c : cluster_) refreshCapsules(c.plateIndex);
+  };
+  return cluster_.empty() ? Eigen::VectorXd() : rootsim::coupledResidual(cluster_, refresh, coupled_, k, h);
+}
+
+std::vector<int> PlateSimulation::coupledRoots() const {
+  std::vector<int> r;
+  for (const CoupledRoot& c : cluster_) r.push_back(c.plateIndex);
+  return r;
+}
+
 void PlateSimulation::relaxJointly() {
   indexElements();
   std::vector<int> cluster;
@@ -245,12 +295,13 @@ const PlateStepRecord& PlateSimulation::growthStep() {
       throw namedError(seedling(r).name, e);
     }
   }
-  // then the roots within reach of another relax again (Newton), each against the others as they stand,
-  // until a sweep moves none of them by more than a displacement whose contact force is half the
-  // equilibrium tolerance: each is then in equilibrium with the others' final shapes. Two soft roots
-  // pressed together converge slowly so (measured on the collision scene: the shapes change by the same
-  // 4e-7 m sweep after sweep, the pair creeping sideways); after kNewtonSweeps the roots in contact relax
-  // together explicitly, every root one sub-step in turn, and Newton confirms
+  // then the roots within reach of another relax together, as one Newton system (their blocks coupled
+  // by their contacts' stiffness: relaxNewtonCoupled), and each confirms it alone (a sweep: relaxAgain,
+  // with the lists built anew and its own stability check). A round ends when the sweep moves no root by
+  // more than a displacement whose contact force is half the equilibrium tolerance: each is then in
+  // equilibrium with the others' final shapes. Where the coupled Newton finds no acceptable step (a
+  // snap), the roots in contact relax together explicitly, every root one sub-step in turn, and Newton
+  // starts again from there (as one root's Newton falls back to the explicit relaxation).
   double tolerance = std::numeric_limits<double>::infinity();
   for (int r = 0; r < n; ++r) {
     const Model& m = seedling(r).model;
@@ -258,18 +309,30 @@ const PlateStepRecord& PlateSimulation::growthStep() {
   }
   int sweeps = 1;
   for (int joint = 0; n > 1;) {
-    const double change = sweep();
-    ++sweeps;
-    if (change <= tolerance) break;
-    if (sweeps % kNewtonSweeps == 0) {
+    const RelaxResult rc = relaxCoupled();
+    if (cluster_.empty()) {
+      ++sweeps;  // nobody within reach: the sweep that found so
+      break;
+    }
+    if (rc.stalled) {
       if (joint == kJointRelaxations) {
         std::ostringstream os;
         os << "growth step " << root(0).step() << ": the roots in contact did not settle (" << kJointRelaxations
-           << " joint relaxations; Newton still moves them by " << change << " m, tolerance " << tolerance << " m)";
+           << " joint relaxations; " << rc.message << ")";
         throw RelaxError(os.str());
       }
       relaxJointly();
       ++joint;
+      continue;
+    }
+    const double change = sweep();
+    ++sweeps;
+    if (change <= tolerance) break;
+    if (sweeps > plate_.maxSweeps) {
+      std::ostringstream os;
+      os << "growth step " << root(0).step() << ": the roots in contact did not settle (" << plate_.maxSweeps
+         << " sweeps; the last moved them by " << change << " m, tolerance " << tolerance << " m)";
+      throw RelaxError(os.str());
     }
   }
   emergeLaterals();

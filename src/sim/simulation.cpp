@@ -139,6 +139,15 @@ void Simulation::endJoint() {
   joint_.reset();
 }
 
+CoupledRoot Simulation::coupled(int plateIndex) {
+  return CoupledRoot{&m_.rod, &m_.env, &m_.solver, &s_, &ws_, &nw_, windowStart(), plateIndex};
+}
+
+void Simulation::addCoupled(const RelaxResult& r) {
+  p_.totalIterations += r.iterations;
+  p_.last.iterations += r.iterations;
+}
+
 int Simulation::windowStart() {
   // the active window (docs/model.md, "Newton solver"): the growth zone, solver.window_mm of mature root behind
   // it, and the tip; the rest is adhered and frozen

@@ -111,8 +111,9 @@ void addNeighbourContact(const RodParams& p, const Environment& env, const RodSt
 // now, or nudged by a Newton solver's differences) and the weight w1 of its second node (the first gets
 // 1 - w1); computed in the pair's first root's order (nb.first), so the two roots feel exactly opposite
 // forces. False when they do not touch.
-bool neighbourPairForce(const RodParams& p, const Environment& env, const NeighbourCapsules& nb, int c, const Vec3& x0,
-                        const Vec3& x1, const Vec3& b0, const Vec3& b1, Vec3& F, double& w1);
+// (up: env.plane.normal(), the blend's plane normal)
+bool neighbourPairForce(const RodParams& p, const Environment& env, const Vec3& up, const NeighbourCapsules& nb, int c,
+                        const Vec3& x0, const Vec3& x1, const Vec3& b0, const Vec3& b1, Vec3& F, double& w1);
 
 // the contact of one element (a0-a1, radius ra) of root A with one capsule (b0-b1, radius rb) of root
 // B, A before B on the plate: the force on A's segment and the weights of its two nodes (B feels -F

@@ -126,8 +126,12 @@ class PlateSimulation {
   double sweep();
   // the lists of every root and the roots within reach of another (cluster_)
   void listCluster();
-  // the roots within reach of another relax together as one Newton system (relaxNewtonCoupled)
+  // the roots of cluster_ (as listCluster left them) relax together as one Newton system
+  // (relaxNewtonCoupled)
   RelaxResult relaxCoupled();
+  // a growth step of two roots or more: every root grows and relaxes, the roots within reach of another
+  // together (docs/plate.md, Solving); returns the sweeps it took
+  int settleStep();
   // the roots within reach of another relax together, explicitly, one sub-step each in turn
   void relaxJointly();
   PlateStepRecord observe(int sweeps) const;
@@ -152,6 +156,7 @@ class PlateSimulation {
   std::vector<Element> grid_;
   std::vector<int> firstElement_;  // global index of each root's element 0
   Eigen::Matrix3Xd before_;        // a sweep's scratch: a root's nodes before it relaxed again
+  std::vector<Eigen::Matrix3Xd> listed_;  // every root's nodes when the step's lists were built
   std::vector<int> capsuleOf_;      // global element -> capsule index in the list being built (-1: none)
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> boxes_;  // each root's box in the plate, widened
   std::vector<char> near_;         // the root's box overlaps another's: it is in the grid

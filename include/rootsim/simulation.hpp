@@ -102,6 +102,10 @@ class Simulation {
   // profile, split long elements, relax, commit the friction stick points; throws RelaxError naming
   // the growth step
   const StepRecord& growthStep();
+  // growthStep in two halves (a plate's roots in contact relax together in between: plate.cpp):
+  // beginStep grows (everything before the relaxation), finishStep relaxes, commits and observes
+  void beginStep();
+  const StepRecord& finishStep();
 
   // relaxes the current state again, without growing (a plate: another root it touches has moved since):
   // the same growth step's equilibrium with the contact forces as they are now. The step's record adds the
@@ -154,6 +158,14 @@ class Simulation {
   SimulationProgress p_;
   ContactWorkspace observed_;   // contact counts' own scratch (the solver's list stays untouched)
   std::unique_ptr<DynamicRelaxation> joint_;  // a plate's joint relaxation under way (beginJoint)
+  // a step begun and not finished: its splits, and the plate's coupled iterations and joint sub-steps
+  // so far (the record finishStep makes adds them)
+  struct Open {
+    bool open = false;
+    int splits = 0;
+    long iterations = 0, substeps = 0;
+  };
+  Open open_;
 };
 
 }  // namespace rootsim

@@ -85,10 +85,9 @@ bool rootPairForce(double ra, double rb, double k, const Vec3& up, const Vec3& a
   return true;
 }
 
-bool neighbourPairForce(const RodParams& p, const Environment& env, const NeighbourCapsules& nb, int c, const Vec3& x0,
-                        const Vec3& x1, const Vec3& b0, const Vec3& b1, Vec3& F, double& w1) {
+bool neighbourPairForce(const RodParams& p, const Environment& env, const Vec3& up, const NeighbourCapsules& nb, int c,
+                        const Vec3& x0, const Vec3& x1, const Vec3& b0, const Vec3& b1, Vec3& F, double& w1) {
   const double k = env.selfContact.k;
-  const Vec3 up = env.plane.normal();
   RootPairForce pf;
   if (nb.first[static_cast<size_t>(c)]) {
     if (!rootPairForce(p.radius, nb.radius[c], k, up, x0, x1, b0, b1, pf)) return false;
@@ -106,10 +105,11 @@ void addNeighbourContact(const RodParams& p, const Environment& env, const RodSt
                          ContactWorkspace& cw, Eigen::Matrix3Xd& force) {
   const NeighbourCapsules& nb = cw.neighbours;
   const double c = env.plane.c;
+  const Vec3 up = env.plane.normal();
   for (const auto& [i, j] : nb.pairs) {
     Vec3 F;
     double w1 = 0;
-    if (!neighbourPairForce(p, env, nb, j, s.x.col(i), s.x.col(i + 1), nb.a.col(j), nb.b.col(j), F, w1)) continue;
+    if (!neighbourPairForce(p, env, up, nb, j, s.x.col(i), s.x.col(i + 1), nb.a.col(j), nb.b.col(j), F, w1)) continue;
     const double w0 = 1.0 - w1;
     if (damping) {
       const Vec3 nrm = F.normalized();

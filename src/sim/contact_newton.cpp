@@ -79,15 +79,16 @@ void neighbourContactStiffness(const RodParams& p, const Environment& env, const
                                 ContactWorkspace& cw) {
   cw.neighbourStiffness.clear();
   const NeighbourCapsules& nb = cw.neighbours;
+  const Vec3 up = env.plane.normal();
   for (const auto& [i, c] : nb.pairs) {
     std::array<Vec3, 4> x{s.x.col(i), s.x.col(i + 1), nb.a.col(c), nb.b.col(c)};
     Vec3 F;
     double w1 = 0;
-    if (!neighbourPairForce(p, env, nb, c, x[0], x[1], x[2], x[3], F, w1)) continue;
+    if (!neighbourPairForce(p, env, up, nb, c, x[0], x[1], x[2], x[3], F, w1)) continue;
     // the forces on this root's two nodes at positions x (zero when apart)
     auto forces = [&](Eigen::Matrix<double, 6, 1>& f) {
       f.setZero();
-      if (!neighbourPairForce(p, env, nb, c, x[0], x[1], x[2], x[3], F, w1)) return;
+      if (!neighbourPairForce(p, env, up, nb, c, x[0], x[1], x[2], x[3], F, w1)) return;
       f.segment<3>(0) = (1.0 - w1) * F;
       f.segment<3>(3) = w1 * F;
     };

@@ -187,11 +187,11 @@ void PlateSimulation::refreshCapsules(int r) {
 
 double PlateSimulation::sweep() {
   double change = 0;
-  indexElements();
-  for (int r = 0; r < size(); ++r) {
-    listNeighbours(r);
+  listCluster();
+  for (const CoupledRoot& c : cluster_) {
+    const int r = c.plateIndex;
+    refreshCapsules(r);  // the roots before it in the sweep may have moved
     Simulation& sim = *roots_[static_cast<size_t>(r)];
-    if (sim.neighbours().empty()) continue;
     before_ = sim.state().x;
     try {
       sim.relaxAgain();
@@ -213,8 +213,6 @@ void PlateSimulation::listCluster() {
 }
 
 RelaxResult PlateSimulation::relaxCoupled() {
-  listCluster();
-  if (cluster_.empty()) return RelaxResult{};
   const std::function<void()> refresh = [this] {
     for (const CoupledRoot& c : cluster_) refreshCapsules(c.plateIndex);
   };
@@ -282,58 +280,15 @@ void PlateSimulation::relaxJointly() {
 
 const PlateStepRecord& PlateSimulation::growthStep() {
   const int n = size();
-  // the first sweep: every root grows and relaxes, seeing the others as they stand (the roots before
-  // it at this step's equilibrium, the roots after it at the last one's). The grid is indexed once per
-  // sweep (O(elements) in all); a capsule is read where it is now, and what moved further than the skin
-  // since is caught by the next sweep's grid
-  if (n > 1) indexElements();
-  for (int r = 0; r < n; ++r) {
-    if (n > 1) listNeighbours(r);
-    try {
-      roots_[static_cast<size_t>(r)]->growthStep();
-    } catch (const RelaxError& e) {
-      throw namedError(seedling(r).name, e);
-    }
-  }
-  // then the roots within reach of another relax together, as one Newton system (their blocks coupled
-  // by their contacts' stiffness: relaxNewtonCoupled), and each confirms it alone (a sweep: relaxAgain,
-  // with the lists built anew and its own stability check). A round ends when the sweep moves no root by
-  // more than a displacement whose contact force is half the equilibrium tolerance: each is then in
-  // equilibrium with the others' final shapes. Where the coupled Newton finds no acceptable step (a
-  // snap), the roots in contact relax together explicitly, every root one sub-step in turn, and Newton
-  // starts again from there (as one root's Newton falls back to the explicit relaxation).
-  double tolerance = std::numeric_limits<double>::infinity();
-  for (int r = 0; r < n; ++r) {
-    const Model& m = seedling(r).model;
-    tolerance = std::min(tolerance, 0.5 * equilibriumTolerance(m.rod, m.env, m.solver, root(r).state()).force / m.env.selfContact.k);
-  }
   int sweeps = 1;
-  for (int joint = 0; n > 1;) {
-    const RelaxResult rc = relaxCoupled();
-    if (cluster_.empty()) {
-      ++sweeps;  // nobody within reach: the sweep that found so
-      break;
+  if (n == 1) {
+    try {
+      roots_[0]->growthStep();
+    } catch (const RelaxError& e) {
+      throw namedError(seedling(0).name, e);
     }
-    if (rc.stalled) {
-      if (joint == kJointRelaxations) {
-        std::ostringstream os;
-        os << "growth step " << root(0).step() << ": the roots in contact did not settle (" << kJointRelaxations
-           << " joint relaxations; " << rc.message << ")";
-        throw RelaxError(os.str());
-      }
-      relaxJointly();
-      ++joint;
-      continue;
-    }
-    const double change = sweep();
-    ++sweeps;
-    if (change <= tolerance) break;
-    if (sweeps > plate_.maxSweeps) {
-      std::ostringstream os;
-      os << "growth step " << root(0).step() << ": the roots in contact did not settle (" << plate_.maxSweeps
-         << " sweeps; the last moved them by " << change << " m, tolerance " << tolerance << " m)";
-      throw RelaxError(os.str());
-    }
+  } else {
+    sweeps = settleStep();
   }
   emergeLaterals();
   // every root's lists as the final shapes stand (what the contact counts read)
@@ -343,6 +298,91 @@ const PlateStepRecord& PlateSimulation::growthStep() {
   }
   last_ = observe(sweeps);
   return last_;
+}
+
+int PlateSimulation::settleStep() {
+  const int n = size();
+  // every root grows; then the roots apart relax alone (each its own banded Newton: a root apart is the
+  // single root's run), the roots within reach of another together, as one Newton system from where growth
+  // left them (their blocks coupled by their contacts' stiffness: relaxNewtonCoupled)
+  for (int r = 0; r < n; ++r) roots_[static_cast<size_t>(r)]->beginStep();
+  listCluster();
+  listed_.resize(static_cast<size_t>(n));
+  for (int r = 0; r < n; ++r) listed_[static_cast<size_t>(r)] = root(r).state().x;
+  for (int r = 0; r < n; ++r) {
+    if (!roots_[static_cast<size_t>(r)]->neighbours().empty()) continue;
+    try {
+      roots_[static_cast<size_t>(r)]->finishStep();
+    } catch (const RelaxError& e) {
+      throw namedError(seedling(r).name, e);
+    }
+  }
+  // Then each root of the cluster finishes its step alone, with the others where they now are (its own
+  // relaxation confirms the equilibrium, with its stability check, and commits). Where that moves a root
+  // by more than a displacement whose contact force is half the equilibrium tolerance, or a root moved
+  // further than the lists' skin covers, sweeps (relaxAgain, the lists built anew) and coupled solves
+  // follow until none does: each root is then in equilibrium with the others' final shapes. Where the
+  // coupled Newton finds no acceptable step (a snap), the roots in contact relax together explicitly,
+  // every root one sub-step in turn, and Newton starts again from there (as one root's Newton falls back
+  // to the explicit relaxation).
+  double tolerance = std::numeric_limits<double>::infinity(), rMin = tolerance;
+  for (int r = 0; r < n; ++r) {
+    const Model& m = seedling(r).model;
+    tolerance = std::min(tolerance, 0.5 * equilibriumTolerance(m.rod, m.env, m.solver, root(r).state()).force / m.env.selfContact.k);
+    rMin = std::min(rMin, m.rod.radius);
+  }
+  bool open = !cluster_.empty();  // the cluster's roots have begun their step and not finished it
+  int sweeps = 1;
+  for (int joint = 0;;) {
+    double change = 0;
+    if (!cluster_.empty()) {
+      const RelaxResult rc = relaxCoupled();
+      if (rc.stalled) {
+        if (joint == kJointRelaxations) {
+          std::ostringstream os;
+          os << "growth step " << root(0).step() << ": the roots in contact did not settle (" << kJointRelaxations
+             << " joint relaxations; " << rc.message << ")";
+          throw RelaxError(os.str());
+        }
+        relaxJointly();
+        ++joint;
+        continue;
+      }
+      if (open) {
+        for (const CoupledRoot& c : cluster_) {
+          const int r = c.plateIndex;
+          refreshCapsules(r);
+          Simulation& sim = *roots_[static_cast<size_t>(r)];
+          before_ = sim.state().x;
+          try {
+            sim.finishStep();
+          } catch (const RelaxError& e) {
+            throw namedError(seedling(r).name, e);
+          }
+          change = std::max(change, (sim.state().x - before_).cwiseAbs().maxCoeff());
+        }
+        open = false;
+      }
+    }
+    // a root that moved further than the skin since the lists were built may have met one not listed
+    double moved = 0;
+    for (int r = 0; r < n && sweeps == 1; ++r)
+      moved = std::max(moved, (root(r).state().x - listed_[static_cast<size_t>(r)]).colwise().norm().maxCoeff());
+    if (sweeps == 1 && change <= tolerance && moved <= kPlateSkin * rMin) {
+      ++sweeps;  // nothing to sweep: counted as the sweep that found so
+      break;
+    }
+    change = std::max(change, sweep());  // the lists anew (cluster_ too: listCluster)
+    ++sweeps;
+    if (change <= tolerance) break;
+    if (sweeps > plate_.maxSweeps) {
+      std::ostringstream os;
+      os << "growth step " << root(0).step() << ": the roots in contact did not settle (" << plate_.maxSweeps
+         << " sweeps; the last moved them by " << change << " m, tolerance " << tolerance << " m)";
+      throw RelaxError(os.str());
+    }
+  }
+  return sweeps;
 }
 
 bool PlateSimulation::nearJunction(int r, int i, int o, int j) const {

@@ -395,6 +395,7 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
   if (given(o.atH) && !(o.atH >= 0)) throw SceneError("--at-h " + flagNumber(o.atH) + ": must be >= 0 h");
   if (given(o.everyH) && !(o.everyH > 0 && std::isfinite(o.everyH)))
     throw SceneError("--every-h " + flagNumber(o.everyH) + ": must be > 0 h");
+  if (const std::string why = whyUnfinished(runDir); !why.empty()) throw SceneError(o.runDir + ": " + why);
   if (!fs::is_directory(runDir)) throw SceneError(o.runDir + ": run directory not found");
   // a plate's run: the RSML of every root, one plant per seedling; glTF and ParaView take one root's folder
   const bool plate = isPlateRun(runDir);
@@ -426,8 +427,8 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
       checkOutputName(f.string(), "--rsml");
       const fs::path dir = fs::absolute(f).parent_path();
       if (!fs::is_directory(dir)) throw SceneError("--rsml " + f.string() + ": folder " + dir.string() + " not found");
-      locks.emplace_back(f, "--rsml");
-      claimFile(f, rule, "--rsml");
+      locks.push_back(lockOutput(f, "--rsml"));
+      claimFile(f, rule, "--rsml", OutputFormat::Rsml);
     }
   }
 
@@ -443,8 +444,8 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
     for (const fs::path& f : rsmlFiles)
       if (fs::absolute(f).lexically_normal() == fs::absolute(gltfFile).lexically_normal())
         throw SceneError("--gltf " + o.gltf + ": the same file as --rsml");
-    locks.emplace_back(gltfFile, "--gltf");
-    claimFile(gltfFile, rule, "--gltf");
+    locks.push_back(lockOutput(gltfFile, "--gltf"));
+    claimFile(gltfFile, rule, "--gltf", OutputFormat::Glb);
   }
   // --paraview DIR: a folder of its own kind, written whole (DIR.partial, then renamed); every snapshot, or
   // those --at-h / --every-h pick (docs/paraview.md)

@@ -3,8 +3,47 @@
 # 3000 growth steps: 31 mm each), sown 10 mm apart so that they never meet, against N runs of the same
 # root alone, one after the other in this one process tree. Prints both wall times and their ratio.
 # Usage: bash bench/plate_cost.sh BUILD_DIR [N] [STEPS]
+#
+# The cost of roots that touch: `bash bench/plate_cost.sh BUILD_DIR collision [REPEATS] [OTHER_BUILD_DIR]`
+# runs scenes/plate_collision.toml (the two roots meet after ~11 h and stay pressed together) and the same
+# two seedlings sown 15 mm apart ("across" at [35, 7] mm), side by side (one of each in turn), REPEATS
+# times (5); prints the median CPU of each, their ratio, and the closest approach of the two roots
+# (min_root_distance_r of summary.json). With OTHER_BUILD_DIR, the same with that build's rootsim in the
+# same loop (a before/after comparison).
 set -euo pipefail
-build=${1:?usage: bench/plate_cost.sh BUILD_DIR [N] [STEPS]}
+build=${1:?usage: bench/plate_cost.sh BUILD_DIR [N] [STEPS] | BUILD_DIR collision [REPEATS] [OTHER_BUILD_DIR]}
+if [ "${2:-}" = collision ]; then
+  repeats=${3:-5}
+  other=${4:-}
+  here=$(cd "$(dirname "$0")/.." && pwd)
+  work=$(mktemp -d)
+  trap 'rm -rf "$work"' EXIT
+  sed 's/^position_mm = \[23, 7\]$/position_mm = [35, 7]/' "$here/scenes/plate_collision.toml" > "$work/apart.toml"
+  grep -q '^position_mm = \[35, 7\]$' "$work/apart.toml"
+  python3 - "$build/rootsim" "${other:+$other/rootsim}" "$here/scenes/plate_collision.toml" "$work" "$repeats" <<'PY'
+import json, resource, statistics, subprocess, sys
+exe, other, collision, work, repeats = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4], int(sys.argv[5])
+def cpu(cmd):
+    r0 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    subprocess.run(cmd, check=True)
+    r1 = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return (r1.ru_utime - r0.ru_utime) + (r1.ru_stime - r0.ru_stime)
+builds = [("this", exe)] + ([("other", other)] if other else [])
+times = {(b, s): [] for b, _ in builds for s in ("touching", "apart")}
+for k in range(repeats):
+    for b, e in builds:
+        for s, scene in (("touching", collision), ("apart", f"{work}/apart.toml")):
+            out = f"{work}/{b}_{s}_{k}"
+            times[(b, s)].append(cpu([e, "run", scene, "--set", "output.vtk=false", "--quiet", "--out", out]))
+for b, e in builds:
+    t, a = statistics.median(times[(b, "touching")]), statistics.median(times[(b, "apart")])
+    summary = json.load(open(f"{work}/{b}_touching_0/summary.json"))
+    closest = summary.get("min_root_distance_r", summary.get("min_gap_over_contact"))
+    print(f"{e}: plate_collision {t:.2f} s CPU, apart {a:.2f} s CPU (medians of {repeats}); "
+          f"ratio {t / a:.2f}; closest approach {closest} (Ra + Rb); most sweeps a step {summary['max_sweeps_per_step']}")
+PY
+  exit 0
+fi
 n=${2:-10}
 steps=${3:-3000}
 here=$(cd "$(dirname "$0")/.." && pwd)

@@ -3,13 +3,17 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "rootsim/analysis.hpp"
 #include "rootsim/contact.hpp"
 #include "rootsim/plate.hpp"
 #include "rootsim/units.hpp"
+#include "physics_support.hpp"
 
 using namespace rootsim;
+using rootsim::test::relError;
+using rootsim::test::report;
 
 namespace {
 
@@ -113,6 +117,49 @@ TEST_CASE("plate: two roots grown into each other push each other and never pass
   INFO("net force " << net.transpose() << " N, net moment " << moment.transpose() << " N m, largest node force " << largest);
   CHECK(net.norm() <= 1e-12 * largest);
   CHECK(moment.norm() <= 1e-12 * largest * 0.1);  // positions ~ 0.03 m from the plate's origin
+}
+
+TEST_CASE("plate: the coupled Jacobian of two roots in contact is the central difference of their residual") {
+  // the collision scene's roots once they press on each other: the coupled system's Jacobian (each root's
+  // band and the contact blocks between them) against central differences of the joint residual, column
+  // by column over every unknown of both roots
+  const Model m = waving();
+  Model across = m;
+  across.tropism.beta = 0.02;
+  PlateSimulation plate(PlateParams{}, {sow("down", 20, 5, m), sow("across", 23, 7, across, -90)});
+  int touching = 0, k = 0;
+  for (; k < 330 && touching < 2; ++k) touching = plate.growthStep().touchingPairs;
+  INFO("growth step " << k << ": " << touching << " element pairs touching");
+  REQUIRE(touching >= 2);
+  const Eigen::MatrixXd K = plate.coupledJacobian();
+  REQUIRE(plate.coupledRoots() == std::vector<int>{0, 1});
+  const int n = static_cast<int>(K.rows());
+  const Eigen::VectorXd r0 = plate.coupledResidual(-1, 0.0);
+  REQUIRE(r0.size() == n);
+  const double h = 1e-6 * m.initial.elementLength;
+  Eigen::MatrixXd D(n, n);
+  for (int j = 0; j < n; ++j) D.col(j) = -(plate.coupledResidual(j, h) - plate.coupledResidual(j, -h)) / (2.0 * h);
+  // the state is restored after each nudge: the residual is the same
+  CHECK((plate.coupledResidual(-1, 0.0) - r0).cwiseAbs().maxCoeff() == 0.0);
+  const double scale = K.cwiseAbs().maxCoeff();
+  const double err = relError((D - K).cwiseAbs().maxCoeff(), 0.0, scale);
+  report("coupled Jacobian vs central differences", (D - K).cwiseAbs().maxCoeff(), 0.0, err);
+  CHECK(err <= 1e-6);
+  // the blocks that couple the two roots: present in both (each root's contact forces depend on the
+  // other's nodes) and equal to the differences there too, against their own scale
+  const int split = plate.coupledFirst()[1];  // root 1's first unknown
+  REQUIRE(split > 0);
+  REQUIRE(split < n);
+  const Eigen::MatrixXd cross01 = K.topRightCorner(split, n - split), cross10 = K.bottomLeftCorner(n - split, split);
+  const double crossScale = std::max(cross01.cwiseAbs().maxCoeff(), cross10.cwiseAbs().maxCoeff());
+  INFO("largest coupling entry " << crossScale << " N/m, largest entry " << scale);
+  REQUIRE(cross01.cwiseAbs().maxCoeff() > 0.0);
+  REQUIRE(cross10.cwiseAbs().maxCoeff() > 0.0);
+  const double crossErr =
+      std::max((D.topRightCorner(split, n - split) - cross01).cwiseAbs().maxCoeff(),
+               (D.bottomLeftCorner(n - split, split) - cross10).cwiseAbs().maxCoeff()) / crossScale;
+  report("coupling blocks vs central differences", crossErr, 0.0, crossErr);
+  CHECK(crossErr <= 1e-5);
 }
 
 TEST_CASE("plate: lateral roots emerge at the asked spacing and, on a vertical plate, settle at their set-point angle") {

@@ -46,6 +46,14 @@ struct NeighbourCapsules {
   void clear() { pairs.clear(); }
 };
 
+// the stiffness of one contact between this root's element i and capsule c of its neighbours: K = -dF/dx,
+// rows the forces on nodes i, i + 1, columns the coordinates of nodes i, i + 1 and of the capsule's ends a,
+// b (the other root's nodes) [N/m]
+struct NeighbourStiffness {
+  int i = 0, c = 0;
+  Eigen::Matrix<double, 6, 12> K;
+};
+
 // scratch memory of the contact pieces, sized once per element count (resize) so that a force
 // evaluation allocates nothing
 struct ContactWorkspace {
@@ -69,6 +77,7 @@ struct ContactWorkspace {
   std::vector<std::uint8_t> contactNode;  // markSelfContactNodes: 1 for nodes of pairs in contact (n+1)
   std::vector<std::uint8_t> elementFlag;  // scratch of countContacts (n)
   std::vector<PairStiffness> stiffness;   // selfContactStiffness: one per pair in contact (grows once)
+  std::vector<NeighbourStiffness> neighbourStiffness;  // neighbourContactStiffness: one per pair in contact
   NeighbourCapsules neighbours;           // other roots on a plate (not scratch: the plate's input, kept
                                           // by resize; not in fields(): plates are not checkpointed)
 
@@ -98,6 +107,13 @@ inline constexpr double kSelfExclusionRadii = 3.0;
 // root feels the opposite force when it relaxes)
 void addNeighbourContact(const RodParams& p, const Environment& env, const RodState& s, bool damping,
                          ContactWorkspace& cw, Eigen::Matrix3Xd& force);
+// the elastic force of capsule c of nb on this root's element x0-x1 (capsule ends b0, b1: where they are
+// now, or nudged by a Newton solver's differences) and the weight w1 of its second node (the first gets
+// 1 - w1); computed in the pair's first root's order (nb.first), so the two roots feel exactly opposite
+// forces. False when they do not touch.
+// (up: env.plane.normal(), the blend's plane normal)
+bool neighbourPairForce(const RodParams& p, const Environment& env, const Vec3& up, const NeighbourCapsules& nb, int c,
+                        const Vec3& x0, const Vec3& x1, const Vec3& b0, const Vec3& b1, Vec3& F, double& w1);
 
 // the contact of one element (a0-a1, radius ra) of root A with one capsule (b0-b1, radius rb) of root
 // B, A before B on the plate: the force on A's segment and the weights of its two nodes (B feels -F

@@ -19,6 +19,14 @@ int firstNodeNearContact(const RodParams& p, const Environment& env, const RodSt
 void selfContactStiffness(const RodParams& p, const Environment& env, const RodState& s, double h,
                           ContactWorkspace& cw);
 
+// the stiffness of every contact with another root on a plate (cw.neighbours, pairs in contact) into
+// cw.neighbourStiffness, by central differences of neighbourPairForce with step h [m]: the columns of this
+// root's two nodes go into its own Jacobian (the coloured passes leave the contact between roots out, as
+// self-contact), those of the capsule's ends couple it to the other root in a plate's coupled Newton
+// system (relaxNewtonCoupled)
+void neighbourContactStiffness(const RodParams& p, const Environment& env, const RodState& s, double h,
+                                ContactWorkspace& cw);
+
 // nodes whose self-contact couples them to nodes far along the rod (off the banded pattern of the
 // stiffness matrix): cw.contactNode is 1 for both nodes of each element in a self-contact pair (gap < 0),
 // 0 elsewhere. Allocates nothing once cw is sized.

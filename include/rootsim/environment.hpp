@@ -115,9 +115,10 @@ void addWeight(const RodParams& p, const Vec3& gravity, const RodState& s, Eigen
 // dead force on the last node, lab-fixed couple on the last element
 void addTipLoads(const Environment& env, const RodState& s, Eigen::Matrix3Xd& force, Eigen::Matrix3Xd& torque);
 
-// which outside forces to add: all, or all but self-contact (the Newton solver's coloured Jacobian
-// passes, which take the self-contact stiffness pair by pair: relax_newton.cpp)
-enum class ForcePieces { All, NoSelfContact };
+// which outside forces to add: all, or all but the contact of element pairs (self-contact and the
+// contact with other roots on a plate: the Newton solver's coloured Jacobian passes, which take their
+// stiffness pair by pair: relax_newton.cpp)
+enum class ForcePieces { All, NoPairContact };
 
 // the part of the rod a force evaluation covers, for a solver that moves only part of it: strains and
 // internal forces of the elements [first, end) (end < 0: to the tip), the node-wise outside forces

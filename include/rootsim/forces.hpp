@@ -8,7 +8,7 @@ namespace rootsim {
 
 // evaluates all forces of state s into ws.force / ws.torque (used by both solvers, the stability check
 // and tests); first > 0: exact only on the nodes and elements after `first` (rod.hpp), for the Newton
-// solver's window; pieces: ForcePieces::NoSelfContact leaves self-contact out (environment.hpp)
+// solver's window; pieces: ForcePieces::NoPairContact leaves self-contact and the contact with other roots out (environment.hpp)
 void computeForces(const RodParams& p, const Environment& env, const RodState& s, bool planeDamping,
                    RelaxWorkspace& ws, int first = 0, ForcePieces pieces = ForcePieces::All);
 // the same over a part of the rod (environment.hpp: ForceSpan)

@@ -50,8 +50,8 @@ struct LateralParams {
 struct PlateParams {
   double width = 0.12;   // lateral extent of the plate from its origin [m] (a 120 mm square plate)
   double length = 0.12;  // downhill extent [m]
-  // most sweeps of the roots in contact within one growth step before the step fails (docs/plate.md,
-  // Solving)
+  // most rounds (a coupled Newton solve of the roots in contact and a sweep confirming it) within one
+  // growth step before the step fails (docs/plate.md, Solving)
   int maxSweeps = 100;
   LateralParams laterals;
 };
@@ -107,6 +107,14 @@ class PlateSimulation {
   // the lab vector from the plate's origin to root r's frame origin (its base's foot) [m]
   Vec3 offset(int r) const;
   RootPairForces pairForces(int a, int b) const;
+  // the roots within reach of another as one Newton system at their current states (docs/plate.md,
+  // Solving; tests): its Jacobian K = -dF/du (dense, scaled units) and its residual after displacing
+  // unknown k by h (k < 0: none); coupledRoots: the roots of that system, in the order of its unknowns,
+  // coupledFirst: each one's first unknown
+  Eigen::MatrixXd coupledJacobian();
+  Eigen::VectorXd coupledResidual(int k, double h);
+  std::vector<int> coupledRoots() const;
+  const std::vector<int>& coupledFirst() const { return coupled_.first; }
 
  private:
   // the capsules of the other roots near root r, into its contact pieces (ContactWorkspace::neighbours)
@@ -116,6 +124,14 @@ class PlateSimulation {
   void refreshCapsules(int r);
   // every root within reach of another relaxes again (Newton); returns the largest node displacement
   double sweep();
+  // the lists of every root and the roots within reach of another (cluster_)
+  void listCluster();
+  // the roots of cluster_ (as listCluster left them) relax together as one Newton system
+  // (relaxNewtonCoupled)
+  RelaxResult relaxCoupled();
+  // a growth step of two roots or more: every root grows and relaxes, the roots within reach of another
+  // together (docs/plate.md, Solving); returns the sweeps it took
+  int settleStep();
   // the roots within reach of another relax together, explicitly, one sub-step each in turn
   void relaxJointly();
   PlateStepRecord observe(int sweeps) const;
@@ -140,12 +156,15 @@ class PlateSimulation {
   std::vector<Element> grid_;
   std::vector<int> firstElement_;  // global index of each root's element 0
   Eigen::Matrix3Xd before_;        // a sweep's scratch: a root's nodes before it relaxed again
-  std::vector<int> capsuleOf_;
+  std::vector<Eigen::Matrix3Xd> listed_;  // every root's nodes when the step's lists were built
+  std::vector<int> capsuleOf_;      // global element -> capsule index in the list being built (-1: none)
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> boxes_;  // each root's box in the plate, widened
   std::vector<char> near_;         // the root's box overlaps another's: it is in the grid
   std::vector<int> nextSite_;      // per root: the index of its next lateral site
   std::vector<int> emerged_;
-  std::uint64_t sideStream_ = 1;   // the sides' draws (LateralParams::alternate false)     // global element -> capsule index in the list being built (-1: none)
+  std::uint64_t sideStream_ = 1;   // the sides' draws (LateralParams::alternate false)
+  std::vector<CoupledRoot> cluster_;  // the roots within reach of another (scratch)
+  CoupledWorkspace coupled_;       // their coupled Newton system's memory
   double cellSize_ = 0;
 };
 

@@ -1,6 +1,7 @@
 #pragma once
 // The quasi-static Newton solver (docs/model.md, Newton solver; relax_newton.cpp) and the memory it keeps
 // across growth steps.
+#include <functional>
 #include <vector>
 
 #include "rootsim/band.hpp"
@@ -68,5 +69,50 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
 // 3b + c - 3 b0 for block b (node i: b = 2i, element i: b = 2i + 1), b0 the first free block
 void assembleStiffness(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,
                        RelaxWorkspace& ws, NewtonWorkspace& nw, int firstFreeNode);
+
+// Roots on a plate that touch are one Newton system (docs/plate.md, Solving; relax_newton.cpp): the
+// unknowns of every root's window side by side, each root's banded Jacobian a diagonal block, the
+// contacts between them the off-diagonal blocks (neighbourContactStiffness), factorised together by KLU.
+// One root of the system: its model's parts, state, workspaces and window (what relaxNewton takes), and
+// its index on the plate (the NeighbourCapsules::source of the others name it so).
+struct CoupledRoot {
+  const RodParams* rod = nullptr;
+  const Environment* env = nullptr;
+  const SolverOptions* opt = nullptr;
+  RodState* s = nullptr;
+  RelaxWorkspace* ws = nullptr;
+  NewtonWorkspace* nw = nullptr;
+  int firstFreeNode = 0;
+  int plateIndex = 0;
+};
+
+// the coupled system's memory (a plate's, reused from step to step; it allocates while a cluster grows,
+// as SparseStiffness does)
+struct CoupledWorkspace {
+  BandLU band;                        // the roots' bands side by side
+  std::vector<OffBandEntry> offBand;  // their self-contacts' off-band entries and the couplings between roots
+  SparseStiffness sparse;
+  std::vector<double> r, r0, delta;
+  std::vector<int> first;             // each root's first unknown
+  std::vector<int> clusterOf;         // plate index -> position in the system (-1: not in it)
+  std::vector<RodState> start;        // the states before a relaxation (a stalled one returns to them)
+};
+
+// Newton's method on the roots' joint equilibrium: converged when every root is within its own
+// equilibrium tolerance (equilibriumTolerance, as relaxNewton). refresh() puts every root's neighbour
+// capsules where the other roots now are (before each force evaluation). No stability check here (the
+// plate confirms each root's equilibrium alone: relaxAgain). Returns stalled, with every root back where
+// it started, when no acceptable step is found, the iterations run out, the stiffness is singular or
+// Newton crawls (the plate then relaxes the roots together explicitly); throws RelaxError on divergence.
+RelaxResult relaxNewtonCoupled(const std::vector<CoupledRoot>& roots, const std::function<void()>& refresh,
+                               CoupledWorkspace& cw);
+
+// the coupled system at the roots' current states, for tests: its Jacobian K = -dF/du (dense; scaled
+// units as relaxNewton's) and its scaled residual F after displacing unknown k by h (k < 0: none; the
+// state is restored)
+Eigen::MatrixXd coupledStiffness(const std::vector<CoupledRoot>& roots, const std::function<void()>& refresh,
+                                 CoupledWorkspace& cw);
+Eigen::VectorXd coupledResidual(const std::vector<CoupledRoot>& roots, const std::function<void()>& refresh,
+                                CoupledWorkspace& cw, int k, double h);
 
 }  // namespace rootsim

@@ -102,6 +102,10 @@ class Simulation {
   // profile, split long elements, relax, commit the friction stick points; throws RelaxError naming
   // the growth step
   const StepRecord& growthStep();
+  // growthStep in two halves (a plate's roots in contact relax together in between: plate.cpp):
+  // beginStep grows (everything before the relaxation), finishStep relaxes, commits and observes
+  void beginStep();
+  const StepRecord& finishStep();
 
   // relaxes the current state again, without growing (a plate: another root it touches has moved since):
   // the same growth step's equilibrium with the contact forces as they are now. The step's record adds the
@@ -115,6 +119,10 @@ class Simulation {
   bool jointStep();
   long jointSubsteps() const;
   void endJoint();
+  // this root as one block of a plate's coupled Newton system (relaxNewtonCoupled: its window as its own
+  // relaxation's, its state and Newton memory); addCoupled adds that relaxation's iterations to the step
+  CoupledRoot coupled(int plateIndex);
+  void addCoupled(const RelaxResult& r);
   // the other roots on a plate as this root's contact pieces see them (ContactWorkspace::neighbours)
   NeighbourCapsules& neighbours() { return ws_.contact.neighbours; }
   const NeighbourCapsules& neighbours() const { return ws_.contact.neighbours; }
@@ -150,6 +158,14 @@ class Simulation {
   SimulationProgress p_;
   ContactWorkspace observed_;   // contact counts' own scratch (the solver's list stays untouched)
   std::unique_ptr<DynamicRelaxation> joint_;  // a plate's joint relaxation under way (beginJoint)
+  // a step begun and not finished: its splits, and the plate's coupled iterations and joint sub-steps
+  // so far (the record finishStep makes adds them)
+  struct Open {
+    bool open = false;
+    int splits = 0;
+    long iterations = 0, substeps = 0;
+  };
+  Open open_;
 };
 
 }  // namespace rootsim

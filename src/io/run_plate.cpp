@@ -172,7 +172,7 @@ double runPlateToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     j.str("kind", "plate").integer("seedlings", n).integer("laterals", plate.size() - n).integer("steps", steps);
     j.num("time_h", plate.last().timeH);
     j.num("plate_width_mm", spec.params.width / units::mm).num("plate_length_mm", spec.params.length / units::mm);
-    j.integer("max_sweeps_per_step", maxSweeps).num("min_gap_over_contact", minGap);
+    j.integer("max_sweeps_per_step", maxSweeps).num("min_root_distance_r", minGap);
     j.array("roots", roots);
     j.num("wall_time_s", wall);
     rd.write("summary.json", j.dump() + "\n");

@@ -85,26 +85,32 @@ bool rootPairForce(double ra, double rb, double k, const Vec3& up, const Vec3& a
   return true;
 }
 
+bool neighbourPairForce(const RodParams& p, const Environment& env, const Vec3& up, const NeighbourCapsules& nb, int c,
+                        const Vec3& x0, const Vec3& x1, const Vec3& b0, const Vec3& b1, Vec3& F, double& w1) {
+  const double k = env.selfContact.k;
+  RootPairForce pf;
+  if (nb.first[static_cast<size_t>(c)]) {
+    if (!rootPairForce(p.radius, nb.radius[c], k, up, x0, x1, b0, b1, pf)) return false;
+    F = pf.F;
+    w1 = pf.sa;
+  } else {
+    if (!rootPairForce(nb.radius[c], p.radius, k, up, b0, b1, x0, x1, pf)) return false;
+    F = -pf.F;
+    w1 = pf.sb;
+  }
+  return true;
+}
+
 void addNeighbourContact(const RodParams& p, const Environment& env, const RodState& s, bool damping,
                          ContactWorkspace& cw, Eigen::Matrix3Xd& force) {
   const NeighbourCapsules& nb = cw.neighbours;
-  const double k = env.selfContact.k, c = env.plane.c;
+  const double c = env.plane.c;
   const Vec3 up = env.plane.normal();
-  RootPairForce pf;
   for (const auto& [i, j] : nb.pairs) {
-    const Vec3 x0 = s.x.col(i), x1 = s.x.col(i + 1), b0 = nb.a.col(j), b1 = nb.b.col(j);
-    double w0 = 0, w1 = 0;
     Vec3 F;
-    if (nb.first[static_cast<size_t>(j)]) {
-      if (!rootPairForce(p.radius, nb.radius[j], k, up, x0, x1, b0, b1, pf)) continue;
-      F = pf.F;
-      w1 = pf.sa;
-    } else {
-      if (!rootPairForce(nb.radius[j], p.radius, k, up, b0, b1, x0, x1, pf)) continue;
-      F = -pf.F;
-      w1 = pf.sb;
-    }
-    w0 = 1.0 - w1;
+    double w1 = 0;
+    if (!neighbourPairForce(p, env, up, nb, j, s.x.col(i), s.x.col(i + 1), nb.a.col(j), nb.b.col(j), F, w1)) continue;
+    const double w0 = 1.0 - w1;
     if (damping) {
       const Vec3 nrm = F.normalized();
       F -= c * (w0 * s.v.col(i) + w1 * s.v.col(i + 1)).dot(nrm) * nrm;

@@ -75,4 +75,38 @@ void selfContactStiffness(const RodParams& p, const Environment& env, const RodS
   }
 }
 
+void neighbourContactStiffness(const RodParams& p, const Environment& env, const RodState& s, double h,
+                                ContactWorkspace& cw) {
+  cw.neighbourStiffness.clear();
+  const NeighbourCapsules& nb = cw.neighbours;
+  const Vec3 up = env.plane.normal();
+  for (const auto& [i, c] : nb.pairs) {
+    std::array<Vec3, 4> x{s.x.col(i), s.x.col(i + 1), nb.a.col(c), nb.b.col(c)};
+    Vec3 F;
+    double w1 = 0;
+    if (!neighbourPairForce(p, env, up, nb, c, x[0], x[1], x[2], x[3], F, w1)) continue;
+    // the forces on this root's two nodes at positions x (zero when apart)
+    auto forces = [&](Eigen::Matrix<double, 6, 1>& f) {
+      f.setZero();
+      if (!neighbourPairForce(p, env, up, nb, c, x[0], x[1], x[2], x[3], F, w1)) return;
+      f.segment<3>(0) = (1.0 - w1) * F;
+      f.segment<3>(3) = w1 * F;
+    };
+    NeighbourStiffness& ns = cw.neighbourStiffness.emplace_back();
+    ns.i = i;
+    ns.c = c;
+    Eigen::Matrix<double, 6, 1> fp, fm;
+    for (int col = 0; col < 12; ++col) {
+      double& xc = x[static_cast<size_t>(col / 3)][col % 3];
+      const double x0 = xc;
+      xc = x0 + h;
+      forces(fp);
+      xc = x0 - h;
+      forces(fm);
+      xc = x0;
+      ns.K.col(col) = -(fp - fm) / (2.0 * h);
+    }
+  }
+}
+
 }  // namespace rootsim

@@ -116,7 +116,7 @@ void addExternalForces(const RodParams& p, const Environment& env, const RodStat
   if (env.plane.enabled) addPlaneContact(p, env.plane, s, planeDamping, force, from, span.end);
   if (!env.obstacles.empty()) addObstacleContact(p, env, s, planeDamping, cw, force);
   if (env.selfContact.enabled && pieces == ForcePieces::All) addSelfContact(p, env, s, planeDamping, cw, force);
-  if (!cw.neighbours.empty()) addNeighbourContact(p, env, s, planeDamping, cw, force);
+  if (!cw.neighbours.empty() && pieces == ForcePieces::All) addNeighbourContact(p, env, s, planeDamping, cw, force);
   if (env.friction.enabled) addFriction(p, env, s, cw, force);
   if (env.adhesion) addAdhesion(env.kAdhesion, s, force, from, span.end);
   if (env.gravity.squaredNorm() > 0.0) addWeight(p, env.gravity, s, force, from, span.end);

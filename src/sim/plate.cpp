@@ -1,10 +1,13 @@
 // A plate of roots (docs/plate.md): each root relaxes in its own frame with the other roots near it as
-// capsules it cannot enter (ContactWorkspace::neighbours); roots that touch are re-relaxed in sweeps
-// until none moves, so every root is in equilibrium with the others' final shapes.
+// capsules it cannot enter (ContactWorkspace::neighbours); the roots within reach of another then relax
+// together as one Newton system (relaxNewtonCoupled), so every root is in equilibrium with the others'
+// final shapes.
 #include "rootsim/plate.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <limits>
 #include <sstream>
 
 #include "rootsim/contact.hpp"
@@ -20,9 +23,8 @@ namespace {
 // element within Ra + Rb + skin; the lists are built again before every relaxation, so the skin only
 // covers what one relaxation moves (a growth step's snap: checked after it by the next sweep)
 constexpr double kPlateSkin = 1.0;
-// Newton sweeps before the roots in contact relax together; joint relaxations before a step fails;
-// sub-steps of a joint relaxation between its lists' rebuilds
-constexpr int kNewtonSweeps = 4;
+// explicit joint relaxations (after the coupled Newton stalled) before a step fails; sub-steps of a joint
+// relaxation between its lists' rebuilds
 constexpr int kJointRelaxations = 3;
 constexpr long kJointRelist = 256;
 
@@ -185,11 +187,11 @@ void PlateSimulation::refreshCapsules(int r) {
 
 double PlateSimulation::sweep() {
   double change = 0;
-  indexElements();
-  for (int r = 0; r < size(); ++r) {
-    listNeighbours(r);
+  listCluster();
+  for (const CoupledRoot& c : cluster_) {
+    const int r = c.plateIndex;
+    refreshCapsules(r);  // the roots before it in the sweep may have moved
     Simulation& sim = *roots_[static_cast<size_t>(r)];
-    if (sim.neighbours().empty()) continue;
     before_ = sim.state().x;
     try {
       sim.relaxAgain();
@@ -199,6 +201,52 @@ double PlateSimulation::sweep() {
     change = std::max(change, (sim.state().x - before_).cwiseAbs().maxCoeff());
   }
   return change;
+}
+
+void PlateSimulation::listCluster() {
+  indexElements();
+  cluster_.clear();
+  for (int r = 0; r < size(); ++r) {
+    listNeighbours(r);
+    if (!roots_[static_cast<size_t>(r)]->neighbours().empty()) cluster_.push_back(roots_[static_cast<size_t>(r)]->coupled(r));
+  }
+}
+
+RelaxResult PlateSimulation::relaxCoupled() {
+  const std::function<void()> refresh = [this] {
+    for (const CoupledRoot& c : cluster_) refreshCapsules(c.plateIndex);
+  };
+  RelaxResult r;
+  try {
+    r = relaxNewtonCoupled(cluster_, refresh, coupled_);
+  } catch (const RelaxError& e) {
+    throw RelaxError("growth step " + std::to_string(root(0).step()) + ": the roots in contact (" +
+                     seedling(cluster_.front().plateIndex).name + ", ...): " + e.what());
+  }
+  for (const CoupledRoot& c : cluster_) roots_[static_cast<size_t>(c.plateIndex)]->addCoupled(r);
+  return r;
+}
+
+Eigen::MatrixXd PlateSimulation::coupledJacobian() {
+  listCluster();
+  const std::function<void()> refresh = [this] {
+    for (const CoupledRoot& c : cluster_) refreshCapsules(c.plateIndex);
+  };
+  return cluster_.empty() ? Eigen::MatrixXd() : coupledStiffness(cluster_, refresh, coupled_);
+}
+
+Eigen::VectorXd PlateSimulation::coupledResidual(int k, double h) {
+  listCluster();
+  const std::function<void()> refresh = [this] {
+    for (const CoupledRoot& c : cluster_) refreshCapsules(c.plateIndex);
+  };
+  return cluster_.empty() ? Eigen::VectorXd() : rootsim::coupledResidual(cluster_, refresh, coupled_, k, h);
+}
+
+std::vector<int> PlateSimulation::coupledRoots() const {
+  std::vector<int> r;
+  for (const CoupledRoot& c : cluster_) r.push_back(c.plateIndex);
+  return r;
 }
 
 void PlateSimulation::relaxJointly() {
@@ -232,45 +280,15 @@ void PlateSimulation::relaxJointly() {
 
 const PlateStepRecord& PlateSimulation::growthStep() {
   const int n = size();
-  // the first sweep: every root grows and relaxes, seeing the others as they stand (the roots before
-  // it at this step's equilibrium, the roots after it at the last one's). The grid is indexed once per
-  // sweep (O(elements) in all); a capsule is read where it is now, and what moved further than the skin
-  // since is caught by the next sweep's grid
-  if (n > 1) indexElements();
-  for (int r = 0; r < n; ++r) {
-    if (n > 1) listNeighbours(r);
-    try {
-      roots_[static_cast<size_t>(r)]->growthStep();
-    } catch (const RelaxError& e) {
-      throw namedError(seedling(r).name, e);
-    }
-  }
-  // then the roots within reach of another relax again (Newton), each against the others as they stand,
-  // until a sweep moves none of them by more than a displacement whose contact force is half the
-  // equilibrium tolerance: each is then in equilibrium with the others' final shapes. Two soft roots
-  // pressed together converge slowly so (measured on the collision scene: the shapes change by the same
-  // 4e-7 m sweep after sweep, the pair creeping sideways); after kNewtonSweeps the roots in contact relax
-  // together explicitly, every root one sub-step in turn, and Newton confirms
-  double tolerance = std::numeric_limits<double>::infinity();
-  for (int r = 0; r < n; ++r) {
-    const Model& m = seedling(r).model;
-    tolerance = std::min(tolerance, 0.5 * equilibriumTolerance(m.rod, m.env, m.solver, root(r).state()).force / m.env.selfContact.k);
-  }
   int sweeps = 1;
-  for (int joint = 0; n > 1;) {
-    const double change = sweep();
-    ++sweeps;
-    if (change <= tolerance) break;
-    if (sweeps % kNewtonSweeps == 0) {
-      if (joint == kJointRelaxations) {
-        std::ostringstream os;
-        os << "growth step " << root(0).step() << ": the roots in contact did not settle (" << kJointRelaxations
-           << " joint relaxations; Newton still moves them by " << change << " m, tolerance " << tolerance << " m)";
-        throw RelaxError(os.str());
-      }
-      relaxJointly();
-      ++joint;
+  if (n == 1) {
+    try {
+      roots_[0]->growthStep();
+    } catch (const RelaxError& e) {
+      throw namedError(seedling(0).name, e);
     }
+  } else {
+    sweeps = settleStep();
   }
   emergeLaterals();
   // every root's lists as the final shapes stand (what the contact counts read)
@@ -280,6 +298,91 @@ const PlateStepRecord& PlateSimulation::growthStep() {
   }
   last_ = observe(sweeps);
   return last_;
+}
+
+int PlateSimulation::settleStep() {
+  const int n = size();
+  // every root grows; then the roots apart relax alone (each its own banded Newton: a root apart is the
+  // single root's run), the roots within reach of another together, as one Newton system from where growth
+  // left them (their blocks coupled by their contacts' stiffness: relaxNewtonCoupled)
+  for (int r = 0; r < n; ++r) roots_[static_cast<size_t>(r)]->beginStep();
+  listCluster();
+  listed_.resize(static_cast<size_t>(n));
+  for (int r = 0; r < n; ++r) listed_[static_cast<size_t>(r)] = root(r).state().x;
+  for (int r = 0; r < n; ++r) {
+    if (!roots_[static_cast<size_t>(r)]->neighbours().empty()) continue;
+    try {
+      roots_[static_cast<size_t>(r)]->finishStep();
+    } catch (const RelaxError& e) {
+      throw namedError(seedling(r).name, e);
+    }
+  }
+  // Then each root of the cluster finishes its step alone, with the others where they now are (its own
+  // relaxation confirms the equilibrium, with its stability check, and commits). Where that moves a root
+  // by more than a displacement whose contact force is half the equilibrium tolerance, or a root moved
+  // further than the lists' skin covers, sweeps (relaxAgain, the lists built anew) and coupled solves
+  // follow until none does: each root is then in equilibrium with the others' final shapes. Where the
+  // coupled Newton finds no acceptable step (a snap), the roots in contact relax together explicitly,
+  // every root one sub-step in turn, and Newton starts again from there (as one root's Newton falls back
+  // to the explicit relaxation).
+  double tolerance = std::numeric_limits<double>::infinity(), rMin = tolerance;
+  for (int r = 0; r < n; ++r) {
+    const Model& m = seedling(r).model;
+    tolerance = std::min(tolerance, 0.5 * equilibriumTolerance(m.rod, m.env, m.solver, root(r).state()).force / m.env.selfContact.k);
+    rMin = std::min(rMin, m.rod.radius);
+  }
+  bool open = !cluster_.empty();  // the cluster's roots have begun their step and not finished it
+  int sweeps = 1;
+  for (int joint = 0;;) {
+    double change = 0;
+    if (!cluster_.empty()) {
+      const RelaxResult rc = relaxCoupled();
+      if (rc.stalled) {
+        if (joint == kJointRelaxations) {
+          std::ostringstream os;
+          os << "growth step " << root(0).step() << ": the roots in contact did not settle (" << kJointRelaxations
+             << " joint relaxations; " << rc.message << ")";
+          throw RelaxError(os.str());
+        }
+        relaxJointly();
+        ++joint;
+        continue;
+      }
+      if (open) {
+        for (const CoupledRoot& c : cluster_) {
+          const int r = c.plateIndex;
+          refreshCapsules(r);
+          Simulation& sim = *roots_[static_cast<size_t>(r)];
+          before_ = sim.state().x;
+          try {
+            sim.finishStep();
+          } catch (const RelaxError& e) {
+            throw namedError(seedling(r).name, e);
+          }
+          change = std::max(change, (sim.state().x - before_).cwiseAbs().maxCoeff());
+        }
+        open = false;
+      }
+    }
+    // a root that moved further than the skin since the lists were built may have met one not listed
+    double moved = 0;
+    for (int r = 0; r < n && sweeps == 1; ++r)
+      moved = std::max(moved, (root(r).state().x - listed_[static_cast<size_t>(r)]).colwise().norm().maxCoeff());
+    if (sweeps == 1 && change <= tolerance && moved <= kPlateSkin * rMin) {
+      ++sweeps;  // nothing to sweep: counted as the sweep that found so
+      break;
+    }
+    change = std::max(change, sweep());  // the lists anew (cluster_ too: listCluster)
+    ++sweeps;
+    if (change <= tolerance) break;
+    if (sweeps > plate_.maxSweeps) {
+      std::ostringstream os;
+      os << "growth step " << root(0).step() << ": the roots in contact did not settle (" << plate_.maxSweeps
+         << " sweeps; the last moved them by " << change << " m, tolerance " << tolerance << " m)";
+      throw RelaxError(os.str());
+    }
+  }
+  return sweeps;
 }
 
 bool PlateSimulation::nearJunction(int r, int i, int o, int j) const {

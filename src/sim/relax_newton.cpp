@@ -243,7 +243,10 @@ struct NewtonSolver {
     // self-contact couples nodes far apart along the rod: a coloured pass would read a far partner's
     // response into the rows of its own colour's blocks. So the passes leave self-contact out, and its
     // stiffness is added pair by pair below (each pair's force depends on its four nodes only).
-    const ForcePieces pieces = env.selfContact.enabled ? ForcePieces::NoSelfContact : ForcePieces::All;
+    // (the contact with other roots on a plate likewise: jacobian() adds it pair by pair, where a
+    // coupled plate also reads its columns of the other root's nodes)
+    const ForcePieces pieces =
+        env.selfContact.enabled || !ws.contact.neighbours.empty() ? ForcePieces::NoPairContact : ForcePieces::All;
     // one pass of central differences over blocks start, start + stride, ... up to `last`, forces
     // evaluated exactly from element `first` on
     auto pass = [&](int start, int stride, int last, int c, ForceSpan span, int radius) {
@@ -320,8 +323,10 @@ struct NewtonSolver {
   // K = -dF/du over the free dofs into nw.lu (and, when sym, its symmetric part into nw.ldlt); the
   // forces of the current state must be in nw.r. With self-contact, the couplings of nodes far apart
   // along the rod go to nw.offBand and the whole matrix to nw.sparse (nw.sparseActive). keepMature:
-  // the frozen twists' columns kept from earlier Jacobians may serve (kMatureRefresh).
-  void jacobian(bool sym, bool keepMature) {
+  // the frozen twists' columns kept from earlier Jacobians may serve (kMatureRefresh). alone false: a
+  // block of a plate's coupled system (relaxNewtonCoupled), which assembles and factorises nw.lu and
+  // nw.offBand itself (nw.sparse and nw.ldlt are left as they are).
+  void jacobian(bool sym, bool keepMature, bool alone = true) {
     const int N = w.dofs();
     nw.lu.reset(N, kBand, kBand);
     const double h = 1e-6 * lbar;  // [m], and h / lbar [rad]
@@ -355,6 +360,19 @@ struct NewtonSolver {
           }
       }
     }
+    // the contact with other roots on a plate: each pair's stiffness in this root's own nodes (always in
+    // the band: the two nodes of one element)
+    if (!ws.contact.neighbours.empty()) {
+      neighbourContactStiffness(p, env, s, h, ws.contact);
+      for (const NeighbourStiffness& ns : ws.contact.neighbourStiffness)
+        for (int a = 0; a < 2; ++a)
+          for (int bn = 0; bn < 2; ++bn) {
+            const int rb = 2 * (ns.i + a), cb = 2 * (ns.i + bn);
+            if (rb < w.b0 || cb < w.b0) continue;
+            nw.lu.addBlock(w.dof(rb, 0), w.dof(cb, 0), 1.0, Mat3(ns.K.block<3, 3>(3 * a, 3 * bn)));
+          }
+    }
+    if (!alone) return;
     nw.sparseActive = !nw.offBand.empty();
     if (nw.sparseActive) {
       nw.sparse.assemble(nw.lu, nw.offBand);  // keeps its own copy: the symmetric part is taken from it
@@ -642,6 +660,230 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
     nw.lowestEigenvalue = lambda;
   }
   return res;
+}
+
+namespace {
+
+// the coupled system of a plate's roots in contact (relaxNewtonCoupled): one NewtonSolver per root for its
+// window, residual and band; the unknowns side by side in the roots' order
+struct Coupled {
+  const std::vector<CoupledRoot>& roots;
+  const std::function<void()>& refresh;
+  CoupledWorkspace& cw;
+  std::vector<NewtonSolver> ns;
+  int N = 0;
+
+  Coupled(const std::vector<CoupledRoot>& rs, const std::function<void()>& rf, CoupledWorkspace& w)
+      : roots(rs), refresh(rf), cw(w) {
+    ns.reserve(roots.size());
+    cw.first.clear();
+    int last = 0;
+    for (const CoupledRoot& cr : roots) {
+      const int n = cr.s->elements();
+      if (n < 2) throw RelaxError("relaxation needs at least 2 elements");
+      ROOTSIM_ASSERT(cr.firstFreeNode >= 0 && cr.firstFreeNode <= n, "a window inside the rod");
+      cr.nw->reserve(n);
+      cr.s->v.setZero();
+      cr.s->w.setZero();
+      NewtonSolver& s = ns.emplace_back(NewtonSolver{*cr.rod, *cr.env, *cr.opt, *cr.s, *cr.ws, *cr.nw,
+                                                     windowOf(*cr.env, *cr.s, cr.firstFreeNode)});
+      s.lbar = cr.s->restLength() / n;
+      const EquilibriumTolerance tol = equilibriumTolerance(*cr.rod, *cr.env, *cr.opt, *cr.s, cr.firstFreeNode);
+      s.ftol = tol.force;
+      s.mtol = tol.couple;
+      cw.first.push_back(N);
+      N += s.w.dofs();
+      last = std::max(last, cr.plateIndex);
+    }
+    cw.clusterOf.assign(static_cast<size_t>(last + 1), -1);
+    for (size_t k = 0; k < roots.size(); ++k) cw.clusterOf[static_cast<size_t>(roots[k].plateIndex)] = static_cast<int>(k);
+    if (cw.r.size() < static_cast<size_t>(N)) {
+      cw.r.resize(static_cast<size_t>(N));
+      cw.r0.resize(static_cast<size_t>(N));
+      cw.delta.resize(static_cast<size_t>(N));
+    }
+  }
+  int size() const { return static_cast<int>(ns.size()); }
+
+  // every root's forces with the others where they are now, into cw.r
+  void residual() {
+    refresh();
+    for (int k = 0; k < size(); ++k) {
+      NewtonSolver& s = ns[static_cast<size_t>(k)];
+      s.residual();
+      std::copy(s.nw.r.begin(), s.nw.r.begin() + s.w.dofs(), cw.r.begin() + cw.first[static_cast<size_t>(k)]);
+    }
+  }
+  // every root within its own tolerance (the largest residuals of all into res)
+  bool converged(RelaxResult& res) {
+    bool all = true;
+    double f = 0, m = 0;
+    for (NewtonSolver& s : ns) {
+      RelaxResult rk;
+      rk.iterations = res.iterations;
+      int argF = 0, argM = 0;
+      all = s.converged(rk, argF, argM) && all;
+      f = std::max(f, rk.residualForce);
+      m = std::max(m, rk.residualTorque);
+    }
+    res.residualForce = f;
+    res.residualTorque = m;
+    return all;
+  }
+  // the roots' bands side by side, their off-band entries and the contacts between them into cw
+  void jacobian(bool keepMature) {
+    cw.band.reset(N, kBand, kBand);
+    cw.offBand.clear();
+    for (int k = 0; k < size(); ++k) {
+      NewtonSolver& s = ns[static_cast<size_t>(k)];
+      NewtonWorkspace& nw = s.nw;
+      s.jacobian(false, keepMature && nw.matureAge < kMatureRefresh, false);
+      nw.factorsValid = false;  // nw.lu holds this block unfactorised
+      const int o = cw.first[static_cast<size_t>(k)], nk = s.w.dofs();
+      for (int j = 0; j < nk; ++j)
+        for (int i = std::max(0, j - kBand); i <= std::min(nk - 1, j + kBand); ++i) {
+          const double v = nw.lu.at(i, j);
+          if (v != 0.0) cw.band.add(o + i, o + j, v);
+        }
+      for (const OffBandEntry& e : nw.offBand) cw.offBand.push_back({o + e.row, o + e.col, e.value});
+    }
+    // each root's rows of its contacts with the others, in the other root's columns (node translations:
+    // SI in the scaled units too)
+    for (int k = 0; k < size(); ++k) {
+      const NewtonSolver& s = ns[static_cast<size_t>(k)];
+      const NeighbourCapsules& nb = s.ws.contact.neighbours;
+      for (const NeighbourStiffness& st : s.ws.contact.neighbourStiffness) {
+        const auto [o, j] = nb.source[static_cast<size_t>(st.c)];
+        const int l = o < static_cast<int>(cw.clusterOf.size()) ? cw.clusterOf[static_cast<size_t>(o)] : -1;
+        if (l < 0) continue;  // a root outside the system: its capsule stays where it is
+        const NewtonSolver& t = ns[static_cast<size_t>(l)];
+        for (int a = 0; a < 2; ++a)
+          for (int bn = 0; bn < 2; ++bn)
+            for (int rc = 0; rc < 3; ++rc)
+              for (int cc = 0; cc < 3; ++cc) {
+                const int row = s.w.unknown(2 * (st.i + a), rc), col = t.w.unknown(2 * (j + bn), cc);
+                if (row < 0 || col < 0) continue;  // frozen
+                cw.offBand.push_back({cw.first[static_cast<size_t>(k)] + row, cw.first[static_cast<size_t>(l)] + col,
+                                      st.K(3 * a + rc, 6 + 3 * bn + cc)});
+              }
+      }
+    }
+  }
+  // the root and its unknown of system unknown u
+  int owner(int u) const {
+    int k = size() - 1;
+    while (k > 0 && cw.first[static_cast<size_t>(k)] > u) --k;
+    return k;
+  }
+  void scatterDelta() {
+    for (int k = 0; k < size(); ++k) {
+      NewtonSolver& s = ns[static_cast<size_t>(k)];
+      std::copy(cw.delta.begin() + cw.first[static_cast<size_t>(k)],
+                cw.delta.begin() + cw.first[static_cast<size_t>(k)] + s.w.dofs(), s.nw.delta.begin());
+    }
+  }
+  double norm(const std::vector<double>& v) const {
+    double sum = 0;
+    for (int i = 0; i < N; ++i) sum += v[static_cast<size_t>(i)] * v[static_cast<size_t>(i)];
+    return std::sqrt(sum);
+  }
+};
+
+}  // namespace
+
+RelaxResult relaxNewtonCoupled(const std::vector<CoupledRoot>& roots, const std::function<void()>& refresh,
+                               CoupledWorkspace& cw) {
+  Coupled c(roots, refresh, cw);
+  const SolverOptions& opt = *roots.front().opt;
+  cw.start.resize(roots.size());
+  for (size_t k = 0; k < roots.size(); ++k) cw.start[k] = *roots[k].s;
+  RelaxResult res;
+  // no acceptable step: every root back where it started (the plate relaxes them together explicitly)
+  auto stall = [&](const std::string& why) {
+    for (size_t k = 0; k < roots.size(); ++k) {
+      *roots[k].s = cw.start[k];
+      roots[k].nw->matureAge = kMatureRefresh;
+    }
+    refresh();
+    res.stalled = true;
+    res.message = "coupled Newton solver of the roots in contact: " + why;
+    return res;
+  };
+  cw.sparse.beginRelaxation(c.N);
+  int crawl = 0;
+  c.residual();
+  for (;;) {
+    if (c.converged(res)) break;
+    if (res.iterations >= opt.newtonMaxIterations) {
+      std::ostringstream os;
+      os << "no joint equilibrium in " << res.iterations << " iterations (residual force " << res.residualForce
+         << " N, couple " << res.residualTorque << " N m)";
+      return stall(os.str());
+    }
+    ++res.iterations;
+    c.jacobian(res.iterations <= kMatureTrust);
+    cw.sparse.assemble(cw.band, cw.offBand);
+    if (!cw.sparse.factorizeLU()) return stall("singular stiffness at iteration " + std::to_string(res.iterations));
+    std::copy(cw.r.begin(), cw.r.begin() + c.N, cw.delta.begin());
+    cw.sparse.solveLU(cw.delta.data());
+    c.scatterDelta();
+    const double norm0 = c.norm(cw.delta);
+    for (NewtonSolver& s : c.ns) s.saveState();
+    // damped as relaxNewton's steps (Deuflhard's natural monotonicity test), over all the roots' unknowns
+    double a = 1.0;
+    int halvings = 0;
+    for (;;) {
+      for (NewtonSolver& s : c.ns) s.applyStep(a);
+      c.residual();
+      std::copy(cw.r.begin(), cw.r.begin() + c.N, cw.r0.begin());
+      cw.sparse.solveLU(cw.r0.data());
+      const double norm1 = c.norm(cw.r0);
+      if (std::isfinite(norm1) && norm1 <= (1.0 - 0.25 * a) * norm0) break;
+      for (NewtonSolver& s : c.ns) s.restoreState();
+      if (++halvings > kMaxHalvings)
+        return stall("no acceptable step along the Newton direction at iteration " + std::to_string(res.iterations));
+      a *= 0.5;
+    }
+    crawl = a <= kCrawl ? crawl + 1 : 0;
+    if (crawl >= kMaxCrawl && !c.converged(res))
+      return stall("crawls (" + std::to_string(crawl) + " iterations in a row damped to " + std::to_string(a) + ")");
+  }
+  res.converged = true;
+  return res;
+}
+
+Eigen::MatrixXd coupledStiffness(const std::vector<CoupledRoot>& roots, const std::function<void()>& refresh,
+                                 CoupledWorkspace& cw) {
+  Coupled c(roots, refresh, cw);
+  c.residual();
+  c.jacobian(false);
+  Eigen::MatrixXd K = Eigen::MatrixXd::Zero(c.N, c.N);
+  for (int j = 0; j < c.N; ++j)
+    for (int i = std::max(0, j - kBand); i <= std::min(c.N - 1, j + kBand); ++i) K(i, j) = cw.band.at(i, j);
+  for (const OffBandEntry& e : cw.offBand) K(e.row, e.col) += e.value;
+  return K;
+}
+
+Eigen::VectorXd coupledResidual(const std::vector<CoupledRoot>& roots, const std::function<void()>& refresh,
+                                CoupledWorkspace& cw, int k, double h) {
+  Coupled c(roots, refresh, cw);
+  NewtonSolver* moved = nullptr;
+  if (k >= 0) {
+    ROOTSIM_ASSERT(k < c.N, "an unknown of the system");
+    const int m = c.owner(k);
+    moved = &c.ns[static_cast<size_t>(m)];
+    std::fill(moved->nw.delta.begin(), moved->nw.delta.begin() + moved->w.dofs(), 0.0);
+    moved->nw.delta[static_cast<size_t>(k - cw.first[static_cast<size_t>(m)])] = h;
+    moved->saveState();
+    moved->applyStep(1.0);
+  }
+  c.residual();
+  Eigen::VectorXd r = Eigen::Map<const Eigen::VectorXd>(cw.r.data(), c.N);
+  if (moved) {
+    moved->restoreState();
+    refresh();
+  }
+  return r;
 }
 
 void assembleStiffness(const RodParams& p, const Environment& env, const SolverOptions& opt, RodState& s,

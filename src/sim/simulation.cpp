@@ -5,6 +5,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "rootsim/assert.hpp"
 #include "rootsim/contact.hpp"
 #include "rootsim/contact_newton.hpp"
 #include "rootsim/contact_observe.hpp"
@@ -86,6 +87,11 @@ SimulationCarry Simulation::carry() const {
 }
 
 const StepRecord& Simulation::growthStep() {
+  beginStep();
+  return finishStep();
+}
+
+void Simulation::beginStep() {
   ++p_.step;
   const double dt = m_.growth.stepTime;
   // the kappa0 law reads the relaxed state of the previous step
@@ -95,13 +101,21 @@ const StepRecord& Simulation::growthStep() {
   growRestLengths(m_, s_, dt);
   s_.time += dt;
   applyTwistProfile(m_, s_);
-  const int splits = splitLongElements(m_, s_);
+  open_ = Open{true, splitLongElements(m_, s_), 0, 0};
+}
+
+const StepRecord& Simulation::finishStep() {
+  ROOTSIM_ASSERT(open_.open, "finishStep after beginStep");
   int unstable = 0;
   const RelaxResult r = relaxStable(p_.step, unstable);
   commitStep();
   p_.totalSubsteps += r.substeps;
   p_.totalIterations += r.iterations;
-  observe(r, splits, unstable);
+  observe(r, open_.splits, unstable);
+  // what a plate's coupled or joint relaxation did before (already in the totals)
+  p_.last.iterations += open_.iterations;
+  p_.last.substeps += open_.substeps;
+  open_ = Open{};
   return p_.last;
 }
 
@@ -135,8 +149,17 @@ long Simulation::jointSubsteps() const { return joint_ ? joint_->result().subste
 void Simulation::endJoint() {
   const long n = joint_->result().substeps;
   p_.totalSubsteps += n;
-  p_.last.substeps += n;
+  (open_.open ? open_.substeps : p_.last.substeps) += n;
   joint_.reset();
+}
+
+CoupledRoot Simulation::coupled(int plateIndex) {
+  return CoupledRoot{&m_.rod, &m_.env, &m_.solver, &s_, &ws_, &nw_, windowStart(), plateIndex};
+}
+
+void Simulation::addCoupled(const RelaxResult& r) {
+  p_.totalIterations += r.iterations;
+  (open_.open ? open_.iterations : p_.last.iterations) += r.iterations;
 }
 
 int Simulation::windowStart() {

@@ -238,8 +238,8 @@ TEST_CASE("analyze: bad input exits 2 naming the file and line or the flag, and 
       {kData + "bad/malformed.rsml", "malformed.rsml:"},
       {(d / "missing.rsml").string(), "missing.rsml: RSML file not found"},
       {kData + "smartroot_pixels.rsml --downhill sideways", "--downhill sideways"},
-      {kData + "smartroot_pixels.rsml --ds-mm -1", "--ds-mm -1: must be in [0, 10] mm"},
-      {kData + "smartroot_pixels.rsml --radius-mm 0", "--radius-mm 0: must be in (0, 100] mm"},
+      {kData + "smartroot_pixels.rsml --ds-mm -1", "--ds-mm -1: expected a finite number in [0, 10] mm"},
+      {kData + "smartroot_pixels.rsml --radius-mm 0", "--radius-mm 0: expected a finite number in (0, 100] mm"},
       {kData + "smartroot_pixels.rsml --exclude-tip-mm -2", "--exclude-tip-mm -2"},
   };
   for (const Case& c : cases) {

@@ -228,7 +228,7 @@ TEST_CASE("export: the write rule and bad flags") {
   const std::vector<Bad> bad = {
       {runDir, "no output asked for"},
       {runDir + " --rsml " + (dir / "n.rsml").string() + " --at-h 1 --every-h 2", "give --at-h or --every-h, not both"},
-      {runDir + " --rsml " + (dir / "n.rsml").string() + " --every-h 0", "--every-h 0: must be > 0 h"},
+      {runDir + " --rsml " + (dir / "n.rsml").string() + " --every-h 0", "--every-h 0: expected a finite number in (0, 1000000] h"},
       {runDir + " --rsml " + (dir / "no-such-folder" / "n.rsml").string(), "not found"},
       {runDir + " --rsml ''", "empty value"},
       {(dir / "no-run").string() + " --rsml " + (dir / "n.rsml").string(), "run directory not found"},

@@ -189,12 +189,12 @@ TEST_CASE("stills: --from-h --to-h and --hours-per-second set the frames and the
   const std::string mp4 = " --mp4 " + (d / "bad.mp4").string();
   const std::vector<Bad> bad = {
       {" --from-h 1.5 --to-h 0.5" + mp4, "--from-h 1.5: after --to-h 0.5"},
-      {" --from-h -1" + mp4, "--from-h -1: must be >= 0 h"},
-      {" --to-h -2" + mp4, "--to-h -2: must be >= 0 h"},
+      {" --from-h -1" + mp4, "--from-h -1: expected a finite number in [0, 1000000] h"},
+      {" --to-h -2" + mp4, "--to-h -2: expected a finite number in [0, 1000000] h"},
       {" --from-h " + num(r.timesH[3] + 0.2 * dt) + " --to-h " + num(r.timesH[3] + 0.6 * dt) + mp4, "no snapshot in"},
       {" --from-h 50" + mp4, "--from-h 50: no snapshot in [50, "},
-      {" --hours-per-second 0" + mp4, "--hours-per-second 0: must be > 0"},
-      {" --hours-per-second -3" + mp4, "--hours-per-second -3: must be > 0"},
+      {" --hours-per-second 0" + mp4, "--hours-per-second 0: expected a finite number in (0, 1000000] h/s"},
+      {" --hours-per-second -3" + mp4, "--hours-per-second -3: expected a finite number in (0, 1000000] h/s"},
       {" --at-h 50 --png " + (d / "bad.png").string(), "--at-h 50: outside the run's snapshots, 0 .. "},
       {" --at-h 0.1", "--at-h 0.1: writes a still; add --png FILE"},
       {" --png " + (d / "bad.png").string(), "add --at-h H or --frame N"},

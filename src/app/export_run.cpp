@@ -431,6 +431,13 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
       if (!fs::is_directory(dir)) throw SceneError("--rsml " + f.string() + ": folder " + dir.string() + " not found");
       locks.emplace_back(f, "--rsml");
       claimFile(f, rule, "--rsml");
+      // the file is staged as FILE.tmp (written all or none, below): a FILE.tmp already there is not ours
+      fs::path tmp = f;
+      tmp += ".tmp";
+      std::error_code ec;
+      if (fs::exists(fs::symlink_status(tmp, ec)))
+        throw SceneError("--rsml " + f.string() + ": " + tmp.string() +
+                         " is in the way (rootsim stages the file there); move it or delete it");
     }
   }
 
@@ -472,8 +479,9 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
       const int seq = series ? static_cast<int>(k) : -1;
       fs::path tmp = rsmlFiles[k];
       tmp += ".tmp";
-      staged.push_back(tmp);
       std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+      if (!out) throw RunError("cannot open " + tmp.string() + " for writing: " + std::strerror(errno));
+      staged.push_back(tmp);
       out << rsml::writeRsml(plate ? plateRsmlOf(plateScene, plateRootList, roots, static_cast<std::size_t>(picks[k].index), seq)
                                    : rsmlOf(data, s, seq));
       out.close();

@@ -392,6 +392,8 @@ TEST_CASE("movie looks on the command line (follow, colour, plots, inset, shadow
       {"run " + scene + " --set growth.steps=4 --movie --camera follow --field-mm 0 --out " + (d / "run3").string(), "--field-mm"},
       {"run " + scene + " --set growth.steps=4 --movie --color-by nope --out " + (d / "run3").string(), "--color-by"},
       {"run " + scene + " --set growth.steps=4 --camera follow --out " + (d / "run3").string(), "--movie"},
+      {"run " + scene + " --set growth.steps=30000 --set output.every_steps=1 --movie --out " + (d / "run3").string(),
+       "would make 30001 frames, more than the cap of 20000"},
   };
   for (const auto& b : bad) {
     const Result r = run(b.args);

@@ -45,7 +45,7 @@ void BM_Substep(benchmark::State& state) {
 }
 BENCHMARK(BM_Substep)->Arg(50)->Arg(100)->Arg(200)->Arg(400)->Unit(benchmark::kMicrosecond);
 
-// issue 11: the cost of self-contact's broad phase where nothing touches. Arg 0: element count,
+// the cost of self-contact's broad phase where nothing touches. Arg 0: element count,
 // arg 1: self-contact off (0) or on (1). The sub-step of a bent rod relaxing, as BM_Substep.
 void BM_SubstepSelfContact(benchmark::State& state) {
   const int n = static_cast<int>(state.range(0));
@@ -63,7 +63,7 @@ BENCHMARK(BM_SubstepSelfContact)
     ->Args({100, 0})->Args({100, 1})->Args({400, 0})->Args({400, 1})
     ->Unit(benchmark::kMicrosecond);
 
-// issue 11: a growing root with no contact (Fig. 2B scene, alpha = 40, beta = 0.2; 300 growth steps of
+// a growing root with no contact (Fig. 2B scene, alpha = 40, beta = 0.2; 300 growth steps of
 // the paper's resolution), self-contact off (0) or on (1): the whole run, grow + relax + observe
 void BM_GrowthSelfContact(benchmark::State& state) {
   long substeps = 0;

@@ -7,7 +7,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <algorithm>
 #include <map>
+#include <set>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -322,4 +324,390 @@ TEST_CASE("analyze: work sized by a trace is counted against its cap before it i
   CHECK(at.code == 2);
   CHECK(at.out.find("rootsim: error: --at-h nan: expected a finite number in [0, 1e+06] h") == 0);
   CHECK(!fs::exists(d / "cmp"));
+// ---- dialects, plants, time-lapse ----
+
+namespace {
+
+// the rows of a CSV whose key column equals value
+std::vector<std::map<std::string, std::string>> rowsWhere(const std::vector<std::map<std::string, std::string>>& rows, const std::string& key,
+                                                          const std::string& value) {
+  std::vector<std::map<std::string, std::string>> out;
+  for (const auto& r : rows)
+    if (r.at(key) == value) out.push_back(r);
+  return out;
+}
+
+// the real files of ../shared/data/rsml (README there), or "" with the case reported skipped
+fs::path sharedData() {
+  const fs::path d = fs::path(ROOTSIM_SOURCE_DIR).parent_path() / "shared" / "data" / "rsml";
+  if (!fs::is_directory(d)) {
+    test::skipCase("no ../shared/data/rsml (the real RSML files) next to the source tree");
+    return {};
+  }
+  return d;
+}
+
+// an openalea-style plate in pixels (lowercase ids, unit pixel): seedlings 12 px apart, each a primary
+// down the image and laterals across, whole-pixel coordinates with a tracer's jitter of -1, 0 or 1 px
+struct TracedSeedling {
+  std::string plantId, rootId, label;  // label: the root's identity in the other file, for the test's check
+  int x0 = 0, primaryPx = 0;
+  struct Lateral {
+    std::string id, label;
+    int atPx = 0, lengthPx = 0, side = 1;
+  };
+  std::vector<Lateral> laterals;
+};
+std::string openaleaPlate(const std::vector<TracedSeedling>& seedlings, int jitterSeed) {
+  auto jitter = [&](int k, int s) { return (k * (5 + 2 * jitterSeed) + s + jitterSeed) % 3 - 1; };
+  std::string o = "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n<rsml>\n  <metadata><version>1.0</version><unit>pixel</unit><resolution>1</resolution>"
+                  "<software>openalea</software></metadata>\n  <scene>\n";
+  int s = 0;
+  for (const TracedSeedling& sd : seedlings) {
+    o += "    <plant id=\"" + sd.plantId + "\" label=\"P\">\n      <root id=\"" + sd.rootId + "\" label=\"" + sd.label + "\"><geometry><polyline>\n";
+    for (int k = 0; 5 * k <= sd.primaryPx; ++k)
+      o += "        <point x=\"" + std::to_string(sd.x0 + jitter(k, s)) + "\" y=\"" + std::to_string(100 + 5 * k) + "\" z=\"0\"/>\n";
+    o += "      </polyline></geometry>\n";
+    for (const auto& l : sd.laterals) {
+      o += "        <root id=\"" + l.id + "\" label=\"" + l.label + "\"><geometry><polyline>\n";
+      for (int k = 0; 5 * k <= l.lengthPx; ++k)
+        o += "          <point x=\"" + std::to_string(sd.x0 + l.side * 5 * k) + "\" y=\"" + std::to_string(100 + l.atPx + (k > 0 ? jitter(k, s) : 0)) +
+             "\" z=\"0\"/>\n";
+      o += "        </polyline></geometry></root>\n";
+    }
+    o += "      </root>\n    </plant>\n";
+    ++s;
+  }
+  return o + "  </scene>\n</rsml>\n";
+}
+
+}  // namespace
+
+TEST_CASE("analyze: a RootSystemTracker 2D+t file / its scale with no flag / every root at every observation / rates / plants") {
+  if (!analyzeBuilt()) return;
+  const fs::path d = scratch("rst");
+  const std::string in = kData + "rst_2dt.rsml";
+  const auto r = run("analyze " + in + " --out " + (d / "an").string());
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("warning") == std::string::npos);
+  const auto rows = readRows(d / "an" / "analysis.csv");
+  REQUIRE(rows.size() == 4);
+  // 50 um pixels: the primary's 120 px are 6 mm; its diameter of 6 px gives R = 0.15 mm
+  CHECK(number(rows[0], "length_mm") == doctest::Approx(6.0));
+  CHECK(number(rows[0], "time_h") == 18);
+  CHECK(number(rows[0], "radius_mm") == doctest::Approx(0.15));
+  CHECK(rows[0].at("radius_source") == "diameter");
+  CHECK(rows[1].at("radius_source") == "default");  // its diameters are 0: not measured
+  // growth over the last interval each root grew in: 2 mm in 6 h, 1 mm in 6 h; one observation: none
+  CHECK(number(rows[0], "growth_rate_mm_per_h") == doctest::Approx(2.0 / 6));
+  CHECK(number(rows[1], "growth_rate_mm_per_h") == doctest::Approx(1.0 / 6));
+  CHECK(std::isnan(number(rows[2], "growth_rate_mm_per_h")));
+  CHECK(number(rows[3], "growth_rate_mm_per_h") == doctest::Approx(1.0 / 6));
+  // growth.csv: the root at observation k is the polyline up to coord_t = k
+  const auto g = readRows(d / "an" / "growth.csv");
+  const auto primary = rowsWhere(g, "root", "1.1");
+  REQUIRE(primary.size() == 4);
+  const double len[] = {1, 2, 4, 6}, hours[] = {0, 6, 12, 18};
+  for (std::size_t k = 0; k < 4; ++k) {
+    CHECK(number(primary[k], "time_h") == hours[k]);
+    CHECK(number(primary[k], "length_mm") == doctest::Approx(len[k]));
+    CHECK(number(primary[k], "tip_downhill_mm") == doctest::Approx(len[k]));
+    CHECK(number(primary[k], "tip_lateral_mm") == doctest::Approx(0).epsilon(1e-12));
+    CHECK(number(primary[k], "theta_tip_deg") == doctest::Approx(0));
+    CHECK(primary[k].at("track") == "rst_2dt.rsml:1/1.1");
+  }
+  // the laterals: towards +x (+lateral) is +90 deg, as the base-to-tip skew; a root not yet started has no row
+  const auto l1 = rowsWhere(g, "root", "1.1.1");
+  REQUIRE(l1.size() == 2);
+  CHECK(number(l1[0], "time_h") == 12);
+  CHECK(number(l1[1], "length_mm") == doctest::Approx(2.0));
+  CHECK(number(l1[1], "theta_tip_deg") == doctest::Approx(90));
+  CHECK(number(rows[1], "skew_base_tip_deg") == doctest::Approx(90));
+  const auto l2 = rowsWhere(g, "root", "1.1.2");
+  REQUIRE(l2.size() == 1);
+  CHECK(number(l2[0], "theta_tip_deg") == doctest::Approx(-90));
+  CHECK(number(l2[0], "tip_lateral_mm") == doctest::Approx(-1));
+  CHECK(rowsWhere(g, "root", "2.1").size() == 3);  // two points at coord_t 0 and 3: no length at 0 h
+  // plants.csv: the seedling's lengths, laterals, branched zone (2 to 5 mm along the primary), extent
+  const auto p = readRows(d / "an" / "plants.csv");
+  REQUIRE(p.size() == 2);
+  CHECK(number(p[0], "primary_length_mm") == doctest::Approx(6));
+  CHECK(number(p[0], "total_length_mm") == doctest::Approx(9));
+  CHECK(number(p[0], "lateral_length_mm") == doctest::Approx(3));
+  CHECK(number(p[0], "lateral_count") == 2);
+  CHECK(number(p[0], "branched_zone_mm") == doctest::Approx(3));
+  CHECK(number(p[0], "lateral_density_per_mm") == doctest::Approx(2.0 / 3));
+  CHECK(number(p[0], "laterals_per_primary_mm") == doctest::Approx(2.0 / 6));
+  CHECK(number(p[0], "depth_mm") == doctest::Approx(6));
+  CHECK(number(p[0], "width_mm") == doctest::Approx(3));
+  CHECK(std::isnan(number(p[1], "lateral_density_per_mm")));  // no lateral: no branched zone
+  // its scale is the file's: --px-per-mm is refused; --times too (the file has its own times)
+  const auto px = run("analyze " + in + " --px-per-mm 20 --out " + (d / "x").string());
+  CHECK(px.code == 2);
+  CHECK(px.out.find("is in pixel(um), not pixels (its scale is known)") != std::string::npos);
+  const auto t = run("analyze " + in + " --times 5 --out " + (d / "x").string());
+  CHECK(t.code == 2);
+  CHECK(t.out.find("is a time-lapse (RSML 2D+t") != std::string::npos);
+  CHECK_FALSE(fs::exists(d / "x"));
+}
+
+TEST_CASE("analyze: a SmartRoot file in inches reads with no flag / a scale giving an implausible seedling is a warning naming it") {
+  if (!analyzeBuilt()) return;
+  const fs::path d = scratch("smartroot");
+  const std::string in = kData + "smartroot_inch.rsml";
+  const auto r = run("analyze " + in + " --out " + (d / "an").string());
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("warning") == std::string::npos);
+  const auto rows = readRows(d / "an" / "analysis.csv");
+  REQUIRE(rows.size() == 3);
+  CHECK(rows[0].at("root") == "r1");  // uppercase ID
+  CHECK(rows[2].at("parent") == "r2");
+  CHECK(number(rows[0], "length_mm") == doctest::Approx(10));  // 100 px at 254 dpi
+  CHECK(number(rows[0], "radius_mm") == doctest::Approx(0.1));
+  // SmartRoot puts every root of an image in one plant: one plants.csv row per seedling (base root)
+  const auto p = readRows(d / "an" / "plants.csv");
+  REQUIRE(p.size() == 2);
+  CHECK(p[1].at("root") == "r2");
+  CHECK(number(p[1], "lateral_count") == 1);
+  CHECK(number(p[1], "total_length_mm") == doctest::Approx(7));
+  // the same file at 1 dpi: 2.5 m roots, written with a warning that names the scale to check
+  std::string text = slurp(in);
+  text.replace(text.find("<resolution>254.0</resolution>"), 30, "<resolution>1</resolution>");
+  { std::ofstream(d / "dpi1.rsml") << text; }
+  const auto w = run("analyze " + (d / "dpi1.rsml").string() + " --out " + (d / "an1").string());
+  CHECK(w.code == 0);
+  CHECK(w.out.find("rootsim: warning: " + (d / "dpi1.rsml").string() + ":17: primary root #0/r1 is 2540 mm long, implausible for a seedling "
+                   "(0.2 to 200 mm): check the scale, <unit>inch</unit> and <resolution>1</resolution> in the file") != std::string::npos);
+  // a pixel file read at 0.1 px/mm: the flag to check; --quiet keeps the warning
+  text.replace(text.find("<unit>inch</unit>"), 17, "<unit>pixel</unit>");
+  { std::ofstream(d / "px.rsml") << text; }
+  const auto px = run("analyze " + (d / "px.rsml").string() + " --px-per-mm 0.1 --quiet --out " + (d / "an3").string());
+  CHECK(px.code == 0);
+  CHECK(px.out.find("primary root #0/r1 is 1000 mm long, implausible for a seedling (0.2 to 200 mm): check --px-per-mm 0.1") != std::string::npos);
+}
+
+TEST_CASE("analyze: dated files / roots matched by geometry, not id / renumbered, reordered, extended / laterals / new roots") {
+  if (!analyzeBuilt()) return;
+  const fs::path d = scratch("dated");
+  // the earlier date: three seedlings 12 px (0.5 mm) apart, each with one lateral
+  std::vector<TracedSeedling> a, b;
+  for (int s = 0; s < 3; ++s) {
+    TracedSeedling e;
+    e.plantId = std::to_string(s + 1);
+    e.rootId = std::to_string(6 + 100 * s);
+    e.x0 = 100 + 12 * s;
+    e.primaryPx = 200 + 20 * s;
+    e.laterals.push_back({std::to_string(600 + s), "", 60, 30, s % 2 ? -1 : 1});
+    a.push_back(e);
+    // the later date: renumbered, longer, the lateral longer, a new lateral lower down
+    TracedSeedling l = e;
+    l.plantId = std::to_string(9 - s);
+    l.rootId = std::to_string(1000 + 37 * s);
+    l.label = e.plantId + "/" + e.rootId;
+    l.primaryPx = e.primaryPx + 100 + 10 * s;
+    l.laterals = {{std::to_string(2000 + s), e.plantId + "/" + e.laterals[0].id, 60, 60, s % 2 ? -1 : 1},
+                  {std::to_string(3000 + s), "", 150, 20, s % 2 ? 1 : -1}};
+    b.insert(b.begin(), l);  // plants in the reverse order
+  }
+  { std::ofstream(d / "day1.rsml") << openaleaPlate(a, 0); }
+  { std::ofstream(d / "day2.rsml") << openaleaPlate(b, 1); }
+  REQUIRE(run("analyze " + (d / "day2.rsml").string() + " " + (d / "day1.rsml").string() + " --px-per-mm 24 --times 48,24 --out " +
+              (d / "an").string())
+              .code == 0);
+  const auto rows = readRows(d / "an" / "analysis.csv");
+  REQUIRE(rows.size() == 9 + 6);
+  const auto g = readRows(d / "an" / "growth.csv");
+  REQUIRE(g.size() == 15);
+  int rated = 0;
+  for (std::size_t i = 0; i < 9; ++i) {  // day 2's roots
+    const auto& row = rows[i];
+    CAPTURE(row.at("root"));
+    const std::string earlier = row.at("root_label");
+    if (earlier.empty()) {
+      // a lateral that was not there on day 1: seen once, no rate
+      CHECK(std::isnan(number(row, "growth_rate_mm_per_h")));
+      continue;
+    }
+    // the root it extends, found by geometry: its track is day 1's id, its rate the length gained per hour
+    const auto then = rowsWhere(rows, "root", earlier.substr(earlier.find('/') + 1));
+    REQUIRE(then.size() == 1);
+    CHECK(number(row, "growth_rate_mm_per_h") == doctest::Approx((number(row, "length_mm") - number(then[0], "length_mm")) / 24).epsilon(1e-12));
+    CHECK(number(row, "growth_rate_mm_per_h") > 0);
+    const auto series = rowsWhere(g, "track", "day1.rsml:" + earlier);
+    REQUIRE(series.size() == 2);
+    CHECK(number(series[0], "time_h") == 24);
+    CHECK(number(series[1], "time_h") == 48);
+    CHECK(series[1].at("root") == row.at("root"));
+    ++rated;
+  }
+  CHECK(rated == 6);  // every root seen at both dates
+}
+
+TEST_CASE("analyze: the real files of ../shared/data/rsml / what each says with and without a scale") {
+  if (!analyzeBuilt()) return;
+  const fs::path data = sharedData();
+  if (data.empty()) return;
+  const fs::path d = scratch("real");
+  // RootSystemTracker 2D+t: read with no flag (76 um pixels), every root at every observation
+  const auto r = run("analyze " + (data / "synthetic_2dt_plate.rsml").string() + " --out " + (d / "rst").string());
+  REQUIRE(r.code == 0);
+  CHECK(r.out.find("warning") == std::string::npos);
+  const auto rows = readRows(d / "rst" / "analysis.csv");
+  REQUIRE(rows.size() == 21);
+  const auto plants = readRows(d / "rst" / "plants.csv");
+  REQUIRE(plants.size() == 3);
+  for (const auto& p : plants) {
+    CHECK(number(p, "lateral_count") == 6);
+    // 96 h at 0.3 mm/h after the first hour's 1.2 mm: about 30 mm deep, the tracer's steps make the length longer
+    CHECK(number(p, "depth_mm") == doctest::Approx(30).epsilon(0.02));
+  }
+  const auto g = readRows(d / "rst" / "growth.csv");
+  for (const auto& row : rows) {
+    CAPTURE(row.at("root"));
+    const auto series = rowsWhere(g, "root", row.at("root"));
+    REQUIRE_FALSE(series.empty());
+    CHECK(number(series.back(), "time_h") == 96);
+    CHECK(number(series.back(), "length_mm") == doctest::Approx(number(row, "length_mm")).epsilon(1e-12));
+    // every root seen at two observations has a rate
+    CHECK(std::isfinite(number(row, "growth_rate_mm_per_h")) == (series.size() >= 2));
+  }
+  // openalea's and SmartRoot's example files are in pixels with no scale: the flag is named, nothing written
+  for (const char* f : {"2012_11_19_18h00_chl110_1_1.rsml", "arabidopsis-simple.rsml"}) {
+    const auto e = run("analyze " + (data / f).string() + " --out " + (d / "x").string());
+    CHECK(e.code == 2);
+    CHECK(e.out.find("its unit is pixel with no physical scale; give --px-per-mm R") != std::string::npos);
+    CHECK_FALSE(fs::exists(d / "x"));
+  }
+  REQUIRE(run("analyze " + (data / "2012_11_19_18h00_chl110_1_1.rsml").string() + " --px-per-mm 24 --out " + (d / "oa").string()).code == 0);
+  CHECK(readRows(d / "oa" / "plants.csv").size() == 5);
+  CHECK(readRows(d / "oa" / "analysis.csv").size() == 25);
+}
+
+TEST_CASE("analyze: the openalea plate and a renumbered, reordered, extended copy / every root matched to its own") {
+  if (!analyzeBuilt()) return;
+  const fs::path data = sharedData();
+  if (data.empty()) return;
+  const fs::path d = scratch("openalea");
+  const fs::path orig = data / "2012_11_19_18h00_chl110_1_1.rsml";
+  rsml::Document doc = rsml::readRsml(orig);  // in pixels
+  rsml::Document later = doc;
+  std::reverse(later.plants.begin(), later.plants.end());
+  int n = 0;
+  for (rsml::Plant& p : later.plants) {
+    const std::string plantId = p.id;
+    p.id = "p" + std::to_string(90 - n);
+    for (rsml::Root& r : p.roots) {
+      r.label = plantId + "/" + r.id;
+      r.id = std::to_string(5000 + 7 * n++);
+      // a day's growth: 4 more points, 5 px apart, along the tip's direction, in whole pixels; the
+      // retraced points a pixel to the side every other point
+      const std::size_t m = r.x.size() - 1, from = m >= 3 ? m - 3 : 0;
+      const double dx = r.x[m] - r.x[from], dy = r.y[m] - r.y[from], norm = std::hypot(dx, dy);
+      for (std::size_t k = 0; k <= m; k += 2) r.x[k] += 1;
+      for (int k = 1; k <= 4; ++k) {
+        r.x.push_back(std::round(r.x[m] + 5 * k * dx / norm));
+        r.y.push_back(std::round(r.y[m] + 5 * k * dy / norm));
+        r.z.push_back(0);
+      }
+    }
+  }
+  std::string text = rsml::writeRsml(later);
+  text.replace(text.find("<unit>mm</unit>"), 15, "<unit>pixel</unit>");
+  { std::ofstream(d / "later.rsml") << text; }
+  REQUIRE(run("analyze " + orig.string() + " " + (d / "later.rsml").string() + " --px-per-mm 24 --times 0,24 --out " + (d / "an").string()).code ==
+          0);
+  const auto rows = readRows(d / "an" / "analysis.csv");
+  REQUIRE(rows.size() == 50);
+  const auto g = readRows(d / "an" / "growth.csv");
+  for (std::size_t i = 25; i < 50; ++i) {
+    const auto& row = rows[i];
+    CAPTURE(row.at("root_label"));
+    const std::string id = row.at("root_label").substr(row.at("root_label").find('/') + 1);
+    const auto then = rowsWhere(std::vector<std::map<std::string, std::string>>(rows.begin(), rows.begin() + 25), "root", id);
+    REQUIRE(then.size() == 1);
+    CHECK(number(row, "growth_rate_mm_per_h") == doctest::Approx((number(row, "length_mm") - number(then[0], "length_mm")) / 24).epsilon(1e-12));
+    const auto series = rowsWhere(g, "track", orig.filename().string() + ":" + row.at("root_label"));
+    REQUIRE(series.size() == 2);
+    CHECK(series[1].at("root") == row.at("root"));
+  }
+}
+
+TEST_CASE("analyze: the synthetic 2D+t plate cut into dated files gives the time-lapse's own lengths and matches every root") {
+  if (!analyzeBuilt()) return;
+  const fs::path data = sharedData();
+  if (data.empty()) return;
+  const fs::path d = scratch("cut");
+  const fs::path lapse = data / "synthetic_2dt_plate.rsml";
+  const rsml::Document doc = rsml::readRsml(lapse);
+  std::string files, times;
+  for (int k : {4, 8, 12, 16}) {
+    // the plate at observation k: each root up to coord_t = k (interpolated), renumbered, plants reversed
+    rsml::Document cut = doc;
+    cut.plants.clear();
+    cut.observationTimesH.clear();
+    for (auto p = doc.plants.rbegin(); p != doc.plants.rend(); ++p) {
+      rsml::Plant q = *p;
+      q.id = "d" + std::to_string(k) + "-" + p->id;
+      q.roots.clear();
+      std::vector<int> index(p->roots.size(), -1);
+      for (std::size_t i = 0; i < p->roots.size(); ++i) {
+        const rsml::Root& r = p->roots[i];
+        rsml::Root c;
+        c.id = std::to_string(1000 * k + 100 * static_cast<int>(p - doc.plants.rbegin()) + static_cast<int>(i));
+        c.label = r.id;
+        c.parent = r.parent >= 0 ? index[static_cast<std::size_t>(r.parent)] : -1;
+        for (std::size_t j = 0; j < r.x.size() && r.timeIndex[j] <= k; ++j) {
+          c.x.push_back(r.x[j]);
+          c.y.push_back(r.y[j]);
+          c.z.push_back(0);
+        }
+        const std::size_t j = c.x.size();
+        if (j > 0 && j < r.x.size()) {
+          const double f = (k - r.timeIndex[j - 1]) / (r.timeIndex[j] - r.timeIndex[j - 1]);
+          c.x.push_back(r.x[j - 1] + f * (r.x[j] - r.x[j - 1]));
+          c.y.push_back(r.y[j - 1] + f * (r.y[j] - r.y[j - 1]));
+          c.z.push_back(0);
+        }
+        double len = 0;
+        for (std::size_t m = 1; m < c.x.size(); ++m) len += std::hypot(c.x[m] - c.x[m - 1], c.y[m] - c.y[m - 1]);
+        if (len == 0 || (r.parent >= 0 && c.parent < 0)) continue;
+        index[i] = static_cast<int>(q.roots.size());
+        q.roots.push_back(c);
+      }
+      cut.plants.push_back(q);
+    }
+    const fs::path f = d / ("plate_t" + std::to_string(6 * k) + "h.rsml");
+    { std::ofstream(f) << rsml::writeRsml(cut); }
+    files += " " + f.string();
+    times += (times.empty() ? "" : ",") + std::to_string(6 * k);
+  }
+  REQUIRE(run("analyze" + files + " --times " + times + " --out " + (d / "dated").string()).code == 0);
+  REQUIRE(run("analyze " + lapse.string() + " --out " + (d / "lapse").string()).code == 0);
+  const auto rows = readRows(d / "dated" / "analysis.csv");
+  const auto g = readRows(d / "dated" / "growth.csv");
+  const auto lapseG = readRows(d / "lapse" / "growth.csv");
+  std::map<std::string, std::string> labelOf;  // dated root id -> the time-lapse's id
+  for (const auto& r : rows) labelOf[r.at("root")] = r.at("root_label");
+  std::map<std::string, std::set<std::string>> tracks;  // track -> the time-lapse ids in it
+  for (const auto& row : g) {
+    const std::string id = labelOf.at(row.at("root"));
+    tracks[row.at("track")].insert(id);
+    // the dated root's length is the time-lapse's at the same time
+    bool found = false;
+    for (const auto& l : lapseG)
+      if (l.at("root") == id && number(l, "time_h") == number(row, "time_h")) {
+        CHECK(number(row, "length_mm") == doctest::Approx(number(l, "length_mm")).epsilon(1e-9));
+        found = true;
+      }
+    CHECK_MESSAGE(found, id << " at " << row.at("time_h"));
+  }
+  // one track per root of the plate, each holding that root alone: every root matched at every date
+  std::set<std::string> ids;
+  for (const auto& [track, members] : tracks) {
+    CAPTURE(track);
+    CHECK(members.size() == 1);
+    ids.insert(*members.begin());
+  }
+  CHECK(ids.size() == tracks.size());
+  CHECK(ids.size() == 21);
 }

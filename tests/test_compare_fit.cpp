@@ -3,6 +3,7 @@
 // a fit's files, its determinism, and its resumption; bad input (exit 2, nothing written); the write rule.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -103,6 +104,46 @@ TEST_CASE("compare: a run against its own export / distance 0, every residual 0,
   CHECK(jsonNumber(slurp(d / "e" / "compare.json"), "distance_mm") > 0.05);
 }
 
+TEST_CASE("compare: a 2D+t trace against the run at each observation time / timelapse.csv and compare.json's time_lapse") {
+  if (!built()) return;
+  const fs::path d = scratch("lapse");
+  // RootSystemTracker's 2D+t test file (0, 6, 12, 18 h): its primary is 1, 2, 4, 6 mm long then
+  const auto r = run("compare " + quick().run.string() + " " + kData + "rst_2dt.rsml --root 1/1.1 --quiet --out " + (d / "c").string());
+  REQUIRE_MESSAGE(r.code == 0, r.out);
+  std::ifstream in(d / "c" / "timelapse.csv");
+  std::string line;
+  std::getline(in, line);
+  CHECK(line.rfind("time_h,snapshot_h,trace_length_mm,run_length_mm,", 0) == 0);
+  const double hours[] = {0, 6, 12, 18}, lengths[] = {1, 2, 4, 6};
+  double previous = 0;
+  for (int k = 0; k < 4; ++k) {
+    REQUIRE(std::getline(in, line));
+    std::vector<double> v;
+    std::size_t from = 0;
+    while (from <= line.size()) {
+      const std::size_t comma = std::min(line.find(',', from), line.size());
+      v.push_back(std::stod(line.substr(from, comma - from)));
+      from = comma + 1;
+    }
+    REQUIRE(v.size() == 11);
+    CHECK(v[0] == hours[k]);
+    CHECK(std::abs(v[1] - hours[k]) <= 0.5);              // the run's snapshot nearest that time
+    CHECK(v[2] == doctest::Approx(lengths[k]));            // the trace as it was then
+    // the run's root then: 0.2 mm/h from about 1 mm (fig2b: rate_per_h 0.2, growth zone 1 mm)
+    CHECK(v[3] == doctest::Approx(1.0 + 0.2 * v[1]).epsilon(0.1));
+    CHECK(v[3] > previous);
+    previous = v[3];
+    CHECK(v[10] >= 0);
+  }
+  CHECK_FALSE(std::getline(in, line));
+  const std::string json = slurp(d / "c" / "compare.json");
+  CHECK(json.find("\"time_lapse\": [") != std::string::npos);
+  // a trace of one time has none
+  REQUIRE(run("compare " + quick().run.string() + " " + quick().rsml.string() + " --quiet --out " + (d / "one").string()).code == 0);
+  CHECK_FALSE(fs::exists(d / "one" / "timelapse.csv"));
+  CHECK(slurp(d / "one" / "compare.json").find("time_lapse") == std::string::npos);
+}
+
 TEST_CASE("fit: bad input exits 2 naming the flag, key or file, and writes nothing") {
   if (!built()) return;
   const fs::path d = scratch("bad");
@@ -182,6 +223,29 @@ TEST_CASE("fit: the files, the same bytes from a fresh fit, and a second call th
   REQUIRE(run(args + " --out " + (d / "a").string()).code == 0);
   CHECK(runTimes(d / "a" / "runs") == before);
   CHECK(slurp(d / "a" / "fit.json") == js);
+  // the same fit with any setting changed: refused before any work, the earlier fit left as it was
+  std::string budget61 = args;
+  budget61.replace(budget61.find("--budget 60"), 11, "--budget 61");
+  for (const std::string& changed : {budget61, args + " --objective shape", args + " --sigma-mm 0.1"}) {
+    INFO(changed);
+    const auto differs = run(changed + " --out " + (d / "a").string());
+    CHECK(differs.code == 2);
+    CHECK(differs.out.find("holds a fit of another scene, trace or settings") != std::string::npos);
+    CHECK(differs.out.find("pass --force") != std::string::npos);
+    CHECK(slurp(d / "a" / "fit.json") == js);
+  }
+  {
+    const std::string bounds = "fit " + quick().rsml.string() + " --scene " + quick().scene.string() +
+                               " --free tropism.beta=0.1:0.35,tropism.twist_r_tau=-0.2:0.2 --budget 60 -j 2 --quiet";
+    const std::string keys = "fit " + quick().rsml.string() + " --scene " + quick().scene.string() +
+                             " --free tropism.beta=0.1:0.3 --budget 60 -j 2 --quiet";
+    for (const std::string& other : {bounds, keys}) {
+      const auto differs = run(other + " --out " + (d / "a").string());
+      CHECK(differs.code == 2);
+      CHECK(differs.out.find("holds a fit of another scene, trace or settings") != std::string::npos);
+      CHECK(slurp(d / "a" / "fit.json") == js);
+    }
+  }
   // the start design is a sweep file: `rootsim sweep` finds every point complete
   const auto sw = run("sweep " + (d / "a" / "design.toml").string() + " --out " + (d / "a" / "runs").string());
   CHECK(sw.code == 0);
@@ -194,7 +258,7 @@ TEST_CASE("fit: the files, the same bytes from a fresh fit, and a second call th
                                 " --free tropism.beta=0.1:0.3,tropism.twist_r_tau=-0.2:0.2 --budget 60 -j 2 --quiet --out " + (d / "a").string();
   const auto refused = run(otherArgs);
   CHECK(refused.code == 2);
-  CHECK(refused.out.find("holds a fit of another scene or trace") != std::string::npos);
+  CHECK(refused.out.find("holds a fit of another scene, trace or settings") != std::string::npos);
   CHECK(slurp(d / "a" / "fit.json") == js);
   REQUIRE(run(otherArgs + " --force").code == 0);
   CHECK(slurp(d / "a" / "base.toml").find("alpha_deg = 30") != std::string::npos);

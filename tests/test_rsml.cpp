@@ -101,6 +101,97 @@ TEST_CASE("RSML reader: an openalea-style file in micrometres / two plants / chi
   CHECK(d.plants[1].roots[0].x[0] == doctest::Approx(5.0));
 }
 
+TEST_CASE("RSML reader: RootSystemTracker's 2D+t dialect / pixel(um) with <size> / coord_t, coord_th / per-point diameter") {
+  const rsml::Document d = rsml::readRsml(kData / "rst_2dt.rsml");
+  CHECK(d.mmPerUnit == doctest::Approx(0.05).epsilon(1e-15));  // <size>50</size> um
+  CHECK(d.pixelMm == doctest::Approx(0.05).epsilon(1e-15));
+  CHECK(d.meta.size == 50);
+  // RootSystemTracker lists observations 1..N; observation 0 is at 0 h
+  REQUIRE(d.observationTimesH == std::vector<double>{0, 6, 12, 18});
+  CHECK(d.timeLapse());
+  REQUIRE(d.plants.size() == 2);
+  CHECK(d.plants[0].id == "1");  // uppercase ID
+  const rsml::Plant& p = d.plants[0];
+  REQUIRE(p.roots.size() == 3);
+  CHECK(p.roots[0].id == "1.1");
+  CHECK(p.roots[1].id == "1.1.1");
+  CHECK(p.roots[1].parent == 0);
+  CHECK(p.roots[0].timeIndex == std::vector<double>{0, 0, 1, 1.5, 2, 2.5, 3});
+  CHECK(p.roots[0].timeH == std::vector<double>{0, 0, 6, 9, 12, 15, 18});
+  CHECK(p.roots[0].y[6] == doctest::Approx(11.0));  // 220 px x 0.05 mm
+  // the diameter in pixels, per point: 6 px = 0.3 mm; vx and vy kept as functions
+  REQUIRE(p.roots[0].diameterMm.size() == 7);
+  CHECK(p.roots[0].diameterMm[0] == doctest::Approx(0.3));
+  REQUIRE(p.roots[0].function("vy") != nullptr);
+  CHECK(p.roots[0].function("vy")->samples[6] == doctest::Approx(3.3));
+}
+
+TEST_CASE("RSML reader: SmartRoot's habits / uppercase ID / unit inch with the scan's dpi / one plant without an id") {
+  const rsml::Document d = rsml::readRsml(kData / "smartroot_inch.rsml");
+  CHECK(d.mmPerUnit == doctest::Approx(0.1));  // 25.4 mm / 254 dpi
+  CHECK(d.pixelMm == doctest::Approx(0.1));
+  CHECK_FALSE(d.timeLapse());
+  REQUIRE(d.plants.size() == 1);
+  CHECK(d.plants[0].id.empty());
+  REQUIRE(d.plants[0].roots.size() == 3);
+  CHECK(d.plants[0].roots[0].id == "r1");
+  CHECK(d.plants[0].roots[2].id == "r2.1");
+  CHECK(d.plants[0].roots[2].parent == 1);
+  CHECK(d.plants[0].roots[0].y[2] == doctest::Approx(10.0));
+  CHECK(d.plants[0].roots[0].diameterMm[0] == doctest::Approx(0.2));  // <sample>2.0</sample> px
+  CHECK(d.plants[0].roots[0].property("length")->number == 1.0);
+}
+
+TEST_CASE("RSML reader: a 2D+t file's missing attributes, times going backwards, coord_t beyond the observations") {
+  // a one-root 2D+t document with the metadata `meta` and the points `points`, one per line from line 6
+  auto doc = [](const std::string& meta, const std::string& points) {
+    return "<rsml>\n<metadata>" + meta + "</metadata>\n<scene>\n<plant ID=\"1\">\n<root ID=\"1.1\"><geometry><polyline>\n" + points +
+           "</polyline></geometry></root>\n</plant></scene></rsml>\n";
+  };
+  const std::string meta = "<unit>pixel(um)</unit><size>76</size><observation-hours>6,12</observation-hours>";
+  auto pt = [](const std::string& attrs) { return "<point coord_x=\"1\" coord_y=\"2\" " + attrs + "/>\n"; };
+  struct Bad {
+    std::string meta, points;
+    const char* says;
+  };
+  const Bad bad[] = {
+      {"<unit>pixel(um)</unit><observation-hours>6</observation-hours>", pt("coord_t=\"0\" coord_th=\"0\"") + pt("coord_t=\"1\" coord_th=\"6\""),
+       "x.rsml:2: <unit>pixel(um)</unit> needs <size> in the metadata (the pixel size in um"},
+      {"<unit>pixel(um)</unit><size>-1</size>", pt("") + pt(""), "x.rsml:2: <size> must be a positive number"},
+      {"<unit>pixel(furlong)</unit><size>1</size>", pt("") + pt(""), "x.rsml:2: unknown unit \"furlong\" in <unit>pixel(furlong)</unit>"},
+      {meta, pt("coord_t=\"0\" coord_th=\"0\"") + pt("coord_th=\"6\""), "x.rsml:7: <point> without coord_t where the root's first point has one"},
+      {meta, pt("coord_t=\"0\" coord_th=\"0\"") + pt("coord_t=\"1\""), "x.rsml:7: <point> without coord_th"},
+      {meta, pt("") + pt("coord_t=\"1\" coord_th=\"6\""), "x.rsml:7: <point> with coord_t where the root's first point has none"},
+      {meta, pt("coord_t=\"0\" coord_th=\"0\"") + pt("coord_t=\"2.5\" coord_th=\"15\""),
+       "x.rsml:7: coord_t 2.5 is outside the observations: expected 0 to 2 (<observation-hours> gives 3 observations, the first at 0 h)"},
+      {meta, pt("coord_t=\"-0.5\" coord_th=\"0\"") + pt("coord_t=\"1\" coord_th=\"6\""), "x.rsml:6: coord_t -0.5 is outside the observations"},
+      {meta, pt("coord_t=\"1\" coord_th=\"6\"") + pt("coord_t=\"0.5\" coord_th=\"7\""),
+       "x.rsml:7: coord_t goes backwards along root 1.1: 0.5 after 1 (a root grows at its tip"},
+      {meta, pt("coord_t=\"1\" coord_th=\"6\"") + pt("coord_t=\"1\" coord_th=\"5\""), "x.rsml:7: coord_th goes backwards along root 1.1: 5 h after 6 h"},
+      {"<unit>pixel(um)</unit><size>76</size>", pt("coord_t=\"0\" coord_th=\"0\"") + pt("coord_t=\"1\" coord_th=\"6\""),
+       "x.rsml:6: <point> has coord_t but the metadata has no <observation-hours>"},
+      {"<unit>pixel(um)</unit><size>76</size><observation-hours>6,6</observation-hours>", pt("") + pt(""),
+       "x.rsml:2: <observation-hours> must increase, found 6 h after 6 h"},
+      {meta, pt("coord_t=\"0\" coord_th=\"0\" diameter=\"3\"") + pt("coord_t=\"1\" coord_th=\"6\""),
+       "x.rsml:7: <point> without diameter where the root's first point has one"},
+  };
+  for (const Bad& b : bad) {
+    CAPTURE(b.says);
+    CHECK_THROWS_WITH_AS(rsml::parseRsml(doc(b.meta, b.points), "x.rsml"), doctest::Contains(b.says), SceneError);
+  }
+  // a root without times in a file whose other roots have them
+  const std::string mixed = "<rsml>\n<metadata>" + meta + "</metadata>\n<scene>\n<plant ID=\"1\">\n<root ID=\"1.1\"><geometry><polyline>\n" +
+                            pt("coord_t=\"0\" coord_th=\"0\"") + pt("coord_t=\"1\" coord_th=\"6\"") + "</polyline></geometry></root>\n" +
+                            "<root ID=\"2.1\"><geometry><polyline>\n" + pt("") + pt("") + "</polyline></geometry></root>\n</plant></scene></rsml>\n";
+  CHECK_THROWS_WITH_AS(rsml::parseRsml(mixed, "x.rsml"), doctest::Contains("x.rsml:9: a <root> without coord_t in a 2D+t file (its root at line 5 has them"),
+                       SceneError);
+  // an <observation-hours> that starts at 0 lists every observation
+  const rsml::Document d = rsml::parseRsml(
+      doc("<unit>pixel(um)</unit><size>76</size><observation-hours>0,6</observation-hours>", pt("coord_t=\"0\" coord_th=\"0\"") + pt("coord_t=\"1\" coord_th=\"6\"")),
+      "x.rsml");
+  CHECK(d.observationTimesH == std::vector<double>{0, 6});
+}
+
 TEST_CASE("RSML units: the names and spellings / the resolution in pixels per unit") {
   for (const char* mm : {"mm", "MM", "millimeter", "millimetre", " mm "}) CHECK(rsml::mmPerUnit(mm, 1) == 1);
   for (const char* cm : {"cm", "centimeter", "Centimetre"}) CHECK(rsml::mmPerUnit(cm, 1) == 10);
@@ -112,6 +203,13 @@ TEST_CASE("RSML units: the names and spellings / the resolution in pixels per un
   for (const char* px : {"pixel", "px", "Pixels"}) CHECK(rsml::mmPerUnit(px, 1) == 1);
   CHECK(rsml::mmPerUnit("furlong", 1) == 0);
   CHECK(rsml::mmPerUnit("", 1) == 0);
+  // RootSystemTracker's pixel(UNIT): the scale is <size>, not the unit
+  CHECK(rsml::mmPerUnit("pixel(um)", 1) == 0);
+  CHECK(rsml::pixelSizeUnit("pixel(um)") == "um");
+  CHECK(rsml::pixelSizeUnit("Pixel( mm )") == "mm");
+  CHECK(rsml::pixelSizeUnit("pixel").empty());
+  CHECK(rsml::isPixelUnit(" PX "));
+  CHECK_FALSE(rsml::isPixelUnit("pixel(um)"));
 }
 
 TEST_CASE("RSML reader: every bad file exits 2 naming file:line") {

@@ -1,5 +1,5 @@
 // running a scene into a run directory (src/io/run_scene.cpp): checkpoints and `rootsim run --resume`
-// (issue 15 item 3): a run killed after a checkpoint and resumed writes the same bytes as one never
+// a run killed after a checkpoint and resumed writes the same bytes as one never
 // interrupted (summary.json's wall time aside); refusals; a progress hook stopping the run.
 //
 // A kill is emulated by the test binary rootsim_killable (tests/seams/kill_at_step.cpp) with

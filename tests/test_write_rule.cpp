@@ -18,6 +18,10 @@
 #include <string>
 #include <vector>
 
+#include <thread>
+
+#include "rootsim/errors.hpp"
+#include "rootsim/write_rule.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -303,9 +307,16 @@ TEST_CASE("sweep: a changed base scene or a damaged point is not taken as comple
   for (const auto& e : fs::directory_iterator(d / "S"))
     if (e.path().filename().string().rfind("run_0000", 0) == 0) point = e.path();
   REQUIRE(!point.empty());
+  // is not rootsim's any more: refused with --force too, naming the file, until it is moved away
   fs::resize_file(point / "timeseries.csv", 100);
-  checkRefused(run("sweep " + q(sw) + " --quiet --out " + q(d / "S")), "timeseries.csv holds 100 bytes");
-  CHECK(run("sweep " + q(sw) + " --quiet --force --out " + q(d / "S")).code == 0);
+  for (const char* force : {"", " --force"}) {
+    const Result r = run("sweep " + q(sw) + " --quiet --out " + q(d / "S") + force);
+    checkRefused(r, "timeseries.csv, changed since rootsim wrote it");
+    CHECK(r.out.find("move it away or delete it") != std::string::npos);
+    CHECK(fs::file_size(point / "timeseries.csv") == 100);
+  }
+  fs::remove_all(point);
+  CHECK(run("sweep " + q(sw) + " --quiet --out " + q(d / "S")).code == 0);
   CHECK(fs::file_size(point / "timeseries.csv") > 100);
   fs::remove_all(d);
 }
@@ -419,5 +430,270 @@ TEST_CASE("a full disk before the run starts is a failed run (exit 1), not bad i
   CHECK(r.out.find("No space left on device") != std::string::npos);
   CHECK(!fs::exists(mnt / "out"));
   ::umount(mnt.c_str());
+  fs::remove_all(d);
+}
+
+// ---- ownership by record: a single file by its format's signature, a folder's files by its marker ----
+
+namespace {
+std::string bytesOf(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+void writeBytes(const fs::path& p, const std::string& b) { std::ofstream(p, std::ios::binary) << b; }
+
+// the refusal of a user's file: exit 2, the file named, how to go on, its bytes unchanged
+void checkUsersFile(const Result& r, const fs::path& file, const std::string& before) {
+  INFO(r.out);
+  CHECK(r.code == 2);
+  CHECK(r.out.find(file.filename().string()) != std::string::npos);
+  CHECK(r.out.find("move it away or delete it") != std::string::npos);
+  CHECK(bytesOf(file) == before);
+}
+}  // namespace
+
+TEST_CASE("a file holding rootsim's signature as bytes anywhere is not rootsim's: RSML, GLB, MP4 and PNG refused with --force") {
+  const fs::path d = scratch("substring");
+  const fs::path r = makeRun(d);
+  const std::string script = "assert b'rootsim-output' in data\n";
+  writeBytes(d / "check.py", script);
+  checkUsersFile(run("export " + q(r) + " --quiet --force --rsml " + q(d / "check.py")), d / "check.py", script);
+  const std::string notes = "notes: rootsim-output rootsim 1.0 was here\n";
+  writeBytes(d / "notes.glb", notes);
+  checkUsersFile(run("export " + q(r) + " --quiet --force --gltf " + q(d / "notes.glb")), d / "notes.glb", notes);
+  // a movie-sized file of someone else's with the bytes at offset 70 000
+  std::string movie(100000, '\x42');
+  movie.replace(70000, 14, "rootsim-output");
+  writeBytes(d / "holiday.mp4", movie);
+  checkUsersFile(run("render " + q(r) + " --quiet --force --mp4 " + q(d / "holiday.mp4")), d / "holiday.mp4", movie);
+  const std::string text = "a text file, not a picture: rootsim-output\n";
+  writeBytes(d / "text.png", text);
+  checkUsersFile(run("render " + q(r) + " --quiet --force --frame 0 --png " + q(d / "text.png")), d / "text.png", text);
+  checkUsersFile(run("render " + q(r) + " --quiet --force --final-png " + q(d / "text.png")), d / "text.png", text);
+  // an RSML file of the user's whose line 2 is a comment naming rootsim, but not written by it
+  const std::string rsml = "<?xml version=\"1.0\"?>\n<!-- rootsim-output rootsim 1.0 -->\n<rsml><scene/></rsml\n";
+  writeBytes(d / "mine.rsml", rsml);
+  checkUsersFile(run("export " + q(r) + " --quiet --force --rsml " + q(d / "mine.rsml")), d / "mine.rsml", rsml);
+  fs::remove_all(d);
+}
+
+TEST_CASE("rootsim's own RSML, GLB, PNG and MP4 are replaced with --force; the same file edited afterwards is refused") {
+  const fs::path d = scratch("single_files");
+  const fs::path r = makeRun(d);
+  struct Out {
+    std::string cmd;
+    fs::path file;
+    std::size_t editAt;  // a byte of the content the signature's hash covers
+  };
+  const std::vector<Out> outs = {{"export " + q(r) + " --quiet --rsml ", d / "a.rsml", 0},
+                                 {"export " + q(r) + " --quiet --gltf ", d / "a.glb", 0},
+                                 {"render " + q(r) + " --quiet --frame 0 --png ", d / "a.png", 0},
+                                 {"render " + q(r) + " --quiet --mp4 ", d / "a.mp4", 0}};
+  for (const Out& o : outs) {
+    INFO(o.file);
+    const Result first = run(o.cmd + q(o.file));
+    REQUIRE_MESSAGE(first.code == 0, first.out);
+    checkRefused(run(o.cmd + q(o.file)), "pass --force to replace it");
+    const Result again = run(o.cmd + q(o.file) + " --force");
+    CHECK_MESSAGE(again.code == 0, again.out);
+    // one byte near the end (the last point, the geometry, the picture, the movie's data) changed
+    std::string b = bytesOf(o.file);
+    REQUIRE(b.size() > 200);
+    const std::size_t at = o.file.extension() == ".mp4" ? b.size() / 3 : o.file.extension() == ".png" ? b.size() - 20 : b.size() - 40;
+    b[at] = static_cast<char>(b[at] ^ 0x01);
+    writeBytes(o.file, b);
+    checkUsersFile(run(o.cmd + q(o.file) + " --force"), o.file, b);
+  }
+  fs::remove_all(d);
+}
+
+TEST_CASE("a file edited or put beside rootsim's in its folder is the user's: figure, render, modes refuse with --force") {
+  const fs::path d = scratch("edited_in_folder");
+  // a figure folder: its panel edited, or a report.md of the user's beside the panels
+  const std::string fig = "figure fig2b --quick --quiet --out " + q(d / "F");
+  REQUIRE(run(fig).code == 0);
+  const auto figBefore = snapshot(d / "F");
+  std::string svg = bytesOf(d / "F" / "fig2b.svg");
+  svg.insert(svg.size() - 7, "<!-- my edit -->");
+  writeBytes(d / "F" / "fig2b.svg", svg);
+  checkUsersFile(run(fig + " --force"), d / "F" / "fig2b.svg", svg);
+  writeBytes(d / "F" / "fig2b.svg", figBefore.at("fig2b.svg"));
+  writeBytes(d / "F" / "report.md", "# my notes\n");
+  checkUsersFile(run(fig + " --force"), d / "F" / "report.md", "# my notes\n");
+  fs::remove(d / "F" / "report.md");
+  CHECK(snapshot(d / "F") == figBefore);
+  CHECK(run(fig + " --force").code == 0);  // as rootsim wrote it: replaced
+
+  // a run directory: render's final_top.png and modes' modes.csv edited after rootsim wrote them
+  const fs::path r = makeRun(d);
+  REQUIRE(run("render " + q(r) + " --quiet --size 64x64").code == 0);
+  REQUIRE(run("modes " + q(r) + " --quiet").code == 0);
+  CHECK(run("render " + q(r) + " --quiet --size 64x64 --force").code == 0);
+  CHECK(run("modes " + q(r) + " --quiet --force").code == 0);
+  std::string png = bytesOf(r / "final_top.png");
+  png[png.size() - 20] = static_cast<char>(png[png.size() - 20] ^ 1);
+  writeBytes(r / "final_top.png", png);
+  const auto runBefore = snapshot(r);
+  checkUsersFile(run("render " + q(r) + " --quiet --size 64x64 --force"), r / "final_top.png", png);
+  CHECK(snapshot(r) == runBefore);
+  fs::remove(r / "final_top.png");
+  writeBytes(r / "modes.csv", bytesOf(r / "modes.csv") + "0,0\n");
+  const std::string csv = bytesOf(r / "modes.csv");
+  checkUsersFile(run("modes " + q(r) + " --quiet --force"), r / "modes.csv", csv);
+  // a file of the user's put into the run directory under a name rootsim writes
+  fs::remove(r / "modes.csv");
+  writeBytes(r / "final_top.png", "my picture");
+  checkUsersFile(run("render " + q(r) + " --quiet --size 64x64 --force"), r / "final_top.png", "my picture");
+  fs::remove_all(d);
+}
+
+TEST_CASE("the marker records each file with its size and SHA-256, and is updated when rootsim writes there later") {
+  const fs::path d = scratch("marker_record");
+  const fs::path r = makeRun(d);
+  const std::string before = slurp(r / ".rootsim-run");
+  CHECK(before.rfind("rootsim run directory ", 0) == 0);
+  // "file scene.toml <bytes> <64 hex digits>"
+  const auto at = before.find("\nfile scene.toml ");
+  REQUIRE(at != std::string::npos);
+  const std::string line = before.substr(at + 1, before.find('\n', at + 1) - at - 1);
+  CHECK(line.substr(line.rfind(' ') + 1).size() == 64);
+  CHECK(line.find(" " + std::to_string(fs::file_size(r / "scene.toml")) + " ") != std::string::npos);
+  // summary.json's wall time varies between identical runs: recorded without it ("-" for its size)
+  CHECK(before.find("\nfile summary.json - ") != std::string::npos);
+  REQUIRE(run("modes " + q(r) + " --quiet").code == 0);
+  const std::string after = slurp(r / ".rootsim-run");
+  CHECK(after.find("\nfile modes.csv ") != std::string::npos);
+  CHECK(after.find("\nfile modes.vtp ") != std::string::npos);
+  fs::remove_all(d);
+}
+
+// ---- one lock for every writer ----
+
+namespace {
+// a run of a few seconds (the explicit solver) in the background, writing d/X; waits until it has started
+struct SlowRun {
+  fs::path d;
+  explicit SlowRun(const fs::path& dir, const std::string& name) : d(dir) {
+    const std::string cmd = std::string(ROOTSIM_BINARY) + " run " + kScene +
+                            " --set growth.steps=400 --set solver.kind=dynamic --quiet --out " + q(d / name) + " > " +
+                            q(d / "slow.log") + " 2>&1; echo $? > " + q(d / "slow.rc");
+    REQUIRE(std::system(("(" + cmd + ") &").c_str()) == 0);
+    for (int i = 0; i < 500 && !fs::exists(d / (name + ".partial") / "scene.toml"); ++i) ::usleep(10000);
+    REQUIRE(fs::exists(d / (name + ".partial")));
+  }
+  bool running() const { return !fs::exists(d / "slow.rc"); }
+  std::string pid() const {
+    // the holder's PID as its lock file names it
+    for (const auto& e : fs::directory_iterator(d)) {
+      const std::string n = e.path().filename().string();
+      if (n.size() > 13 && n.compare(n.size() - 13, 13, ".rootsim-lock") == 0) {
+        std::ifstream in(e.path());
+        std::string w1, w2, p;
+        in >> w1 >> w2 >> p;
+        return p;
+      }
+    }
+    return "?";
+  }
+  ~SlowRun() {
+    for (int i = 0; i < 6000 && running(); ++i) ::usleep(10000);
+  }
+};
+}  // namespace
+
+TEST_CASE("while run --out X runs, sweep, fit, figure and analyze into X are refused naming its PID; readers name X.partial") {
+  const fs::path d = scratch("one_lock");
+  const fs::path sw = makeSweep(d);
+  std::ofstream(d / "t.rsml") << slurp(std::string(ROOTSIM_SOURCE_DIR) + "/tests/data/rsml/smartroot_pixels.rsml");
+  std::map<std::string, std::string> before;
+  {
+    const SlowRun slow(d, "X");
+    const std::string pid = "PID " + slow.pid();
+    REQUIRE(slow.pid() != "?");
+    const std::vector<std::string> writers = {
+        "sweep " + q(sw) + " --quiet --out " + q(d / "X"),
+        "fit " + q(d / "t.rsml") + " --px-per-mm 10 --scene " + kScene + " --free tropism.beta=0.1:0.3 --budget 30 --quiet --out " +
+            q(d / "X"),
+        "figure fig2b --quick --quiet --out " + q(d / "X"),
+        "analyze " + q(d / "t.rsml") + " --px-per-mm 10 --quiet --out " + q(d / "X"),
+        "run " + kScene + kShort + " --force --out " + q(d / "X")};
+    for (const std::string& w : writers) {
+      INFO(w);
+      const Result r = run(w);
+      REQUIRE_MESSAGE(slow.running(), "the run ended before the check: make it longer");
+      checkRefused(r, "being written by another rootsim process (" + pid + ")");
+    }
+    // a reading command of the run being written: named as such, not "trajectory.csv: not found"
+    for (const std::string& reader : {"export " + q(d / "X.partial") + " --quiet --rsml " + q(d / "x.rsml"),
+                                      "export " + q(d / "X") + " --quiet --rsml " + q(d / "x.rsml"),
+                                      "render " + q(d / "X.partial") + " --quiet --mp4 " + q(d / "x.mp4"),
+                                      "render " + q(d / "X") + " --quiet --mp4 " + q(d / "x.mp4")}) {
+      INFO(reader);
+      checkRefused(run(reader), (d / "X.partial").string() + " is being written by " + pid);
+    }
+    CHECK(!fs::exists(d / "x.rsml"));
+    CHECK(!fs::exists(d / "x.mp4"));
+  }
+  CHECK(slurp(d / "slow.rc") == "0\n");
+  CHECK(rootsim::test::run("export " + q(d / "X") + " --quiet --rsml " + q(d / "x.rsml")).code == 0);
+  fs::remove_all(d);
+}
+
+TEST_CASE("sweep shards share their folder's lock: they run side by side, and a run into the folder is refused") {
+  const fs::path d = scratch("shared_lock");
+  const fs::path sw = makeSweep(d);
+  const std::string pid = "PID " + std::to_string(::getpid());
+  REQUIRE(run("sweep " + q(sw) + " --quiet --out " + q(d / "S") + " --shard 1/2").code == 0);
+  {
+    // another shard holds the folder (shared) and its own shard lock
+    const fs::path lockFile = d / ".S.rootsim-lock";
+    const int fd = ::open(lockFile.c_str(), O_RDWR | O_CREAT, 0644);
+    REQUIRE(fd >= 0);
+    REQUIRE(::flock(fd, LOCK_SH | LOCK_NB) == 0);
+    const std::string text = "rootsim lock " + std::to_string(::getpid()) + "\n";
+    REQUIRE(::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size()));
+    const HeldLock shard(d / "S" / "shard-2-of-2");
+    const Result one = run("sweep " + q(sw) + " --quiet --out " + q(d / "S") + " --shard 1/2");
+    INFO(one.out);
+    CHECK(one.code == 0);
+    // the shard's release never removed the lock file the other shard still holds
+    CHECK(fs::exists(lockFile));
+    checkRefused(run("run " + kScene + kShort + " --out " + q(d / "S")), pid);
+    checkRefused(run("figure fig2b --quick --quiet --out " + q(d / "S")), pid);
+    ::close(fd);
+  }
+  CHECK(run("sweep " + q(sw) + " --quiet --out " + q(d / "S") + " --shard 2/2").code == 0);
+  CHECK(!fs::exists(d / ".S.rootsim-lock"));
+  fs::remove_all(d);
+}
+
+TEST_CASE("one process, two threads on one output: the second thread is refused naming the PID, the same thread shares") {
+  const fs::path d = scratch("threads");
+  const fs::path out = d / "X";
+  rootsim::OutputLock held = rootsim::lockOutput(out, "--out");
+  {
+    // the same thread again (a run locking its directory, then resuming into it) shares the lock
+    const rootsim::OutputLock again = rootsim::lockOutput(out, "--out");
+  }
+  std::string message;
+  bool refused = false;
+  std::thread other([&] {
+    try {
+      const rootsim::OutputLock mine = rootsim::lockOutput(out, "--out");
+    } catch (const rootsim::SceneError& e) {
+      refused = true;
+      message = e.what();
+    }
+  });
+  other.join();
+  CHECK(refused);
+  CHECK(message.find("being written by another rootsim thread of this process (PID " + std::to_string(::getpid()) + ")") !=
+        std::string::npos);
+  CHECK(fs::exists(rootsim::lockFileOf(out)));
+  held.release();
+  CHECK(!fs::exists(rootsim::lockFileOf(out)));
+  // released: another thread takes it
+  std::thread after([&] { CHECK_NOTHROW(rootsim::lockOutput(out, "--out")); });
+  after.join();
   fs::remove_all(d);
 }

@@ -53,6 +53,9 @@ struct TracedRoot {
   int order = 0, line = 0;   // branching order; the line of its <root> element
   int parentIndex = -1;      // its parent in TraceFile::roots
   Eigen::Matrix3Xd plateMm;  // points [mm]: lateral, downhill, height; origin at its plant's first root's base
+  Eigen::Vector3d originMm = Eigen::Vector3d::Zero();  // that origin in the file's plate coordinates [mm]
+                                                       // (one frame for every plant of the file)
+  std::vector<double> timeIndex;  // a 2D+t file's coord_t per point (the observation index); else empty
   double radiusMm = 0;       // R of the peaks' hysteresis, and where it came from
   std::string radiusSource;
 };
@@ -60,7 +63,10 @@ struct TracedRoot {
 struct TraceFile {
   std::string file;
   double timeH = 0;          // the file's time_h (NaN: none)
-  double pixelMm = 0;        // a pixel's size for a pixel file [mm] (0: the file is in a physical unit)
+  double pixelMm = 0;        // a pixel's size [mm]: --px-per-mm's for a pixel file, else the file's own
+                             // (a resolution, RootSystemTracker's <size>); 0: the file is in a physical unit
+  std::string scaleSource;   // where the scale came from (the flag, or the file's unit and resolution/size)
+  std::vector<double> observationTimesH;  // a 2D+t file's observation times [h] (index = coord_t); else empty
   bool ours = false;         // written by rootsim (its points are a run's nodes)
   double dsMm = 0, excludeTipMm = 0;  // the shape analysis' resampling step and tip exclusion (the flags or
                                       // the defaults of AnalyzeOptions)
@@ -81,6 +87,10 @@ const TracedRoot& pickRoot(const TraceFile& tf, const std::string& id, const std
 
 // the rows of every root of every file (bad input: SceneError naming the file:line or the flag)
 std::vector<RootRow> analyzeTraces(const AnalyzeOptions& o);
+// the files' times: --times, one per file (checks the flags; SceneError naming the flag); empty without
+std::vector<double> traceTimes(const AnalyzeOptions& o);
+// the rows of one file's roots at time timeH (growth rates NaN: trace_growth.hpp fills them)
+std::vector<RootRow> fileRows(const TraceFile& tf, double timeH);
 
 // one cell of a row: the column of analysis.csv / the key of analysis.json, its unit ("" for none), and
 // its value (text, or a number: NaN for an empty cell)

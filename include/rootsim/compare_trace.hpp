@@ -37,6 +37,9 @@ struct TraceTarget {
   double sigmaMm = 0;
   std::string sigmaSource;        // "--sigma-mm", "pixel", "default"
   double dsMm = 0;                // the trace's resampling step [mm]
+  // a time-lapse trace (RSML 2D+t): the hour each point was reached, and the file's observation times;
+  // both empty for a trace of one time
+  std::vector<double> timesH, observationTimesH;
 };
 // SceneError for bad input (the file, the flags, the root)
 TraceTarget loadTarget(const TraceFlags& f, const Model& m);
@@ -58,6 +61,18 @@ struct Comparison {
   double frechetMm = 0;           // frechetDistanceMm at 0.05 mm
 };
 Comparison compareRoots(const TraceTarget& t, const SimRoot& s);
+
+// a time-lapse trace against a run at one observation time: the trace as it was then, the run's snapshot
+// nearest that time
+struct TimeLapseRow {
+  double timeH = 0, snapshotH = 0;
+  double traceLengthMm = 0, runLengthMm = 0;
+  double traceTipLateralMm = 0, traceTipDownhillMm = 0, runTipLateralMm = 0, runTipDownhillMm = 0;
+  double traceThetaTipDeg = 0, runThetaTipDeg = 0;
+  double distanceMm = 0;          // arcLengthDistanceMm of the two then
+};
+// one row per observation at which the trace has a length (empty for a trace without times)
+std::vector<TimeLapseRow> compareTimeLapse(const TraceTarget& t, const Model& m, const std::vector<Snapshot>& snaps);
 
 // a one-line summary "distance 0.12 mm (RMS at equal arc length), Frechet 0.3 mm, chi2 1.2 (3 observables)"
 std::string comparisonCaption(const Comparison& c);

@@ -49,6 +49,10 @@ struct View {
   // its points in plate (u, v) [mm], empty for none; drawn with or without the other overlays, and named
   // "trace" in the stripe legend
   std::vector<std::array<double, 2>> traceUvMm;
+  // a time-lapse trace (RSML 2D+t): the hour each of traceUvMm's points was reached; each frame draws the
+  // trace as it was at the frame's time (the points reached by then, the last interpolated). Empty: the
+  // whole trace on every frame
+  std::vector<double> traceTimeH;
   // a plate's whole plate (`render --plate-view`, docs/plate.md): the plate drawn over this rectangle
   // (u0, v0, u1, v1) [mm] only, outlined, on a grey surround; unset: the plate fills the picture
   std::optional<std::array<double, 4>> plateRectMm;

@@ -39,6 +39,10 @@ struct Root {
   // the diameter along the root [mm], one value per point, from the first function named diameter,
   // diameters, diam, width or root_diameter (any case), or radius / radii (doubled); empty when none
   std::vector<double> diameterMm;
+  // RootSystemTracker's 2D+t dialect: per point, coord_t (the observation index at which the root
+  // reached the point, fractional between observations) and coord_th (the same in hours); empty when
+  // the file has no times. Never decreasing along a root, within [0, the last observation].
+  std::vector<double> timeIndex, timeH;
   int line = 0;                        // line of the <root> element in the file
   std::size_t points() const { return x.size(); }
   const Function* function(std::string_view name) const;
@@ -69,6 +73,8 @@ struct Metadata {
   // <observation-hours>: the times of the observations a file of several holds [h] (openalea,
   // RootSystemTracker: comma-separated); empty when absent
   std::vector<double> observationHours;
+  // <size>: RootSystemTracker's pixel size, in the unit inside <unit>pixel(UNIT)</unit>; 0 when absent
+  double size = 0;
 };
 
 struct Document {
@@ -76,6 +82,13 @@ struct Document {
   std::vector<Property> sceneProperties;   // <scene><properties>: a rootsim run's resolved scene keys
   std::vector<Plant> plants;
   double mmPerUnit = 1;                     // file coordinates x mmPerUnit = mm (docs/rsml.md, Units)
+  double pixelMm = 0;                       // a pixel's size [mm] where the coordinates are pixels of a
+                                            // known size (a resolution, a <size>); 0 otherwise
+  // the times of the observations of a 2D+t file [h]: observation k (a point's coord_t) at
+  // observationTimesH[k]; observation 0 at 0 h when <observation-hours> starts after 0 (as
+  // RootSystemTracker writes it: the hours of observations 1..N). Empty when no point has a coord_t.
+  std::vector<double> observationTimesH;
+  bool timeLapse() const { return !observationTimesH.empty(); }
   std::string comment;                      // written before <rsml> as an XML comment (the signature)
   double timeH = 0;                         // the growth time the file shows [h]: rootsim's scene property
   bool hasTime = false;                     // time_h (the reader sets both; the writer writes the property)
@@ -92,13 +105,21 @@ inline constexpr std::size_t kMaxPoints = 10'000'000;
 // millimetres per file unit of a <unit> and <resolution> (docs/rsml.md, Units): mm, cm, m, um (µm),
 // with their long names, and pixel (px): pixel coordinates with the resolution in pixels per unit
 // is not said by the unit alone, so a pixel file is read in pixels (1 pixel = 1 "mm", flagged by
-// Document::meta.unit). Returns 0 for an unknown unit.
+// Document::meta.unit). Returns 0 for an unknown unit. RootSystemTracker's pixel(UNIT) is not a unit
+// here: its scale is <size> (see pixelSizeUnit).
 double mmPerUnit(const std::string& unit, double resolution);
+// the UNIT of RootSystemTracker's "pixel(UNIT)" (the unit of the pixel size in <size>), "" for any other unit
+std::string pixelSizeUnit(const std::string& unit);
+// whether a unit says pixels without a scale (pixel, pixels, px, any case)
+bool isPixelUnit(const std::string& unit);
 
-// reads an RSML file into millimetres. Throws SceneError "FILE:LINE: what" for malformed XML, no
-// <rsml>, a root without a polyline or with fewer than two points, a non-finite or absurd coordinate
-// (beyond kMaxCoordMm), an unknown unit, a polyline-domain function whose length differs from the
-// point count
+// reads an RSML file into millimetres. Plants and roots take their id from `id` (openalea, RootNav,
+// rootsim) or `ID` (SmartRoot, RootSystemTracker). Throws SceneError "FILE:LINE: what" for malformed
+// XML, no <rsml>, a root without a polyline or with fewer than two points, a non-finite or absurd
+// coordinate (beyond kMaxCoordMm), an unknown unit, a polyline-domain function whose length differs
+// from the point count, and in the 2D+t dialect: pixel(UNIT) without a positive <size>, a point without
+// coord_t or coord_th where others have them, times without <observation-hours>, a coord_t beyond the
+// last observation or below 0, a time going backwards along a root, observation hours not increasing
 Document readRsml(const std::filesystem::path& file);
 // the same from text; `name` stands for the file in messages
 Document parseRsml(const std::string& text, const std::string& name);

@@ -4,8 +4,9 @@
 // ERROR.txt. A killed run leaves only DIR.partial/.
 //
 // The write rule (write_rule.hpp) decides what may be replaced: every run directory carries a marker
-// file (kRunMarker) written first, and an existing DIR, DIR.partial or DIR.incomplete is replaced only
-// with --force and only when it holds that marker and nothing but files a run writes. Anything else is
+// file (kRunMarker) written first, recording every file with its size and SHA-256 when the run is
+// committed (or failed), and an existing DIR, DIR.partial or DIR.incomplete is replaced only with
+// --force and only when it holds that marker and nothing but the files it records, as recorded. Anything else is
 // refused with a SceneError (exit 2) before the run starts. DIR is locked (OutputLock) from the
 // constructor until commit() or fail(): a second process is refused naming the first one's PID.
 #include <cstdint>
@@ -48,12 +49,12 @@ enum class PartialRun {
 // ".", "..", "/", paths ending in "..", rootsim's working names and names too long (checkOutputName)
 std::filesystem::path normaliseOutDir(const std::string& text);
 
-// "" when the finished run directory holds every file its marker lists, each with the size the run
-// wrote, else what is missing or cut short
+// "" when the finished run directory holds every file its marker lists, each with the content (size and
+// SHA-256) the run wrote, and a plate's roots/NAME are whole too; else what is missing or changed
 std::string whyNotWhole(const std::filesystem::path& dir);
 
-// marks a finished run directory written inside another (a plate's roots/NAME): its marker, listing
-// every file and its size, as RunDir::commit writes it
+// marks a finished run directory (RunDir::commit, a plate's roots/NAME): its marker records every file
+// with its size and SHA-256 (recordFolder)
 void markRunFolder(const std::filesystem::path& dir);
 
 class RunDir {

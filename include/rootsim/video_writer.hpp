@@ -7,6 +7,11 @@
 
 namespace rootsim {
 
+// "" when path is an MP4 rootsim wrote: it opens with libavformat as MP4, its "comment" tag holds
+// rootsim's signature and the sha256 of its packets' data, which they still hash to; else why not. The
+// write rule (write_rule.hpp) calls it through the check the app registers (rootsim_io links no libav).
+std::string whyNotSignedMovie(const std::string& path);
+
 struct VideoOptions {
   int fps = 30;                    // frames per second
   int crf = 18;                    // x264 constant rate factor, 0 (lossless) .. 51; 18 looks lossless

@@ -25,9 +25,9 @@ the growth step and node). Ctrl-C raises KeyboardInterrupt between growth steps;
 directory stays ``DIR.partial/``. Built with the project (PYTHONPATH=build/python) for Debian's
 /usr/bin/python3.
 """
-from ._api import (Frame, Run, RunError, Scene, SceneError, Simulation, State, Sweep, SweepPoint, analyze, compare,
-                   export, fit, load_run, render, run, sweep)
+from ._api import (Analysis, Frame, Run, RunError, Scene, SceneError, Simulation, State, Sweep, SweepPoint, analyze,
+                   compare, export, fit, load_run, render, run, sweep)
 from ._rootsim import __version__
 
-__all__ = ["Frame", "Run", "RunError", "Scene", "SceneError", "Simulation", "State", "Sweep", "SweepPoint",
+__all__ = ["Analysis", "Frame", "Run", "RunError", "Scene", "SceneError", "Simulation", "State", "Sweep", "SweepPoint",
            "analyze", "compare", "export", "fit", "load_run", "render", "run", "sweep", "__version__"]

@@ -737,13 +737,41 @@ def export(run_dir: PathLike, *, rsml: Optional[PathLike] = None, gltf: Optional
     return [pathlib.Path(p) for p in written]
 
 
+def _columns(rows: List[Dict[str, Any]], names: Sequence[str]) -> Dict[str, np.ndarray]:
+    """A table's rows as one numpy array per column: float64 for numbers (NaN for an empty cell), str
+    for text."""
+    out: Dict[str, np.ndarray] = {}
+    for name in names:
+        values = [r[name] for r in rows]
+        if values and isinstance(values[0], str):
+            out[name] = np.array(values, dtype=str)
+        elif values:
+            out[name] = np.array(values, dtype=np.float64)
+        else:
+            out[name] = np.array([], dtype=np.float64)
+    return out
+
+
+class Analysis(list):
+    """``rootsim.analyze``'s answer: a list of one dict per root (analysis.csv's rows), and as numpy
+    arrays, one per column: ``columns`` (analysis.csv), ``plants`` (plants.csv: one row per seedling),
+    ``growth`` (growth.csv: each root at each time of a time-lapse or a dated series); ``warnings``: the
+    implausible lengths the command line prints."""
+
+    columns: Dict[str, np.ndarray]
+    plants: Dict[str, np.ndarray]
+    growth: Dict[str, np.ndarray]
+    warnings: List[str]
+
+
 def analyze(files: Union[PathLike, Sequence[PathLike]], *, px_per_mm: Optional[float] = None,
             downhill: Union[str, float] = "+y", times: Optional[Sequence[float]] = None,
             ds_mm: Optional[float] = None, exclude_tip_mm: Optional[float] = None,
-            radius_mm: Optional[float] = None) -> List[Dict[str, Any]]:
+            radius_mm: Optional[float] = None) -> Analysis:
     """The traits and run observables of every root of RSML files, as ``rootsim analyze`` computes them
     (docs/experiments.md; the same C++ code), one dict per root with analysis.csv's columns (numbers as
-    floats, NaN where the CSV cell is empty). Writes nothing.
+    floats, NaN where the CSV cell is empty); the same as numpy arrays in ``.columns``, and plants.csv
+    and growth.csv's columns in ``.plants`` and ``.growth`` (an :class:`Analysis`). Writes nothing.
 
     ``px_per_mm``: for files whose unit is pixel; ``downhill``: "+y", "-y" or an angle in degrees from
     +y towards +x; ``times``: one growth time per file [h] (growth rates across files of one plate);
@@ -757,7 +785,13 @@ def analyze(files: Union[PathLike, Sequence[PathLike]], *, px_per_mm: Optional[f
                                 exclude_tip_mm=exclude_tip_mm, radius_mm=radius_mm)
     if times is not None:
         opts["times"] = ",".join(repr(float(t)) for t in times)
-    return [dict(r) for r in _c.analyze_traces(paths, opts)]
+    got = _c.analyze_traces(paths, opts)
+    out = Analysis(dict(r) for r in got["roots"])
+    out.columns = _columns(got["roots"], got["root_columns"])
+    out.plants = _columns(got["plants"], got["plant_columns"])
+    out.growth = _columns(got["growth"], got["growth_columns"])
+    out.warnings = list(got["warnings"])
+    return out
 
 
 def compare(run_dir: PathLike, trace: PathLike, *, root: Optional[str] = None, px_per_mm: Optional[float] = None,

@@ -78,9 +78,11 @@ def export_run(run_dir: str, options: Dict[str, Any]) -> List[str]:
     the files and folders written."""
     ...
 
-def analyze_traces(files: List[str], options: Dict[str, Any]) -> List[Dict[str, Any]]:
+def analyze_traces(files: List[str], options: Dict[str, Any]) -> Dict[str, Any]:
     """``rootsim analyze`` without writing: options by name (px_per_mm, downhill, times, ds_mm,
-    exclude_tip_mm, radius_mm); one dict per root with analysis.csv's columns."""
+    exclude_tip_mm, radius_mm); "roots", "plants", "growth": one dict per row with analysis.csv's,
+    plants.csv's and growth.csv's columns; "root_columns", "plant_columns", "growth_columns": their
+    names; "warnings": the implausible lengths."""
     ...
 
 def compare_trace(run_dir: str, trace: str, options: Dict[str, Any]) -> str:

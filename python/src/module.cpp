@@ -1,4 +1,4 @@
-// rootsim._rootsim: the C++ side of the Python package (issue 14). Thin: it calls the library the command
+// rootsim._rootsim: the C++ side of the Python package. Thin: it calls the library the command
 // line calls (loadScene, runSceneToDir, the run-directory readers, runSweep, the `render` command) and turns
 // its results into numpy arrays and dicts, in the units of the run directory's files (lengths mm, time h,
 // angles deg, forces N; docs/python.md, Units). The Python layer (rootsim/_api.py) adds the user-facing API.
@@ -37,6 +37,7 @@
 
 #ifdef ROOTSIM_HAVE_RENDER
 #include "rootsim/analyze_traces.hpp"
+#include "rootsim/trace_growth.hpp"
 #include "rootsim/compare_trace.hpp"
 #include "rootsim/fit_trace.hpp"
 #include "rootsim/export_run.hpp"
@@ -698,20 +699,38 @@ PYBIND11_MODULE(_rootsim, m) {
           else return false;
           return true;
         });
-        std::vector<app::RootRow> rows;
+        app::Analysis all;
         {
           py::gil_scoped_release nogil;
-          rows = app::analyzeTraces(o);
+          all = app::analyzeAll(o);
         }
-        py::list out;
-        for (const app::RootRow& r : rows) {
-          py::dict d;
-          for (const app::RowField& f : app::rowFields(r)) {
-            if (f.isText) d[f.name] = f.text;
-            else d[f.name] = f.number;
+        // each table as a list of dicts of its CSV's columns
+        auto table = [](const auto& rows, auto fields) {
+          py::list out;
+          for (const auto& r : rows) {
+            py::dict d;
+            for (const app::RowField& f : fields(r)) {
+              if (f.isText) d[f.name] = f.text;
+              else d[f.name] = f.number;
+            }
+            out.append(d);
           }
-          out.append(d);
-        }
+          return out;
+        };
+        py::dict out;
+        out["roots"] = table(all.roots, [](const app::RootRow& r) { return app::rowFields(r); });
+        out["plants"] = table(all.plants, [](const app::PlantRow& r) { return app::plantFields(r); });
+        out["growth"] = table(all.growth, [](const app::GrowthRow& r) { return app::growthFields(r); });
+        // the column names of each table, for empty ones
+        auto names = [](const std::vector<app::RowField>& fields) {
+          py::list l;
+          for (const app::RowField& f : fields) l.append(f.name);
+          return l;
+        };
+        out["root_columns"] = names(app::rowFields(app::RootRow{}));
+        out["plant_columns"] = names(app::plantFields(app::PlantRow{}));
+        out["growth_columns"] = names(app::growthFields(app::GrowthRow{}));
+        out["warnings"] = all.warnings;
         return out;
       },
       py::arg("files"), py::arg("options"));

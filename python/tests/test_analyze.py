@@ -1,6 +1,7 @@
 """rootsim.analyze is `rootsim analyze`: the same rows, the same option checks, nothing written."""
 import math
 
+import numpy as np
 import pytest
 
 import rootsim
@@ -43,3 +44,42 @@ def test_bad_options_raise_the_command_lines_message():
         rootsim.analyze(SMARTROOT, times=[1, 2])
     with pytest.raises(rootsim.SceneError, match="not pixels"):
         rootsim.analyze(SMARTROOT, px_per_mm=20)
+
+
+RST = SOURCE / "tests/data/rsml/rst_2dt.rsml"
+
+
+def test_columns_plants_and_growth_are_numpy_arrays_of_the_csv_files(tmp_path):
+    cli("analyze", RST, "--out", tmp_path / "an", "--quiet")
+    got = rootsim.analyze(RST)
+    assert isinstance(got, rootsim.Analysis) and len(got) == 4
+    for table, csv in ((got.columns, "analysis.csv"), (got.plants, "plants.csv"), (got.growth, "growth.csv")):
+        header, *lines = (tmp_path / "an" / csv).read_text().splitlines()
+        assert list(table) == header.split(",")
+        cells = [line.split(",") for line in lines]
+        for j, (name, values) in enumerate(table.items()):
+            assert isinstance(values, np.ndarray) and len(values) == len(lines), name
+            for value, row in zip(values, cells):
+                if values.dtype.kind == "U":
+                    assert value == row[j], name
+                elif row[j] == "":
+                    assert math.isnan(value), name
+                else:
+                    assert value == float(row[j]), name
+    # the primary's L(t) at 0, 6, 12, 18 h: 1, 2, 4, 6 mm; its rate over the last interval
+    primary = got.growth["root"] == "1.1"
+    assert got.growth["time_h"][primary].tolist() == [0, 6, 12, 18]
+    assert got.growth["length_mm"][primary] == pytest.approx([1, 2, 4, 6])
+    assert got.columns["growth_rate_mm_per_h"][0] == pytest.approx(1 / 3)
+    assert got.plants["lateral_density_per_mm"][0] == pytest.approx(2 / 3)
+    assert got.warnings == []
+
+
+def test_an_implausible_scale_is_a_warning(tmp_path):
+    text = (SOURCE / "tests/data/rsml/smartroot_inch.rsml").read_text()
+    (tmp_path / "dpi1.rsml").write_text(text.replace("<resolution>254.0</resolution>", "<resolution>1</resolution>"))
+    got = rootsim.analyze(tmp_path / "dpi1.rsml")
+    assert len(got.warnings) == 2
+    assert "primary root #0/r1 is 2540 mm long, implausible for a seedling" in got.warnings[0]
+    assert "<unit>inch</unit> and <resolution>1</resolution>" in got.warnings[0]
+    assert got.plants["primary_length_mm"].tolist() == pytest.approx([2540, 1270])

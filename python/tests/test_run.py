@@ -184,3 +184,29 @@ def test_sigint_stops_a_run_between_growth_steps(tmp_path):
     assert "KeyboardInterrupt" in out_text
     assert (tmp_path / "long.partial" / "scene.toml").is_file()
     assert not out.exists() and not (tmp_path / "long.incomplete").exists()
+
+
+def test_two_threads_writing_one_out_never_race(tmp_path):
+    # a second thread of this process writing the same `out` while the first holds it is refused with
+    # the holder's PID (the lock is re-entrant only for the thread that holds it); the first ends whole
+    out = tmp_path / "same"
+    errors, done = [], threading.Event()
+
+    def second():
+        try:
+            rootsim.run(SOURCE / "scenes/fig2a_alpha80.toml", set={"growth.steps": 20}, out=out)
+        except Exception as e:  # noqa: BLE001 - the message is what is checked
+            errors.append(str(e))
+        finally:
+            done.set()
+
+    def progress(k, n):
+        if k == 1:
+            threading.Thread(target=second).start()
+            assert done.wait(60)
+
+    r = rootsim.run(SOURCE / "scenes/fig2a_alpha80.toml", set={"growth.steps": 20}, out=out, progress=progress)
+    assert len(errors) == 1, errors
+    assert "being written by another rootsim thread of this process" in errors[0]
+    assert f"PID {os.getpid()}" in errors[0]
+    assert (r.dir / "summary.json").is_file() and not (tmp_path / "same.partial").exists()

@@ -21,6 +21,7 @@
 #include "rootsim/scene.hpp"
 #include "rootsim/run_dir.hpp"
 #include "rootsim/signature.hpp"
+#include "rootsim/trace_growth.hpp"
 #include "rootsim/traits.hpp"
 #include "rootsim/units.hpp"
 #include "rootsim/write_rule.hpp"
@@ -80,13 +81,6 @@ Axes parseDownhill(const std::string& s, const std::string& flag = "--downhill")
   for (double* v : {&a.dx, &a.dy, &a.lx, &a.ly})
     if (std::abs(*v) < 1e-15) *v = 0.0;
   return a;
-}
-
-bool isPixelUnit(const std::string& unit) {
-  std::string u;
-  for (char c : unit)
-    if (c != ' ') u += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return u == "pixel" || u == "pixels" || u == "px";
 }
 
 // a scene key the file states as a property (a hint: a rootsim export's scene, or a tracer's note),
@@ -159,7 +153,7 @@ TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
   tf.file = file;
   // units: the reader gives millimetres, or pixels for a pixel file
   double scale = 1.0;  // file units as read -> mm
-  if (isPixelUnit(doc.meta.unit)) {
+  if (rsml::isPixelUnit(doc.meta.unit)) {
     if (!given(o.pxPerMm))
       throw SceneError(file + ": its unit is " + doc.meta.unit + " with no physical scale; give " + o.flagPrefix + "px-per-mm R");
     scale = 1.0 / o.pxPerMm;
@@ -167,7 +161,13 @@ TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
   } else if (given(o.pxPerMm)) {
     throw SceneError(o.flagPrefix + "px-per-mm " + num(o.pxPerMm) + ": " + file + " is in " + doc.meta.unit +
                      ", not pixels (its scale is known)");
+  } else {
+    tf.pixelMm = doc.pixelMm;  // the pixel size the file gives (a resolution, RootSystemTracker's <size>), or 0
   }
+  tf.scaleSource = rsml::isPixelUnit(doc.meta.unit) ? o.flagPrefix + "px-per-mm " + num(o.pxPerMm)
+                   : !rsml::pixelSizeUnit(doc.meta.unit).empty()
+                       ? "<unit>" + doc.meta.unit + "</unit> and <size>" + num(doc.meta.size) + "</size> in the file"
+                       : "<unit>" + doc.meta.unit + "</unit> and <resolution>" + num(doc.meta.resolution) + "</resolution> in the file";
   std::size_t roots = 0;
   for (const rsml::Plant& p : doc.plants) roots += p.roots.size();
   if (roots == 0) throw SceneError(file + ":1: no root in the file (no <plant> with a <root>)");
@@ -178,6 +178,11 @@ TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
   tf.set = analysisOf(doc, file);
   tf.timeH = doc.hasTime ? doc.timeH : kNaN;
   const double fileRadius = given(o.radiusMm) ? kNaN : sceneNumber(doc, file, "root.radius_mm", "--radius-mm");
+  if (doc.timeLapse()) {
+    // a 2D+t file shows its roots at every observation; as one file, at the last
+    tf.observationTimesH = doc.observationTimesH;
+    tf.timeH = doc.observationTimesH.back();
+  }
   for (std::size_t pi = 0; pi < doc.plants.size(); ++pi) {
     const rsml::Plant& plant = doc.plants[pi];
     // every root of the plant in plate coordinates [mm], with the origin at the plant's first root's base
@@ -227,6 +232,8 @@ TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
                  length / step, caps::kTracePoints, "points",
                  "caps::kTracePoints: about 100 bytes a point in the shape analysis; docs/outputs.md, Caps");
       t.plateMm = std::move(c);
+      t.originMm = Eigen::Vector3d(ax.lx * ox * scale + ax.ly * oy * scale, ax.dx * ox * scale + ax.dy * oy * scale, 0.0);
+      t.timeIndex = r.timeIndex;
       // the radius of the peaks' hysteresis
       if (given(o.radiusMm)) {
         t.radiusMm = o.radiusMm;
@@ -276,16 +283,15 @@ const TracedRoot& pickRoot(const TraceFile& tf, const std::string& id, const std
   throw SceneError(tf.file + ": " + std::to_string(primary.size()) + " primary roots (" + ids + "); choose one with " + flag + " ID");
 }
 
-std::vector<RootRow> analyzeTraces(const AnalyzeOptions& o) {
+std::vector<double> traceTimes(const AnalyzeOptions& o) {
   if (o.files.empty()) throw SceneError("analyze: give at least one RSML file");
   checkTraceFlags(o);
-  const std::vector<double> times = parseTimes(o.times, o.files.size());
+  return parseTimes(o.times, o.files.size());
+}
 
+std::vector<RootRow> fileRows(const TraceFile& tf, double timeH) {
   std::vector<RootRow> rows;
-  std::vector<std::string> keys;
-  for (std::size_t fi = 0; fi < o.files.size(); ++fi) {
-    const TraceFile tf = readTraceFile(o.files[fi], o);
-    const double timeH = !times.empty() ? times[fi] : tf.timeH;
+  {
     for (const TracedRoot& r : tf.roots) {
       RootRow row;
       row.file = tf.file;
@@ -319,25 +325,14 @@ std::vector<RootRow> analyzeTraces(const AnalyzeOptions& o) {
       row.dsMm = tf.dsMm;
       row.excludeTipMm = tf.excludeTipMm;
       row.radiusMm = r.radiusMm;
-      row.growthRateMmPerH = kNaN;
+      row.growthRateMmPerH = kNaN;  // trace_growth.cpp: from the time-lapse or the matched root before
       rows.push_back(row);
-      keys.push_back(r.key);
     }
-  }
-  // growth rates: the same root in the file nearest before in time
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    if (!std::isfinite(rows[i].timeH)) continue;
-    double bestT = -std::numeric_limits<double>::infinity();
-    std::size_t best = rows.size();
-    for (std::size_t j = 0; j < rows.size(); ++j)
-      if (keys[j] == keys[i] && std::isfinite(rows[j].timeH) && rows[j].timeH < rows[i].timeH && rows[j].timeH > bestT) {
-        bestT = rows[j].timeH;
-        best = j;
-      }
-    if (best < rows.size()) rows[i].growthRateMmPerH = (rows[i].lengthMm - rows[best].lengthMm) / (rows[i].timeH - bestT);
   }
   return rows;
 }
+
+std::vector<RootRow> analyzeTraces(const AnalyzeOptions& o) { return analyzeAll(o).roots; }
 
 namespace {
 
@@ -431,6 +426,55 @@ std::string analysisJson(const std::vector<RootRow>& rows) {
   return top.dump() + "\n";
 }
 
+// a table of fields as CSV (the header from `header`: a row's names), numbers as numberText, NaN empty
+std::string fieldsCsv(const std::vector<RowField>& header, const std::vector<std::vector<RowField>>& rows) {
+  std::string out;
+  for (const RowField& f : header) out += std::string(out.empty() ? "" : ",") + f.name;
+  out += "\n";
+  for (const std::vector<RowField>& row : rows) {
+    bool first = true;
+    for (const RowField& f : row) {
+      if (!first) out += ",";
+      first = false;
+      if (f.isText) out += csvField(f.text);
+      else if (std::isfinite(f.number)) out += numberText(f.number);
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+std::string fieldsJson(const std::string& key, const std::vector<RowField>& header, const std::vector<std::vector<RowField>>& rows) {
+  std::vector<Json> items;
+  for (const std::vector<RowField>& row : rows) {
+    Json j;
+    for (const RowField& f : row) {
+      if (f.isText) j.str(f.name, f.text);
+      else j.num(f.name, f.number);
+    }
+    items.push_back(j);
+  }
+  Json units;
+  for (const RowField& f : header)
+    if (*f.unit) units.str(f.name, f.unit);
+  Json top;
+  top.str("software", outputSignatureText()).object("units", units).array(key, items);
+  return top.dump() + "\n";
+}
+
+// plants.csv/.json and growth.csv/.json (trace_growth.hpp): written for every analysis, a header alone
+// when there is no plant or no time
+void writeSeriesFiles(const fs::path& dir, const Analysis& a) {
+  std::vector<std::vector<RowField>> plants, growth;
+  for (const PlantRow& p : a.plants) plants.push_back(plantFields(p));
+  for (const GrowthRow& g : a.growth) growth.push_back(growthFields(g));
+  const std::vector<RowField> plantHeader = plantFields(PlantRow{}), growthHeader = growthFields(GrowthRow{});
+  writeFileAtomic(dir / "plants.csv", fieldsCsv(plantHeader, plants));
+  writeFileAtomic(dir / "plants.json", fieldsJson("plants", plantHeader, plants));
+  writeFileAtomic(dir / "growth.csv", fieldsCsv(growthHeader, growth));
+  writeFileAtomic(dir / "growth.json", fieldsJson("growth", growthHeader, growth));
+}
+
 std::string summaryLine(const RootRow& r) {
   char b[512];
   auto f = [](double v) { return std::isfinite(v) ? v : 0.0; };
@@ -448,18 +492,25 @@ int analyzeCommand(const AnalyzeOptions& o) {
   const std::string outText =
       o.out.empty() ? (fs::path("analysis") / fs::path(o.files.empty() ? std::string("analysis") : o.files.front()).stem()).string() : o.out;
   const fs::path out = checkOutputName(outText, "--out");
+  // locked before any work (the StagedFolder below takes it again)
+  const OutputLock lock = lockOutput(out, "--out");
   WriteRule rule;
   rule.force = o.force;
   for (const std::string& f : o.files) rule.inputs.push_back(WriteInput{f, {}, true});
   rule.inputs.push_back(workingFolder());
   claimFolder(out, analysisFolder(), rule, "--out", true);
-  const std::vector<RootRow> rows = analyzeTraces(o);
+  const Analysis all = analyzeAll(o);
+  const std::vector<RootRow>& rows = all.roots;
+  for (const std::string& w : all.warnings) std::fprintf(stderr, "rootsim: warning: %s\n", w.c_str());
   StagedFolder folder(out, analysisFolder(), rule, "--out");
   writeFileAtomic(folder.work() / "analysis.csv", analysisCsv(rows));
   writeFileAtomic(folder.work() / "analysis.json", analysisJson(rows));
+  writeSeriesFiles(folder.work(), all);
   folder.commit();
   for (const RootRow& r : rows) std::printf("%s\n", summaryLine(r).c_str());
-  if (!o.quiet) std::fprintf(stderr, "wrote %s (analysis.csv, analysis.json: %zu roots)\n", out.c_str(), rows.size());
+  if (!o.quiet)
+    std::fprintf(stderr, "wrote %s (analysis.csv, analysis.json: %zu roots; plants.csv: %zu plants; growth.csv: %zu rows)\n", out.c_str(),
+                 rows.size(), all.plants.size(), all.growth.size());
   return 0;
 }
 

@@ -1,6 +1,7 @@
 // `rootsim compare RUN_DIR TRACE.rsml`: a traced root beside a run's root (docs/experiments.md, "Compare").
 #include "rootsim/compare_trace.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -14,6 +15,7 @@
 #include "rootsim/run_dir.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/signature.hpp"
+#include "rootsim/trace_growth.hpp"
 #include "rootsim/units.hpp"
 #include "rootsim/write_rule.hpp"
 #include "run_files.hpp"
@@ -49,6 +51,8 @@ TraceTarget loadTarget(const TraceFlags& f, const Model& m) {
   t.plateMm = r.plateMm;
   for (int i = 0; i < t.plateMm.cols(); ++i) t.plateMm.col(i) -= r.plateMm.col(0);
   t.dsMm = tf.dsMm;
+  t.timesH = pointTimesH(tf, r);
+  if (!t.timesH.empty()) t.observationTimesH = tf.observationTimesH;
   AnalysisParams set = m.analysis;
   TraceFile measured = tf;
   measured.set = set;
@@ -88,6 +92,32 @@ Comparison compareRoots(const TraceTarget& t, const SimRoot& s) {
   return c;
 }
 
+std::vector<TimeLapseRow> compareTimeLapse(const TraceTarget& t, const Model& m, const std::vector<Snapshot>& snaps) {
+  std::vector<TimeLapseRow> rows;
+  if (t.timesH.empty() || snaps.empty()) return rows;
+  const std::vector<double> runTimes = snapshotTimes(snaps);
+  for (double at : t.observationTimesH) {
+    const Eigen::Matrix3Xd trace = polylineAtTime(t.plateMm, t.timesH, at);
+    if (trace.cols() < 2 || !(polylineLength(trace) > 0)) continue;
+    const int k = snapshotNear(runTimes, std::clamp(at, runTimes.front(), runTimes.back()));
+    const SimRoot sim = simRootOf(m, snaps[static_cast<std::size_t>(k)]);
+    TimeLapseRow r;
+    r.timeH = at;
+    r.snapshotH = sim.timeH;
+    r.traceLengthMm = polylineLength(trace);
+    r.runLengthMm = polylineLength(sim.plateMm);
+    r.traceTipLateralMm = trace(0, trace.cols() - 1);
+    r.traceTipDownhillMm = trace(1, trace.cols() - 1);
+    r.runTipLateralMm = sim.plateMm(0, sim.plateMm.cols() - 1);
+    r.runTipDownhillMm = sim.plateMm(1, sim.plateMm.cols() - 1);
+    r.traceThetaTipDeg = tipAngleDeg(trace, t.sigmaSource == "pixel" ? t.sigmaMm : 0.0);
+    r.runThetaTipDeg = tipAngleDeg(sim.plateMm, 0.0);
+    r.distanceMm = arcLengthDistanceMm(trace, sim.plateMm, kDistanceStepMm);
+    rows.push_back(r);
+  }
+  return rows;
+}
+
 std::string comparisonCaption(const Comparison& c) {
   char b[256];
   std::snprintf(b, sizeof b, "distance %.3g mm (RMS at equal arc length), Fréchet %.3g mm, χ² %.3g (%d observable%s)",
@@ -118,6 +148,17 @@ Json observablesJson(const Comparison& c) {
   return j;
 }
 
+std::string timeLapseCsv(const std::vector<TimeLapseRow>& rows) {
+  std::string out = "time_h,snapshot_h,trace_length_mm,run_length_mm,trace_tip_lateral_mm,trace_tip_downhill_mm,run_tip_lateral_mm,"
+                    "run_tip_downhill_mm,trace_theta_tip_deg,run_theta_tip_deg,distance_mm\n";
+  auto cell = [](double v) { return std::isfinite(v) ? numberText(v) : std::string(); };
+  for (const TimeLapseRow& r : rows)
+    out += cell(r.timeH) + "," + cell(r.snapshotH) + "," + cell(r.traceLengthMm) + "," + cell(r.runLengthMm) + "," + cell(r.traceTipLateralMm) + "," +
+           cell(r.traceTipDownhillMm) + "," + cell(r.runTipLateralMm) + "," + cell(r.runTipDownhillMm) + "," + cell(r.traceThetaTipDeg) + "," +
+           cell(r.runThetaTipDeg) + "," + cell(r.distanceMm) + "\n";
+  return out;
+}
+
 void printTable(const Comparison& c) {
   std::printf("%-18s %12s %12s %10s %9s\n", "observable", "trace", "simulation", "sigma", "residual");
   for (const Observation& o : c.obs) {
@@ -138,6 +179,9 @@ int compareCommand(const CompareOptions& o, std::string* outDir) {
   const std::string outText =
       o.out.empty() ? (fs::path("compare") / (runName + "_vs_" + fs::path(o.trace.trace).stem().string())).string() : o.out;
   const fs::path out = checkOutputName(outText, "--out");
+  if (const std::string why = whyUnfinished(run); !why.empty()) throw SceneError(o.runDir + ": " + why);
+  // locked before any work (the StagedFolder below takes it again)
+  const OutputLock lock = lockOutput(out, "--out");
   if (!fs::is_directory(run) || !whyNotOurs(run, runFolder()).empty())
     throw SceneError(o.runDir + ": not a run directory (" + (fs::is_directory(run) ? whyNotOurs(run, runFolder()) : "not found") + ")");
   WriteRule rule;
@@ -189,6 +233,21 @@ int compareCommand(const CompareOptions& o, std::string* outDir) {
       .num("chi2", c.chi2)
       .integer("observables_used", c.used)
       .object("observables", observablesJson(c));
+  // a time-lapse trace: the run at every observation time
+  const std::vector<TimeLapseRow> lapse = compareTimeLapse(target, m, snaps);
+  if (!lapse.empty()) {
+    std::vector<Json> items;
+    for (const TimeLapseRow& r : lapse) {
+      Json e;
+      e.num("time_h", r.timeH).num("snapshot_h", r.snapshotH).num("trace_length_mm", r.traceLengthMm).num("run_length_mm", r.runLengthMm);
+      e.num("trace_tip_lateral_mm", r.traceTipLateralMm).num("trace_tip_downhill_mm", r.traceTipDownhillMm);
+      e.num("run_tip_lateral_mm", r.runTipLateralMm).num("run_tip_downhill_mm", r.runTipDownhillMm);
+      e.num("trace_theta_tip_deg", r.traceThetaTipDeg).num("run_theta_tip_deg", r.runThetaTipDeg).num("distance_mm", r.distanceMm);
+      items.push_back(e);
+    }
+    j.array("time_lapse", items);
+    writeFileAtomic(folder.work() / "timelapse.csv", timeLapseCsv(lapse));
+  }
   writeFileAtomic(folder.work() / "compare.json", j.dump() + "\n");
   writeFileAtomic(folder.work() / "compare.csv", observablesCsv(c));
   saveComparePanel(m, snap, target.plateMm,

@@ -398,6 +398,7 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
     throw SceneError("--at-h " + flagNumber(o.atH) + ": give --at-h or --every-h, not both");
   if (given(o.atH)) checkedNumber("--at-h", o.atH, kGrowthHours);
   if (given(o.everyH)) checkedNumber("--every-h", o.everyH, {0, kGrowthHours.hi, true, false, "h"});
+  if (const std::string why = whyUnfinished(runDir); !why.empty()) throw SceneError(o.runDir + ": " + why);
   if (!fs::is_directory(runDir)) throw SceneError(o.runDir + ": run directory not found");
   // a plate's run: the RSML of every root, one plant per seedling; glTF and ParaView take one root's folder
   const bool plate = isPlateRun(runDir);
@@ -429,8 +430,8 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
       checkOutputName(f.string(), "--rsml");
       const fs::path dir = fs::absolute(f).parent_path();
       if (!fs::is_directory(dir)) throw SceneError("--rsml " + f.string() + ": folder " + dir.string() + " not found");
-      locks.emplace_back(f, "--rsml");
-      claimFile(f, rule, "--rsml");
+      locks.push_back(lockOutput(f, "--rsml"));
+      claimFile(f, rule, "--rsml", OutputFormat::Rsml);
       // the file is staged as FILE.tmp (written all or none, below): a FILE.tmp already there is not ours
       fs::path tmp = f;
       tmp += ".tmp";
@@ -453,8 +454,8 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
     for (const fs::path& f : rsmlFiles)
       if (fs::absolute(f).lexically_normal() == fs::absolute(gltfFile).lexically_normal())
         throw SceneError("--gltf " + o.gltf + ": the same file as --rsml");
-    locks.emplace_back(gltfFile, "--gltf");
-    claimFile(gltfFile, rule, "--gltf");
+    locks.push_back(lockOutput(gltfFile, "--gltf"));
+    claimFile(gltfFile, rule, "--gltf", OutputFormat::Glb);
   }
   // --paraview DIR: a folder of its own kind, written whole (DIR.partial, then renamed); every snapshot, or
   // those --at-h / --every-h pick (docs/paraview.md)

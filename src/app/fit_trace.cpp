@@ -410,6 +410,8 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
     throw SceneError("--objective " + o.objective + ": expected observables or shape");
   if (o.out.empty()) throw SceneError("--out: give the fit's folder");
   const fs::path out = checkOutputName(o.out, "--out");
+  // the fit's folder is locked before any work: a run, sweep or second fit there is refused
+  const OutputLock lock = lockOutput(out, "--out");
   const Scene base = loadScene(o.scene);
   if (base.isPlate())
     throw SceneError("--scene " + o.scene + ": a plate's scene; fit takes the scene of one root (docs/experiments.md)");
@@ -449,19 +451,28 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
   claimFolder(out, fitFolder(), rule, "--out", false);
   // the base scene every evaluation starts from: the scene, grown to the trace's length, without ParaView files
   const Scene grown = loadScene(o.scene, {"growth.steps=" + std::to_string(steps), "output.vtk=false", "output.trajectory=true"});
+  // the fit's settings in a comment: a second fit into this folder with any other setting starts again
+  // (only with --force); with the same settings it continues, its finished runs reused
+  std::string settings = "# rootsim fit settings: --free";
+  for (const FreeKey& fk : keys) settings += " " + fk.key + "=" + numberText(fk.lo) + ":" + numberText(fk.hi);
+  auto flagNum = [](double v) { return v == TraceFlags::kUnset ? std::string("default") : numberText(v); };
+  settings += " --objective " + o.objective + " --budget " + std::to_string(o.budget) + " --trace " + o.trace.trace +
+              " --root " + (o.trace.root.empty() ? std::string("default") : o.trace.root) + " --px-per-mm " +
+              flagNum(o.trace.pxPerMm) + " --downhill " + o.trace.downhill + " --sigma-mm " + flagNum(o.trace.sigmaMm) + "\n";
   const std::string baseText = "# rootsim fit: " + o.scene + " with growth.steps = " + std::to_string(steps) +
-                               " (the trace's length) and output.vtk = false\n" + grown.resolvedToml;
+                               " (the trace's length) and output.vtk = false\n" + settings + grown.resolvedToml;
   const bool stale = fs::exists(out / "base.toml") && fileText(out / "base.toml") != baseText;
   if (stale && !o.force)
-    throw SceneError("--out " + out.string() + ": holds a fit of another scene or trace (base.toml differs); pass --force to start it again");
+    throw SceneError("--out " + out.string() + ": holds a fit of another scene, trace or settings (its base.toml differs: " +
+                     "--free, --objective, --budget, the trace's flags); pass --force to start it again, or choose another --out");
   createOwnFolder(out, fitFolder());
-  const OutputLock lock(out / "fit.json", "--out " + out.string());
   if (stale) {
     // --force: the earlier evaluations belong to another base scene
     std::error_code ec;
     if (fs::is_directory(out / "runs") && whyNotOurs(out / "runs", sweepFolder()).empty()) fs::remove_all(out / "runs", ec);
   }
   writeFileAtomic(out / "base.toml", baseText);
+  recordWritten({out / "base.toml"});
   // the start design as a sweep file: `rootsim sweep DIR/design.toml --out DIR/runs --shard K/N` runs it
   // anywhere (SLURM), and the fit then finds its runs complete
   std::string designText = "# rootsim fit: the start design (" + std::to_string(k) + " levels per key, cell centres of the box)\n"
@@ -476,6 +487,7 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
     designText += "]\n";
   }
   writeFileAtomic(out / "design.toml", designText);
+  recordWritten({out / "design.toml"});
   Fit fit(o, keys, out, baseText, target, log);
 
   // 1. the start design, as a sweep
@@ -692,6 +704,7 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
   const SimRoot bestSim = simRootOf(bestScene.model, bestSnaps.back());
   const Comparison bc = compareRoots(target, bestSim);
   writeFileAtomic(out / "best.toml", "# rootsim fit: the surface's minimum (" + b.dir + ")\n" + bestScene.resolvedToml);
+  recordWritten({out / "best.toml"});
   std::string title = "fit of " + literalLabel(fs::path(o.trace.trace).filename().string()) + ":";
   for (int i = 0; i < n; ++i) {
     title += " " + literalLabel(keys[static_cast<std::size_t>(i)].key) + " = " + numberText(std::round(b.x[static_cast<std::size_t>(i)] * 1e4) / 1e4);
@@ -736,6 +749,7 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
            csvCell(e.distanceMm) + "," + fs::path(e.dir).filename().string() + ",\"" + err + "\"\n";
   }
   writeFileAtomic(out / "evaluations.csv", csv);
+  recordWritten({out / "evaluations.csv"});
   // fit.json
   const FitComponents& tc = fit.traceComponents();
   Json j;
@@ -820,6 +834,7 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
   }
   j.array("evaluation_list", ev);
   writeFileAtomic(out / "fit.json", j.dump() + "\n");
+  recordWritten({out / "fit.json"});
   return rep;
 }
 

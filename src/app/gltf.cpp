@@ -22,6 +22,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "rootsim/content_hash.hpp"
 #include "rootsim/environment.hpp"
 #include "rootsim/image.hpp"
 #include "rootsim/number_text.hpp"
@@ -477,7 +478,10 @@ std::string gltfBinary(const std::vector<Snapshot>& snaps, const SceneInfo& info
   doc.bin.align4();
 
   std::vector<std::string> members{
-      kv("asset", obj({kv("version", quote("2.0")), kv("generator", quote(outputSignatureText()))})),
+      // the generator is rootsim's signature; extras hold the BIN chunk's SHA-256, so that the write rule
+      // (write_rule.hpp) replaces the file only while its geometry is as written
+      kv("asset", obj({kv("version", quote("2.0")), kv("generator", quote(outputSignatureText())),
+                       kv("extras", obj({kv("rootsim_bin_sha256", quote(sha256Hex(doc.bin.bytes)))}))})),
       kv("extensionsUsed", arr({quote("KHR_mesh_quantization")})),
       kv("extensionsRequired", arr({quote("KHR_mesh_quantization")})),
       kv("scene", "0"),

@@ -141,6 +141,7 @@ int montageRunsCommand(const MontageOptions& o) {
   if (o.runDirs.empty()) throw SceneError("montage: no run directories given (rootsim montage RUN_DIR... --mp4 FILE)");
   std::vector<fs::path> dirs;
   for (const std::string& d : o.runDirs) {
+    if (const std::string why = whyUnfinished(d); !why.empty()) throw SceneError("montage: " + d + ": " + why);
     if (!fs::is_directory(d)) throw SceneError("montage: run directory " + d + " not found");
     if (!fs::is_regular_file(fs::path(d) / "scene.toml"))
       throw SceneError("montage: " + d + "/scene.toml not found (not a run directory?)");

@@ -147,6 +147,7 @@ int stillFrame(const std::vector<Snapshot>& frames, const RenderOptions& o) {
 int renderRunCommand(const RenderOptions& o) {
   // every input check first, so a bad flag exits 2 before anything is drawn
   const fs::path runDir(o.runDir);
+  if (const std::string why = whyUnfinished(runDir); !why.empty()) throw SceneError(o.runDir + ": " + why);
   if (!fs::is_directory(runDir)) throw SceneError(o.runDir + ": run directory not found");
   MovieJob job;
   job.view.kind = parseViewKind(o.view);
@@ -229,6 +230,7 @@ int renderRunCommand(const RenderOptions& o) {
     const TraceTarget t = loadTarget(o.trace, model);
     const Vec3 seed = model.env.plane.frame().toPlateMm(snaps.front().x.col(0));
     for (int i = 0; i < t.plateMm.cols(); ++i) job.view.traceUvMm.push_back({seed.x() + t.plateMm(0, i), seed.y() - t.plateMm(1, i)});
+    job.view.traceTimeH = t.timesH;  // a time-lapse trace grows with the frames
   }
   if (autoSized && !job.view.plateRectMm) std::tie(job.view.width, job.view.height) = autoSizeFor(snaps, info, look);
   applyLook(look, runDir, snaps, job);
@@ -246,6 +248,8 @@ int renderRunCommand(const RenderOptions& o) {
       std::fprintf(stderr, "wrote %s (frame %d, %g h)\n", o.png.c_str(), still, snaps[static_cast<std::size_t>(still)].timeH);
     return 0;
   }
+  // writing into the run directory: it is locked as a whole too (a run --force there must wait)
+  const OutputLock runLock = asked ? OutputLock() : lockOutput(runDir, "render");
   const Outputs outs = claimOutputs(job.mp4, finalTop, o.pngDir, rule);
 
   // every check passed: the frame folder is made now (DIR.partial, renamed to DIR when all are written)
@@ -255,6 +259,7 @@ int renderRunCommand(const RenderOptions& o) {
     job.pngDir = frames->work().string();
   }
   renderRun(snaps, info, job, finalTop, o.quiet);
+  recordWritten({fs::path(job.mp4), finalTop});  // into the run directory: its marker records them
   if (frames) {
     frames->commit();
     if (!o.quiet) std::fprintf(stderr, "wrote %zu frames to %s\n", snaps.size(), frames->final().c_str());
@@ -279,6 +284,7 @@ void renderRunMovie(const fs::path& runDir, const Model& model, bool quiet, cons
     applyLook(l, runDir, snaps, job);
   }
   renderRun(snaps, info, job, runDir / "final_top.png", quiet);
+  recordWritten({runDir / "movie.mp4", runDir / "final_top.png"});
 }
 
 }  // namespace rootsim::app

@@ -4,11 +4,14 @@
 #include <algorithm>
 #include <cstdint>
 #include <cstdio>
+#include <mutex>
 #include <utility>
 
 #include "rootsim/errors.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/trajectory.hpp"
+#include "rootsim/video_writer.hpp"
+#include "rootsim/write_rule.hpp"
 
 namespace fs = std::filesystem;
 
@@ -120,8 +123,16 @@ int snapshotNear(const std::vector<double>& t, double atH, const std::string& ra
   return nearestSnapshot(t, atH);
 }
 
+void registerSignatureChecks() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    registerSignatureCheck(OutputFormat::Mp4, [](const fs::path& f) { return whyNotSignedMovie(f.string()); });
+  });
+}
+
 Outputs claimOutputs(const std::string& mp4, const fs::path& png, const std::string& pngDir, const WriteRule& rule,
                      const char* pngFlag) {
+  registerSignatureChecks();
   Outputs o;
   std::vector<std::pair<const char*, fs::path>> all;
   if (!mp4.empty()) all.emplace_back("--mp4", mp4);
@@ -147,8 +158,8 @@ Outputs claimOutputs(const std::string& mp4, const fs::path& png, const std::str
     checkOutputName(path.string(), flag);
     const fs::path dir = fs::absolute(path).parent_path();
     if (!fs::is_directory(dir)) throw SceneError(std::string(flag) + " " + path.string() + ": folder " + dir.string() + " not found");
-    o.locks.emplace_back(path, flag);
-    claimFile(path, rule, flag);
+    o.locks.push_back(lockOutput(path, flag));
+    claimFile(path, rule, flag, std::string(flag) == "--mp4" ? OutputFormat::Mp4 : OutputFormat::Png);
   }
   return o;
 }

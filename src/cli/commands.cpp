@@ -104,7 +104,7 @@ int runCommand(const RunOptions& o) {
                      std::string(sc.path) + "); drop one of them");
   const int steps = sc.model.growth.enabled ? sc.model.growth.steps : 0;
   // the run directory is locked from here to the end (the movie too): a second process is refused
-  const OutputLock lock(out, "--out");
+  const OutputLock lock = lockOutput(out, "--out");
   if (o.resume) {
     // a complete run of this scene: nothing to continue; of another scene: refused
     fs::path partial = out;
@@ -185,16 +185,17 @@ int figureCommand(const FigureCliOptions& o) {
 
 int modesCommand(const ModesOptions& o) {
   const fs::path dir = normaliseOutDir(o.runDir);
+  if (const std::string why = whyUnfinished(dir); !why.empty()) throw SceneError(o.runDir + ": " + why);
+  // the run directory receives modes.csv and modes.vtp, nothing else; it is locked while they are written
+  const OutputLock lock = lockOutput(dir, "modes");
   if (!fs::is_regular_file(dir / "scene.toml") || !fs::is_regular_file(dir / "summary.json"))
     throw SceneError(o.runDir + ": not a complete run directory (no scene.toml and summary.json)");
   if (const std::string why = whyNotOurs(dir, runFolder()); !why.empty()) throw SceneError(o.runDir + ": " + why);
-  // the run directory receives modes.csv and modes.vtp, nothing else; it is locked while they are written
-  const OutputLock lock(dir, "modes");
   WriteRule rule;
   rule.force = o.force;
   rule.inputs = {WriteInput{dir, {"modes.csv", "modes.vtp"}}};
-  claimFile(dir / "modes.csv", rule, "modes");
-  claimFile(dir / "modes.vtp", rule, "modes");
+  claimFile(dir / "modes.csv", rule, "modes", OutputFormat::InFolder);
+  claimFile(dir / "modes.vtp", rule, "modes", OutputFormat::InFolder);
   // the final state is not stored; the run is repeated from its resolved scene (same scene, same bytes)
   const Scene sc = loadScene((dir / "scene.toml").string());
   Simulation sim(singleRootModel(sc, "modes: " + o.runDir));
@@ -216,6 +217,7 @@ int modesCommand(const ModesOptions& o) {
   const StiffnessModes m = softestModes(sc.model.rod, sc.model.env, sim.state(), o.count);
   writeFileAtomic(dir / "modes.csv", modesCsv(sim.state(), m));
   writeFileAtomic(dir / "modes.vtp", modesVtp(sim.state(), m));
+  recordWritten({dir / "modes.csv", dir / "modes.vtp"});
   if (!o.quiet) {
     std::fprintf(stderr, "%s: %d modes, stiffness eigenvalues [N/m]:", o.runDir.c_str(), static_cast<int>(m.modes.size()));
     for (long q = 0; q < m.eigenvalues.size(); ++q) std::fprintf(stderr, " %.4g", m.eigenvalues[q]);

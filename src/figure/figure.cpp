@@ -86,7 +86,7 @@ std::string makeFigure(const std::string& name, const FigureOptions& opt,
   // the write rule: a new folder or rootsim's figure folder; panels written before are replaced only
   // with --force; locked while this process writes it
   const fs::path out = checkOutputName(opt.out, "--out");
-  const OutputLock lock(out, "--out");
+  const OutputLock lock = lockOutput(out, "--out");
   WriteRule rule;
   rule.force = opt.force;
   rule.inputs.push_back(workingFolder());
@@ -153,10 +153,12 @@ std::string makeFigure(const std::string& name, const FigureOptions& opt,
     report += "\nRoots are drawn as vector paths seen from above: the tube's outline, shading bands and the +d1 "
               "(pink) / -d1 (orange) stripes where they face the viewer.\n\n" + sections;
     writeFileAtomic(fs::path(opt.out) / "report.md", report);
+    recordWritten({fs::path(opt.out) / "report.md"});
     // the same claims and every panel in one self-contained page (report_html.hpp)
     const std::string command = std::string("rootsim figure all") + (opt.quick ? " --quick" : "") + " --out " + opt.out +
                                 (opt.jobs != 2 ? " -j " + std::to_string(opt.jobs) : "");
     writeFileAtomic(fs::path(opt.out) / "report.html", reportHtml(command, claims, names, fs::path(opt.out)));
+    recordWritten({fs::path(opt.out) / "report.html"});
     return report;
   }
   return panel->make(c);

@@ -6,7 +6,7 @@
 
 namespace rootsim::fig {
 
-// the referee's tolerances (issue 13): a scaling law holds when measured / predicted is within +-25 %;
+// the referee's tolerances: a scaling law holds when measured / predicted is within +-25 %;
 // a ratio of two measured quantities that the paper says is 1 holds within 0.75 ... 1.33 (symmetric in log)
 inline constexpr double kScaleLo = 0.75, kScaleHi = 1.25, kRatioLo = 0.75, kRatioHi = 1.33;
 inline constexpr const char* kScaleTol = "±25 % (0.75 … 1.25)";

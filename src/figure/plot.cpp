@@ -13,7 +13,9 @@
 #include <limits>
 
 #include "rootsim/errors.hpp"
+#include "rootsim/png_signature.hpp"
 #include "rootsim/units.hpp"
+#include "rootsim/write_rule.hpp"
 
 namespace fs = std::filesystem;
 
@@ -709,7 +711,7 @@ void saveFigure(const Figure& fig, const std::string& base, const SaveOptions& s
     cairo_surface_destroy(s);
     check(st, "encoding " + pngTmp.string());
     std::ofstream o(pngTmp, std::ios::binary);
-    o << withPhys(bytes, so.dpi);
+    o << signPng(withPhys(bytes, so.dpi));
     o.close();
     if (!o) throw RunError("cannot write " + pngTmp.string());
   }
@@ -718,6 +720,9 @@ void saveFigure(const Figure& fig, const std::string& base, const SaveOptions& s
   if (!ec) fs::rename(svgTmp, svg, ec);
   if (!ec) fs::rename(pdfTmp, pdf, ec);
   if (ec) throw RunError("cannot rename figure files to " + base + ".{png,svg,pdf}: " + ec.message());
+  // in a folder of rootsim's (a figure, compare or fit folder): recorded as written, so that --force
+  // later replaces them only while they are as rootsim wrote them
+  recordWritten({png, svg, pdf});
 }
 
 std::string literalLabel(const std::string& text) {

@@ -13,8 +13,10 @@
 #include <sstream>
 #include <system_error>
 
+#include "rootsim/content_hash.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/number_text.hpp"
+#include "rootsim/signature.hpp"
 
 namespace fs = std::filesystem;
 
@@ -58,10 +60,21 @@ std::string textOf(const tinyxml2::XMLElement* e) {
   return t ? trim(t) : std::string();
 }
 
+// an element's id: `id` (openalea, RootNav, rootsim) or `ID` (SmartRoot, RootSystemTracker)
+std::string idOf(const tinyxml2::XMLElement* e) {
+  if (const char* id = e->Attribute("id")) return id;
+  if (const char* id = e->Attribute("ID")) return id;
+  return {};
+}
+
 struct Reader {
   std::string name;       // the file, for messages
   double mmPerUnit = 1;
   std::size_t points = 0; // in the whole document (kMaxPoints)
+  // the 2D+t dialect: the observation times [h] (index = coord_t), and whether any root had times
+  std::vector<double> observations;
+  int rootsWithTimes = 0, rootsWithoutTimes = 0;
+  int firstRootWithTimesLine = 0, firstRootWithoutTimesLine = 0;
 
   [[noreturn]] void fail(const tinyxml2::XMLNode* at, const std::string& what) const {
     throw SceneError(name + ":" + std::to_string(at ? at->GetLineNum() : 1) + ": " + what);
@@ -119,14 +132,21 @@ struct Reader {
     r.line = e->GetLineNum();
     r.parent = parent;
     r.order = order;
-    if (const char* id = e->Attribute("id")) r.id = id;
+    r.id = idOf(e);
     if (const char* label = e->Attribute("label")) r.label = label;
     r.properties = properties(e);
     const tinyxml2::XMLElement* geometry = e->FirstChildElement("geometry");
     const tinyxml2::XMLElement* polyline = geometry ? geometry->FirstChildElement("polyline") : nullptr;
     if (!polyline) fail(e, "<root" + (r.id.empty() ? std::string() : " id=\"" + shown(r.id) + "\"") + "> has no <geometry><polyline>");
     bool allZ = true;
-    for (const tinyxml2::XMLElement* pt = polyline->FirstChildElement("point"); pt; pt = pt->NextSiblingElement("point")) {
+    // RootSystemTracker's per-point attributes: present on the first point means present on every point
+    const tinyxml2::XMLElement* first = polyline->FirstChildElement("point");
+    const bool timed = first && first->Attribute("coord_t");
+    std::vector<Function> perPoint;
+    for (const char* a : {"diameter", "vx", "vy"})
+      if (first && first->Attribute(a)) perPoint.push_back(Function{a, "polyline", {}, {}});
+    const std::string rootName = "root" + (r.id.empty() ? std::string() : " " + shown(r.id));
+    for (const tinyxml2::XMLElement* pt = first; pt; pt = pt->NextSiblingElement("point")) {
       double x = 0, y = 0, z = 0;
       if (!coordinate(pt, "x", x)) fail(pt, "<point> without x");
       if (!coordinate(pt, "y", y)) fail(pt, "<point> without y");
@@ -135,10 +155,26 @@ struct Reader {
       r.x.push_back(toMm(pt, x, "x"));
       r.y.push_back(toMm(pt, y, "y"));
       r.z.push_back(hasZ ? toMm(pt, z, "z") : 0.0);
+      if (timed) pointTime(pt, rootName, r);
+      else if (pt->Attribute("coord_t"))
+        fail(pt, "<point> with coord_t where the root's first point has none (RootSystemTracker's 2D+t dialect gives every point coord_t and coord_th)");
+      for (Function& f : perPoint) {
+        const char* v = pt->Attribute(f.name.c_str());
+        if (!v) fail(pt, "<point> without " + f.name + " where the root's first point has one (RootSystemTracker's 2D+t dialect gives it on every point)");
+        const double value = number(pt, v, "point " + f.name);
+        if (!std::isfinite(value)) fail(pt, "point " + f.name + " is not finite");
+        f.samples.push_back(value);
+      }
       if (++points > kMaxPoints) fail(pt, "more than " + std::to_string(kMaxPoints) + " points in the file");
     }
     if (r.x.size() < 2)
       fail(polyline, "a root's polyline needs at least two points, found " + std::to_string(r.x.size()));
+    if (timed) {
+      if (++rootsWithTimes == 1) firstRootWithTimesLine = r.line;
+    } else if (++rootsWithoutTimes == 1) {
+      firstRootWithoutTimesLine = r.line;
+    }
+    for (Function& f : perPoint) r.functions.push_back(std::move(f));
     r.hasZ = allZ;
     if (!allZ) std::fill(r.z.begin(), r.z.end(), 0.0);  // some points without z: the polyline is 2D
     if (const tinyxml2::XMLElement* funcs = e->FirstChildElement("functions"))
@@ -166,6 +202,32 @@ struct Reader {
     plant.roots.push_back(std::move(r));
     for (const tinyxml2::XMLElement* c = e->FirstChildElement("root"); c; c = c->NextSiblingElement("root"))
       root(c, plant, self, order + 1);
+  }
+
+  // a point's coord_t and coord_th (the 2D+t dialect): both present, within the observations, never
+  // going backwards along the root
+  void pointTime(const tinyxml2::XMLElement* pt, const std::string& rootName, Root& r) const {
+    const char* t = pt->Attribute("coord_t");
+    const char* th = pt->Attribute("coord_th");
+    if (!t) fail(pt, "<point> without coord_t where the root's first point has one (RootSystemTracker's 2D+t dialect gives every point coord_t and coord_th)");
+    if (!th) fail(pt, "<point> without coord_th (RootSystemTracker's 2D+t dialect gives every point coord_t and coord_th)");
+    const double k = number(pt, t, "point coord_t");
+    const double h = number(pt, th, "point coord_th");
+    if (!std::isfinite(k) || !std::isfinite(h)) fail(pt, "point coord_t or coord_th is not finite");
+    if (observations.empty())
+      fail(pt, "<point> has coord_t but the metadata has no <observation-hours> (the times of the 2D+t dialect's observations)");
+    const double last = static_cast<double>(observations.size() - 1);
+    if (k < 0 || k > last + 1e-9)
+      fail(pt, "coord_t " + shown(t) + " is outside the observations: expected 0 to " + numberText(last) + " (<observation-hours> gives " +
+                   std::to_string(observations.size()) + " observations, the first at " + numberText(observations.front()) + " h)");
+    if (!r.timeIndex.empty() && k < r.timeIndex.back() - 1e-9)
+      fail(pt, "coord_t goes backwards along " + rootName + ": " + shown(t) + " after " + numberText(r.timeIndex.back()) +
+                   " (a root grows at its tip: the times never decrease from its base to its tip)");
+    if (!r.timeH.empty() && h < r.timeH.back() - 1e-9)
+      fail(pt, "coord_th goes backwards along " + rootName + ": " + shown(th) + " h after " + numberText(r.timeH.back()) +
+                   " h (a root grows at its tip: the times never decrease from its base to its tip)");
+    r.timeIndex.push_back(k);
+    r.timeH.push_back(h);
   }
 
   // the diameter per point [mm] under its common names (docs/rsml.md, What the reader accepts)
@@ -224,6 +286,19 @@ double mmPerUnit(const std::string& unitText, double resolution) {
   // coordinates are pixels; the resolution is pixels per unit (SmartRoot's dpi with unit inch), so
   // a file in the unit itself has resolution 1
   return mm / resolution;
+}
+
+std::string pixelSizeUnit(const std::string& unitText) {
+  const std::string u = lower(trim(unitText));
+  const std::string head = "pixel(";
+  if (u.size() > head.size() + 1 && u.compare(0, head.size(), head) == 0 && u.back() == ')')
+    return trim(std::string_view(u).substr(head.size(), u.size() - head.size() - 1));
+  return {};
+}
+
+bool isPixelUnit(const std::string& unitText) {
+  const std::string u = lower(trim(unitText));
+  return u == "pixel" || u == "pixels" || u == "px";
 }
 
 Document parseRsml(const std::string& text, const std::string& name) {
@@ -295,11 +370,42 @@ Document parseRsml(const std::string& text, const std::string& name) {
       }
     }
     const tinyxml2::XMLElement* unitAt = m->FirstChildElement("unit");
-    rd.mmPerUnit = mmPerUnit(doc.meta.unit, doc.meta.resolution);
-    if (rd.mmPerUnit == 0)
-      rd.fail(unitAt ? unitAt : m, "unknown <unit> \"" + shown(doc.meta.unit) +
-                                       "\" (expected pixel, px, um, micrometer, mm, millimeter, cm, centimeter, m, meter, "
-                                       "nm or inch)");
+    const tinyxml2::XMLElement* sizeAt = m->FirstChildElement("size");
+    if (sizeAt) {
+      doc.meta.size = rd.number(sizeAt, textOf(sizeAt), "<size>");
+      if (!(doc.meta.size > 0) || !std::isfinite(doc.meta.size))
+        rd.fail(sizeAt, "<size> must be a positive number (the pixel size), found " + shown(textOf(sizeAt)));
+    }
+    if (const std::string sizeUnit = pixelSizeUnit(doc.meta.unit); !sizeUnit.empty()) {
+      // RootSystemTracker: pixel coordinates, the pixel's size in <size>, in the unit in brackets
+      const double perSizeUnit = mmPerUnit(sizeUnit, 1);
+      if (perSizeUnit == 0 || isPixelUnit(sizeUnit))
+        rd.fail(unitAt, "unknown unit \"" + shown(sizeUnit) + "\" in <unit>" + shown(doc.meta.unit) +
+                            "</unit> (expected pixel(um), pixel(mm), pixel(cm), ...: the unit of <size>)");
+      if (!sizeAt)
+        rd.fail(unitAt, "<unit>" + shown(doc.meta.unit) + "</unit> needs <size> in the metadata (the pixel size in " + shown(sizeUnit) +
+                            ", as RootSystemTracker writes it), found none");
+      rd.mmPerUnit = doc.meta.size * perSizeUnit;
+      doc.pixelMm = rd.mmPerUnit;
+    } else {
+      rd.mmPerUnit = mmPerUnit(doc.meta.unit, doc.meta.resolution);
+      if (rd.mmPerUnit == 0)
+        rd.fail(unitAt ? unitAt : m, "unknown <unit> \"" + shown(doc.meta.unit) +
+                                         "\" (expected pixel, px, pixel(um) with <size>, um, micrometer, mm, millimeter, cm, centimeter, m, meter, "
+                                         "nm or inch)");
+      // a physical unit with a resolution other than 1: the coordinates are pixels of that size
+      if (!isPixelUnit(doc.meta.unit) && doc.meta.resolution != 1) doc.pixelMm = rd.mmPerUnit;
+    }
+    // the 2D+t dialect's observation times: RootSystemTracker lists observations 1..N, observation 0
+    // being at 0 h; a list that starts at 0 h lists them all
+    if (const tinyxml2::XMLElement* obs = m->FirstChildElement("observation-hours"); obs && !doc.meta.observationHours.empty()) {
+      if (doc.meta.observationHours.front() > 0) rd.observations.push_back(0.0);
+      for (double h : doc.meta.observationHours) {
+        if (!rd.observations.empty() && !(h > rd.observations.back()))
+          rd.fail(obs, "<observation-hours> must increase, found " + numberText(h) + " h after " + numberText(rd.observations.back()) + " h");
+        rd.observations.push_back(h);
+      }
+    }
   }
   doc.mmPerUnit = rd.mmPerUnit;
   const tinyxml2::XMLElement* scene = top->FirstChildElement("scene");
@@ -311,12 +417,20 @@ Document parseRsml(const std::string& text, const std::string& name) {
   }
   for (const tinyxml2::XMLElement* p = scene->FirstChildElement("plant"); p; p = p->NextSiblingElement("plant")) {
     Plant plant;
-    if (const char* id = p->Attribute("id")) plant.id = id;
+    plant.id = idOf(p);
     if (const char* label = p->Attribute("label")) plant.label = label;
     plant.properties = rd.properties(p);
     for (const tinyxml2::XMLElement* r = p->FirstChildElement("root"); r; r = r->NextSiblingElement("root"))
       rd.root(r, plant, -1, 0);
     doc.plants.push_back(std::move(plant));
+  }
+  if (rd.rootsWithTimes > 0) {
+    // a time-lapse: every root carries its times
+    if (rd.rootsWithoutTimes > 0)
+      throw SceneError(name + ":" + std::to_string(rd.firstRootWithoutTimesLine) +
+                       ": a <root> without coord_t in a 2D+t file (its root at line " + std::to_string(rd.firstRootWithTimesLine) +
+                       " has them: every point of every root needs coord_t and coord_th)");
+    doc.observationTimesH = rd.observations;
   }
   return doc;
 }
@@ -461,7 +575,16 @@ std::string writeRsml(const Document& doc) {
     o << "    </plant>\n";
   }
   o << "  </scene>\n</rsml>\n";
-  return o.str();
+  // rootsim's signature on line 2 carries the SHA-256 of every byte after it: the write rule
+  // (write_rule.hpp) replaces the file only while it is as written
+  std::string text = o.str();
+  const std::string sig = std::string("<!-- ") + outputSignatureText();
+  const auto l1 = text.find('\n');
+  if (text.compare(l1 + 1, sig.size(), sig) == 0) {
+    const auto l2 = text.find('\n', l1 + 1);
+    text.insert(l1 + 1 + sig.size(), " sha256:" + sha256Hex(std::string_view(text).substr(l2 + 1)));
+  }
+  return text;
 }
 
 }  // namespace rootsim::rsml

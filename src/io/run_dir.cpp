@@ -27,26 +27,9 @@ std::string removeRun(const fs::path& dir) {
   return ec ? "cannot remove " + dir.string() + ": " + ec.message() : "";
 }
 
-// the marker's list of a finished run: "file <path inside the run> <bytes>" per regular file
-std::string fileList(const fs::path& dir) {
-  std::vector<std::pair<std::string, std::uintmax_t>> files;
-  std::error_code ec;
-  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
-    if (!it->is_regular_file(ec)) continue;
-    const std::string rel = fs::relative(it->path(), dir, ec).generic_string();
-    if (rel == kRunMarker) continue;
-    files.emplace_back(rel, it->file_size(ec));
-  }
-  std::sort(files.begin(), files.end());
-  std::string s;
-  for (const auto& [name, bytes] : files) s += "file " + name + " " + std::to_string(bytes) + "\n";
-  return s;
-}
 }  // namespace
 
-void markRunFolder(const fs::path& dir) {
-  writeFileAtomic(dir / kRunMarker, std::string("rootsim run directory ") + kVersion + "\n" + fileList(dir));
-}
+void markRunFolder(const fs::path& dir) { recordFolder(dir, runFolder()); }
 
 fs::path normaliseOutDir(const std::string& text) { return checkOutputName(text, "--out"); }
 
@@ -57,23 +40,23 @@ std::string whyNotWhole(const fs::path& dir) {
   int listed = 0;
   while (std::getline(in, line)) {
     if (line.rfind("file ", 0) != 0) continue;
-    const auto sp = line.rfind(' ');
-    const std::string name = line.substr(5, sp - 5);
-    std::uintmax_t bytes = 0;
-    try {
-      bytes = std::stoull(line.substr(sp + 1));
-    } catch (const std::exception&) {
-      return (dir / kRunMarker).string() + ": malformed line '" + printable(line) + "'";
-    }
+    // "file <path> <bytes or -> <sha256>"
+    const auto h = line.rfind(' ');
+    const auto z = h == std::string::npos || h < 6 ? std::string::npos : line.rfind(' ', h - 1);
+    if (z == std::string::npos || z < 5) return (dir / kRunMarker).string() + ": malformed line '" + printable(line) + "'";
+    const std::string name = line.substr(5, z - 5);
     std::error_code ec;
     const fs::path f = dir / name;
     if (!fs::is_regular_file(fs::symlink_status(f, ec))) return f.string() + " is missing";
-    const std::uintmax_t have = fs::file_size(f, ec);
-    if (ec || have != bytes)
-      return f.string() + " holds " + std::to_string(have) + " bytes, not the " + std::to_string(bytes) + " its run wrote";
+    if (std::string why = whyNotRecorded(dir, kRunMarker, name); !why.empty()) return f.string() + ": " + why;
     ++listed;
   }
   if (listed == 0) return dir.string() + ": its marker lists no files (written by an older rootsim, or not finished)";
+  // a plate's roots/NAME: run directories of their own, each whole by its own marker
+  std::error_code ec;
+  if (fs::is_directory(fs::symlink_status(dir / "roots", ec)))
+    for (const auto& e : fs::directory_iterator(dir / "roots", ec))
+      if (std::string why = whyNotWhole(e.path()); !why.empty()) return why;
   return "";
 }
 
@@ -81,7 +64,7 @@ RunDir::RunDir(const fs::path& dir, const RunDirOptions& opt, PartialRun partial
     : final_(normaliseOutDir(dir.string())) {
   std::error_code ec;
   // held until the run is committed or failed: a second process on this run directory is refused
-  lock_ = OutputLock(final_, "--out");
+  lock_ = lockOutput(final_, "--out");
   WriteRule rule;
   rule.force = opt.force;
   for (const auto& p : opt.protect) rule.inputs.push_back(WriteInput{p, {}, false});
@@ -119,8 +102,9 @@ RunDir::~RunDir() = default;
 void RunDir::write(const std::string& name, const std::string& content) { writeFileAtomic(work_ / name, content); }
 
 void RunDir::commit() {
-  // the marker lists every file and its size: a sweep counts a point complete only when they are whole
-  writeFileAtomic(work_ / kRunMarker, std::string("rootsim run directory ") + kVersion + "\n" + fileList(work_));
+  // the marker records every file, its size and its hash: a sweep counts a point complete only when they
+  // are whole, and --force later replaces only what is still as recorded
+  markRunFolder(work_);
   // an earlier run at DIR (checked replaceable when we started) is moved aside, replaced, then removed
   replaceFolder(work_, final_, runFolder());
   // a failed attempt of an earlier run is obsolete once this one is complete (--force was given)
@@ -135,6 +119,7 @@ void RunDir::fail(const std::string& error) {
   std::error_code ec;
   try {
     write("ERROR.txt", error + "\n");
+    markRunFolder(work_);  // what the failed run wrote is rootsim's: --force may replace it
   } catch (...) {
   }
   const fs::path inc = sibling(final_, ".incomplete");

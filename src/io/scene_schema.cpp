@@ -197,7 +197,7 @@ const std::vector<std::string>& sections() {
 // sanity, a generous factor beyond anything a root (or any plant organ) has: radius <= 100 mm, E <= 1e6
 // MPa (diamond), growth rate <= 10 /h, step <= 10 h, growth zone <= 1 m, gains <= 100 (the paper uses
 // < 2), |R tau| <= 10, springs <= 1e6 N/m. Beyond them a run diverges or exhausts the sub-step cap
-// after minutes instead of being refused up front (issue 15). The number of elements is capped
+// after minutes instead of being refused up front. The number of elements is capped
 // separately (kMaxElements, buildModel).
 // FIELD(rod.radius): the field as a reference, for a Model& (set) and a const Model& (get)
 #define FIELD(path) [](auto& m) -> auto& { return m.path; }

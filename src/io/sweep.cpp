@@ -220,12 +220,15 @@ void writeSweepTable(const SweepPlan& plan, const std::string& out) {
   ::gethostname(host, sizeof host - 1);
   const fs::path mine = fs::path(out) / ("table.csv." + std::string(host) + "." + std::to_string(::getpid()));
   writeFileAtomic(mine, header + "\n" + body);
-  std::error_code ec;
-  fs::rename(mine, fs::path(out) / "table.csv", ec);
-  if (ec) {
-    fs::remove(mine, ec);
-    throw RunError("cannot write " + (fs::path(out) / "table.csv").string() + ": " + ec.message());
-  }
+  // renamed and recorded under the folder's record lock: the marker holds the table that is there
+  recordFiles(fs::path(out), sweepFolder(), {"table.csv"}, [&] {
+    std::error_code ec;
+    fs::rename(mine, fs::path(out) / "table.csv", ec);
+    if (ec) {
+      fs::remove(mine, ec);
+      throw RunError("cannot write " + (fs::path(out) / "table.csv").string() + ": " + ec.message());
+    }
+  });
 }
 
 namespace {
@@ -281,12 +284,14 @@ SweepResult runSweep(const SweepPlan& plan, const SweepOptions& opt,
   rule.inputs.push_back(workingFolder());
   for (const fs::path& in : opt.inputs) rule.inputs.push_back(WriteInput{in, {}, false});
   const fs::path out = checkOutputName(opt.out, "--out");
+  // the shards of a job array share the folder (a shared lock: a run, fit or figure writing there is
+  // refused, and refuses them); one shard started twice is refused (each point's run directory is
+  // locked as well, so overlapping shardings never write one point twice)
+  const OutputLock folderLock = lockOutput(out, "--out", LockMode::Shared);
   claimFolder(out, sweepFolder(), rule, "--out", false);
   createOwnFolder(out, sweepFolder());
-  // the shards of a job array share the folder; one shard started twice is refused (each point's run
-  // directory is locked as well, so overlapping shardings never write one point twice)
-  const OutputLock shardLock(out / ("shard-" + std::to_string(opt.shard) + "-of-" + std::to_string(opt.shards)),
-                             "--out " + out.string() + " shard");
+  const OutputLock shardLock = lockOutput(out / ("shard-" + std::to_string(opt.shard) + "-of-" + std::to_string(opt.shards)),
+                                          "--out " + out.string() + " shard");
   std::vector<const SweepPoint*> pending;
   SweepResult res;
   int stale = 0;

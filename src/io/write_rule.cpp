@@ -2,10 +2,12 @@
 #include "rootsim/write_rule.hpp"
 
 #include <fcntl.h>
+#include <signal.h>
 #include <sys/file.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cctype>
 #include <cerrno>
@@ -13,8 +15,16 @@
 #include <fstream>
 #include <map>
 #include <mutex>
+#include <sstream>
+#include <thread>
 
+#include <nlohmann/json.hpp>
+#include <tinyxml2.h>
+#include <zlib.h>
+
+#include "rootsim/content_hash.hpp"
 #include "rootsim/errors.hpp"
+#include "rootsim/run_dir.hpp"
 #include "rootsim/version.hpp"
 
 namespace fs = std::filesystem;
@@ -96,7 +106,8 @@ bool isFrameEntry(const fs::path&, const std::string& name) {
 // what `analyze` writes into its folder (docs/experiments.md)
 bool isAnalysisEntry(const fs::path&, const std::string& name) {
   const std::string base = stripTemp(name);
-  return base == ".rootsim-analysis" || base == "analysis.csv" || base == "analysis.json";
+  return base == ".rootsim-analysis" || base == "analysis.csv" || base == "analysis.json" || base == "plants.csv" ||
+         base == "plants.json" || base == "growth.csv" || base == "growth.json";
 }
 
 // what `export --paraview DIR` writes (docs/paraview.md): step_NNNNNN.vtp, root.pvd, plate.vtp, the script
@@ -120,7 +131,8 @@ bool isFigureFile(const std::string& base, const char* stem) {
 // what `compare` writes (docs/experiments.md): compare.json, compare.csv, the picture
 bool isCompareEntry(const fs::path&, const std::string& name) {
   const std::string base = stripTemp(name);
-  return base == ".rootsim-compare" || base == "compare.json" || base == "compare.csv" || isFigureFile(base, "compare");
+  return base == ".rootsim-compare" || base == "compare.json" || base == "compare.csv" || base == "timelapse.csv" ||
+         isFigureFile(base, "compare");
 }
 
 // what `fit` writes (docs/experiments.md): its files, the best fit's picture, the landscape, and runs/,
@@ -189,21 +201,297 @@ void checkNotInput(const fs::path& out, const WriteRule& rule, const std::string
   }
 }
 
-// a file of rootsim's by its place: a name rootsim writes, in a folder of rootsim's
-bool ownedByFolder(const fs::path& file) {
+// the folder of rootsim's a file lies in (its marker beside it), or nullptr
+const FolderSpec* ownFolderOf(const fs::path& file) {
   const fs::path dir = absoluteNormal(file).parent_path();
-  const std::string name = file.filename().string();
   for (const FolderSpec* spec : {&runFolder(), &framesFolder()}) {
     std::error_code ec;
-    if (fs::is_regular_file(fs::symlink_status(dir / spec->marker, ec)) && spec->owns(dir, name)) return true;
+    if (fs::is_regular_file(fs::symlink_status(dir / spec->marker, ec))) return spec;
+  }
+  return nullptr;
+}
+
+// a folder still being written: DIR.partial or inside one (its files are recorded when it is finished)
+bool beingWritten(const fs::path& dir) {
+  for (const auto& part : absoluteNormal(dir))
+    if (endsWith(part.string(), ".partial")) return true;
+  return false;
+}
+
+// files whose content varies legitimately between two identical runs: recorded without those fields
+bool hasTimingFields(const std::string& rel) { return rel == "summary.json" || endsWith(rel, "/summary.json"); }
+
+// summary.json without its wall time: the value of every "wall_time_s" key dropped
+std::string withoutTiming(std::string text) {
+  const std::string key = "\"wall_time_s\"";
+  for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + key.size())) {
+    std::size_t v = text.find(':', at + key.size());
+    if (v == std::string::npos) break;
+    std::size_t e = v + 1;
+    while (e < text.size() && text[e] != ',' && text[e] != '}' && text[e] != '\n') ++e;
+    text.erase(v + 1, e - v - 1);
+  }
+  return text;
+}
+
+// the size and hash a record line holds for the file as it is now ("" hash: unreadable)
+std::pair<std::string, std::string> recordValues(const fs::path& file, const std::string& rel) {
+  if (hasTimingFields(rel)) {
+    std::ifstream in(file, std::ios::binary);
+    if (!in) return {"-", ""};
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    return {"-", sha256Hex(withoutTiming(text))};
+  }
+  std::uintmax_t size = 0;
+  std::string hash = sha256File(file, &size);
+  return {std::to_string(size), hash};
+}
+
+std::string recordLine(const fs::path& dir, const std::string& rel) {
+  const auto [size, hash] = recordValues(dir / rel, rel);
+  if (hash.empty()) throw RunError("cannot read " + (dir / rel).string() + " to record it");
+  return "file " + rel + " " + size + " " + hash + "\n";
+}
+
+struct Recorded {
+  std::string size, hash;
+};
+// the marker's head line and its records by path
+std::string readRecord(const fs::path& marker, std::map<std::string, Recorded>* files) {
+  std::ifstream in(marker, std::ios::binary);
+  std::string head, line;
+  std::getline(in, head);
+  while (std::getline(in, line)) {
+    if (line.rfind("file ", 0) != 0) continue;
+    const auto h = line.rfind(' ');
+    if (h == std::string::npos || h < 5) continue;
+    const auto z = line.rfind(' ', h - 1);
+    if (z == std::string::npos || z < 5) continue;
+    (*files)[line.substr(5, z - 5)] = Recorded{line.substr(z + 1, h - z - 1), line.substr(h + 1)};
+  }
+  return head;
+}
+
+// does the folder hold a marker of its own kind (a nested run or sweep folder)?
+bool hasOwnMarker(const fs::path& dir) {
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    const std::string n = e.path().filename().string();
+    if (n.rfind(".rootsim-", 0) == 0 && !endsWith(n, ".rootsim-lock") && e.is_regular_file(ec)) return true;
   }
   return false;
+}
+
+// the process's and the folder's lock around a read-modify-write of a marker (shards share folders)
+struct RecordLock {
+  int fd = -1;
+  std::unique_lock<std::mutex> g;
+  explicit RecordLock(const fs::path& dir) : g(mutex()) {
+    fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+    if (fd >= 0) ::flock(fd, LOCK_EX);
+  }
+  ~RecordLock() {
+    if (fd >= 0) ::close(fd);
+  }
+  RecordLock(const RecordLock&) = delete;
+  RecordLock& operator=(const RecordLock&) = delete;
+  static std::mutex& mutex() {
+    static std::mutex m;
+    return m;
+  }
+};
+
+// writes a marker through a temporary name of this process and thread, then one rename
+void writeMarker(const fs::path& marker, const std::string& text) {
+  std::ostringstream name;
+  name << marker.filename().string() << ".tmp" << ::getpid() << "-" << std::hash<std::thread::id>{}(std::this_thread::get_id()) % 100000;
+  const fs::path tmp = marker.parent_path() / name.str();
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    out << text;
+    out.close();
+    if (!out) {
+      std::error_code ec;
+      fs::remove(tmp, ec);
+      throw RunError("cannot write " + marker.string() + " (disk full?): " + std::strerror(errno));
+    }
+  }
+  std::error_code ec;
+  fs::rename(tmp, marker, ec);
+  if (ec) throw RunError("cannot write " + marker.string() + ": " + ec.message());
+}
+
+// "" when every regular file below sub (a folder inside the finished folder dir, or dir itself for
+// its top level) is recorded with its content; else the first that is not, and why
+std::string whyNotAllRecorded(const fs::path& dir, const FolderSpec& spec, const std::map<std::string, Recorded>& rec,
+                              const fs::path& sub) {
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(sub, ec)) {
+    const fs::path p = e.path();
+    const std::string name = p.filename().string();
+    const std::string rel = fs::relative(p, dir, ec).generic_string();
+    const fs::file_status st = fs::symlink_status(p, ec);
+    if (rel == spec.marker || isLockFile(name) || stripTemp(name) != name) continue;
+    if (fs::is_directory(st)) {
+      if (hasOwnMarker(p)) continue;  // a nested folder of rootsim's: judged by its own marker (spec.owns)
+      if (std::string why = whyNotAllRecorded(dir, spec, rec, p); !why.empty()) return why;
+      continue;
+    }
+    if (!fs::is_regular_file(st))
+      return dir.string() + " holds " + rel + ", " + kindOf(st) + " rootsim did not make; move it away or delete it";
+    const auto it = rec.find(rel);
+    if (it == rec.end())
+      return dir.string() + " holds " + rel + ", which rootsim did not write (its " + spec.marker +
+             " does not list it); move it away or delete it";
+    const auto [size, hash] = recordValues(p, rel);
+    if (hash.empty() || it->second.hash != hash || (it->second.size != "-" && it->second.size != size))
+      return dir.string() + " holds " + rel + ", changed since rootsim wrote it (its content differs from the record in " +
+             spec.marker + "); it is yours now: move it away or delete it";
+  }
+  if (ec) return "cannot list " + sub.string() + ": " + ec.message();
+  return "";
+}
+
+// the single-file signature checks registered from outside rootsim_io (MP4: the renderer's libavformat)
+std::map<OutputFormat, SignatureCheck>& signatureChecks() {
+  static std::map<OutputFormat, SignatureCheck> m;
+  return m;
+}
+std::mutex& signatureMutex() {
+  static std::mutex m;
+  return m;
+}
+
+std::string readAll(const fs::path& file, std::uintmax_t limit, bool* tooBig) {
+  std::error_code ec;
+  const std::uintmax_t n = fs::file_size(file, ec);
+  *tooBig = !ec && n > limit;
+  if (ec || *tooBig) return "";
+  std::ifstream in(file, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+// "sha256:<64 hex>" after the signature text, or ""
+std::string hashIn(const std::string& text) {
+  const auto at = text.find(" sha256:");
+  if (at == std::string::npos || text.size() < at + 8 + 64) return "";
+  return text.substr(at + 8, 64);
+}
+
+// RSML: line 1 the XML declaration, line 2 the comment "<!-- rootsim-output ... sha256:H ... -->" (H: the
+// SHA-256 of every byte after line 2), and the whole file parses as XML with an <rsml> root
+std::string whyNotSignedRsml(const fs::path& file) {
+  bool tooBig = false;
+  const std::string text = readAll(file, std::uintmax_t(1) << 30, &tooBig);
+  if (tooBig) return "larger than any RSML file rootsim writes";
+  const auto l1 = text.find('\n');
+  const auto l2 = l1 == std::string::npos ? l1 : text.find('\n', l1 + 1);
+  if (l2 == std::string::npos || text.compare(0, 5, "<?xml") != 0) return "not an RSML file (no XML declaration on line 1)";
+  const std::string line2 = text.substr(l1 + 1, l2 - l1 - 1);
+  const std::string head = std::string("<!-- ") + kOutputSignature + " ";
+  if (line2.compare(0, head.size(), head) != 0 || !endsWith(line2, "-->"))
+    return "its line 2 is not rootsim's comment";
+  tinyxml2::XMLDocument doc;
+  if (doc.Parse(text.data(), text.size()) != tinyxml2::XML_SUCCESS || !doc.RootElement() ||
+      std::string(doc.RootElement()->Name()) != "rsml")
+    return "it does not parse as RSML (XML with an <rsml> root)";
+  const std::string want = hashIn(line2);
+  if (!want.empty() && sha256Hex(std::string_view(text).substr(l2 + 1)) != want) return "changed since rootsim wrote it";
+  return "";
+}
+
+std::uint32_t le32(const std::string& s, std::size_t at) {
+  return static_cast<std::uint32_t>(static_cast<unsigned char>(s[at])) |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(s[at + 1])) << 8 |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(s[at + 2])) << 16 |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(s[at + 3])) << 24;
+}
+std::uint32_t be32(const std::string& s, std::size_t at) {
+  return static_cast<std::uint32_t>(static_cast<unsigned char>(s[at])) << 24 |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(s[at + 1])) << 16 |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(s[at + 2])) << 8 |
+         static_cast<std::uint32_t>(static_cast<unsigned char>(s[at + 3]));
+}
+
+// GLB: the 12-byte header ("glTF", version 2, the file's length), a JSON chunk that parses, whose
+// asset.generator is rootsim's signature; asset.extras.rootsim_bin_sha256, when there, is the BIN chunk's hash
+std::string whyNotSignedGlb(const fs::path& file) {
+  bool tooBig = false;
+  const std::string b = readAll(file, std::uintmax_t(4) << 30, &tooBig);
+  if (b.size() < 20 || b.compare(0, 4, "glTF") != 0 || le32(b, 4) != 2 || le32(b, 8) != b.size())
+    return "not a binary glTF 2.0 file (GLB header)";
+  const std::uint32_t jsonLen = le32(b, 12);
+  if (le32(b, 16) != 0x4E4F534Au || 20 + std::size_t(jsonLen) > b.size()) return "not a GLB file (no JSON chunk)";
+  const nlohmann::json j = nlohmann::json::parse(b.begin() + 20, b.begin() + 20 + jsonLen, nullptr, false);
+  if (j.is_discarded() || !j.is_object()) return "its JSON chunk does not parse";
+  const auto asset = j.find("asset");
+  if (asset == j.end() || !asset->is_object() || !asset->contains("generator") || !(*asset)["generator"].is_string() ||
+      (*asset)["generator"].get<std::string>().rfind(std::string(kOutputSignature) + " ", 0) != 0)
+    return "its asset.generator is not rootsim's";
+  const auto extras = asset->find("extras");
+  if (extras != asset->end() && extras->is_object() && extras->contains("rootsim_bin_sha256")) {
+    const std::size_t bin = 20 + jsonLen;
+    if (bin + 8 > b.size() || le32(b, bin + 4) != 0x004E4942u || bin + 8 + std::size_t(le32(b, bin)) > b.size())
+      return "its BIN chunk is missing or cut short";
+    const auto& h = (*extras)["rootsim_bin_sha256"];
+    if (!h.is_string() || sha256Hex(std::string_view(b).substr(bin + 8, le32(b, bin))) != h.get<std::string>())
+      return "changed since rootsim wrote it";
+  }
+  return "";
+}
+
+// PNG: the 8-byte PNG signature, chunks whose CRCs (zlib's crc32) hold, IHDR first, IEND last, a tEXt
+// "Software" chunk holding rootsim's signature; "sha256:H" in it is the hash of the IDAT chunks' data
+std::string whyNotSignedPng(const fs::path& file) {
+  bool tooBig = false;
+  const std::string b = readAll(file, std::uintmax_t(2) << 30, &tooBig);
+  static const std::string magic("\x89PNG\r\n\x1a\n", 8);
+  if (b.size() < 8 || b.compare(0, 8, magic) != 0) return "not a PNG file";
+  std::string software;
+  Sha256 idat;
+  bool first = true, end = false;
+  for (std::size_t at = 8; !end;) {
+    if (at + 12 > b.size()) return "not a PNG file (cut short)";
+    const std::uint32_t len = be32(b, at);
+    if (len > b.size() - at - 12) return "not a PNG file (a chunk runs past its end)";
+    const std::string type = b.substr(at + 4, 4);
+    const auto crc = static_cast<std::uint32_t>(
+        ::crc32(0, reinterpret_cast<const Bytef*>(b.data() + at + 4), static_cast<uInt>(len + 4)));
+    if (crc != be32(b, at + 8 + len)) return "not a PNG file (chunk " + printable(type) + " fails its CRC)";
+    if (first && type != "IHDR") return "not a PNG file (no IHDR first)";
+    first = false;
+    if (type == "tEXt") {
+      const std::string body = b.substr(at + 8, len);
+      const auto nul = body.find('\0');
+      if (nul != std::string::npos && body.compare(0, nul, "Software") == 0) software = body.substr(nul + 1);
+    } else if (type == "IDAT") {
+      idat.update(b.data() + at + 8, len);
+    }
+    end = type == "IEND";
+    at += 12 + len;
+  }
+  if (software.rfind(std::string(kOutputSignature) + " ", 0) != 0) return "its tEXt Software chunk is not rootsim's";
+  const std::string want = hashIn(software);
+  if (!want.empty() && idat.hex() != want) return "changed since rootsim wrote it";
+  return "";
+}
+
+const char* formatName(OutputFormat f) {
+  switch (f) {
+    case OutputFormat::Rsml: return "RSML";
+    case OutputFormat::Glb: return "GLB";
+    case OutputFormat::Png: return "PNG";
+    case OutputFormat::Mp4: return "MP4";
+    case OutputFormat::InFolder: return "run";
+  }
+  return "?";
 }
 
 // a process-wide table of the locks held, so that a path locked twice in one process shares one lock
 struct HeldLock {
   int fd = -1;
   int count = 0;
+  std::thread::id owner;  // the thread that holds it: another thread of this process is refused
 };
 std::mutex& lockMutex() {
   static std::mutex m;
@@ -215,10 +503,20 @@ std::map<std::string, HeldLock>& heldLocks() {
 }
 
 std::string holderOf(const fs::path& lockFile) {
+  // "rootsim lock <pid>" per holder: those still alive (a shard that ended leaves its line behind)
   std::ifstream in(lockFile);
-  std::string word, pid;
-  in >> word >> word >> pid;  // "rootsim lock <pid>"
-  return pid.empty() ? std::string("unknown") : pid;
+  std::string line, pids, last;
+  while (std::getline(in, line)) {
+    std::istringstream words(line);
+    std::string a, b;
+    long pid = 0;
+    if (!(words >> a >> b >> pid) || pid <= 0) continue;
+    last = std::to_string(pid);
+    if (::kill(static_cast<pid_t>(pid), 0) != 0 && errno != EPERM) continue;  // gone, or on another host
+    if ((", " + pids + ",").find(" " + last + ",") == std::string::npos) pids += (pids.empty() ? "" : ", ") + last;
+  }
+  if (pids.empty()) pids = last;
+  return pids.empty() ? std::string("unknown") : pids;
 }
 
 }  // namespace
@@ -264,11 +562,122 @@ std::string whyNotOurs(const fs::path& dir, const FolderSpec& spec) {
            "); rootsim never replaces or writes into folders it did not write: choose another path";
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
-    if (!spec.owns(dir, name))
-      return dir.string() + " holds " + name + ", which rootsim did not write; move it away or choose another path";
+    if (spec.owns(dir, name)) continue;
+    // a folder of rootsim's inside (a sweep's run, a plate's roots/NAME, a fit's runs/): its own reason
+    for (const FolderSpec* inner : {&runFolder(), &sweepFolder()})
+      if (e.is_directory(ec) && !e.is_symlink(ec) && fs::is_regular_file(fs::symlink_status(e.path() / inner->marker, ec)))
+        if (std::string why = whyNotOurs(e.path(), *inner); !why.empty()) return why;
+    if (name == "roots" && e.is_directory(ec))
+      for (const auto& r : fs::directory_iterator(e.path(), ec))
+        if (std::string why = whyNotOurs(r.path(), runFolder()); !why.empty()) return why;
+    return dir.string() + " holds " + name + ", which rootsim did not write; move it away or delete it";
   }
   if (ec) return "cannot list " + dir.string() + ": " + ec.message();
+  // a finished folder: every file as its marker records it
+  if (beingWritten(dir)) return "";
+  std::map<std::string, Recorded> rec;
+  readRecord(dir / spec.marker, &rec);
+  return whyNotAllRecorded(dir, spec, rec, dir);
+}
+
+std::string recordOf(const fs::path& dir, const char* marker, bool nested) {
+  std::vector<std::string> rels;
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    const fs::path p = it->path();
+    const std::string name = p.filename().string();
+    if (it->is_directory(ec) && !it->is_symlink(ec)) {
+      if (!nested && hasOwnMarker(p)) it.disable_recursion_pending();
+      continue;
+    }
+    if (!it->is_regular_file(ec) || it->is_symlink(ec)) continue;
+    const std::string rel = fs::relative(p, dir, ec).generic_string();
+    if (rel == marker || isLockFile(name) || stripTemp(name) != name) continue;
+    rels.push_back(rel);
+  }
+  if (ec) throw RunError("cannot list " + dir.string() + ": " + ec.message());
+  std::sort(rels.begin(), rels.end());
+  std::string s;
+  for (const std::string& rel : rels) s += recordLine(dir, rel);
+  return s;
+}
+
+void recordFolder(const fs::path& dir, const FolderSpec& spec, bool nested) {
+  const RecordLock lock(dir);
+  const std::string head = std::string(spec.what) + " " + kVersion + "\n";
+  writeMarker(dir / spec.marker, head + recordOf(dir, spec.marker, nested));
+}
+
+void recordFiles(const fs::path& dir, const FolderSpec& spec, const std::vector<std::string>& rels,
+                 const std::function<void()>& put) {
+  const RecordLock lock(dir);
+  if (put) put();
+  std::map<std::string, Recorded> rec;
+  std::string head = readRecord(dir / spec.marker, &rec);
+  if (head.empty()) head = std::string(spec.what) + " " + kVersion;
+  std::map<std::string, std::string> lines;
+  for (const auto& [rel, r] : rec) lines[rel] = "file " + rel + " " + r.size + " " + r.hash + "\n";
+  std::error_code ec;
+  for (const std::string& rel : rels) {
+    if (fs::is_regular_file(fs::symlink_status(dir / rel, ec)))
+      lines[rel] = recordLine(dir, rel);
+    else
+      lines.erase(rel);  // written, then removed again: no longer rootsim's to replace
+  }
+  std::string text = head + "\n";
+  for (const auto& [rel, line] : lines) text += line;
+  writeMarker(dir / spec.marker, text);
+}
+
+void recordWritten(const std::vector<fs::path>& files) {
+  for (const fs::path& f : files) {
+    std::error_code ec;
+    if (f.empty() || !fs::is_regular_file(fs::symlink_status(f, ec))) continue;
+    const fs::path dir = absoluteNormal(f).parent_path();
+    for (const auto& e : fs::directory_iterator(dir, ec)) {
+      const std::string n = e.path().filename().string();
+      if (n.rfind(".rootsim-", 0) != 0 || isLockFile(n) || stripTemp(n) != n || !e.is_regular_file(ec)) continue;
+      // the folder's kind is the marker's own head line: kept as it is
+      const std::string marker = n;
+      const FolderSpec named{marker.c_str(), "rootsim folder", nullptr};
+      recordFiles(dir, named, {f.filename().string()});
+      break;
+    }
+  }
+}
+
+std::string whyNotRecorded(const fs::path& dir, const char* marker, const std::string& rel) {
+  std::map<std::string, Recorded> rec;
+  readRecord(dir / marker, &rec);
+  const auto it = rec.find(rel);
+  if (it == rec.end()) return "rootsim did not write it (" + (dir / marker).string() + " does not list it)";
+  const auto [size, hash] = recordValues(dir / rel, rel);
+  if (hash.empty() || it->second.hash != hash || (it->second.size != "-" && it->second.size != size))
+    return "changed since rootsim wrote it (its content differs from the record in " + (dir / marker).string() + ")";
   return "";
+}
+
+void registerSignatureCheck(OutputFormat format, SignatureCheck check) {
+  std::lock_guard<std::mutex> g(signatureMutex());
+  signatureChecks()[format] = std::move(check);
+}
+
+std::string whyNotSigned(const fs::path& file, OutputFormat format) {
+  switch (format) {
+    case OutputFormat::Rsml: return whyNotSignedRsml(file);
+    case OutputFormat::Glb: return whyNotSignedGlb(file);
+    case OutputFormat::Png: return whyNotSignedPng(file);
+    case OutputFormat::Mp4: break;
+    case OutputFormat::InFolder: return "not inside a folder of rootsim's";
+  }
+  SignatureCheck check;
+  {
+    std::lock_guard<std::mutex> g(signatureMutex());
+    const auto it = signatureChecks().find(format);
+    if (it != signatureChecks().end()) check = it->second;
+  }
+  if (!check) return std::string("no ") + formatName(format) + " reader in this program to tell whether rootsim wrote it";
+  return check(file);
 }
 
 fs::path checkOutputName(const std::string& text, const std::string& flag) {
@@ -290,7 +699,7 @@ fs::path checkOutputName(const std::string& text, const std::string& flag) {
   return p;
 }
 
-void claimFile(const fs::path& file, const WriteRule& rule, const std::string& flag) {
+void claimFile(const fs::path& file, const WriteRule& rule, const std::string& flag, OutputFormat format) {
   checkOutputName(file.string(), flag);
   checkNotInput(file, rule, flag);
   std::error_code ec;
@@ -305,10 +714,17 @@ void claimFile(const fs::path& file, const WriteRule& rule, const std::string& f
     if (!fs::is_regular_file(st))
       throw SceneError(flag + " " + file.string() + ": " + p.string() + " exists and is " + kindOf(st) +
                        "; rootsim writes only regular files of its own (a link, device or FIFO is never written through)");
-    if (!carriesSignature(p) && !ownedByFolder(p))
-      throw SceneError(flag + " " + file.string() + ": " + p.string() +
-                       " exists and was not written by rootsim; rootsim never replaces files it did not write: "
-                       "choose another name or move it away");
+    // inside a folder of rootsim's: its marker's record decides; elsewhere the file's own signature
+    std::string why;
+    if (const FolderSpec* spec = ownFolderOf(p))
+      why = whyNotRecorded(absoluteNormal(p).parent_path(), spec->marker, p.filename().string());
+    else if (*suffix)
+      why = "an interrupted output rootsim cannot vouch for (a movie is signed when it is finished)";
+    else
+      why = whyNotSigned(p, format);
+    if (!why.empty())
+      throw SceneError(flag + " " + file.string() + ": " + p.string() + " exists and was not written by rootsim as it is (" +
+                       formatName(format) + ": " + why + "); rootsim never replaces files it did not write: move it away or delete it");
     if (!rule.force)
       throw SceneError(flag + " " + file.string() + ": " + p.string() +
                        " exists (written by rootsim earlier); pass --force to replace it");
@@ -344,7 +760,7 @@ void createOwnFolder(const fs::path& dir, const FolderSpec& spec) {
       throw RunError("cannot write into " + dir.string() + ": " + std::strerror(err));
     throw SceneError("cannot write into " + dir.string() + ": " + std::strerror(err));
   }
-  const std::string text = std::string("rootsim ") + spec.what + " " + kVersion + "\n";
+  const std::string text = std::string(spec.what) + " " + kVersion + "\n";
   const bool ok = ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
   const int err = errno;
   ::close(fd);
@@ -354,27 +770,19 @@ void createOwnFolder(const fs::path& dir, const FolderSpec& spec) {
   }
 }
 
-bool carriesSignature(const fs::path& file) {
-  std::ifstream in(file, std::ios::binary);
-  if (!in) return false;
-  const std::string sig = kOutputSignature;
-  // streamed in blocks, each carrying the tail of the one before (a signature across a block edge)
-  std::string buf(1 << 16, '\0'), carry;
-  while (in) {
-    in.read(buf.data(), static_cast<std::streamsize>(buf.size()));
-    const std::string block = carry + buf.substr(0, static_cast<std::size_t>(in.gcount()));
-    if (block.find(sig) != std::string::npos) return true;
-    carry = block.size() >= sig.size() ? block.substr(block.size() - sig.size() + 1) : block;
-  }
-  return false;
-}
-
 fs::path lockFileOf(const fs::path& path) {
   const fs::path a = absoluteNormal(path);
   return a.parent_path() / ("." + a.filename().string() + ".rootsim-lock");
 }
 
-OutputLock::OutputLock(const fs::path& path, const std::string& flag) {
+namespace {
+std::string heldMessage(const std::string& flag, const fs::path& path, const std::string& pid, bool thread) {
+  return flag + " " + path.string() + ": being written by another rootsim " + (thread ? "thread of this process" : "process") +
+         " (PID " + pid + "); wait for it to finish, or stop it";
+}
+}  // namespace
+
+OutputLock::OutputLock(const fs::path& path, const std::string& flag, LockMode mode) {
   const fs::path file = lockFileOf(path);
   std::error_code ec;
   fs::create_directories(file.parent_path(), ec);
@@ -383,37 +791,75 @@ OutputLock::OutputLock(const fs::path& path, const std::string& flag) {
   std::lock_guard<std::mutex> g(lockMutex());
   auto& held = heldLocks();
   if (auto it = held.find(key); it != held.end()) {
+    // the same thread again shares its lock; another thread (Python threads writing one `out`) is refused
+    if (it->second.owner != std::this_thread::get_id())
+      throw SceneError(heldMessage(flag, path, std::to_string(::getpid()), true));
     ++it->second.count;
     key_ = key;
     return;
   }
-  // open, lock, and check that the file locked is still the one at the path: a holder removes it when
-  // it releases, so a lock taken on a removed file is retried on the new one
+  // open, lock, and check that the file locked is still the one at the path: the last holder removes it
+  // when it releases, so a lock taken on a removed file is retried on the new one
+  const int how = mode == LockMode::Shared ? LOCK_SH : LOCK_EX;
   for (int attempt = 0; attempt < 50; ++attempt) {
     const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
     if (fd < 0)
       throw SceneError(flag + " " + path.string() + ": cannot create its lock " + file.string() + ": " + std::strerror(errno));
-    if (::flock(fd, LOCK_EX | LOCK_NB) != 0) {
+    if (::flock(fd, how | LOCK_NB) != 0) {
       const int err = errno;
+      struct stat a {}, b {};
+      const bool moved = ::fstat(fd, &a) == 0 && (::stat(file.c_str(), &b) != 0 || a.st_ino != b.st_ino || a.st_dev != b.st_dev);
       ::close(fd);
-      if (err == EWOULDBLOCK)
-        throw SceneError(flag + " " + path.string() + ": being written by another rootsim process (PID " +
-                         holderOf(file) + "); wait for it to finish, or stop it");
+      if (err == EWOULDBLOCK && moved) continue;  // its last holder was removing it: take the new one
+      if (err == EWOULDBLOCK) {
+        // a shared holder releasing checks with an exclusive try whether it is the last: wait that out
+        if (mode == LockMode::Shared && attempt < 20) {
+          ::usleep(5000);
+          continue;
+        }
+        throw SceneError(heldMessage(flag, path, holderOf(file), false));
+      }
       throw SceneError(flag + " " + path.string() + ": cannot lock " + file.string() + ": " + std::strerror(err));
     }
     struct stat a {}, b {};
     if (::fstat(fd, &a) == 0 && ::stat(file.c_str(), &b) == 0 && a.st_ino == b.st_ino && a.st_dev == b.st_dev) {
+      // the PID is for messages only: a lock whose file cannot hold it still locks. Shared holders (the
+      // shards of a sweep) each add theirs; messages name those still alive
       const std::string text = "rootsim lock " + std::to_string(::getpid()) + "\n";
-      if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, text.data(), text.size(), 0) != static_cast<ssize_t>(text.size())) {
-        // the PID is for messages only: a lock whose file cannot hold it still locks
+      if (mode == LockMode::Exclusive) {
+        if (::ftruncate(fd, 0) != 0 || ::pwrite(fd, text.data(), text.size(), 0) != static_cast<ssize_t>(text.size())) {
+        }
+      } else if (::lseek(fd, 0, SEEK_END) < 0 || ::write(fd, text.data(), text.size()) != static_cast<ssize_t>(text.size())) {
       }
-      held[key] = HeldLock{fd, 1};
+      held[key] = HeldLock{fd, 1, std::this_thread::get_id()};
       key_ = key;
       return;
     }
     ::close(fd);
   }
   throw SceneError(flag + " " + path.string() + ": cannot take the lock " + file.string() + " (it keeps changing)");
+}
+
+OutputLock lockOutput(const fs::path& path, const std::string& flag, LockMode mode) { return OutputLock(path, flag, mode); }
+
+std::string whyUnfinished(const fs::path& dir) {
+  fs::path base = absoluteNormal(dir);
+  const bool isPartial = endsWith(base.filename().string(), ".partial");
+  if (isPartial) base = base.parent_path() / base.stem();
+  fs::path partial = base;
+  partial += ".partial";
+  std::error_code ec;
+  if (!fs::exists(fs::symlink_status(partial, ec))) return "";
+  bool held = false;
+  if (const int fd = ::open(lockFileOf(base).c_str(), O_RDONLY | O_CLOEXEC | O_NOFOLLOW); fd >= 0) {
+    held = ::flock(fd, LOCK_SH | LOCK_NB) != 0;
+    ::close(fd);
+  }
+  if (held) return partial.string() + " is being written by PID " + holderOf(lockFileOf(base)) + "; wait for it to finish";
+  if (isPartial)
+    return partial.string() + " is an interrupted run (no process is writing it): continue it with `rootsim run SCENE --out " +
+           base.string() + " --resume`, or read a finished run";
+  return "";
 }
 
 OutputLock::~OutputLock() { release(); }
@@ -435,8 +881,10 @@ void OutputLock::release() {
   auto& held = heldLocks();
   auto it = held.find(key_);
   if (it != held.end() && --it->second.count == 0) {
-    // removed while still held: a process waiting on this file then sees it is gone and retries
-    ::unlink(key_.c_str());
+    // removed only by its last holder: an exclusive try tells (a shared holder of another process keeps
+    // it, so an exclusive locker can never take a fresh file beside it); a process waiting on the
+    // removed file sees it is gone and retries
+    if (::flock(it->second.fd, LOCK_EX | LOCK_NB) == 0) ::unlink(key_.c_str());
     ::close(it->second.fd);
     held.erase(it);
   }
@@ -475,7 +923,7 @@ void replaceFolder(const fs::path& work, const fs::path& final, const FolderSpec
 
 StagedFolder::StagedFolder(const fs::path& dir, const FolderSpec& spec, const WriteRule& rule, const std::string& flag)
     : spec_(&spec), final_(checkOutputName(dir.string(), flag)) {
-  lock_ = OutputLock(final_, flag);
+  lock_ = lockOutput(final_, flag);
   claimFolder(final_, spec, rule, flag, true);
   work_ = final_;
   work_ += ".partial";
@@ -489,6 +937,9 @@ StagedFolder::StagedFolder(const fs::path& dir, const FolderSpec& spec, const Wr
   createOwnFolder(work_, spec);
 }
 
-void StagedFolder::commit() { replaceFolder(work_, final_, *spec_); }
+void StagedFolder::commit() {
+  recordFolder(work_, *spec_);  // every file as written: --force later replaces only what is still so
+  replaceFolder(work_, final_, *spec_);
+}
 
 }  // namespace rootsim

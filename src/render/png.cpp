@@ -1,6 +1,6 @@
 // PNG files through stb (libstb ships the compiled implementation: no STB_*_IMPLEMENTATION here)
 #include "rootsim/png.hpp"
-#include "rootsim/signature.hpp"
+#include "rootsim/png_signature.hpp"
 
 #include <stb_image.h>
 #include <stb_image_write.h>
@@ -31,50 +31,12 @@ void configureStb() {
   });
 }
 
+// stb hands over the whole PNG in one call: kept, then written signed (png_signature.hpp)
 struct FileSink {
-  std::FILE* f = nullptr;
-  bool failed = false;
+  std::string bytes;
 };
-
-// CRC-32 of a PNG chunk (ISO 3309, the polynomial PNG specifies)
-std::uint32_t crc32(const unsigned char* p, std::size_t n, std::uint32_t c = 0xffffffffu) {
-  for (std::size_t i = 0; i < n; ++i) {
-    c ^= p[i];
-    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xedb88320u & (0u - (c & 1u)));
-  }
-  return c;
-}
-
-// the tEXt chunk "Software" = rootsim's signature: the write rule (write_rule.hpp) replaces a PNG at a
-// user's path only when it carries it
-std::string signatureChunk() {
-  const std::string body = std::string("tEXt") + "Software" + '\0' + outputSignatureText();
-  std::string chunk;
-  const std::uint32_t len = static_cast<std::uint32_t>(body.size() - 4);
-  for (int k = 3; k >= 0; --k) chunk += static_cast<char>((len >> (8 * k)) & 0xff);
-  chunk += body;
-  const std::uint32_t crc = crc32(reinterpret_cast<const unsigned char*>(body.data()), body.size()) ^ 0xffffffffu;
-  for (int k = 3; k >= 0; --k) chunk += static_cast<char>((crc >> (8 * k)) & 0xff);
-  return chunk;
-}
-
-// stb hands over the whole PNG in one call: written with the signature chunk after IHDR (the PNG
-// signature, 8 bytes, and the IHDR chunk, 25 bytes)
 void writeToFile(void* ctx, void* data, int size) {
-  auto* sink = static_cast<FileSink*>(ctx);
-  if (sink->failed || size <= 0) return;
-  constexpr int kHead = 8 + 25;
-  static const std::string chunk = signatureChunk();
-  const auto* bytes = static_cast<const unsigned char*>(data);
-  const bool split = size > kHead;
-  const std::size_t first = split ? kHead : static_cast<std::size_t>(size);
-  bool ok = std::fwrite(bytes, 1, first, sink->f) == first;
-  if (split) {
-    ok = ok && std::fwrite(chunk.data(), 1, chunk.size(), sink->f) == chunk.size();
-    const std::size_t rest = static_cast<std::size_t>(size) - first;
-    ok = ok && std::fwrite(bytes + first, 1, rest, sink->f) == rest;
-  }
-  if (!ok) sink->failed = true;
+  if (size > 0) static_cast<FileSink*>(ctx)->bytes.append(static_cast<const char*>(data), static_cast<std::size_t>(size));
 }
 
 // a temporary name beside path, unique per process and thread
@@ -94,14 +56,16 @@ void writePng(const std::string& path, const Image& img) {
   configureStb();
   const std::string tmp = tempName(path);
   FileSink sink;
-  sink.f = std::fopen(tmp.c_str(), "wb");
-  if (!sink.f)
-    throw RenderError("writePng " + path + ": cannot create " + tmp + ": " + std::strerror(errno));
   const int ok = stbi_write_png_to_func(writeToFile, &sink, img.width, img.height, 4, img.rgba.data(),
                                         4 * img.width);
-  const int err = sink.failed ? errno : 0;
-  const bool closed = std::fclose(sink.f) == 0;
-  if (!ok || sink.failed || !closed) {
+  if (!ok) throw RenderError("writePng " + path + ": stbi_write_png_to_func failed");
+  const std::string signedPng = signPng(sink.bytes);
+  std::FILE* f = std::fopen(tmp.c_str(), "wb");
+  if (!f) throw RenderError("writePng " + path + ": cannot create " + tmp + ": " + std::strerror(errno));
+  const bool written = std::fwrite(signedPng.data(), 1, signedPng.size(), f) == signedPng.size();
+  const int err = written ? 0 : errno;
+  const bool closed = std::fclose(f) == 0;
+  if (!written || !closed) {
     std::remove(tmp.c_str());
     throw RenderError("writePng " + path + ": " +
                       (!ok ? std::string("stbi_write_png_to_func failed")

@@ -247,13 +247,27 @@ void addArrow(RenderScene& rs, const Eigen::Vector2d& a, const Eigen::Vector2d& 
 // the colour of a traced root's line: the figures' trace colour (compare_panel.cpp)
 constexpr std::array<std::uint8_t, 4> kTraceInk{13, 51, 140, 255};
 
-// a traced root over the picture, as a line through its projected points
-void addTrace(RenderScene& rs, const View& view) {
+// a traced root over the picture, as a line through its projected points; a time-lapse trace as it was
+// at time tH
+void addTrace(RenderScene& rs, const View& view, double tH) {
   if (view.traceUvMm.size() < 2) return;
+  std::vector<std::array<double, 2>> uv = view.traceUvMm;
+  if (view.traceTimeH.size() == uv.size()) {
+    // the points reached by tH, and where the tip was between the two around it
+    std::size_t n = 0;
+    while (n < uv.size() && view.traceTimeH[n] <= tH) ++n;
+    if (n == 0) return;
+    if (n < uv.size() && view.traceTimeH[n] > view.traceTimeH[n - 1]) {
+      const double f = (tH - view.traceTimeH[n - 1]) / (view.traceTimeH[n] - view.traceTimeH[n - 1]);
+      uv[n] = {uv[n - 1][0] + f * (uv[n][0] - uv[n - 1][0]), uv[n - 1][1] + f * (uv[n][1] - uv[n - 1][1])};
+      ++n;
+    }
+    uv.resize(n);
+  }
   OverlayLine l;
   l.widthPx = std::max(2.0f, std::round(overlayFontPx(view) / 9.0f));
   l.colour = kTraceInk;
-  for (const auto& p : view.traceUvMm) {
+  for (const auto& p : uv) {
     Eigen::Vector2d px;
     if (projectToPixel(rs, V3(p[0], p[1], 0), px)) l.points.push_back({static_cast<float>(px.x()), static_cast<float>(px.y())});
   }
@@ -261,7 +275,7 @@ void addTrace(RenderScene& rs, const View& view) {
 }
 
 void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, const View& view, const Framing& framing) {
-  addTrace(rs, view);
+  addTrace(rs, view, s.timeH);
   if (!view.overlays) return;
   // text scales with the shorter side, so portrait frames get the same text as landscape ones
   const float font = overlayFontPx(view);

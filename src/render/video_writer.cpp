@@ -1,5 +1,6 @@
 // H.264 MP4 through libavcodec (libx264) and libavformat; RGBA -> yuv420p BT.709 with swscale
 #include "rootsim/video_writer.hpp"
+#include "rootsim/content_hash.hpp"
 #include "rootsim/signature.hpp"
 
 extern "C" {
@@ -12,6 +13,7 @@ extern "C" {
 #include <libswscale/swscale.h>
 }
 
+#include <cstdint>
 #include <cstdio>
 #include <filesystem>
 #include <mutex>
@@ -32,7 +34,70 @@ void check(int code, const std::string& call) {
   if (code < 0) throw RenderError("video: " + call + ": " + avErr(code));
 }
 
+// x264 hands over Annex B packets (start codes), which the MP4 muxer stores as NAL units with a 4-byte
+// length each (FFmpeg's ff_avc_parse_nal_units): hashed as stored, so that the packets read back hash
+// the same. A NAL starts after 00 00 01 (leading zeros skipped) and ends where the next start code, with
+// one zero byte before it, begins.
+void hashAsStored(Sha256& h, const std::uint8_t* p, std::size_t n) {
+  auto startCode = [&](std::size_t from) {
+    for (std::size_t i = from; i + 2 < n; ++i)
+      if (p[i] == 0 && p[i + 1] == 0 && p[i + 2] == 1) return i;
+    return n;
+  };
+  std::size_t at = startCode(0);
+  if (at == n) {  // not Annex B: stored as it is
+    h.update(p, n);
+    return;
+  }
+  while (at < n) {
+    std::size_t start = at;
+    while (start < n && p[start] == 0) ++start;
+    if (start >= n) break;
+    if (++start >= n) break;  // past the 01: nothing after it
+    std::size_t end = startCode(start);
+    if (end < n && end > start && p[end - 1] == 0) --end;
+    const auto len = static_cast<std::uint32_t>(end - start);
+    const std::uint8_t be[4] = {static_cast<std::uint8_t>(len >> 24), static_cast<std::uint8_t>(len >> 16),
+                                static_cast<std::uint8_t>(len >> 8), static_cast<std::uint8_t>(len)};
+    h.update(be, 4);
+    h.update(p + start, len);
+    at = end;
+  }
+}
+
 }  // namespace
+
+std::string whyNotSignedMovie(const std::string& path) {
+  AVFormatContext* in = nullptr;
+  // a user's file is expected here: libavformat's complaints about it are not for the terminal
+  const int level = av_log_get_level();
+  av_log_set_level(AV_LOG_QUIET);
+  const int opened = avformat_open_input(&in, path.c_str(), nullptr, nullptr);
+  av_log_set_level(level);
+  if (opened < 0) return "it does not open as a movie";
+  struct Close {
+    AVFormatContext** f;
+    ~Close() { avformat_close_input(f); }
+  } close{&in};
+  const std::string format = in->iformat && in->iformat->name ? in->iformat->name : "";
+  if (format.find("mp4") == std::string::npos) return "not an MP4 file (" + (format.empty() ? "unknown" : format) + ")";
+  const AVDictionaryEntry* c = av_dict_get(in->metadata, "comment", nullptr, 0);
+  const std::string comment = c && c->value ? c->value : "";
+  if (comment.rfind(std::string(kOutputSignature) + " ", 0) != 0) return "its comment tag is not rootsim's";
+  const auto at = comment.find(" sha256:");
+  if (at == std::string::npos) return "";
+  Sha256 h;
+  AVPacket* pkt = av_packet_alloc();
+  if (!pkt) return "cannot read its packets";
+  int r = 0;
+  while ((r = av_read_frame(in, pkt)) >= 0) {
+    h.update(pkt->data, static_cast<std::size_t>(pkt->size));
+    av_packet_unref(pkt);
+  }
+  av_packet_free(&pkt);
+  if (r != AVERROR_EOF) return "its packets cannot be read: " + avErr(r);
+  return h.hex() == comment.substr(at + 8, 64) ? "" : "changed since rootsim wrote it";
+}
 
 struct VideoWriter::Impl {
   std::string path, partial;
@@ -46,6 +111,7 @@ struct VideoWriter::Impl {
   SwsContext* sws = nullptr;
   bool headerWritten = false, finished = false, ioOpen = false;
   int frames = 0;
+  Sha256 packets;  // the hash of every packet's data, in the order written: the signature's sha256
 
   Impl(const std::string& p, int w, int h, const VideoOptions& o)
       : path(p), partial(p + ".partial"), width(w), height(h), opt(o) {
@@ -98,9 +164,6 @@ struct VideoWriter::Impl {
     stream->time_base = enc->time_base;
     stream->avg_frame_rate = enc->framerate;
 
-    // rootsim's signature in the "comment" tag: the write rule (write_rule.hpp) replaces an MP4 at a
-    // user's path only when it carries it
-    av_dict_set(&fmt->metadata, "comment", outputSignatureText(), 0);
     check(avio_open(&fmt->pb, partial.c_str(), AVIO_FLAG_WRITE), "avio_open(" + partial + ")");
     ioOpen = true;
     check(avformat_write_header(fmt, nullptr), "avformat_write_header(" + partial + ")");
@@ -138,6 +201,7 @@ struct VideoWriter::Impl {
       if (pkt->duration <= 0) pkt->duration = 1;
       av_packet_rescale_ts(pkt, enc->time_base, stream->time_base);
       pkt->stream_index = stream->index;
+      hashAsStored(packets, pkt->data, static_cast<std::size_t>(pkt->size));
       check(av_interleaved_write_frame(fmt, pkt), "av_interleaved_write_frame(" + partial + ")");
     }
   }
@@ -162,6 +226,11 @@ struct VideoWriter::Impl {
   void close() {
     if (headerWritten) {
       encode(nullptr);
+      // rootsim's signature in the "comment" tag, with the hash of the packets written: the MP4 muxer
+      // writes the metadata with the trailer (moov). The write rule (write_rule.hpp) replaces an MP4 at
+      // a user's path only when it carries it and its packets still hash to it (checkMovieSignature)
+      const std::string comment = std::string(outputSignatureText()) + " sha256:" + packets.hex();
+      av_dict_set(&fmt->metadata, "comment", comment.c_str(), 0);
       check(av_write_trailer(fmt), "av_write_trailer(" + partial + ")");
       headerWritten = false;
     }

@@ -345,6 +345,47 @@ TEST_CASE("stills: --trace draws the traced root over the picture / its own expo
   CHECK_FALSE(fs::exists(d / "x.png"));
 }
 
+TEST_CASE("stills: a 2D+t trace drawn with --trace grows with the frames / the root as it was at the frame's time") {
+  const fs::path d = rtest::scratch("trace_lapse");
+  const TinyRun t = tinyRun(d);
+  // RootSystemTracker's 2D+t: a straight root reaching 0.5 mm at 1 h and 1 mm at 2 h (50 um pixels)
+  const fs::path lapse = d / "lapse.rsml";
+  {
+    std::ofstream f(lapse);
+    f << "<rsml><metadata><unit>pixel(um)</unit><size>50</size><observation-hours>1,2</observation-hours></metadata>"
+         "<scene><plant ID=\"1\"><root ID=\"1.1\"><geometry><polyline>"
+         "<point coord_x=\"0\" coord_y=\"0\" coord_t=\"0\" coord_th=\"0\"/>"
+         "<point coord_x=\"0\" coord_y=\"10\" coord_t=\"1\" coord_th=\"1\"/>"
+         "<point coord_x=\"0\" coord_y=\"20\" coord_t=\"2\" coord_th=\"2\"/>"
+         "</polyline></geometry></root></plant></scene></rsml>\n";
+  }
+  // the rows of the trace's ink below the legend (the frame's top 85 %)
+  auto inkRows = [](const Image& img) {
+    int rows = 0;
+    for (int y = 0; y < img.height * 85 / 100; ++y) {
+      bool any = false;
+      for (int x = 0; x < img.width && !any; ++x) {
+        const std::uint8_t* p = &img.rgba[4 * (static_cast<std::size_t>(y) * img.width + x)];
+        any = std::abs(p[0] - 13) < 12 && std::abs(p[1] - 51) < 12 && std::abs(p[2] - 140) < 12;
+      }
+      rows += any;
+    }
+    return rows;
+  };
+  std::vector<int> rows;
+  for (const char* h : {"0.6", "1.2", "2"}) {
+    const fs::path png = d / (std::string("at_") + h + ".png");
+    const Result r = run("render " + t.dir.string() + " --trace " + lapse.string() + " --size 360x640 --quiet --at-h " + h + " --png " + png.string());
+    REQUIRE_MESSAGE(r.code == 0, r.out);
+    rows.push_back(inkRows(readPng(png.string())));
+  }
+  // 0.3, 0.6 and 1 mm of trace: the line grows, in proportion
+  CHECK(rows[0] > 0);
+  CHECK(rows[0] < rows[1]);
+  CHECK(rows[1] < rows[2]);
+  CHECK(static_cast<double>(rows[1]) / rows[2] == doctest::Approx(0.6).epsilon(0.15));
+}
+
 TEST_CASE("stills: a plate's run draws every root, and --scan is the plate at PX px/mm with the roots where they are sown") {
   const fs::path d = rootsim::test::scratchDir("stills", "plate");
   // the collision scene, coarsened: two seedlings on a 40 x 40 mm plate at [20, 5] and [23, 7] mm

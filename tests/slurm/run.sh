@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A sweep through a real SLURM (issue 15, item 7): starts munged, slurmctld and slurmd (Debian's
+# A sweep through a real SLURM: starts munged, slurmctld and slurmd (Debian's
 # slurm-wlm and munge) as a single-node cluster on this machine, submits `rootsim sweep --shard K/4` as
 # a job array of 4, waits for it, rebuilds table.csv (`rootsim sweep` without --shard skips every
 # completed point) and compares it row for row with a local `rootsim sweep -j 2` of the same sweep.

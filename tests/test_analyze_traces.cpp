@@ -324,6 +324,8 @@ TEST_CASE("analyze: work sized by a trace is counted against its cap before it i
   CHECK(at.code == 2);
   CHECK(at.out.find("rootsim: error: --at-h nan: expected a finite number in [0, 1e+06] h") == 0);
   CHECK(!fs::exists(d / "cmp"));
+}
+
 // ---- dialects, plants, time-lapse ----
 
 namespace {

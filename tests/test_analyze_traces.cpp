@@ -274,7 +274,7 @@ TEST_CASE("analyze: the write rule / a user's folder is never replaced, rootsim'
   CHECK(run("analyze " + in + " --out " + in).code == 2);
 }
 
-TEST_CASE("analyze: work sized by a trace is counted against its cap before it is done; numbers and hints are checked") {
+TEST_CASE("analyze: work sized by a trace is counted against its cap before it is done - and numbers and hints are checked") {
   if (!analyzeBuilt()) return;
   const fs::path d = scratch("bounds");
   auto write = [&](const std::string& name, const std::string& unit, const std::string& props, const std::string& points) {

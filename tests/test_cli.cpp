@@ -528,7 +528,7 @@ TEST_CASE("usage errors: CLI11's errors and unknown commands are one rootsim: er
   CHECK(run("render --help").code == 0);
 }
 
-TEST_CASE("figure: --dpi and --width-mm are finite and in range, and a panel too large is refused before anything is written") {
+TEST_CASE("figure: --dpi and --width-mm are finite and in range and a panel too large is refused before anything is written") {
   const fs::path d = scratch("figure_numbers");
   struct Case {
     std::string args, expect;
@@ -549,7 +549,7 @@ TEST_CASE("figure: --dpi and --width-mm are finite and in range, and a panel too
   }
 }
 
-TEST_CASE("every shipped scene and a plate with laterals, run short, are read back by every reading command") {
+TEST_CASE("every shipped scene and a plate with laterals run short are read back by every reading command") {
   if (run("render --help").out.find("--png") == std::string::npos) {
     rootsim::test::skipCase("rootsim built without the renderer: no render or export");
     return;

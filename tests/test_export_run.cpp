@@ -259,7 +259,7 @@ TEST_CASE("export: a run directory without its trajectory exits 2 naming the fil
   CHECK_FALSE(fs::exists(dir / "x.rsml"));
 }
 
-TEST_CASE("export: an --every-h RSML series is written all or none, and a FILE.tmp in its way is refused untouched") {
+TEST_CASE("export: an --every-h RSML series is written all or none and a FILE.tmp in its way is refused untouched") {
   const fs::path dir = test::scratchDir("export", "series_all_or_none");
   const std::string runDir = shortRun().string();
   const fs::path rsml = dir / "s.rsml";

@@ -25,7 +25,7 @@ std::string refusal(const std::string& flag, double v, const NumberRange& r) {
 }
 }  // namespace
 
-TEST_CASE("limits: a number flag is finite and in its range, or refused naming the flag, the value and the range") {
+TEST_CASE("limits: a number flag is finite and in its range or refused naming the flag and the value and the range") {
   const NumberRange mm{0, 10, true, false, "mm"};
   CHECK(refusal("--sigma-mm", 10, mm) == "(accepted)");
   CHECK(refusal("--sigma-mm", 1e-300, mm) == "(accepted)");
@@ -40,7 +40,7 @@ TEST_CASE("limits: a number flag is finite and in its range, or refused naming t
   CHECK(rangeText({0, 1, false, true, ""}) == "in [0, 1)");
 }
 
-TEST_CASE("limits: a count is checked against its cap before the work, naming what, the count and the cap") {
+TEST_CASE("limits: a count is checked against its cap before the work naming what and the count and the cap") {
   CHECK_NOTHROW(checkCount("x", 100, 100, "points", "why"));
   try {
     checkCount("--ds-mm 1e-12: root r", 1e15, caps::kTracePoints, "points", "caps::kTracePoints");
@@ -55,14 +55,14 @@ TEST_CASE("limits: a count is checked against its cap before the work, naming wh
   CHECK_THROWS_AS(checkCount("x", std::numeric_limits<double>::infinity(), 10, "frames", "why"), SceneError);
 }
 
-TEST_CASE("limits: memory running out is named with where it ran out, never only std::bad_alloc") {
+TEST_CASE("limits: memory running out is named with where it ran out and never only as std::bad_alloc") {
   const std::string t = failureText(std::bad_alloc(), "the run of fig2b_waving");
   CHECK(t.find("out of memory during the run of fig2b_waving") == 0);
   CHECK(t != "std::bad_alloc");
   CHECK(failureText(std::runtime_error("disk full"), "anything") == "disk full");
 }
 
-TEST_CASE("limits: the closest name for a near miss, none for a far one") {
+TEST_CASE("limits: the closest name for a near miss and none for a far one") {
   CHECK(closestName("fly", {"run", "fit", "figure"}) == "fit");
   CHECK(closestName("rnu", {"run", "fit", "figure"}) == "run");
   CHECK(closestName("--atH", {"--at-h", "--frame"}) == "--at-h");

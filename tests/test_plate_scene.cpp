@@ -257,7 +257,7 @@ TEST_CASE("plate runs: the commands of one root refuse a plate, naming what to p
   CHECK(test::sweepError(dir / "sweep.toml").find("a plate's scene; a sweep runs scenes of one root") != std::string::npos);
 }
 
-TEST_CASE("plate scenes: laterals are checked when the plate is read - their spacing, their count, their own scene") {
+TEST_CASE("plate scenes: laterals are checked when the plate is read - their spacing and count and their own scene") {
   // sites closer than a lateral's diameter: laterals on one side would overlap (1e-9 mm ran out of memory,
   // 0.01 mm did not finish)
   for (const char* spacing : {"1e-09", "0.01"})

@@ -4,6 +4,7 @@
 // input (exit 2, nothing written); the write rule
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -178,7 +179,7 @@ TEST_CASE("analyze: pixel units need --px-per-mm - and --downhill -y reads a pla
   file("down.rsml", -1);
   const auto bad = run("analyze " + (d / "up.rsml").string() + " --out " + (d / "x").string());
   CHECK(bad.code == 2);
-  CHECK(bad.out.find("up.rsml: its unit is pixel") != std::string::npos);
+  CHECK(bad.out.find("up.rsml:3: its unit is pixel") != std::string::npos);
   CHECK(bad.out.find("--px-per-mm") != std::string::npos);
   CHECK_FALSE(fs::exists(d / "x"));
   REQUIRE(run("analyze " + (d / "up.rsml").string() + " --px-per-mm 20 --out " + (d / "up").string()).code == 0);
@@ -196,6 +197,90 @@ TEST_CASE("analyze: pixel units need --px-per-mm - and --downhill -y reads a pla
   const auto mm = run("analyze " + kData + "openalea_micrometer.rsml --px-per-mm 20 --out " + (d / "y").string());
   CHECK(mm.code == 2);
   CHECK(mm.out.find("not pixels") != std::string::npos);
+}
+
+namespace {
+
+// a pixel RSML file of two plants traced as a tracer would (24 px/mm, a point every 4 px, 1 px of
+// Gaussian jitter per coordinate, whole pixels; a deterministic generator): plant "s" a straight root
+// 20 mm long heading 3 degrees towards +x from downhill (+y), plant "w" a wave of half excursion 0.5 mm
+// and wavelength 3 mm
+void writeTracedPlate(const fs::path& file) {
+  constexpr double pxPerMm = 24, stepPx = 4, jitterPx = 1;
+  unsigned long long state = 12345;
+  auto uniform = [&] {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (static_cast<double>(state >> 11) + 0.5) / 9007199254740992.0;
+  };
+  auto normal = [&] { return std::sqrt(-2.0 * std::log(uniform())) * std::cos(2.0 * std::numbers::pi * uniform()); };
+  std::ofstream f(file);
+  f << "<?xml version=\"1.0\"?>\n<rsml>\n<metadata><version>1</version><unit>pixel</unit><resolution>1</resolution></metadata>\n<scene>\n";
+  for (const char* plant : {"s", "w"}) {
+    f << "<plant id=\"" << plant << "\"><root id=\"1\"><geometry><polyline>\n";
+    const bool wave = plant[0] == 'w';
+    // points every stepPx of arc length along the true curve (a fine polyline walked in arc length)
+    double u = 0, w = 0, walked = 0;
+    const double dw = 0.0005;  // [mm]
+    for (double next = 0; w <= 20.0;) {
+      if (walked >= next) {
+        f << "<point x=\"" << std::round(300 + u * pxPerMm + jitterPx * normal()) << "\" y=\""
+          << std::round(100 + w * pxPerMm + jitterPx * normal()) << "\"/>\n";
+        next += stepPx / pxPerMm;
+      }
+      const double u2 = wave ? 0.5 * std::sin(2 * std::numbers::pi * (w + dw) / 3.0) : (w + dw) * std::tan(3.0 * std::numbers::pi / 180);
+      walked += std::hypot(u2 - u, dw);
+      u = u2;
+      w += dw;
+    }
+    f << "</polyline></geometry></root></plant>\n";
+  }
+  f << "</scene>\n</rsml>\n";
+}
+
+}  // namespace
+
+TEST_CASE("analyze: a root traced at 1 px of jitter - the straight one is straight below the noise, the wave keeps lambda and A") {
+  if (!analyzeBuilt()) return;
+  const fs::path d = scratch("noise");
+  writeTracedPlate(d / "plate.rsml");
+  const auto r = run("analyze " + (d / "plate.rsml").string() + " --px-per-mm 24 --out " + (d / "an").string());
+  REQUIRE(r.code == 0);
+  const auto rows = readRows(d / "an" / "analysis.csv");
+  REQUIRE(rows.size() == 2);
+  const double injectedMm = std::sqrt(1.0 + 1.0 / 12.0) / 24;  // jitter and whole-pixel rounding
+  for (const auto& row : rows) {
+    CAPTURE(row.at("plant"));
+    CHECK(number(row, "noise_mm") == doctest::Approx(injectedMm).epsilon(0.25));
+    CHECK(number(row, "smoothing_mm") > 0);
+    CHECK(number(row, "peak_threshold_mm") == doctest::Approx(std::max(3 * number(row, "noise_mm"), 0.05)).epsilon(1e-9));
+  }
+  const auto& s = rows[0];
+  CHECK(s.at("pattern") == "straight");
+  CHECK(s.at("wavelength_mm").empty());
+  CHECK(s.at("amplitude_mm").empty());
+  CHECK(s.at("waves_note").find("below the noise: no lateral excursion above 3 sigma") == 0);
+  CHECK(number(s, "straightness") > 0.995);
+  CHECK(number(s, "hgi") == doctest::Approx(std::sin(3.0 * std::numbers::pi / 180)).epsilon(0.2));
+  CHECK(number(s, "vgi") == doctest::Approx(std::cos(3.0 * std::numbers::pi / 180)).epsilon(0.005));
+  // the tip angle: the slope of a one-sided quadratic fit at the tip, over the smoothing's ~3 mm of ~18
+  // points with sigma 0.045 mm, has a standard error of about 4 degrees; pixel steps would give multiples
+  // of atan(1/4) = 14 degrees
+  CHECK(std::abs(number(s, "theta_tip_deg") - 3.0) < 12.0);
+  CHECK(number(s, "max_kappa_per_mm") < 0.5);  // the raw trace's turns of whole pixels gave ~10 /mm
+  const auto& w = rows[1];
+  CHECK(w.at("pattern") == "waving");
+  CHECK(w.at("waves_note").empty());
+  CHECK(number(w, "wavelength_mm") == doctest::Approx(3.0).epsilon(0.10));
+  CHECK(number(w, "amplitude_mm") == doctest::Approx(1.0).epsilon(0.15));
+  CHECK(number(w, "amplitude_half_mm") == doctest::Approx(0.5).epsilon(0.15));
+  // curves.csv: the file's points and the measured curve with its counted peaks
+  const std::string curves = slurp(d / "an" / "curves.csv");
+  CHECK(curves.rfind("file,plant,root,kind,point,lateral_mm,downhill_mm,mature,peak\n", 0) == 0);
+  std::size_t peaks = 0;
+  for (std::size_t at = curves.find(",w,1,measured,"); at != std::string::npos; at = curves.find(",w,1,measured,", at + 1))
+    if (curves.compare(curves.find('\n', at) - 2, 2, ",1") == 0) ++peaks;
+  CHECK(static_cast<double>(peaks) == number(w, "lateral_peaks"));
+  CHECK(curves.find(",s,1,trace,0,") != std::string::npos);
 }
 
 TEST_CASE("analyze: growth rates from exports of one run at two times, and from --times") {
@@ -577,7 +662,8 @@ TEST_CASE("analyze: the real files of ../shared/data/rsml / what each says with 
   for (const char* f : {"2012_11_19_18h00_chl110_1_1.rsml", "arabidopsis-simple.rsml"}) {
     const auto e = run("analyze " + (data / f).string() + " --out " + (d / "x").string());
     CHECK(e.code == 2);
-    CHECK(e.out.find("its unit is pixel with no physical scale; give --px-per-mm R") != std::string::npos);
+    CHECK(e.out.find((data / f).string() + ":5: its unit is pixel with no physical scale (no resolution or size in the file); give --px-per-mm R") !=
+          std::string::npos);
     CHECK_FALSE(fs::exists(d / "x"));
   }
   REQUIRE(run("analyze " + (data / "2012_11_19_18h00_chl110_1_1.rsml").string() + " --px-per-mm 24 --out " + (d / "oa").string()).code == 0);
@@ -712,4 +798,35 @@ TEST_CASE("analyze: the synthetic 2D+t plate cut into dated files gives the time
   }
   CHECK(ids.size() == tracks.size());
   CHECK(ids.size() == 21);
+}
+
+TEST_CASE("analyze: the real files' noise / whole-pixel rounding on the openalea plate, the 2D+t plate's injected jitter") {
+  if (!analyzeBuilt()) return;
+  const fs::path data = sharedData();
+  if (data.empty()) return;
+  const fs::path d = scratch("realnoise");
+  // openalea: whole pixels every 5 px down the image, read at 24 px/mm. The primaries' noise is the
+  // rounding's 1/sqrt(12) = 0.29 px; their smoothed curves bend at most ~2 /mm (the raw pixel steps
+  // turned by 5-10 /mm) and their tip angles are no longer arctangents of pixel steps only
+  REQUIRE(run("analyze " + (data / "2012_11_19_18h00_chl110_1_1.rsml").string() + " --px-per-mm 24 --out " + (d / "oa").string()).code == 0);
+  int primaries = 0;
+  for (const auto& row : readRows(d / "oa" / "analysis.csv")) {
+    if (row.at("order") != "0") continue;
+    ++primaries;
+    CAPTURE(row.at("root"));
+    const double sigmaPx = number(row, "noise_mm") * 24;
+    CHECK(sigmaPx > 0.2);
+    CHECK(sigmaPx < 0.35);
+    CHECK(number(row, "max_kappa_per_mm") < 2.5);
+    CHECK(number(row, "smoothing_mm") > 0.5);
+    CHECK(number(row, "peak_threshold_mm") == doctest::Approx(0.05));  // 0.5 R: above 3 sigma here
+  }
+  CHECK(primaries == 5);
+  // the 2D+t plate: 0.6 px of jitter on 76 um pixels, rounded: sqrt(0.36 + 1/12) px = 0.0506 mm
+  REQUIRE(run("analyze " + (data / "synthetic_2dt_plate.rsml").string() + " --out " + (d / "rst").string()).code == 0);
+  for (const auto& row : readRows(d / "rst" / "analysis.csv"))
+    if (row.at("order") == "0") {
+      CAPTURE(row.at("root"));
+      CHECK(number(row, "noise_mm") == doctest::Approx(0.0506).epsilon(0.2));
+    }
 }

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -65,6 +66,49 @@ double jsonNumber(const std::string& s, const std::string& key, std::size_t from
   const auto at = s.find("\"" + key + "\": ", from);
   REQUIRE_MESSAGE(at != std::string::npos, key);
   return std::stod(s.substr(at + key.size() + 4));
+}
+
+// a string of a JSON text's "key": "value"
+std::string jsonString(const std::string& s, const std::string& key, std::size_t from = 0) {
+  const auto at = s.find("\"" + key + "\": \"", from);
+  REQUIRE_MESSAGE(at != std::string::npos, key);
+  const auto start = at + key.size() + 5;
+  return s.substr(start, s.find('"', start) - start);
+}
+
+// the text of a JSON text's object "key": {...}
+std::string jsonObject(const std::string& s, const std::string& key) {
+  const auto at = s.find("\"" + key + "\": {");
+  REQUIRE_MESSAGE(at != std::string::npos, key);
+  const auto open = s.find('{', at);
+  int depth = 0;
+  for (std::size_t i = open; i < s.size(); ++i) {
+    depth += s[i] == '{' ? 1 : s[i] == '}' ? -1 : 0;
+    if (depth == 0) return s.substr(open, i + 1 - open);
+  }
+  return s.substr(open);
+}
+
+// the smallest value of a CSV file's column (empty cells skipped)
+double columnMin(const std::string& csv, const std::string& column) {
+  std::vector<std::string> lines;
+  std::stringstream in(csv);
+  for (std::string l; std::getline(in, l);) lines.push_back(l);
+  auto cells = [](const std::string& l) {
+    std::vector<std::string> c;
+    std::stringstream ls(l);
+    for (std::string x; std::getline(ls, x, ',');) c.push_back(x);
+    return c;
+  };
+  const std::vector<std::string> head = cells(lines.at(0));
+  const auto col = static_cast<std::size_t>(std::find(head.begin(), head.end(), column) - head.begin());
+  REQUIRE_MESSAGE(col < head.size(), column);
+  double m = INFINITY;
+  for (std::size_t i = 1; i < lines.size(); ++i) {
+    const std::vector<std::string> c = cells(lines[i]);
+    if (col < c.size() && !c[col].empty()) m = std::min(m, std::stod(c[col]));
+  }
+  return m;
 }
 
 std::map<std::string, fs::file_time_type> runTimes(const fs::path& runs) {
@@ -214,6 +258,29 @@ TEST_CASE("fit: the files, the same bytes from a fresh fit, and a second call th
   const double beta = jsonNumber(js, "value", js.find("\"tropism.beta\": {")), sb = jsonNumber(js, "sigma", js.find("\"tropism.beta\": {"));
   CHECK(std::abs(beta - 0.2) < 0.02);
   CHECK(std::abs(beta - 0.2) < 3 * sb);
+  // the answer is never worse, by the objective, than any run the fit made
+  const double answer = jsonNumber(js, "best_run_objective");
+  CHECK(answer <= columnMin(slurp(d / "a" / "evaluations.csv"), "objective") * (1 + 1e-8) + 1e-12);
+  // its goodness: the trace is a run of the model, so the model reproduces it
+  const auto g = js.find("\"goodness\": {");
+  REQUIRE(g != std::string::npos);
+  CHECK(jsonString(js, "verdict", g) == "consistent");
+  CHECK(jsonNumber(js, "p_value", g) >= 1e-3);
+  CHECK(js.find("\"misfit\"") == std::string::npos);
+  CHECK(a.out.find("goodness: chi2 ") != std::string::npos);
+  // the fixed keys that shape the answer, the tilt first, in fit.json and beside the answer
+  const std::string fixed = jsonObject(js, "scene_fixed");
+  CHECK(fixed.find("\"plane.alpha_deg\": {") < fixed.find("\"growth.rate_per_h\": {"));
+  CHECK(jsonString(fixed, "value") == "40.0");
+  CHECK(jsonString(fixed, "source") == "scene");
+  CHECK(fixed.find("\"tip_speed_mm_per_h\": {") != std::string::npos);
+  CHECK(fixed.find("\"tropism.gamma\": {") != std::string::npos);
+  CHECK(fixed.find("\"tropism.beta\"") == std::string::npos);  // a free key is not fixed
+  // a key the scene file leaves out is the default's
+  const auto cn = fixed.find("\"tropism.circumnutation_gain\": {");
+  REQUIRE(cn != std::string::npos);
+  CHECK(jsonString(fixed, "source", cn) == "default");
+  CHECK(a.out.find("fixed: plane.alpha_deg = 40.0 (scene), growth.rate_per_h = ") != std::string::npos);
   // a fresh fit elsewhere: the same files, byte for byte
   REQUIRE(run(args + " --out " + (d / "b").string()).code == 0);
   CHECK(slurp(d / "b" / "fit.json") == js);
@@ -263,4 +330,34 @@ TEST_CASE("fit: the files, the same bytes from a fresh fit, and a second call th
   REQUIRE(run(otherArgs + " --force").code == 0);
   CHECK(slurp(d / "a" / "base.toml").find("alpha_deg = 30") != std::string::npos);
   CHECK(slurp(d / "a" / "fit.json") != js);
+}
+
+TEST_CASE("fit: a straight trace fitted by a waving model is poor and says what the model could not reproduce") {
+  if (!built()) return;
+  const fs::path d = scratch("straight");
+  // a straight root 7 mm downhill, a point every 0.2 mm, in millimetres
+  {
+    std::ofstream f(d / "straight.rsml");
+    f << "<?xml version=\"1.0\"?>\n<rsml>\n<metadata><unit>mm</unit><resolution>1</resolution></metadata>\n<scene>\n"
+         "<plant id=\"1\"><root id=\"1\"><geometry><polyline>";
+    for (int i = 0; i <= 35; ++i) f << "<point x=\"10\" y=\"" << 0.2 * i << "\"/>";
+    f << "</polyline></geometry></root></plant>\n</scene>\n</rsml>\n";
+  }
+  // the quick waving scene (alpha 40): every run in the box waves
+  const auto r = run("fit " + (d / "straight.rsml").string() + " --scene " + quick().scene.string() +
+                     " --free tropism.beta=0.15:0.3 --objective shape --budget 40 -j 2 --quiet --out " + (d / "fit").string());
+  REQUIRE_MESSAGE(r.code == 0, r.out);
+  const std::string js = slurp(d / "fit" / "fit.json");
+  const auto g = js.find("\"goodness\": {");
+  REQUIRE(g != std::string::npos);
+  CHECK(jsonString(js, "verdict", g) == "poor");
+  CHECK(jsonNumber(js, "p_value", g) < 1e-3);
+  CHECK(jsonNumber(js, "dof", g) == 15);  // 16 shape outputs, 1 free key
+  // one line saying what differs and which fixed key to check
+  const std::string said = "poor fit: the model with these free keys and this scene does not reproduce the trace: the trace is straight, every run waves";
+  CHECK_MESSAGE(r.out.find(said) != std::string::npos, r.out);
+  CHECK(r.out.find("check plane.alpha_deg (40.0, from the scene) against the plate's tilt, or free it") != std::string::npos);
+  CHECK(jsonString(js, "misfit").find("the trace is straight, every run waves") != std::string::npos);
+  // the answer is never worse than a run the fit made
+  CHECK(jsonNumber(js, "best_run_objective") <= columnMin(slurp(d / "fit" / "evaluations.csv"), "objective") * (1 + 1e-8) + 1e-12);
 }

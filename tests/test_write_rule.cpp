@@ -636,6 +636,13 @@ TEST_CASE("while run --out X runs, sweep, fit, figure and analyze into X are ref
   }
   CHECK(slurp(d / "slow.rc") == "0\n");
   CHECK(rootsim::test::run("export " + q(d / "X") + " --quiet --rsml " + q(d / "x.rsml")).code == 0);
+  // an interrupted run nobody writes: named as one, with how to go on
+  fs::rename(d / "X", d / "Y.partial");
+  for (const std::string& reader : {"export " + q(d / "Y") + " --quiet --rsml " + q(d / "y.rsml"),
+                                    "render " + q(d / "Y.partial") + " --quiet --mp4 " + q(d / "y.mp4")}) {
+    INFO(reader);
+    checkRefused(run(reader), (d / "Y.partial").string() + " is an interrupted run (no process is writing it)");
+  }
   fs::remove_all(d);
 }
 

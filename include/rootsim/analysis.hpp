@@ -1,6 +1,7 @@
 #pragma once
 // Observables (docs/model.md, Observables).
 #include <string>
+#include <vector>
 
 #include "rootsim/model.hpp"
 
@@ -55,6 +56,9 @@ struct ShapeAnalysis {
                               //   peaks) or at least analysis.skew_min_waves full waves
   double maxKappa = 0;        // max curvature of the shape projected on the plane [1/m]
   double thetaMin = 0, thetaMax = 0;  // range of the unwrapped planar tangent angle [rad]
+  std::vector<int> peakNodes; // the columns of the centreline at the peaks, in order along it
+  double hysteresis = 0;      // the peaks' hysteresis used: the larger of analysis.wave_min_amplitude_r * R
+                              //   and the noise threshold given to analyseCentreline [m]
 };
 // pattern rule, in order: coiling if the planar tangent turns through more than analysis.coil_turn_deg;
 // with 2 or more peaks but fewer than analysis.skew_min_waves full waves: waving (a short root's mean
@@ -66,10 +70,12 @@ ShapeAnalysis analyseShape(const Model& m, const RodState& s);
 int matureLastNode(const Model& m, const RodState& s);
 // the same analysis of any centreline lying on the plate pl (a run's nodes, or a traced root put into the
 // lab frame): columns of x [m], the mature part being columns 0 .. last; set: the thresholds, radius: the
-// root's radius R [m] (the hysteresis is set.waveMinAmplitude * R). analyseShape is
+// root's radius R [m]; noiseSwing: a traced root's noise threshold k * sigma [m] (0 for a run). The
+// hysteresis is the larger of set.waveMinAmplitude * R and noiseSwing, so a peak counts only when the
+// excursion to its opposite neighbour exceeds both. analyseShape is
 // analyseCentreline(s.x, matureLastNode(m, s), m.env.plane, m.analysis, m.rod.radius).
 // Throws std::invalid_argument for fewer than two points.
 ShapeAnalysis analyseCentreline(const Eigen::Matrix3Xd& x, int last, const Plane& pl, const AnalysisParams& set,
-                                double radius);
+                                double radius, double noiseSwing = 0.0);
 
 }  // namespace rootsim

@@ -43,6 +43,15 @@ struct RootRow {
   double maxKappaPerMm = 0, thetaMinDeg = 0, thetaMaxDeg = 0;
   double growthRateMmPerH = 0;       // from the same root in the previous file in time; NaN for the first
   double dsMm = 0, excludeTipMm = 0, radiusMm = 0;
+  // noise-aware measurement and the field's traits (docs/experiments.md, "Noise", "The field's traits")
+  double noiseMm = 0, smoothingMm = 0, peakThresholdMm = 0;  // sigma (NaN: not estimated), the smoothing's
+                                     // half-width, the peaks' hysteresis used [mm]
+  std::string wavesNote;             // why wavelength_mm (and amplitude_mm) are empty
+  double straightness = 0, hgi = 0, vgi = 0, thetaTipDeg = 0;
+  Eigen::Matrix3Xd traceMm;          // the file's points, plate coordinates [mm]
+  Eigen::Matrix3Xd curveMm;          // the curve measured (smoothed for a trace), plate coordinates [mm]
+  std::vector<int> peakNodes;        // its columns at the counted peaks
+  int matureLast = 0;                // its last column in the shape analysis
 };
 
 // one root of a trace file in plate coordinates (docs/experiments.md, "Traced roots")
@@ -78,8 +87,9 @@ void checkTraceFlags(const AnalyzeOptions& o);
 // reads one RSML file (SceneError naming file:line for bad input: no root, a pixel unit without
 // --px-per-mm, ...)
 TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o);
-// the traits of one of its roots, measured at dsMm without the last excludeTipMm (SceneError naming the
-// root's line when it has fewer than two distinct points)
+// the traits of one of its roots, measured at dsMm without the last excludeTipMm: a file rootsim wrote on
+// its points as they are (a run's nodes), any other as a trace (traceTraits: noise estimated, smoothed).
+// SceneError naming the root's line when it has fewer than two distinct points
 RootTraits tracedTraits(const TraceFile& tf, const TracedRoot& r, double dsMm, double excludeTipMm);
 // the root --root ID names (its id, "#k", or plant/root), or without an id the file's one primary root
 // (SceneError listing the roots when that is ambiguous or the id matches none)

@@ -13,6 +13,7 @@
 #include <Eigen/Core>
 
 #include "rootsim/compare_trace.hpp"
+#include "rootsim/goodness.hpp"
 
 namespace rootsim::app {
 
@@ -42,18 +43,34 @@ struct FitEvaluation {
   std::string dir;           // its run directory
   double objective = 0;      // chi-square of its outputs against the trace's (with the model's scatter
                              // added in the report; the trace's uncertainty alone while the fit runs)
+  double chi2Trace = 0;      // chi-square of its outputs against the trace's uncertainty alone
   double chi2 = 0;           // chi-square of the observables (trace's uncertainty alone)
   double distanceMm = 0;     // RMS distance at equal arc length
   std::string error;         // "" or why the run failed (its objective is then kFailedObjective)
   Eigen::VectorXd sim;       // the outputs the objective compares (FitComponents::sim)
+  std::string pattern;       // its root's pattern (straight, waving, coiling, skewing)
+  double amplitudeMm = 0;    // its root's peak-to-peak amplitude [mm] (0 without waves)
+  double straightness = 0;   // its root's chord / length
   long order = 0;            // when it was asked for: the design's point index, then each batch's in turn
 };
 inline constexpr double kFailedObjective = 1e12;
 
+// a scene key the fit holds fixed that shapes its answer (the plate's tilt, the growth rate, ...)
+struct FixedKey {
+  std::string key;     // "plane.alpha_deg", or "tip_speed_mm_per_h" (growth.rate_per_h * growth.growth_zone_mm)
+  std::string value;   // as the resolved scene writes it
+  std::string source;  // "scene" (the base scene file sets it), "default", or how a derived value is made
+};
+
 struct FitReport {
   std::vector<FreeKey> keys;
   std::vector<FitEvaluation> evaluations;  // in the order they were made
-  int best = -1;                           // index into evaluations
+  int best = -1;                           // index into evaluations: the answer, the run of smallest
+                                           // objective (the surface's minimum's run on a tie)
+  int surfaceRun = -1;                     // index of the response surface's minimum's run
+  Goodness goodness;                       // the answer's run against the trace's uncertainty alone
+  std::string misfit;                      // a poor fit: what the model could not reproduce, in one line
+  std::vector<FixedKey> fixed;             // the fixed keys that shape the answer, the tilt and growth first
   std::vector<double> sigma;               // per key (NaN: flat or at a bound)
   std::vector<std::string> notes;          // identifiability and bounds, in words
   std::string out;

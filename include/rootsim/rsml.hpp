@@ -75,6 +75,7 @@ struct Metadata {
   std::vector<double> observationHours;
   // <size>: RootSystemTracker's pixel size, in the unit inside <unit>pixel(UNIT)</unit>; 0 when absent
   double size = 0;
+  int unitLine = 0;                   // the line of <unit> (0: none; RSML's default, pixels)
 };
 
 struct Document {

@@ -48,6 +48,10 @@ std::string sceneKeyType(const std::string& key);
 // defaults for the rest. Throws SceneError naming the key ("model NAME: tropism.beta must be ...")
 Scene sceneOf(const Model& model);
 
+// the keys "section.key" a scene file's text sets itself (not those it leaves to their defaults), in the
+// file's order; SceneError as loadScene for a file that does not parse
+std::vector<std::string> sceneFileKeys(const std::string& path);
+
 // one key of the scene a model resolves to, and its value as Scene::resolvedToml writes it
 struct SceneValue {
   std::string key;   // "section.key"; an obstacle's "obstacle[k].key" (k from 1, as in messages)

@@ -1,7 +1,9 @@
 #pragma once
-// The signature rootsim writes into every file it may later be asked to replace at a user's path
-// (PNG: a tEXt "Software" chunk; MP4: the "comment" tag). The write rule (write_rule.hpp) replaces a
-// lone file only when it carries it. Header only: the renderer writes it without linking rootsim_io.
+// The signature rootsim writes into every file it may later be asked to replace at a user's path, in
+// the format's metadata place and followed by " sha256:<hash of the content>" (RSML: the comment on
+// line 2; GLB: asset.generator, the hash in asset.extras; PNG: a tEXt "Software" chunk; MP4: the
+// "comment" tag). The write rule (write_rule.hpp, whyNotSigned) replaces a lone file only when that
+// place parses and the content still matches. Header only: the renderer writes it without rootsim_io.
 #include <string>
 
 #include "rootsim/version.hpp"

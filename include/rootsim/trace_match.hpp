@@ -58,8 +58,23 @@ struct FitComponents {
 FitComponents observableComponents(const std::vector<Observation>& obs);
 // the shape: the points at fractions k / samples (k = 1 .. samples) of each root's arc length, lateral
 // and downhill [mm] (both polylines in plate coordinates with the seed, their first point, at the
-// origin). Each traced point is known to sigmaMm, and so is the seed the trace is aligned at: its error
-// moves every point alike, a covariance sigmaMm^2 between any two lateral (or two downhill) values.
-FitComponents shapeComponents(const Eigen::Matrix3Xd& trace, const Eigen::Matrix3Xd& sim, double sigmaMm, int samples);
+// origin), with the trace's covariance traceCov (shapeTraceCovariance). Throws std::invalid_argument when
+// traceCov is not 2 samples square.
+FitComponents shapeComponents(const Eigen::Matrix3Xd& trace, const Eigen::Matrix3Xd& sim, const Eigen::MatrixXd& traceCov,
+                              int samples);
+// the covariance of the shape outputs of a polyline whose points each get an independent error of sigmaMm
+// in their lateral and downhill position, propagated through the sampling itself: draws of clean plus
+// noise, each aligned at its own first point and sampled at fractions of its own length (a fixed seed:
+// the same polyline, the same covariance). It holds the seed's error, common to every sample, the
+// length's error that moves samples along the root, and the smaller error of a sample between two points.
+// Throws std::invalid_argument for sigmaMm <= 0, samples < 1 or draws < 2.
+Eigen::MatrixXd shapeNoiseCovariance(const Eigen::Matrix3Xd& clean, double sigmaMm, int samples, int draws = 2000);
+// a traced root's: shapeNoiseCovariance of the trace with less of its own noise (each point averaged with
+// its neighbours, 1/4 1/2 1/4; an estimate: the trace's true shape is unknown)
+Eigen::MatrixXd shapeTraceCovariance(const Eigen::Matrix3Xd& trace, double sigmaMm, int samples, int draws = 2000);
+// root traced as trace was: as many points as the trace has distinct ones, at equal arc length along root.
+// shapeNoiseCovariance(tracedLike(run, trace), ...) is the covariance a trace of that run would have: the
+// one a goodness of fit of the run tests against
+Eigen::Matrix3Xd tracedLike(const Eigen::Matrix3Xd& root, const Eigen::Matrix3Xd& trace);
 
 }  // namespace rootsim

@@ -3,6 +3,10 @@
 // a scanned plate (length, base-to-tip skew angle, tortuosity, the insertion angle of a lateral) and the
 // observables of a run (pattern, lambda, A, lateral peaks, skew over whole waves, max kappa: analysis.hpp)
 // computed by the very code that measures runs. Plain geometry: no file formats here.
+#include <limits>
+#include <string>
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "rootsim/analysis.hpp"
@@ -23,6 +27,39 @@ double polylineLength(const Eigen::Matrix3Xd& p);
 // on the plate `frame` (the inverse of PlateFrame::coords)
 Eigen::Matrix3Xd plateMmToLab(const Eigen::Matrix3Xd& plateMm, const PlateFrame& frame);
 
+// the position noise of a traced polyline (docs/experiments.md, "Noise"): each interior point against the
+// cubic through its two neighbours on either side (Lagrange, in the frame of the chord from the second
+// neighbour before to the second after, so a curve's own bend and its change cancel), the offset across
+// the chord, divided by the prediction's standard factor sqrt(1 + sum w^2); sigma is the RMS of those residuals clipped at 3 sigma (iterated from a median
+// start, corrected for the clipping; a point outside the clip also removes the residuals of the
+// neighbours whose cubic it enters) so a tracer's snapping steps do not inflate it. Only the plate's
+// (lateral, downhill) plane.
+struct TraceNoise {
+  double sigma = std::numeric_limits<double>::quiet_NaN();  // one point's position noise per coordinate [unit
+                                                            // of p]; NaN: fewer than 9 distinct points
+  double spacing = 0;  // median distance between consecutive distinct points [unit of p]
+  int residuals = 0;   // residuals inside the clip
+  std::vector<int> outliers;  // the distinct points outside the clip (snaps), in order
+};
+TraceNoise estimateTraceNoise(const Eigen::Matrix3Xd& p);
+
+// a traced polyline smoothed (docs/experiments.md, "Noise"): local quadratic regression of the points
+// against their arc length (LOESS: tricube weights over a half-width b, grown locally where fewer than 4
+// points lie within it), b = 2.5 ... 30 median point spacings (at most a sixth of the length) chosen by
+// generalised cross-validation, GCV(b) = n RSS / (n - 1.4 tr H)^2 (Kim & Gu 2004); twice, the second time against the arc
+// length of the first pass's curve. Evaluated at arc-length steps of about ds (ds <= 0: at the points'
+// own arc lengths; the ends are kept). Fewer than 7 distinct points are not smoothed (points: the
+// polyline, resampled at ds when ds > 0; halfWidth 0).
+struct TraceSmoothing {
+  Eigen::Matrix3Xd points;  // the smoothed curve [unit of p]
+  double halfWidth = 0;     // b, where the weights reach 0 [unit of p] (0: not smoothed)
+};
+TraceSmoothing smoothTrace(const Eigen::Matrix3Xd& p, double ds);
+
+// the noise threshold of a traced root's peaks, in sigma: an excursion between neighbouring opposite
+// peaks of the smoothed curve counts only above kNoisePeakK * sigma (docs/experiments.md, "Noise")
+inline constexpr double kNoisePeakK = 3.0;
+
 struct RootTraits {
   double lengthMm = 0;          // arc length of the trace [mm]
   double chordMm = 0;           // straight base-to-tip distance [mm]
@@ -32,6 +69,20 @@ struct RootTraits {
   int matureLast = 0;           // last point of the mature part used by the shape analysis (resampled)
   double dsMm = 0;              // the resampling step of the shape analysis [mm]; 0: the trace's own points
   ShapeAnalysis shape;          // the run observables of the mature part (SI units as analysis.hpp)
+  double noiseMm = std::numeric_limits<double>::quiet_NaN();  // the points' position noise sigma
+                                // (estimateTraceNoise) [mm]; NaN: fewer than 9 distinct points
+  double smoothingMm = 0;       // half-width of the smoothing windows [mm]; 0: measured as it is
+  double noiseThresholdMm = 0;  // kNoisePeakK * sigma, the excursion a peak needs beyond the hysteresis of
+                                // R [mm]; 0: no noise threshold (a run, or no estimate)
+  // the field's traits on the measured curve (smoothed for a trace): Grabov et al. 2005
+  double curveLengthMm = 0;     // arc length of the measured curve [mm]
+  double straightness = 0;      // its chord / its length (1: straight)
+  double hgi = 0;               // horizontal growth index: tip's lateral displacement from the base / length,
+                                // signed as the skew angle (towards +lateral positive)
+  double vgi = 0;               // vertical growth index: tip's downhill displacement from the base / length
+  double thetaTipDeg = 0;       // planar tip angle of the measured curve's last segment, sign as theta [deg]
+  std::string wavesNote;        // why lambda (or lambda and A) are not measured; "" when both are
+  Eigen::Matrix3Xd curveMm;     // the curve the shape analysis measured (plate coordinates [mm])
 };
 
 // the traits of one root given in plate coordinates [mm] (columns: lateral, downhill, height), base first.
@@ -39,8 +90,15 @@ struct RootTraits {
 // read at the resolution runs have; dsMm <= 0: on the trace's own points) and on its mature part: the whole trace but the last excludeTipMm of
 // arc length (a run's growth zone). radiusMm sets the peaks' hysteresis (set.waveMinAmplitude * R).
 // Throws std::invalid_argument for fewer than two distinct points.
+// The points are measured as they are (a run's nodes: no noise); noiseMm is still estimated and reported.
 RootTraits rootTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excludeTipMm, double radiusMm,
                       const AnalysisParams& set);
+// the same for a traced root (docs/experiments.md, "Noise"): its noise sigma estimated, the shape analysis
+// run on the smoothed curve (smoothTrace of the points less the noise's outliers, evaluated every dsMm, or at the trace's own points for dsMm <= 0)
+// with the peaks' hysteresis raised to kNoisePeakK * sigma. The length, chord, tortuosity and base-to-tip
+// skew stay the trace's own. Throws std::invalid_argument for fewer than two distinct points.
+RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excludeTipMm, double radiusMm,
+                       const AnalysisParams& set);
 
 // the insertion angle of a lateral on its parent [deg], in [0, 180]: the angle between the lateral's
 // direction over its first spanMm of arc length (base to the point there) and the parent's tangent at the

@@ -827,7 +827,10 @@ def fit(trace: PathLike, *, scene: PathLike, free: Union[str, Dict[str, Sequence
     (docs/experiments.md; the same C++ code). ``free``: {"tropism.beta": (0.05, 0.5), ...} or the command
     line's "KEY=LO:HI,..." text. Every evaluation is a run directory in OUT/runs: a fit called again with
     the same arguments finds them and runs nothing twice. Returns fit.json as a dict, with "out" added:
-    "best" maps each key to its value, sigma and bounds; "notes" says what the trace cannot determine.
+    "best" maps each key to its value, sigma and bounds; "notes" says what the trace cannot determine;
+    "goodness" is {"chi2", "dof", "p_value", "verdict"} of the answer's run against the trace's
+    uncertainty ("consistent" or "poor", with "misfit" saying why); "scene_fixed" the fixed keys that
+    shape the answer (the plate's tilt and the growth rate first).
 
     ``objective``: "observables" (skew, wavelength, amplitude) or "shape" (the centreline at 8 fractions
     of its length); ``jobs``: simultaneous runs; ``budget``: most runs. The trace's keywords as

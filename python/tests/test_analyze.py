@@ -46,6 +46,28 @@ def test_bad_options_raise_the_command_lines_message():
         rootsim.analyze(SMARTROOT, px_per_mm=20)
 
 
+def test_rows_carry_the_noise_and_the_fields_traits(tmp_path):
+    # a straight root 2 mm long at 20 px/mm drifting 0.5 mm sideways, in whole pixels with a 1 px zigzag
+    pts = "".join(f'<point x="{100 + round(0.25 * i) + (i % 2)}" y="{50 + i}"/>' for i in range(41))
+    f = tmp_path / "zig.rsml"
+    f.write_text('<?xml version="1.0"?><rsml><metadata><version>1</version><unit>pixel</unit>'
+                 '<resolution>1</resolution></metadata><scene><plant id="a"><root id="r"><geometry>'
+                 f"<polyline>{pts}</polyline></geometry></root></plant></scene></rsml>")
+    (row,) = rootsim.analyze(f, px_per_mm=20)
+    for key in ("noise_mm", "smoothing_mm", "peak_threshold_mm", "theta_tip_deg", "straightness", "hgi", "vgi"):
+        assert isinstance(row[key], float), key
+    assert row["noise_mm"] > 0 and row["smoothing_mm"] > 0
+    # straight, heading atan(0.25) = 14 degrees off downhill: skewing, without waves
+    assert row["pattern"] == "skewing" and math.isnan(row["wavelength_mm"]) and math.isnan(row["amplitude_mm"])
+    assert row["waves_note"].startswith("below the noise") or row["waves_note"].startswith("no lateral excursion")
+    assert row["straightness"] > 0.99
+    # the tip's displacement over the length, across and along downhill
+    assert row["hgi"] == pytest.approx(0.5 / math.hypot(0.5, 2), rel=0.05)
+    assert row["vgi"] == pytest.approx(2 / math.hypot(0.5, 2), rel=0.02)
+    got = rootsim.analyze(f, px_per_mm=20)
+    assert got.columns["noise_mm"].shape == (1,) and got.columns["straightness"][0] == row["straightness"]
+
+
 RST = SOURCE / "tests/data/rsml/rst_2dt.rsml"
 
 

@@ -41,6 +41,11 @@ def test_fit_finds_the_trace_of_its_own_scene(tmp_path, quick):
     beta = res["best"]["tropism.beta"]
     assert abs(beta["value"] - 0.2) < 3 * beta["sigma"]
     assert res["evaluations"] <= 60
+    # what the fit claims: its goodness against the trace's uncertainty, and the keys it held fixed
+    assert res["goodness"]["verdict"] == "consistent"
+    assert res["goodness"]["p_value"] >= 1e-3
+    assert res["scene_fixed"]["plane.alpha_deg"]["source"] == "scene"
+    assert "tropism.beta" not in res["scene_fixed"]
     # the same arguments again: every run is found, the same answer
     again = rootsim.fit(trace, scene=scene, free="tropism.beta=0.1:0.3,tropism.twist_r_tau=-0.2:0.2", budget=60,
                         jobs=2, out=tmp_path / "fit")

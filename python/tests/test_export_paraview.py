@@ -16,11 +16,15 @@ def run_dir(tmp_path_factory):
 
 
 def tree(d):
-    """name -> bytes; the script's line naming its own folder left out (the one difference of two folders)"""
+    """name -> bytes; the script's line naming its own folder left out (the one difference of two folders),
+    and with it the marker's record of the script (its SHA-256 follows that line)"""
     out = {p.name: p.read_bytes() for p in sorted(d.iterdir())}
     script = out["open_in_paraview.py"].decode()
     assert ('WRITTEN_TO = "%s"\n' % d) in script
     out["open_in_paraview.py"] = script.replace('WRITTEN_TO = "%s"\n' % d, "")
+    marker = out[".rootsim-paraview"].decode().splitlines(keepends=True)
+    assert any(line.startswith("file open_in_paraview.py ") for line in marker)
+    out[".rootsim-paraview"] = "".join(line for line in marker if not line.startswith("file open_in_paraview.py "))
     return out
 
 

@@ -155,7 +155,8 @@ TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
   double scale = 1.0;  // file units as read -> mm
   if (rsml::isPixelUnit(doc.meta.unit)) {
     if (!given(o.pxPerMm))
-      throw SceneError(file + ": its unit is " + doc.meta.unit + " with no physical scale; give " + o.flagPrefix + "px-per-mm R");
+      throw SceneError(file + ":" + std::to_string(std::max(doc.meta.unitLine, 1)) + ": its unit is " + doc.meta.unit +
+                       " with no physical scale (no resolution or size in the file); give " + o.flagPrefix + "px-per-mm R");
     scale = 1.0 / o.pxPerMm;
     tf.pixelMm = scale;
   } else if (given(o.pxPerMm)) {
@@ -256,7 +257,8 @@ TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
 
 RootTraits tracedTraits(const TraceFile& tf, const TracedRoot& t, double dsMm, double excludeTipMm) {
   try {
-    return rootTraits(t.plateMm, dsMm, excludeTipMm, t.radiusMm, tf.set);
+    return tf.ours ? rootTraits(t.plateMm, dsMm, excludeTipMm, t.radiusMm, tf.set)
+                   : traceTraits(t.plateMm, dsMm, excludeTipMm, t.radiusMm, tf.set);
   } catch (const std::invalid_argument&) {
     throw SceneError(tf.file + ":" + std::to_string(t.line) + ": root " + t.name + " has fewer than two distinct points");
   }
@@ -282,6 +284,28 @@ const TracedRoot& pickRoot(const TraceFile& tf, const std::string& id, const std
   for (const TracedRoot* r : primary) ids += (ids.empty() ? "" : ", ") + r->key;
   throw SceneError(tf.file + ": " + std::to_string(primary.size()) + " primary roots (" + ids + "); choose one with " + flag + " ID");
 }
+
+namespace {
+
+// the row's noise-aware cells and the field's traits: lambda and A are empty, with the reason, where the
+// shape analysis found too few peaks to measure them (docs/experiments.md, "Noise")
+void fillNoiseTraits(RootRow& row, const RootTraits& t) {
+  row.noiseMm = t.noiseMm;
+  row.smoothingMm = t.smoothingMm;
+  row.peakThresholdMm = t.shape.hysteresis / units::mm;
+  row.wavesNote = t.wavesNote;
+  if (t.shape.peaks < 3) row.wavelengthMm = kNaN;
+  if (t.shape.peaks < 2) row.amplitudeMm = row.amplitudeHalfMm = kNaN;
+  row.straightness = t.straightness;
+  row.hgi = t.hgi;
+  row.vgi = t.vgi;
+  row.thetaTipDeg = t.thetaTipDeg;
+  row.curveMm = t.curveMm;
+  row.peakNodes = t.shape.peakNodes;
+  row.matureLast = t.matureLast;
+}
+
+}  // namespace
 
 std::vector<double> traceTimes(const AnalyzeOptions& o) {
   if (o.files.empty()) throw SceneError("analyze: give at least one RSML file");
@@ -326,6 +350,8 @@ std::vector<RootRow> fileRows(const TraceFile& tf, double timeH) {
       row.excludeTipMm = tf.excludeTipMm;
       row.radiusMm = r.radiusMm;
       row.growthRateMmPerH = kNaN;  // trace_growth.cpp: from the time-lapse or the matched root before
+      fillNoiseTraits(row, t);
+      row.traceMm = r.plateMm;
       rows.push_back(row);
     }
   }
@@ -370,6 +396,14 @@ const std::vector<Column>& columns() {
       {"max_kappa_per_mm", "1/mm", nullptr, [](const RootRow& r) { return r.maxKappaPerMm; }},
       {"theta_min_deg", "deg", nullptr, [](const RootRow& r) { return r.thetaMinDeg; }},
       {"theta_max_deg", "deg", nullptr, [](const RootRow& r) { return r.thetaMaxDeg; }},
+      {"waves_note", "", [](const RootRow& r) { return r.wavesNote; }, nullptr},
+      {"noise_mm", "mm", nullptr, [](const RootRow& r) { return r.noiseMm; }},
+      {"smoothing_mm", "mm", nullptr, [](const RootRow& r) { return r.smoothingMm; }},
+      {"peak_threshold_mm", "mm", nullptr, [](const RootRow& r) { return r.peakThresholdMm; }},
+      {"theta_tip_deg", "deg", nullptr, [](const RootRow& r) { return r.thetaTipDeg; }},
+      {"straightness", "", nullptr, [](const RootRow& r) { return r.straightness; }},
+      {"hgi", "", nullptr, [](const RootRow& r) { return r.hgi; }},
+      {"vgi", "", nullptr, [](const RootRow& r) { return r.vgi; }},
       {"growth_rate_mm_per_h", "mm/h", nullptr, [](const RootRow& r) { return r.growthRateMmPerH; }},
       {"ds_mm", "mm", nullptr, [](const RootRow& r) { return r.dsMm; }},
       {"exclude_tip_mm", "mm", nullptr, [](const RootRow& r) { return r.excludeTipMm; }},
@@ -404,6 +438,25 @@ std::string analysisCsv(const std::vector<RootRow>& rows) {
       // NaN and infinities: an empty cell
     }
     out += "\n";
+  }
+  return out;
+}
+
+// curves.csv: each root's points as the file gives them (kind "trace") and the curve it was measured on
+// (kind "measured": smoothed for a trace), with the measured curve's mature part and counted peaks
+std::string curvesCsv(const std::vector<RootRow>& rows) {
+  std::string out = "file,plant,root,kind,point,lateral_mm,downhill_mm,mature,peak\n";
+  for (const RootRow& r : rows) {
+    const std::string head = csvField(r.file) + "," + csvField(r.plant) + "," + csvField(r.root) + ",";
+    for (int i = 0; i < r.traceMm.cols(); ++i)
+      out += head + "trace," + std::to_string(i) + "," + numberText(r.traceMm(0, i)) + "," + numberText(r.traceMm(1, i)) + ",,\n";
+    std::size_t next = 0;
+    for (int i = 0; i < r.curveMm.cols(); ++i) {
+      const bool peak = next < r.peakNodes.size() && r.peakNodes[next] == i;
+      if (peak) ++next;
+      out += head + "measured," + std::to_string(i) + "," + numberText(r.curveMm(0, i)) + "," + numberText(r.curveMm(1, i)) + "," +
+             (i <= r.matureLast ? "1" : "0") + "," + (peak ? "1" : "0") + "\n";
+    }
   }
   return out;
 }
@@ -476,12 +529,21 @@ void writeSeriesFiles(const fs::path& dir, const Analysis& a) {
 }
 
 std::string summaryLine(const RootRow& r) {
-  char b[512];
+  char b[640];
   auto f = [](double v) { return std::isfinite(v) ? v : 0.0; };
-  std::snprintf(b, sizeof b, "%s %s/%s%s: %s, length %.3g mm, skew %.3g deg (base-tip), tortuosity %.4g, lambda %.3g mm, A %.3g mm, %d peaks",
+  char waves[256];
+  if (std::isfinite(r.wavelengthMm))
+    std::snprintf(waves, sizeof waves, "lambda %.3g mm, A %.3g mm", r.wavelengthMm, r.amplitudeMm);
+  else if (std::isfinite(r.amplitudeMm))
+    std::snprintf(waves, sizeof waves, "A %.3g mm (%s)", r.amplitudeMm, r.wavesNote.c_str());
+  else
+    std::snprintf(waves, sizeof waves, "lambda, A: %s", r.wavesNote.c_str());
+  char noise[48] = "noise unknown (fewer than 9 points)";
+  if (std::isfinite(r.noiseMm)) std::snprintf(noise, sizeof noise, "noise %.2g mm", r.noiseMm);
+  std::snprintf(b, sizeof b, "%s %s/%s%s: %s, length %.3g mm, skew %.3g deg (base-tip), tortuosity %.4g, %s, %d peaks, %s",
                 fs::path(r.file).filename().c_str(), r.plant.empty() ? "-" : r.plant.c_str(),
                 r.root.empty() ? "-" : r.root.c_str(), r.order > 0 ? (" (order " + std::to_string(r.order) + ")").c_str() : "",
-                r.pattern.c_str(), r.lengthMm, r.skewDeg, f(r.tortuosity), r.wavelengthMm, r.amplitudeMm, r.lateralPeaks);
+                r.pattern.c_str(), r.lengthMm, r.skewDeg, f(r.tortuosity), waves, r.lateralPeaks, noise);
   return b;
 }
 
@@ -504,13 +566,14 @@ int analyzeCommand(const AnalyzeOptions& o) {
   for (const std::string& w : all.warnings) std::fprintf(stderr, "rootsim: warning: %s\n", w.c_str());
   StagedFolder folder(out, analysisFolder(), rule, "--out");
   writeFileAtomic(folder.work() / "analysis.csv", analysisCsv(rows));
+  writeFileAtomic(folder.work() / "curves.csv", curvesCsv(rows));
   writeFileAtomic(folder.work() / "analysis.json", analysisJson(rows));
   writeSeriesFiles(folder.work(), all);
   folder.commit();
   for (const RootRow& r : rows) std::printf("%s\n", summaryLine(r).c_str());
   if (!o.quiet)
-    std::fprintf(stderr, "wrote %s (analysis.csv, analysis.json: %zu roots; plants.csv: %zu plants; growth.csv: %zu rows)\n", out.c_str(),
-                 rows.size(), all.plants.size(), all.growth.size());
+    std::fprintf(stderr, "wrote %s (analysis.csv, analysis.json, curves.csv: %zu roots; plants.csv: %zu plants; growth.csv: %zu rows)\n",
+                 out.c_str(), rows.size(), all.plants.size(), all.growth.size());
   return 0;
 }
 

@@ -31,6 +31,7 @@
 #include "rootsim/trajectory.hpp"
 #include "rootsim/units.hpp"
 #include "rootsim/write_rule.hpp"
+#include "fit_parts.hpp"
 #include "run_files.hpp"
 
 namespace fs = std::filesystem;
@@ -110,22 +111,17 @@ std::vector<FreeKey> parseFreeKeys(const std::string& text, const std::string& s
 
 namespace {
 
-// the smallest trust region's half width, in design cells. A root's outputs are a sensitive function of
-// its parameters: a skewing root's skew jumps by 1-2 degrees between runs whose twist differs by 0.005
-// (docs/experiments.md). A surface fitted in a box not much wider than that chases those jumps: its
-// slopes are the jumps' and its scatter too small, and the uncertainties it gives shrink with the box.
-// Half a design cell (one halving of the first box): over the synthetic traces of docs/experiments.md
-// ("Validation") it covered the truth within 2 sigma more often than a quarter cell did.
-constexpr double kSmallestBox = 0.5;
+// the shape objective's points along each root
 constexpr int kShapeSamples = 8;
 // trust regions at the smallest box whose minima are averaged
 constexpr int kFinalRegions = 4;
 // bootstrap resamples of the runs around the answer (the surface's own estimation error)
-constexpr int kBootstrap = 200;   // the shape objective's points along each root
+constexpr int kBootstrap = 200;
 
-// the outputs of a comparison that the objective uses
-FitComponents componentsOf(const std::string& objective, const TraceTarget& t, const SimRoot& s, const Comparison& c) {
-  return objective == "shape" ? shapeComponents(t.plateMm, s.plateMm, t.sigmaMm, kShapeSamples) : observableComponents(c.obs);
+// the outputs of a comparison that the objective uses (shapeCov: the trace's shape covariance)
+FitComponents componentsOf(const std::string& objective, const TraceTarget& t, const Eigen::MatrixXd& shapeCov, const SimRoot& s,
+                           const Comparison& c) {
+  return objective == "shape" ? shapeComponents(t.plateMm, s.plateMm, shapeCov, kShapeSamples) : observableComponents(c.obs);
 }
 
 // chi-square of outputs sim against the trace's, with its uncertainty alone
@@ -138,7 +134,10 @@ class Fit {
  public:
   Fit(const FitOptions& o, std::vector<FreeKey> keys, const fs::path& out, std::string baseText, TraceTarget target,
       const std::function<void(const std::string&)>& log)
-      : o_(o), keys_(std::move(keys)), out_(out), baseText_(std::move(baseText)), target_(std::move(target)), log_(log) {}
+      : o_(o), keys_(std::move(keys)), out_(out), baseText_(std::move(baseText)), target_(std::move(target)), log_(log) {
+    // the trace's side of the shape: its covariance once, from its points' noise
+    if (o_.objective == "shape") shapeCov_ = shapeTraceCovariance(target_.plateMm, target_.sigmaMm, kShapeSamples);
+  }
 
   const std::vector<FreeKey>& keys() const { return keys_; }
   fs::path runs() const { return out_ / "runs"; }
@@ -185,7 +184,7 @@ class Fit {
         const Scene sc = sceneAt(x);
         const SimRoot sim = simRootOf(sc.model, loadSnapshots(dir).back());
         const Comparison c = compareRoots(target_, sim);
-        const FitComponents fc = componentsOf(o_.objective, target_, sim, c);
+        const FitComponents fc = componentsOf(o_.objective, target_, shapeCov_, sim, c);
         {
           std::lock_guard lk(mu_);
           if (traceComp_.names.empty()) traceComp_ = fc;  // the trace's side: the same for every run
@@ -193,13 +192,16 @@ class Fit {
         e.sim = fc.sim;
         e.chi2 = c.chi2;
         e.distanceMm = c.distanceMm;
-        e.objective = chi2Of(fc, fc.sim);
+        e.objective = e.chi2Trace = chi2Of(fc, fc.sim);
+        e.pattern = sim.traits.shape.pattern;
+        e.amplitudeMm = sim.traits.shape.amplitude / units::mm;
+        e.straightness = sim.traits.chordMm / sim.traits.lengthMm;
       } catch (const std::exception& ex) {
         e.error = ex.what();
       }
     }
     if (!e.error.empty()) {
-      e.objective = e.chi2 = kFailedObjective;
+      e.objective = e.chi2 = e.chi2Trace = kFailedObjective;
       e.distanceMm = kNaN;
     }
     return e;
@@ -333,6 +335,7 @@ class Fit {
   std::map<std::string, int> cache_;  // values' text -> index into evals_ (-1: running)
   std::vector<FitEvaluation> evals_;
   FitComponents traceComp_;
+  Eigen::MatrixXd shapeCov_;  // the trace's shape outputs' covariance (the shape objective)
   long next_ = 1L << 40;  // order numbers after the design's point indices
 };
 
@@ -395,8 +398,6 @@ Eigen::VectorXd surfaceMinimum(const ResponseSurface& s, const FitComponents& t,
   }
   return best;
 }
-
-std::string csvCell(double v) { return std::isfinite(v) ? numberText(v) : std::string(); }
 
 }  // namespace
 
@@ -684,157 +685,58 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
   }
   if (unc.covariance.size() == 0 && unc.flat.empty())
     rep.notes.push_back("the surface's curvature at the minimum is singular: no uncertainty");
-  // the evaluation at the surface's minimum: the picture's run
-  rep.best = -1;
-  for (std::size_t i = 0; i < rep.evaluations.size(); ++i)
-    if (rep.evaluations[i].x == bx && rep.evaluations[i].error.empty()) rep.best = static_cast<int>(i);
-  if (rep.best < 0) {
+  // the run at the surface's minimum, made now when no run had its values
+  auto surfaceRunOf = [&](const std::vector<FitEvaluation>& ev) {
+    for (std::size_t i = 0; i < ev.size(); ++i)
+      if (ev[i].x == bx && ev[i].error.empty()) return static_cast<int>(i);
+    return -1;
+  };
+  rep.evaluations = fit.evaluations();
+  if (surfaceRunOf(rep.evaluations) < 0 && std::none_of(rep.evaluations.begin(), rep.evaluations.end(), [&](const FitEvaluation& e) { return e.x == bx; })) {
     fit.evaluate(bx, "minimum", fit.nextOrder(1));
     rep.evaluations = fit.evaluations();
-    rep.best = static_cast<int>(rep.evaluations.size()) - 1;
   }
-  // every evaluation's chi-square with the model's scatter added (the final surface's)
-  for (FitEvaluation& e : rep.evaluations)
-    if (e.error.empty()) e.objective = chiSquareOf(e.sim, fit.traceComponents().trace, totalCovariance(surface, fit.traceComponents().cov));
-  const FitEvaluation& b = rep.evaluations[static_cast<std::size_t>(rep.best)];
-
-  // 3. the outputs
-  const Scene bestScene = fit.sceneAt(b.x);
-  const std::vector<Snapshot> bestSnaps = loadSnapshots(b.dir);
-  const SimRoot bestSim = simRootOf(bestScene.model, bestSnaps.back());
-  const Comparison bc = compareRoots(target, bestSim);
-  writeFileAtomic(out / "best.toml", "# rootsim fit: the surface's minimum (" + b.dir + ")\n" + bestScene.resolvedToml);
-  recordWritten({out / "best.toml"});
-  std::string title = "fit of " + literalLabel(fs::path(o.trace.trace).filename().string()) + ":";
-  for (int i = 0; i < n; ++i) {
-    title += " " + literalLabel(keys[static_cast<std::size_t>(i)].key) + " = " + numberText(std::round(b.x[static_cast<std::size_t>(i)] * 1e4) / 1e4);
-    if (std::isfinite(rep.sigma[static_cast<std::size_t>(i)]))
-      title += " ± " + numberText(std::round(rep.sigma[static_cast<std::size_t>(i)] * 1e4) / 1e4);
-  }
-  char caption[200];
-  std::snprintf(caption, sizeof caption, "distance %.3g mm (RMS at equal arc length), Fréchet %.3g mm, the fit's χ² %.3g for %d dof",
-                bc.distanceMm, bc.frechetMm, unc.chi2, unc.dof);
-  saveComparePanel(bestScene.model, bestSnaps.back(), target.plateMm, title, caption, (out / "compare").string());
-  if (n == 2) {
-    std::vector<LandscapePoint> pts;
-    for (const FitEvaluation& e : rep.evaluations)
-      if (e.error.empty()) pts.push_back(LandscapePoint{e.x[0], e.x[1], e.objective, e.phase == "design"});
-    Eigen::Matrix2d cov;
-    const bool haveCov = unc.covariance.rows() == 2;
-    if (haveCov)
-      for (int r = 0; r < 2; ++r)
-        for (int c = 0; c < 2; ++c)
-          cov(r, c) = unc.covariance(r, c) * (keys[static_cast<std::size_t>(r)].hi - keys[static_cast<std::size_t>(r)].lo) *
-                      (keys[static_cast<std::size_t>(c)].hi - keys[static_cast<std::size_t>(c)].lo);
-    // the zoom: the smallest trust region, or 4 sigma when that is wider
-    const double zx = std::max(kSmallestBox / k * (keys[0].hi - keys[0].lo), 4.0 * (std::isfinite(rep.sigma[0]) ? rep.sigma[0] : 0.0));
-    const double zy = std::max(kSmallestBox / k * (keys[1].hi - keys[1].lo), 4.0 * (std::isfinite(rep.sigma[1]) ? rep.sigma[1] : 0.0));
-    saveLandscapePanel(pts, keys[0].key, keys[1].key, keys[0].lo, keys[0].hi, keys[1].lo, keys[1].hi, k, b.x[0], b.x[1],
-                       haveCov ? &cov : nullptr, zx, zy,
-                       "χ² of the " + o.objective + " with the model's scatter: " + std::to_string(rep.evaluations.size()) + " runs",
-                       (out / "landscape").string());
-  }
-  // evaluations.csv
-  std::string csv = "index,phase";
-  for (const FreeKey& fk : keys) csv += "," + fk.key;
-  csv += ",objective,chi2_observables,distance_mm,dir,error\n";
-  for (std::size_t i = 0; i < rep.evaluations.size(); ++i) {
-    const FitEvaluation& e = rep.evaluations[i];
-    csv += std::to_string(i) + "," + e.phase;
-    for (double v : e.x) csv += "," + numberText(v);
-    std::string err = e.error;
-    std::replace(err.begin(), err.end(), '"', '\'');
-    std::replace(err.begin(), err.end(), '\n', ' ');
-    csv += "," + csvCell(e.error.empty() ? e.objective : kNaN) + "," + csvCell(e.error.empty() ? e.chi2 : kNaN) + "," +
-           csvCell(e.distanceMm) + "," + fs::path(e.dir).filename().string() + ",\"" + err + "\"\n";
-  }
-  writeFileAtomic(out / "evaluations.csv", csv);
-  recordWritten({out / "evaluations.csv"});
-  // fit.json
+  rep.surfaceRun = surfaceRunOf(rep.evaluations);
+  if (rep.surfaceRun < 0) rep.notes.push_back("the run at the surface's minimum failed: the answer is the best run the fit made");
+  // every evaluation's chi-square with the model's scatter added (the final surface's): the objective the
+  // answer is chosen by
   const FitComponents& tc = fit.traceComponents();
-  Json j;
-  j.str("software", outputSignatureText())
-      .str("trace", o.trace.trace)
-      .str("root", target.rootKey)
-      .str("scene", o.scene)
-      .integer("growth_steps", steps)
-      .num("trace_length_mm", target.traits.lengthMm)
-      .num("sigma_mm", target.sigmaMm)
-      .str("sigma_source", target.sigmaSource)
-      .str("objective", o.objective)
-      .str("method", "start design: a " + std::to_string(k) + "^" + std::to_string(n) +
-                         " grid of cell centres (a sweep: design.toml); then trust regions: " + std::to_string(regionPoints) +
-                         " runs per box (Halton points), a quadratic surface of every output fitted to them by least squares, "
-                         "its chi-square minimised in the box by NLopt's BOBYQA; the box halves around a minimum inside it "
-                         "(down to half a design cell) and moves to one on its edge; the answer is the mean of the minima of "
-                         "the last 4 boxes")
-      .str("uncertainty", "variance = the linearised surface's, (J' C^-1 J)^-1 with C = the trace's covariance + the covariance "
-                          "of the runs' scatter about the surface, scaled by max(1, chi2 / dof), mean over the last trust "
-                          "regions; plus the surface's own estimation error: the larger of its minima's spread over those "
-                          "regions and a bootstrap of 200 resamples of the runs around the answer")
-      .integer("trust_regions", regions)
-      .num("last_box_half_width", rho)
-      .integer("evaluations", static_cast<long long>(rep.evaluations.size()))
-      .integer("budget", o.budget);
-  Json bestJ;
-  for (int i = 0; i < n; ++i) {
-    Json v;
-    v.num("value", b.x[static_cast<std::size_t>(i)]).num("sigma", rep.sigma[static_cast<std::size_t>(i)])
-        .num("sigma_bootstrap", bootSigma[static_cast<std::size_t>(i)])
-        .num("lo", keys[static_cast<std::size_t>(i)].lo).num("hi", keys[static_cast<std::size_t>(i)].hi);
-    bestJ.object(keys[static_cast<std::size_t>(i)].key, v);
+  for (FitEvaluation& e : rep.evaluations)
+    if (e.error.empty()) e.objective = chiSquareOf(e.sim, tc.trace, totalCovariance(surface, tc.cov));
+  // 3. the answer: never worse than a run the fit made; its goodness against the trace's uncertainty alone
+  // the goodness: the shape's against the covariance a trace of the answer's run would have (its points'
+  // noise propagated through the sampling: the null hypothesis that the run is the root), the observables'
+  // against their uncertainties
+  chooseAnswer(rep, target, tc, surface.noiseVar().cwiseSqrt(), bm, sceneFileKeys(o.scene), [&](const FitEvaluation& e) {
+    if (o.objective != "shape") return e.chi2Trace;
+    const SimRoot sim = simRootOf(fit.sceneAt(e.x).model, loadSnapshots(e.dir).back());
+    return chiSquareOf(e.sim, tc.trace, shapeNoiseCovariance(tracedLike(sim.plateMm, target.plateMm), target.sigmaMm, kShapeSamples));
+  });
+  const FitEvaluation& b = rep.evaluations[static_cast<std::size_t>(rep.best)];
+  if (rep.surfaceRun >= 0 && rep.best != rep.surfaceRun) {
+    char line[240];
+    std::snprintf(line, sizeof line, "the answer is the run %s (objective %.4g), better than the surface minimum's run (%.4g)",
+                  fs::path(b.dir).filename().string().c_str(), b.objective, rep.evaluations[static_cast<std::size_t>(rep.surfaceRun)].objective);
+    rep.notes.push_back(line);
   }
-  j.object("best", bestJ)
-      .num("chi2", unc.chi2)
-      .integer("dof", unc.dof)
-      .num("covariance_scale", unc.scale)
-      .str("best_run", fs::path(b.dir).filename().string())
-      .num("best_run_distance_mm", b.distanceMm);
-  if (unc.covariance.size() > 0) {
-    Json cj;
-    for (int r = 0; r < n; ++r) {
-      Json row;
-      for (int c = 0; c < n; ++c)
-        row.num(keys[static_cast<std::size_t>(c)].key, unc.covariance(r, c) * (keys[static_cast<std::size_t>(r)].hi - keys[static_cast<std::size_t>(r)].lo) *
-                                                        (keys[static_cast<std::size_t>(c)].hi - keys[static_cast<std::size_t>(c)].lo));
-      cj.object(keys[static_cast<std::size_t>(r)].key, row);
-    }
-    j.object("covariance", cj);
-  }
-  std::vector<Json> notes;
-  for (const std::string& s : rep.notes) notes.push_back(Json().str("note", s));
-  j.array("notes", notes);
-  // the outputs: the trace's value, its uncertainty, the model's scatter, the surface at the minimum
-  const Eigen::VectorXd atMin = surface.value(ustar);
-  std::vector<Json> outs;
-  for (int c = 0; c < tc.trace.size(); ++c)
-    outs.push_back(Json()
-                       .str("name", tc.names[static_cast<std::size_t>(c)])
-                       .num("trace", tc.trace(c))
-                       .num("sigma_trace", tc.sigma(c))
-                       .num("sigma_model", std::sqrt(surface.noiseCov(c, c)))
-                       .num("surface_at_best", atMin(c))
-                       .num("best_run", b.sim(c)));
-  j.array("outputs", outs);
-  Json obsJ;
-  for (const Observation& ob : bc.obs) {
-    Json e;
-    e.str("unit", ob.unit).num("trace", ob.trace).num("sim", ob.sim).boolean("used", ob.used && o.objective == "observables");
-    obsJ.object(ob.name, e);
-  }
-  j.object("best_run_observables", obsJ);
-  std::vector<Json> ev;
-  for (const FitEvaluation& e : rep.evaluations) {
-    Json x;
-    x.str("phase", e.phase);
-    for (int i = 0; i < n; ++i) x.num(keys[static_cast<std::size_t>(i)].key, e.x[static_cast<std::size_t>(i)]);
-    x.num("objective", e.error.empty() ? e.objective : kNaN).num("distance_mm", e.distanceMm).str("dir", fs::path(e.dir).filename().string());
-    if (!e.error.empty()) x.str("error", e.error);
-    ev.push_back(x);
-  }
-  j.array("evaluation_list", ev);
-  writeFileAtomic(out / "fit.json", j.dump() + "\n");
-  recordWritten({out / "fit.json"});
+
+  // 4. the outputs
+  FitOutcome f;
+  f.options = &o;
+  f.target = &target;
+  f.out = out;
+  f.steps = steps;
+  f.levels = k;
+  f.regionPoints = regionPoints;
+  f.regions = regions;
+  f.rho = rho;
+  f.surface = surface;
+  f.unc = unc;
+  f.ustar = ustar;
+  f.surfaceX = bx;
+  f.bootSigma = bootSigma;
+  f.trace = tc;
+  writeFitOutputs(f, rep, fit.sceneAt(b.x));
   return rep;
 }
 
@@ -847,7 +749,11 @@ int fitCommand(const FitOptions& o) {
     else
       std::printf("%s = %.6g (no uncertainty: see the notes)\n", r.keys[i].key.c_str(), b.x[i]);
   }
-  std::printf("%zu runs; the best fit's run: distance %.3g mm to the trace\n", r.evaluations.size(), b.distanceMm);
+  std::printf("fixed: %s\n", fixedKeysText(r.fixed).c_str());
+  std::printf("%zu runs; the answer's run (%s): distance %.3g mm to the trace\n", r.evaluations.size(),
+              r.best == r.surfaceRun ? "the surface's minimum" : "the best run the fit made", b.distanceMm);
+  std::printf("goodness: %s\n", goodnessText(r.goodness).c_str());
+  if (!r.misfit.empty()) std::printf("poor fit: %s\n", r.misfit.c_str());
   for (const std::string& n : r.notes) std::printf("note: %s\n", n.c_str());
   if (!o.quiet) std::fprintf(stderr, "wrote %s (fit.json, evaluations.csv, best.toml, compare.*%s)\n", r.out.c_str(),
                              r.keys.size() == 2 ? ", landscape.*" : "");

@@ -327,7 +327,10 @@ Document parseRsml(const std::string& text, const std::string& name) {
     doc.meta.software = text1("software");
     doc.meta.user = text1("user");
     doc.meta.fileKey = text1("file-key");
-    if (const tinyxml2::XMLElement* u = m->FirstChildElement("unit")) doc.meta.unit = textOf(u);
+    if (const tinyxml2::XMLElement* u = m->FirstChildElement("unit")) {
+      doc.meta.unit = textOf(u);
+      doc.meta.unitLine = u->GetLineNum();
+    }
     if (const tinyxml2::XMLElement* res = m->FirstChildElement("resolution")) {
       doc.meta.resolution = rd.number(res, textOf(res), "<resolution>");
       if (!(doc.meta.resolution > 0) || !std::isfinite(doc.meta.resolution))

@@ -553,4 +553,19 @@ Scene loadScene(const std::string& path, const std::vector<std::string>& overrid
   return parseScene(readSceneFile(path), path, overrides);
 }
 
+std::vector<std::string> sceneFileKeys(const std::string& path) {
+  const std::string text = readSceneFile(path);
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    throw SceneError(detail::where(path, e.source()) + ": " + std::string(e.description()));
+  }
+  std::vector<std::string> keys;
+  for (const auto& [section, node] : root)
+    if (const toml::table* t = node.as_table())
+      for (const auto& [key, value] : *t) keys.push_back(std::string(section.str()) + "." + std::string(key.str()));
+  return keys;
+}
+
 }  // namespace rootsim

@@ -107,7 +107,7 @@ bool isFrameEntry(const fs::path&, const std::string& name) {
 bool isAnalysisEntry(const fs::path&, const std::string& name) {
   const std::string base = stripTemp(name);
   return base == ".rootsim-analysis" || base == "analysis.csv" || base == "analysis.json" || base == "plants.csv" ||
-         base == "plants.json" || base == "growth.csv" || base == "growth.json";
+         base == "plants.json" || base == "growth.csv" || base == "growth.json" || base == "curves.csv";
 }
 
 // what `export --paraview DIR` writes (docs/paraview.md): step_NNNNNN.vtp, root.pvd, plate.vtp, the script
@@ -332,6 +332,8 @@ std::string whyNotAllRecorded(const fs::path& dir, const FolderSpec& spec, const
     const std::string rel = fs::relative(p, dir, ec).generic_string();
     const fs::file_status st = fs::symlink_status(p, ec);
     if (rel == spec.marker || isLockFile(name) || stripTemp(name) != name) continue;
+    // an unfinished file of a writer that was killed (movie.mp4.partial): a working name of rootsim's
+    if (endsWith(name, ".partial") && sub == dir && fs::is_regular_file(st) && spec.owns(dir, name)) continue;
     if (fs::is_directory(st)) {
       if (hasOwnMarker(p)) continue;  // a nested folder of rootsim's: judged by its own marker (spec.owns)
       if (std::string why = whyNotAllRecorded(dir, spec, rec, p); !why.empty()) return why;
@@ -716,8 +718,12 @@ void claimFile(const fs::path& file, const WriteRule& rule, const std::string& f
                        "; rootsim writes only regular files of its own (a link, device or FIFO is never written through)");
     // inside a folder of rootsim's: its marker's record decides; elsewhere the file's own signature
     std::string why;
-    if (const FolderSpec* spec = ownFolderOf(p))
-      why = whyNotRecorded(absoluteNormal(p).parent_path(), spec->marker, p.filename().string());
+    if (const FolderSpec* spec = ownFolderOf(p)) {
+      // an unfinished movie.mp4.partial in a run directory is rootsim's working file; the rest by record
+      const fs::path folder = absoluteNormal(p).parent_path();
+      if (!(*suffix && spec->owns(folder, p.filename().string())))
+        why = whyNotRecorded(folder, spec->marker, p.filename().string());
+    }
     else if (*suffix)
       why = "an interrupted output rootsim cannot vouch for (a movie is signed when it is finished)";
     else
@@ -856,7 +862,7 @@ std::string whyUnfinished(const fs::path& dir) {
     ::close(fd);
   }
   if (held) return partial.string() + " is being written by PID " + holderOf(lockFileOf(base)) + "; wait for it to finish";
-  if (isPartial)
+  if (isPartial || !fs::exists(fs::symlink_status(base, ec)))
     return partial.string() + " is an interrupted run (no process is writing it): continue it with `rootsim run SCENE --out " +
            base.string() + " --resume`, or read a finished run";
   return "";

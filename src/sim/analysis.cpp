@@ -134,7 +134,7 @@ ShapeAnalysis analyseShape(const Model& m, const RodState& s) {
 }
 
 ShapeAnalysis analyseCentreline(const Eigen::Matrix3Xd& x, int last, const Plane& pl, const AnalysisParams& set,
-                                double radius) {
+                                double radius, double noiseSwing) {
   ShapeAnalysis a;
   const Vec3 down = pl.downhill(), lat = pl.lateral();
   const int n = static_cast<int>(x.cols()) - 1;
@@ -167,8 +167,9 @@ ShapeAnalysis analyseCentreline(const Eigen::Matrix3Xd& x, int last, const Plane
   }
   // turning points of u with hysteresis minSwing: a running extreme becomes a peak once u has come back
   // from it by more than minSwing, so ripples smaller than minSwing never make peaks and consecutive
-  // peaks alternate sides
-  const double minSwing = set.waveMinAmplitude * radius;
+  // peaks alternate sides. A traced root's noise threshold raises it (docs/experiments.md, Noise)
+  const double minSwing = std::max(set.waveMinAmplitude * radius, noiseSwing);
+  a.hysteresis = minSwing;
   std::vector<int> ext;
   {
     int cand = 0, dir = 0;
@@ -187,6 +188,7 @@ ShapeAnalysis analyseCentreline(const Eigen::Matrix3Xd& x, int last, const Plane
   }
   const size_t np = ext.size();
   a.peaks = static_cast<int>(np);
+  a.peakNodes = ext;
   a.waves = np >= 1 ? 0.5 * static_cast<double>(np - 1) : 0.0;
   auto U = [&](size_t k) { return u[static_cast<size_t>(ext[k])]; };
   auto W = [&](size_t k) { return w[static_cast<size_t>(ext[k])]; };

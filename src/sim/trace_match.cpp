@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cmath>
 #include <limits>
+#include <random>
 #include <stdexcept>
 
 
@@ -154,30 +155,100 @@ FitComponents observableComponents(const std::vector<Observation>& obs) {
   return c;
 }
 
-FitComponents shapeComponents(const Eigen::Matrix3Xd& trace, const Eigen::Matrix3Xd& sim, double sigmaMm, int samples) {
-  const double Lt = polylineLength(trace), Ls = polylineLength(sim);
-  const Eigen::Matrix3Xd pt = resampleByArcLength(trace, Lt / samples), ps = resampleByArcLength(sim, Ls / samples);
-  FitComponents c;
-  c.trace.resize(2 * samples);
-  c.sim.resize(2 * samples);
-  c.sigma = Eigen::VectorXd::Constant(2 * samples, sigmaMm);
+namespace {
+
+// the lateral and downhill positions at fractions k / samples (k = 1 .. samples) of a polyline's length
+Eigen::VectorXd shapeSamples(const Eigen::Matrix3Xd& p, int samples) {
+  const Eigen::Matrix3Xd r = resampleByArcLength(p, polylineLength(p) / samples);
+  Eigen::VectorXd v(2 * samples);
   for (int k = 1; k <= samples; ++k) {
-    const int at = 2 * (k - 1);
+    v(2 * (k - 1)) = r(0, k);
+    v(2 * (k - 1) + 1) = r(1, k);
+  }
+  return v;
+}
+
+// the polyline without a point that repeats the one before it (a tracer's doubled click: one point, one error)
+Eigen::Matrix3Xd withoutRepeats(const Eigen::Matrix3Xd& p) {
+  Eigen::Matrix3Xd q(3, p.cols());
+  int n = 0;
+  for (int i = 0; i < p.cols(); ++i)
+    if (n == 0 || (p.col(i) - q.col(n - 1)).norm() > 0.0) q.col(n++) = p.col(i);
+  return q.leftCols(n);
+}
+
+// the polyline with less of its points' noise: each point the mean of itself and its two neighbours,
+// weights 1/4, 1/2, 1/4 (the end points as they are): a tenth of the noise in the differences between
+// neighbours, whose squares lengthen a noisy polyline, while a wave 15 points long keeps 96 % of its
+// amplitude
+Eigen::Matrix3Xd denoised(const Eigen::Matrix3Xd& p) {
+  const int n = static_cast<int>(p.cols());
+  Eigen::Matrix3Xd q = p;
+  for (int i = 1; i + 1 < n; ++i) {
+    const int w = std::min({1, i, n - 1 - i});
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    double weight = 0;
+    for (int j = -w; j <= w; ++j) {
+      const double c = w + 1 - std::abs(j);
+      sum += c * p.col(i + j);
+      weight += c;
+    }
+    q.col(i) = sum / weight;
+  }
+  return q;
+}
+
+}  // namespace
+
+Eigen::MatrixXd shapeNoiseCovariance(const Eigen::Matrix3Xd& clean, double sigmaMm, int samples, int draws) {
+  if (!(sigmaMm > 0.0) || samples < 1 || draws < 2)
+    throw std::invalid_argument("shapeNoiseCovariance: needs sigma > 0, at least one sample and two draws");
+  // the points' noise propagated through the sampling itself: what it does to the noise has no short
+  // closed form (a point's error along the root is replaced by the error of the length up to it, a noisy
+  // polyline being longer by a random amount; a sample between two points carries less than sigma across;
+  // the seed's error moves every sample alike)
+  std::mt19937 gen(20260101);  // fixed: the same polyline, the same covariance
+  std::normal_distribution<double> noise(0.0, sigmaMm);
+  Eigen::MatrixXd y(draws, 2 * samples);
+  Eigen::Matrix3Xd t = clean;
+  for (int d = 0; d < draws; ++d) {
+    for (int i = 0; i < clean.cols(); ++i) {
+      t(0, i) = clean(0, i) + noise(gen);
+      t(1, i) = clean(1, i) + noise(gen);
+    }
+    const Eigen::Vector3d seed = t.col(0);
+    t.colwise() -= seed;  // aligned at its own first point, as a trace is
+    y.row(d) = shapeSamples(t, samples).transpose();
+  }
+  const Eigen::MatrixXd centred = y.rowwise() - y.colwise().mean();
+  return centred.transpose() * centred / static_cast<double>(draws - 1);
+}
+
+Eigen::MatrixXd shapeTraceCovariance(const Eigen::Matrix3Xd& trace, double sigmaMm, int samples, int draws) {
+  return shapeNoiseCovariance(denoised(withoutRepeats(trace)), sigmaMm, samples, draws);
+}
+
+Eigen::Matrix3Xd tracedLike(const Eigen::Matrix3Xd& root, const Eigen::Matrix3Xd& trace) {
+  const int points = static_cast<int>(withoutRepeats(trace).cols());
+  if (points < 2) throw std::invalid_argument("tracedLike: the trace has fewer than two distinct points");
+  return resampleByArcLength(root, polylineLength(root) / (points - 1));
+}
+
+FitComponents shapeComponents(const Eigen::Matrix3Xd& trace, const Eigen::Matrix3Xd& sim, const Eigen::MatrixXd& traceCov,
+                              int samples) {
+  if (traceCov.rows() != 2 * samples || traceCov.cols() != 2 * samples)
+    throw std::invalid_argument("shapeComponents: the trace's covariance is not (2 samples) x (2 samples)");
+  FitComponents c;
+  c.trace = shapeSamples(trace, samples);
+  c.sim = shapeSamples(sim, samples);
+  for (int k = 1; k <= samples; ++k) {
     char name[48];
     std::snprintf(name, sizeof name, "lateral_at_%d_pct", 100 * k / samples);
     c.names.push_back(name);
     std::snprintf(name, sizeof name, "downhill_at_%d_pct", 100 * k / samples);
     c.names.push_back(name);
-    c.trace(at) = pt(0, k);
-    c.trace(at + 1) = pt(1, k);
-    c.sim(at) = ps(0, k);
-    c.sim(at + 1) = ps(1, k);
   }
-  // each point's own error, and the seed's, common to every point of a coordinate
-  c.cov = Eigen::MatrixXd::Zero(2 * samples, 2 * samples);
-  for (int i = 0; i < 2 * samples; ++i)
-    for (int j = 0; j < 2 * samples; ++j)
-      if (i % 2 == j % 2) c.cov(i, j) = sigmaMm * sigmaMm * (i == j ? 2.0 : 1.0);
+  c.cov = traceCov;
   c.sigma = c.cov.diagonal().cwiseSqrt();
   return c;
 }

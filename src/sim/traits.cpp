@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <stdexcept>
 #include <vector>
@@ -66,10 +67,62 @@ Eigen::Matrix3Xd plateMmToLab(const Eigen::Matrix3Xd& plateMm, const PlateFrame&
   return x;
 }
 
-RootTraits rootTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excludeTipMm, double radiusMm,
-                      const AnalysisParams& set) {
-  const Eigen::Matrix3Xd q = distinctPoints(plateMm);
-  if (q.cols() < 2) throw std::invalid_argument("rootTraits: a root needs at least two distinct points");
+namespace {
+
+// median of a copy
+double medianOf(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  const std::size_t h = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(h), v.end());
+  if (v.size() % 2) return v[h];
+  const double hi = v[h];
+  return 0.5 * (hi + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(h)));
+}
+
+// the LOESS value at arc length t: every point of q within the half-width b of t (in arc length s) with a
+// tricube weight, so a point enters and leaves the fit with weight 0 and the curve is smooth in t. Where
+// fewer than 4 points lie within b (a gap in the trace, or an end), b grows there to 1.25 times the
+// distance to the 4th nearest point. self: the column of q at t exactly (its hat-matrix weight goes to
+// *hii), or -1; *width: the half-width used
+Eigen::Vector3d loessAt(const Eigen::Matrix3Xd& q, const std::vector<double>& s, double t, double b, int self,
+                        double* hii, double* width) {
+  const int n = static_cast<int>(s.size());
+  auto S = [&](int i) { return s[static_cast<std::size_t>(i)]; };
+  int first = static_cast<int>(std::lower_bound(s.begin(), s.end(), t - b) - s.begin());
+  int last = static_cast<int>(std::upper_bound(s.begin(), s.end(), t + b) - s.begin()) - 1;
+  while (first <= last && !(t - S(first) < b)) ++first;
+  while (last >= first && !(S(last) - t < b)) --last;
+  if (last - first + 1 < 4) {
+    // the 4 nearest points: grow a window from the nearest
+    int lo = std::clamp(static_cast<int>(std::lower_bound(s.begin(), s.end(), t) - s.begin()) - 2, 0, n - 4);
+    while (lo > 0 && t - S(lo - 1) < S(lo + 3) - t) --lo;
+    while (lo + 4 < n && S(lo + 4) - t < t - S(lo)) ++lo;
+    b = 1.25 * std::max(std::abs(S(lo) - t), std::abs(S(lo + 3) - t));
+    first = lo;
+    last = lo + 3;
+    while (first > 0 && t - S(first - 1) < b) --first;
+    while (last + 1 < n && S(last + 1) - t < b) ++last;
+  }
+  Eigen::Matrix3d M = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d R = Eigen::Matrix3d::Zero();  // columns: the coordinates' right-hand sides
+  for (int j = first; j <= last; ++j) {
+    const double u = (S(j) - t) / b;
+    const double c = 1.0 - std::abs(u) * u * u;
+    const double w = c * c * c;
+    const Eigen::Vector3d basis(1.0, u, u * u);
+    M += w * basis * basis.transpose();
+    R += w * basis * q.col(j).transpose();
+  }
+  const Eigen::Matrix3d Minv = M.inverse();
+  if (hii) *hii = self >= 0 ? Minv(0, 0) : 0.0;  // the query's own weight (u = 0, w = 1)
+  if (width) *width = b;
+  return (Minv.row(0) * R).transpose();
+}
+
+// the measurement shared by runs and traces: the raw trace q (distinct points) for length, chord,
+// tortuosity and base-to-tip skew; the curve for the shape analysis and the field's traits
+RootTraits measure(const Eigen::Matrix3Xd& q, const Eigen::Matrix3Xd& curve, double dsMm, double excludeTipMm,
+                   double radiusMm, const AnalysisParams& set, double noiseThresholdMm) {
   RootTraits t;
   t.lengthMm = polylineLength(q);
   const Eigen::Vector3d chord = q.col(q.cols() - 1) - q.col(0);
@@ -82,17 +135,244 @@ RootTraits rootTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double exclu
   const PlateFrame frame = PlateFrame::tilted(90.0 * units::deg);
   Plane plane;
   plane.alpha = 90.0 * units::deg;
-  const Eigen::Matrix3Xd lab = plateMmToLab(q, frame);
-  t.skewDeg = planarAngle(plane, lab.col(lab.cols() - 1) - lab.col(0)) / units::deg;
-  // the shape analysis at a run's resolution, on the mature part
+  t.skewDeg = planarAngle(plane, plateMmToLab(chord, frame).col(0)) / units::deg;
+  // the shape analysis on the mature part of the curve
   t.dsMm = dsMm;
-  const Eigen::Matrix3Xd r = dsMm > 0.0 ? resampleByArcLength(q, dsMm) : q;
-  const double matureMm = t.lengthMm - std::max(0.0, excludeTipMm);
-  const std::vector<double> s = arcLengths(r);
+  t.curveMm = curve;
+  t.curveLengthMm = polylineLength(curve);
+  const double matureMm = t.curveLengthMm - std::max(0.0, excludeTipMm);
+  const std::vector<double> s = arcLengths(curve);
   int last = 0;
-  while (last + 1 < static_cast<int>(s.size()) && s[static_cast<std::size_t>(last + 1)] <= matureMm + 1e-12 * t.lengthMm) ++last;
+  while (last + 1 < static_cast<int>(s.size()) && s[static_cast<std::size_t>(last + 1)] <= matureMm + 1e-12 * t.curveLengthMm) ++last;
   t.matureLast = last;
-  t.shape = analyseCentreline(plateMmToLab(r, frame), last, plane, set, radiusMm * units::mm);
+  t.noiseThresholdMm = noiseThresholdMm;
+  t.shape = analyseCentreline(plateMmToLab(curve, frame), last, plane, set, radiusMm * units::mm, noiseThresholdMm * units::mm);
+  // the field's traits (Grabov et al. 2005): the tip's displacement over the curve's length
+  const Eigen::Vector3d d = curve.col(curve.cols() - 1) - curve.col(0);
+  if (t.curveLengthMm > 0.0) {
+    t.straightness = Eigen::Vector2d(d.x(), d.y()).norm() / t.curveLengthMm;
+    t.hgi = d.x() / t.curveLengthMm;
+    t.vgi = d.y() / t.curveLengthMm;
+  }
+  t.thetaTipDeg = planarAngle(plane, plateMmToLab(curve.col(curve.cols() - 1) - curve.col(curve.cols() - 2), frame).col(0)) / units::deg;
+  // why the waves are not numbers (no commas: a CSV cell)
+  if (t.shape.peaks < 3) {
+    char b[200];
+    const double hysteresisMm = t.shape.hysteresis / units::mm;
+    if (t.shape.peaks < 2 && noiseThresholdMm > 0.0 && noiseThresholdMm >= set.waveMinAmplitude * radiusMm)
+      std::snprintf(b, sizeof b, "below the noise: no lateral excursion above %g sigma = %.3g mm", kNoisePeakK, hysteresisMm);
+    else if (t.shape.peaks < 2)
+      std::snprintf(b, sizeof b, "no lateral excursion above the hysteresis %g R = %.3g mm", set.waveMinAmplitude, hysteresisMm);
+    else
+      std::snprintf(b, sizeof b, "one excursion (2 peaks): no wavelength");
+    t.wavesNote = b;
+  }
+  return t;
+}
+
+}  // namespace
+
+TraceNoise estimateTraceNoise(const Eigen::Matrix3Xd& p) {
+  const Eigen::Matrix3Xd q = distinctPoints(p);
+  TraceNoise out;
+  const int n = static_cast<int>(q.cols());
+  std::vector<double> gaps;
+  for (int i = 1; i < n; ++i) gaps.push_back((q.col(i) - q.col(i - 1)).norm());
+  out.spacing = medianOf(gaps);
+  // at least 5 residuals: a sigma from fewer is a guess
+  constexpr int kMinPoints = 9;
+  if (n < kMinPoints) return out;
+  // r[i - 2]: point i against the cubic through i-2, i-1, i+1, i+2, in the frame of its stencil's chord
+  // (i-2 to i+2): the neighbours' positions along the chord are the abscissae, their offsets across it
+  // the ordinates, point i the origin. A noisy polyline's own arc length would run ahead where its noise
+  // zigzags (and reorder points whose jitter is half their spacing); the chord's frame does neither.
+  std::vector<double> r(static_cast<std::size_t>(n - 4), 0.0);
+  std::vector<char> valid(r.size(), 0);
+  const double minGap = 0.05 * out.spacing;
+  for (int i = 2; i + 2 < n; ++i) {
+    const Eigen::Vector2d chord = q.col(i + 2).head<2>() - q.col(i - 2).head<2>();
+    if (chord.norm() == 0.0) continue;
+    const Eigen::Vector2d tan = chord / chord.norm(), nrm(-tan.y(), tan.x());
+    const int idx[4] = {i - 2, i - 1, i + 1, i + 2};
+    double t[4], v[4];
+    for (int a = 0; a < 4; ++a) {
+      const Eigen::Vector2d d = q.col(idx[a]).head<2>() - q.col(i).head<2>();
+      t[a] = d.dot(tan);
+      v[a] = d.dot(nrm);
+    }
+    bool distinct = true;
+    for (int a = 0; a < 4; ++a)
+      for (int b = a + 1; b < 4; ++b) distinct = distinct && std::abs(t[a] - t[b]) > minGap;
+    if (!distinct) continue;
+    double pred = 0.0, w2 = 0.0;
+    for (int a = 0; a < 4; ++a) {
+      double w = 1.0;
+      for (int b = 0; b < 4; ++b)
+        if (b != a) w *= (0.0 - t[b]) / (t[a] - t[b]);
+      pred += w * v[a];
+      w2 += w * w;
+    }
+    r[static_cast<std::size_t>(i - 2)] = -pred / std::sqrt(1.0 + w2);
+    valid[static_cast<std::size_t>(i - 2)] = 1;
+  }
+  std::vector<double> absR;
+  double rms = 0.0;
+  for (std::size_t k = 0; k < r.size(); ++k)
+    if (valid[k]) {
+      absR.push_back(std::abs(r[k]));
+      rms += r[k] * r[k];
+    }
+  if (absR.empty()) return out;
+  rms = std::sqrt(rms / static_cast<double>(absR.size()));
+  // a robust start: 1.4826 median |r| (a normal's sigma), or the RMS where more than half the residuals
+  // are exactly 0 (a whole-pixel trace of a root along a pixel axis)
+  const double mad = 1.4826 * medianOf(absR);
+  double sig = mad > 0.0 ? mad : rms;
+  // then the RMS of the residuals clipped at 3 sigma, iterated: a point outside the clip (a tracer's
+  // snap to an edge) also leaves out the residuals of the neighbours whose cubic it enters; a normal's
+  // RMS inside +-3 sigma is 0.98658 of its sigma
+  constexpr double kClip = 3.0, kClipRms = 0.98658;  // and a normal's RMS inside +-3 sigma
+  int used = 0;
+  std::vector<char> outlier(static_cast<std::size_t>(n), 0);
+  for (int it = 0; it < 100 && sig > 0.0; ++it) {
+    std::fill(outlier.begin(), outlier.end(), 0);
+    for (std::size_t k = 0; k < r.size(); ++k)
+      if (valid[k] && std::abs(r[k]) > kClip * sig) outlier[k + 2] = 1;
+    double sum = 0.0;
+    int m = 0;
+    for (std::size_t k = 0; k < r.size(); ++k) {
+      if (!valid[k]) continue;
+      bool clean = true;
+      for (std::size_t j = k; j <= k + 4; ++j) clean = clean && !outlier[j];
+      if (!clean) continue;
+      sum += r[k] * r[k];
+      ++m;
+    }
+    const double next = m > 0 ? std::sqrt(sum / m) / kClipRms : 0.0;
+    used = m;
+    if (std::abs(next - sig) <= 1e-12 * sig) {
+      sig = next;
+      break;
+    }
+    sig = next;
+  }
+  out.sigma = sig;
+  out.residuals = used;
+  for (int i = 0; i < n; ++i)
+    if (outlier[static_cast<std::size_t>(i)]) out.outliers.push_back(i);
+  return out;
+}
+
+namespace {
+
+// the LOESS half-width by GCV over the points of q at arc-length parameters s: candidates from 2.5 to 30
+// median point spacings h, at most a sixth of the length (the first candidate always). GCV with each
+// degree of freedom counted 1.4 times, n RSS / (n - 1.4 tr H)^2 (Kim & Gu, J. R. Stat. Soc. B 66, 337,
+// 2004): plain GCV picks near-interpolating windows now and then (on a noisy straight line, 2.5 spacings
+// with tr H / n = 0.7)
+double gcvHalfWidth(const Eigen::Matrix3Xd& q, const std::vector<double>& s, double h) {
+  static constexpr double kSpacings[] = {2.5, 3, 3.5, 4, 5, 6, 7, 8, 10, 12, 15, 18, 22, 26, 30};
+  const int n = static_cast<int>(q.cols());
+  double bestGcv = std::numeric_limits<double>::infinity(), best = kSpacings[0] * h;
+  for (double c : kSpacings) {
+    const double b = c * h;
+    if (c > kSpacings[0] && b > s.back() / 6.0) break;
+    double rss = 0.0, trace = 0.0;
+    for (int i = 0; i < n; ++i) {
+      double hii = 0.0;
+      const Eigen::Vector3d z = loessAt(q, s, s[static_cast<std::size_t>(i)], b, i, &hii, nullptr);
+      rss += (q.col(i) - z).squaredNorm();
+      trace += hii;
+    }
+    constexpr double kGamma = 1.4;
+    const double dof = n - kGamma * trace;
+    const double gcv = dof > 0.0 ? n * rss / (dof * dof) : std::numeric_limits<double>::infinity();
+    if (gcv < bestGcv) {
+      bestGcv = gcv;
+      best = b;
+    }
+  }
+  return best;
+}
+
+// the LOESS curve of q (parameters s) with half-width b at the parameters at; widths: each one used
+Eigen::Matrix3Xd loessCurve(const Eigen::Matrix3Xd& q, const std::vector<double>& s, double b, const std::vector<double>& at,
+                            std::vector<double>* widths) {
+  Eigen::Matrix3Xd z(3, static_cast<Eigen::Index>(at.size()));
+  for (std::size_t i = 0; i < at.size(); ++i) {
+    double used = 0.0;
+    z.col(static_cast<Eigen::Index>(i)) = loessAt(q, s, at[i], b, -1, nullptr, &used);
+    if (widths) widths->push_back(used);
+  }
+  return z;
+}
+
+}  // namespace
+
+TraceSmoothing smoothTrace(const Eigen::Matrix3Xd& p, double ds) {
+  const Eigen::Matrix3Xd q = distinctPoints(p);
+  if (q.cols() < 2) throw std::invalid_argument("smoothTrace: the polyline has no length");
+  const int n = static_cast<int>(q.cols());
+  TraceSmoothing out;
+  constexpr int kMinPoints = 7;
+  if (n < kMinPoints) {
+    out.points = ds > 0.0 ? resampleByArcLength(q, ds) : q;
+    return out;
+  }
+  std::vector<double> gaps;
+  for (int i = 1; i < n; ++i) gaps.push_back((q.col(i) - q.col(i - 1)).norm());
+  const double h = medianOf(gaps);
+  // two passes: the noisy polyline's arc length runs ahead where its noise zigzags, so the second pass
+  // smooths against the arc length of the first pass's curve (a parameter the noise barely moves)
+  const std::vector<double> s1 = arcLengths(q);
+  const Eigen::Matrix3Xd z1 = loessCurve(q, s1, gcvHalfWidth(q, s1, h), s1, nullptr);
+  std::vector<double> s2 = arcLengths(z1);
+  for (std::size_t i = 1; i < s2.size(); ++i) s2[i] = std::max(s2[i], s2[i - 1] + 1e-12 * (1.0 + s2.back()));
+  const double b = gcvHalfWidth(q, s2, h);
+  // the smoothed curve at the query arc lengths
+  const double L = s2.back();
+  std::vector<double> at;
+  if (ds > 0.0) {
+    const int m = std::max(1, static_cast<int>(std::lround(L / ds)));
+    for (int i = 0; i <= m; ++i) at.push_back(i == m ? L : L * i / m);
+  } else {
+    at = s2;
+  }
+  std::vector<double> widths;
+  out.points = loessCurve(q, s2, b, at, &widths);
+  out.halfWidth = b;
+  return out;
+}
+
+RootTraits rootTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excludeTipMm, double radiusMm,
+                      const AnalysisParams& set) {
+  const Eigen::Matrix3Xd q = distinctPoints(plateMm);
+  if (q.cols() < 2) throw std::invalid_argument("rootTraits: a root needs at least two distinct points");
+  // the shape analysis at a run's resolution
+  RootTraits t = measure(q, dsMm > 0.0 ? resampleByArcLength(q, dsMm) : q, dsMm, excludeTipMm, radiusMm, set, 0.0);
+  t.noiseMm = estimateTraceNoise(q).sigma;
+  return t;
+}
+
+RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excludeTipMm, double radiusMm,
+                       const AnalysisParams& set) {
+  const Eigen::Matrix3Xd q = distinctPoints(plateMm);
+  if (q.cols() < 2) throw std::invalid_argument("traceTraits: a root needs at least two distinct points");
+  const TraceNoise noise = estimateTraceNoise(q);
+  // the points outside the noise's clip (a tracer's snaps to an edge) are left out of the smoothing
+  Eigen::Matrix3Xd kept(3, q.cols() - static_cast<Eigen::Index>(noise.outliers.size()));
+  for (int i = 0, k = 0, o = 0; i < q.cols(); ++i) {
+    if (o < static_cast<int>(noise.outliers.size()) && noise.outliers[static_cast<std::size_t>(o)] == i) {
+      ++o;
+      continue;
+    }
+    kept.col(k++) = q.col(i);
+  }
+  const TraceSmoothing sm = smoothTrace(kept, dsMm);
+  const double threshold = std::isfinite(noise.sigma) ? kNoisePeakK * noise.sigma : 0.0;
+  RootTraits t = measure(q, sm.points, dsMm, excludeTipMm, radiusMm, set, threshold);
+  t.noiseMm = noise.sigma;
+  t.smoothingMm = sm.halfWidth;
   return t;
 }
 

@@ -3,7 +3,7 @@
 
 A run with known parameters is exported to RSML, traced as a 20 px/mm plate scan would be (points every
 4 px, 0.5 px of Gaussian noise, 0.1 px rounding: examples/synthetic_trace.py), and fitted. Prints one
-line per free key: truth, estimate, relative error, sigma, and |error| / sigma. With --check it exits 1
+line per free key: truth, estimate, relative error, sigma, and |error| / sigma, then the fit's goodness. With --check it exits 1
 unless every key comes back within --tolerance (relative) and within --coverage sigmas of the truth.
 
     validate_fit.py ROOTSIM WORKDIR --scene S.toml --truth tropism.beta=0.2,tropism.twist_r_tau=0.4 \
@@ -44,6 +44,8 @@ def main():
     ap.add_argument("--identifiable", default=None,
                     help="KEY,... the keys held to --tolerance (default: all); the others only to --coverage")
     ap.add_argument("--coverage", type=float, default=2.0)
+    ap.add_argument("--sigma-mm", type=float, default=None,
+                    help="the traced points' uncertainty the fit is told (default: the fit's, one pixel)")
     ap.add_argument("--check", action="store_true")
     ap.add_argument("--fresh", action="store_true", help="start with an empty WORKDIR (removes what an earlier call left)")
     a = ap.parse_args()
@@ -66,8 +68,9 @@ def main():
              "--seed", str(a.seed)])
     out = os.path.join(a.work, "fit")
     t0 = time.time()
+    sigma = ["--sigma-mm", str(a.sigma_mm)] if a.sigma_mm else []
     run([a.rootsim, "fit", trace, "--px-per-mm", "20", "--scene", a.scene, "--free", a.free, "--objective",
-         a.objective, "-j", str(a.jobs), "--budget", str(a.budget), "--out", out, "--quiet"])
+         a.objective, "-j", str(a.jobs), "--budget", str(a.budget), "--out", out, "--quiet"] + sigma)
     wall = time.time() - t0
     fit = json.load(open(os.path.join(out, "fit.json")))
     ok = True
@@ -84,6 +87,10 @@ def main():
         held = a.identifiable is None or k in a.identifiable.split(",")
         if (held and rel > a.tolerance) or not z <= a.coverage:
             ok = False
+    g = fit["goodness"]
+    print(f"goodness: chi2 {g['chi2']:.4g} for {g['dof']} dof, p {g['p_value']:.3g}: {g['verdict']} (answer: {fit['answer']})")
+    if "misfit" in fit:
+        print("misfit:", fit["misfit"])
     for n in fit["notes"]:
         print("note:", n["note"])
     if a.check and not ok:

@@ -1,0 +1,64 @@
+#pragma once
+// The parts of `rootsim fit` after its search (src/app/fit_trace.cpp runs the design and the trust
+// regions): the answer and its goodness (fit_goodness.cpp), and the fit folder's files (fit_output.cpp).
+#include <filesystem>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rootsim/fit_trace.hpp"
+#include "rootsim/response_surface.hpp"
+#include "rootsim/scene.hpp"
+
+namespace rootsim::app {
+
+// the smallest trust region's half width, in design cells. A root's outputs are a sensitive function of
+// its parameters: a skewing root's skew jumps by 1-2 degrees between runs whose twist differs by 0.005
+// (docs/experiments.md). A surface fitted in a box not much wider than that chases those jumps: its
+// slopes are the jumps' and its scatter too small, and the uncertainties it gives shrink with the box.
+// Half a design cell (one halving of the first box): over the synthetic traces of docs/experiments.md
+// ("Validation") it covered the truth within 2 sigma more often than a quarter cell did.
+inline constexpr double kSmallestBox = 0.5;
+
+// the fixed keys of the base model that shape a fit's answer, the plate's tilt and the growth first, the
+// free keys left out; fileKeys: the keys the base scene file sets (sceneFileKeys), the others are defaults
+std::vector<FixedKey> sceneFixedKeys(const Model& base, const std::vector<FreeKey>& free, const std::vector<std::string>& fileKeys);
+// "plane.alpha_deg = 40 (scene), growth.rate_per_h = 0.2 (default), ..."
+std::string fixedKeysText(const std::vector<FixedKey>& fixed);
+
+// what a poor fit's model could not reproduce, and the fixed key to check or free, in one line: "the model
+// with these free keys and this scene does not reproduce the trace: the trace is straight, every run waves
+// (A 0.8-1.2 mm); check plane.alpha_deg (40, scene) or free it"
+// (modelSigma: the runs' scatter about the response surface per output, shown beside the output missed most)
+std::string misfitSentence(const TraceTarget& target, const std::vector<FitEvaluation>& evaluations, const FitEvaluation& answer,
+                           const FitComponents& trace, const Eigen::VectorXd& modelSigma, const std::vector<FixedKey>& fixed);
+
+// the answer among the evaluations: rep.best (answerIndex over the objectives, rep.surfaceRun preferred on
+// a tie), its goodness against the trace's uncertainty alone (answerChi2: the answer's chi-square against
+// the trace as a trace of its run would scatter), the fixed keys, and for a poor fit the sentence
+void chooseAnswer(FitReport& rep, const TraceTarget& target, const FitComponents& trace, const Eigen::VectorXd& modelSigma,
+                  const Model& base, const std::vector<std::string>& fileKeys,
+                  const std::function<double(const FitEvaluation&)>& answerChi2);
+
+// what the files of a fit folder are made of
+struct FitOutcome {
+  const FitOptions* options = nullptr;
+  const TraceTarget* target = nullptr;
+  std::filesystem::path out;
+  long steps = 0;             // growth steps of every evaluation
+  int levels = 0;             // the start design's levels per key
+  int regionPoints = 0;       // runs per trust region
+  int regions = 0;            // trust regions run
+  double rho = 0;             // the last box's half width (scaled)
+  ResponseSurface surface;    // the last trust region's
+  FitUncertainty unc;         // at the surface's minimum
+  Eigen::VectorXd ustar;      // the surface's minimum (scaled)
+  std::vector<double> surfaceX, bootSigma;  // its values, and the bootstrap's sigma per key
+  FitComponents trace;        // the trace's side of the outputs
+};
+// fit.json, evaluations.csv, best.toml, compare.* and for two keys landscape.* of rep's answer
+void writeFitOutputs(const FitOutcome& f, const FitReport& rep, const Scene& bestScene);
+
+}  // namespace rootsim::app

@@ -325,8 +325,8 @@ TEST_CASE("analyze: bad input exits 2 naming the file and line or the flag, and 
       {kData + "bad/malformed.rsml", "malformed.rsml:"},
       {(d / "missing.rsml").string(), "missing.rsml: RSML file not found"},
       {kData + "smartroot_pixels.rsml --downhill sideways", "--downhill sideways"},
-      {kData + "smartroot_pixels.rsml --ds-mm -1", "--ds-mm -1: must be in [0, 10] mm"},
-      {kData + "smartroot_pixels.rsml --radius-mm 0", "--radius-mm 0: must be in (0, 100] mm"},
+      {kData + "smartroot_pixels.rsml --ds-mm -1", "--ds-mm -1: expected a finite number in [0, 10] mm"},
+      {kData + "smartroot_pixels.rsml --radius-mm 0", "--radius-mm 0: expected a finite number in (0, 100] mm"},
       {kData + "smartroot_pixels.rsml --exclude-tip-mm -2", "--exclude-tip-mm -2"},
   };
   for (const Case& c : cases) {
@@ -357,6 +357,58 @@ TEST_CASE("analyze: the write rule / a user's folder is never replaced, rootsim'
   CHECK(slurp(d / "an" / "analysis.csv") == before);   // same input, same bytes
   // the input is never an output
   CHECK(run("analyze " + in + " --out " + in).code == 2);
+}
+
+TEST_CASE("analyze: work sized by a trace is counted against its cap before it is done - and numbers and hints are checked") {
+  if (!analyzeBuilt()) return;
+  const fs::path d = scratch("bounds");
+  auto write = [&](const std::string& name, const std::string& unit, const std::string& props, const std::string& points) {
+    std::ofstream(d / name) << "<?xml version=\"1.0\"?>\n<rsml><metadata><version>1</version><unit>" << unit
+                            << "</unit><resolution>1</resolution></metadata>\n<scene>" << props
+                            << "<plant id=\"p\"><root id=\"r\"><geometry><polyline>" << points
+                            << "</polyline></geometry></root></plant></scene></rsml>\n";
+  };
+  // a 300-byte file of one root 999 999 mm long: 2e7 points at 0.05 mm
+  write("long.rsml", "mm", "", "<point x=\"0\" y=\"0\"/><point x=\"0\" y=\"999999\"/>");
+  const std::string bend = "<point x=\"0\" y=\"0\"/><point x=\"0\" y=\"50\"/><point x=\"10\" y=\"90\"/>";
+  write("px.rsml", "pixel", "", bend);
+  write("radius.rsml", "mm", "<properties><root.radius_mm value=\"-1\"/></properties>", bend);
+  write("zone.rsml", "mm", "<properties><growth.growth_zone_mm value=\"1e300\"/></properties>", bend);
+  struct Case {
+    std::string args, expect;
+  };
+  const std::string px = (d / "px.rsml").string();
+  const std::vector<Case> cases = {
+      {(d / "long.rsml").string(),
+       "long.rsml:3: root r (999999 mm long, resampled every 0.05 mm): would make 19999980 points, more than the cap of 1000000"},
+      {px + " --px-per-mm 1 --ds-mm 1e-12", "--ds-mm 1e-12: "},
+      {px + " --px-per-mm 1e-300", "--px-per-mm 1e-300: expected a finite number in [0.01, 1e+05] px/mm"},
+      {px + " --px-per-mm 1e-4", "--px-per-mm 1e-04: expected a finite number in [0.01, 1e+05] px/mm"},
+      {px + " --px-per-mm nan", "--px-per-mm nan: expected a finite number"},
+      {px + " --px-per-mm 1 --radius-mm inf", "--radius-mm inf: expected a finite number in (0, 100] mm"},
+      {px + " --px-per-mm 1 --exclude-tip-mm nan", "--exclude-tip-mm nan: expected a finite number in [0, 1000] mm"},
+      {(d / "radius.rsml").string(), "radius.rsml: property root.radius_mm = -1: the scene key must be in (0, 100] (got -1); give --radius-mm"},
+      {(d / "zone.rsml").string(), "zone.rsml: property growth.growth_zone_mm = 1e300: the scene key must be in (0, 1000]"},
+  };
+  for (const Case& c : cases) {
+    const auto r = run("analyze " + c.args + " --out " + (d / "out").string());
+    CHECK_MESSAGE(r.code == 2, c.args);
+    CHECK_MESSAGE(r.out.find("rootsim: error: ") == 0, c.args << " -> " << r.out);
+    CHECK_MESSAGE(r.out.find(c.expect) != std::string::npos, c.args << " -> " << r.out);
+    CHECK_MESSAGE(test::oneLine(r.out.substr(0, r.out.size() - 1)), c.args);
+    CHECK_MESSAGE(!fs::exists(d / "out"), c.args);
+  }
+  // a flag replaces a bad hint: the file's radius is not used when --radius-mm is given
+  CHECK(run("analyze " + (d / "radius.rsml").string() + " --radius-mm 0.1 --out " + (d / "given").string() + " --quiet").code == 0);
+  // compare reads the trace through the same check (the long root: refused before its resampling)
+  const auto c = run("compare " + shortRun().string() + " " + (d / "long.rsml").string() + " --out " + (d / "cmp").string());
+  CHECK(c.code == 2);
+  CHECK(c.out.find("more than the cap of 1000000") != std::string::npos);
+  CHECK(!fs::exists(d / "cmp"));
+  const auto at = run("compare " + shortRun().string() + " " + px + " --px-per-mm 20 --at-h nan --out " + (d / "cmp").string());
+  CHECK(at.code == 2);
+  CHECK(at.out.find("rootsim: error: --at-h nan: expected a finite number in [0, 1e+06] h") == 0);
+  CHECK(!fs::exists(d / "cmp"));
 }
 
 // ---- dialects, plants, time-lapse ----

@@ -14,6 +14,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <vector>
 #include <sys/stat.h>
 #include <sys/wait.h>
 
@@ -206,7 +207,11 @@ TEST_CASE("every shipped scene and sweep validates, and every scene runs coarsen
     // coarsened: 20 growth steps of 0.1 h with 0.1 mm elements (mechanics scenes: as they are)
     const std::string scene = slurp(e.path());
     const bool grows = scene.find("[growth]\nenabled = false") == std::string::npos;
-    const std::string sets = grows ? " --set growth.steps=20 --set growth.step_h=0.1 --set root.element_length_mm=0.1"
+    // (a plate with laterals keeps its elements: its laterals' 0.6 mm zones need 10 of them, and a plate
+    // whose laterals' scene readers would refuse is refused when it starts)
+    const bool laterals = scene.find("[laterals]") != std::string::npos;
+    const std::string sets = grows ? " --set growth.steps=20 --set growth.step_h=0.1" +
+                                         std::string(laterals ? "" : " --set root.element_length_mm=0.1")
                                    : "";
     const Result r = run("run " + e.path().string() + sets + " --quiet --set output.vtk=false --out " +
                          (d / e.path().stem()).string());
@@ -496,4 +501,101 @@ TEST_CASE("a free 2 mm rod under its weight on a plate at 80 deg slides at mu_s 
     CHECK(fs::exists(d / kind / "summary.json"));
   }
   fs::remove_all(d);
+}
+
+TEST_CASE("usage errors: CLI11's errors and unknown commands are one rootsim: error line naming the flag or command") {
+  struct Case {
+    std::string args, expect;
+  };
+  const std::vector<Case> cases = {
+      {"fly", "rootsim: error: unknown command fly (did you mean fit?); the commands: run, check, render"},
+      {"rnu x.toml", "rootsim: error: unknown command rnu (did you mean run?)"},
+      {"", "rootsim: error: a command is required: run, check, render"},
+      {"render RUN --atH 3", "rootsim: error: unknown flag --atH for render (did you mean --at-h?)"},
+      {"render RUN --zzz", "rootsim: error: unknown flag --zzz for render (rootsim render --help)"},
+      {"compare RUN T.rsml --at-h abc", "rootsim: error: --at-h abc: expected a number"},
+      {"render RUN --frame 1.5", "rootsim: error: --frame 1.5: expected an integer"},
+      {"render RUN --fps 0", "rootsim: error: render: --fps: Value 0 not in range 1 to 240"},
+      {"render", "rootsim: error: render: run_dir is required"},
+  };
+  for (const Case& c : cases) {
+    const Result r = run(c.args);
+    CHECK_MESSAGE(r.code == 2, c.args);
+    CHECK_MESSAGE(r.out.find(c.expect) == 0, c.args << " -> " << r.out);
+    CHECK_MESSAGE(lines(r.out) == 1, c.args << " -> " << r.out);
+  }
+  // help and the version stay exit 0
+  CHECK(run("render --help").code == 0);
+}
+
+TEST_CASE("figure: --dpi and --width-mm are finite and in range and a panel too large is refused before anything is written") {
+  const fs::path d = scratch("figure_numbers");
+  struct Case {
+    std::string args, expect;
+  };
+  const std::vector<Case> cases = {
+      {"--dpi nan", "rootsim: error: --dpi nan: expected a finite number in [10, 2400] dpi"},
+      {"--width-mm nan", "rootsim: error: --width-mm nan: expected a finite number in [10, 1000] mm"},
+      {"--width-mm inf", "rootsim: error: figure: --width-mm: Value inf not in range"},
+      {"--dpi 2400 --width-mm 1000",
+       "rootsim: error: --width-mm 1000 at --dpi 2400: a panel's PNG: would make 94489 pixels wide, more than the cap of 20000"},
+  };
+  for (const Case& c : cases) {
+    const Result r = run("figure fig2a --quick --quiet " + c.args + " --out " + (d / "f").string());
+    CHECK_MESSAGE(r.code == 2, c.args);
+    CHECK_MESSAGE(r.out.find(c.expect) == 0, c.args << " -> " << r.out);
+    CHECK_MESSAGE(lines(r.out) == 1, c.args);
+    CHECK_MESSAGE(!fs::exists(d / "f"), c.args);
+  }
+}
+
+TEST_CASE("every shipped scene and a plate with laterals run short are read back by every reading command") {
+  if (run("render --help").out.find("--png") == std::string::npos) {
+    rootsim::test::skipCase("rootsim built without the renderer: no render or export");
+    return;
+  }
+  const fs::path d = scratch("readback");
+  std::vector<fs::path> scenes;
+  for (const auto& e : fs::directory_iterator(std::string(ROOTSIM_SOURCE_DIR) + "/scenes"))
+    if (e.path().extension() == ".toml") scenes.push_back(e.path());
+  std::sort(scenes.begin(), scenes.end());
+  // a plate whose laterals emerge within the short run
+  {
+    std::ofstream f(d / "plate_laterals.toml");
+    f << "[root]\nradius_mm = 0.1\ninitial_length_mm = 1.1\n[growth]\nsteps = 60\n[tropism]\nbeta = 0.2\n[plane]\n"
+         "alpha_deg = 40\n[output]\nevery_steps = 20\nvtk = false\n[plate]\nwidth_mm = 60\nlength_mm = 40\n"
+         "[laterals]\nenabled = true\nfirst_mm = 0.5\nspacing_mm = 0.5\napical_unbranched_mm = 0.5\n"
+         "[[seedling]]\nname = \"a\"\nposition_mm = [20, 5]\n[[seedling]]\nname = \"b\"\nposition_mm = [40, 5]\n";
+  }
+  scenes.push_back(d / "plate_laterals.toml");
+  for (const fs::path& scene : scenes) {
+    const std::string name = scene.stem().string();
+    const fs::path out = d / name;
+    const bool ours = name == "plate_laterals";
+    const Result r = run("run " + scene.string() + (ours ? "" : " --set growth.steps=4 --set output.every_steps=2") +
+                         " --set output.vtk=false --quiet --out " + out.string());
+    REQUIRE_MESSAGE(r.code == 0, name << ": " << r.out);
+    // the run's folders: the run, or each root of a plate
+    std::vector<fs::path> dirs;
+    if (fs::is_directory(out / "roots")) {
+      for (const auto& e : fs::directory_iterator(out / "roots")) dirs.push_back(e.path());
+      const Result plate = run("render " + out.string() + " --plate-view --png " + (d / (name + "_plate.png")).string() + " --frame 0 --quiet");
+      CHECK_MESSAGE(plate.code == 0, name << ": " << plate.out);
+      const Result rsml = run("export " + out.string() + " --rsml " + (d / (name + "_plate.rsml")).string() + " --quiet");
+      CHECK_MESSAGE(rsml.code == 0, name << ": " << rsml.out);
+    } else {
+      dirs.push_back(out);
+    }
+    if (ours) CHECK(dirs.size() > 2);  // laterals emerged
+    for (const fs::path& dir : dirs) {
+      const std::string tag = name + "_" + dir.filename().string();
+      for (const std::string& cmd :
+           {"render " + dir.string() + " --png " + (d / (tag + ".png")).string() + " --frame 0",
+            "export " + dir.string() + " --rsml " + (d / (tag + ".rsml")).string(),
+            "export " + dir.string() + " --gltf " + (d / (tag + ".glb")).string()}) {
+        const Result c = run(cmd + " --quiet");
+        CHECK_MESSAGE(c.code == 0, cmd << ": " << c.out);
+      }
+    }
+  }
 }

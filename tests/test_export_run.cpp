@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <map>
 #include <vector>
 
 #include "rootsim/csv.hpp"
@@ -228,7 +229,9 @@ TEST_CASE("export: the write rule and bad flags") {
   const std::vector<Bad> bad = {
       {runDir, "no output asked for"},
       {runDir + " --rsml " + (dir / "n.rsml").string() + " --at-h 1 --every-h 2", "give --at-h or --every-h, not both"},
-      {runDir + " --rsml " + (dir / "n.rsml").string() + " --every-h 0", "--every-h 0: must be > 0 h"},
+      {runDir + " --rsml " + (dir / "n.rsml").string() + " --every-h 0", "--every-h 0: expected a finite number in (0, 1e+06] h"},
+      {runDir + " --rsml " + (dir / "n.rsml").string() + " --at-h nan", "--at-h nan: expected a finite number in [0, 1e+06] h"},
+      {runDir + " --rsml " + (dir / "n.rsml").string() + " --every-h 1e-9", "--every-h 1e-09: a series over the run's"},
       {runDir + " --rsml " + (dir / "no-such-folder" / "n.rsml").string(), "not found"},
       {runDir + " --rsml ''", "empty value"},
       {(dir / "no-run").string() + " --rsml " + (dir / "n.rsml").string(), "run directory not found"},
@@ -254,4 +257,23 @@ TEST_CASE("export: a run directory without its trajectory exits 2 naming the fil
   CHECK(r.code == 2);
   CHECK(r.out.find("trajectory") != std::string::npos);
   CHECK_FALSE(fs::exists(dir / "x.rsml"));
+}
+
+TEST_CASE("export: an --every-h RSML series is written all or none and a FILE.tmp in its way is refused untouched") {
+  const fs::path dir = test::scratchDir("export", "series_all_or_none");
+  const std::string runDir = shortRun().string();
+  const fs::path rsml = dir / "s.rsml";
+  REQUIRE(run("export " + runDir + " --rsml " + rsml.string() + " --every-h 5 --quiet").code == 0);
+  const std::map<std::string, std::string> before = test::fileTree(dir);
+  REQUIRE(before.size() > 2);
+  std::vector<std::string> names;
+  for (const auto& [name, bytes] : before) names.push_back(name);
+  // the user's own FILE.tmp is in the way: refused before anything is written, and kept
+  fs::create_directories(dir / (names[1] + ".tmp"));
+  const auto r = run("export " + runDir + " --rsml " + rsml.string() + " --every-h 5 --force");
+  CHECK(r.code == 2);
+  CHECK(r.out.find(".tmp is in the way") != std::string::npos);
+  CHECK(fs::is_directory(dir / (names[1] + ".tmp")));
+  fs::remove(dir / (names[1] + ".tmp"));
+  CHECK(test::fileTree(dir) == before);
 }

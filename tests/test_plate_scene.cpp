@@ -256,3 +256,30 @@ TEST_CASE("plate runs: the commands of one root refuse a plate, naming what to p
   }
   CHECK(test::sweepError(dir / "sweep.toml").find("a plate's scene; a sweep runs scenes of one root") != std::string::npos);
 }
+
+TEST_CASE("plate scenes: laterals are checked when the plate is read - their spacing and count and their own scene") {
+  // sites closer than a lateral's diameter: laterals on one side would overlap (1e-9 mm ran out of memory,
+  // 0.01 mm did not finish)
+  for (const char* spacing : {"1e-09", "0.01"})
+    CHECK(errorOf(kHead + "\n[laterals]\nenabled = true\nspacing_mm = " + spacing + "\n" + seedling("a", 20, 5)) ==
+          "scenes/t.toml:18: laterals.spacing_mm " + std::string(spacing) +
+              " mm is less than a lateral's diameter, 2 * laterals.radius_mm = 0.12 mm (two laterals on one side would overlap)");
+  // the roots a plate can grow, counted before it starts: 2 seedlings growing to 301 mm with a lateral every
+  // 0.12 mm up to order 2
+  const std::string many = errorOf(kHead + "\n[laterals]\nenabled = true\nfirst_mm = 0.5\nspacing_mm = 0.12\nmax_order = 2\n" +
+                                       seedling("a", 20, 5) + seedling("b", 40, 5),
+                                   {"growth.steps=30000"});
+  CHECK(many.find("scenes/t.toml:18: a plate of 2 seedling(s) with laterals every 0.12 mm (laterals.spacing_mm) up to order 2 "
+                  "(laterals.max_order): would make ") == 0);
+  CHECK_MESSAGE(many.find("roots, more than the cap of 2000") != std::string::npos, many);
+  // the same laterals at order 1 on a short run fit
+  CHECK(errorOf(kHead + "\n[laterals]\nenabled = true\nfirst_mm = 0.5\nspacing_mm = 0.12\n" + seedling("a", 20, 5)) == "(no error)");
+  // a lateral's own scene (roots/NAME/scene.toml, as render and export read it) fails a check the plate's
+  // keys pass: 0.6 mm zones of 0.1 mm elements; refused at the start, not after the run
+  const std::string coarse = errorOf(kHead + "\n[laterals]\nenabled = true\n" + seedling("a", 20, 5), {"root.element_length_mm=0.1"});
+  CHECK(coarse.find("scenes/t.toml:18: [laterals] gives a's laterals a scene that render and export would refuse "
+                    "(roots/a.1/scene.toml:") == 0);
+  CHECK(coarse.find("root.element_length_mm must give at least 10 elements in the growth zone") != std::string::npos);
+  // without laterals the same plate is fine
+  CHECK(errorOf(kHead + seedling("a", 20, 5), {"root.element_length_mm=0.1"}) == "(no error)");
+}

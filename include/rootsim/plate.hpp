@@ -86,6 +86,11 @@ struct RootPairForces {
   int contacts = 0;           // element pairs in contact
 };
 
+// a lateral root's model as it emerges from a parent of model `parent`: the parent's keys with the lateral's
+// own root, growth and tropism ([laterals]); its angle, start time, seed and obstacles are the site's
+// (PlateSimulation sets them). One function, so that the scene check at the start sees what emerges.
+Model lateralModel(const Model& parent, const LateralParams& lp);
+
 class PlateSimulation {
  public:
   // builds every seedling's initial root and relaxes it (seeing the roots built before it)

@@ -229,6 +229,13 @@ double runScene(const Scene& sc, const std::string& out, bool force, py::object 
 class PySimulation {
  public:
   explicit PySimulation(const Scene& sc) : scene_(sc) {
+    // a plate's roots step together (their contacts, their laterals): a Simulation of its first root alone
+    // would silently be another run
+    if (scene_.isPlate())
+      throw SceneError("rootsim.Simulation(" + scene_.path + "): the scene is a plate of " +
+                       std::to_string(scene_.plate.seedlings.size()) + " seedling(s)" +
+                       (scene_.plate.params.laterals.enabled ? " with laterals" : "") +
+                       "; a Simulation steps one root: run the plate with rootsim.run (docs/plate.md)");
     py::gil_scoped_release nogil;
     sim_.emplace(scene_.model);
   }

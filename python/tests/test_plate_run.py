@@ -37,3 +37,12 @@ def test_a_single_root_has_no_roots(tmp_path):
     assert not r.is_plate
     assert r.roots == {}
     assert r.plate_roots == []
+
+
+def test_a_simulation_of_a_plate_is_refused_naming_the_plate():
+    """A Simulation steps one root; a plate's roots step together (contacts, laterals): a plate scene is
+    refused (rootsim.SceneError, a ValueError) naming it, never simulated as its first root alone."""
+    with pytest.raises(rootsim.SceneError, match=r"plate_collision.toml\): the scene is a plate of 2 seedling\(s\)"):
+        rootsim.Simulation(SOURCE / "scenes/plate_collision.toml")
+    with pytest.raises(ValueError, match="a Simulation steps one root"):
+        rootsim.Simulation(SOURCE / "scenes/plate_wildtype.toml")

@@ -15,8 +15,10 @@
 #include "rootsim/csv.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/json.hpp"
+#include "rootsim/limits.hpp"
 #include "rootsim/number_text.hpp"
 #include "rootsim/rsml.hpp"
+#include "rootsim/scene.hpp"
 #include "rootsim/run_dir.hpp"
 #include "rootsim/signature.hpp"
 #include "rootsim/trace_growth.hpp"
@@ -36,6 +38,12 @@ constexpr double kDefaultRadiusMm = 0.1; // an Arabidopsis root's radius (root.r
 constexpr double kInsertionSpanMm = 0.5; // the lateral's and the parent's directions are taken over this [mm]
 
 bool given(double v) { return v != AnalyzeOptions::kUnset; }
+
+// a pixel file's resolution: from a pixel 10 cm wide to one of 10 nm (beyond, a wrong unit)
+constexpr NumberRange kPxPerMm{0.01, 1e5, false, false, "px/mm"};
+// the step at which compare, fit and render --trace resample a trace for its distances [mm]
+// (compare_trace.cpp, kDistanceStepMm)
+constexpr double kDistanceStepMm = 0.05;
 
 std::string num(double v) { return numberText(v); }
 
@@ -75,9 +83,15 @@ Axes parseDownhill(const std::string& s, const std::string& flag = "--downhill")
   return a;
 }
 
-double sceneNumber(const rsml::Document& d, const char* key) {
+// a scene key the file states as a property (a hint: a rootsim export's scene, or a tracer's note),
+// checked like the key in a scene; NaN when absent. `override` is the flag that replaces it.
+double sceneNumber(const rsml::Document& d, const std::string& file, const char* key, const std::string& override) {
   const rsml::Property* p = d.sceneProperty(key);
-  return p ? p->number : kNaN;
+  if (!p) return kNaN;
+  if (const std::string why = sceneNumberProblem(key, p->number); !why.empty())
+    throw SceneError(file + ": property " + key + " = " + printable(p->text) + ": the scene key " + why +
+                     (override.empty() ? std::string() : "; give " + override + " to set it instead"));
+  return p->number;
 }
 
 double median(std::vector<double> v) {
@@ -89,10 +103,10 @@ double median(std::vector<double> v) {
 }
 
 // the analysis thresholds: the file's analysis.* keys (a run's), else the model's defaults
-AnalysisParams analysisOf(const rsml::Document& d) {
+AnalysisParams analysisOf(const rsml::Document& d, const std::string& file) {
   AnalysisParams a;
   auto take = [&](const char* key, double& field) {
-    const double v = sceneNumber(d, key);
+    const double v = sceneNumber(d, file, key, "");
     if (std::isfinite(v)) field = v;
   };
   take("analysis.skew_threshold_deg", a.skewThresholdDeg);
@@ -124,14 +138,10 @@ std::string rootKey(const rsml::Plant& p, std::size_t pi, const rsml::Root& r, s
 }  // namespace
 
 void checkTraceFlags(const AnalyzeOptions& o) {
-  if (given(o.pxPerMm) && !(o.pxPerMm > 0 && std::isfinite(o.pxPerMm)))
-    throw SceneError(o.flagPrefix + "px-per-mm " + num(o.pxPerMm) + ": must be > 0");
-  if (given(o.dsMm) && !(o.dsMm >= 0 && o.dsMm <= 10))
-    throw SceneError("--ds-mm " + num(o.dsMm) + ": must be in [0, 10] mm (0: the trace's own points)");
-  if (given(o.excludeTipMm) && !(o.excludeTipMm >= 0 && std::isfinite(o.excludeTipMm)))
-    throw SceneError("--exclude-tip-mm " + num(o.excludeTipMm) + ": must be >= 0 mm");
-  if (given(o.radiusMm) && !(o.radiusMm > 0 && o.radiusMm <= 100))
-    throw SceneError("--radius-mm " + num(o.radiusMm) + ": must be in (0, 100] mm");
+  if (given(o.pxPerMm)) checkedNumber(o.flagPrefix + "px-per-mm", o.pxPerMm, kPxPerMm);
+  if (given(o.dsMm)) checkedNumber("--ds-mm", o.dsMm, {0, 10, false, false, "mm (0: the trace's own points)"});
+  if (given(o.excludeTipMm)) checkedNumber("--exclude-tip-mm", o.excludeTipMm, {0, 1000, false, false, "mm"});
+  if (given(o.radiusMm)) checkedNumber("--radius-mm", o.radiusMm, {0, 100, true, false, "mm"});
   parseDownhill(o.downhill, o.flagPrefix + "downhill");
 }
 
@@ -164,10 +174,11 @@ TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
   if (roots == 0) throw SceneError(file + ":1: no root in the file (no <plant> with a <root>)");
   tf.ours = doc.meta.software == "rootsim";
   tf.dsMm = given(o.dsMm) ? o.dsMm : (tf.ours ? 0.0 : kRunElementMm);
-  const double zone = sceneNumber(doc, "growth.growth_zone_mm");
+  const double zone = given(o.excludeTipMm) ? kNaN : sceneNumber(doc, file, "growth.growth_zone_mm", "--exclude-tip-mm");
   tf.excludeTipMm = given(o.excludeTipMm) ? o.excludeTipMm : (std::isfinite(zone) ? zone : 0.0);
-  tf.set = analysisOf(doc);
+  tf.set = analysisOf(doc, file);
   tf.timeH = doc.hasTime ? doc.timeH : kNaN;
+  const double fileRadius = given(o.radiusMm) ? kNaN : sceneNumber(doc, file, "root.radius_mm", "--radius-mm");
   if (doc.timeLapse()) {
     // a 2D+t file shows its roots at every observation; as one file, at the last
     tf.observationTimesH = doc.observationTimesH;
@@ -205,6 +216,22 @@ TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
         c(1, static_cast<Eigen::Index>(k)) = ax.dx * x + ax.dy * y;
         c(2, static_cast<Eigen::Index>(k)) = r.hasZ ? r.z[k] * scale : 0.0;
       }
+      // the reader's bound on a coordinate, applied again after a pixel file's --px-per-mm scale
+      if (scale != 1.0)
+        for (Eigen::Index k = 0; k < c.cols(); ++k)
+          if (!(c.col(k).cwiseAbs().maxCoeff() <= rsml::kMaxCoordMm))
+            throw SceneError(o.flagPrefix + "px-per-mm " + num(o.pxPerMm) + ": puts point " + std::to_string(k + 1) + " of root " +
+                             t.name + " (" + file + ":" + std::to_string(r.line) + ") " + num(c.col(k).cwiseAbs().maxCoeff()) +
+                             " mm from the first, beyond " + decimalNumber(rsml::kMaxCoordMm) + " mm (1 km): a wrong resolution?");
+      // the points its shape analysis and its distances will resample it into, before they are made
+      double length = 0;
+      for (Eigen::Index k = 1; k < c.cols(); ++k) length += (c.col(k) - c.col(k - 1)).norm();
+      const double step = tf.dsMm > 0 ? std::min(tf.dsMm, kDistanceStepMm) : kDistanceStepMm;
+      const bool byFlag = given(o.dsMm) && o.dsMm > 0 && o.dsMm < kDistanceStepMm;
+      checkCount((byFlag ? "--ds-mm " + num(o.dsMm) + ": " : std::string()) + file + ":" + std::to_string(r.line) + ": root " +
+                     t.name + " (" + num(length) + " mm long, resampled every " + num(step) + " mm)",
+                 length / step, caps::kTracePoints, "points",
+                 "caps::kTracePoints: about 100 bytes a point in the shape analysis; docs/outputs.md, Caps");
       t.plateMm = std::move(c);
       t.originMm = Eigen::Vector3d(ax.lx * ox * scale + ax.ly * oy * scale, ax.dx * ox * scale + ax.dy * oy * scale, 0.0);
       t.timeIndex = r.timeIndex;
@@ -212,8 +239,8 @@ TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
       if (given(o.radiusMm)) {
         t.radiusMm = o.radiusMm;
         t.radiusSource = "--radius-mm";
-      } else if (std::isfinite(sceneNumber(doc, "root.radius_mm")) && r.order == 0) {
-        t.radiusMm = sceneNumber(doc, "root.radius_mm");
+      } else if (std::isfinite(fileRadius) && r.order == 0) {
+        t.radiusMm = fileRadius;
         t.radiusSource = "root.radius_mm";
       } else if (std::isfinite(median(r.diameterMm))) {
         t.radiusMm = 0.5 * median(r.diameterMm) * scale;

@@ -9,6 +9,7 @@
 #include "rootsim/compare_panel.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/json.hpp"
+#include "rootsim/limits.hpp"
 #include "rootsim/number_text.hpp"
 #include "rootsim/plot.hpp"
 #include "rootsim/run_dir.hpp"
@@ -33,8 +34,7 @@ bool given(double v) { return v != TraceFlags::kUnset; }
 }  // namespace
 
 TraceTarget loadTarget(const TraceFlags& f, const Model& m) {
-  if (given(f.sigmaMm) && !(f.sigmaMm > 0 && f.sigmaMm <= 10))
-    throw SceneError(f.flagPrefix + "sigma-mm " + numberText(f.sigmaMm) + ": must be in (0, 10] mm");
+  if (given(f.sigmaMm)) checkedNumber(f.flagPrefix + "sigma-mm", f.sigmaMm, {0, 10, true, false, "mm"});
   AnalyzeOptions a;
   a.pxPerMm = f.pxPerMm;
   a.downhill = f.downhill;
@@ -173,6 +173,7 @@ void printTable(const Comparison& c) {
 }  // namespace
 
 int compareCommand(const CompareOptions& o, std::string* outDir) {
+  if (o.atH != CompareOptions::kUnset) checkedNumber("--at-h", o.atH, kGrowthHours);
   const fs::path run = o.runDir;
   const std::string runName = fs::absolute(run).lexically_normal().filename().string();
   const std::string outText =

@@ -6,7 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
+#include <fstream>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -15,6 +18,7 @@
 #include "rootsim/csv.hpp"
 #include "rootsim/environment.hpp"
 #include "rootsim/errors.hpp"
+#include "rootsim/limits.hpp"
 #include "rootsim/gltf.hpp"
 #include "rootsim/node_fields.hpp"
 #include "rootsim/number_text.hpp"
@@ -87,8 +91,8 @@ std::vector<Pick> pickSnapshots(const std::vector<Snapshot>& snaps, const Export
   if (given(o.atH)) return {Pick{snapshotNear(t, o.atH), o.atH}};
   if (!given(o.everyH)) return {Pick{static_cast<int>(snaps.size()) - 1, t.back()}};
   const double span = t.back() - t.front();
-  if (span / o.everyH > 100000)
-    throw SceneError("--every-h " + flagNumber(o.everyH) + ": more than 100000 files for the run's " + flagNumber(span) + " h");
+  checkCount("--every-h " + flagNumber(o.everyH) + ": a series over the run's " + flagNumber(span) + " h", span / o.everyH + 1,
+             caps::kSeriesFiles, "files", "caps::kSeriesFiles: one file each; docs/outputs.md, Caps");
   std::vector<Pick> picks;
   // k H from the first snapshot while within the run (a rounding margin of 1e-9 H at the end)
   for (long k = 0; t.front() + static_cast<double>(k) * o.everyH <= t.back() + 1e-9 * o.everyH; ++k) {
@@ -392,9 +396,8 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
     throw SceneError("export: no output asked for; give --rsml FILE (or --gltf FILE.glb, --paraview DIR)");
   if (given(o.atH) && given(o.everyH))
     throw SceneError("--at-h " + flagNumber(o.atH) + ": give --at-h or --every-h, not both");
-  if (given(o.atH) && !(o.atH >= 0)) throw SceneError("--at-h " + flagNumber(o.atH) + ": must be >= 0 h");
-  if (given(o.everyH) && !(o.everyH > 0 && std::isfinite(o.everyH)))
-    throw SceneError("--every-h " + flagNumber(o.everyH) + ": must be > 0 h");
+  if (given(o.atH)) checkedNumber("--at-h", o.atH, kGrowthHours);
+  if (given(o.everyH)) checkedNumber("--every-h", o.everyH, {0, kGrowthHours.hi, true, false, "h"});
   if (const std::string why = whyUnfinished(runDir); !why.empty()) throw SceneError(o.runDir + ": " + why);
   if (!fs::is_directory(runDir)) throw SceneError(o.runDir + ": run directory not found");
   // a plate's run: the RSML of every root, one plant per seedling; glTF and ParaView take one root's folder
@@ -429,6 +432,13 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
       if (!fs::is_directory(dir)) throw SceneError("--rsml " + f.string() + ": folder " + dir.string() + " not found");
       locks.push_back(lockOutput(f, "--rsml"));
       claimFile(f, rule, "--rsml", OutputFormat::Rsml);
+      // the file is staged as FILE.tmp (written all or none, below): a FILE.tmp already there is not ours
+      fs::path tmp = f;
+      tmp += ".tmp";
+      std::error_code ec;
+      if (fs::exists(fs::symlink_status(tmp, ec)))
+        throw SceneError("--rsml " + f.string() + ": " + tmp.string() +
+                         " is in the way (rootsim stages the file there); move it or delete it");
     }
   }
 
@@ -460,12 +470,33 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
     paraview.emplace(dir, paraviewFolder(), rule, "--paraview");
   }
 
-  // every check passed: write
+  // every check passed: write. The RSML files (an --every-h series, or one file) are written all or none:
+  // each into FILE.tmp first, renamed into place only once every one is whole; a failure (a full disk)
+  // removes the .tmp files and leaves the earlier files as they were
+  std::vector<fs::path> staged;
+  try {
+    for (std::size_t k = 0; k < rsmlFiles.size(); ++k) {
+      const Snapshot& s = data.snaps[static_cast<std::size_t>(picks[k].index)];
+      const int seq = series ? static_cast<int>(k) : -1;
+      fs::path tmp = rsmlFiles[k];
+      tmp += ".tmp";
+      std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+      if (!out) throw RunError("cannot open " + tmp.string() + " for writing: " + std::strerror(errno));
+      staged.push_back(tmp);
+      out << rsml::writeRsml(plate ? plateRsmlOf(plateScene, plateRootList, roots, static_cast<std::size_t>(picks[k].index), seq)
+                                   : rsmlOf(data, s, seq));
+      out.close();
+      if (!out) throw RunError("cannot write " + tmp.string() + ": " + std::strerror(errno));
+    }
+  } catch (const std::exception& e) {
+    std::error_code ec;
+    for (const fs::path& t : staged) fs::remove(t, ec);
+    throw RunError(std::string(e.what()) + " (--rsml: none of the " + std::to_string(rsmlFiles.size()) +
+                   " file(s) written; the earlier ones are unchanged)");
+  }
   for (std::size_t k = 0; k < rsmlFiles.size(); ++k) {
+    fs::rename(staged[k], rsmlFiles[k]);
     const Snapshot& s = data.snaps[static_cast<std::size_t>(picks[k].index)];
-    const int seq = series ? static_cast<int>(k) : -1;
-    writeFileAtomic(rsmlFiles[k], rsml::writeRsml(plate ? plateRsmlOf(plateScene, plateRootList, roots, static_cast<std::size_t>(picks[k].index), seq)
-                                                        : rsmlOf(data, s, seq)));
     if (written) written->push_back(rsmlFiles[k]);
     if (!o.quiet) std::fprintf(stderr, "wrote %s (growth step %d, %g h)\n", rsmlFiles[k].c_str(), s.step, s.timeH);
   }

@@ -404,7 +404,8 @@ Eigen::VectorXd surfaceMinimum(const ResponseSurface& s, const FitComponents& t,
 FitReport runFit(const FitOptions& o, const std::function<void(const std::string&)>& log) {
   // bad input first, before anything is written
   if (o.scene.empty()) throw SceneError("--scene: give the base scene (a TOML file)");
-  if (o.budget < 1) throw SceneError("--budget " + std::to_string(o.budget) + ": must be at least 1 evaluation");
+  if (o.budget < 1 || o.budget > 100000)
+    throw SceneError("--budget " + std::to_string(o.budget) + ": expected an integer in [1, 100000] runs");
   if (o.jobs < 1 || o.jobs > 256) throw SceneError("-j " + std::to_string(o.jobs) + ": must be in [1, 256]");
   if (o.objective != "observables" && o.objective != "shape")
     throw SceneError("--objective " + o.objective + ": expected observables or shape");

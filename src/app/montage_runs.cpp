@@ -15,6 +15,8 @@
 
 #include "flags.hpp"
 #include "rootsim/errors.hpp"
+#include "rootsim/image.hpp"
+#include "rootsim/limits.hpp"
 #include "rootsim/montage.hpp"
 #include "rootsim/csv.hpp"
 #include "rootsim/trajectory.hpp"
@@ -146,6 +148,9 @@ int montageRunsCommand(const MontageOptions& o) {
     dirs.emplace_back(d);
   }
   if (o.mp4.empty() && o.pngDir.empty()) throw SceneError("montage: nothing to write; give --mp4 FILE and/or --png-dir DIR");
+  // the runs are counted before their snapshots are read (every run's are held at once)
+  checkCount("montage of " + std::to_string(dirs.size()) + " run directories", static_cast<double>(dirs.size()),
+             caps::kMontageRuns, "tiles", "caps::kMontageRuns: every run's snapshots are held at once, ~22 MB a run; montage fewer runs");
   MontageJob job;
   std::tie(job.view.width, job.view.height) = parseSize(o.size);
   job.view.kind = parseViewKind(o.view);
@@ -181,6 +186,12 @@ int montageRunsCommand(const MontageOptions& o) {
   if (labels.empty()) labels = automatic.labels;
   job.caption = automatic.caption;
   for (std::size_t i = 0; i < runs.size(); ++i) runs[i].label = labels[i];
+  // the tiles must fit the frame: a usage error, found before anything is written
+  try {
+    (void)montageLayout(runs, job.view);
+  } catch (const RenderError& e) {
+    throw SceneError("--size " + o.size + ": " + e.what() + " (a tile needs at least 16x16 px; give a larger --size or fewer runs)");
+  }
   // the write rule, once the flags and the runs are known good: the run directories are read, never written
   WriteRule rule;
   rule.force = o.force;

@@ -7,6 +7,7 @@
 #include "flags.hpp"
 #include "rootsim/compose.hpp"
 #include "rootsim/errors.hpp"
+#include "rootsim/limits.hpp"
 #include "rootsim/csv.hpp"
 #include "rootsim/trajectory.hpp"
 
@@ -48,7 +49,7 @@ MovieLook parseLook(const LookOptions& o) {
     l.camera = CameraMode::Follow;
   else
     throw SceneError("--camera " + o.camera + ": expected fit or follow");
-  if (!(o.fieldMm > 0)) throw SceneError("--field-mm " + fmtNumber(o.fieldMm) + ": must be > 0 mm");
+  checkedNumber("--field-mm", o.fieldMm, {0, 1e4, true, false, "mm"});
   l.fieldMm = o.fieldMm;
   // run --movie's default look is the fit view with a follow inset: there --field-mm alone sizes the inset
   const bool impliedInset = o.insetByDefault && o.fieldGiven && !o.cameraGiven && !o.inset;

@@ -11,6 +11,7 @@
 
 #include "flags.hpp"
 #include "rootsim/errors.hpp"
+#include "rootsim/limits.hpp"
 #include "rootsim/movie.hpp"
 #include "rootsim/render_scene.hpp"
 #include "rootsim/scene.hpp"
@@ -94,13 +95,12 @@ void checkTimeFlags(const RenderOptions& o, bool scan) {
       throw SceneError("--hours-per-second " + num(o.hoursPerSecond) + ": paces a movie; a still (--png) has no speed");
     if (o.frameGiven && o.frame < 0) throw SceneError("--frame " + std::to_string(o.frame) + ": must be >= 0");
   }
-  if (given(o.atH) && !(o.atH >= 0)) throw SceneError("--at-h " + num(o.atH) + ": must be >= 0 h");
-  if (given(o.fromH) && !(o.fromH >= 0)) throw SceneError("--from-h " + num(o.fromH) + ": must be >= 0 h");
-  if (given(o.toH) && !(o.toH >= 0)) throw SceneError("--to-h " + num(o.toH) + ": must be >= 0 h");
+  if (given(o.atH)) checkedNumber("--at-h", o.atH, kGrowthHours);
+  if (given(o.fromH)) checkedNumber("--from-h", o.fromH, kGrowthHours);
+  if (given(o.toH)) checkedNumber("--to-h", o.toH, kGrowthHours);
   if (given(o.fromH) && given(o.toH) && o.fromH > o.toH)
     throw SceneError("--from-h " + num(o.fromH) + ": after --to-h " + num(o.toH));
-  if (given(o.hoursPerSecond) && !(o.hoursPerSecond > 0))
-    throw SceneError("--hours-per-second " + num(o.hoursPerSecond) + ": must be > 0 h/s");
+  if (given(o.hoursPerSecond)) checkedNumber("--hours-per-second", o.hoursPerSecond, {0, 1e6, true, false, "h/s"});
 }
 
 // the snapshots the movie shows, one per frame (the window and the speed applied)
@@ -109,9 +109,12 @@ std::vector<Snapshot> framesOf(const std::vector<Snapshot>& snaps, const RenderO
   for (const Snapshot& s : snaps) t.push_back(s.timeH);
   const double from = given(o.fromH) ? o.fromH : -1e300, to = given(o.toH) ? o.toH : 1e300;
   const double hps = given(o.hoursPerSecond) ? o.hoursPerSecond : 0.0;
-  if (hps > 0 && (t.back() - t.front()) * fps / hps > 1e6)
-    throw SceneError("--hours-per-second " + num(hps) + ": more than a million frames for the run's " +
-                     num(t.back() - t.front()) + " h at " + std::to_string(fps) + " fps");
+  // the frames, counted before they are made (each holds a copy of its snapshot)
+  const double lo = std::max(from, t.front()), hi = std::min(to, t.back());
+  const double frames = hps > 0 ? std::max(0.0, hi - lo) * fps / hps + 1 : static_cast<double>(t.size());
+  checkCount((hps > 0 ? "--hours-per-second " + num(hps) + ": " : std::string()) + "a movie of " + num(std::max(0.0, hi - lo)) +
+                 " h at " + std::to_string(fps) + " fps",
+             frames, caps::kMovieFrames, "frames", "caps::kMovieFrames: each frame holds a copy of its snapshot; docs/outputs.md, Caps");
   const std::vector<int> idx = movieFrames(t, from, to, hps, fps);
   if (idx.empty()) {
     std::string flags;
@@ -169,8 +172,7 @@ int renderRunCommand(const RenderOptions& o) {
     throw SceneError("--trace-root, --trace-px-per-mm, --trace-downhill: describe the trace of --trace FILE; give --trace");
   const bool scan = given(o.scanPxPerMm);
   if (scan) {
-    if (!(o.scanPxPerMm > 0 && o.scanPxPerMm <= 200))
-      throw SceneError("--scan " + num(o.scanPxPerMm) + ": pixels per mm must be in (0, 200]");
+    checkedNumber("--scan", o.scanPxPerMm, {0, 200, true, false, "px/mm"});
     if (o.png.empty()) throw SceneError("--scan " + num(o.scanPxPerMm) + ": a picture; add --png FILE");
     if (o.plateView) throw SceneError("--scan: shows the whole plate already; drop --plate-view");
   }

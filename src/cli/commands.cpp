@@ -14,6 +14,7 @@
 
 #include "rootsim/errors.hpp"
 #include "rootsim/figure.hpp"
+#include "rootsim/limits.hpp"
 #include "rootsim/outputs.hpp"
 #include "rootsim/run_dir.hpp"
 #include "rootsim/scene.hpp"
@@ -87,6 +88,12 @@ int runCommand(const RunOptions& o) {
     const double lMax = m.initial.length + m.growth.rate * std::max(m.initial.length, m.growth.zoneLength) *
                                                m.growth.steps * m.growth.stepTime;
     app::checkFieldAgainstPlate(look, 2e3 * lMax + 2.0);
+  }
+  if (o.movie) {
+    // the movie shows every snapshot: counted before the run, not after it
+    const double snapshots = (sc.model.growth.enabled ? sc.model.growth.steps : 0) / std::max(1, sc.model.output.everySteps) + 1.0;
+    checkCount("--movie: " + sc.path + " (growth.steps / output.every_steps + 1 snapshots)", snapshots, caps::kMovieFrames,
+               "frames", "caps::kMovieFrames: each frame holds a copy of its snapshot; raise output.every_steps");
   }
   if (!o.movie && (o.look.camera != "fit" || o.look.inset || o.look.fieldGiven || o.look.colorBy != "none" ||
                    !o.look.plot.empty() || o.look.shadows))

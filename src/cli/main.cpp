@@ -4,10 +4,18 @@
 
 #include <cstdio>
 #include <exception>
+#include <filesystem>
+#include <system_error>
+#include <new>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "rootsim/errors.hpp"
+#include "rootsim/limits.hpp"
 #include "rootsim/relax.hpp"
+#include "rootsim/scene.hpp"
 #include "rootsim/version.hpp"
 
 using namespace rootsim;
@@ -23,6 +31,76 @@ void addLookOptions(CLI::App* c, app::LookOptions& look) {
   c->add_flag("--shadows", look.shadows, "cast the root's shadow on the plate and on itself (shadow map)");
 }
 }  // namespace
+
+// CLI11's parse errors rewritten to the one line every usage error is (docs/cli.md): `rootsim: error: `, the
+// command or flag named, the closest valid one for a near miss; exit 2 (help and --version: exit 0)
+static int usageError(CLI::App& app, const CLI::ParseError& e, int argc, char** argv) {
+  if (e.get_exit_code() == 0) return app.exit(e);
+  std::vector<std::string> commands;
+  CLI::App* sub = nullptr;
+  for (CLI::App* s : app.get_subcommands([](CLI::App*) { return true; })) {
+    commands.push_back(s->get_name());
+    for (int i = 1; i < argc && !sub; ++i)
+      if (s->get_name() == argv[i]) sub = s;
+  }
+  std::string list;
+  for (const std::string& c : commands) list += (list.empty() ? "" : ", ") + c;
+  auto fail = [](const std::string& line) {
+    std::string one = line;
+    for (char& c : one)
+      if (c == '\n' || c == '\r') c = ' ';
+    std::fprintf(stderr, "rootsim: error: %s\n", printable(one).c_str());
+    return 2;
+  };
+  if (!sub) {
+    // the first word that is not a flag is the command the user meant
+    for (int i = 1; i < argc; ++i)
+      if (argv[i][0] != '-') {
+        const std::string near = closestName(argv[i], commands);
+        return fail("unknown command " + std::string(argv[i]) + (near.empty() ? "" : " (did you mean " + near + "?)") +
+                    "; the commands: " + list);
+      }
+    if (dynamic_cast<const CLI::ExtrasError*>(&e) == nullptr)
+      return fail("a command is required: " + list + " (rootsim --help)");
+  }
+  const std::string where = sub ? sub->get_name() : std::string("rootsim");
+  std::string msg = e.what();
+  auto after = [&](const std::string& head) { return msg.substr(msg.find(head) + head.size()); };
+  auto flagNames = [&] {
+    std::vector<std::string> names;
+    const CLI::App* a = sub ? sub : &app;
+    for (const CLI::Option* o : a->get_options())
+      for (const std::string& n : o->get_lnames()) names.push_back("--" + n);
+    return names;
+  };
+  if (dynamic_cast<const CLI::ExtrasError*>(&e)) {
+    // "The following argument(s) was/were not expected: A B" (CLI11 lists them last first): a flag first
+    std::vector<std::string> words;
+    std::istringstream in(after(": "));
+    for (std::string w; in >> w;) words.push_back(w);
+    std::string first = words.empty() ? std::string() : words.back();
+    for (const std::string& w : words)
+      if (w[0] == '-') first = w;
+    if (!first.empty() && first[0] == '-') {
+      const std::string flag = first.substr(0, first.find('='));
+      const std::string near = closestName(flag, flagNames());
+      return fail("unknown flag " + flag + " for " + where + (near.empty() ? "" : " (did you mean " + near + "?)") + " (rootsim " +
+                  where + " --help)");
+    }
+    return fail(where + ": unexpected argument " + first + " (rootsim " + where + " --help)");
+  }
+  if (dynamic_cast<const CLI::ConversionError*>(&e) && msg.find("Could not convert: ") != std::string::npos) {
+    // "Could not convert: --at-h = abc"
+    const std::string rest = after("Could not convert: ");
+    const std::size_t eq = rest.find(" = ");
+    const std::string name = rest.substr(0, eq), value = eq == std::string::npos ? std::string() : rest.substr(eq + 3);
+    std::string expected = "a number";
+    if (const CLI::Option* o = (sub ? sub : &app)->get_option_no_throw(name))
+      if (o->get_type_name() == "INT" || o->get_type_name() == "UINT") expected = "an integer";
+    return fail(name + " " + value + ": expected " + expected);
+  }
+  return fail(where + ": " + msg);
+}
 
 int main(int argc, char** argv) {
   CLI::App app{"rootsim: growing Cosserat-rod roots on tilted plates (Cosserat mechanics, growth, movies)"};
@@ -184,8 +262,7 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : 2;
+    return usageError(app, e, argc, argv);
   }
   // a path option given an empty value ("--out ''") is refused, never taken for its default
   for (CLI::App* sub : app.get_subcommands())
@@ -220,11 +297,24 @@ int main(int argc, char** argv) {
   } catch (const SceneError& e) {
     std::fprintf(stderr, "rootsim: error: %s\n", e.what());
     return 2;
+  } catch (const std::filesystem::filesystem_error& e) {
+    // a path rootsim may not read or write (an unreadable run directory, a folder without write permission):
+    // the user's to fix, named with what to do
+    const std::string path = !e.path1().empty() ? e.path1().string() : std::string("a path given");
+    if (e.code() == std::errc::permission_denied || e.code() == std::errc::operation_not_permitted) {
+      std::fprintf(stderr, "rootsim: error: %s: permission denied (rootsim cannot read or write it: check its permissions, "
+                           "e.g. ls -ld, or give another path)\n", printable(path).c_str());
+      return 2;
+    }
+    std::fprintf(stderr, "rootsim: run failed: %s: %s\n", printable(path).c_str(), e.code().message().c_str());
+    return 1;
   } catch (const RelaxError& e) {
     std::fprintf(stderr, "rootsim: run failed: %s\n", e.what());
     return 1;
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "rootsim: run failed: %s\n", e.what());
+    std::string command = "rootsim";
+    for (const CLI::App* sub : app.get_subcommands()) command += " " + sub->get_name();
+    std::fprintf(stderr, "rootsim: run failed: %s\n", failureText(e, command).c_str());
     return 1;
   }
   return 2;

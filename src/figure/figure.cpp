@@ -14,6 +14,8 @@
 #include <utility>
 
 #include "rootsim/errors.hpp"
+#include "rootsim/limits.hpp"
+#include "rootsim/number_text.hpp"
 #include "rootsim/outputs.hpp"
 #include "rootsim/run_dir.hpp"
 #include "rootsim/sweep.hpp"
@@ -72,6 +74,14 @@ std::string makeFigure(const std::string& name, const FigureOptions& opt,
     std::string list;
     for (const auto& n : names) list += " " + n;
     throw SceneError("figure " + name + ": unknown figure (expected all or one of:" + list + ")");
+  }
+  // the numbers, and the panels' size they make, before anything is written
+  checkedNumber("--dpi", opt.dpi, {10, 2400, false, false, "dpi"});
+  if (opt.widthMm != 0) {
+    checkedNumber("--width-mm", opt.widthMm, {10, 1000, false, false, "mm"});
+    checkCount("--width-mm " + numberText(opt.widthMm) + " at --dpi " + numberText(opt.dpi) + ": a panel's PNG",
+               opt.widthMm / 25.4 * opt.dpi, caps::kFigurePixels, "pixels wide",
+               "caps::kFigurePixels: drawn whole in memory at 4 bytes a pixel; lower --dpi or --width-mm");
   }
   // the write rule: a new folder or rootsim's figure folder; panels written before are replaced only
   // with --force; locked while this process writes it

@@ -268,6 +268,11 @@ PlateTables parsePlateTables(const toml::table& root, const std::string& sourceN
     if (lp.initialLength < 2.0 * h)
       throw SceneError(locOf(*latNode) + ": laterals.initial_length_mm " + formatNumber(lp.initialLength / units::mm, false) +
                        " mm is shorter than two elements of root.element_length_mm = " + formatNumber(h / units::mm, false) + " mm");
+    // two successive sites may put laterals on one side (sides = "random"): their bases must not overlap
+    if (lp.spacing < 2.0 * lp.radius)
+      throw SceneError(locOf(*latNode) + ": laterals.spacing_mm " + formatNumber(lp.spacing / units::mm, false) +
+                       " mm is less than a lateral's diameter, 2 * laterals.radius_mm = " +
+                       formatNumber(2.0 * lp.radius / units::mm, false) + " mm (two laterals on one side would overlap)");
   }
 
   // [[seedling]]

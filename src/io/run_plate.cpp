@@ -6,6 +6,7 @@
 
 #include "rootsim/csv.hpp"
 #include "rootsim/errors.hpp"
+#include "rootsim/limits.hpp"
 #include "rootsim/json.hpp"
 #include "rootsim/plate.hpp"
 #include "rootsim/run_scene.hpp"
@@ -181,7 +182,7 @@ double runPlateToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
   } catch (const RunInterrupted&) {
     throw;
   } catch (const std::exception& e) {
-    rd.fail(e.what());
+    rd.fail(failureText(e, "the plate run of " + sc.model.name + " into " + rd.work().string()));
     throw;
   }
 }

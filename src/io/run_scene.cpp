@@ -12,6 +12,7 @@
 
 #include "rootsim/checkpoint.hpp"
 #include "rootsim/errors.hpp"
+#include "rootsim/limits.hpp"
 #include "rootsim/outputs.hpp"
 #include "rootsim/results.hpp"
 #include "rootsim/units.hpp"
@@ -320,7 +321,7 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
   } catch (const RunInterrupted&) {
     throw;  // stopped on purpose (a progress callback threw it): DIR.partial stays, like a killed run
   } catch (const std::exception& e) {
-    rd.fail(e.what());
+    rd.fail(failureText(e, "the run of " + sc.model.name + " into " + rd.work().string()));
     throw;
   }
 }

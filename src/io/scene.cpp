@@ -12,6 +12,9 @@
 #include <toml++/toml.h>
 
 #include "rootsim/contact.hpp"
+#include "rootsim/limits.hpp"
+#include "rootsim/plate.hpp"
+#include "rootsim/units.hpp"
 #include "rootsim/scene.hpp"
 #include "plate_scene.hpp"
 #include "scene_schema.hpp"
@@ -152,6 +155,53 @@ std::string suggestSection(const std::string& section) {
   }
   if (bestD <= std::max<int>(2, static_cast<int>(section.size()) / 3)) return " (did you mean [" + best + "]?)";
   return "";
+}
+
+// a plate, checked when it is read: the roots it can grow (seedlings and their laterals, up to
+// laterals.max_order) against caps::kPlateRoots, and a lateral's own scene as render and export will read
+// it from roots/NAME/scene.toml (one scene check wherever a scene is read: the run refuses at its start
+// what a later reader would refuse). loc names the [laterals] table.
+void checkPlateRoots(const Scene& sc, const std::string& loc) {
+  const PlateSpec& p = sc.plate;
+  const LateralParams& lp = p.params.laterals;
+  double roots = 0;
+  for (const Seedling& sd : p.seedlings) {
+    const Model& m = sd.model;
+    double perSeedling = 1;
+    if (lp.enabled && m.growth.enabled) {
+      // the longest a root can grow (growth in its zone only, as the schema's element cap reckons it)
+      const double t = m.growth.steps * m.growth.stepTime;
+      const double parentLength = m.initial.length + t * m.growth.rate * m.growth.zoneLength;
+      const double lateralLength = lp.initialLength + t * lp.rate * lp.zoneLength;
+      // the sites along a root of length L: from laterals.first_mm every spacing_mm, up to L - apical_unbranched_mm
+      auto sites = [&](double L) {
+        const double room = L - lp.first - lp.apicalUnbranched;
+        return room < 0 ? 0.0 : std::floor(room / lp.spacing) + 1;
+      };
+      double under = 1;  // a lateral and the roots it can carry, from the deepest order up
+      for (int order = lp.maxOrder; order >= 2; --order) under = 1 + sites(lateralLength) * under;
+      perSeedling = 1 + sites(parentLength) * under;
+    }
+    roots += perSeedling;
+  }
+  checkCount(loc + ": a plate of " + std::to_string(p.seedlings.size()) + " seedling(s) with laterals every " +
+                 formatNumber(lp.spacing / units::mm, false) + " mm (laterals.spacing_mm) up to order " +
+                 std::to_string(lp.maxOrder) + " (laterals.max_order)",
+             roots, caps::kPlateRoots, "roots",
+             "caps::kPlateRoots: every root is relaxed at every growth step; docs/outputs.md, Caps");
+  if (!lp.enabled) return;
+  for (const Seedling& sd : p.seedlings) {
+    Seedling lat = sd;
+    lat.name = sd.name + ".1";
+    lat.model = lateralModel(sd.model, lp);
+    const std::string file = "roots/" + lat.name + "/scene.toml";
+    try {
+      (void)parseScene(p.headToml + plateTableToml(p.params) + seedlingToml(lat, p.base), file);
+    } catch (const SceneError& e) {
+      throw SceneError(loc + ": [laterals] gives " + sd.name + "'s laterals a scene that render and export would refuse (" +
+                       e.what() + "); change the [laterals] keys or the plate's");
+    }
+  }
 }
 
 // [[obstacle]] tables (docs/model.md, Contact and friction): one per obstacle, checked key by key like the
@@ -406,6 +456,10 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
   sc.plate = std::move(plate.spec);
   sc.plate.headToml = head;
   if (sc.plate.seedlings.size() == 1) sc.model = sc.plate.seedlings.front().model;
+  if (!sc.plate.seedlings.empty()) {
+    const toml::node* lat = root.get("laterals");
+    checkPlateRoots(sc, lat ? where(sourceName, lat->source()) : sourceName);
+  }
   return sc;
 }
 
@@ -421,6 +475,25 @@ std::string sceneKeyType(const std::string& key) {
   if (dot == std::string::npos) return "";
   const KeySpec* k = findKey(key.substr(0, dot), key.substr(dot + 1));
   return k ? typeName(k->type) : "";
+}
+
+std::string closestName(const std::string& word, const std::vector<std::string>& names) {
+  std::string best;
+  int bestD = 1 << 30;
+  for (const std::string& n : names)
+    if (const int d = editDistance(word, n); d < bestD) bestD = d, best = n;
+  return bestD <= std::max<int>(2, static_cast<int>(word.size()) / 3) ? best : std::string();
+}
+
+std::string sceneNumberProblem(const std::string& key, double value) {
+  const auto dot = key.find('.');
+  const KeySpec* k = dot == std::string::npos ? nullptr : findKey(key.substr(0, dot), key.substr(dot + 1));
+  if (!k || (k->type != KeyType::Real && k->type != KeyType::Integer)) return "is not a number key of a scene";
+  Value v;
+  v.type = k->type;
+  v.num = value;
+  if (k->type == KeyType::Integer && std::isfinite(value) && value != std::floor(value)) return "must be an integer";
+  return checkValue(*k, v);
 }
 
 Scene sceneOf(const Model& model) {

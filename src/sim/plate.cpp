@@ -397,6 +397,19 @@ bool PlateSimulation::nearJunction(int r, int i, int o, int j) const {
   return near(r, i, o, j) || near(o, j, r, i);
 }
 
+Model lateralModel(const Model& parent, const LateralParams& lp) {
+  Model m = parent;
+  m.rod.radius = lp.radius;
+  m.growth.rate = lp.rate;
+  m.growth.zoneLength = lp.zoneLength;
+  m.tropism.beta = lp.beta;
+  m.tropism.gamma = lp.gamma;
+  m.tropism.rTau = lp.rTau;
+  m.tropism.setPoint = lp.setPoint;
+  m.initial.length = lp.initialLength;
+  return m;
+}
+
 void PlateSimulation::emergeLaterals() {
   emerged_.clear();
   const LateralParams& lp = plate_.laterals;
@@ -432,15 +445,7 @@ void PlateSimulation::emergeLaterals() {
       sd.siteS = s.S[i];
       sd.emergedH = s.time / units::hour;
       Model& m = sd.model;
-      m = parent.model;
-      m.rod.radius = lp.radius;
-      m.growth.rate = lp.rate;
-      m.growth.zoneLength = lp.zoneLength;
-      m.tropism.beta = lp.beta;
-      m.tropism.gamma = lp.gamma;
-      m.tropism.rTau = lp.rTau;
-      m.tropism.setPoint = lp.setPoint;
-      m.initial.length = lp.initialLength;
+      m = lateralModel(parent.model, lp);
       m.initial.angle = std::remainder(theta + side * lp.insertion, 2.0 * units::pi);
       m.initial.startTime = s.time;
       // its own initial perturbation (each organ its own noise: with its parent's, every lateral would lean

@@ -354,6 +354,12 @@ TEST_CASE("movie looks on the command line (follow, colour, plots, inset, shadow
   // bad options: exit 2, the option named, nothing written
   const std::string out = (d / "bad.mp4").string(), pngs = (d / "badpng").string();
   const std::string outputs = " --mp4 " + out + " --png-dir " + pngs;
+  // the run directory n times, as montage's arguments
+  const auto repeated = [&](int n) {
+    std::string a;
+    for (int i = 0; i < n; ++i) a += " " + runDir;
+    return a;
+  };
   const struct {
     std::string args, names;
   } bad[] = {
@@ -379,13 +385,19 @@ TEST_CASE("movie looks on the command line (follow, colour, plots, inset, shadow
       {"montage " + runDir + " --size 4096x2160" + outputs, "--size"},
       {"montage " + runDir + " --color-by heat" + outputs, "--color-by"},
       {"montage " + runDir, "nothing to write"},
+      // more runs than the cap, counted before their snapshots are read; runs whose tiles do not fit the frame
+      {"montage" + repeated(65) + outputs, "montage of 65 run directories: would make 65 tiles, more than the cap of 64"},
+      {"montage" + repeated(64) + " --size 64x64" + outputs, "--size 64x64: montage: 64 tiles do not fit 64x64"},
+      {"montage " + runDir + " --fps 0" + outputs, "rootsim: error: montage: --fps: Value 0 not in range 1 to 240"},
       {"run " + scene + " --set growth.steps=4 --movie --camera follow --field-mm 0 --out " + (d / "run3").string(), "--field-mm"},
       {"run " + scene + " --set growth.steps=4 --movie --color-by nope --out " + (d / "run3").string(), "--color-by"},
       {"run " + scene + " --set growth.steps=4 --camera follow --out " + (d / "run3").string(), "--movie"},
+      {"run " + scene + " --set growth.steps=30000 --set output.every_steps=1 --movie --out " + (d / "run3").string(),
+       "would make 30001 frames, more than the cap of 20000"},
   };
   for (const auto& b : bad) {
     const Result r = run(b.args);
-    INFO(b.args << "\n-> " << r.out);
+    INFO(b.args.substr(0, 300) << "\n-> " << r.out);
     CHECK(r.code == 2);
     CHECK(r.out.find(b.names) != std::string::npos);
     CHECK(std::count(r.out.begin(), r.out.end(), '\n') == 1);  // one line

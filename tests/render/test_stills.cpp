@@ -189,12 +189,20 @@ TEST_CASE("stills: --from-h --to-h and --hours-per-second set the frames and the
   const std::string mp4 = " --mp4 " + (d / "bad.mp4").string();
   const std::vector<Bad> bad = {
       {" --from-h 1.5 --to-h 0.5" + mp4, "--from-h 1.5: after --to-h 0.5"},
-      {" --from-h -1" + mp4, "--from-h -1: must be >= 0 h"},
-      {" --to-h -2" + mp4, "--to-h -2: must be >= 0 h"},
+      {" --from-h -1" + mp4, "--from-h -1: expected a finite number in [0, 1e+06] h"},
+      {" --to-h -2" + mp4, "--to-h -2: expected a finite number in [0, 1e+06] h"},
       {" --from-h " + num(r.timesH[3] + 0.2 * dt) + " --to-h " + num(r.timesH[3] + 0.6 * dt) + mp4, "no snapshot in"},
       {" --from-h 50" + mp4, "--from-h 50: no snapshot in [50, "},
-      {" --hours-per-second 0" + mp4, "--hours-per-second 0: must be > 0"},
-      {" --hours-per-second -3" + mp4, "--hours-per-second -3: must be > 0"},
+      {" --hours-per-second 0" + mp4, "--hours-per-second 0: expected a finite number in (0, 1e+06] h/s"},
+      {" --hours-per-second -3" + mp4, "--hours-per-second -3: expected a finite number in (0, 1e+06] h/s"},
+      {" --hours-per-second nan" + mp4, "--hours-per-second nan: expected a finite number"},
+      // the frames a speed makes are counted before they are made (each holds a copy of its snapshot)
+      {" --hours-per-second 1e-7" + mp4, "would make "},
+      {" --hours-per-second 1e-7" + mp4, "frames, more than the cap of 20000 (caps::kMovieFrames"},
+      {" --at-h nan --png " + (d / "bad.png").string(), "--at-h nan: expected a finite number in [0, 1e+06] h"},
+      {" --at-h 0 --trace " + std::string(ROOTSIM_SOURCE_DIR) + "/tests/data/rsml/smartroot_pixels.rsml --trace-px-per-mm 1e-300 --png " +
+           (d / "bad.png").string(),
+       "--trace-px-per-mm 1e-300: expected a finite number in [0.01, 1e+05] px/mm"},
       {" --at-h 50 --png " + (d / "bad.png").string(), "--at-h 50: outside the run's snapshots, 0 .. "},
       {" --at-h 0.1", "--at-h 0.1: writes a still; add --png FILE"},
       {" --png " + (d / "bad.png").string(), "add --at-h H or --frame N"},

@@ -62,8 +62,9 @@ struct Comparison {
 };
 Comparison compareRoots(const TraceTarget& t, const SimRoot& s);
 
-// a time-lapse trace against a run at one observation time: the trace as it was then, the run's snapshot
-// nearest that time
+// a time-lapse trace against a run at one observation time: the trace as it was then; the run recorded as
+// a 2D+t trace records a root whose old parts do not move: its length from the snapshot nearest that time,
+// its shape, tip and tip angle from its root at the last observation time up to that length
 struct TimeLapseRow {
   double timeH = 0, snapshotH = 0;
   double traceLengthMm = 0, runLengthMm = 0;

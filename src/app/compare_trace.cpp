@@ -118,23 +118,34 @@ std::vector<TimeLapseRow> compareTimeLapse(const TraceTarget& t, const Model& m,
   std::vector<TimeLapseRow> rows;
   if (t.timesH.empty() || snaps.empty()) return rows;
   const std::vector<double> runTimes = snapshotTimes(snaps);
-  for (const TraceAtTime& tr : traceAtTimes(t.plateMm, t.timesH, t.observationTimesH, tipPixelMm(t))) {
+  auto near = [&](double at) { return snapshotNear(runTimes, std::clamp(at, runTimes.front(), runTimes.back())); };
+  const std::vector<TraceAtTime> traced = traceAtTimes(t.plateMm, t.timesH, t.observationTimesH, tipPixelMm(t));
+  if (traced.empty()) return rows;
+  // the run recorded as a 2D+t trace records a root (its old parts do not move): its root at the last
+  // observation time up to the length it had at each earlier one; a growth zone that bends after the tip
+  // passed is seen where it ended, on both sides alike
+  const Eigen::Matrix3Xd last = simRootOf(m, snaps[static_cast<std::size_t>(near(traced.back().timeH))]).plateMm;
+  std::vector<double> arc(static_cast<std::size_t>(last.cols()), 0.0);
+  for (Eigen::Index i = 1; i < last.cols(); ++i)
+    arc[static_cast<std::size_t>(i)] = arc[static_cast<std::size_t>(i - 1)] + (last.col(i) - last.col(i - 1)).norm();
+  for (const TraceAtTime& tr : traced) {
     const double at = tr.timeH;
     const Eigen::Matrix3Xd trace = polylineAtTime(t.plateMm, t.timesH, at);
-    const int k = snapshotNear(runTimes, std::clamp(at, runTimes.front(), runTimes.back()));
-    const SimRoot sim = simRootOf(m, snaps[static_cast<std::size_t>(k)]);
+    const SimRoot sim = simRootOf(m, snaps[static_cast<std::size_t>(near(at))]);
+    const double length = polylineLength(sim.plateMm);
+    const Eigen::Matrix3Xd run = polylineAtTime(last, arc, std::min(length, arc.back()));
     TimeLapseRow r;
     r.timeH = at;
     r.snapshotH = sim.timeH;
     r.traceLengthMm = tr.lengthMm;
-    r.runLengthMm = polylineLength(sim.plateMm);
+    r.runLengthMm = length;
     r.traceTipLateralMm = tr.tipLateralMm;
     r.traceTipDownhillMm = tr.tipDownhillMm;
-    r.runTipLateralMm = sim.plateMm(0, sim.plateMm.cols() - 1);
-    r.runTipDownhillMm = sim.plateMm(1, sim.plateMm.cols() - 1);
+    r.runTipLateralMm = run(0, run.cols() - 1);
+    r.runTipDownhillMm = run(1, run.cols() - 1);
     r.traceThetaTipDeg = tr.thetaTipDeg;
-    r.runThetaTipDeg = tipAngleDeg(sim.plateMm, 0.0);
-    r.distanceMm = arcLengthDistanceMm(trace, sim.plateMm, kDistanceStepMm);
+    r.runThetaTipDeg = tipAngleDeg(run, 0.0);
+    r.distanceMm = arcLengthDistanceMm(trace, run, kDistanceStepMm);
     rows.push_back(r);
   }
   return rows;

@@ -90,7 +90,8 @@ double tipPixelMm(const TraceTarget& t);
 // the time-lapse objective's trace side (docs/experiments.md, "Fit"): at each observation time the root's
 // length, tip lateral and downhill position [mm] and, where it is defined, its tip angle [deg]. Their
 // covariance is the trace's points' noise (sigmaMm) propagated through the same measurement (noiseDraws of
-// the denoised trace); its mean shift (a noisy polyline is longer) is taken off the trace's values.
+// the denoised trace); the mean shift of its estimated noise (timeLapseNoiseMm: a noisy polyline is
+// longer) is taken off the trace's values.
 struct TimeLapseObjective {
   FitComponents trace;            // names, trace (bias taken off), sigma, cov; sim empty
   Eigen::VectorXd bias;           // per output: the noise's mean shift taken off
@@ -99,6 +100,10 @@ struct TimeLapseObjective {
   double growthMmPerH = 0;        // the trace's dL/dt: the least-squares slope of its lengths over time
   double growthSigma = 0;         // its standard uncertainty (from the lengths' covariance)
 };
+// the point noise [mm] whose mean shift a time-lapse's values lose: --sigma-mm when given, else the trace's
+// estimated noise_mm (the shift goes with its square: a pixel where the tracer's noise is 0.7 px doubles
+// it), else sigmaMm. The outputs' weights stay sigmaMm's, the uncertainty every objective takes.
+double timeLapseNoiseMm(const TraceTarget& t);
 // SceneError when the trace has no times or fewer than two observations with a length
 TimeLapseObjective timeLapseObjective(const TraceTarget& t, int draws = 400);
 // a run's outputs beside the trace's (rows: compareTimeLapse of the run); std::invalid_argument when the

@@ -168,6 +168,11 @@ Eigen::VectorXd timeLapseValues(const std::vector<TraceAtTime>& at, const std::v
 
 }  // namespace
 
+double timeLapseNoiseMm(const TraceTarget& t) {
+  const double noise = t.traits.noiseMm;
+  return t.sigmaSource != "--sigma-mm" && std::isfinite(noise) && noise > 0 ? noise : t.sigmaMm;
+}
+
 TimeLapseObjective timeLapseObjective(const TraceTarget& t, int draws) {
   if (t.timesH.empty()) throw SceneError(t.file + ": root " + t.rootKey + " has no observation times (a trace of one time)");
   const double pixel = tipPixelMm(t);
@@ -196,12 +201,13 @@ TimeLapseObjective timeLapseObjective(const TraceTarget& t, int draws) {
     if (at.size() != o.timesH.size()) throw SceneError(t.file + ": root " + t.rootKey + ": a noisy draw lost an observation time");
     return timeLapseValues(at, o.withTheta, thetaRef);
   };
+  // the weights: the trace's uncertainty as every objective takes it; the bias: its noise as estimated
   const Eigen::MatrixXd y = noiseDraws(clean, t.sigmaMm, draws, valuesOf);
-  const Eigen::RowVectorXd mean = y.colwise().mean();
-  const Eigen::MatrixXd centred = y.rowwise() - mean;
+  const Eigen::MatrixXd centred = y.rowwise() - y.colwise().mean();
   o.trace.cov = centred.transpose() * centred / static_cast<double>(draws - 1);
   o.trace.sigma = o.trace.cov.diagonal().cwiseSqrt();
-  o.bias = mean.transpose() - valuesOf(clean);
+  const double noise = timeLapseNoiseMm(t);
+  o.bias = (noise == t.sigmaMm ? y : noiseDraws(clean, noise, draws, valuesOf)).colwise().mean().transpose() - valuesOf(clean);
   o.trace.trace = timeLapseValues(raw, o.withTheta, thetaRef) - o.bias;
   for (std::size_t i = 0; i < raw.size(); ++i) {
     const std::string at = "@" + numberText(raw[i].timeH) + "h";

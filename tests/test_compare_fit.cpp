@@ -111,6 +111,57 @@ double columnMin(const std::string& csv, const std::string& column) {
   return m;
 }
 
+// the points (x, y) [mm] of an RSML file rootsim exported (one root)
+std::vector<std::pair<double, double>> exportedPoints(const fs::path& rsml) {
+  const std::string text = slurp(rsml);
+  std::vector<std::pair<double, double>> p;
+  for (std::size_t at = text.find("<point x=\""); at != std::string::npos; at = text.find("<point x=\"", at + 1)) {
+    const double x = std::stod(text.substr(at + 10));
+    const double y = std::stod(text.substr(text.find(" y=\"", at) + 4));
+    p.emplace_back(x, y);
+  }
+  return p;
+}
+
+double lengthOf(const std::vector<std::pair<double, double>>& p) {
+  double l = 0;
+  for (std::size_t i = 1; i < p.size(); ++i) l += std::hypot(p[i].first - p[i - 1].first, p[i].second - p[i - 1].second);
+  return l;
+}
+
+// a 2D+t trace (RootSystemTracker's dialect) of the quick run as a time-lapse tracer records it: its root at
+// the last observation, every third node, in whole pixels of 50 um; each point's coord_t from the run's
+// length at the observations (every 5 h, from `export --every-h 5`) that its arc length lies between
+fs::path lapseTrace(const fs::path& d) {
+  REQUIRE(run("export " + quick().run.string() + " --rsml " + (d / "t.rsml").string() + " --every-h 5 --quiet").code == 0);
+  std::vector<double> hours, lengths;
+  std::vector<std::pair<double, double>> last;
+  for (int h = 0; h <= 30; h += 5) {
+    char name[32];
+    std::snprintf(name, sizeof name, "t_t%06.2fh.rsml", static_cast<double>(h));
+    last = exportedPoints(d / name);
+    REQUIRE(last.size() > 2);
+    hours.push_back(h);
+    lengths.push_back(lengthOf(last));
+  }
+  std::ofstream f(d / "lapse.rsml");
+  f << "<?xml version=\"1.0\"?>\n<rsml><metadata><version>1.4</version><unit>pixel(um)</unit><size>50.0</size><observation-hours>";
+  for (std::size_t k = 1; k < hours.size(); ++k) f << (k > 1 ? "," : "") << hours[k];
+  f << "</observation-hours></metadata><scene><plant ID=\"1\"><root ID=\"1.1\"><geometry><polyline>\n";
+  double s = 0;
+  for (std::size_t i = 0; i < last.size(); ++i) {
+    if (i > 0) s += std::hypot(last[i].first - last[i - 1].first, last[i].second - last[i - 1].second);
+    if (i % 3 != 0 && i + 1 != last.size()) continue;
+    double k = 0;
+    for (std::size_t j = 1; j < lengths.size(); ++j)
+      if (s > lengths[j - 1]) k = static_cast<double>(j - 1) + std::min(1.0, (s - lengths[j - 1]) / (lengths[j] - lengths[j - 1]));
+    f << "<point coord_t=\"" << k << "\" coord_th=\"" << 5 * k << "\" coord_x=\"" << std::round(100 + 20 * last[i].first)
+      << "\" coord_y=\"" << std::round(100 + 20 * last[i].second) << "\" diameter=\"0\" vx=\"0\" vy=\"0\"/>\n";
+  }
+  f << "</polyline></geometry></root></plant></scene></rsml>\n";
+  return d / "lapse.rsml";
+}
+
 std::map<std::string, fs::file_time_type> runTimes(const fs::path& runs) {
   std::map<std::string, fs::file_time_type> t;
   for (const auto& e : fs::directory_iterator(runs))
@@ -360,4 +411,79 @@ TEST_CASE("fit: a straight trace fitted by a waving model is poor and says what 
   CHECK(jsonString(js, "misfit").find("the trace is straight, every run waves") != std::string::npos);
   // the answer is never worse than a run the fit made
   CHECK(jsonNumber(js, "best_run_objective") <= columnMin(slurp(d / "fit" / "evaluations.csv"), "objective") * (1 + 1e-8) + 1e-12);
+}
+
+TEST_CASE("fit: a 2D+t trace is fitted at every observation time / beta and the growth rate recovered, a mismatched tip speed named") {
+  if (!built()) return;
+  const fs::path d = scratch("timelapse");
+  const std::string trace = lapseTrace(d).string();
+  // beta free (the run's 0.2): the default objective of a trace with times
+  {
+    const auto r = run("fit " + trace + " --scene " + quick().scene.string() + " --free tropism.beta=0.15:0.3 --budget 40 -j 2 --quiet --out " +
+                       (d / "beta").string());
+    REQUIRE_MESSAGE(r.code == 0, r.out);
+    const std::string js = slurp(d / "beta" / "fit.json");
+    CHECK(jsonString(js, "objective") == "timelapse");
+    const std::string best = jsonObject(js, "best");
+    const double beta = jsonNumber(best, "value"), sigma = jsonNumber(best, "sigma");
+    CHECK_MESSAGE(std::abs(beta - 0.2) <= 2 * sigma, beta << " +- " << sigma);
+    CHECK(sigma < 0.02);
+    const auto g = js.find("\"goodness\": {");
+    REQUIRE(g != std::string::npos);
+    CHECK(jsonString(js, "verdict", g) == "consistent");
+    // 7 observations (0 .. 30 h): length, tip lateral and downhill at each, the tip angle at the 6 where
+    // the root is at least twice its span long (max(0.5 mm, 10 px of 0.05 mm) = 0.5 mm): from 5 h on (at
+    // 0 h the root's 1 mm, its trace's every third node, falls just short)
+    CHECK(jsonNumber(js, "dof", g) == 7 * 3 + 6 - 1);
+    // the fixed growth beside the trace's own dL/dt: 0.2 mm/h both
+    const std::string fixed = jsonObject(js, "scene_fixed");
+    CHECK(jsonString(jsonObject(fixed, "tip_speed_mm_per_h"), "value") == "0.2");
+    CHECK(std::stod(jsonString(jsonObject(fixed, "trace_growth_mm_per_h"), "value")) == doctest::Approx(0.2).epsilon(0.02));
+    CHECK(js.find("growth_mismatch") == std::string::npos);
+    // never worse than a run it made
+    CHECK(jsonNumber(js, "best_run_objective") <= columnMin(slurp(d / "beta" / "evaluations.csv"), "objective") * (1 + 1e-8) + 1e-12);
+  }
+  // the growth rate free (the run's 0.2 per h): the time-lapse fixes it
+  {
+    const auto r = run("fit " + trace + " --scene " + quick().scene.string() + " --free growth.rate_per_h=0.12:0.3 --budget 40 -j 2 --quiet --out " +
+                       (d / "rate").string());
+    REQUIRE_MESSAGE(r.code == 0, r.out);
+    const std::string best = jsonObject(jsonObject(slurp(d / "rate" / "fit.json"), "best"), "growth.rate_per_h");
+    const double rate = jsonNumber(best, "value"), sigma = jsonNumber(best, "sigma");
+    CHECK_MESSAGE(std::abs(rate - 0.2) <= 2 * sigma, rate << " +- " << sigma);
+    CHECK(rate == doctest::Approx(0.2).epsilon(0.05));
+    CHECK(jsonObject(slurp(d / "rate" / "fit.json"), "scene_fixed").find("trace_growth_mm_per_h") == std::string::npos);
+  }
+  // a scene whose tip speed is 1.5 times the trace's: named beside the verdict
+  {
+    std::string text = slurp(quick().scene);
+    text.replace(text.find("rate_per_h = 0.2"), 16, "rate_per_h = 0.3");
+    std::ofstream(d / "fast.toml") << text;
+    const auto r = run("fit " + trace + " --scene " + (d / "fast.toml").string() + " --free tropism.beta=0.15:0.3 --budget 40 -j 2 --quiet --out " +
+                       (d / "fast").string());
+    REQUIRE_MESSAGE(r.code == 0, r.out);
+    const auto said = r.out.find("the trace grows at 0.2");
+    CHECK_MESSAGE(said != std::string::npos, r.out);
+    CHECK_MESSAGE(r.out.find(" mm/h, the scene's tip speed is 0.3 mm/h (3", said) != std::string::npos, r.out);
+    CHECK_MESSAGE(r.out.find(" % apart): check growth.rate_per_h or free it", said) != std::string::npos, r.out);
+    CHECK(jsonString(slurp(d / "fast" / "fit.json"), "growth_mismatch").find("% apart") != std::string::npos);
+  }
+  // bad input: a trace of one time asked for a time-lapse; the rate free without one; steps free with one
+  struct Case {
+    std::string args, expect;
+  };
+  const std::string scene = " --scene " + quick().scene.string();
+  const std::vector<Case> cases = {
+      {quick().rsml.string() + scene + " --free tropism.beta=0.1:0.3 --objective timelapse", "--objective timelapse: "},
+      {quick().rsml.string() + scene + " --free growth.rate_per_h=0.1:0.3", "(growth.rate_per_h can with --objective timelapse)"},
+      {trace + scene + " --free growth.step_h=0.05:0.2", "growth.step_h changes the run's time steps"},
+  };
+  for (const Case& c : cases) {
+    const auto r = run("fit " + c.args + " --out " + (d / "bad").string());
+    CHECK_MESSAGE(r.code == 2, c.args << " -> " << r.out);
+    CHECK_MESSAGE(r.out.find(c.expect) != std::string::npos, c.args << " -> " << r.out);
+    CHECK_MESSAGE(!fs::exists(d / "bad"), c.args);
+  }
+  const auto one = run("fit " + quick().rsml.string() + scene + " --free tropism.beta=0.1:0.3 --objective timelapse --out " + (d / "bad").string());
+  CHECK(one.out.find("has no observation times (a trace of one time)") != std::string::npos);
 }

@@ -218,3 +218,26 @@ TEST_CASE("response surface: a direction the outputs do not see is flat, and has
   CHECK(std::isnan(fu.sigma[0]));
   CHECK(std::isnan(fu.sigma[1]));
 }
+
+TEST_CASE("noiseDraws: each draw aligned at its own seed / a point's variance 2 sigma^2, two points' covariance sigma^2 (the seed's)") {
+  const double sigma = 0.05;
+  const int draws = 20000;
+  const Eigen::MatrixXd y = noiseDraws(straight(0, 10, 11), sigma, draws, [](const Eigen::Matrix3Xd& p) {
+    Eigen::VectorXd v(3);
+    v << p(0, 5), p(0, 10), p(1, 10);
+    return v;
+  });
+  REQUIRE(y.rows() == draws);
+  const Eigen::MatrixXd c = y.rowwise() - y.colwise().mean();
+  const Eigen::MatrixXd cov = c.transpose() * c / (draws - 1.0);
+  // sampling error of a variance: sqrt(2 / draws) relative, about 1 %; 4 of those
+  const double tol = 4 * std::sqrt(2.0 / draws);
+  CHECK(cov(0, 0) == doctest::Approx(2 * sigma * sigma).epsilon(tol));
+  CHECK(cov(1, 1) == doctest::Approx(2 * sigma * sigma).epsilon(tol));
+  CHECK(cov(2, 2) == doctest::Approx(2 * sigma * sigma).epsilon(tol));
+  CHECK(cov(0, 1) == doctest::Approx(sigma * sigma).epsilon(2 * tol));
+  CHECK(std::abs(cov(0, 2)) < 4 * sigma * sigma / std::sqrt(draws) * std::sqrt(2.0));  // lateral and downhill: independent
+  CHECK(y.col(1).mean() == doctest::Approx(0).scale(1).epsilon(4 * sigma * std::sqrt(2.0 / draws)));
+  CHECK_THROWS_AS(noiseDraws(straight(0, 10, 11), 0.0, 10, [](const Eigen::Matrix3Xd& p) { return Eigen::VectorXd(p.row(0).transpose()); }),
+                  std::invalid_argument);
+}

@@ -62,8 +62,9 @@ struct Comparison {
 };
 Comparison compareRoots(const TraceTarget& t, const SimRoot& s);
 
-// a time-lapse trace against a run at one observation time: the trace as it was then, the run's snapshot
-// nearest that time
+// a time-lapse trace against a run at one observation time: the trace as it was then; the run recorded as
+// a 2D+t trace records a root whose old parts do not move: its length from the snapshot nearest that time,
+// its shape, tip and tip angle from its root at the last observation time up to that length
 struct TimeLapseRow {
   double timeH = 0, snapshotH = 0;
   double traceLengthMm = 0, runLengthMm = 0;
@@ -73,6 +74,41 @@ struct TimeLapseRow {
 };
 // one row per observation at which the trace has a length (empty for a trace without times)
 std::vector<TimeLapseRow> compareTimeLapse(const TraceTarget& t, const Model& m, const std::vector<Snapshot>& snaps);
+
+// a time-lapse trace at one observation time
+struct TraceAtTime {
+  double timeH = 0, lengthMm = 0, tipLateralMm = 0, tipDownhillMm = 0, thetaTipDeg = 0;
+  bool thetaDefined = false;      // the tip angle's span (tipAngleSpanMm) fits twice in the root then
+};
+// the polyline p (its points reached at timesH) at each of the observation times at which it has a length;
+// pixelMm: the tip angle's pixel (0: none)
+std::vector<TraceAtTime> traceAtTimes(const Eigen::Matrix3Xd& p, const std::vector<double>& timesH, const std::vector<double>& observationTimesH,
+                                      double pixelMm);
+// the pixel a trace's tip angle is taken over (0 when its uncertainty is not a pixel's)
+double tipPixelMm(const TraceTarget& t);
+
+// the time-lapse objective's trace side (docs/experiments.md, "Fit"): at each observation time the root's
+// length, tip lateral and downhill position [mm] and, where it is defined, its tip angle [deg]. Their
+// covariance is the trace's points' noise (sigmaMm) propagated through the same measurement (noiseDraws of
+// the denoised trace); the mean shift of its estimated noise (timeLapseNoiseMm: a noisy polyline is
+// longer) is taken off the trace's values.
+struct TimeLapseObjective {
+  FitComponents trace;            // names, trace (bias taken off), sigma, cov; sim empty
+  Eigen::VectorXd bias;           // per output: the noise's mean shift taken off
+  std::vector<double> timesH;     // the observation times used
+  std::vector<bool> withTheta;    // per time: its tip angle is an output
+  double growthMmPerH = 0;        // the trace's dL/dt: the least-squares slope of its lengths over time
+  double growthSigma = 0;         // its standard uncertainty (from the lengths' covariance)
+};
+// the point noise [mm] whose mean shift a time-lapse's values lose: --sigma-mm when given, else the trace's
+// estimated noise_mm (the shift goes with its square: a pixel where the tracer's noise is 0.7 px doubles
+// it), else sigmaMm. The outputs' weights stay sigmaMm's, the uncertainty every objective takes.
+double timeLapseNoiseMm(const TraceTarget& t);
+// SceneError when the trace has no times or fewer than two observations with a length
+TimeLapseObjective timeLapseObjective(const TraceTarget& t, int draws = 400);
+// a run's outputs beside the trace's (rows: compareTimeLapse of the run); std::invalid_argument when the
+// rows are not at the objective's times
+FitComponents timeLapseComponents(const TimeLapseObjective& o, const std::vector<TimeLapseRow>& rows);
 
 // a one-line summary "distance 0.12 mm (RMS at equal arc length), Frechet 0.3 mm, chi2 1.2 (3 observables)"
 std::string comparisonCaption(const Comparison& c);

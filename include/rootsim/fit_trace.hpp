@@ -21,7 +21,8 @@ struct FitOptions {
   TraceFlags trace;
   std::string scene;                     // --scene BASE.toml
   std::string free;                      // --free KEY=LO:HI[,KEY=LO:HI...]
-  std::string objective = "observables"; // --objective observables | shape
+  std::string objective;                 // --objective observables | shape | timelapse ("": timelapse for a
+                                         // trace with times, else observables)
   int jobs = 1;                          // -j: simultaneous runs
   int budget = 150;                      // --budget: most runs (the design and the trust regions together)
   std::string out;                       // --out DIR
@@ -35,7 +36,8 @@ struct FreeKey {
 };
 // parses --free (SceneError naming the item: a key not in the scene schema, not a number key, a bound
 // outside its range, LO >= HI, growth.steps, or a key that changes how far the root grows)
-std::vector<FreeKey> parseFreeKeys(const std::string& text, const std::string& scenePath);
+// (timeLapse: the fit grows every evaluation to the trace's last observation time, so growth.rate_per_h may be free)
+std::vector<FreeKey> parseFreeKeys(const std::string& text, const std::string& scenePath, bool timeLapse = false);
 
 struct FitEvaluation {
   std::vector<double> x;     // the free keys' values
@@ -54,6 +56,8 @@ struct FitEvaluation {
   long order = 0;            // when it was asked for: the design's point index, then each batch's in turn
 };
 inline constexpr double kFailedObjective = 1e12;
+// a time-lapse trace's dL/dt this far (relative) from a fixed tip speed is named beside the verdict
+inline constexpr double kGrowthMismatch = 0.2;
 
 // a scene key the fit holds fixed that shapes its answer (the plate's tilt, the growth rate, ...)
 struct FixedKey {
@@ -70,6 +74,8 @@ struct FitReport {
   int surfaceRun = -1;                     // index of the response surface's minimum's run
   Goodness goodness;                       // the answer's run against the trace's uncertainty alone
   std::string misfit;                      // a poor fit: what the model could not reproduce, in one line
+  std::string growthMismatch;              // a time-lapse whose dL/dt differs from the fixed tip speed by more
+                                           // than kGrowthMismatch: the sentence saying so
   std::vector<FixedKey> fixed;             // the fixed keys that shape the answer, the tilt and growth first
   std::vector<double> sigma;               // per key (NaN: flat or at a bound)
   std::vector<std::string> notes;          // identifiability and bounds, in words

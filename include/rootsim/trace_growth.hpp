@@ -53,6 +53,8 @@ Eigen::Matrix3Xd polylineAtTime(const Eigen::Matrix3Xd& p, const std::vector<dou
 // the tip's direction [deg] from downhill, signed as theta (towards +lateral positive), over the last
 // span of arc length: max(0.5 mm, 10 pixels), at most half the root (a tracer's pixel steps average out)
 double tipAngleDeg(const Eigen::Matrix3Xd& plateMm, double pixelMm);
+// that span before it is cut to half the root: max(0.5 mm, 10 pixels) [mm]
+double tipAngleSpanMm(double pixelMm);
 
 // the roots of `later` that extend a root of `earlier` (one entry per root of later: the index in earlier,
 // or -1): the earlier polyline lies along the later one's base (RMS distance of its points to the later

@@ -821,7 +821,7 @@ def compare(run_dir: PathLike, trace: PathLike, *, root: Optional[str] = None, p
 
 def fit(trace: PathLike, *, scene: PathLike, free: Union[str, Dict[str, Sequence[float]]], out: PathLike,
         root: Optional[str] = None, px_per_mm: Optional[float] = None, downhill: Union[str, float] = "+y",
-        sigma_mm: Optional[float] = None, objective: str = "observables", jobs: int = 1, budget: int = 150,
+        sigma_mm: Optional[float] = None, objective: Optional[str] = None, jobs: int = 1, budget: int = 150,
         force: bool = False, quiet: bool = True) -> Dict[str, Any]:
     """Fits free scene keys to a traced root, as ``rootsim fit TRACE --scene SCENE --free ... --out OUT``
     (docs/experiments.md; the same C++ code). ``free``: {"tropism.beta": (0.05, 0.5), ...} or the command
@@ -832,8 +832,9 @@ def fit(trace: PathLike, *, scene: PathLike, free: Union[str, Dict[str, Sequence
     uncertainty ("consistent" or "poor", with "misfit" saying why); "scene_fixed" the fixed keys that
     shape the answer (the plate's tilt and the growth rate first).
 
-    ``objective``: "observables" (skew, wavelength, amplitude) or "shape" (the centreline at 8 fractions
-    of its length); ``jobs``: simultaneous runs; ``budget``: most runs. The trace's keywords as
+    ``objective``: "observables" (skew, wavelength, amplitude), "shape" (the centreline at 8 fractions
+    of its length) or "timelapse" (length, tip position and tip angle at every observation time of a 2D+t
+    trace); None: timelapse for a trace with times, else observables; ``jobs``: simultaneous runs; ``budget``: most runs. The trace's keywords as
     rootsim.compare's. Bad input raises SceneError, a fit whose runs all fail RunError. Keywords only."""
     if not _c.have_render:
         raise SceneError("fit: this rootsim was built without the renderer and the app library "

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <stdexcept>
 
 #include "rootsim/compare_panel.hpp"
 #include "rootsim/errors.hpp"
@@ -16,6 +17,7 @@
 #include "rootsim/scene.hpp"
 #include "rootsim/signature.hpp"
 #include "rootsim/trace_growth.hpp"
+#include "rootsim/trace_match.hpp"
 #include "rootsim/units.hpp"
 #include "rootsim/write_rule.hpp"
 #include "run_files.hpp"
@@ -92,30 +94,166 @@ Comparison compareRoots(const TraceTarget& t, const SimRoot& s) {
   return c;
 }
 
+double tipPixelMm(const TraceTarget& t) { return t.sigmaSource == "pixel" ? t.sigmaMm : 0.0; }
+
+std::vector<TraceAtTime> traceAtTimes(const Eigen::Matrix3Xd& p, const std::vector<double>& timesH, const std::vector<double>& observationTimesH,
+                                      double pixelMm) {
+  std::vector<TraceAtTime> out;
+  for (double at : observationTimesH) {
+    const Eigen::Matrix3Xd trace = polylineAtTime(p, timesH, at);
+    if (trace.cols() < 2 || !(polylineLength(trace) > 0)) continue;
+    TraceAtTime r;
+    r.timeH = at;
+    r.lengthMm = polylineLength(trace);
+    r.tipLateralMm = trace(0, trace.cols() - 1);
+    r.tipDownhillMm = trace(1, trace.cols() - 1);
+    r.thetaTipDeg = tipAngleDeg(trace, pixelMm);
+    r.thetaDefined = r.lengthMm >= 2.0 * tipAngleSpanMm(pixelMm);
+    out.push_back(r);
+  }
+  return out;
+}
+
 std::vector<TimeLapseRow> compareTimeLapse(const TraceTarget& t, const Model& m, const std::vector<Snapshot>& snaps) {
   std::vector<TimeLapseRow> rows;
   if (t.timesH.empty() || snaps.empty()) return rows;
   const std::vector<double> runTimes = snapshotTimes(snaps);
-  for (double at : t.observationTimesH) {
+  auto near = [&](double at) { return snapshotNear(runTimes, std::clamp(at, runTimes.front(), runTimes.back())); };
+  const std::vector<TraceAtTime> traced = traceAtTimes(t.plateMm, t.timesH, t.observationTimesH, tipPixelMm(t));
+  if (traced.empty()) return rows;
+  // the run recorded as a 2D+t trace records a root (its old parts do not move): its root at the last
+  // observation time up to the length it had at each earlier one; a growth zone that bends after the tip
+  // passed is seen where it ended, on both sides alike
+  const Eigen::Matrix3Xd last = simRootOf(m, snaps[static_cast<std::size_t>(near(traced.back().timeH))]).plateMm;
+  std::vector<double> arc(static_cast<std::size_t>(last.cols()), 0.0);
+  for (Eigen::Index i = 1; i < last.cols(); ++i)
+    arc[static_cast<std::size_t>(i)] = arc[static_cast<std::size_t>(i - 1)] + (last.col(i) - last.col(i - 1)).norm();
+  for (const TraceAtTime& tr : traced) {
+    const double at = tr.timeH;
     const Eigen::Matrix3Xd trace = polylineAtTime(t.plateMm, t.timesH, at);
-    if (trace.cols() < 2 || !(polylineLength(trace) > 0)) continue;
-    const int k = snapshotNear(runTimes, std::clamp(at, runTimes.front(), runTimes.back()));
-    const SimRoot sim = simRootOf(m, snaps[static_cast<std::size_t>(k)]);
+    const SimRoot sim = simRootOf(m, snaps[static_cast<std::size_t>(near(at))]);
+    const double length = polylineLength(sim.plateMm);
+    const Eigen::Matrix3Xd run = polylineAtTime(last, arc, std::min(length, arc.back()));
     TimeLapseRow r;
     r.timeH = at;
     r.snapshotH = sim.timeH;
-    r.traceLengthMm = polylineLength(trace);
-    r.runLengthMm = polylineLength(sim.plateMm);
-    r.traceTipLateralMm = trace(0, trace.cols() - 1);
-    r.traceTipDownhillMm = trace(1, trace.cols() - 1);
-    r.runTipLateralMm = sim.plateMm(0, sim.plateMm.cols() - 1);
-    r.runTipDownhillMm = sim.plateMm(1, sim.plateMm.cols() - 1);
-    r.traceThetaTipDeg = tipAngleDeg(trace, t.sigmaSource == "pixel" ? t.sigmaMm : 0.0);
-    r.runThetaTipDeg = tipAngleDeg(sim.plateMm, 0.0);
-    r.distanceMm = arcLengthDistanceMm(trace, sim.plateMm, kDistanceStepMm);
+    r.traceLengthMm = tr.lengthMm;
+    r.runLengthMm = length;
+    r.traceTipLateralMm = tr.tipLateralMm;
+    r.traceTipDownhillMm = tr.tipDownhillMm;
+    r.runTipLateralMm = run(0, run.cols() - 1);
+    r.runTipDownhillMm = run(1, run.cols() - 1);
+    r.traceThetaTipDeg = tr.thetaTipDeg;
+    r.runThetaTipDeg = tipAngleDeg(run, 0.0);
+    r.distanceMm = arcLengthDistanceMm(trace, run, kDistanceStepMm);
     rows.push_back(r);
   }
   return rows;
+}
+
+namespace {
+
+// b as the angle nearest a (degrees): differences of directions, not of their numbers
+double angleNear(double a, double b) { return a + std::remainder(b - a, 360.0); }
+
+// the outputs at each time, in order: length, tip lateral, tip downhill, then the tip angle where defined
+Eigen::VectorXd timeLapseValues(const std::vector<TraceAtTime>& at, const std::vector<bool>& withTheta, const std::vector<double>& thetaRef) {
+  std::vector<double> v;
+  for (std::size_t i = 0; i < at.size(); ++i) {
+    v.insert(v.end(), {at[i].lengthMm, at[i].tipLateralMm, at[i].tipDownhillMm});
+    if (withTheta[i]) v.push_back(thetaRef.empty() ? at[i].thetaTipDeg : angleNear(thetaRef[i], at[i].thetaTipDeg));
+  }
+  return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
+}
+
+}  // namespace
+
+double timeLapseNoiseMm(const TraceTarget& t) {
+  const double noise = t.traits.noiseMm;
+  return t.sigmaSource != "--sigma-mm" && std::isfinite(noise) && noise > 0 ? noise : t.sigmaMm;
+}
+
+TimeLapseObjective timeLapseObjective(const TraceTarget& t, int draws) {
+  if (t.timesH.empty()) throw SceneError(t.file + ": root " + t.rootKey + " has no observation times (a trace of one time)");
+  const double pixel = tipPixelMm(t);
+  const std::vector<TraceAtTime> raw = traceAtTimes(t.plateMm, t.timesH, t.observationTimesH, pixel);
+  if (raw.size() < 2)
+    throw SceneError(t.file + ": root " + t.rootKey + " has a length at " + std::to_string(raw.size()) +
+                     " observation time(s); a time-lapse needs at least 2");
+  TimeLapseObjective o;
+  std::vector<double> thetaRef;
+  for (const TraceAtTime& r : raw) {
+    o.timesH.push_back(r.timeH);
+    o.withTheta.push_back(r.thetaDefined);
+    thetaRef.push_back(r.thetaTipDeg);
+  }
+  // the clean side of the draws: the trace's distinct points, denoised, with their times
+  const std::vector<int> keep = distinctPoints(t.plateMm);
+  Eigen::Matrix3Xd pts(3, static_cast<Eigen::Index>(keep.size()));
+  std::vector<double> times;
+  for (std::size_t i = 0; i < keep.size(); ++i) {
+    pts.col(static_cast<Eigen::Index>(i)) = t.plateMm.col(keep[i]);
+    times.push_back(t.timesH[static_cast<std::size_t>(keep[i])]);
+  }
+  const Eigen::Matrix3Xd clean = denoised(pts);
+  auto valuesOf = [&](const Eigen::Matrix3Xd& p) {
+    const std::vector<TraceAtTime> at = traceAtTimes(p, times, o.timesH, pixel);
+    if (at.size() != o.timesH.size()) throw SceneError(t.file + ": root " + t.rootKey + ": a noisy draw lost an observation time");
+    return timeLapseValues(at, o.withTheta, thetaRef);
+  };
+  // the weights: the trace's uncertainty as every objective takes it; the bias: its noise as estimated
+  const Eigen::MatrixXd y = noiseDraws(clean, t.sigmaMm, draws, valuesOf);
+  const Eigen::MatrixXd centred = y.rowwise() - y.colwise().mean();
+  o.trace.cov = centred.transpose() * centred / static_cast<double>(draws - 1);
+  o.trace.sigma = o.trace.cov.diagonal().cwiseSqrt();
+  const double noise = timeLapseNoiseMm(t);
+  o.bias = (noise == t.sigmaMm ? y : noiseDraws(clean, noise, draws, valuesOf)).colwise().mean().transpose() - valuesOf(clean);
+  o.trace.trace = timeLapseValues(raw, o.withTheta, thetaRef) - o.bias;
+  for (std::size_t i = 0; i < raw.size(); ++i) {
+    const std::string at = "@" + numberText(raw[i].timeH) + "h";
+    for (const char* n : {"length_mm", "tip_lateral_mm", "tip_downhill_mm"}) o.trace.names.push_back(n + at);
+    if (o.withTheta[i]) o.trace.names.push_back("theta_tip_deg" + at);
+  }
+  // dL/dt: the generalised least-squares slope of the lengths over time, with the lengths' covariance
+  std::vector<int> li;
+  for (int c = 0; c < static_cast<int>(o.trace.names.size()); ++c)
+    if (o.trace.names[static_cast<std::size_t>(c)].rfind("length_mm@", 0) == 0) li.push_back(c);
+  const int m = static_cast<int>(li.size());
+  Eigen::MatrixXd X(m, 2), C(m, m);
+  Eigen::VectorXd L(m);
+  for (int a = 0; a < m; ++a) {
+    X(a, 0) = 1;
+    X(a, 1) = o.timesH[static_cast<std::size_t>(a)];
+    L(a) = o.trace.trace(li[static_cast<std::size_t>(a)]);
+    for (int b = 0; b < m; ++b) C(a, b) = o.trace.cov(li[static_cast<std::size_t>(a)], li[static_cast<std::size_t>(b)]);
+  }
+  const Eigen::MatrixXd Ci = C.ldlt().solve(Eigen::MatrixXd::Identity(m, m));
+  const Eigen::Matrix2d F = X.transpose() * Ci * X;
+  const Eigen::Vector2d beta = F.ldlt().solve(X.transpose() * Ci * L);
+  o.growthMmPerH = beta(1);
+  o.growthSigma = std::sqrt(F.inverse()(1, 1));
+  return o;
+}
+
+FitComponents timeLapseComponents(const TimeLapseObjective& o, const std::vector<TimeLapseRow>& rows) {
+  if (rows.size() != o.timesH.size())
+    throw std::invalid_argument("the run has " + std::to_string(rows.size()) + " of the trace's " + std::to_string(o.timesH.size()) + " observation times");
+  FitComponents c = o.trace;
+  std::vector<TraceAtTime> run;
+  std::vector<double> thetaRef;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (rows[i].timeH != o.timesH[i]) throw std::invalid_argument("the run's rows are not at the trace's observation times");
+    TraceAtTime r;
+    r.timeH = rows[i].timeH;
+    r.lengthMm = rows[i].runLengthMm;
+    r.tipLateralMm = rows[i].runTipLateralMm;
+    r.tipDownhillMm = rows[i].runTipDownhillMm;
+    r.thetaTipDeg = rows[i].runThetaTipDeg;
+    run.push_back(r);
+    thetaRef.push_back(rows[i].traceThetaTipDeg);
+  }
+  c.sim = timeLapseValues(run, o.withTheta, thetaRef);
+  return c;
 }
 
 std::string comparisonCaption(const Comparison& c) {

@@ -60,7 +60,7 @@ void writeFitOutputs(const FitOutcome& f, const FitReport& rep, const Scene& bes
   }
   char caption[200];
   std::snprintf(caption, sizeof caption, "distance %.3g mm (RMS at equal arc length), Fréchet %.3g mm; ", bc.distanceMm, bc.frechetMm);
-  saveComparePanel(bestScene.model, bestSnaps.back(), target.plateMm, title, caption + goodnessText(rep.goodness, "χ²"),
+  saveComparePanel(bestScene.model, bestSnaps.back(), target.plateMm, title, caption + goodnessText(rep.goodness, "χ²") + (rep.growthMismatch.empty() ? "" : "; " + rep.growthMismatch),
                    (out / "compare").string());
   if (n == 2) {
     std::vector<LandscapePoint> pts;
@@ -136,6 +136,7 @@ void writeFitOutputs(const FitOutcome& f, const FitReport& rep, const Scene& bes
       .str("answer", rep.best == rep.surfaceRun ? "surface minimum" : "best run")
       .object("goodness", goodnessJson(rep.goodness));
   if (!rep.misfit.empty()) j.str("misfit", rep.misfit);
+  if (!rep.growthMismatch.empty()) j.str("growth_mismatch", rep.growthMismatch);
   Json fixedJ;
   for (const FixedKey& fk : rep.fixed) fixedJ.object(fk.key, Json().str("value", fk.value).str("source", fk.source));
   j.object("scene_fixed", fixedJ);

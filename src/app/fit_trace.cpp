@@ -12,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <mutex>
+#include <numeric>
 #include <random>
 #include <sstream>
 #include <thread>
@@ -67,7 +68,7 @@ std::string fileText(const fs::path& p) {
 
 }  // namespace
 
-std::vector<FreeKey> parseFreeKeys(const std::string& text, const std::string& scenePath) {
+std::vector<FreeKey> parseFreeKeys(const std::string& text, const std::string& scenePath, bool timeLapse) {
   std::vector<FreeKey> keys;
   if (text.empty()) throw SceneError("--free: give at least one KEY=LO:HI");
   for (const std::string& item : splitCommas(text)) {
@@ -90,10 +91,13 @@ std::vector<FreeKey> parseFreeKeys(const std::string& text, const std::string& s
     }
     if (type != "a number") throw SceneError("--free " + item + ": " + k.key + " is " + type + ", not a real number");
     for (const char* g : kGrowthKeys)
-      if (k.key == g)
+      // a time-lapse grows every evaluation to the trace's last observation time: its rate may be free
+      if (k.key == g && !(timeLapse && k.key == "growth.rate_per_h"))
         throw SceneError("--free " + item + ": " + k.key +
-                         " changes how far the root grows; fit grows every evaluation to the trace's length with one "
-                         "growth.steps, so it cannot be free");
+                         (timeLapse ? " changes the run's time steps or start; a time-lapse fit grows every evaluation to the trace's "
+                                      "last observation time with one growth.steps, so it cannot be free (growth.rate_per_h can)"
+                                    : " changes how far the root grows; fit grows every evaluation to the trace's length with one "
+                                      "growth.steps, so it cannot be free (growth.rate_per_h can with --objective timelapse)"));
     if (!(k.lo < k.hi)) throw SceneError("--free " + item + ": LO must be below HI");
     for (double v : {k.lo, k.hi}) {
       try {
@@ -119,8 +123,10 @@ constexpr int kFinalRegions = 4;
 constexpr int kBootstrap = 200;
 
 // the outputs of a comparison that the objective uses (shapeCov: the trace's shape covariance)
-FitComponents componentsOf(const std::string& objective, const TraceTarget& t, const Eigen::MatrixXd& shapeCov, const SimRoot& s,
-                           const Comparison& c) {
+// (lapse: the time-lapse objective's trace side; snaps: the run's snapshots, s its last)
+FitComponents componentsOf(const std::string& objective, const TraceTarget& t, const Eigen::MatrixXd& shapeCov, const TimeLapseObjective& lapse,
+                           const Model& m, const std::vector<Snapshot>& snaps, const SimRoot& s, const Comparison& c) {
+  if (objective == "timelapse") return timeLapseComponents(lapse, compareTimeLapse(t, m, snaps));
   return objective == "shape" ? shapeComponents(t.plateMm, s.plateMm, shapeCov, kShapeSamples) : observableComponents(c.obs);
 }
 
@@ -137,6 +143,7 @@ class Fit {
       : o_(o), keys_(std::move(keys)), out_(out), baseText_(std::move(baseText)), target_(std::move(target)), log_(log) {
     // the trace's side of the shape: its covariance once, from its points' noise
     if (o_.objective == "shape") shapeCov_ = shapeTraceCovariance(target_.plateMm, target_.sigmaMm, kShapeSamples);
+    if (o_.objective == "timelapse") lapse_ = timeLapseObjective(target_);
   }
 
   const std::vector<FreeKey>& keys() const { return keys_; }
@@ -182,9 +189,10 @@ class Fit {
     if (e.error.empty()) {
       try {
         const Scene sc = sceneAt(x);
-        const SimRoot sim = simRootOf(sc.model, loadSnapshots(dir).back());
+        const std::vector<Snapshot> snaps = loadSnapshots(dir);
+        const SimRoot sim = simRootOf(sc.model, snaps.back());
         const Comparison c = compareRoots(target_, sim);
-        const FitComponents fc = componentsOf(o_.objective, target_, shapeCov_, sim, c);
+        const FitComponents fc = componentsOf(o_.objective, target_, shapeCov_, lapse_, sc.model, snaps, sim, c);
         {
           std::lock_guard lk(mu_);
           if (traceComp_.names.empty()) traceComp_ = fc;  // the trace's side: the same for every run
@@ -336,6 +344,7 @@ class Fit {
   std::vector<FitEvaluation> evals_;
   FitComponents traceComp_;
   Eigen::MatrixXd shapeCov_;  // the trace's shape outputs' covariance (the shape objective)
+  TimeLapseObjective lapse_;  // the time-lapse objective's trace side
   long next_ = 1L << 40;  // order numbers after the design's point indices
 };
 
@@ -399,16 +408,37 @@ Eigen::VectorXd surfaceMinimum(const ResponseSurface& s, const FitComponents& t,
   return best;
 }
 
+// a time-lapse fit whose growth rate is not free: the trace's own dL/dt beside the scene's tip speed in
+// scene_fixed, and a mismatch beyond kGrowthMismatch named in the verdict line
+void growthAgainstTrace(FitReport& rep, const TimeLapseObjective& lapse, const Model& base) {
+  if (std::any_of(rep.keys.begin(), rep.keys.end(), [](const FreeKey& k) { return k.key == "growth.rate_per_h"; })) return;
+  const double scene = base.growth.rate * base.growth.zoneLength / (units::mm / units::hour);
+  char b[64];
+  std::snprintf(b, sizeof b, "%.4g", lapse.growthMmPerH);
+  auto at = std::find_if(rep.fixed.begin(), rep.fixed.end(), [](const FixedKey& f) { return f.key == "tip_speed_mm_per_h"; });
+  rep.fixed.insert(at == rep.fixed.end() ? at : at + 1,
+                   FixedKey{"trace_growth_mm_per_h", b, "the trace's dL/dt: least-squares slope of its lengths over its observation times"});
+  const double apart = std::abs(lapse.growthMmPerH - scene) / scene;
+  if (apart > kGrowthMismatch) {
+    char line[300];
+    std::snprintf(line, sizeof line,
+                  "the trace grows at %.3g mm/h, the scene's tip speed is %.3g mm/h (%.0f %% apart): check growth.rate_per_h or free it",
+                  lapse.growthMmPerH, scene, 100 * apart);
+    rep.growthMismatch = line;
+  }
+}
+
 }  // namespace
 
-FitReport runFit(const FitOptions& o, const std::function<void(const std::string&)>& log) {
+FitReport runFit(const FitOptions& given, const std::function<void(const std::string&)>& log) {
+  FitOptions o = given;  // its objective resolved below (the trace's own default)
   // bad input first, before anything is written
   if (o.scene.empty()) throw SceneError("--scene: give the base scene (a TOML file)");
   if (o.budget < 1 || o.budget > 100000)
     throw SceneError("--budget " + std::to_string(o.budget) + ": expected an integer in [1, 100000] runs");
   if (o.jobs < 1 || o.jobs > 256) throw SceneError("-j " + std::to_string(o.jobs) + ": must be in [1, 256]");
-  if (o.objective != "observables" && o.objective != "shape")
-    throw SceneError("--objective " + o.objective + ": expected observables or shape");
+  if (!o.objective.empty() && o.objective != "observables" && o.objective != "shape" && o.objective != "timelapse")
+    throw SceneError("--objective " + o.objective + ": expected observables, shape or timelapse");
   if (o.out.empty()) throw SceneError("--out: give the fit's folder");
   const fs::path out = checkOutputName(o.out, "--out");
   // the fit's folder is locked before any work: a run, sweep or second fit there is refused
@@ -416,13 +446,25 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
   const Scene base = loadScene(o.scene);
   if (base.isPlate())
     throw SceneError("--scene " + o.scene + ": a plate's scene; fit takes the scene of one root (docs/experiments.md)");
-  const std::vector<FreeKey> keys = parseFreeKeys(o.free, o.scene);
+  const Model& bm = base.model;
+  if (!bm.growth.enabled) throw SceneError(o.scene + ": growth.enabled = false; fit grows the root to the trace's length");
+  const TraceTarget target = loadTarget(o.trace, bm);
+  // a trace with times is fitted at every observation time unless another objective is asked for
+  if (o.objective.empty()) o.objective = target.timesH.empty() ? "observables" : "timelapse";
+  const bool lapse = o.objective == "timelapse";
+  if (lapse && target.timesH.empty())
+    throw SceneError("--objective timelapse: " + o.trace.trace + " (root " + target.rootKey +
+                     ") has no observation times (a trace of one time); use --objective observables or shape");
+  const TimeLapseObjective lapseTrace = lapse ? timeLapseObjective(target) : TimeLapseObjective{};
+  const std::vector<FreeKey> keys = parseFreeKeys(o.free, o.scene, lapse);
   const int n = static_cast<int>(keys.size());
   const int k = designLevels(n, o.budget);
   const int design = static_cast<int>(std::lround(std::pow(k, n)));
   const int terms = quadraticTerms(n);
   // runs a trust region's surface is fitted to: enough beyond the surface's terms to estimate the
   // scatter's covariance between the outputs
+  // (a time-lapse's many outputs: their scatter's covariance from fewer runs is singular, the trace's own
+  // covariance added to it in every chi-square is not)
   const int outputs = o.objective == "shape" ? 2 * kShapeSamples : 3;
   const int regionPoints = std::max(2 * terms + 4, terms + outputs + 4);
   // the budget: the design, a trust region's runs and its minimum's, and the answer's run
@@ -430,9 +472,6 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
     throw SceneError("--budget " + std::to_string(o.budget) + ": too small for " + std::to_string(n) + " free key(s): the start design takes " +
                      std::to_string(design) + " runs and one trust region " + std::to_string(regionPoints + 2) +
                      "; give at least " + std::to_string(design + regionPoints + 2));
-  const Model& bm = base.model;
-  if (!bm.growth.enabled) throw SceneError(o.scene + ": growth.enabled = false; fit grows the root to the trace's length");
-  const TraceTarget target = loadTarget(o.trace, bm);
   if (o.objective == "observables" && usedCount(observeBoth(target.traits, target.traits, target.sigmaMm)) < n)
     log("fit: note: the trace defines " + std::to_string(usedCount(observeBoth(target.traits, target.traits, target.sigmaMm))) +
         " observable(s) for " + std::to_string(n) + " free key(s): some direction stays undetermined (try --objective shape)");
@@ -442,7 +481,21 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
   if (target.traits.lengthMm <= l0)
     throw SceneError(o.trace.trace + ": the traced root (" + numberText(target.traits.lengthMm) +
                      " mm) is not longer than the scene's initial root (root.initial_length_mm = " + numberText(l0) + ")");
-  const long steps = std::lround(std::ceil((target.traits.lengthMm - l0) / perStepMm - 1e-9));
+  // a time-lapse: to its last observation time, a snapshot at every observation time that falls on a step
+  // (the largest common divisor of their steps; else every step)
+  const double stepH = bm.growth.stepTime / units::hour;
+  const long steps = lapse ? std::lround(std::ceil(lapseTrace.timesH.back() / stepH - 1e-9))
+                           : std::lround(std::ceil((target.traits.lengthMm - l0) / perStepMm - 1e-9));
+  long every = bm.output.everySteps;
+  if (lapse) {
+    every = steps;
+    for (double t : lapseTrace.timesH) {
+      const double at = t / stepH;
+      every = std::abs(at - std::round(at)) < 1e-6 ? std::gcd(every, std::lround(at)) : 1;
+      if (every == 1) break;
+    }
+    every = std::max(1L, every);
+  }
 
   WriteRule rule;
   rule.force = o.force;
@@ -451,7 +504,8 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
   rule.inputs.push_back(workingFolder());
   claimFolder(out, fitFolder(), rule, "--out", false);
   // the base scene every evaluation starts from: the scene, grown to the trace's length, without ParaView files
-  const Scene grown = loadScene(o.scene, {"growth.steps=" + std::to_string(steps), "output.vtk=false", "output.trajectory=true"});
+  const Scene grown = loadScene(o.scene, {"growth.steps=" + std::to_string(steps), "output.vtk=false", "output.trajectory=true",
+                                          "output.every_steps=" + std::to_string(every)});
   // the fit's settings in a comment: a second fit into this folder with any other setting starts again
   // (only with --force); with the same settings it continues, its finished runs reused
   std::string settings = "# rootsim fit settings: --free";
@@ -461,7 +515,8 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
               " --root " + (o.trace.root.empty() ? std::string("default") : o.trace.root) + " --px-per-mm " +
               flagNum(o.trace.pxPerMm) + " --downhill " + o.trace.downhill + " --sigma-mm " + flagNum(o.trace.sigmaMm) + "\n";
   const std::string baseText = "# rootsim fit: " + o.scene + " with growth.steps = " + std::to_string(steps) +
-                               " (the trace's length) and output.vtk = false\n" + settings + grown.resolvedToml;
+                               (lapse ? " (the trace's last observation time), output.every_steps = " + std::to_string(every) : std::string(" (the trace's length)")) +
+                               " and output.vtk = false\n" + settings + grown.resolvedToml;
   const bool stale = fs::exists(out / "base.toml") && fileText(out / "base.toml") != baseText;
   if (stale && !o.force)
     throw SceneError("--out " + out.string() + ": holds a fit of another scene, trace or settings (its base.toml differs: " +
@@ -712,6 +767,7 @@ FitReport runFit(const FitOptions& o, const std::function<void(const std::string
     const SimRoot sim = simRootOf(fit.sceneAt(e.x).model, loadSnapshots(e.dir).back());
     return chiSquareOf(e.sim, tc.trace, shapeNoiseCovariance(tracedLike(sim.plateMm, target.plateMm), target.sigmaMm, kShapeSamples));
   });
+  if (lapse) growthAgainstTrace(rep, lapseTrace, bm);
   const FitEvaluation& b = rep.evaluations[static_cast<std::size_t>(rep.best)];
   if (rep.surfaceRun >= 0 && rep.best != rep.surfaceRun) {
     char line[240];
@@ -752,7 +808,7 @@ int fitCommand(const FitOptions& o) {
   std::printf("fixed: %s\n", fixedKeysText(r.fixed).c_str());
   std::printf("%zu runs; the answer's run (%s): distance %.3g mm to the trace\n", r.evaluations.size(),
               r.best == r.surfaceRun ? "the surface's minimum" : "the best run the fit made", b.distanceMm);
-  std::printf("goodness: %s\n", goodnessText(r.goodness).c_str());
+  std::printf("goodness: %s%s\n", goodnessText(r.goodness).c_str(), r.growthMismatch.empty() ? "" : ("; " + r.growthMismatch).c_str());
   if (!r.misfit.empty()) std::printf("poor fit: %s\n", r.misfit.c_str());
   for (const std::string& n : r.notes) std::printf("note: %s\n", n.c_str());
   if (!o.quiet) std::fprintf(stderr, "wrote %s (fit.json, evaluations.csv, best.toml, compare.*%s)\n", r.out.c_str(),

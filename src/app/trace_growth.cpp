@@ -169,10 +169,12 @@ Eigen::Matrix3Xd polylineAtTime(const Eigen::Matrix3Xd& p, const std::vector<dou
   return rootAtObservation(r, tH);
 }
 
+double tipAngleSpanMm(double pixelMm) { return std::max(kTipSpanMm, kTipSpanPixels * pixelMm); }
+
 double tipAngleDeg(const Eigen::Matrix3Xd& p, double pixelMm) {
   const double len = polylineLength(p);
   if (!(len > 0)) return kNaN;
-  const double span = std::min(std::max(kTipSpanMm, kTipSpanPixels * pixelMm), 0.5 * len);
+  const double span = std::min(tipAngleSpanMm(pixelMm), 0.5 * len);
   // the point `span` back from the tip along the polyline
   double back = 0;
   Eigen::Vector2d from = p.col(0).head<2>();

@@ -215,7 +215,7 @@ int main(int argc, char** argv) {
   cFit->add_option("--scene", fit.scene, "base scene (TOML)")->required();
   cFit->add_option("--free", fit.free, "free keys and their bounds: KEY=LO:HI[,KEY=LO:HI...]")->required();
   traceFlags(cFit, fit.trace);
-  cFit->add_option("--objective", fit.objective, "observables (default: chi-square of skew, wavelength, amplitude) or shape (RMS distance at equal arc length)");
+  cFit->add_option("--objective", fit.objective, "observables (chi-square of skew, wavelength, amplitude; the default for a trace of one time), shape (the centreline at 8 fractions of its length) or timelapse (length, tip position and tip angle at every observation time; the default for a 2D+t trace)");
   cFit->add_option("-j,--jobs", fit.jobs, "simultaneous runs");
   cFit->add_option("--budget", fit.budget, "most runs (default 150)");
   cFit->add_option("--out", fit.out, "the fit's folder (resumable: a killed fit continues where it stopped)")->required();

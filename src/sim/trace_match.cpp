@@ -168,19 +168,15 @@ Eigen::VectorXd shapeSamples(const Eigen::Matrix3Xd& p, int samples) {
   return v;
 }
 
-// the polyline without a point that repeats the one before it (a tracer's doubled click: one point, one error)
-Eigen::Matrix3Xd withoutRepeats(const Eigen::Matrix3Xd& p) {
-  Eigen::Matrix3Xd q(3, p.cols());
-  int n = 0;
+}  // namespace
+
+std::vector<int> distinctPoints(const Eigen::Matrix3Xd& p) {
+  std::vector<int> keep;
   for (int i = 0; i < p.cols(); ++i)
-    if (n == 0 || (p.col(i) - q.col(n - 1)).norm() > 0.0) q.col(n++) = p.col(i);
-  return q.leftCols(n);
+    if (keep.empty() || (p.col(i) - p.col(keep.back())).norm() > 0.0) keep.push_back(i);
+  return keep;
 }
 
-// the polyline with less of its points' noise: each point the mean of itself and its two neighbours,
-// weights 1/4, 1/2, 1/4 (the end points as they are): a tenth of the noise in the differences between
-// neighbours, whose squares lengthen a noisy polyline, while a wave 15 points long keeps 96 % of its
-// amplitude
 Eigen::Matrix3Xd denoised(const Eigen::Matrix3Xd& p) {
   const int n = static_cast<int>(p.cols());
   Eigen::Matrix3Xd q = p;
@@ -198,6 +194,16 @@ Eigen::Matrix3Xd denoised(const Eigen::Matrix3Xd& p) {
   return q;
 }
 
+namespace {
+
+// the polyline without a point that repeats the one before it (a tracer's doubled click: one point, one error)
+Eigen::Matrix3Xd withoutRepeats(const Eigen::Matrix3Xd& p) {
+  const std::vector<int> keep = distinctPoints(p);
+  Eigen::Matrix3Xd q(3, static_cast<Eigen::Index>(keep.size()));
+  for (std::size_t i = 0; i < keep.size(); ++i) q.col(static_cast<Eigen::Index>(i)) = p.col(keep[i]);
+  return q;
+}
+
 }  // namespace
 
 Eigen::MatrixXd shapeNoiseCovariance(const Eigen::Matrix3Xd& clean, double sigmaMm, int samples, int draws) {
@@ -207,9 +213,17 @@ Eigen::MatrixXd shapeNoiseCovariance(const Eigen::Matrix3Xd& clean, double sigma
   // closed form (a point's error along the root is replaced by the error of the length up to it, a noisy
   // polyline being longer by a random amount; a sample between two points carries less than sigma across;
   // the seed's error moves every sample alike)
-  std::mt19937 gen(20260101);  // fixed: the same polyline, the same covariance
+  const Eigen::MatrixXd y = noiseDraws(clean, sigmaMm, draws, [&](const Eigen::Matrix3Xd& t) { return shapeSamples(t, samples); });
+  const Eigen::MatrixXd centred = y.rowwise() - y.colwise().mean();
+  return centred.transpose() * centred / static_cast<double>(draws - 1);
+}
+
+Eigen::MatrixXd noiseDraws(const Eigen::Matrix3Xd& clean, double sigmaMm, int draws,
+                           const std::function<Eigen::VectorXd(const Eigen::Matrix3Xd&)>& outputs) {
+  if (!(sigmaMm > 0.0) || draws < 1) throw std::invalid_argument("noiseDraws: needs sigma > 0 and at least one draw");
+  std::mt19937 gen(20260101);  // fixed: the same polyline, the same draws
   std::normal_distribution<double> noise(0.0, sigmaMm);
-  Eigen::MatrixXd y(draws, 2 * samples);
+  Eigen::MatrixXd y;
   Eigen::Matrix3Xd t = clean;
   for (int d = 0; d < draws; ++d) {
     for (int i = 0; i < clean.cols(); ++i) {
@@ -218,10 +232,11 @@ Eigen::MatrixXd shapeNoiseCovariance(const Eigen::Matrix3Xd& clean, double sigma
     }
     const Eigen::Vector3d seed = t.col(0);
     t.colwise() -= seed;  // aligned at its own first point, as a trace is
-    y.row(d) = shapeSamples(t, samples).transpose();
+    const Eigen::VectorXd v = outputs(t);
+    if (d == 0) y.resize(draws, v.size());
+    y.row(d) = v.transpose();
   }
-  const Eigen::MatrixXd centred = y.rowwise() - y.colwise().mean();
-  return centred.transpose() * centred / static_cast<double>(draws - 1);
+  return y;
 }
 
 Eigen::MatrixXd shapeTraceCovariance(const Eigen::Matrix3Xd& trace, double sigmaMm, int samples, int draws) {

@@ -477,7 +477,7 @@ TEST_CASE("a file holding rootsim's signature as bytes anywhere is not rootsim's
   fs::remove_all(d);
 }
 
-TEST_CASE("rootsim's own RSML, GLB, PNG and MP4 are replaced with --force; the same file edited afterwards is refused") {
+TEST_CASE("rootsim's own RSML, GLB, PNG and MP4 are replaced with --force - the same file edited afterwards is refused") {
   const fs::path d = scratch("single_files");
   const fs::path r = makeRun(d);
   struct Out {
@@ -601,7 +601,7 @@ struct SlowRun {
 };
 }  // namespace
 
-TEST_CASE("while run --out X runs, sweep, fit, figure and analyze into X are refused naming its PID; readers name X.partial") {
+TEST_CASE("while run --out X runs, sweep, fit, figure and analyze into X are refused naming its PID - readers name X.partial") {
   const fs::path d = scratch("one_lock");
   const fs::path sw = makeSweep(d);
   std::ofstream(d / "t.rsml") << slurp(std::string(ROOTSIM_SOURCE_DIR) + "/tests/data/rsml/smartroot_pixels.rsml");

@@ -424,11 +424,11 @@ std::vector<std::map<std::string, std::string>> rowsWhere(const std::vector<std:
   return out;
 }
 
-// the real files of ../shared/data/rsml (README there), or "" with the case reported skipped
+// the real files in the shared data folder beside the source tree (data/rsml, its README), or "" with the case reported skipped
 fs::path sharedData() {
   const fs::path d = fs::path(ROOTSIM_SOURCE_DIR).parent_path() / "shared" / "data" / "rsml";
   if (!fs::is_directory(d)) {
-    test::skipCase("no ../shared/data/rsml (the real RSML files) next to the source tree");
+    test::skipCase("no shared data folder with the real RSML files (data/rsml) beside the source tree");
     return {};
   }
   return d;
@@ -630,7 +630,7 @@ TEST_CASE("analyze: dated files / roots matched by geometry, not id / renumbered
   CHECK(rated == 6);  // every root seen at both dates
 }
 
-TEST_CASE("analyze: the real files of ../shared/data/rsml / what each says with and without a scale") {
+TEST_CASE("analyze: the real files of the shared data folder / what each says with and without a scale") {
   if (!analyzeBuilt()) return;
   const fs::path data = sharedData();
   if (data.empty()) return;

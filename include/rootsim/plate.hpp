@@ -96,9 +96,9 @@ class PlateSimulation {
   // builds every seedling's initial root and relaxes it (seeing the roots built before it)
   PlateSimulation(const PlateParams& plate, std::vector<Seedling> seedlings);
 
-  // one growth step of every root, in the seedlings' order, each seeing the others as they stand; then
-  // sweeps re-relax the roots another root touches until none moves (docs/plate.md, Solving); throws
-  // RelaxError naming the root
+  // one growth step of every root: each grows; roots apart relax alone (the single root's step); roots
+  // within reach of another are solved together by one Newton system on their cluster, then each
+  // confirms alone (docs/plate.md, Solving); throws RelaxError naming the root
   const PlateStepRecord& growthStep();
   // the roots that emerged in the last growth step (indices; the plate's roots grow by them)
   const std::vector<int>& emerged() const { return emerged_; }

@@ -791,10 +791,11 @@ TEST_CASE("analyze: the synthetic 2D+t plate cut into dated files gives the time
   }
   // one track per root of the plate, each holding that root alone: every root matched at every date
   std::set<std::string> ids;
-  for (const auto& [track, members] : tracks) {
+  for (const auto& entry : tracks) {
+    const std::string& track = entry.first;  // CAPTURE is a lambda: clang rejects capturing a binding
     CAPTURE(track);
-    CHECK(members.size() == 1);
-    ids.insert(*members.begin());
+    CHECK(entry.second.size() == 1);
+    ids.insert(*entry.second.begin());
   }
   CHECK(ids.size() == tracks.size());
   CHECK(ids.size() == 21);

@@ -80,7 +80,9 @@ void neighbourContactStiffness(const RodParams& p, const Environment& env, const
   cw.neighbourStiffness.clear();
   const NeighbourCapsules& nb = cw.neighbours;
   const Vec3 up = env.plane.normal();
-  for (const auto& [i, c] : nb.pairs) {
+  for (const std::array<int, 2>& pair : nb.pairs) {
+    // plain ints, not a structured binding: the lambda below captures c (clang rejects capturing bindings)
+    const int i = pair[0], c = pair[1];
     std::array<Vec3, 4> x{s.x.col(i), s.x.col(i + 1), nb.a.col(c), nb.b.col(c)};
     Vec3 F;
     double w1 = 0;

@@ -16,3 +16,10 @@ void* operator new(std::size_t n) {
 }
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+// the nothrow forms too (std::get_temporary_buffer, used by std::inplace_merge, allocates with them): every
+// form that the delete above frees must come from malloc, or a sanitizer's own nothrow new would be freed here
+void* operator new(std::size_t n, const std::nothrow_t&) noexcept {
+  ++rootsim::test::gAllocs;
+  return std::malloc(n ? n : 1);
+}
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }

@@ -119,6 +119,24 @@ Eigen::Vector3d loessAt(const Eigen::Matrix3Xd& q, const std::vector<double>& s,
   return (Minv.row(0) * R).transpose();
 }
 
+// the plane the plate coordinates are put on for the runs' own analysis: any tilt gives the same planar
+// angles, so a vertical plate
+Plane platePlane() {
+  Plane plane;
+  plane.alpha = 90.0 * units::deg;
+  return plane;
+}
+const PlateFrame& plateFrame() {
+  static const PlateFrame frame = PlateFrame::tilted(90.0 * units::deg);
+  return frame;
+}
+
+// the runs' shape analysis of the curve's mature part (columns 0 .. last) with a hysteresis of at least
+// swingMm
+ShapeAnalysis shapeOf(const Eigen::Matrix3Xd& curve, int last, double radiusMm, const AnalysisParams& set, double swingMm) {
+  return analyseCentreline(plateMmToLab(curve, plateFrame()), last, platePlane(), set, radiusMm * units::mm, swingMm * units::mm);
+}
+
 // the measurement shared by runs and traces: the raw trace q (distinct points) for length, chord,
 // tortuosity and base-to-tip skew; the curve for the shape analysis and the field's traits
 RootTraits measure(const Eigen::Matrix3Xd& q, const Eigen::Matrix3Xd& curve, double dsMm, double excludeTipMm,
@@ -130,12 +148,9 @@ RootTraits measure(const Eigen::Matrix3Xd& q, const Eigen::Matrix3Xd& curve, dou
   const Eigen::Vector2d c2(chord.x(), chord.y());
   t.chordMm = c2.norm();
   t.tortuosity = t.chordMm > 0.0 ? t.lengthMm / t.chordMm : std::numeric_limits<double>::infinity();
-  // the skew angle by the runs' own planarAngle, on a plate put into the lab frame (any tilt gives the same
-  // angle: a vertical plate)
-  const PlateFrame frame = PlateFrame::tilted(90.0 * units::deg);
-  Plane plane;
-  plane.alpha = 90.0 * units::deg;
-  t.skewDeg = planarAngle(plane, plateMmToLab(chord, frame).col(0)) / units::deg;
+  // the skew angle by the runs' own planarAngle
+  const Plane plane = platePlane();
+  t.skewDeg = planarAngle(plane, plateMmToLab(chord, plateFrame()).col(0)) / units::deg;
   // the shape analysis on the mature part of the curve
   t.dsMm = dsMm;
   t.curveMm = curve;
@@ -146,7 +161,7 @@ RootTraits measure(const Eigen::Matrix3Xd& q, const Eigen::Matrix3Xd& curve, dou
   while (last + 1 < static_cast<int>(s.size()) && s[static_cast<std::size_t>(last + 1)] <= matureMm + 1e-12 * t.curveLengthMm) ++last;
   t.matureLast = last;
   t.noiseThresholdMm = noiseThresholdMm;
-  t.shape = analyseCentreline(plateMmToLab(curve, frame), last, plane, set, radiusMm * units::mm, noiseThresholdMm * units::mm);
+  t.shape = shapeOf(curve, last, radiusMm, set, noiseThresholdMm);
   // the field's traits (Grabov et al. 2005): the tip's displacement over the curve's length
   const Eigen::Vector3d d = curve.col(curve.cols() - 1) - curve.col(0);
   if (t.curveLengthMm > 0.0) {
@@ -154,15 +169,13 @@ RootTraits measure(const Eigen::Matrix3Xd& q, const Eigen::Matrix3Xd& curve, dou
     t.hgi = d.x() / t.curveLengthMm;
     t.vgi = d.y() / t.curveLengthMm;
   }
-  t.thetaTipDeg = planarAngle(plane, plateMmToLab(curve.col(curve.cols() - 1) - curve.col(curve.cols() - 2), frame).col(0)) / units::deg;
-  // why the waves are not numbers (no commas: a CSV cell)
+  t.thetaTipDeg = planarAngle(plane, plateMmToLab(curve.col(curve.cols() - 1) - curve.col(curve.cols() - 2), plateFrame()).col(0)) / units::deg;
+  // why the waves are not numbers (no commas: a CSV cell); a trace's reasons are traceTraits'
   if (t.shape.peaks < 3) {
     char b[200];
-    const double hysteresisMm = t.shape.hysteresis / units::mm;
-    if (t.shape.peaks < 2 && noiseThresholdMm > 0.0 && noiseThresholdMm >= set.waveMinAmplitude * radiusMm)
-      std::snprintf(b, sizeof b, "below the noise: no lateral excursion above %g sigma = %.3g mm", kNoisePeakK, hysteresisMm);
-    else if (t.shape.peaks < 2)
-      std::snprintf(b, sizeof b, "no lateral excursion above the hysteresis %g R = %.3g mm", set.waveMinAmplitude, hysteresisMm);
+    if (t.shape.peaks < 2)
+      std::snprintf(b, sizeof b, "no lateral excursion above the hysteresis %g R = %.3g mm", set.waveMinAmplitude,
+                    t.shape.hysteresis / units::mm);
     else
       std::snprintf(b, sizeof b, "one excursion (2 peaks): no wavelength");
     t.wavesNote = b;
@@ -270,7 +283,7 @@ namespace {
 // degree of freedom counted 1.4 times, n RSS / (n - 1.4 tr H)^2 (Kim & Gu, J. R. Stat. Soc. B 66, 337,
 // 2004): plain GCV picks near-interpolating windows now and then (on a noisy straight line, 2.5 spacings
 // with tr H / n = 0.7)
-double gcvHalfWidth(const Eigen::Matrix3Xd& q, const std::vector<double>& s, double h) {
+double gcvHalfWidth(const Eigen::Matrix3Xd& q, const std::vector<double>& s, double h, double* leverage = nullptr) {
   static constexpr double kSpacings[] = {2.5, 3, 3.5, 4, 5, 6, 7, 8, 10, 12, 15, 18, 22, 26, 30};
   const int n = static_cast<int>(q.cols());
   double bestGcv = std::numeric_limits<double>::infinity(), best = kSpacings[0] * h;
@@ -290,6 +303,7 @@ double gcvHalfWidth(const Eigen::Matrix3Xd& q, const std::vector<double>& s, dou
     if (gcv < bestGcv) {
       bestGcv = gcv;
       best = b;
+      if (leverage) *leverage = trace / n;
     }
   }
   return best;
@@ -328,7 +342,7 @@ TraceSmoothing smoothTrace(const Eigen::Matrix3Xd& p, double ds) {
   const Eigen::Matrix3Xd z1 = loessCurve(q, s1, gcvHalfWidth(q, s1, h), s1, nullptr);
   std::vector<double> s2 = arcLengths(z1);
   for (std::size_t i = 1; i < s2.size(); ++i) s2[i] = std::max(s2[i], s2[i - 1] + 1e-12 * (1.0 + s2.back()));
-  const double b = gcvHalfWidth(q, s2, h);
+  const double b = gcvHalfWidth(q, s2, h, &out.leverage);
   // the smoothed curve at the query arc lengths
   const double L = s2.back();
   std::vector<double> at;
@@ -342,6 +356,10 @@ TraceSmoothing smoothTrace(const Eigen::Matrix3Xd& p, double ds) {
   out.points = loessCurve(q, s2, b, at, &widths);
   out.halfWidth = b;
   return out;
+}
+
+double tracingLimitMm(double smoothedSigmaMm, double radiusMm) {
+  return kPlacementDiameters * 2.0 * radiusMm + (std::isfinite(smoothedSigmaMm) ? kNoisePeakK * std::sqrt(2.0) * smoothedSigmaMm : 0.0);
 }
 
 RootTraits rootTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excludeTipMm, double radiusMm,
@@ -369,10 +387,29 @@ RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excl
     kept.col(k++) = q.col(i);
   }
   const TraceSmoothing sm = smoothTrace(kept, dsMm);
-  const double threshold = std::isfinite(noise.sigma) ? kNoisePeakK * noise.sigma : 0.0;
-  RootTraits t = measure(q, sm.points, dsMm, excludeTipMm, radiusMm, set, threshold);
+  const double limit = tracingLimitMm(noise.sigma * std::sqrt(sm.leverage), radiusMm);
+  RootTraits t = measure(q, sm.points, dsMm, excludeTipMm, radiusMm, set, limit);
   t.noiseMm = noise.sigma;
   t.smoothingMm = sm.halfWidth;
+  if (t.shape.peaks < 2) {
+    // what the curve does under the limit: its excursions above the white noise alone
+    const double noiseSwing = std::isfinite(noise.sigma) ? kNoisePeakK * noise.sigma : 0.0;
+    const ShapeAnalysis under = shapeOf(sm.points, t.matureLast, radiusMm, set, noiseSwing);
+    char b[240];
+    if (under.peaks >= 2) {
+      double top = 0.0;
+      for (std::size_t k = 1; k < under.peakNodes.size(); ++k)
+        top = std::max(top, std::abs(sm.points(0, under.peakNodes[k]) - sm.points(0, under.peakNodes[k - 1])));
+      std::snprintf(b, sizeof b, "below the tracing limit: %d excursions of %.3g mm (at most %.3g mm) under %.3g mm = %g root diameter + %g sigma",
+                    under.peaks - 1, under.amplitude / units::mm, top, limit, kPlacementDiameters, kNoisePeakK);
+    } else if (std::isfinite(noise.sigma) && noiseSwing > set.waveMinAmplitude * radiusMm) {
+      std::snprintf(b, sizeof b, "below the noise: no lateral excursion above %g sigma = %.3g mm", kNoisePeakK, noiseSwing);
+    } else {
+      std::snprintf(b, sizeof b, "no lateral excursion above the hysteresis %g R = %.3g mm", set.waveMinAmplitude,
+                    under.hysteresis / units::mm);
+    }
+    t.wavesNote = b;
+  }
   return t;
 }
 

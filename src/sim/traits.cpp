@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "rootsim/units.hpp"
@@ -135,6 +136,41 @@ const PlateFrame& plateFrame() {
 // swingMm
 ShapeAnalysis shapeOf(const Eigen::Matrix3Xd& curve, int last, double radiusMm, const AnalysisParams& set, double swingMm) {
   return analyseCentreline(plateMmToLab(curve, plateFrame()), last, platePlane(), set, radiusMm * units::mm, swingMm * units::mm);
+}
+
+// a wave train (docs/experiments.md, "Noise"): a tilted plate's wave repeats, so its peaks are called a
+// wave only when at least kTrainHalfWaves successive half-waves (downhill distances between neighbouring
+// opposite peaks) lie within kTrainFactor of each other. Two half-waves merged into one where an excursion
+// fell under the limit are 3 times as long as their neighbours; a meander's spacings are anything
+struct WaveTrain {
+  bool regular = false;
+  std::string spacings;  // the half-wave spacings [mm] and their spread, for the note
+};
+constexpr int kTrainHalfWaves = 3;
+constexpr double kTrainFactor = 2.0;
+WaveTrain waveTrainOf(const Eigen::Matrix3Xd& curve, const std::vector<int>& peaks) {
+  WaveTrain w;
+  std::vector<double> d;
+  for (std::size_t k = 1; k < peaks.size(); ++k) d.push_back(std::abs(curve(1, peaks[k]) - curve(1, peaks[k - 1])));
+  const int n = static_cast<int>(d.size());
+  for (int a = 0; a + kTrainHalfWaves <= n && !w.regular; ++a) {
+    const auto [lo, hi] = std::minmax_element(d.begin() + a, d.begin() + a + kTrainHalfWaves);
+    w.regular = *hi <= kTrainFactor * *lo;
+  }
+  char b[120];
+  if (n < kTrainHalfWaves) {
+    std::string list;
+    for (double x : d) {
+      std::snprintf(b, sizeof b, "%s%.3g", list.empty() ? "" : " and ", x);
+      list += b;
+    }
+    w.spacings = list + " mm (a wave needs " + std::to_string(kTrainHalfWaves) + " successive within " + std::to_string(static_cast<int>(kTrainFactor)) + "x)";
+  } else {
+    const auto [lo, hi] = std::minmax_element(d.begin(), d.end());
+    std::snprintf(b, sizeof b, "%.3g to %.3g mm (no %d successive within %gx)", *lo, *hi, kTrainHalfWaves, kTrainFactor);
+    w.spacings = b;
+  }
+  return w;
 }
 
 // the measurement shared by runs and traces: the raw trace q (distinct points) for length, chord,
@@ -391,7 +427,20 @@ RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excl
   RootTraits t = measure(q, sm.points, dsMm, excludeTipMm, radiusMm, set, limit);
   t.noiseMm = noise.sigma;
   t.smoothingMm = sm.halfWidth;
-  if (t.shape.peaks < 2) {
+  if (t.shape.peaks >= 2) {
+    // peaks above the limit, but a wave only when they repeat as a tilted plate's wave does
+    const WaveTrain train = waveTrainOf(sm.points, t.shape.peakNodes);
+    if (train.regular) return t;
+    ShapeAnalysis none = shapeOf(sm.points, t.matureLast, radiusMm, set, std::numeric_limits<double>::infinity());
+    none.hysteresis = t.shape.hysteresis;
+    char b[320];
+    std::snprintf(b, sizeof b, "not a wave train: %d excursions above the tracing limit %.3g mm of %.3g mm with half-wave spacings %s",
+                  t.shape.peaks - 1, limit, t.shape.amplitude / units::mm, train.spacings.c_str());
+    t.shape = none;
+    t.wavesNote = b;
+    return t;
+  }
+  {
     // what the curve does under the limit: its excursions above the white noise alone
     const double noiseSwing = std::isfinite(noise.sigma) ? kNoisePeakK * noise.sigma : 0.0;
     const ShapeAnalysis under = shapeOf(sm.points, t.matureLast, radiusMm, set, noiseSwing);

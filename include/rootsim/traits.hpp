@@ -106,8 +106,11 @@ RootTraits rootTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double exclu
                       const AnalysisParams& set);
 // the same for a traced root (docs/experiments.md, "Noise"): its noise sigma estimated, the shape analysis
 // run on the smoothed curve (smoothTrace of the points less the noise's outliers, evaluated every dsMm, or at the trace's own points for dsMm <= 0)
-// with the peaks' hysteresis raised to kNoisePeakK * sigma. The length, chord, tortuosity and base-to-tip
-// skew stay the trace's own. Throws std::invalid_argument for fewer than two distinct points.
+// with the peaks' hysteresis raised to the tracing limit (tracingLimitMm of the smoothed curve's sigma and
+// radiusMm); peaks beyond it are a wave only as a wave train (3 successive half-waves within 2x of each
+// other), else the root is measured as not waving and wavesNote says which rule it failed. The length,
+// chord, tortuosity and base-to-tip skew stay the trace's own. Throws std::invalid_argument for fewer than
+// two distinct points.
 RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excludeTipMm, double radiusMm,
                        const AnalysisParams& set);
 

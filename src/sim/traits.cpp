@@ -434,8 +434,9 @@ RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excl
     ShapeAnalysis none = shapeOf(sm.points, t.matureLast, radiusMm, set, std::numeric_limits<double>::infinity());
     none.hysteresis = t.shape.hysteresis;
     char b[320];
-    std::snprintf(b, sizeof b, "not a wave train: %d excursions above the tracing limit %.3g mm of %.3g mm with half-wave spacings %s",
-                  t.shape.peaks - 1, limit, t.shape.amplitude / units::mm, train.spacings.c_str());
+    std::snprintf(b, sizeof b, "not a wave train: %d excursion%s of %.3g mm above the tracing limit %.3g mm with half-wave spacing%s %s",
+                  t.shape.peaks - 1, t.shape.peaks > 2 ? "s" : "", t.shape.amplitude / units::mm, limit, t.shape.peaks > 2 ? "s" : "",
+                  train.spacings.c_str());
     t.shape = none;
     t.wavesNote = b;
     return t;
@@ -450,8 +451,8 @@ RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excl
       for (std::size_t k = 1; k < under.peakNodes.size(); ++k)
         top = std::max(top, std::abs(sm.points(0, under.peakNodes[k]) - sm.points(0, under.peakNodes[k - 1])));
       std::snprintf(b, sizeof b,
-                    "below the tracing limit %.3g mm (one root diameter %.3g mm + %g sqrt(2) sigma_s %.2g mm): %d excursions of %.3g mm (largest %.3g mm) above the noise",
-                    limit, 2.0 * kPlacementDiameters * radiusMm, kNoisePeakK, limit - 2.0 * kPlacementDiameters * radiusMm, under.peaks - 1,
+                    "below the tracing limit %.3g mm (one root diameter %.3g mm + %g sqrt(2) sigma_s %.2g mm): %d excursion%s of %.3g mm (largest %.3g mm) above the noise",
+                    limit, 2.0 * kPlacementDiameters * radiusMm, kNoisePeakK, limit - 2.0 * kPlacementDiameters * radiusMm, under.peaks - 1, under.peaks > 2 ? "s" : "",
                     under.amplitude / units::mm, top);
     } else if (std::isfinite(noise.sigma) && noiseSwing > set.waveMinAmplitude * radiusMm) {
       std::snprintf(b, sizeof b, "below the noise: no lateral excursion above %g sigma = %.3g mm", kNoisePeakK, noiseSwing);

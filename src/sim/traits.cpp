@@ -450,10 +450,14 @@ RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excl
       double top = 0.0;
       for (std::size_t k = 1; k < under.peakNodes.size(); ++k)
         top = std::max(top, std::abs(sm.points(0, under.peakNodes[k]) - sm.points(0, under.peakNodes[k - 1])));
-      std::snprintf(b, sizeof b,
-                    "below the tracing limit %.3g mm (one root diameter %.3g mm + %g sqrt(2) sigma_s %.2g mm): %d excursion%s of %.3g mm (largest %.3g mm) above the noise",
-                    limit, 2.0 * kPlacementDiameters * radiusMm, kNoisePeakK, limit - 2.0 * kPlacementDiameters * radiusMm, under.peaks - 1, under.peaks > 2 ? "s" : "",
-                    under.amplitude / units::mm, top);
+      char why[96];
+      if (std::isfinite(noise.sigma))
+        std::snprintf(why, sizeof why, "one root diameter %.3g mm + %g sqrt(2) sigma_s %.2g mm", 2.0 * kPlacementDiameters * radiusMm, kNoisePeakK,
+                      limit - 2.0 * kPlacementDiameters * radiusMm);
+      else
+        std::snprintf(why, sizeof why, "one root diameter %.3g mm; sigma unknown", 2.0 * kPlacementDiameters * radiusMm);
+      std::snprintf(b, sizeof b, "below the tracing limit %.3g mm (%s): fewer than 2 peaks beyond it; %d excursion%s of %.3g mm (largest %.3g mm) above the noise",
+                    limit, why, under.peaks - 1, under.peaks > 2 ? "s" : "", under.amplitude / units::mm, top);
     } else if (std::isfinite(noise.sigma) && noiseSwing > set.waveMinAmplitude * radiusMm) {
       std::snprintf(b, sizeof b, "below the noise: no lateral excursion above %g sigma = %.3g mm", kNoisePeakK, noiseSwing);
     } else {

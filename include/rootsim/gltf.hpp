@@ -41,7 +41,7 @@ struct GltfOptions {
 std::string gltfBinary(const std::vector<Snapshot>& snaps, const SceneInfo& info, const GltfOptions& options = {});
 // a plate's GLB: one group node and one striped mesh per snapshot of each root, the file's frames those of
 // the longest root (each root shown from its firstFrame on), the plate, its grid and the obstacles once.
-// The same checks as above, and a root with no snapshots or one past the file's frames is refused.
-std::string gltfBinary(const std::vector<RootSeries>& roots, const SceneInfo& info, const GltfOptions& options = {});
+// The same checks as above, and a root with no snapshots or starting before the first frame is refused.
+std::string gltfPlateBinary(const std::vector<RootSeries>& roots, const SceneInfo& info, const GltfOptions& options = {});
 
 }  // namespace rootsim

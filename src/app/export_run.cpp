@@ -537,7 +537,7 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
     gltfOptions.plateRectMm = std::array<double, 4>{0.0, -l, w, 0.0};
   }
   if (!gltfFile.empty()) {
-    writeFileAtomic(gltfFile, plate ? gltfBinary(plateSeries, info, gltfOptions) : gltfBinary(snaps, info));
+    writeFileAtomic(gltfFile, plate ? gltfPlateBinary(plateSeries, info, gltfOptions) : gltfBinary(snaps, info));
     if (written) written->push_back(gltfFile);
     if (!o.quiet)
       std::fprintf(stderr, "wrote %s (%zu snapshot%s, %g h to %g h%s)\n", gltfFile.c_str(), snaps.size(),

@@ -540,7 +540,7 @@ std::string gltfBinary(const std::vector<Snapshot>& snaps, const SceneInfo& info
   return gltfOf({RootSeries{"root", snaps, 0}}, info, options, false);
 }
 
-std::string gltfBinary(const std::vector<RootSeries>& roots, const SceneInfo& info, const GltfOptions& options) {
+std::string gltfPlateBinary(const std::vector<RootSeries>& roots, const SceneInfo& info, const GltfOptions& options) {
   return gltfOf(roots, info, options, true);
 }
 

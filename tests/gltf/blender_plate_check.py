@@ -5,8 +5,8 @@ FILE.glb OUT.png ROOTS FRAMES, ROOTS the plate's root names joined by commas (ro
 that Blender's glTF importer reads the file; that every root is a group object of its name holding its
 snapshot objects "NAME frame NNNN, ..."; that at frames 0, the middle and the last every root whose first
 snapshot is at or before the frame shows exactly that frame's snapshot and no other; then renders the last
-frame with Cycles through the file's top camera, narrowed to the roots, and checks that the picture is
-not blank and shows both stripes' colours. Any failure raises, and Blender exits 1.
+frame with Cycles through the file's top camera, narrowed to the first root, and checks that the picture
+is not blank and shows both stripes' colours. Any failure raises, and Blender exits 1.
 """
 import sys
 
@@ -58,17 +58,19 @@ for f in sorted({0, frames // 2, frames - 1}):
             fail("at frame %d root %s shows %s, expected %s" % (f, name, shown, want))
 print("the animation shows one snapshot per emerged root at frames 0, %d and %d" % (frames // 2, frames - 1))
 
-# the last frame through the top camera, narrowed to the roots' reach
+# the last frame through the top camera, narrowed to the first root's last snapshot (the plate's roots
+# are a pixel wide in a picture of the whole plate; every root's presence is checked above)
 scene.frame_set(frames - 1)
-shown = [o for kids in snapshots.values() for o in kids if frame_of(o) == frames - 1]
-corners = [o.matrix_world @ Vector(c) for o in shown for c in o.bound_box]
+last = snapshots[roots[0]][-1]
+corners = [last.matrix_world @ Vector(c) for c in last.bound_box]
 xs, ys = [c.x for c in corners], [c.y for c in corners]
 camera = objs["top view"]
+margin = 0.3e-3  # [m]
 camera.location.x, camera.location.y = 0.5 * (min(xs) + max(xs)), 0.5 * (min(ys) + max(ys))
-w, h = max(xs) - min(xs) + 1e-3, max(ys) - min(ys) + 1e-3
+w, h = max(xs) - min(xs) + 2 * margin, max(ys) - min(ys) + 2 * margin
 camera.data.ortho_scale = max(w, h)
-scene.render.resolution_x = max(16, round(720 * min(1.0, w / h)))
-scene.render.resolution_y = max(16, round(720 * min(1.0, h / w)))
+scene.render.resolution_x = max(16, round(480 * min(1.0, w / h)))
+scene.render.resolution_y = max(16, round(480 * min(1.0, h / w)))
 scene.render.resolution_percentage = 100
 scene.camera = camera
 sun = bpy.data.objects.new("sun", bpy.data.lights.new("sun", "SUN"))

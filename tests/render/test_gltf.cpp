@@ -398,8 +398,8 @@ TEST_CASE("glTF: a plate's roots are one group and one striped tube per snapshot
   for (Snapshot& s : roots[1].snaps) s.x.colwise() += 5e-3 * pf.lateral;
   GltfOptions o;
   o.plateRectMm = std::array<double, 4>{-1.0, -30.0, 40.0, 0.0};
-  const std::string bytes = gltfBinary(roots, rtest::info(40.0), o);
-  CHECK(bytes == gltfBinary(roots, rtest::info(40.0), o));
+  const std::string bytes = gltfPlateBinary(roots, rtest::info(40.0), o);
+  CHECK(bytes == gltfPlateBinary(roots, rtest::info(40.0), o));
   const Glb g = parseGlb(bytes);
   const J& js = g.json;
   // 5 frames, 2 groups, plate, grid, camera, scene root
@@ -465,6 +465,6 @@ TEST_CASE("glTF: a plate's roots are one group and one striped tube per snapshot
   CHECK(pa["max"][0].n == doctest::Approx(41e-3));
   CHECK(pa["max"][2].n == doctest::Approx(31e-3));  // glTF z = -v
   // a root without snapshots or starting before the file is refused
-  CHECK_THROWS_AS(gltfBinary(std::vector<RootSeries>{{"a", {}, 0}}, rtest::info(40.0)), RenderError);
-  CHECK_THROWS_AS(gltfBinary(std::vector<RootSeries>{{"a", {arcRoot(4, 1.0, 0.0)}, -1}}, rtest::info(40.0)), RenderError);
+  CHECK_THROWS_AS(gltfPlateBinary(std::vector<RootSeries>{{"a", {}, 0}}, rtest::info(40.0)), RenderError);
+  CHECK_THROWS_AS(gltfPlateBinary(std::vector<RootSeries>{{"a", {arcRoot(4, 1.0, 0.0)}, -1}}, rtest::info(40.0)), RenderError);
 }

@@ -419,11 +419,12 @@ TEST_CASE("stills: a plate's run draws every root, and --scan is the plate at PX
   const Image sown = readPng((d / "sown.png").string()), last = readPng((d / "view.png").string()),
               whole = readPng((d / "whole.png").string());
   CHECK(sown.rgba == last.rgba);
-  // root pixels (the stripes: warm and saturated), between the overlays' bands (the legend's swatches
-  // have the stripes' colours)
+  // root pixels (the stripes: warm and saturated), above the legend (its swatches have the stripes'
+  // colours; on the whole plate it lies inside the outline, at about 0.87 of the height) and below the
+  // time; the roots are sown near the plate's top
   auto rootSpan = [](const Image& im) {
     int x0 = im.width, x1 = -1;
-    for (int y = im.height / 8; y < im.height * 7 / 8; ++y)
+    for (int y = im.height * 12 / 100; y < im.height * 82 / 100; ++y)
       for (int x = 0; x < im.width; ++x) {
         const std::uint8_t* q = im.at(x, y);
         if (q[0] > 200 && q[0] > q[2] + 40) x0 = std::min(x0, x), x1 = std::max(x1, x);
@@ -432,7 +433,7 @@ TEST_CASE("stills: a plate's run draws every root, and --scan is the plate at PX
   };
   INFO("root span: sown area " << rootSpan(sown) << ", whole plate " << rootSpan(whole));
   CHECK(rootSpan(sown) > 2.0 * rootSpan(whole));
-  CHECK(rootSpan(sown) > 0.4);
+  CHECK(rootSpan(sown) > 0.25);
   const Result noView = run("render " + (d / "plate").string() + " --whole-plate --png " + (d / "z.png").string() + " --at-h 3");
   CHECK(noView.code == 2);
   CHECK(noView.out.find("--whole-plate: ") != std::string::npos);

@@ -810,3 +810,32 @@ TEST_CASE("a legend leaves the corner its curve runs through") {
   // upper left (x small, y small) or lower right (x large, y large): not on the diagonal's corners
   CHECK(((cx < 0.5 && cy < 0.5) || (cx > 0.5 && cy > 0.5)));
 }
+
+TEST_CASE("a note placed on the frame's edge is drawn inside the frame, clear of its line") {
+  // a note at the bottom edge (y = ymin) above the x tick label 0: its box ends well above that label
+  rootsim::Figure f;
+  f.width = 600;
+  f.height = 450;
+  rootsim::Axes a;
+  a.autoX = a.autoY = false;
+  a.xmin = -1, a.xmax = 1, a.ymin = 0, a.ymax = 1;
+  a.notes.push_back({{0.0, 0.0}, "coiling"});
+  f.axes.push_back(a);
+  const fs::path base = fs::temp_directory_path() / "rootsim_plot_note_inside";
+  rootsim::saveFigure(f, base.string(), rootsim::SaveOptions{});
+  const std::string xml = capture("pdftotext -bbox '" + base.string() + ".pdf' - 2>&1");
+  std::array<double, 2> note{-1, -1};
+  double tickTop = -1;  // the lowest "0" on the page: the x tick label (the y axis' 0 sits beside the frame)
+  for (size_t p = xml.find("<word "); p != std::string::npos; p = xml.find("<word ", p + 1)) {
+    auto attr = [&](const std::string& k) { return std::stod(xml.substr(xml.find(k + "=\"", p) + k.size() + 2)); };
+    const size_t at = xml.find('>', p) + 1;
+    const std::string w = xml.substr(at, xml.find('<', at) - at);
+    if (w == "coiling") note = {attr("yMin"), attr("yMax")};
+    if (w == "0") tickTop = std::max(tickTop, attr("yMin"));
+  }
+  REQUIRE(note[0] > 0);
+  REQUIRE(tickTop > 0);
+  INFO("note " << note[0] << " .. " << note[1] << " pt, tick label from " << tickTop << " pt");
+  // centred on the frame's line, the note's lower half would reach within a point of the tick label
+  CHECK(tickTop - note[1] > 0.5 * (note[1] - note[0]));
+}

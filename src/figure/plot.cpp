@@ -467,7 +467,13 @@ void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
     }
   }
   cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-  for (const auto& [at, s] : a.notes) text(p, X(at[0]), Y(at[1]), s, 12, 0.5, 0.5);
+  for (const auto& [at, s] : a.notes) {
+    // a note stays inside the frame: its box (12 units high, its width) clear of the frame's lines
+    const double hw = 0.5 * labelWidth(p, s, 12) + 2, hh = 0.5 * 12 * 1.164 + 2;
+    const double cx = hw < 0.5 * pw ? std::clamp(X(at[0]), L + hw, R - hw) : X(at[0]);
+    const double cy = hh < 0.5 * ph ? std::clamp(Y(at[1]), T + hh, B - hh) : Y(at[1]);
+    text(p, cx, cy, s, 12, 0.5, 0.5);
+  }
   cairo_restore(cr);
 
   // legend

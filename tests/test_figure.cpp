@@ -839,3 +839,35 @@ TEST_CASE("a note placed on the frame's edge is drawn inside the frame, clear of
   // centred on the frame's line, the note's lower half would reach within a point of the tick label
   CHECK(tickTop - note[1] > 0.5 * (note[1] - note[0]));
 }
+
+TEST_CASE("a row of root tiles at 85 mm shares one x label when equal labels would crowd each other") {
+  for (double mm : {85.0, 180.0}) {
+    INFO(mm << " mm");
+    const fs::path base = fs::temp_directory_path() / "rootsim_plot_row_xlabel";
+    rootsim::SaveOptions so;
+    so.widthMm = mm;
+    rootsim::saveFigure(journalPanel(), base.string(), so);
+    const std::string xml = capture("pdftotext -bbox '" + base.string() + ".pdf' - 2>&1");
+    // each x label's "lateral" and "[mm]" boxes, by line
+    std::map<long, std::vector<std::array<double, 2>>> labels;  // yMin -> [xMin of "lateral", xMax of its "[mm]"]
+    for (size_t p = xml.find("<word "); p != std::string::npos; p = xml.find("<word ", p + 1)) {
+      auto attr = [&](const std::string& k) { return std::stod(xml.substr(xml.find(k + "=\"", p) + k.size() + 2)); };
+      const size_t at = xml.find('>', p) + 1;
+      const std::string w = xml.substr(at, xml.find('<', at) - at);
+      const long y = std::lround(attr("yMin"));
+      if (w == "lateral") labels[y].push_back({attr("xMin"), attr("xMax")});
+      if (w == "[mm]" && labels.count(y) && !labels[y].empty()) labels[y].back()[1] = attr("xMax");
+    }
+    REQUIRE(!labels.empty());
+    int count = 0;
+    for (auto& [y, row] : labels) {
+      std::sort(row.begin(), row.end());
+      count += static_cast<int>(row.size());
+      for (size_t k = 1; k < row.size(); ++k) {
+        INFO("labels at " << row[k - 1][1] << " and " << row[k][0] << " pt");
+        CHECK(row[k][0] - row[k - 1][1] >= 7.0);  // at least an em of the 7 pt labels apart
+      }
+    }
+    if (mm == 85.0) CHECK(count < 6);  // six tiles, fewer labels: a row's one
+  }
+}

@@ -326,6 +326,11 @@ struct Cell {
   Box box;
   double left = kLeft;
   bool yTickLabels = true;
+  // the x label: its own (centred under its plot), none, or the row's one label centred over
+  // [rowX0, rowX1] (a row sharing its y axis whose equal x labels would crowd each other)
+  bool xLabel = true;
+  bool rowLabel = false;
+  double rowX0 = 0, rowX1 = 0;
 };
 
 // about one tick label per `pitch` layout units of the axis, between lo and hi labels
@@ -396,7 +401,7 @@ void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
   cairo_stroke(cr);
   if (!a.title.empty()) text(p, 0.5 * (L + R), box.y + 8, a.title, 15, 0.5, 0.0, true);
   if (!a.panelLabel.empty()) text(p, box.x + 8, box.y + 6, a.panelLabel, 20, 0.0, 0.0, true);
-  text(p, 0.5 * (L + R), B + 26, a.xlabel, 13, 0.5, 0.0);
+  if (cell.xLabel) text(p, cell.rowLabel ? 0.5 * (cell.rowX0 + cell.rowX1) : 0.5 * (L + R), B + 26, a.xlabel, 13, 0.5, 0.0);
   text(p, box.x + 14, 0.5 * (T + B), a.ylabel, 13, 0.5, 0.5, false, -units::pi / 2);
 
   // data, clipped to the plot area
@@ -642,11 +647,24 @@ Layout layoutOf(cairo_t* cr, const Figure& f, double widthMm) {
       const double aspect = a.equalAspect ? plotAspect(f, a) : std::max(kMinPlotAspect, plotAspect(f, a));
       h = std::max(h, pw * aspect + (a.title.empty() ? kTop : kTopTitle) + kBottom);
     }
-    for (int i = r0; i < std::min(n, r0 + cols); ++i) {
+    // equal x labels in a row sharing its y axis: one under the row when side by side they would come
+    // within 1 em (12 units) of each other
+    const int rowEnd = std::min(n, r0 + cols);
+    bool sameX = shared && rowEnd - r0 > 1 && !f.axes[static_cast<size_t>(r0)].xlabel.empty();
+    for (int i = r0 + 1; i < rowEnd && sameX; ++i) sameX = f.axes[static_cast<size_t>(i)].xlabel == f.axes[static_cast<size_t>(r0)].xlabel;
+    const bool rowLabel = sameX && labelWidth(p, f.axes[static_cast<size_t>(r0)].xlabel, 13) + 12 > inner + pw + kRight;
+    for (int i = r0; i < rowEnd; ++i) {
       const int c = i - r0;
       const double x = c == 0 ? 0 : kLeft + pw + kRight + (c - 1) * (inner + pw + kRight);
       const double left = c == 0 ? kLeft : inner;
       out.cells.push_back({Box{x, y, left + pw + kRight, h}, left, c == 0 || !shared});
+      if (rowLabel) {
+        Cell& cell = out.cells.back();
+        cell.xLabel = c == 0;
+        cell.rowLabel = true;
+        cell.rowX0 = kLeft;
+        cell.rowX1 = kLeft + pw + (rowEnd - r0 - 1) * (kRight + inner + pw);
+      }
     }
     y += h;
   }

@@ -23,6 +23,17 @@ std::string shapeCsv(const Model& m, const RodState& s, const RodStrains& k);
 // (mode,eigenvalue_n_per_m,node,s_mm,x_mm,y_mm,z_mm,ux,uy,uz: the node's position and its displacement
 // in the mode, largest 1), and modes.vtp, the centreline with one point-data vector per mode
 std::string modesCsv(const RodState& s, const StiffnessModes& m);
+// one column of timeseries.csv, declared once (timeseriesColumns): it writes the file's header and rows,
+// fills the Python package's records (rootsim.Simulation.step) and docs/outputs.md's column table
+struct RecordColumn {
+  const char* name;                        // the header's name (its unit in it: time_h, length_mm)
+  const char* unit;                        // "" for a count or a dimensionless value
+  const char* help;
+  double (*real)(const StepRecord&);       // the value, in the file's unit; null for a whole number
+  long long (*whole)(const StepRecord&);   // a whole number (a step, a count), written as an integer
+};
+const std::vector<RecordColumn>& timeseriesColumns();
+
 // time series, one row per output step, streamed (temp file renamed on close)
 class TimeseriesWriter {
  public:

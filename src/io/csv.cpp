@@ -69,23 +69,57 @@ std::string modesCsv(const RodState& s, const StiffnessModes& m) {
   return o.str();
 }
 
+const std::vector<RecordColumn>& timeseriesColumns() {
+  using R = StepRecord;
+  static const std::vector<RecordColumn> columns = {
+      {"step", "", "growth step", nullptr, [](const R& r) -> long long { return r.step; }},
+      {"time_h", "h", "growth time", [](const R& r) { return r.timeH; }, nullptr},
+      {"length_mm", "mm", "rest length of the root", [](const R& r) { return r.length / units::mm; }, nullptr},
+      {"elements", "", "elements of the rod", nullptr, [](const R& r) -> long long { return r.elements; }},
+      {"theta_tip_deg", "deg", "planar tip angle, unwrapped over time", [](const R& r) { return r.thetaTip / units::deg; }, nullptr},
+      {"Eb", "J", "bending energy of the growth zone", [](const R& r) { return r.zone.Eb; }, nullptr},
+      {"Et", "J", "twist energy of the growth zone", [](const R& r) { return r.zone.Et; }, nullptr},
+      {"Wr", "", "writhe of the growth zone", [](const R& r) { return r.zone.Wr; }, nullptr},
+      {"Tw", "", "twist of the growth zone", [](const R& r) { return r.zone.Tw; }, nullptr},
+      {"substeps", "", "explicit relaxation sub-steps of this step", nullptr, [](const R& r) -> long long { return r.substeps; }},
+      {"residual_force_n", "N", "residual force when the step's relaxation stopped", [](const R& r) { return r.residualForce; }, nullptr},
+      {"splits", "", "elements split in this step", nullptr, [](const R& r) -> long long { return r.splits; }},
+      {"unstable", "", "unstable equilibria found (and left along their unstable mode) in this step", nullptr,
+       [](const R& r) -> long long { return r.unstable; }},
+      {"tip_x_mm", "mm", "tip position, lab x", [](const R& r) { return r.tip.x() / units::mm; }, nullptr},
+      {"tip_y_mm", "mm", "tip position, lab y", [](const R& r) { return r.tip.y() / units::mm; }, nullptr},
+      {"tip_z_mm", "mm", "tip position, lab z", [](const R& r) { return r.tip.z() / units::mm; }, nullptr},
+      {"newton_iterations", "", "Newton iterations of this step", nullptr, [](const R& r) -> long long { return r.iterations; }},
+      {"lowest_eigenvalue_n_per_m", "N/m", "stiffness eigenvalue nearest zero at the equilibrium (Newton with the stability check; else nan)",
+       [](const R& r) { return r.lowestEigenvalue; }, nullptr},
+      {"self_contacts", "", "element pairs in self-contact", nullptr, [](const R& r) -> long long { return r.selfContacts; }},
+      {"min_self_distance_r", "R", "closest approach of elements at least 3R apart along the root, / R (nan: none within 3R)",
+       [](const R& r) { return r.minSelfDistance; }, nullptr},
+      {"obstacle_contacts", "", "elements touching an obstacle", nullptr, [](const R& r) -> long long { return r.obstacleContacts; }},
+      {"slip_events", "", "node slips committed so far (friction), cumulative", nullptr, [](const R& r) -> long long { return r.slipEvents; }},
+      {"frictional_work_j", "J", "work done against friction so far, cumulative", [](const R& r) { return r.frictionWork; }, nullptr},
+  };
+  return columns;
+}
+
 TimeseriesWriter::TimeseriesWriter(const fs::path& path) : f_(path) {
-  f_.stream() << "step,time_h,length_mm,elements,theta_tip_deg,Eb,Et,Wr,Tw,substeps,residual_force_n,splits,unstable,"
-                 "tip_x_mm,tip_y_mm,tip_z_mm,newton_iterations,lowest_eigenvalue_n_per_m,self_contacts,"
-                 "min_self_distance_r,obstacle_contacts,slip_events,frictional_work_j\n";
+  auto& o = f_.stream();
+  const std::vector<RecordColumn>& cols = timeseriesColumns();
+  for (std::size_t c = 0; c < cols.size(); ++c) o << (c ? "," : "") << cols[c].name;
+  o << '\n';
 }
 
 TimeseriesWriter::TimeseriesWriter(const fs::path& path, std::uintmax_t bytes) : f_(path, bytes) {}
 
 void TimeseriesWriter::add(const StepRecord& r) {
   auto& o = f_.stream();
-  o << r.step << ',' << numberText(r.timeH) << ',' << numberText(r.length / units::mm) << ',' << r.elements << ','
-    << numberText(r.thetaTip / units::deg) << ',' << numberText(r.zone.Eb) << ',' << numberText(r.zone.Et) << ','
-    << numberText(r.zone.Wr) << ',' << numberText(r.zone.Tw) << ',' << r.substeps << ',' << numberText(r.residualForce) << ','
-    << r.splits << ',' << r.unstable << ',' << numberText(r.tip.x() / units::mm) << ',' << numberText(r.tip.y() / units::mm) << ',' << numberText(r.tip.z() / units::mm)
-    << ',' << r.iterations << ',' << numberText(r.lowestEigenvalue)
-    << ',' << r.selfContacts << ',' << numberText(r.minSelfDistance)
-    << ',' << r.obstacleContacts << ',' << r.slipEvents << ',' << numberText(r.frictionWork) << '\n';
+  const std::vector<RecordColumn>& cols = timeseriesColumns();
+  for (std::size_t c = 0; c < cols.size(); ++c) {
+    if (c) o << ',';
+    if (cols[c].real) o << numberText(cols[c].real(r));
+    else o << cols[c].whole(r);
+  }
+  o << '\n';
   f_.flush();  // one row per output step: a write failure stops the run here, not after the last step
 }
 

@@ -100,3 +100,25 @@ def test_check_is_the_command_line_check(scenes):
     assert got["resolved_toml"] in out
     with pytest.raises(ValueError, match="plane.alpha_deg must be in"):
         rootsim.check(scenes / "fig2b_waving.toml", set={"plane.alpha_deg": 120})
+
+
+SMALL = {"growth.steps": 20, "output.every_steps": 10}
+
+
+@pytest.mark.skipif(not rootsim._rootsim.have_render, reason="built without the renderer")
+def test_run_takes_the_movie_flags(scenes, tmp_path):
+    with pytest.raises(ValueError, match="shape the movie; add --movie"):
+        rootsim.run(scenes / "fig2b_waving.toml", set=SMALL, out=tmp_path / "no", camera="follow")
+    assert not (tmp_path / "no").exists() and not (tmp_path / "no.partial").exists()
+    r = rootsim.run(scenes / "fig2b_waving.toml", set=SMALL, out=tmp_path / "m", movie=True, camera="follow")
+    assert (r.dir / "movie.mp4").stat().st_size > 0 and (r.dir / "final_top.png").stat().st_size > 0
+
+
+def test_modes_is_the_command_line_modes(scenes, tmp_path):
+    cli("run", scenes / "fig2b_waving.toml", *[f"--set={k}={v}" for k, v in SMALL.items()], "--out",
+        tmp_path / "c", "--quiet")
+    cli("modes", tmp_path / "c", "--count", "2", "--quiet")
+    r = rootsim.run(scenes / "fig2b_waving.toml", set=SMALL, out=tmp_path / "p")
+    written = rootsim.modes(r.dir, count=2)
+    assert written == [r.dir / "modes.csv", r.dir / "modes.vtp"]
+    assert (r.dir / "modes.csv").read_bytes() == (tmp_path / "c" / "modes.csv").read_bytes()

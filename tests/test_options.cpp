@@ -2,6 +2,7 @@
 // setters the Python binding calls, the records of what was given, the generated docs
 #include <doctest/doctest.h>
 
+#include <cmath>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -85,6 +86,20 @@ TEST_CASE("the setters write the member the table names and refuse another kind"
   const auto m = montage.makeAs<app::MontageOptions>();
   setTexts(option(montage, "run_dirs"), m.get(), {"a", "b"});
   CHECK(m->runDirs == std::vector<std::string>{"a", "b"});
+}
+
+TEST_CASE("Python's values meet the command line's range and choice checks with its messages") {
+  const CommandSpec& render = command("render");
+  CHECK(checkNumber(render, option(render, "fps"), 240).empty());
+  CHECK(checkNumber(render, option(render, "fps"), 0) == "render: --fps: Value 0 not in range 1 to 240");
+  CHECK(checkNumber(render, option(render, "at_h"), -5).empty());  // no range: the command checks it
+  const CommandSpec& figure = command("figure");
+  CHECK(checkNumber(figure, option(figure, "dpi"), 2401) == "figure: --dpi: Value 2401 not in range 10 to 2400");
+  CHECK(checkNumber(figure, option(figure, "dpi"), std::nan("")).empty());  // figure's own check names it
+  CHECK(checkText(render, option(render, "view"), "3d").empty());
+  CHECK(checkText(render, option(render, "view"), "side") == "render: --view: side not in {top,3d}");
+  CHECK(checkText(command("montage"), option(command("montage"), "view"), "side").empty());
+  CHECK(checkNumber(command("sweep"), option(command("sweep"), "jobs"), 0) == "sweep: --jobs: Value 0 not in range 1 to 1024");
 }
 
 TEST_CASE("the generated docs hold a table per command with every flag") {

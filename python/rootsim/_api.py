@@ -554,8 +554,6 @@ def sweep(sweep_file: Optional[PathLike] = None, *, scene: Union[Scene, PathLike
         raise TypeError("sweep: scene= needs grid= (a dict of key -> list of values)")
     if sweep_file is not None and (grid is not None or set is not None):
         raise TypeError("sweep: grid= and set= go with scene=; a sweep file has its own [grid] and [set]")
-    if jobs is not None and int(jobs) < 1:
-        raise SceneError(f"jobs={jobs}: expected at least 1 parallel run")
     keep = None
     if sweep_file is None:
         # the same plan as a sweep file: written to a temporary folder and read by the C++ loader

@@ -74,17 +74,34 @@ O commandOptions(const std::string& name, const py::dict& options) {
     if (s == nullptr) throw SceneError(name + ": unknown option " + key);
     const py::handle v = item.second;
     if (v.is_none()) continue;
+    std::string refused;  // the table's range or choices, as the command line checks them
     try {
       switch (s->kind) {
-        case cli::OptionKind::Text: cli::setText(*s, o.get(), py::str(v)); break;
+        case cli::OptionKind::Text: {
+          const std::string t = py::str(v);
+          refused = cli::checkText(spec, *s, t);
+          cli::setText(*s, o.get(), t);
+          break;
+        }
         case cli::OptionKind::Texts: cli::setTexts(*s, o.get(), v.cast<std::vector<std::string>>()); break;
-        case cli::OptionKind::Int: cli::setInt(*s, o.get(), v.cast<int>()); break;
-        case cli::OptionKind::Real: cli::setReal(*s, o.get(), v.cast<double>()); break;
+        case cli::OptionKind::Int: {
+          const int n = v.cast<int>();
+          refused = cli::checkNumber(spec, *s, n);
+          cli::setInt(*s, o.get(), n);
+          break;
+        }
+        case cli::OptionKind::Real: {
+          const double x = v.cast<double>();
+          refused = cli::checkNumber(spec, *s, x);
+          cli::setReal(*s, o.get(), x);
+          break;
+        }
         case cli::OptionKind::Flag: cli::setFlag(*s, o.get(), s->negated() != v.cast<bool>()); break;
       }
     } catch (const py::cast_error&) {
       throw SceneError(name + ": option " + key + " has the wrong type");
     }
+    if (!refused.empty()) throw SceneError(refused);
     cli::markGiven(*s, o.get(), true);
   }
   return *o;

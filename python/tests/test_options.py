@@ -90,6 +90,11 @@ def test_an_unknown_keyword_is_named():
         rootsim._rootsim.modes({"run_dir": "nowhere", "colour": "red"})
     with pytest.raises(ValueError, match="modes: option count has the wrong type"):
         rootsim._rootsim.modes({"run_dir": "nowhere", "count": "six"})
+    # the command line's checks, from the same table
+    with pytest.raises(ValueError, match="modes: --count: Value 0 not in range 1 to 1000"):
+        rootsim.modes("nowhere", count=0)
+    with pytest.raises(ValueError, match="sweep: --jobs: Value 0 not in range 1 to 1024"):
+        rootsim.sweep("nowhere.toml", jobs=0)
 
 
 def test_check_is_the_command_line_check(scenes):

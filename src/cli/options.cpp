@@ -369,6 +369,23 @@ void markGiven(const OptionSpec& o, void* opts, bool given) {
   if (o.given) *o.given(opts) = given;
 }
 
+std::string checkNumber(const CommandSpec& c, const OptionSpec& o, double v) {
+  // as CLI11's Range: a NaN passes on to the command's own check (which names it, e.g. figure's --dpi)
+  if (!o.hasRange || !(v < o.lo || v > o.hi)) return "";
+  return c.name + ": --" + o.longName() + ": Value " + numberText(v) + " not in range " + numberText(o.lo) + " to " +
+         numberText(o.hi);
+}
+
+std::string checkText(const CommandSpec& c, const OptionSpec& o, const std::string& v) {
+  if (o.choices.empty()) return "";
+  std::string list;
+  for (const std::string& ch : o.choices) {
+    if (ch == v) return "";
+    list += (list.empty() ? "" : ",") + ch;
+  }
+  return c.name + ": --" + o.longName() + ": " + v + " not in {" + list + "}";
+}
+
 std::string optionsMarkdown() {
   static const char* kKind[] = {"text", "texts", "integer", "number", "flag"};
   std::string md;

@@ -71,6 +71,10 @@ void setInt(const OptionSpec& o, void* opts, int v);
 void setReal(const OptionSpec& o, void* opts, double v);
 void setFlag(const OptionSpec& o, void* opts, bool v);  // the flag's own sense (negated() already undone)
 void markGiven(const OptionSpec& o, void* opts, bool given);
+// the table's checks (range, choices) on a value given other than through CLI11 (Python's keywords):
+// "" when it passes, else the message, as CLI11's ("sweep: --jobs: Value 0 not in range 1 to 1024")
+std::string checkNumber(const CommandSpec& c, const OptionSpec& o, double v);
+std::string checkText(const CommandSpec& c, const OptionSpec& o, const std::string& v);
 
 // the markdown tables of docs/cli.md's options section (one per command)
 std::string optionsMarkdown();

@@ -82,30 +82,27 @@ class _SweepRunner:
     def cancel(self) -> None: ...
     def summary(self) -> Dict[str, Any]: ...
 
+# The commands below take one dict: the command's options by their Python names, positionals included
+# (command_table()[command] lists them: the command line's option table, src/cli/options.hpp).
+
 def export_run(options: Dict[str, Any]) -> List[str]:
-    """``rootsim export``: options by name, positionals included (rsml, gltf, paraview, at_h, every_h, force, quiet); returns
-    the files and folders written."""
+    """``rootsim export``; returns the files and folders written."""
     ...
 
 def analyze_traces(options: Dict[str, Any]) -> Dict[str, Any]:
-    """``rootsim analyze`` without writing: options by name (px_per_mm, downhill, times, ds_mm,
-    exclude_tip_mm, radius_mm); "roots", "plants", "growth": one dict per row with analysis.csv's,
-    plants.csv's and growth.csv's columns; "root_columns", "plant_columns", "growth_columns": their
-    names; "warnings": the implausible lengths."""
+    """``rootsim analyze`` (its folder only with "out"): "roots", "plants", "growth": one dict per row with
+    analysis.csv's, plants.csv's and growth.csv's columns; "root_columns", "plant_columns",
+    "growth_columns": their names; "warnings": the implausible lengths."""
     ...
 
 def compare_trace(options: Dict[str, Any]) -> str:
-    """``rootsim compare``: options by name (root, px_per_mm, downhill, sigma_mm, at_h, out, force, quiet);
-    returns the folder written."""
+    """``rootsim compare``; returns the folder written."""
     ...
 
 def fit_trace(options: Dict[str, Any]) -> str:
-    """``rootsim fit``: options by name (scene, free, out, root, px_per_mm, downhill, sigma_mm, objective,
-    jobs, budget, force, quiet); returns the folder written."""
+    """``rootsim fit``; returns the folder written."""
     ...
 
 def render_run(options: Dict[str, Any]) -> None:
-    """``rootsim render``: options by name (mp4, png_dir, final_png, view, size, fps, crf, whiskers,
-    transparent, overlays, camera, field_mm, inset, color_by, plot, shadows, shader_dir, force, quiet, png,
-    at_h, frame, from_h, to_h, hours_per_second, trace, trace_root, trace_px_per_mm, trace_downhill)."""
+    """``rootsim render``."""
     ...

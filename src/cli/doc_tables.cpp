@@ -1,7 +1,7 @@
 // rootsim_doc_tables: writes (--write) or checks (--check) the generated tables of a docs page: the text
 // between "<!-- generated: NAME -->" and "<!-- end generated: NAME -->" is the table NAME from its one
-// declaration (options: every command's options, options.hpp; timeseries: timeseries.csv's columns,
-// csv.hpp). Ctests run --check on docs/cli.md and docs/outputs.md.
+// declaration (options: every command's options, options.hpp; timeseries and shape: timeseries.csv's
+// and shape.csv's columns, csv.hpp). Ctests run --check on docs/cli.md and docs/outputs.md.
 #include <cstdio>
 #include <fstream>
 #include <map>
@@ -21,9 +21,18 @@ std::string timeseriesMarkdown() {
   return md;
 }
 
+// shape.csv's columns (shapeColumns)
+std::string shapeMarkdown() {
+  std::string md = "| column | unit | holds |\n|---|---|---|\n";
+  for (const rootsim::ShapeColumn& c : rootsim::shapeColumns())
+    md += std::string("| `") + c.name + "` | " + c.unit + " | " + c.help + " |\n";
+  return md;
+}
+
 const std::map<std::string, std::string>& tables() {
   static const std::map<std::string, std::string> t = {{"options", rootsim::cli::optionsMarkdown()},
-                                                             {"timeseries", timeseriesMarkdown()}};
+                                                             {"timeseries", timeseriesMarkdown()},
+                                                             {"shape", shapeMarkdown()}};
   return t;
 }
 

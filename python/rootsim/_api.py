@@ -751,16 +751,17 @@ def montage(run_dirs: Sequence[PathLike], *, mp4: Optional[PathLike] = None, png
     return [pathlib.Path(p) for p in (mp4, png_dir) if p is not None]
 
 
-def modes(run_dir: PathLike, *, count: Optional[int] = None, force: bool = False,
+def modes(run_dir: PathLike, *, count: Optional[int] = None, root: Optional[str] = None, force: bool = False,
           quiet: bool = True) -> List[pathlib.Path]:
     """The softest stiffness modes of a run's final state, as ``rootsim modes RUN_DIR`` (the same C++
     code): repeats the run from its scene.toml and writes modes.csv (eigenvalue, per-node displacement)
-    and modes.vtp (ParaView) into the run directory; ``count`` modes (default: the command line's).
-    Returns the two files. Bad input raises SceneError with the command line's message. Keywords only.
+    and modes.vtp (ParaView) into the run directory; ``count`` modes (default: the command line's). A
+    plate's run: ``root`` names the root (or pass its folder roots/NAME); the whole plate is repeated and
+    the root's folder receives the files. Returns the two files. Bad input raises SceneError with the command line's message. Keywords only.
 
     Units: eigenvalues in N/m (modes.csv's columns name them)."""
     _c.modes(_options(locals()))
-    d = pathlib.Path(run_dir)
+    d = pathlib.Path(run_dir) if root is None else pathlib.Path(run_dir) / "roots" / root
     return [d / "modes.csv", d / "modes.vtp"]
 
 
@@ -869,7 +870,8 @@ def analyze(files: Union[PathLike, Sequence[PathLike]], *, px_per_mm: Optional[f
 
 def compare(run_dir: PathLike, trace: PathLike, *, root: Optional[str] = None, px_per_mm: Optional[float] = None,
             downhill: Union[str, float, None] = None, sigma_mm: Optional[float] = None, at_h: Optional[float] = None,
-            out: Optional[PathLike] = None, force: bool = False, quiet: bool = True) -> Dict[str, Any]:
+            out: Optional[PathLike] = None, groups: Optional[PathLike] = None, force: bool = False,
+            quiet: bool = True) -> Dict[str, Any]:
     """A traced root (RSML) over a run's root, as ``rootsim compare RUN_DIR TRACE`` (docs/experiments.md;
     the same C++ code): writes compare.json, compare.csv and the picture (compare.pdf/.svg/.png) into
     ``out`` (default compare/<run>_vs_<trace>) and returns compare.json as a dict, with "out" added: the
@@ -879,7 +881,8 @@ def compare(run_dir: PathLike, trace: PathLike, *, root: Optional[str] = None, p
     ``root``: the traced root (id, #k or plant/root; default the file's one primary root); ``px_per_mm``:
     for a pixel file; ``downhill``: "+y", "-y" or an angle in degrees; ``sigma_mm``: a traced point's
     uncertainty [mm]; ``at_h``: the run's snapshot nearest this time [h] (default: the first as long as
-    the trace). Bad input raises SceneError with the command line's message. Keywords only."""
+    the trace); ``groups``: a plate's run, a sample sheet pairing plants with seedlings (docs/plate.md).
+    Bad input raises SceneError with the command line's message. Keywords only."""
     _need_render("compare")
     if downhill is not None:
         downhill = str(downhill)

@@ -174,6 +174,7 @@ CommandSpec modesSpec() {
   Table<O> t("modes", "the softest stiffness modes of a run's final state (modes.csv, modes.vtp)");
   t.opt("run_dir", FIELD(runDir), "", "run directory").required()
       .opt("--count", FIELD(count), "", "number of modes (default 6)").range(1, 1000)
+      .opt("--root", FIELD(root), "", "a plate's run: the root NAME (or pass its folder roots/NAME)")
       .opt("--force", FIELD(force), "", "replace modes.csv and modes.vtp written earlier")
       .opt("--quiet", FIELD(quiet), "", "no progress output");
   return t.done(nullptr, modesCommand);
@@ -217,6 +218,7 @@ CommandSpec compareSpec() {
   traceOptions(t);
   t.opt("--at-h", FIELD(atH), "h", "the run's snapshot nearest this time [h] (default: the first as long as the trace)")
       .opt("--out", FIELD(out), "", "output folder (default compare/<run>_vs_<trace>)")
+      .opt("--groups", FIELD(groups), "", "a plate's run: a sample sheet pairing plants with seedlings (plant,seedling)")
       .opt("--force", FIELD(force), "", "replace a compare folder rootsim wrote earlier")
       .opt("--quiet", FIELD(quiet), "", "no progress output");
   return t.done(nullptr, compareCommand);

@@ -41,6 +41,9 @@ RootStreams::RootStreams(const fs::path& w, const Model& m, const WriterPosition
   const bool traj = m.output.trajectory;
   const bool csv = traj && m.output.trajectoryFormat != TrajectoryFormat::Binary;
   const bool bin = traj && m.output.trajectoryFormat != TrajectoryFormat::Csv;
+  // a root that had written nothing when the checkpoint saw it (a plate's lateral that emerged after the
+  // last output step: its writers had not handed even their headers to the system) starts its files anew
+  if (p && p->timeseriesBytes == 0) p = nullptr;
   if (p) {
     ts_ = std::make_unique<TimeseriesWriter>(w / "timeseries.csv", p->timeseriesBytes);
     if (csv) tr_ = std::make_unique<TrajectoryWriter>(w / "trajectory.csv", p->trajectoryBytes, p->trajectoryFrames);

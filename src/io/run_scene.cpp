@@ -24,6 +24,7 @@
 #include "root_outputs.hpp"
 
 #include <algorithm>
+#include <optional>
 #include <sstream>
 
 #include <toml++/toml.h>
@@ -230,15 +231,31 @@ namespace {
 
 // the first place where two TOML nodes differ: its dotted key and line in a (0: a's whole node), "" when
 // they are the same
-std::string nodeDifference(const toml::node& a, const toml::node& b, const std::string& key, int& line,
-                           std::string& valueA, std::string& valueB) {
-  auto text = [](const toml::node& n) {
-    std::ostringstream os;
-    if (n.is_table()) os << "a table";
-    else if (const toml::array* arr = n.as_array()) os << *arr;
-    else n.visit([&](const auto& v) { os << v; });
-    return os.str();
+// the text of a node's value as its file wrote it (its source region)
+std::string sourceText(const std::string& file, const toml::node& n) {
+  if (n.is_table()) return "a table";
+  const toml::source_region& r = n.source();
+  auto offset = [&](const toml::source_position& p) {
+    std::size_t pos = 0;
+    for (toml::source_index l = 1; l < p.line && pos != std::string::npos; ++l) {
+      pos = file.find('\n', pos);
+      if (pos != std::string::npos) ++pos;
+    }
+    return pos == std::string::npos ? file.size() : std::min(file.size(), pos + p.column - 1);
   };
+  const std::size_t from = offset(r.begin), to = offset(r.end);
+  return to > from ? file.substr(from, to - from) : "?";
+}
+
+struct SceneTexts {
+  const std::string& a;
+  const std::string& b;
+};
+
+std::string nodeDifference(const toml::node& a, const toml::node& b, const std::string& key, int& line,
+                           std::string& valueA, std::string& valueB, const SceneTexts& texts) {
+  auto textA = [&](const toml::node& n) { return sourceText(texts.a, n); };
+  auto textB = [&](const toml::node& n) { return sourceText(texts.b, n); };
   if (const toml::table* ta = a.as_table(); ta && b.is_table()) {
     const toml::table& tb = *b.as_table();
     for (const auto& [k, v] : *ta) {
@@ -246,34 +263,44 @@ std::string nodeDifference(const toml::node& a, const toml::node& b, const std::
       const toml::node* w = tb.get(k.str());
       if (!w) {
         line = static_cast<int>(v.source().begin.line);
-        valueA = text(v);
+        valueA = textA(v);
         valueB = "not set";
         return sub;
       }
-      if (std::string d = nodeDifference(v, *w, sub, line, valueA, valueB); !d.empty()) return d;
+      if (std::string d = nodeDifference(v, *w, sub, line, valueA, valueB, texts); !d.empty()) return d;
     }
     for (const auto& [k, v] : tb)
       if (!ta->get(k.str())) {
         line = static_cast<int>(a.source().begin.line);
         valueA = "not set";
-        valueB = text(v);
+        valueB = textB(v);
         return key.empty() ? std::string(k.str()) : key + "." + std::string(k.str());
       }
     return "";
   }
   if (const toml::array* aa = a.as_array(); aa && b.is_array() && aa->is_array_of_tables() == b.as_array()->is_array_of_tables() &&
                                             aa->is_array_of_tables() && aa->size() == b.as_array()->size()) {
-    // [[seedling]] and the like: element by element, named by their index from 1
-    for (std::size_t i = 0; i < aa->size(); ++i)
-      if (std::string d = nodeDifference(*aa->get(i), *b.as_array()->get(i), key + "[" + std::to_string(i + 1) + "]", line,
-                                         valueA, valueB);
-          !d.empty())
+    // [[seedling]] and the like: element by element, named by their name (else their index from 1)
+    for (std::size_t i = 0; i < aa->size(); ++i) {
+      const toml::table* e = aa->get(i)->as_table();
+      const std::optional<std::string> name = e ? e->get("name") ? e->get("name")->value<std::string>() : std::nullopt
+                                                : std::nullopt;
+      const std::string sub = key + (name ? " \"" + *name + "\"" : " " + std::to_string(i + 1));
+      if (std::string d = nodeDifference(*aa->get(i), *b.as_array()->get(i), sub, line, valueA, valueB, texts); !d.empty())
         return d;
+    }
     return "";
   }
-  valueA = text(a);
-  valueB = text(b);
-  if (valueA == valueB && a.type() == b.type()) return "";
+  auto repr = [](const toml::node& n) {
+    std::ostringstream os;
+    if (const toml::array* arr = n.as_array()) os << *arr;
+    else if (const toml::table* t = n.as_table()) os << *t;
+    else n.visit([&](const auto& v) { os << v; });
+    return os.str();
+  };
+  if (a.type() == b.type() && repr(a) == repr(b)) return "";
+  valueA = textA(a);
+  valueB = textB(b);
   line = static_cast<int>(a.source().begin.line);
   return key;
 }
@@ -291,7 +318,7 @@ std::string sceneDifference(const std::string& file, const std::string& written,
   }
   int line = 0;
   std::string va, vb;
-  const std::string key = nodeDifference(a, b, "", line, va, vb);
+  const std::string key = nodeDifference(a, b, "", line, va, vb, SceneTexts{written, current});
   if (key.empty()) return file + " differs from this scene in its text only";
   return file + ":" + std::to_string(std::max(line, 1)) + ": " + key + " is " + va + " there, " + vb + " in " + scenePath +
          " with these --set values";

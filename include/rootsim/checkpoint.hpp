@@ -3,7 +3,7 @@
 // everything the run carries from one growth step to the next, so that a run continued from it writes
 // the same bytes as one never interrupted. Layout (little-endian, raw IEEE doubles: bit for bit):
 //
-//   header (40 bytes)  magic "RSCHKPT\0" (8) | u32 version | u32 reserved 0 | u64 scene hash (FNV-1a of
+//   header (40 bytes)  magic "RSCHKPT\0" (8) | u32 version | u32 kind (0 one root, 1 a plate) | u64 scene hash (FNV-1a of
 //                      the resolved scene.toml) | i32 growth step | u32 reserved 0 | u64 payload bytes
 //   payload            the rod state, SimulationCarry, the run's accumulators and the output writers'
 //                      positions: each struct's field list (fields.hpp) in order, a field as its raw

@@ -56,6 +56,17 @@ struct RootFinal {
 };
 RootFinal finishRoot(const Model& m, const Simulation& sim, const RunWatch& watch, double wallS);
 
+// the growth steps of a run, one root's or a plate's, from `first` to `steps`: grow(k), then write(k)
+// (what step k writes) and, at the run's cadence (checkpointEvery seconds of wall time; the test binary's
+// seams: run_seams.hpp) but after the last step, checkpoint(k); a writer's RunError names the step
+// ("at growth step k of N"); then progress(k). On a failure (not RunInterrupted) closeQuietly() keeps the
+// streams whole before the error goes on.
+struct RunSteps {
+  std::function<void(int)> grow, write, checkpoint, progress;
+  std::function<void()> closeQuietly;
+};
+void runGrowthSteps(int first, int steps, double checkpointEvery, const RunSteps& f);
+
 // what to do with an interrupted run DIR.partial when resuming (run_scene.cpp): continue it from its
 // checkpoint (load(checkpoint file) read it: it throws SceneError when the checkpoint cannot be used),
 // discard it, or refuse. The same for a run of one root and a plate.

@@ -15,7 +15,6 @@
 #include "rootsim/json.hpp"
 #include "rootsim/plate.hpp"
 #include "rootsim/run_scene.hpp"
-#include "rootsim/run_seams.hpp"
 #include "rootsim/checkpoint.hpp"
 #include "rootsim/units.hpp"
 #include "rootsim/version.hpp"
@@ -69,7 +68,6 @@ double runPlateToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
   const int steps = sc.model.growth.enabled ? sc.model.growth.steps : 0;
   noteResume(dirOptions, rd, partial, ck ? ck->step : 0, steps);
   const double t0 = now();
-  const StepSeams seams = stepSeams();
   try {
     const fs::path w = rd.work();
     std::unique_ptr<PlateSimulation> platep;
@@ -160,43 +158,32 @@ double runPlateToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
       c.acc = {maxSweeps, minGap, wallBefore + (now() - t0), series.size()};
       writePlateCheckpoint(w / kCheckpointFile, c);
     };
-    double lastCheckpoint = now();
     const Model m0 = plate.seedling(0).model;  // a copy: the plate's roots grow as laterals emerge
-    // as a run of one root's (run_scene.cpp): a failed run keeps its streams whole and readable
-    try {
-      for (int k = first; k <= steps; ++k) {
-        const PlateStepRecord& pr = plate.growthStep();
-        maxSweeps = std::max(maxSweeps, pr.sweeps);
-        if (!std::isnan(pr.minGap) && !(pr.minGap >= minGap)) minGap = pr.minGap;
-        try {
+    runGrowthSteps(first, steps, m0.output.checkpointEvery, RunSteps{
+        [&](int) {
+          const PlateStepRecord& pr = plate.growthStep();
+          maxSweeps = std::max(maxSweeps, pr.sweeps);
+          if (!std::isnan(pr.minGap) && !(pr.minGap >= minGap)) minGap = pr.minGap;
+        },
+        [&](int k) {
           for (int r : plate.emerged()) open(r);
           for (int r = 0; r < plate.size(); ++r)
             if (std::find(plate.emerged().begin(), plate.emerged().end(), r) == plate.emerged().end())
               watch[static_cast<size_t>(r)].see(plate.root(r).last());
           if (k % m0.output.everySteps == 0 || k == steps) record();
-          const bool due = seams.checkpointAfter ? seams.checkpointAfter(k)
-                                                 : now() - lastCheckpoint >= m0.output.checkpointEvery;
-          if (k < steps && due) {
-            checkpoint(k);
-            lastCheckpoint = now();
+        },
+        checkpoint,
+        [&](int) {
+          if (progress) progress(plate.root(0).last(), steps);
+        },
+        [&] {
+          for (auto& o : out) o->closeQuietly();
+          try {
+            series.close();
+          } catch (const std::exception&) {
+            // a series that cannot close (the disk that failed the run) keeps nothing; the roots' streams still do
           }
-        } catch (const RunError& e) {
-          throw RunError(std::string(e.what()) + " (at growth step " + std::to_string(k) + " of " +
-                         std::to_string(steps) + ")");
-        }
-        if (seams.afterStep) seams.afterStep(k);
-        if (progress) progress(plate.root(0).last(), steps);
-      }
-    } catch (const RunInterrupted&) {
-      throw;
-    } catch (const std::exception&) {
-      for (auto& o : out) o->closeQuietly();
-      try {
-        series.close();
-      } catch (const std::exception&) {
-      }
-      throw;
-    }
+        }});
     std::vector<std::vector<std::pair<double, std::string>>> vtkEntries;
     for (auto& o : out) {
       vtkEntries.push_back(o->positions().vtkEntries);

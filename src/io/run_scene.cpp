@@ -221,6 +221,37 @@ void checkStreamLength(const fs::path& file, std::uint64_t bytes) {
                      std::to_string(bytes) + " bytes); pass --force to discard the interrupted run and start again");
 }
 
+void runGrowthSteps(int first, int steps, double checkpointEvery, const RunSteps& f) {
+  const StepSeams seams = stepSeams();
+  double lastCheckpoint = now();
+  // A run that fails keeps what its writers hold, closed so that the files are whole and readable: the
+  // time series and trajectory up to the last output step before the failure, the ParaView series. The
+  // directory becomes DIR.incomplete with ERROR.txt (RunDir::fail), which marks it. (A stop on purpose
+  // leaves DIR.partial as a kill does, its files where the checkpoint expects them.)
+  try {
+    for (int k = first; k <= steps; ++k) {
+      f.grow(k);
+      try {
+        f.write(k);
+        const bool due = seams.checkpointAfter ? seams.checkpointAfter(k) : now() - lastCheckpoint >= checkpointEvery;
+        if (k < steps && due) {
+          f.checkpoint(k);
+          lastCheckpoint = now();
+        }
+      } catch (const RunError& e) {
+        throw RunError(std::string(e.what()) + " (at growth step " + std::to_string(k) + " of " + std::to_string(steps) + ")");
+      }
+      if (seams.afterStep) seams.afterStep(k);
+      f.progress(k);
+    }
+  } catch (const RunInterrupted&) {
+    throw;
+  } catch (const std::exception&) {
+    f.closeQuietly();
+    throw;
+  }
+}
+
 void checkSceneHash(const fs::path& file, std::uint64_t found, std::uint64_t expected) {
   if (found != expected)
     throw SceneError(file.string() + ": written by another scene (scene hash differs); pass --force to discard it and "
@@ -359,7 +390,6 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
   RunDir rd(outDir, dirOptions, partial);
   noteResume(dirOptions, rd, partial, ck ? ck->step : 0, m.growth.steps);
   const double t0 = now();
-  const StepSeams seams = stepSeams();
   try {
     const fs::path w = rd.work();
     std::unique_ptr<Simulation> simp;
@@ -396,37 +426,21 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
       c.writers = out->positions();
       writeCheckpoint(w / kCheckpointFile, c);
     };
-    double lastCheckpoint = now();
     const int steps = m.growth.enabled ? m.growth.steps : 0;
-    // A run that fails keeps what its writers hold, closed so that the files are whole and readable: the
-    // time series and trajectory up to the last output step before the failure, the ParaView series. The
-    // directory becomes DIR.incomplete with ERROR.txt (RunDir::fail), which marks it. (A stop on purpose
-    // leaves DIR.partial as a kill does, its files where the checkpoint expects them.)
-    try {
-      for (int k = first; k <= steps; ++k) {
-        const StepRecord& r = sim.growthStep();
-        watch.see(r);
-        try {
+    const StepRecord* r = nullptr;
+    runGrowthSteps(first, steps, m.output.checkpointEvery, RunSteps{
+        [&](int) {
+          r = &sim.growthStep();
+          watch.see(*r);
+        },
+        [&](int k) {
           if (k % m.output.everySteps == 0 || k == steps) out->add(sim);
-          const bool due = seams.checkpointAfter ? seams.checkpointAfter(k)
-                                                 : now() - lastCheckpoint >= m.output.checkpointEvery;
-          if (k < steps && due) {
-            checkpoint(k);
-            lastCheckpoint = now();
-          }
-        } catch (const RunError& e) {
-          throw RunError(std::string(e.what()) + " (at growth step " + std::to_string(k) + " of " +
-                         std::to_string(steps) + ")");
-        }
-        if (seams.afterStep) seams.afterStep(k);
-        if (progress) progress(r, steps);
-      }
-    } catch (const RunInterrupted&) {
-      throw;
-    } catch (const std::exception&) {
-      out->closeQuietly();
-      throw;
-    }
+        },
+        checkpoint,
+        [&](int) {
+          if (progress) progress(*r, steps);
+        },
+        [&] { out->closeQuietly(); }});
     out->close();
     // the finished run holds no checkpoint: it is the same as a run never interrupted
     std::error_code ec;

@@ -1,7 +1,8 @@
 // running a plate scene into a run directory (src/io/run_plate.cpp): a plate killed after a checkpoint
 // and resumed writes the same bytes as one never interrupted, in every file of the plate and of every
 // root's folder (summary.json's wall time aside), roots in contact and lateral roots emerging included;
-// a plate of another scene is refused naming the key that differs.
+// a plate of another scene is refused naming the key that differs; a plate that cannot write fails naming
+// the file and the growth step.
 //
 // Kills as in test_run_scene.cpp: the test binary rootsim_killable with ROOTSIM_TEST_KILL="C:K" (a
 // checkpoint after growth step C, _Exit(137) after step K), and a real SIGKILL wherever it lands.
@@ -146,5 +147,21 @@ TEST_CASE("resume of a plate by another scene exits 2 naming the file line and k
   const Result forced = run("run " + kCollision + kCollisionSets + " --set plane.alpha_deg=50 --out " + out + " --resume --force");
   CHECK(forced.code == 0);
   CHECK(slurp(d / "b" / "scene.toml").find("alpha_deg = 50") != std::string::npos);
+  fs::remove_all(d);
+}
+
+TEST_CASE("a plate whose files cannot be written stops with exit 1 naming the file and the growth step") {
+  // SIGXFSZ ignored, so a write past the limit fails with EFBIG like a full disk fails with ENOSPC
+  const fs::path d = scratch("fsize");
+  const Result r = run("--version >/dev/null; trap '' XFSZ; ulimit -f 64; " + std::string(ROOTSIM_BINARY) + " run " +
+                       kCollision + " --set output.vtk=false --quiet --out " + (d / "out").string());
+  CHECK(r.code == 1);
+  CHECK(rootsim::test::oneLine(r.out.substr(0, r.out.size() - 1)));
+  CHECK(r.out.find("rootsim: run failed: write error on " + (d / "out").string() + ".partial/roots/") == 0);
+  CHECK(r.out.find("(disk full?): File too large (at growth step ") != std::string::npos);
+  CHECK(r.out.find(" of 600)") != std::string::npos);
+  CHECK(!fs::exists(d / "out"));
+  CHECK(!fs::exists(d / "out.partial"));
+  CHECK(slurp(d / "out.incomplete" / "ERROR.txt").find("write error on") == 0);
   fs::remove_all(d);
 }

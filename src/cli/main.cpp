@@ -197,7 +197,7 @@ int main(int argc, char** argv) {
     c->add_option("--root", t.root, "the traced root: its id, #k, or plant/root (default: the file's one primary root)");
     c->add_option("--px-per-mm", t.pxPerMm, "pixels per millimetre, for a trace whose unit is pixel");
     c->add_option("--downhill", t.downhill, "the plate's downhill in the trace: +y (default), -y, or an angle in degrees from +y towards +x");
-    c->add_option("--sigma-mm", t.sigmaMm, "position uncertainty of a traced point [mm] (default: one pixel of a pixel file, else 0.05)");
+    c->add_option("--sigma-mm", t.sigmaMm, "position uncertainty of a traced point [mm] (default: the trace's estimated noise_mm, at least a pixel / sqrt(12); a rootsim export or a root of fewer than 9 points: a pixel, else 0.05)");
   };
   app::CompareOptions compare;
   CLI::App* cCompare = app.add_subcommand("compare", "a traced root (RSML) over a run's root: picture, observables side by side, shape distances");

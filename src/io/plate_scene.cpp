@@ -407,6 +407,10 @@ PlateTables parsePlateTables(const toml::table& root, const std::string& sourceN
       const std::string was = tomlText(ks, base.at(full)), now = tomlText(ks, val);
       if (now != was) ps.sd.overrides.push_back(full + "=" + now);
     }
+    // the seedling's direction is its angle_deg: the one-root scene's key would be overridden unseen
+    if (v.at("root.initial_angle_deg").origin != "default")
+      throw SceneError(v.at("root.initial_angle_deg").origin + ": root.initial_angle_deg is a one-root scene's; a plate sows " + ps.sd.name +
+                       " at its [[seedling]] angle_deg (" + ps.where + ")");
     Model m;
     try {
       m = buildModel(v, name);

@@ -109,12 +109,6 @@ std::vector<TraceAtTime> traceAtTimes(const Eigen::Matrix3Xd& p, const std::vect
                                       double pixelMm) {
   std::vector<TraceAtTime> out;
   for (double at : observationTimesH) {
-    // a tracer dates every point of the root it first sees with that time (RootSystemTracker's coord_t 0):
-    // the tip then lies somewhere beyond the last point so dated, up to the next; that time has no length
-    // (on the synthetic 2D+t plate the 0 h root is cut 0.24 mm short, 3 to 4 sigma)
-    const auto last = std::upper_bound(timesH.begin(), timesH.end(), at);
-    const long i = static_cast<long>(last - timesH.begin()) - 1;
-    if (i >= 1 && timesH[static_cast<std::size_t>(i)] == at && timesH[static_cast<std::size_t>(i - 1)] == at) continue;
     const Eigen::Matrix3Xd trace = polylineAtTime(p, timesH, at);
     if (trace.cols() < 2 || !(polylineLength(trace) > 0)) continue;
     TraceAtTime r;
@@ -173,7 +167,10 @@ std::vector<TimeLapseRow> compareTimeLapse(const TraceTarget& t, const Model& m,
   // the strongest wave of both at the last time, over the range the trace's points resolve
   const auto [lo, hi] = waveRange(traceLast, t.excludeTipMm);
   rows.back().traceWave = strongestWave(traceLast, t.excludeTipMm, lo, hi);
-  rows.back().runWave = strongestWave(polylineAtTime(last, arc, std::min(rows.back().runLengthMm, arc.back())), t.excludeTipMm, lo, hi);
+  // (the run sampled as the trace is, as many points along it: a wave's least-squares amplitude depends on
+  // where its samples fall)
+  const Eigen::Matrix3Xd runLast = polylineAtTime(last, arc, std::min(polylineLength(simRootOf(m, snaps[static_cast<std::size_t>(near(traced.back().timeH))]).plateMm), arc.back()));
+  rows.back().runWave = strongestWave(tracedLike(runLast, traceLast), t.excludeTipMm, lo, hi);
   return rows;
 }
 

@@ -557,8 +557,12 @@ FitReport runFit(const FitOptions& given, const std::function<void(const std::st
   so.force = true;  // its own runs: a point whose run failed is run again
   so.inputs = {out / "design.toml", out / "base.toml"};
   so.onPoint = [&](const SweepPointDone& d) {
+    // in the free keys' order (a sweep file's grid comes back in its keys' sorted order)
     std::vector<double> x;
-    for (const auto& [key, val] : d.point->grid) x.push_back(std::stod(val));
+    for (const FreeKey& fk : keys)
+      for (const auto& [key, val] : d.point->grid)
+        if (key == fk.key) x.push_back(std::stod(val));
+    if (x.size() != keys.size()) throw RunError("fit: the design point " + d.dir + " lacks a free key");
     fit.recordDesign(x, d.dir, d.error, d.point->index);
   };
   runSweep(plan, so, [&](const std::string& line) {

@@ -9,6 +9,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -160,6 +161,32 @@ fs::path lapseTrace(const fs::path& d) {
   }
   f << "</polyline></geometry></root></plant></scene></rsml>\n";
   return d / "lapse.rsml";
+}
+
+// the quick run's root as a plate scan's tracer gives it (examples/synthetic_trace.py): at 20 px/mm a point
+// every 4 px along the root, each moved by Gaussian noise of 0.5 px (seeded), rounded to 0.1 px, in pixels
+fs::path degradedTrace(const fs::path& d, unsigned seed) {
+  const std::vector<std::pair<double, double>> p = exportedPoints(quick().rsml);
+  std::vector<double> s(1, 0.0);
+  for (std::size_t i = 1; i < p.size(); ++i) s.push_back(s.back() + std::hypot(p[i].first - p[i - 1].first, p[i].second - p[i - 1].second));
+  const int n = static_cast<int>(std::lround(s.back() / 0.2));
+  std::mt19937 gen(seed);
+  std::normal_distribution<double> noise(0.0, 0.5);
+  const fs::path out = d / ("degraded_" + std::to_string(seed) + ".rsml");
+  std::ofstream f(out);
+  f << "<?xml version=\"1.0\"?>\n<rsml><metadata><unit>pixel</unit><resolution>1</resolution></metadata><scene><plant id=\"1\">"
+       "<root id=\"1\"><geometry><polyline>\n";
+  std::size_t j = 1;
+  for (int k = 0; k <= n; ++k) {
+    const double at = s.back() * k / n;
+    while (j + 1 < s.size() && s[j] < at) ++j;
+    const double w = (at - s[j - 1]) / (s[j] - s[j - 1]);
+    const double x = p[j - 1].first + w * (p[j].first - p[j - 1].first), y = p[j - 1].second + w * (p[j].second - p[j - 1].second);
+    f << "<point x=\"" << std::round(10 * (200 + 20 * x + noise(gen))) / 10 << "\" y=\"" << std::round(10 * (200 + 20 * y + noise(gen))) / 10
+      << "\"/>\n";
+  }
+  f << "</polyline></geometry></root></plant></scene></rsml>\n";
+  return out;
 }
 
 std::map<std::string, fs::file_time_type> runTimes(const fs::path& runs) {
@@ -413,6 +440,32 @@ TEST_CASE("fit: a straight trace fitted by a waving model is poor and says what 
   CHECK(jsonNumber(js, "best_run_objective") <= columnMin(slurp(d / "fit" / "evaluations.csv"), "objective") * (1 + 1e-8) + 1e-12);
 }
 
+TEST_CASE("fit: a tracer-degraded trace of a run fitted with beta free is consistent and covers beta") {
+  if (!built()) return;
+  const fs::path d = scratch("degraded");
+  const fs::path trace = degradedTrace(d, 3);
+  const auto r = run("fit " + trace.string() + " --px-per-mm 20 --scene " + quick().scene.string() +
+                     " --free tropism.beta=0.15:0.3 --objective shape --budget 40 -j 2 --quiet --out " + (d / "fit").string());
+  REQUIRE_MESSAGE(r.code == 0, r.out);
+  const std::string js = slurp(d / "fit" / "fit.json");
+  // the trace's uncertainty is its estimated noise (0.5 px of 0.05 mm, with the 0.1 px rounding), not a pixel
+  CHECK(jsonString(js, "sigma_source") == "noise_mm");
+  CHECK(jsonNumber(js, "sigma_mm") == doctest::Approx(0.025).epsilon(0.25));
+  // the runs grow to the root's length, not to the noisy trace's (longer by the noise's zigzag): the run's own
+  const double runMm = lengthOf(exportedPoints(quick().rsml));
+  CHECK(jsonNumber(js, "trace_length_mm") - runMm > 0.05);
+  CHECK(std::abs(jsonNumber(js, "root_length_mm") - runMm) < 0.02);
+  const std::string best = jsonObject(jsonObject(js, "best"), "tropism.beta");
+  const double beta = jsonNumber(best, "value"), sigma = jsonNumber(best, "sigma");
+  CHECK_MESSAGE(std::abs(beta - 0.2) <= 2 * sigma, beta << " +- " << sigma);
+  CHECK(std::abs(beta - 0.2) < 0.02);
+  const auto g = js.find("\"goodness\": {");
+  REQUIRE(g != std::string::npos);
+  CHECK_MESSAGE(jsonString(js, "verdict", g) == "consistent", r.out);
+  CHECK(jsonNumber(js, "dof", g) == 15);
+  CHECK(js.find("\"misfit\"") == std::string::npos);
+}
+
 TEST_CASE("fit: a 2D+t trace is fitted at every observation time / beta and the growth rate recovered, a mismatched tip speed named") {
   if (!built()) return;
   const fs::path d = scratch("timelapse");
@@ -433,8 +486,9 @@ TEST_CASE("fit: a 2D+t trace is fitted at every observation time / beta and the 
     CHECK(jsonString(js, "verdict", g) == "consistent");
     // 7 observations (0 .. 30 h): length, tip lateral and downhill at each, the tip angle at the 6 where
     // the root is at least twice its span long (max(0.5 mm, 10 px of 0.05 mm) = 0.5 mm): from 5 h on (at
-    // 0 h the root's 1 mm, its trace's every third node, falls just short)
-    CHECK(jsonNumber(js, "dof", g) == 7 * 3 + 6 - 1);
+    // 0 h the root's 1 mm, its trace's every third node, falls just short); the last time's strongest wave
+    CHECK(jsonNumber(js, "dof", g) == 7 * 3 + 6 + 2 - 1);
+    CHECK(js.find("\"name\": \"wave_lambda_mm@30h\"") != std::string::npos);
     // the fixed growth beside the trace's own dL/dt: 0.2 mm/h both
     const std::string fixed = jsonObject(js, "scene_fixed");
     CHECK(jsonString(jsonObject(fixed, "tip_speed_mm_per_h"), "value") == "0.2");
@@ -462,8 +516,9 @@ TEST_CASE("fit: a 2D+t trace is fitted at every observation time / beta and the 
     const auto r = run("fit " + trace + " --scene " + (d / "fast.toml").string() + " --free tropism.beta=0.15:0.3 --budget 40 -j 2 --quiet --out " +
                        (d / "fast").string());
     REQUIRE_MESSAGE(r.code == 0, r.out);
-    const auto said = r.out.find("the trace grows at 0.2");
-    CHECK_MESSAGE(said != std::string::npos, r.out);
+    const auto said = r.out.find("the trace grows at ");
+    REQUIRE_MESSAGE(said != std::string::npos, r.out);
+    CHECK(std::stod(r.out.substr(said + 19)) == doctest::Approx(0.2).epsilon(0.03));
     CHECK_MESSAGE(r.out.find(" mm/h, the scene's tip speed is 0.3 mm/h (3", said) != std::string::npos, r.out);
     CHECK_MESSAGE(r.out.find(" % apart): check growth.rate_per_h or free it", said) != std::string::npos, r.out);
     CHECK(jsonString(slurp(d / "fast" / "fit.json"), "growth_mismatch").find("% apart") != std::string::npos);

@@ -283,3 +283,19 @@ TEST_CASE("plate scenes: laterals are checked when the plate is read - their spa
   // without laterals the same plate is fine
   CHECK(errorOf(kHead + seedling("a", 20, 5), {"root.element_length_mm=0.1"}) == "(no error)");
 }
+
+TEST_CASE("root.initial_angle_deg: a one-root scene's start direction; a seedling's set refuses it") {
+  // a one-root scene sows its root at the angle, positive towards +lateral like theta
+  const Scene one = parseScene("[root]\ninitial_angle_deg = 30\n", "scenes/one.toml");
+  CHECK(one.model.initial.angle == doctest::Approx(30 * units::deg));
+  CHECK(parseScene("", "scenes/one.toml").model.initial.angle == 0.0);
+  CHECK(errorOf("[root]\ninitial_angle_deg = 200\n").find("root.initial_angle_deg") != std::string::npos);
+  // a plate sows each seedling at its own angle_deg: a seedling's set may not give the one-root key
+  const std::string set = errorOf(kHead + seedling("a", 20, 5, "set = { \"root.initial_angle_deg\" = 5 }\n"));
+  CHECK_MESSAGE(set.find("root.initial_angle_deg is a one-root scene's: a seedling's direction is its angle_deg") != std::string::npos, set);
+  // a seedling sown at an angle is written back as its angle_deg, and the resolved plate reads again
+  const Scene plate = parseScene(kHead + seedling("a", 20, 5, "angle_deg = 7\n"), "scenes/t.toml");
+  CHECK(plate.resolvedToml.find("\"root.initial_angle_deg\"") == std::string::npos);
+  CHECK(plate.resolvedToml.find("angle_deg = 7.0") != std::string::npos);
+  CHECK(parseScene(plate.resolvedToml, "scenes/t.toml").resolvedToml == plate.resolvedToml);
+}

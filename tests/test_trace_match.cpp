@@ -261,3 +261,43 @@ TEST_CASE("noiseDraws: each draw aligned at its own seed / a point's variance 2 
   CHECK_THROWS_AS(noiseDraws(straight(0, 10, 11), 0.0, 10, [](const Eigen::Matrix3Xd& p) { return Eigen::VectorXd(p.row(0).transpose()); }),
                   std::invalid_argument);
 }
+
+TEST_CASE("strongestWave: a wave below the peak count's noise threshold is found from the root's whole length") {
+  // 30 mm downhill with a sinusoid of lambda 3 mm and half amplitude 0.08 mm across, a point every 0.24 mm
+  // (a 76 um pixel's tracer every 3 px), the last 1 mm (a growth zone) left out of the fit
+  const double lambda = 3.0, amp = 0.08, L = 30.0;
+  const int n = 126;
+  Eigen::Matrix3Xd p(3, n);
+  for (int i = 0; i < n; ++i) {
+    const double y = L * i / (n - 1);
+    p.col(i) = Eigen::Vector3d(amp * std::sin(2 * std::numbers::pi * y / lambda), y, 0);
+  }
+  const auto [lo, hi] = waveRange(p, 1.0);
+  CHECK(lo == doctest::Approx(4 * 0.24).epsilon(0.02));
+  CHECK(hi == doctest::Approx(29.0).epsilon(0.01));
+  const WaveFit clean = strongestWave(p, 1.0, lo, hi);
+  CHECK(clean.wavelengthMm == doctest::Approx(lambda).epsilon(0.005));
+  CHECK(clean.amplitudeMm == doctest::Approx(amp).epsilon(0.02));
+  // with 0.046 mm of noise on each coordinate (0.6 px): 3 sigma is 0.14 mm, more than the half amplitude,
+  // so no peak counts; the fit over 120 points still finds the wave
+  std::mt19937 gen(5);
+  std::normal_distribution<double> noise(0.0, 0.046);
+  Eigen::Matrix3Xd q = p;
+  for (int i = 0; i < n; ++i) {
+    q(0, i) += noise(gen);
+    q(1, i) += noise(gen);
+  }
+  const WaveFit noisy = strongestWave(q, 1.0, lo, hi);
+  CHECK(noisy.wavelengthMm == doctest::Approx(lambda).epsilon(0.03));
+  CHECK(noisy.amplitudeMm == doctest::Approx(amp).epsilon(0.2));
+  // a straight root with the same noise: the strongest "wave" is the noise's, far below 0.08 mm
+  Eigen::Matrix3Xd s = straight(0.0, L, n);
+  for (int i = 0; i < n; ++i) {
+    s(0, i) += noise(gen);
+    s(1, i) += noise(gen);
+  }
+  CHECK(strongestWave(s, 1.0, lo, hi).amplitudeMm < 0.03);
+  // too few points, or an empty range: no wave
+  CHECK(std::isnan(strongestWave(straight(0.0, 1.0, 5), 0.0, 0.1, 1.0).wavelengthMm));
+  CHECK(std::isnan(strongestWave(p, 1.0, 2.0, 1.0).wavelengthMm));
+}

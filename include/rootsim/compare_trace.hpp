@@ -34,13 +34,27 @@ struct TraceTarget {
   std::string file, rootKey;
   Eigen::Matrix3Xd plateMm;
   RootTraits traits;
-  double sigmaMm = 0;
-  std::string sigmaSource;        // "--sigma-mm", "pixel", "default"
+  double sigmaMm = 0;             // a traced point's position uncertainty (traceUncertainty)
+  std::string sigmaSource;        // "--sigma-mm", "noise_mm", "pixel / sqrt(12)", "pixel", "default"
+  double pixelMm = 0;             // the file's pixel [mm] (0: a file in lengths)
+  double excludeTipMm = 0;        // the model's growth zone [mm], left out of the measurements of shape
+  double rootLengthMm = 0;        // the root's length: the trace's less the lengthening its points' noise
+                                  // (sigmaMm) gives a polyline (noiseLengtheningMm)
   double dsMm = 0;                // the trace's resampling step [mm]
   // a time-lapse trace (RSML 2D+t): the hour each point was reached, and the file's observation times;
   // both empty for a trace of one time
   std::vector<double> timesH, observationTimesH;
 };
+// the position uncertainty of a traced point [mm], the one every objective (observables, shape,
+// time-lapse) and every goodness of fit takes: --sigma-mm when given (flagMm, named flag); else the root's
+// estimated noise (traits.noiseMm, analysis.csv's noise_mm), at least a pixel's quantisation p / sqrt(12);
+// else (exact: a rootsim export, a run's nodes without a tracer's noise; or too few points to estimate it)
+// a pixel, else 0.05 mm (a 20 px/mm scan's pixel). source names which.
+struct TraceUncertainty {
+  double sigmaMm = 0;
+  std::string source;
+};
+TraceUncertainty traceUncertainty(const RootTraits& traits, double pixelMm, bool exact, double flagMm, const std::string& flag);
 // SceneError for bad input (the file, the flags, the root)
 TraceTarget loadTarget(const TraceFlags& f, const Model& m);
 
@@ -71,6 +85,9 @@ struct TimeLapseRow {
   double traceTipLateralMm = 0, traceTipDownhillMm = 0, runTipLateralMm = 0, runTipDownhillMm = 0;
   double traceThetaTipDeg = 0, runThetaTipDeg = 0;
   double distanceMm = 0;          // arcLengthDistanceMm of the two then
+  // at the last observation time: the strongest wave of each root (strongestWave over the trace's
+  // waveRange then); NaN at the other times
+  WaveFit traceWave, runWave;
 };
 // one row per observation at which the trace has a length (empty for a trace without times)
 std::vector<TimeLapseRow> compareTimeLapse(const TraceTarget& t, const Model& m, const std::vector<Snapshot>& snaps);
@@ -88,22 +105,21 @@ std::vector<TraceAtTime> traceAtTimes(const Eigen::Matrix3Xd& p, const std::vect
 double tipPixelMm(const TraceTarget& t);
 
 // the time-lapse objective's trace side (docs/experiments.md, "Fit"): at each observation time the root's
-// length, tip lateral and downhill position [mm] and, where it is defined, its tip angle [deg]. Their
-// covariance is the trace's points' noise (sigmaMm) propagated through the same measurement (noiseDraws of
-// the denoised trace); the mean shift of its estimated noise (timeLapseNoiseMm: a noisy polyline is
-// longer) is taken off the trace's values.
+// length, tip lateral and downhill position [mm] and, where it is defined, its tip angle [deg]; at the
+// last, the wavelength and amplitude of its strongest wave (strongestWave: the shape the tips left
+// behind, whose waves a tip sampled every few hours aliases) where the root has 8 points to fit. Their
+// covariance is the trace's points' noise (sigmaMm, traceUncertainty) propagated through the same
+// measurement (noiseDraws of the denoised trace); that noise's mean shift (a noisy polyline is longer) is
+// taken off the trace's values.
 struct TimeLapseObjective {
   FitComponents trace;            // names, trace (bias taken off), sigma, cov; sim empty
   Eigen::VectorXd bias;           // per output: the noise's mean shift taken off
   std::vector<double> timesH;     // the observation times used
   std::vector<bool> withTheta;    // per time: its tip angle is an output
+  bool withWave = false;          // the last time's strongest wave is an output (two: lambda, amplitude)
   double growthMmPerH = 0;        // the trace's dL/dt: the least-squares slope of its lengths over time
   double growthSigma = 0;         // its standard uncertainty (from the lengths' covariance)
 };
-// the point noise [mm] whose mean shift a time-lapse's values lose: --sigma-mm when given, else the trace's
-// estimated noise_mm (the shift goes with its square: a pixel where the tracer's noise is 0.7 px doubles
-// it), else sigmaMm. The outputs' weights stay sigmaMm's, the uncertainty every objective takes.
-double timeLapseNoiseMm(const TraceTarget& t);
 // SceneError when the trace has no times or fewer than two observations with a length
 TimeLapseObjective timeLapseObjective(const TraceTarget& t, int draws = 400);
 // a run's outputs beside the trace's (rows: compareTimeLapse of the run); std::invalid_argument when the

@@ -13,7 +13,8 @@ struct InitialShape {
                                   // Environment)
   std::uint64_t seed = 1;         // seed of the perturbation
   double angle = 0.0;             // initial direction from downhill, in the plate [rad], positive towards
-                                  // +lateral like theta: a seedling's (docs/plate.md); not a scene key
+                                  // +lateral like theta: root.initial_angle_deg, a seedling's angle_deg
+                                  // (docs/plate.md)
   double startTime = 0.0;         // growth time of the initial state [s]: a lateral root's emergence on
                                   // a plate (its times are the plate's); not a scene key
 };

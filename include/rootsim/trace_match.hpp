@@ -5,6 +5,8 @@
 // objective at its minimum (uncertainties, and the directions the observables cannot see). Plain
 // geometry and linear algebra: no file formats here.
 #include <functional>
+#include <limits>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -86,6 +88,25 @@ Eigen::Matrix3Xd denoised(const Eigen::Matrix3Xd& p);
 // a traced root's: shapeNoiseCovariance of the trace with less of its own noise (each point averaged with
 // its neighbours, 1/4 1/2 1/4; an estimate: the trace's true shape is unknown)
 Eigen::MatrixXd shapeTraceCovariance(const Eigen::Matrix3Xd& trace, double sigmaMm, int samples, int draws = 2000);
+// how much longer the points' noise of sigmaMm makes a traced polyline, on average [mm]: the mean length of
+// draws of the trace with less of its own noise (as shapeTraceCovariance) given new noise, less that
+// polyline's length. A trace's length less this is the root's (a point every 0.2 mm with 0.025 mm of noise
+// adds about 0.3 mm to 20 mm: 1.5 h of a root growing 0.2 mm/h). Throws std::invalid_argument for sigmaMm <= 0.
+double noiseLengtheningMm(const Eigen::Matrix3Xd& trace, double sigmaMm, int draws = 400);
+// the strongest wave of a nearly straight root: the sinusoid of lateral offset against distance along the
+// base-to-tip chord that takes the most of the offsets' variance (a least-squares fit of a line plus the
+// sinusoid at each wavelength of a grid in 1/lambda, refined by a parabola through the best three), the tip's
+// excludeTipMm (its growth zone, still bending) left out. It needs no peak above the noise: a wave of 2
+// pixels on a trace with 0.6 px of noise, invisible to the peak count, is found from its whole length.
+// lambdaMin, lambdaMax [mm]: the range searched (a trace's: 4 point spacings to the span; a run's the same
+// as its trace's). NaN values when fewer than 8 points remain or the range is empty.
+struct WaveFit {
+  double wavelengthMm = std::numeric_limits<double>::quiet_NaN();
+  double amplitudeMm = std::numeric_limits<double>::quiet_NaN();  // the sinusoid's half peak-to-peak
+};
+WaveFit strongestWave(const Eigen::Matrix3Xd& p, double excludeTipMm, double lambdaMin, double lambdaMax);
+// the range strongestWave searches on a trace p: [4 median point spacings, the chord's span less excludeTipMm]
+std::pair<double, double> waveRange(const Eigen::Matrix3Xd& p, double excludeTipMm);
 // root traced as trace was: as many points as the trace has distinct ones, at equal arc length along root.
 // shapeNoiseCovariance(tracedLike(run, trace), ...) is the covariance a trace of that run would have: the
 // one a goodness of fit of the run tests against

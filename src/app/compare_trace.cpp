@@ -39,6 +39,19 @@ bool given(double v) { return v != TraceFlags::kUnset; }
 
 }  // namespace
 
+TraceUncertainty traceUncertainty(const RootTraits& traits, double pixelMm, bool exact, double flagMm, const std::string& flag) {
+  if (given(flagMm)) return {flagMm, flag};
+  // the trace's own scatter about its smoothed curve: what its tracer's jitter, snapping and whole-pixel
+  // coordinates did to this root (a pixel overstates a 0.3 px tracer three times, understates a 2 px one);
+  // never below the quantisation of whole-pixel coordinates, p / sqrt(12), which every pixel trace has
+  const double quantum = pixelMm > 0 ? pixelMm / std::sqrt(12.0) : 0.0;
+  if (!exact && std::isfinite(traits.noiseMm) && std::max(traits.noiseMm, quantum) > 0)
+    return traits.noiseMm >= quantum ? TraceUncertainty{traits.noiseMm, "noise_mm"} : TraceUncertainty{quantum, "pixel / sqrt(12)"};
+  // a rootsim export (a run's nodes: no tracer's noise to estimate), or too few points to estimate it
+  if (pixelMm > 0) return {pixelMm, "pixel"};
+  return {kDefaultSigmaMm, exact ? "default (a rootsim export has no tracing noise)" : "default"};
+}
+
 TraceTarget loadTarget(const TraceFlags& f, const Model& m) {
   if (given(f.sigmaMm)) checkedNumber(f.flagPrefix + "sigma-mm", f.sigmaMm, {0, 10, true, false, "mm"});
   AnalyzeOptions a;
@@ -63,16 +76,12 @@ TraceTarget loadTarget(const TraceFlags& f, const Model& m) {
   TraceFile measured = tf;
   measured.set = set;
   t.traits = tracedTraits(measured, r, tf.dsMm, tf.excludeTipMm);
-  if (given(f.sigmaMm)) {
-    t.sigmaMm = f.sigmaMm;
-    t.sigmaSource = f.flagPrefix + "sigma-mm";
-  } else if (tf.pixelMm > 0) {
-    t.sigmaMm = tf.pixelMm;
-    t.sigmaSource = "pixel";
-  } else {
-    t.sigmaMm = kDefaultSigmaMm;
-    t.sigmaSource = "default";
-  }
+  t.pixelMm = tf.pixelMm > 0 ? tf.pixelMm : 0.0;
+  const TraceUncertainty u = traceUncertainty(t.traits, t.pixelMm, tf.ours, f.sigmaMm, f.flagPrefix + "sigma-mm");
+  t.sigmaMm = u.sigmaMm;
+  t.sigmaSource = u.source;
+  t.excludeTipMm = m.growth.zoneLength / units::mm;
+  t.rootLengthMm = t.traits.lengthMm - (tf.ours ? 0.0 : noiseLengtheningMm(t.plateMm, t.sigmaMm));
   return t;
 }
 
@@ -98,7 +107,7 @@ Comparison compareRoots(const TraceTarget& t, const SimRoot& s) {
   return c;
 }
 
-double tipPixelMm(const TraceTarget& t) { return t.sigmaSource == "pixel" ? t.sigmaMm : 0.0; }
+double tipPixelMm(const TraceTarget& t) { return t.pixelMm; }
 
 std::vector<TraceAtTime> traceAtTimes(const Eigen::Matrix3Xd& p, const std::vector<double>& timesH, const std::vector<double>& observationTimesH,
                                       double pixelMm) {
@@ -132,12 +141,19 @@ std::vector<TimeLapseRow> compareTimeLapse(const TraceTarget& t, const Model& m,
   std::vector<double> arc(static_cast<std::size_t>(last.cols()), 0.0);
   for (Eigen::Index i = 1; i < last.cols(); ++i)
     arc[static_cast<std::size_t>(i)] = arc[static_cast<std::size_t>(i - 1)] + (last.col(i) - last.col(i - 1)).norm();
+  // the tracer's points lie as far apart along the root as the trace's at the last time: it measures a
+  // length along chords that long, in the plate's plane (a polyline through a bent root is shorter than
+  // the root: on a waving root traced at 0.4 mm, 0.5 % of its length)
+  const Eigen::Matrix3Xd traceLast = polylineAtTime(t.plateMm, t.timesH, traced.back().timeH);
+  const double spacing = polylineLength(traceLast) / static_cast<double>(std::max<std::size_t>(1, distinctPoints(traceLast).size() - 1));
   for (const TraceAtTime& tr : traced) {
     const double at = tr.timeH;
     const Eigen::Matrix3Xd trace = polylineAtTime(t.plateMm, t.timesH, at);
     const SimRoot sim = simRootOf(m, snaps[static_cast<std::size_t>(near(at))]);
-    const double length = polylineLength(sim.plateMm);
-    const Eigen::Matrix3Xd run = polylineAtTime(last, arc, std::min(length, arc.back()));
+    const Eigen::Matrix3Xd run = polylineAtTime(last, arc, std::min(polylineLength(sim.plateMm), arc.back()));
+    Eigen::Matrix3Xd onPlate = run;
+    onPlate.row(2).setZero();
+    const double length = polylineLength(resampleByArcLength(onPlate, spacing));
     TimeLapseRow r;
     r.timeH = at;
     r.snapshotH = sim.timeH;
@@ -152,6 +168,13 @@ std::vector<TimeLapseRow> compareTimeLapse(const TraceTarget& t, const Model& m,
     r.distanceMm = arcLengthDistanceMm(trace, run, kDistanceStepMm);
     rows.push_back(r);
   }
+  // the strongest wave of both at the last time, over the range the trace's points resolve
+  const auto [lo, hi] = waveRange(traceLast, t.excludeTipMm);
+  rows.back().traceWave = strongestWave(traceLast, t.excludeTipMm, lo, hi);
+  // (the run sampled as the trace is, as many points along it: a wave's least-squares amplitude depends on
+  // where its samples fall)
+  const Eigen::Matrix3Xd runLast = polylineAtTime(last, arc, std::min(polylineLength(simRootOf(m, snaps[static_cast<std::size_t>(near(traced.back().timeH))]).plateMm), arc.back()));
+  rows.back().runWave = strongestWave(tracedLike(runLast, traceLast), t.excludeTipMm, lo, hi);
   return rows;
 }
 
@@ -160,22 +183,20 @@ namespace {
 // b as the angle nearest a (degrees): differences of directions, not of their numbers
 double angleNear(double a, double b) { return a + std::remainder(b - a, 360.0); }
 
-// the outputs at each time, in order: length, tip lateral, tip downhill, then the tip angle where defined
-Eigen::VectorXd timeLapseValues(const std::vector<TraceAtTime>& at, const std::vector<bool>& withTheta, const std::vector<double>& thetaRef) {
+// the outputs at each time, in order: length, tip lateral, tip downhill, then the tip angle where defined;
+// then the last time's strongest wave (wave: empty without one)
+Eigen::VectorXd timeLapseValues(const std::vector<TraceAtTime>& at, const std::vector<bool>& withTheta, const std::vector<double>& thetaRef,
+                                const std::vector<double>& wave) {
   std::vector<double> v;
   for (std::size_t i = 0; i < at.size(); ++i) {
     v.insert(v.end(), {at[i].lengthMm, at[i].tipLateralMm, at[i].tipDownhillMm});
     if (withTheta[i]) v.push_back(thetaRef.empty() ? at[i].thetaTipDeg : angleNear(thetaRef[i], at[i].thetaTipDeg));
   }
+  v.insert(v.end(), wave.begin(), wave.end());
   return Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size()));
 }
 
 }  // namespace
-
-double timeLapseNoiseMm(const TraceTarget& t) {
-  const double noise = t.traits.noiseMm;
-  return t.sigmaSource != "--sigma-mm" && std::isfinite(noise) && noise > 0 ? noise : t.sigmaMm;
-}
 
 TimeLapseObjective timeLapseObjective(const TraceTarget& t, int draws) {
   if (t.timesH.empty()) throw SceneError(t.file + ": root " + t.rootKey + " has no observation times (a trace of one time)");
@@ -200,24 +221,49 @@ TimeLapseObjective timeLapseObjective(const TraceTarget& t, int draws) {
     times.push_back(t.timesH[static_cast<std::size_t>(keep[i])]);
   }
   const Eigen::Matrix3Xd clean = denoised(pts);
+  // the strongest wave at the last time, over the range the trace's own points resolve
+  const Eigen::Matrix3Xd lastTrace = polylineAtTime(t.plateMm, t.timesH, o.timesH.back());
+  const std::pair<double, double> range = waveRange(lastTrace, t.excludeTipMm);
+  o.withWave = std::isfinite(strongestWave(lastTrace, t.excludeTipMm, range.first, range.second).wavelengthMm);
+  auto waveOf = [&](const Eigen::Matrix3Xd& p, const std::vector<double>& at) {
+    if (!o.withWave) return std::vector<double>{};
+    const WaveFit w = strongestWave(polylineAtTime(p, at, o.timesH.back()), t.excludeTipMm, range.first, range.second);
+    return std::vector<double>{w.wavelengthMm, w.amplitudeMm};
+  };
   auto valuesOf = [&](const Eigen::Matrix3Xd& p) {
     const std::vector<TraceAtTime> at = traceAtTimes(p, times, o.timesH, pixel);
     if (at.size() != o.timesH.size()) throw SceneError(t.file + ": root " + t.rootKey + ": a noisy draw lost an observation time");
-    return timeLapseValues(at, o.withTheta, thetaRef);
+    return timeLapseValues(at, o.withTheta, thetaRef, waveOf(p, times));
   };
-  // the weights: the trace's uncertainty as every objective takes it; the bias: its noise as estimated
+  // the trace's uncertainty as every objective takes it (traceUncertainty): the covariance of the values
+  // and their mean shift (a noisy polyline is longer), taken off the trace's values
   const Eigen::MatrixXd y = noiseDraws(clean, t.sigmaMm, draws, valuesOf);
   const Eigen::MatrixXd centred = y.rowwise() - y.colwise().mean();
   o.trace.cov = centred.transpose() * centred / static_cast<double>(draws - 1);
+  // a tracer dates every point of a root it first sees with that time: its tip then lies somewhere between
+  // the last point so dated and the next point, which the trace's own writer may or may not have put at
+  // the tip. Length and tip at that time carry that point gap h as an error along the root, uniform on
+  // [0, h]: h^2 / 3 about the last dated point (the synthetic 2D+t plate's 0 h root ends 0.24 mm short)
+  for (std::size_t k = 0, at = 0; k < o.timesH.size(); at += 3 + (o.withTheta[k] ? 1 : 0), ++k) {
+    const auto after = std::upper_bound(t.timesH.begin(), t.timesH.end(), o.timesH[k]);
+    const long i = static_cast<long>(after - t.timesH.begin()) - 1;
+    if (i < 1 || i + 1 >= static_cast<long>(t.timesH.size()) || t.timesH[static_cast<std::size_t>(i - 1)] != o.timesH[k]) continue;
+    const Eigen::Vector2d gap = (t.plateMm.col(i + 1) - t.plateMm.col(i)).head<2>();
+    const double h = gap.norm();
+    if (!(h > 0)) continue;
+    Eigen::Vector3d d(1.0, gap.x() / h, gap.y() / h);  // length, tip lateral, tip downhill per unit along the root
+    o.trace.cov.block(static_cast<Eigen::Index>(at), static_cast<Eigen::Index>(at), 3, 3) += d * d.transpose() * (h * h / 3.0);
+  }
   o.trace.sigma = o.trace.cov.diagonal().cwiseSqrt();
-  const double noise = timeLapseNoiseMm(t);
-  o.bias = (noise == t.sigmaMm ? y : noiseDraws(clean, noise, draws, valuesOf)).colwise().mean().transpose() - valuesOf(clean);
-  o.trace.trace = timeLapseValues(raw, o.withTheta, thetaRef) - o.bias;
+  o.bias = y.colwise().mean().transpose() - valuesOf(clean);
+  o.trace.trace = timeLapseValues(raw, o.withTheta, thetaRef, waveOf(t.plateMm, t.timesH)) - o.bias;
   for (std::size_t i = 0; i < raw.size(); ++i) {
     const std::string at = "@" + numberText(raw[i].timeH) + "h";
     for (const char* n : {"length_mm", "tip_lateral_mm", "tip_downhill_mm"}) o.trace.names.push_back(n + at);
     if (o.withTheta[i]) o.trace.names.push_back("theta_tip_deg" + at);
   }
+  if (o.withWave)
+    for (const char* n : {"wave_lambda_mm", "wave_amplitude_mm"}) o.trace.names.push_back(n + ("@" + numberText(raw.back().timeH) + "h"));
   // dL/dt: the generalised least-squares slope of the lengths over time, with the lengths' covariance
   std::vector<int> li;
   for (int c = 0; c < static_cast<int>(o.trace.names.size()); ++c)
@@ -256,7 +302,9 @@ FitComponents timeLapseComponents(const TimeLapseObjective& o, const std::vector
     run.push_back(r);
     thetaRef.push_back(rows[i].traceThetaTipDeg);
   }
-  c.sim = timeLapseValues(run, o.withTheta, thetaRef);
+  std::vector<double> wave;
+  if (o.withWave) wave = {rows.back().runWave.wavelengthMm, rows.back().runWave.amplitudeMm};
+  c.sim = timeLapseValues(run, o.withTheta, thetaRef, wave);
   return c;
 }
 
@@ -312,7 +360,7 @@ int pickSnapshot(const std::vector<Snapshot>& snaps, const TraceTarget& target, 
   }
   for (int i = 0; i < static_cast<int>(snaps.size()); ++i)
     // (to a micrometre: a run's own export has its nodes' length up to rounding)
-    if (polylineLength(snaps[static_cast<std::size_t>(i)].x) / units::mm >= target.traits.lengthMm - 1e-3) {
+    if (polylineLength(snaps[static_cast<std::size_t>(i)].x) / units::mm >= target.rootLengthMm - 1e-3) {
       why = "the first snapshot as long as the trace";
       return i;
     }

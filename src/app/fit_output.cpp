@@ -106,6 +106,7 @@ void writeFitOutputs(const FitOutcome& f, const FitReport& rep, const Scene& bes
       .str("scene", o.scene)
       .integer("growth_steps", f.steps)
       .num("trace_length_mm", target.traits.lengthMm)
+      .num("root_length_mm", target.rootLengthMm)
       .num("sigma_mm", target.sigmaMm)
       .str("sigma_source", target.sigmaSource)
       .str("objective", o.objective)

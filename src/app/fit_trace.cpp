@@ -478,14 +478,16 @@ FitReport runFit(const FitOptions& given, const std::function<void(const std::st
   // grow every evaluation to the trace's length: L0 + steps * step * rate * Lgz
   const double perStepMm = bm.growth.stepTime * bm.growth.rate * bm.growth.zoneLength / units::mm;
   const double l0 = bm.initial.length / units::mm;
-  if (target.traits.lengthMm <= l0)
-    throw SceneError(o.trace.trace + ": the traced root (" + numberText(target.traits.lengthMm) +
+  // the root's length, not its noisy trace's: a run grown to the trace's would be the time of the extra
+  // length older (on the validation's skewing root, 1.5 h of a tip that swings every 2.5 h)
+  if (target.rootLengthMm <= l0)
+    throw SceneError(o.trace.trace + ": the traced root (" + numberText(target.rootLengthMm) +
                      " mm) is not longer than the scene's initial root (root.initial_length_mm = " + numberText(l0) + ")");
   // a time-lapse: to its last observation time, a snapshot at every observation time that falls on a step
   // (the largest common divisor of their steps; else every step)
   const double stepH = bm.growth.stepTime / units::hour;
   const long steps = lapse ? std::lround(std::ceil(lapseTrace.timesH.back() / stepH - 1e-9))
-                           : std::lround(std::ceil((target.traits.lengthMm - l0) / perStepMm - 1e-9));
+                           : std::lround(std::ceil((target.rootLengthMm - l0) / perStepMm - 1e-9));
   long every = bm.output.everySteps;
   if (lapse) {
     every = steps;
@@ -555,8 +557,12 @@ FitReport runFit(const FitOptions& given, const std::function<void(const std::st
   so.force = true;  // its own runs: a point whose run failed is run again
   so.inputs = {out / "design.toml", out / "base.toml"};
   so.onPoint = [&](const SweepPointDone& d) {
+    // in the free keys' order (a sweep file's grid comes back in its keys' sorted order)
     std::vector<double> x;
-    for (const auto& [key, val] : d.point->grid) x.push_back(std::stod(val));
+    for (const FreeKey& fk : keys)
+      for (const auto& [key, val] : d.point->grid)
+        if (key == fk.key) x.push_back(std::stod(val));
+    if (x.size() != keys.size()) throw RunError("fit: the design point " + d.dir + " lacks a free key");
     fit.recordDesign(x, d.dir, d.error, d.point->index);
   };
   runSweep(plan, so, [&](const std::string& line) {

@@ -106,7 +106,7 @@ void traceOptions(Table<O>& t) {
   t.opt("--root", FIELD(trace.root), "", "the traced root: its id, #k, or plant/root (default: the file's one primary root)")
       .opt("--px-per-mm", FIELD(trace.pxPerMm), "px/mm", "pixels per millimetre, for a trace whose unit is pixel")
       .opt("--downhill", FIELD(trace.downhill), "", "the plate's downhill in the trace: +y (default), -y, or an angle in degrees from +y towards +x")
-      .opt("--sigma-mm", FIELD(trace.sigmaMm), "mm", "position uncertainty of a traced point [mm] (default: one pixel of a pixel file, else 0.05)");
+      .opt("--sigma-mm", FIELD(trace.sigmaMm), "mm", "position uncertainty of a traced point [mm] (default: the trace's estimated noise_mm, at least a pixel / sqrt(12); a rootsim export or a root of fewer than 9 points: a pixel, else 0.05)");
 }
 
 CommandSpec runSpec() {

@@ -26,6 +26,7 @@ namespace {
 std::string whyNotSeedlingKey(const KeySpec& k) {
   if (k.full() == "growth.steps" || k.full() == "growth.step_h" || k.full() == "growth.enabled")
     return "is the plate's (every root grows in the same steps): set it in [growth]";
+  if (k.full() == "root.initial_angle_deg") return "is a one-root scene's: a seedling's direction is its angle_deg";
   if (k.section == "root" || k.section == "growth" || k.section == "tropism") return "";
   if (k.full() == "solver.seed" || k.full() == "solver.perturbation") return "";
   return "is the plate's (a seedling sets root.*, growth.* and tropism.* keys, solver.seed and "

@@ -205,6 +205,9 @@ const std::vector<KeySpec>& schema() {
   static const std::vector<KeySpec> keys = withDefaults({
       real("root", "radius_mm", FIELD(rod.radius), kMm, 0, true, 100, false, "root radius R [mm]"),
       real("root", "initial_length_mm", FIELD(initial.length), kMm, 0, true, 1e4, false, "initial length L0 [mm]"),
+      real("root", "initial_angle_deg", FIELD(initial.angle), kDeg, -180, false, 180, false,
+           "initial direction in the plate from downhill, positive towards +lateral like theta [deg] (a one-root "
+           "scene's; a plate's seedlings take their [[seedling]] angle_deg)"),
       real("root", "youngs_modulus_mpa", FIELD(rod.youngs), kMpa, 0, true, 1e6, false, "Young's modulus E [MPa]"),
       real("root", "element_length_mm", FIELD(initial.elementLength), kMm, 0, true, 1e3, false,
            "target element length h [mm]; elements longer than growth.split_factor * h are split"),

@@ -4,9 +4,11 @@
 #include <cstdio>
 #include <cmath>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <stdexcept>
 
+#include <Eigen/Dense>
 
 #include "rootsim/units.hpp"
 
@@ -241,6 +243,93 @@ Eigen::MatrixXd noiseDraws(const Eigen::Matrix3Xd& clean, double sigmaMm, int dr
 
 Eigen::MatrixXd shapeTraceCovariance(const Eigen::Matrix3Xd& trace, double sigmaMm, int samples, int draws) {
   return shapeNoiseCovariance(denoised(withoutRepeats(trace)), sigmaMm, samples, draws);
+}
+
+double noiseLengtheningMm(const Eigen::Matrix3Xd& trace, double sigmaMm, int draws) {
+  const Eigen::Matrix3Xd clean = denoised(withoutRepeats(trace));
+  if (clean.cols() < 2) return 0.0;
+  const Eigen::MatrixXd y = noiseDraws(clean, sigmaMm, draws, [](const Eigen::Matrix3Xd& t) {
+    return Eigen::VectorXd::Constant(1, polylineLength(t));
+  });
+  return y.col(0).mean() - polylineLength(clean);
+}
+
+namespace {
+
+// the distance along p's base-to-tip chord and the offset across it of each point up to excludeTipMm
+// from the tip's end of the chord
+void chordCoordinates(const Eigen::Matrix3Xd& p, double excludeTipMm, std::vector<double>& u, std::vector<double>& v) {
+  u.clear();
+  v.clear();
+  if (p.cols() < 2) return;
+  const Eigen::Vector2d c = (p.col(p.cols() - 1) - p.col(0)).head<2>();
+  const double span = c.norm();
+  if (!(span > 0.0)) return;
+  const Eigen::Vector2d along = c / span, across(-along.y(), along.x());
+  for (Eigen::Index i = 0; i < p.cols(); ++i) {
+    const Eigen::Vector2d d = (p.col(i) - p.col(0)).head<2>();
+    if (d.dot(along) > span - excludeTipMm) continue;
+    u.push_back(d.dot(along));
+    v.push_back(d.dot(across));
+  }
+}
+
+}  // namespace
+
+std::pair<double, double> waveRange(const Eigen::Matrix3Xd& p, double excludeTipMm) {
+  std::vector<double> u, v;
+  chordCoordinates(p, excludeTipMm, u, v);
+  if (u.size() < 8) return {0.0, 0.0};
+  std::vector<double> gaps;
+  for (std::size_t i = 1; i < u.size(); ++i) gaps.push_back(std::abs(u[i] - u[i - 1]));
+  std::nth_element(gaps.begin(), gaps.begin() + static_cast<long>(gaps.size() / 2), gaps.end());
+  return {4.0 * gaps[gaps.size() / 2], *std::max_element(u.begin(), u.end()) - *std::min_element(u.begin(), u.end())};
+}
+
+WaveFit strongestWave(const Eigen::Matrix3Xd& p, double excludeTipMm, double lambdaMin, double lambdaMax) {
+  WaveFit w;
+  std::vector<double> u, v;
+  chordCoordinates(p, excludeTipMm, u, v);
+  const int n = static_cast<int>(u.size());
+  if (n < 8 || !(lambdaMin > 0.0) || !(lambdaMax > lambdaMin)) return w;
+  const double span = *std::max_element(u.begin(), u.end()) - *std::min_element(u.begin(), u.end());
+  if (!(span > 0.0)) return w;
+  Eigen::VectorXd vv = Eigen::Map<const Eigen::VectorXd>(v.data(), n);
+  // the offsets' residual sum of squares after a line and the sinusoid of frequency f; its amplitude
+  auto fitAt = [&](double f, double* amp) {
+    Eigen::MatrixXd X(n, 4);
+    for (int i = 0; i < n; ++i) {
+      const double ph = 2.0 * std::numbers::pi * f * u[static_cast<std::size_t>(i)];
+      X(i, 0) = 1.0;
+      X(i, 1) = u[static_cast<std::size_t>(i)] / span;
+      X(i, 2) = std::cos(ph);
+      X(i, 3) = std::sin(ph);
+    }
+    const Eigen::Vector4d b = X.colPivHouseholderQr().solve(vv);
+    if (amp) *amp = std::hypot(b(2), b(3));
+    return (vv - X * b).squaredNorm();
+  };
+  // the grid in frequency, 4 points per 1 / span (the resolution of a periodogram of this span)
+  const double fLo = 1.0 / lambdaMax, fHi = 1.0 / lambdaMin, df = 0.25 / span;
+  const int m = std::max(3, static_cast<int>(std::ceil((fHi - fLo) / df)) + 1);
+  std::vector<double> f(static_cast<std::size_t>(m)), rss(static_cast<std::size_t>(m));
+  for (int k = 0; k < m; ++k) {
+    f[static_cast<std::size_t>(k)] = fLo + (fHi - fLo) * k / (m - 1);
+    rss[static_cast<std::size_t>(k)] = fitAt(f[static_cast<std::size_t>(k)], nullptr);
+  }
+  const int best = static_cast<int>(std::min_element(rss.begin(), rss.end()) - rss.begin());
+  double fBest = f[static_cast<std::size_t>(best)];
+  if (best > 0 && best + 1 < m) {
+    // the parabola through the best grid point and its neighbours
+    const double a = rss[static_cast<std::size_t>(best - 1)], b = rss[static_cast<std::size_t>(best)], c = rss[static_cast<std::size_t>(best + 1)];
+    const double den = a - 2.0 * b + c;
+    if (den > 0.0) fBest += 0.5 * (a - c) / den * (f[1] - f[0]);
+  }
+  double amp = 0.0;
+  fitAt(fBest, &amp);
+  w.wavelengthMm = 1.0 / fBest;
+  w.amplitudeMm = amp;
+  return w;
 }
 
 Eigen::Matrix3Xd tracedLike(const Eigen::Matrix3Xd& root, const Eigen::Matrix3Xd& trace) {

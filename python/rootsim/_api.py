@@ -962,9 +962,8 @@ class Simulation:
         Units: mm, h, 1/mm, mm/s, named in each field (``positions_mm``, ``downhill_mm``, ...; ``State``).
 
         ``copy`` is accepted for compatibility: the arrays are always copies (views into the rod's memory
-        would dangle after the next ``step()``, which reallocates it). Copying is cheap: 14-17 us for the
-        fig2b root of 42 elements, 18-29 us for its 452 elements after 3000 steps, against 0.7-1.4 ms
-        for one of its growth steps."""
+        would dangle after the next ``step()``, which reallocates it). Copying costs a few per cent of a
+        growth step (docs/performance.md, "A state's copy in Python")."""
         return State(**self._sim.state())
 
     def snapshot(self) -> Frame:

@@ -777,9 +777,6 @@ def analyze(files: Union[PathLike, Sequence[PathLike]], *, px_per_mm: Optional[f
     +y towards +x; ``times``: one growth time per file [h] (growth rates across files of one plate);
     ``ds_mm``, ``exclude_tip_mm``, ``radius_mm``: as the command line's flags. Bad input raises
     SceneError with the command line's message. Keywords only."""
-    if not _c.have_render:
-        raise SceneError("analyze: this rootsim was built without the renderer and the app library "
-                         "(ROOTSIM_BUILD_RENDER=OFF)")
     paths = [os.fspath(files)] if isinstance(files, (str, os.PathLike)) else [os.fspath(f) for f in files]
     opts: Dict[str, Any] = dict(px_per_mm=px_per_mm, downhill=str(downhill), ds_mm=ds_mm,
                                 exclude_tip_mm=exclude_tip_mm, radius_mm=radius_mm)
@@ -807,9 +804,6 @@ def compare(run_dir: PathLike, trace: PathLike, *, root: Optional[str] = None, p
     for a pixel file; ``downhill``: "+y", "-y" or an angle in degrees; ``sigma_mm``: a traced point's
     uncertainty [mm]; ``at_h``: the run's snapshot nearest this time [h] (default: the first as long as
     the trace). Bad input raises SceneError with the command line's message. Keywords only."""
-    if not _c.have_render:
-        raise SceneError("compare: this rootsim was built without the renderer and the app library "
-                         "(ROOTSIM_BUILD_RENDER=OFF)")
     folder = _c.compare_trace(os.fspath(run_dir), os.fspath(trace), dict(
         root=root, px_per_mm=px_per_mm, downhill=str(downhill), sigma_mm=sigma_mm, at_h=at_h,
         out=None if out is None else os.fspath(out), force=bool(force), quiet=bool(quiet)))
@@ -836,9 +830,6 @@ def fit(trace: PathLike, *, scene: PathLike, free: Union[str, Dict[str, Sequence
     of its length) or "timelapse" (length, tip position and tip angle at every observation time of a 2D+t
     trace); None: timelapse for a trace with times, else observables; ``jobs``: simultaneous runs; ``budget``: most runs. The trace's keywords as
     rootsim.compare's. Bad input raises SceneError, a fit whose runs all fail RunError. Keywords only."""
-    if not _c.have_render:
-        raise SceneError("fit: this rootsim was built without the renderer and the app library "
-                         "(ROOTSIM_BUILD_RENDER=OFF)")
     if not isinstance(free, str):
         free = ",".join(f"{k}={float(lo)!r}:{float(hi)!r}" for k, (lo, hi) in free.items())
     folder = _c.fit_trace(os.fspath(trace), dict(

@@ -405,6 +405,51 @@ TEST_CASE("modes writes the softest stiffness modes of a run's final state") {
   CHECK(run("modes " + (d / "r").string() + " --count 0").code == 2);
 }
 
+TEST_CASE("modes of a plate's root: the whole plate repeated, the files in the root's folder, by --root or by its folder") {
+  const fs::path d = scratch("plate_modes");
+  {
+    std::ofstream(d / "plate.toml") << "[root]\nelement_length_mm = 0.1\n[growth]\nsteps = 30\nstep_h = 0.1\n[output]\nvtk = false\n"
+                                       "[plate]\nwidth_mm = 30\nlength_mm = 20\n[[seedling]]\nname = \"a\"\nposition_mm = [10, 5]\n"
+                                       "[[seedling]]\nname = \"b\"\nposition_mm = [20, 5]\nset = { \"tropism.beta\" = 0.3 }\n";
+  }
+  REQUIRE(run("run " + (d / "plate.toml").string() + " --set solver.kind=newton --out " + (d / "r").string() + " --quiet").code == 0);
+  // the plate itself: which root?
+  const Result which = run("modes " + (d / "r").string() + " --quiet");
+  CHECK(which.code == 2);
+  CHECK(which.out.find("a plate's run; give --root NAME") != std::string::npos);
+  const Result nosuch = run("modes " + (d / "r").string() + " --root zz --quiet");
+  CHECK(nosuch.code == 2);
+  CHECK(nosuch.out.find("--root zz") != std::string::npos);
+  const Result r = run("modes " + (d / "r").string() + " --root b --count 3 --quiet");
+  REQUIRE_MESSAGE(r.code == 0, r.out);
+  CHECK_FALSE(fs::exists(d / "r" / "modes.csv"));
+  const std::string csv = slurp(d / "r" / "roots" / "b" / "modes.csv");
+  // three modes of b's nodes (its shape.csv's rows), softest first and positive
+  std::istringstream in(csv);
+  std::string line;
+  std::getline(in, line);
+  std::map<int, double> eig;
+  std::map<int, int> nodes;
+  while (std::getline(in, line)) {
+    const int mode = std::stoi(line.substr(0, line.find(',')));
+    eig[mode] = std::stod(line.substr(line.find(',') + 1));
+    ++nodes[mode];
+  }
+  REQUIRE(eig.size() == 3);
+  CHECK(eig[1] > 0);
+  CHECK(eig[1] <= eig[2]);
+  CHECK(eig[2] <= eig[3]);
+  CHECK(nodes[1] == lines(slurp(d / "r" / "roots" / "b" / "shape.csv")) - 1);
+  // the root's folder gives the same files; another root's, its own
+  const Result byFolder = run("modes " + (d / "r" / "roots" / "b").string() + " --count 3 --force --quiet");
+  REQUIRE_MESSAGE(byFolder.code == 0, byFolder.out);
+  CHECK(slurp(d / "r" / "roots" / "b" / "modes.csv") == csv);
+  REQUIRE(run("modes " + (d / "r" / "roots" / "a").string() + " --count 3 --quiet").code == 0);
+  CHECK(slurp(d / "r" / "roots" / "a" / "modes.csv") != csv);  // a's beta differs: another shape
+  const Result mismatch = run("modes " + (d / "r" / "roots" / "a").string() + " --root b --quiet");
+  CHECK(mismatch.code == 2);
+}
+
 TEST_CASE("a value beyond its physical bound exits 2 naming key and range and writes nothing") {
   const fs::path d = scratch("bounds");
   const Result c = run("check " + kScene + " --set root.radius_mm=1e300");

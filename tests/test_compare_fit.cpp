@@ -487,3 +487,60 @@ TEST_CASE("fit: a 2D+t trace is fitted at every observation time / beta and the 
   const auto one = run("fit " + quick().rsml.string() + scene + " --free tropism.beta=0.1:0.3 --objective timelapse --out " + (d / "bad").string());
   CHECK(one.out.find("has no observation times (a trace of one time)") != std::string::npos);
 }
+
+TEST_CASE("compare of a plate: each seedling paired with its nearest traced plant or by a sample sheet, one row per pair") {
+  if (!built()) return;
+  const fs::path d = scratch("plate");
+  // two seedlings of different gains: a traced plant paired with the wrong seedling is another root
+  {
+    std::ofstream(d / "plate.toml") << "[root]\nelement_length_mm = 0.1\n[growth]\nsteps = 60\nstep_h = 0.1\n[tropism]\nbeta = 0.1\n"
+                                       "[output]\nvtk = false\nevery_steps = 10\n[plate]\nwidth_mm = 40\nlength_mm = 30\n"
+                                       "[[seedling]]\nname = \"a\"\nposition_mm = [10, 5]\n"
+                                       "[[seedling]]\nname = \"b\"\nposition_mm = [30, 5]\nangle_deg = 20\n"
+                                       "set = { \"tropism.beta\" = 0.4 }\n";
+  }
+  REQUIRE(run("run " + (d / "plate.toml").string() + " --out " + (d / "run").string() + " --quiet").code == 0);
+  REQUIRE(run("export " + (d / "run").string() + " --rsml " + (d / "plate.rsml").string() + " --quiet").code == 0);
+  // against its own export: each seedling with its own plant (the nearest seed), every distance 0
+  const auto own = run("compare " + (d / "run").string() + " " + (d / "plate.rsml").string() + " --out " + (d / "c").string());
+  REQUIRE_MESSAGE(own.code == 0, own.out);
+  const std::string pairs = slurp(d / "c" / "pairs.csv");
+  INFO(pairs);
+  CHECK(pairs.rfind("seedling,plant,root,time_h,step,snapshot,distance_mm,frechet_mm,chi2,observables_used\n", 0) == 0);
+  CHECK(pairs.find("\na,1 (a),") != std::string::npos);
+  CHECK(pairs.find("\nb,2 (b),") != std::string::npos);
+  const std::string js = slurp(d / "c" / "compare.json");
+  for (std::size_t at = js.find("\"distance_mm\": "); at != std::string::npos; at = js.find("\"distance_mm\": ", at + 1))
+    CHECK(std::stod(js.substr(at + 15)) < 1e-9);
+  CHECK(jsonString(js, "paired_by").rfind("nearest seed", 0) == 0);
+  const std::string csv = slurp(d / "c" / "compare.csv");
+  CHECK(csv.rfind("seedling,plant,observable,unit,trace,sim,sigma,residual,used,how\n", 0) == 0);
+  CHECK(csv.find("\nb,2 (b),length_mm,") != std::string::npos);
+  for (const char* f : {"compare.pdf", "compare.svg", "compare.png"}) CHECK(fs::file_size(d / "c" / f) > 1000);
+  // a sample sheet swapping them: each plant against the other seedling, a distance of millimetres
+  std::ofstream(d / "swap.csv") << "plant,seedling,note\nb,a,x\n1,b,y\n";
+  const auto swapped = run("compare " + (d / "run").string() + " " + (d / "plate.rsml").string() + " --groups " + (d / "swap.csv").string() +
+                           " --out " + (d / "s").string() + " --quiet");
+  REQUIRE_MESSAGE(swapped.code == 0, swapped.out);
+  const std::string sp = slurp(d / "s" / "pairs.csv");
+  CHECK(sp.find("\na,2 (b),") != std::string::npos);
+  CHECK(sp.find("\nb,1 (a),") != std::string::npos);
+  CHECK(jsonNumber(slurp(d / "s" / "compare.json"), "distance_mm") > 0.1);
+  // a sheet naming a plant twice, or a seedling the run does not have: exit 2 naming the sheet's line
+  std::ofstream(d / "twice.csv") << "plant,seedling\na,a\na,b\n";
+  const auto twice = run("compare " + (d / "run").string() + " " + (d / "plate.rsml").string() + " --groups " + (d / "twice.csv").string() +
+                         " --out " + (d / "t").string());
+  CHECK(twice.code == 2);
+  CHECK(twice.out.find("twice.csv:3: plant a named twice (first on line 2)") != std::string::npos);
+  CHECK_FALSE(fs::exists(d / "t"));
+  std::ofstream(d / "none.csv") << "plant,seedling\na,zz\n";
+  const auto none = run("compare " + (d / "run").string() + " " + (d / "plate.rsml").string() + " --groups " + (d / "none.csv").string() +
+                        " --out " + (d / "n").string());
+  CHECK(none.code == 2);
+  CHECK(none.out.find("none.csv:2: seedling zz: not a seedling of the run (its seedlings: a, b)") != std::string::npos);
+  // --groups of a run of one root
+  const auto single = run("compare " + quick().run.string() + " " + quick().rsml.string() + " --groups " + (d / "swap.csv").string() +
+                          " --out " + (d / "one").string());
+  CHECK(single.code == 2);
+  CHECK(single.out.find("--groups") != std::string::npos);
+}

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -14,12 +16,15 @@
 #include "rootsim/csv.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/rsml.hpp"
+#include "rootsim/trajectory.hpp"
+#include <nlohmann/json.hpp>
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
 using namespace rootsim;
 using rootsim::test::run;
 using rootsim::test::slurp;
+using rootsim::test::Result;
 
 namespace {
 
@@ -276,4 +281,116 @@ TEST_CASE("export: an --every-h RSML series is written all or none and a FILE.tm
   CHECK(fs::is_directory(dir / (names[1] + ".tmp")));
   fs::remove(dir / (names[1] + ".tmp"));
   CHECK(test::fileTree(dir) == before);
+}
+
+namespace {
+// a plate of two seedlings whose laterals emerge within a short run (60 growth steps, a snapshot every 20)
+const fs::path& plateRun() {
+  static const fs::path dir = [] {
+    const fs::path d = scratch("plate");
+    {
+      std::ofstream f(d / "plate.toml");
+      f << "[root]\nradius_mm = 0.1\ninitial_length_mm = 1.1\n[growth]\nsteps = 60\n[tropism]\nbeta = 0.2\n[plane]\n"
+           "alpha_deg = 40\n[output]\nevery_steps = 20\nvtk = false\n[plate]\nwidth_mm = 60\nlength_mm = 40\n"
+           "[laterals]\nenabled = true\nfirst_mm = 0.5\nspacing_mm = 0.5\napical_unbranched_mm = 0.5\n"
+           "[[seedling]]\nname = \"a\"\nposition_mm = [20, 5]\n[[seedling]]\nname = \"b\"\nposition_mm = [40, 5]\n";
+    }
+    const auto r = run("run " + (d / "plate.toml").string() + " --out " + (d / "run").string() + " --quiet");
+    REQUIRE_MESSAGE(r.code == 0, r.out);
+    return d / "run";
+  }();
+  return dir;
+}
+
+// the JSON chunk of a GLB file
+nlohmann::json glbJson(const fs::path& f) {
+  const std::string b = slurp(f);
+  REQUIRE(b.size() > 20);
+  REQUIRE(b.compare(0, 4, "glTF") == 0);
+  const std::uint32_t n = static_cast<unsigned char>(b[12]) | static_cast<unsigned char>(b[13]) << 8 |
+                          static_cast<unsigned char>(b[14]) << 16 | static_cast<std::uint32_t>(static_cast<unsigned char>(b[15])) << 24;
+  return nlohmann::json::parse(b.substr(20, n));
+}
+}  // namespace
+
+TEST_CASE("export of a plate's run: --gltf one group per root named after it, each lateral from its emergence frame") {
+  if (!exportBuilt()) return;
+  const fs::path d = scratch("plate_gltf");
+  const fs::path& rd = plateRun();
+  // the plate's roots: the seedlings, then the laterals (plate.csv), each with its snapshot count
+  std::vector<std::string> names;
+  for (const auto& e : fs::directory_iterator(rd / "roots")) names.push_back(e.path().filename().string());
+  REQUIRE(names.size() > 2);  // laterals emerged
+  const Result r = run("export " + rd.string() + " --gltf " + (d / "plate.glb").string() + " --quiet");
+  REQUIRE_MESSAGE(r.code == 0, r.out);
+  const nlohmann::json j = glbJson(d / "plate.glb");
+  auto node = [&](const std::string& name) -> const nlohmann::json* {
+    for (const auto& n : j["nodes"])
+      if (n.value("name", "") == name) return &n;
+    return nullptr;
+  };
+  const int frames = 4;  // steps 0, 20, 40, 60
+  int shownAtEnd = 0;
+  for (const std::string& n : names) {
+    const nlohmann::json* g = node(n);
+    REQUIRE_MESSAGE(g, "no group node " << n);
+    const auto snaps = readTrajectory(rd / "roots" / n / "trajectory.bin");
+    REQUIRE((*g)["children"].size() == snaps.size());
+    // its k-th snapshot is the plate's frame frames - size + k, named after the root
+    for (std::size_t k = 0; k < snaps.size(); ++k) {
+      const auto& child = j["nodes"][(*g)["children"][k].get<std::size_t>()];
+      const std::string name = child["name"];
+      char want[32];
+      std::snprintf(want, sizeof want, " frame %04d,", frames - static_cast<int>(snaps.size()) + static_cast<int>(k));
+      CHECK(name.rfind(n + want, 0) == 0);
+      CHECK(child["extras"]["time_h"].get<double>() == snaps[k].timeH);
+      CHECK(child["extras"]["step"].get<int>() == snaps[k].step);
+      if (child["scale"][0].get<double>() == 1.0) ++shownAtEnd;
+    }
+  }
+  CHECK(shownAtEnd == static_cast<int>(names.size()));  // a viewer without the animation: every root's last
+  // one channel per snapshot of every root; the plate quad covers the whole 60 x 40 mm plate
+  std::size_t total = 0;
+  for (const std::string& n : names) total += (*node(n))["children"].size();
+  CHECK(j["animations"][0]["channels"].size() == total);
+  const auto& plateMesh = j["meshes"][(*node("plate"))["mesh"].get<std::size_t>()];
+  const auto& pa = j["accessors"][plateMesh["primitives"][0]["attributes"]["POSITION"].get<std::size_t>()];
+  CHECK(pa["min"][0].get<double>() <= -1e-3);
+  CHECK(pa["max"][0].get<double>() >= 61e-3 - 1e-9);
+  CHECK(pa["max"][2].get<double>() >= 41e-3 - 1e-9);  // glTF z = downhill
+}
+
+TEST_CASE("export of a plate's run: --paraview a .pvd per root, a lateral's listing empty.vtp before it emerged") {
+  if (!exportBuilt()) return;
+  const fs::path d = scratch("plate_paraview");
+  const fs::path& rd = plateRun();
+  const Result r = run("export " + rd.string() + " --paraview " + (d / "pv").string() + " --quiet");
+  REQUIRE_MESSAGE(r.code == 0, r.out);
+  const fs::path pv = d / "pv";
+  CHECK(fs::is_regular_file(pv / "plate.vtp"));
+  const std::string script = slurp(pv / "open_in_paraview.py");
+  bool lateral = false;
+  for (const auto& e : fs::directory_iterator(rd / "roots")) {
+    const std::string n = e.path().filename().string();
+    const auto snaps = readTrajectory(e.path() / "trajectory.bin");
+    const std::string pvd = slurp(pv / (n + ".pvd"));
+    INFO(n << ": " << pvd);
+    // every plate snapshot listed once; before the root's first, the empty file
+    std::size_t entries = 0, empties = 0;
+    for (std::size_t at = pvd.find("<DataSet"); at != std::string::npos; at = pvd.find("<DataSet", at + 1)) ++entries;
+    for (std::size_t at = pvd.find("empty.vtp"); at != std::string::npos; at = pvd.find("empty.vtp", at + 1)) ++empties;
+    CHECK(entries == 4);
+    CHECK(empties == 4 - snaps.size());
+    lateral = lateral || empties > 0;
+    for (const Snapshot& s : snaps) {
+      char f[64];
+      std::snprintf(f, sizeof f, "/step_%06d.vtp", s.step);
+      CHECK(fs::is_regular_file(pv / (n + f)));
+      CHECK(pvd.find(n + f) != std::string::npos);
+    }
+    CHECK(script.find("(\"" + n + "\", \"" + n + ".pvd\")") != std::string::npos);
+  }
+  CHECK(lateral);
+  CHECK(fs::is_regular_file(pv / "empty.vtp"));
+  CHECK(slurp(pv / "empty.vtp").find("NumberOfPoints=\"0\"") != std::string::npos);
 }

@@ -353,3 +353,43 @@ TEST_CASE("a small sweep: a failing point stays DIR.incomplete, the table holds 
   CHECK(again.skipped == 1);
   fs::remove_all(d);
 }
+
+TEST_CASE("a sweep of a plate scene: each point a plate, the table a row per root of each point, a rerun keeps them") {
+  const fs::path d = scratch("plate");
+  {
+    std::ofstream(d / "plate.toml") << "[root]\nelement_length_mm = 0.1\n[growth]\nsteps = 20\nstep_h = 0.1\n[output]\nvtk = false\n"
+                                       "[plate]\nwidth_mm = 30\nlength_mm = 20\n[[seedling]]\nname = \"a\"\nposition_mm = [10, 5]\n"
+                                       "[[seedling]]\nname = \"b\"\ngenotype = \"tw\"\nposition_mm = [20, 5]\n"
+                                       "set = { \"tropism.twist_r_tau\" = 0.4 }\n";
+    std::ofstream(d / "s.toml") << "[sweep]\nscene = \"" << (d / "plate.toml").string() << "\"\n[grid]\n\"tropism.beta\" = [0.1, 0.3]\n";
+  }
+  const Result r = run("sweep " + (d / "s.toml").string() + " --quiet --out " + (d / "out").string());
+  REQUIRE_MESSAGE(r.code == 0, r.out);
+  const SweepPlan plan = loadSweep((d / "s.toml").string());
+  REQUIRE(plan.points.size() == 2);
+  const std::string table = slurp(d / "out" / "table.csv");
+  INFO(table);
+  std::istringstream in(table);
+  std::string head;
+  std::getline(in, head);
+  CHECK(head.rfind("index,run,grid:tropism.beta,root,genotype,parent,", 0) == 0);
+  // the point's plate.csv rows, each after the point's index, folder and grid value
+  std::string want;
+  for (const SweepPoint& p : plan.points) {
+    const fs::path dir = d / "out" / p.dirName;
+    REQUIRE(fs::is_regular_file(dir / "roots" / "a" / "result.csv"));
+    CHECK(slurp(dir / "scene.toml") == p.resolvedToml);
+    std::istringstream rows(slurp(dir / "plate.csv"));
+    std::string row;
+    std::getline(rows, row);
+    CHECK(head.substr(head.find(",root,") + 1) == row);
+    while (std::getline(rows, row)) want += std::to_string(p.index) + "," + p.dirName + ",\"" + p.grid[0].second + "\"," + row + "\n";
+  }
+  CHECK(table == head + "\n" + want);
+  CHECK(lines(table) == 1 + 4);
+  // run again: both points complete, nothing rerun
+  const Result again = run("sweep " + (d / "s.toml").string() + " --out " + (d / "out").string());
+  REQUIRE_MESSAGE(again.code == 0, again.out);
+  CHECK(again.out.find("0 ran, 2 already complete") != std::string::npos);
+  CHECK(slurp(d / "out" / "table.csv") == table);
+}

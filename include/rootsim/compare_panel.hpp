@@ -18,6 +18,13 @@ namespace rootsim {
 // title: the figure's title; caption: a line under it (distances, chi-square)
 void saveComparePanel(const Model& m, const Snapshot& sim, const Eigen::Matrix3Xd& traceMm, const std::string& title,
                       const std::string& caption, const std::string& pathWithoutExtension);
+// a plate's comparison: A the simulated plate (every root's snapshot, in plate coordinates from the
+// plate's origin [mm]), B the traced plate (every traced root, moved onto the plate by the pairing) in
+// the same window; names: a label per simulated root (same order) drawn at its seed, traceNames the same
+// per traced root ("" for none)
+void savePlateComparePanel(const Model& m, const std::vector<Snapshot>& sims, const std::vector<std::string>& names,
+                           const std::vector<Eigen::Matrix3Xd>& tracesMm, const std::vector<std::string>& traceNames,
+                           const std::string& title, const std::string& caption, const std::string& path);
 
 // a fit's objective over two free parameters: every run coloured by its chi-square above the lowest (the
 // start design's grid as cells), the fit, and the 1-sigma ellipse of the covariance when there is one

@@ -122,12 +122,16 @@ struct CompareOptions {
   double atH = kUnset;            // --at-h: the run's snapshot nearest this time; default: the first
                                   // snapshot as long as the trace (the final one when none is)
   std::string out;                // --out DIR (default compare/<run>_vs_<trace stem>)
+  std::string groups;             // --groups SHEET.csv: a plate's run, its plants paired by a sample sheet
+                                  // (columns plant, seedling) instead of by the nearest seed
   bool force = false;
   bool quiet = false;
   bool printTable = true;         // the observables' table on stdout (the command line's; not Python's)
 };
 // compare.json, compare.csv and compare.{pdf,svg,png} into --out (a compare folder, written whole); the
-// table on stdout. Returns 0; *outDir (when given): the folder written.
+// table on stdout. A plate's run (docs/plate.md, Compare a traced plate): every traced plant's primary
+// root paired with a seedling (nearest seed, or --groups), each pair compared as one root is, pairs.csv
+// and compare.csv holding every pair, the picture both plates side by side. Returns 0; *outDir (when given): the folder written.
 int compareCommand(const CompareOptions& o, std::string* outDir = nullptr);
 
 }  // namespace rootsim::app

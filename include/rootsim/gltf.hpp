@@ -4,6 +4,8 @@
 // the obstacles, an orthographic top camera, and one mesh per snapshot switched on and off by a STEP
 // animation of its node's scale. Metres, +Y up: plate (u, v, w) [mm] -> glTF (u, w, -v) / 1000.
 // The bytes only: the caller claims and writes the file (src/app/export_run.cpp).
+#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -27,11 +29,19 @@ inline constexpr int kGltfCapRings = 4;
 struct GltfOptions {
   // half the angular width of each stripe around +-d1 [deg], in (0, 90): the renderer's
   double stripeHalfWidthDeg = View{}.stripeHalfWidthDeg;
+  // a plate's rectangle in the top view's plate coordinates [mm] (u0, v0, u1, v1): the plate mesh covers
+  // it as well as the roots' reach (a plate run's whole plate); none: the roots' reach only
+  std::optional<std::array<double, 4>> plateRectMm;
 };
+
 
 // the GLB file's bytes for snaps (one snapshot: a still, no animation) on the plate of info; the same
 // input gives the same bytes. Throws RenderError on an empty list, a snapshot with inconsistent shapes
 // or non-finite values, or a bad stripe width.
 std::string gltfBinary(const std::vector<Snapshot>& snaps, const SceneInfo& info, const GltfOptions& options = {});
+// a plate's GLB: one group node and one striped mesh per snapshot of each root, the file's frames those of
+// the longest root (each root shown from its firstFrame on), the plate, its grid and the obstacles once.
+// The same checks as above, and a root with no snapshots or starting before the first frame is refused.
+std::string gltfPlateBinary(const std::vector<RootSeries>& roots, const SceneInfo& info, const GltfOptions& options = {});
 
 }  // namespace rootsim

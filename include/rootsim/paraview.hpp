@@ -5,6 +5,7 @@
 #include <array>
 #include <filesystem>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rootsim/snapshot.hpp"
@@ -24,13 +25,22 @@ struct StripeStyle {
 // open_in_paraview.py for a run of this scene whose snapshots cover extentMm (plateExtentMm): the plate's
 // axes and extent for the top camera, the stripe rule and colours, and `folder` (made absolute), where
 // the script finds its files when ParaView's GUI runs it without its own file name
+// roots: each root's name and .pvd file (one root: "root", root.pvd)
 std::string paraviewScript(const SceneInfo& info, const std::array<double, 4>& extentMm,
-                           const std::filesystem::path& folder);
+                           const std::filesystem::path& folder,
+                           const std::vector<std::pair<std::string, std::string>>& roots = {{"root", "root.pvd"}});
 
 // writes the folder's files into dir (which exists: a StagedFolder's work folder): step_NNNNNN.vtp of
 // each snapshot, root.pvd, plate.vtp (covering every snapshot), open_in_paraview.py naming finalDir (the
 // folder's final name; empty: dir) as its folder
 void writeParaviewFiles(const std::filesystem::path& dir, const std::vector<Snapshot>& snaps, const SceneInfo& info,
                         const std::filesystem::path& finalDir = {});
+// a plate's folder (docs/paraview.md, A plate): for each root NAME/step_NNNNNN.vtp and NAME.pvd (times in
+// hours; a root that emerged after the plate's first snapshot lists empty.vtp, a line of no points, for
+// the plate's snapshots before it), plate.vtp (covering every root's snapshots) and open_in_paraview.py showing every root striped.
+// timesH: the plate's snapshot times, each root's firstFrame an index into them.
+void writeParaviewPlateFiles(const std::filesystem::path& dir, const std::vector<RootSeries>& roots,
+                             const std::vector<double>& timesH, const SceneInfo& info,
+                             const std::filesystem::path& finalDir = {});
 
 }  // namespace rootsim

@@ -56,6 +56,16 @@ struct View {
   // a plate's whole plate (`render --plate-view`, docs/plate.md): the plate drawn over this rectangle
   // (u0, v0, u1, v1) [mm] only, outlined, on a grey surround; unset: the plate fills the picture
   std::optional<std::array<double, 4>> plateRectMm;
+  // a plate's seedlings (`render --plate-view`, docs/plate.md): each one's label (its name, and under it
+  // its genotype when set) centred on its seed at (u, v) [mm], on the plate above it (uphill: the root
+  // grows down from the seed and the label would hide it); its own values (beta, R tau) as a line of a
+  // legend at the right edge under the header, which then shows alpha and gamma only
+  struct SeedLabel {
+    std::string label, sub;
+    double u = 0, v = 0;
+    std::string values;
+  };
+  std::vector<SeedLabel> seedLabels;
   // a scanner's look (`render --scan`): light roots without stripes on a dark plate without a grid,
   // no overlays (what a plate-scan pipeline reads)
   bool scanLook = false;

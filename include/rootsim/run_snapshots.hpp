@@ -27,6 +27,9 @@ struct PlateRoot {
   Seedling seedling;
 };
 std::vector<PlateRoot> plateRoots(const std::filesystem::path& runDir);
+// where a plate root's own frame lies in the plate's lab frame: its seedling's place on the plate (a
+// root's folder holds its snapshots with its base's foot at the origin)
+Vec3 plateOffset(const PlateFrame& plate, const PlateRoot& root);
 
 // the growth times of the snapshots [h]
 std::vector<double> snapshotTimes(const std::vector<Snapshot>& snaps);

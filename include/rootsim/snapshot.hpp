@@ -65,6 +65,15 @@ struct SceneInfo {
   std::string title;           // e.g. the scene name
 };
 
+// one root of a plate's run as the exports show it (docs/plate.md): its name, its snapshots in the
+// plate's lab frame, the first of them at the plate's snapshot firstFrame (a lateral root emerges after
+// the plate's first snapshot)
+struct RootSeries {
+  std::string name;
+  std::vector<Snapshot> snaps;
+  int firstFrame = 0;
+};
+
 struct Model;
 // the facts of a model: its plate tilt, tropism gains, radius, plate, obstacles and its name as title
 SceneInfo sceneInfoOf(const Model& m);

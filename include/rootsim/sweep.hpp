@@ -33,6 +33,7 @@ struct SweepPoint {
   std::string dirName;                          // run directory name inside the sweep folder (<= 200
                                                 // bytes: long names end in a hash of the full name)
   bool grows = true;                            // growth run (else mechanics only: another result header)
+  bool plate = false;                           // a plate's scene: its run has plate.csv, a row per root
   std::string resolvedToml;                     // the point's resolved scene (what its scene.toml must hold)
   std::optional<Scene> scene;                   // a typed scene (sceneOf a model: the figure cases), run
                                                 // instead of the plan's base scene and overrides

@@ -5,9 +5,13 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <fstream>
 #include <stdexcept>
+#include <tuple>
 
+#include "rootsim/analyze_traces.hpp"
 #include "rootsim/compare_panel.hpp"
+#include "rootsim/csv.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/json.hpp"
 #include "rootsim/limits.hpp"
@@ -297,6 +301,25 @@ std::string timeLapseCsv(const std::vector<TimeLapseRow>& rows) {
   return out;
 }
 
+// the run's snapshot a trace is compared with: the one nearest --at-h, else the first as long as the trace
+// (the final one when none is); why says which
+int pickSnapshot(const std::vector<Snapshot>& snaps, const TraceTarget& target, double atH, std::string& why) {
+  int pick = static_cast<int>(snaps.size()) - 1;
+  why = "the final snapshot";
+  if (atH != CompareOptions::kUnset) {
+    why = "the snapshot nearest --at-h";
+    return snapshotNear(snapshotTimes(snaps), atH);
+  }
+  for (int i = 0; i < static_cast<int>(snaps.size()); ++i)
+    // (to a micrometre: a run's own export has its nodes' length up to rounding)
+    if (polylineLength(snaps[static_cast<std::size_t>(i)].x) / units::mm >= target.traits.lengthMm - 1e-3) {
+      why = "the first snapshot as long as the trace";
+      return i;
+    }
+  why = "the final snapshot (the run is shorter than the trace)";
+  return pick;
+}
+
 void printTable(const Comparison& c) {
   std::printf("%-18s %12s %12s %10s %9s\n", "observable", "trace", "simulation", "sigma", "residual");
   for (const Observation& o : c.obs) {
@@ -306,6 +329,259 @@ void printTable(const Comparison& c) {
       std::printf("%-18s %12.4g %12.4g %10s %9s\n", (o.name).c_str(), o.trace, o.sim, "-", "(shown)");
   }
   std::printf("%s\n", comparisonCaption(c).c_str());
+}
+
+// ---- a plate's run against a traced plate ----
+
+// a traced plant: its first primary root (order 0) and where its seed lies in the file's plate frame [mm]
+struct TracedPlant {
+  std::string id, label;
+  int root = -1;             // index in TraceFile::roots
+  Eigen::Vector2d seedMm = Eigen::Vector2d::Zero();
+};
+
+std::vector<TracedPlant> tracedPlants(const TraceFile& tf) {
+  std::vector<TracedPlant> plants;
+  for (int k = 0; k < static_cast<int>(tf.roots.size()); ++k) {
+    const TracedRoot& r = tf.roots[static_cast<std::size_t>(k)];
+    if (r.parentIndex >= 0) continue;
+    const std::string id = r.key.substr(0, r.key.find('/'));
+    if (std::any_of(plants.begin(), plants.end(), [&](const TracedPlant& p) { return p.id == id; })) continue;
+    TracedPlant p;
+    p.id = id;
+    p.label = r.plantLabel;
+    p.root = k;
+    p.seedMm = (r.originMm + r.plateMm.col(0)).head<2>();
+    plants.push_back(p);
+  }
+  return plants;
+}
+
+// --groups SHEET.csv: a header naming the columns plant and seedling (others ignored), then one row per
+// pair; a plant is named by its id or its label. Bad rows exit 2 naming SHEET:LINE
+std::vector<std::pair<int, int>> sheetPairs(const std::string& sheet, const std::vector<PlateRoot>& seedlings,
+                                            const std::vector<TracedPlant>& plants) {
+  std::ifstream in(sheet);
+  if (!in) throw SceneError("--groups " + sheet + ": cannot be read (not found?)");
+  std::string line;
+  if (!std::getline(in, line)) throw SceneError(sheet + ":1: empty; expected a header with the columns plant and seedling");
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+  const std::vector<std::string> head = splitCommas(line);
+  const auto col = [&](const char* name) {
+    const auto it = std::find(head.begin(), head.end(), name);
+    if (it == head.end()) throw SceneError(sheet + ":1: no column " + name + " (the header: " + line + "; expected plant,seedling)");
+    return static_cast<std::size_t>(it - head.begin());
+  };
+  const std::size_t cp = col("plant"), cs = col("seedling");
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<int> plantLine(plants.size(), 0), seedlingLine(seedlings.size(), 0);
+  for (int n = 2; std::getline(in, line); ++n) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    if (line.empty()) continue;
+    const std::vector<std::string> cells = splitCommas(line);
+    const std::string at = sheet + ":" + std::to_string(n);
+    if (cells.size() <= std::max(cp, cs)) throw SceneError(at + ": " + std::to_string(cells.size()) + " cell(s); expected " + std::to_string(head.size()));
+    const std::string& pn = cells[cp];
+    const std::string& sn = cells[cs];
+    int p = -1, sd = -1;
+    for (int k = 0; k < static_cast<int>(plants.size()); ++k)
+      if (plants[static_cast<std::size_t>(k)].id == pn || (!plants[static_cast<std::size_t>(k)].label.empty() && plants[static_cast<std::size_t>(k)].label == pn)) p = k;
+    for (int k = 0; k < static_cast<int>(seedlings.size()); ++k)
+      if (seedlings[static_cast<std::size_t>(k)].name == sn) sd = k;
+    if (p < 0) {
+      std::string names;
+      for (const TracedPlant& q : plants) names += (names.empty() ? "" : ", ") + q.id + (q.label.empty() ? "" : " (" + q.label + ")");
+      throw SceneError(at + ": plant " + pn + ": not a plant of the trace (its plants: " + names + ")");
+    }
+    if (sd < 0) {
+      std::string names;
+      for (const PlateRoot& q : seedlings) names += (names.empty() ? "" : ", ") + q.name;
+      throw SceneError(at + ": seedling " + sn + ": not a seedling of the run (its seedlings: " + names + ")");
+    }
+    if (const int first = plantLine[static_cast<std::size_t>(p)])
+      throw SceneError(at + ": plant " + pn + " named twice (first on line " + std::to_string(first) + ")");
+    if (const int first = seedlingLine[static_cast<std::size_t>(sd)])
+      throw SceneError(at + ": seedling " + sn + " named twice (first on line " + std::to_string(first) + ")");
+    plantLine[static_cast<std::size_t>(p)] = n;
+    seedlingLine[static_cast<std::size_t>(sd)] = n;
+    pairs.emplace_back(sd, p);
+  }
+  if (pairs.empty()) throw SceneError(sheet + ": no rows; expected one plant,seedling pair per line after the header");
+  return pairs;
+}
+
+// the nearest seeds: the traced seeds moved by the difference of the two plates' mean seeds (a trace's
+// origin is its image's corner, not the plate's), then the closest (seedling, plant) pairs first, each
+// seedling and each plant in one pair at most
+std::vector<std::pair<int, int>> nearestPairs(const std::vector<PlateRoot>& seedlings, const std::vector<TracedPlant>& plants,
+                                              Eigen::Vector2d& shift) {
+  Eigen::Vector2d ms = Eigen::Vector2d::Zero(), mp = Eigen::Vector2d::Zero();
+  for (const PlateRoot& r : seedlings) ms += r.seedling.position / units::mm;
+  for (const TracedPlant& p : plants) mp += p.seedMm;
+  shift = ms / static_cast<double>(seedlings.size()) - mp / static_cast<double>(plants.size());
+  std::vector<std::tuple<double, int, int>> all;
+  for (int a = 0; a < static_cast<int>(seedlings.size()); ++a)
+    for (int b = 0; b < static_cast<int>(plants.size()); ++b)
+      all.emplace_back((seedlings[static_cast<std::size_t>(a)].seedling.position / units::mm - plants[static_cast<std::size_t>(b)].seedMm - shift).norm(), a, b);
+  std::sort(all.begin(), all.end());
+  std::vector<bool> usedS(seedlings.size()), usedP(plants.size());
+  std::vector<std::pair<int, int>> pairs;
+  for (const auto& [d, a, b] : all) {
+    if (usedS[static_cast<std::size_t>(a)] || usedP[static_cast<std::size_t>(b)]) continue;
+    usedS[static_cast<std::size_t>(a)] = usedP[static_cast<std::size_t>(b)] = true;
+    pairs.emplace_back(a, b);
+  }
+  std::sort(pairs.begin(), pairs.end());  // in the seedlings' order
+  return pairs;
+}
+
+int comparePlate(const CompareOptions& o, const fs::path& run, const fs::path& out, const WriteRule& rule,
+                 const std::string& runName, std::string* outDir) {
+  const Scene plate = loadScene((run / "scene.toml").string());
+  std::vector<PlateRoot> seedlings;
+  for (const PlateRoot& r : plateRoots(run))
+    if (r.parent.empty()) seedlings.push_back(r);
+  if (!o.trace.root.empty()) throw SceneError("--root " + o.trace.root + ": " + o.runDir + " is a plate's run; its plants are paired by seed or --groups");
+  // the traced plants, read once as the plate's model measures them
+  AnalyzeOptions a;
+  a.pxPerMm = o.trace.pxPerMm;
+  a.downhill = o.trace.downhill;
+  a.excludeTipMm = plate.model.growth.zoneLength / units::mm;
+  a.radiusMm = plate.model.rod.radius / units::mm;
+  a.flagPrefix = o.trace.flagPrefix;
+  checkTraceFlags(a);
+  const TraceFile tf = readTraceFile(o.trace.trace, a);
+  const std::vector<TracedPlant> plants = tracedPlants(tf);
+  if (plants.empty()) throw SceneError(o.trace.trace + ": no primary root (order 0) to pair with a seedling");
+  Eigen::Vector2d shift = Eigen::Vector2d::Zero();
+  const bool bySheet = !o.groups.empty();
+  const std::vector<std::pair<int, int>> pairs = bySheet ? sheetPairs(o.groups, seedlings, plants) : nearestPairs(seedlings, plants, shift);
+
+  // one loop over the pairs: each compared as one root is (compareRoots), its seedling's own model
+  struct Pair {
+    std::string seedling, plant, why;
+    TraceTarget target;
+    SimRoot sim;
+    Comparison c;
+  };
+  std::vector<Pair> done;
+  std::vector<Snapshot> simPlate;
+  std::vector<std::string> names;
+  const PlateFrame pf = plate.model.env.plane.frame();
+  for (const auto& [sd, pl] : pairs) {
+    const PlateRoot& root = seedlings[static_cast<std::size_t>(sd)];
+    const TracedPlant& plant = plants[static_cast<std::size_t>(pl)];
+    const Scene own = loadScene((root.dir / "scene.toml").string());
+    const Model& m = singleRootModel(own, "compare: " + root.dir.string());
+    TraceFlags f = o.trace;
+    f.root = tf.roots[static_cast<std::size_t>(plant.root)].key;
+    Pair p;
+    p.seedling = root.name;
+    p.plant = plant.id + (plant.label.empty() ? "" : " (" + plant.label + ")");
+    p.target = loadTarget(f, m);
+    const std::vector<Snapshot> snaps = loadSnapshots(root.dir);
+    const int pick = pickSnapshot(snaps, p.target, o.atH, p.why);
+    p.sim = simRootOf(m, snaps[static_cast<std::size_t>(pick)]);
+    p.c = compareRoots(p.target, p.sim);
+    done.push_back(std::move(p));
+  }
+  // the pictures: every root of the run at the first pair's snapshot time, every traced root moved onto
+  // the plate (a paired plant's seed onto its seedling's, an unpaired one by the mean shift)
+  const double atH = done.front().sim.timeH;
+  for (const PlateRoot& r : plateRoots(run)) {
+    const std::vector<Snapshot> snaps = loadSnapshots(r.dir);
+    if (snaps.front().timeH > atH + 1e-9) continue;  // a lateral root not emerged by then
+    Snapshot s = snaps[static_cast<std::size_t>(nearestSnapshot(snapshotTimes(snaps), atH))];
+    s.x.colwise() += plateOffset(pf, r);
+    simPlate.push_back(std::move(s));
+    names.push_back(r.parent.empty() ? r.name : "");
+  }
+  std::vector<Eigen::Vector2d> plantShift(plants.size(), shift);
+  if (bySheet) {
+    Eigen::Vector2d sum = Eigen::Vector2d::Zero();
+    for (const auto& [sd, pl] : pairs)
+      sum += seedlings[static_cast<std::size_t>(sd)].seedling.position / units::mm - plants[static_cast<std::size_t>(pl)].seedMm;
+    plantShift.assign(plants.size(), sum / static_cast<double>(pairs.size()));
+  }
+  for (const auto& [sd, pl] : pairs)
+    plantShift[static_cast<std::size_t>(pl)] = seedlings[static_cast<std::size_t>(sd)].seedling.position / units::mm - plants[static_cast<std::size_t>(pl)].seedMm;
+  std::vector<Eigen::Matrix3Xd> traces;
+  std::vector<std::string> traceNames;  // each plant's id at its primary root's seed
+  for (const TracedRoot& r : tf.roots) {
+    std::size_t p = 0;
+    while (p < plants.size() && r.key.substr(0, r.key.find('/')) != plants[p].id) ++p;
+    Eigen::Matrix3Xd t = r.plateMm;
+    for (int i = 0; i < t.cols(); ++i) {
+      t.col(i) += r.originMm;
+      if (p < plants.size()) t.col(i).head<2>() += plantShift[p];
+    }
+    traces.push_back(std::move(t));
+    const bool primary = p < plants.size() && &tf.roots[static_cast<std::size_t>(plants[p].root)] == &r;
+    traceNames.push_back(primary ? "plant " + plants[p].id : "");
+  }
+
+  StagedFolder folder(out, compareFolder(), rule, "--out");
+  std::string pairsCsv = "seedling,plant,root,time_h,step,snapshot,distance_mm,frechet_mm,chi2,observables_used\n";
+  std::string obsCsv;
+  std::vector<Json> items;
+  for (const Pair& p : done) {
+    pairsCsv += csvField(p.seedling) + "," + csvField(p.plant) + "," + csvField(p.target.rootKey) + "," + numberText(p.sim.timeH) + "," +
+                std::to_string(p.sim.step) + "," + csvField(p.why) + "," + numberText(p.c.distanceMm) + "," + numberText(p.c.frechetMm) + "," +
+                numberText(p.c.chi2) + "," + std::to_string(p.c.used) + "\n";
+    const std::string rows = observablesCsv(p.c);
+    const auto nl = rows.find('\n');
+    if (obsCsv.empty()) obsCsv = "seedling,plant," + rows.substr(0, nl + 1);
+    for (std::size_t at = nl + 1; at < rows.size();) {
+      const auto end = rows.find('\n', at);
+      obsCsv += csvField(p.seedling) + "," + csvField(p.plant) + "," + rows.substr(at, end - at + 1);
+      at = end + 1;
+    }
+    Json e;
+    e.str("seedling", p.seedling).str("plant", p.plant).str("root", p.target.rootKey).num("time_h", p.sim.timeH).integer("step", p.sim.step);
+    e.str("snapshot", p.why).num("sigma_mm", p.target.sigmaMm).str("sigma_source", p.target.sigmaSource);
+    e.num("distance_mm", p.c.distanceMm).num("frechet_mm", p.c.frechetMm).num("chi2", p.c.chi2).integer("observables_used", p.c.used);
+    e.object("observables", observablesJson(p.c));
+    items.push_back(e);
+  }
+  std::vector<std::string> lonelySeedlings, lonelyPlants;
+  for (std::size_t k = 0; k < seedlings.size(); ++k)
+    if (std::none_of(pairs.begin(), pairs.end(), [&](const auto& q) { return q.first == static_cast<int>(k); })) lonelySeedlings.push_back(seedlings[k].name);
+  for (std::size_t k = 0; k < plants.size(); ++k)
+    if (std::none_of(pairs.begin(), pairs.end(), [&](const auto& q) { return q.second == static_cast<int>(k); })) lonelyPlants.push_back(plants[k].id);
+  auto joined = [](const std::vector<std::string>& v) {
+    std::string t;
+    for (const std::string& x : v) t += (t.empty() ? "" : ", ") + x;
+    return t;
+  };
+  Json j;
+  j.str("software", outputSignatureText()).str("run", o.runDir).str("trace", o.trace.trace).str("kind", "plate");
+  j.str("paired_by", bySheet ? "sample sheet " + o.groups : "nearest seed (the traced seeds moved by the difference of the mean seeds)");
+  j.str("distance", "root-mean-square distance between the roots' points at equal arc length from the seed, over the shorter root");
+  j.array("pairs", items);
+  j.str("unpaired_seedlings", joined(lonelySeedlings)).str("unpaired_plants", joined(lonelyPlants));
+  writeFileAtomic(folder.work() / "compare.json", j.dump() + "\n");
+  writeFileAtomic(folder.work() / "pairs.csv", pairsCsv);
+  writeFileAtomic(folder.work() / "compare.csv", obsCsv);
+  double meanD = 0;
+  for (const Pair& p : done) meanD += p.c.distanceMm / static_cast<double>(done.size());
+  char caption[160];
+  std::snprintf(caption, sizeof caption, "%zu pair%s, mean distance %.3g mm", done.size(), done.size() == 1 ? "" : "s", meanD);
+  savePlateComparePanel(plate.model, simPlate, names, traces, traceNames,
+                        "traced plate " + literalLabel(fs::path(o.trace.trace).filename().string()) + " beside plate run " + literalLabel(runName) +
+                            " at " + numberText(std::round(atH * 100) / 100) + " h",
+                        caption, (folder.work() / "compare").string());
+  folder.commit();
+  if (outDir) *outDir = out.string();
+  if (o.printTable)
+    for (const Pair& p : done) {
+      std::printf("seedling %s - plant %s (%s)\n", p.seedling.c_str(), p.plant.c_str(), p.why.c_str());
+      printTable(p.c);
+    }
+  if (!o.quiet)
+    std::fprintf(stderr, "wrote %s (compare.json, pairs.csv, compare.csv, compare.pdf/.svg/.png; %zu pairs%s%s)\n", out.c_str(), done.size(),
+                 lonelySeedlings.empty() ? "" : ("; unpaired seedlings: " + joined(lonelySeedlings)).c_str(),
+                 lonelyPlants.empty() ? "" : ("; unpaired plants: " + joined(lonelyPlants)).c_str());
+  return 0;
 }
 
 }  // namespace
@@ -326,29 +602,18 @@ int compareCommand(const CompareOptions& o, std::string* outDir) {
   rule.force = o.force;
   rule.inputs.push_back(WriteInput{run, {}, true});
   rule.inputs.push_back(WriteInput{o.trace.trace, {}, true});
+  if (!o.groups.empty()) rule.inputs.push_back(WriteInput{o.groups, {}, true});
   rule.inputs.push_back(workingFolder());
   claimFolder(out, compareFolder(), rule, "--out", true);
+  if (isPlateRun(run)) return comparePlate(o, run, out, rule, runName, outDir);
+  if (!o.groups.empty()) throw SceneError("--groups " + o.groups + ": " + o.runDir + " is a run of one root (--groups pairs a plate's plants)");
 
   const Scene scene = loadScene((run / "scene.toml").string());
   const Model& m = singleRootModel(scene, "compare: " + o.runDir);
   const TraceTarget target = loadTarget(o.trace, m);
   const std::vector<Snapshot> snaps = loadSnapshots(run);
-  int pick = static_cast<int>(snaps.size()) - 1;
-  std::string why = "the final snapshot";
-  if (o.atH != CompareOptions::kUnset) {
-    pick = snapshotNear(snapshotTimes(snaps), o.atH);
-    why = "the snapshot nearest --at-h";
-  } else {
-    // the first snapshot as long as the trace
-    for (int i = 0; i < static_cast<int>(snaps.size()); ++i)
-      // (to a micrometre: a run's own export has its nodes' length up to rounding)
-      if (polylineLength(snaps[static_cast<std::size_t>(i)].x) / units::mm >= target.traits.lengthMm - 1e-3) {
-        pick = i;
-        why = "the first snapshot as long as the trace";
-        break;
-      }
-    if (why == "the final snapshot") why = "the final snapshot (the run is shorter than the trace)";
-  }
+  std::string why;
+  const int pick = pickSnapshot(snaps, target, o.atH, why);
   const Snapshot& snap = snaps[static_cast<std::size_t>(pick)];
   const SimRoot sim = simRootOf(m, snap);
   const Comparison c = compareRoots(target, sim);

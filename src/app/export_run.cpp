@@ -400,11 +400,8 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
   if (given(o.everyH)) checkedNumber("--every-h", o.everyH, {0, kGrowthHours.hi, true, false, "h"});
   if (const std::string why = whyUnfinished(runDir); !why.empty()) throw SceneError(o.runDir + ": " + why);
   if (!fs::is_directory(runDir)) throw SceneError(o.runDir + ": run directory not found");
-  // a plate's run: the RSML of every root, one plant per seedling; glTF and ParaView take one root's folder
+  // a plate's run: every root (RSML: one plant per seedling; glTF and ParaView: one striped tube per root)
   const bool plate = isPlateRun(runDir);
-  if (plate && (!o.gltf.empty() || !o.paraview.empty()))
-    throw SceneError(std::string(o.gltf.empty() ? "--paraview " : "--gltf ") + runDir.string() +
-                     ": a plate's run; export one root's folder roots/NAME (the whole plate is written as RSML only)");
   Scene plateScene;
   std::vector<PlateRoot> plateRootList;
   std::vector<RunData> roots;
@@ -501,22 +498,57 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
     if (!o.quiet) std::fprintf(stderr, "wrote %s (growth step %d, %g h)\n", rsmlFiles[k].c_str(), s.step, s.timeH);
   }
   // the snapshots glTF and ParaView show: every one, or those --at-h / --every-h pick
-  std::vector<Snapshot> snaps;
+  std::vector<int> shown;
   if (!gltfFile.empty() || paraview) {
     if (given(o.atH) || series)
-      for (const Pick& p : picks) snaps.push_back(data.snaps[static_cast<std::size_t>(p.index)]);
+      for (const Pick& p : picks) shown.push_back(p.index);
     else
-      snaps = data.snaps;
+      for (int k = 0; k < static_cast<int>(data.snaps.size()); ++k) shown.push_back(k);
+  }
+  std::vector<Snapshot> snaps;
+  for (int k : shown) snaps.push_back(data.snaps[static_cast<std::size_t>(k)]);
+  // a plate's roots in the plate's lab frame: each root's snapshots among the shown ones (a lateral root
+  // has the plate's last snapshots only: its k-th is the plate's count - size + k)
+  std::vector<RootSeries> plateSeries;
+  std::vector<double> plateTimes;
+  SceneInfo info = sceneInfoOf(plate ? plateScene.model : data.scene.model);
+  GltfOptions gltfOptions;
+  if (plate && !shown.empty()) {
+    for (int k : shown) plateTimes.push_back(data.snaps[static_cast<std::size_t>(k)].timeH);
+    const PlateFrame pf = plateScene.model.env.plane.frame();
+    std::size_t count = 0;
+    for (const RunData& d : roots) count = std::max(count, d.snaps.size());
+    for (std::size_t r = 0; r < roots.size(); ++r) {
+      RootSeries one;
+      one.name = plateRootList[r].name;
+      const Vec3 offset = plateOffset(pf, plateRootList[r]);
+      const std::size_t lead = count - roots[r].snaps.size();
+      for (std::size_t j = 0; j < shown.size(); ++j) {
+        const auto k = static_cast<std::size_t>(shown[j]);
+        if (k < lead) continue;
+        if (one.snaps.empty()) one.firstFrame = static_cast<int>(j);
+        one.snaps.push_back(roots[r].snaps[k - lead]);
+        one.snaps.back().x.colwise() += offset;
+      }
+      if (!one.snaps.empty()) plateSeries.push_back(std::move(one));  // not emerged by the last shown snapshot
+    }
+    // the whole plate: (u, v) = (lateral, -downhill) over [0, width] x [-length, 0], as render's plate view
+    const double w = plateScene.plate.params.width / units::mm, l = plateScene.plate.params.length / units::mm;
+    gltfOptions.plateRectMm = std::array<double, 4>{0.0, -l, w, 0.0};
   }
   if (!gltfFile.empty()) {
-    writeFileAtomic(gltfFile, gltfBinary(snaps, sceneInfoOf(data.scene.model)));
+    writeFileAtomic(gltfFile, plate ? gltfPlateBinary(plateSeries, info, gltfOptions) : gltfBinary(snaps, info));
     if (written) written->push_back(gltfFile);
     if (!o.quiet)
-      std::fprintf(stderr, "wrote %s (%zu snapshot%s, %g h to %g h)\n", gltfFile.c_str(), snaps.size(),
-                   snaps.size() == 1 ? "" : "s", snaps.front().timeH, snaps.back().timeH);
+      std::fprintf(stderr, "wrote %s (%zu snapshot%s, %g h to %g h%s)\n", gltfFile.c_str(), snaps.size(),
+                   snaps.size() == 1 ? "" : "s", snaps.front().timeH, snaps.back().timeH,
+                   plate ? (", " + std::to_string(plateSeries.size()) + " roots").c_str() : "");
   }
   if (paraview) {
-    writeParaviewFiles(paraview->work(), snaps, sceneInfoOf(data.scene.model), paraview->final());
+    if (plate)
+      writeParaviewPlateFiles(paraview->work(), plateSeries, plateTimes, info, paraview->final());
+    else
+      writeParaviewFiles(paraview->work(), snaps, info, paraview->final());
     paraview->commit();
     if (written) written->push_back(paraview->final());
     if (!o.quiet)

@@ -286,35 +286,26 @@ std::string frameName(int k, const Snapshot& s) {
 
 }  // namespace
 
-std::string gltfBinary(const std::vector<Snapshot>& snaps, const SceneInfo& info, const GltfOptions& options) {
-  if (snaps.empty()) throw RenderError("glTF: no snapshots to write");
+namespace {
+
+// the file of roots; prefixed: each snapshot's node named after its root ("NAME frame NNNN, ..."), as a
+// plate's are (a single root's are "frame NNNN, ...", under the group "root")
+std::string gltfOf(const std::vector<RootSeries>& roots, const SceneInfo& info, const GltfOptions& options, bool prefixed) {
+  if (roots.empty()) throw RenderError("glTF: no roots to write");
   if (!(options.stripeHalfWidthDeg > 0.0 && options.stripeHalfWidthDeg < 90.0))
     throw RenderError("glTF: the stripe half width must be in (0, 90) degrees (got " +
                       numberText(options.stripeHalfWidthDeg) + ")");
-  for (const Snapshot& s : snaps) checkTubeSnapshot(s, "glTF");
+  int frames = 0;
+  for (const RootSeries& r : roots) {
+    if (r.snaps.empty()) throw RenderError("glTF: root " + r.name + " has no snapshots to write");
+    if (r.firstFrame < 0) throw RenderError("glTF: root " + r.name + " starts before the file's first frame");
+    for (const Snapshot& s : r.snaps) checkTubeSnapshot(s, "glTF");
+    frames = std::max(frames, r.firstFrame + static_cast<int>(r.snaps.size()));
+  }
   const double h = options.stripeHalfWidthDeg * units::deg;
   const PlateFrame pf = PlateFrame::tilted(info.alphaDeg * units::deg);
-  const int frames = static_cast<int>(snaps.size());
-
-  // pass 1: the tube's reach (every surface point is within r of its ring's centre), the largest tube
   const double inf = std::numeric_limits<double>::infinity();
-  V3 lo = V3::Constant(inf), hi = V3::Constant(-inf);          // glTF axes [m]
-  double u0 = inf, u1 = -inf, v0 = inf, v1 = -inf;              // plate [mm]
-  int maxRings = 0;
-  for (const Snapshot& s : snaps) {
-    const std::vector<TubeRing> rings = tubeRings(s, pf);
-    maxRings = std::max(maxRings, static_cast<int>(rings.size()));
-    for (const TubeRing& g : rings) {
-      const V3 c = toGltf(g.c), r = V3::Constant(g.r * units::mm);
-      lo = lo.cwiseMin(c - r), hi = hi.cwiseMax(c + r);
-      u0 = std::min(u0, g.c.x() - g.r), u1 = std::max(u1, g.c.x() + g.r);
-      v0 = std::min(v0, g.c.y() - g.r), v1 = std::max(v1, g.c.y() + g.r);
-    }
-  }
-  const std::size_t maxVertices = static_cast<std::size_t>(kSideStart + maxRings * kSides);
-  // int16 positions on one grid for every snapshot: q / 32767 * half + centre (the "root" node)
-  const V3 centre = 0.5 * (lo + hi);
-  const double half = std::max(0.5 * (hi - lo).maxCoeff(), 1e-9);
+  double u0 = inf, u1 = -inf, v0 = inf, v1 = -inf;  // plate [mm]
 
   Doc doc;
   const RenderScene::Material look;
@@ -322,66 +313,93 @@ std::string gltfBinary(const std::vector<Snapshot>& snaps, const SceneInfo& info
   const int matPlus = doc.material("stripe +d1", look.plus, false);
   const int matMinus = doc.material("stripe -d1", look.minus, false);
   const std::array<int, 3> tubeMaterial{matBody, matPlus, matMinus};
+  std::vector<std::string> top;
+  std::vector<std::pair<int, int>> frameNodes;  // (node, the file's frame it shows)
 
-  // the index lists of the largest tube, one per material; every snapshot uses a prefix of each
-  const bool shortIndices = maxVertices < 65535;  // 65535 is the primitive restart value
-  const auto lists = tubeTriangles(maxRings);
-  std::array<int, 3> indexView{};
-  for (std::size_t m = 0; m < 3; ++m) {
-    Bin ib;
-    for (std::uint32_t i : lists[m]) shortIndices ? ib.u16(static_cast<std::uint16_t>(i)) : ib.u32(i);
-    ib.align4();
-    indexView[m] = doc.view(ib.bytes, kElementArrayBuffer);
-  }
-
-  // pass 2: one mesh and one node per snapshot
-  std::vector<int> frameNodes;
-  std::vector<V3> pos, nrm;
-  for (int f = 0; f < frames; ++f) {
-    const Snapshot& s = snaps[static_cast<std::size_t>(f)];
-    const std::vector<TubeRing> rings = tubeRings(s, pf);
-    tubeVertices(rings, h, pos, nrm);
-    Bin vb;
-    std::array<int, 3> qlo{32767, 32767, 32767}, qhi{-32767, -32767, -32767};
-    for (std::size_t i = 0; i < pos.size(); ++i) {
-      for (int k = 0; k < 3; ++k) {
-        const auto q = static_cast<int>(std::clamp(std::lround((pos[i][k] - centre[k]) / half * 32767.0), -32767L, 32767L));
-        vb.u16(static_cast<std::uint16_t>(static_cast<std::int16_t>(q)));
-        qlo[static_cast<std::size_t>(k)] = std::min(qlo[static_cast<std::size_t>(k)], q);
-        qhi[static_cast<std::size_t>(k)] = std::max(qhi[static_cast<std::size_t>(k)], q);
+  for (const RootSeries& root : roots) {
+    // pass 1: the tube's reach (every surface point is within r of its ring's centre), the largest tube
+    V3 lo = V3::Constant(inf), hi = V3::Constant(-inf);  // glTF axes [m]
+    int maxRings = 0;
+    for (const Snapshot& s : root.snaps) {
+      const std::vector<TubeRing> rings = tubeRings(s, pf);
+      maxRings = std::max(maxRings, static_cast<int>(rings.size()));
+      for (const TubeRing& g : rings) {
+        const V3 c = toGltf(g.c), r = V3::Constant(g.r * units::mm);
+        lo = lo.cwiseMin(c - r), hi = hi.cwiseMax(c + r);
+        u0 = std::min(u0, g.c.x() - g.r), u1 = std::max(u1, g.c.x() + g.r);
+        v0 = std::min(v0, g.c.y() - g.r), v1 = std::max(v1, g.c.y() + g.r);
       }
-      vb.u16(0);
-      const V3 n = nrm[i].normalized();
-      for (int k = 0; k < 3; ++k)
-        vb.u8(static_cast<std::uint8_t>(static_cast<std::int8_t>(std::clamp(std::lround(n[k] * 127.0), -127L, 127L))));
-      vb.u8(0);
     }
-    const int v = doc.view(vb.bytes, kArrayBuffer, 12);
-    const std::string minMax = kv("min", arr({num(qlo[0]), num(qlo[1]), num(qlo[2])})) + "," +
-                               kv("max", arr({num(qhi[0]), num(qhi[1]), num(qhi[2])}));
-    const int pa = doc.accessor(v, 0, kShort, true, pos.size(), "VEC3", minMax);
-    const int na = doc.accessor(v, 8, kByte, true, pos.size(), "VEC3");
-    const auto counts = tubeIndexCounts(static_cast<int>(rings.size()));
-    std::vector<std::string> prims;
+    const std::size_t maxVertices = static_cast<std::size_t>(kSideStart + maxRings * kSides);
+    // int16 positions on one grid for every snapshot of the root: q / 32767 * half + centre (its group node)
+    const V3 centre = 0.5 * (lo + hi);
+    const double half = std::max(0.5 * (hi - lo).maxCoeff(), 1e-9);
+
+    // the index lists of the largest tube, one per material; every snapshot uses a prefix of each
+    const bool shortIndices = maxVertices < 65535;  // 65535 is the primitive restart value
+    const auto lists = tubeTriangles(maxRings);
+    std::array<int, 3> indexView{};
     for (std::size_t m = 0; m < 3; ++m) {
-      const int ia = doc.accessor(indexView[m], 0, shortIndices ? kUnsignedShort : kUnsignedInt, false, counts[m], "SCALAR");
-      prims.push_back(obj({kv("attributes", obj({kv("POSITION", num(pa)), kv("NORMAL", num(na))})),
-                           kv("indices", num(ia)), kv("material", num(tubeMaterial[m]))}));
+      Bin ib;
+      for (std::uint32_t i : lists[m]) shortIndices ? ib.u16(static_cast<std::uint16_t>(i)) : ib.u32(i);
+      ib.align4();
+      indexView[m] = doc.view(ib.bytes, kElementArrayBuffer);
     }
-    doc.meshes.push_back(obj({kv("name", quote("root " + frameName(f, s))), kv("primitives", arr(prims))}));
-    // a still, or the last snapshot, is shown by viewers that do not play the animation
-    const bool shown = f == frames - 1;
-    doc.nodes.push_back(obj({kv("name", quote(frameName(f, s))), kv("mesh", num(static_cast<int>(doc.meshes.size()) - 1)),
-                             kv("scale", shown ? "[1,1,1]" : "[0,0,0]"),
-                             kv("extras", obj({kv("step", num(s.step)), kv("time_h", num(s.timeH))}))}));
-    frameNodes.push_back(static_cast<int>(doc.nodes.size()) - 1);
+
+    // pass 2: one mesh and one node per snapshot
+    std::vector<std::string> children;
+    std::vector<V3> pos, nrm;
+    for (std::size_t k = 0; k < root.snaps.size(); ++k) {
+      const Snapshot& s = root.snaps[k];
+      const int f = root.firstFrame + static_cast<int>(k);
+      const std::vector<TubeRing> rings = tubeRings(s, pf);
+      tubeVertices(rings, h, pos, nrm);
+      Bin vb;
+      std::array<int, 3> qlo{32767, 32767, 32767}, qhi{-32767, -32767, -32767};
+      for (std::size_t i = 0; i < pos.size(); ++i) {
+        for (int c = 0; c < 3; ++c) {
+          const auto q = static_cast<int>(std::clamp(std::lround((pos[i][c] - centre[c]) / half * 32767.0), -32767L, 32767L));
+          vb.u16(static_cast<std::uint16_t>(static_cast<std::int16_t>(q)));
+          qlo[static_cast<std::size_t>(c)] = std::min(qlo[static_cast<std::size_t>(c)], q);
+          qhi[static_cast<std::size_t>(c)] = std::max(qhi[static_cast<std::size_t>(c)], q);
+        }
+        vb.u16(0);
+        const V3 n = nrm[i].normalized();
+        for (int c = 0; c < 3; ++c)
+          vb.u8(static_cast<std::uint8_t>(static_cast<std::int8_t>(std::clamp(std::lround(n[c] * 127.0), -127L, 127L))));
+        vb.u8(0);
+      }
+      const int v = doc.view(vb.bytes, kArrayBuffer, 12);
+      const std::string minMax = kv("min", arr({num(qlo[0]), num(qlo[1]), num(qlo[2])})) + "," +
+                                 kv("max", arr({num(qhi[0]), num(qhi[1]), num(qhi[2])}));
+      const int pa = doc.accessor(v, 0, kShort, true, pos.size(), "VEC3", minMax);
+      const int na = doc.accessor(v, 8, kByte, true, pos.size(), "VEC3");
+      const auto counts = tubeIndexCounts(static_cast<int>(rings.size()));
+      std::vector<std::string> prims;
+      for (std::size_t m = 0; m < 3; ++m) {
+        const int ia = doc.accessor(indexView[m], 0, shortIndices ? kUnsignedShort : kUnsignedInt, false, counts[m], "SCALAR");
+        prims.push_back(obj({kv("attributes", obj({kv("POSITION", num(pa)), kv("NORMAL", num(na))})),
+                             kv("indices", num(ia)), kv("material", num(tubeMaterial[m]))}));
+      }
+      doc.meshes.push_back(obj({kv("name", quote(root.name + " " + frameName(f, s))), kv("primitives", arr(prims))}));
+      // a still, or the last snapshot, is shown by viewers that do not play the animation
+      const bool shown = f == frames - 1;
+      const std::string nodeName = prefixed ? root.name + " " + frameName(f, s) : frameName(f, s);
+      doc.nodes.push_back(obj({kv("name", quote(nodeName)), kv("mesh", num(static_cast<int>(doc.meshes.size()) - 1)),
+                               kv("scale", shown ? "[1,1,1]" : "[0,0,0]"),
+                               kv("extras", obj({kv("step", num(s.step)), kv("time_h", num(s.timeH))}))}));
+      frameNodes.emplace_back(static_cast<int>(doc.nodes.size()) - 1, f);
+      children.push_back(num(static_cast<int>(doc.nodes.size()) - 1));
+    }
+    doc.nodes.push_back(obj({kv("name", quote(root.name)), kv("children", arr(children)),
+                             kv("translation", arr({num(centre.x()), num(centre.y()), num(centre.z())})),
+                             kv("scale", arr({num(half), num(half), num(half)}))}));
+    top.push_back(num(static_cast<int>(doc.nodes.size()) - 1));
   }
-  std::vector<std::string> frameIds;
-  for (int n : frameNodes) frameIds.push_back(num(n));
-  doc.nodes.push_back(obj({kv("name", quote("root")), kv("children", arr(frameIds)),
-                           kv("translation", arr({num(centre.x()), num(centre.y()), num(centre.z())})),
-                           kv("scale", arr({num(half), num(half), num(half)}))}));
-  std::vector<std::string> top{num(static_cast<int>(doc.nodes.size()) - 1)};
+  if (options.plateRectMm) {
+    const auto& r = *options.plateRectMm;
+    u0 = std::min(u0, r[0]), v0 = std::min(v0, r[1]), u1 = std::max(u1, r[2]), v1 = std::max(v1, r[3]);
+  }
 
   // the plate, its grid (whole millimetres, darker every 10 mm) and the obstacles
   const RenderScene::Plate plateLook;
@@ -450,6 +468,8 @@ std::string gltfBinary(const std::vector<Snapshot>& snaps, const SceneInfo& info
 
   // the animation: snapshot k's node has scale 1 on [k, k + 1) / fps and 0 elsewhere (STEP); each
   // sampler reads a slice of one time list and one value list [0, 1, 0]
+  // the animation: the node of the file's frame f has scale 1 on [f, f + 1) / fps and 0 elsewhere (STEP);
+  // each sampler reads a slice of one time list and one value list [0, 1, 0]
   std::string animations;
   if (frames > 1) {
     Bin times, values;
@@ -458,17 +478,17 @@ std::string gltfBinary(const std::vector<Snapshot>& snaps, const SceneInfo& info
       for (int k = 0; k < 3; ++k) values.f32(v);
     const int tv = doc.view(times.bytes, 0), vv = doc.view(values.bytes, 0);
     std::vector<std::string> samplers, channels;
-    for (int f = 0; f < frames; ++f) {
+    for (const auto& [node, f] : frameNodes) {
       const int first = std::max(0, f - 1), last = std::min(frames - 1, f + 1);
       const auto t0 = static_cast<float>(first / kGltfFramesPerSecond), t1 = static_cast<float>(last / kGltfFramesPerSecond);
       const int in = doc.accessor(tv, static_cast<std::size_t>(first) * 4, kFloat, false, static_cast<std::size_t>(last - first + 1),
                                   "SCALAR", kv("min", arr({num(t0)})) + "," + kv("max", arr({num(t1)})));
-      // values from [0, 1, 0]: the first snapshot starts at its 1, the last ends at its 1
+      // values from [0, 1, 0]: the first frame starts at its 1, the last ends at its 1
       const std::size_t valueOffset = f == 0 ? 12 : 0;
       const int out = doc.accessor(vv, valueOffset, kFloat, false, static_cast<std::size_t>(last - first + 1), "VEC3");
       samplers.push_back(obj({kv("input", num(in)), kv("output", num(out)), kv("interpolation", quote("STEP"))}));
-      channels.push_back(obj({kv("sampler", num(f)),
-                              kv("target", obj({kv("node", num(frameNodes[static_cast<std::size_t>(f)])), kv("path", quote("scale"))}))}));
+      channels.push_back(obj({kv("sampler", num(static_cast<int>(samplers.size()) - 1)),
+                              kv("target", obj({kv("node", num(node)), kv("path", quote("scale"))}))}));
     }
     animations = kv("animations", arr({obj({kv("name", quote("growth")), kv("channels", arr(channels)),
                                             kv("samplers", arr(samplers))})}));
@@ -511,6 +531,17 @@ std::string gltfBinary(const std::vector<Snapshot>& snaps, const SceneInfo& info
   glb.u32(0x004E4942);  // "BIN\0"
   glb.bytes += doc.bin.bytes;
   return glb.bytes;
+}
+
+}  // namespace
+
+std::string gltfBinary(const std::vector<Snapshot>& snaps, const SceneInfo& info, const GltfOptions& options) {
+  if (snaps.empty()) throw RenderError("glTF: no snapshots to write");
+  return gltfOf({RootSeries{"root", snaps, 0}}, info, options, false);
+}
+
+std::string gltfPlateBinary(const std::vector<RootSeries>& roots, const SceneInfo& info, const GltfOptions& options) {
+  return gltfOf(roots, info, options, true);
 }
 
 }  // namespace rootsim

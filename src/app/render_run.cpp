@@ -76,6 +76,8 @@ double fitPlateMm(const std::vector<Snapshot>& snaps, const SceneInfo& info, con
 }
 
 std::string num(double v) { return flagNumber(v); }
+// the plate view's right-hand share of the picture kept for the legend of the seedlings' values
+constexpr double kSeedLegendShare = 0.22;
 
 bool given(double v) { return v != RenderOptions::kUnset; }
 
@@ -222,7 +224,24 @@ int renderRunCommand(const RenderOptions& o) {
         job.view.width = 1080;
         job.view.height = 2 * static_cast<int>(std::lround(540.0 * l / w));
       }
-      job.view.widthMm = 1.15 * std::max(w, l * job.view.width / job.view.height);  // room for the overlays
+      // room for the overlays, and on the right for the legend of the seedlings' own values: the plate on
+      // the left of the picture
+      const double visible = 1.15 * std::max(w, l * job.view.width / job.view.height);
+      job.view.widthMm = visible / (1.0 - kSeedLegendShare);
+      (*job.view.centreMm)[0] = 0.5 * w + 0.5 * (*job.view.widthMm - visible);
+      // each seedling named on the plate, its own beta and R tau in the legend (docs/plate.md, Pictures)
+      for (const Seedling& sd : scene.plate.seedlings) {
+        View::SeedLabel sl;
+        sl.label = sd.name;
+        sl.sub = sd.genotype;
+        sl.u = sd.position.x() / units::mm;
+        sl.v = -sd.position.y() / units::mm;
+        char values[160];
+        std::snprintf(values, sizeof values, "%s   \xCE\xB2 %.3g   R\xCF\x84 %.3g", sd.name.c_str(), sd.model.tropism.beta,
+                      sd.model.tropism.rTau);
+        sl.values = values;
+        job.view.seedLabels.push_back(std::move(sl));
+      }
     }
   }
   if (!o.trace.trace.empty()) {

@@ -10,12 +10,14 @@
 #include <iterator>
 #include <iostream>
 #include <numbers>
+#include <optional>
 #include <tuple>
 
 #include "rootsim/errors.hpp"
 #include "rootsim/figure.hpp"
 #include "rootsim/limits.hpp"
 #include "rootsim/outputs.hpp"
+#include "rootsim/plate.hpp"
 #include "rootsim/run_dir.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/simulation.hpp"
@@ -184,42 +186,81 @@ int figureCommand(const FigureCliOptions& o) {
 }
 
 int modesCommand(const ModesOptions& o) {
-  const fs::path dir = normaliseOutDir(o.runDir);
+  fs::path dir = normaliseOutDir(o.runDir);
   if (const std::string why = whyUnfinished(dir); !why.empty()) throw SceneError(o.runDir + ": " + why);
+  // a plate's root (docs/plate.md): PLATE_RUN --root NAME, or its folder PLATE_RUN/roots/NAME; the whole
+  // plate is repeated (its roots touch, its laterals emerge) and the root's own folder receives the files
+  fs::path plateDir;
+  std::string rootName = o.root;
+  auto plateRun = [](const fs::path& d) {
+    return fs::is_directory(d / "roots") && fs::is_regular_file(d / "scene.toml") &&
+           loadScene((d / "scene.toml").string()).isPlate();
+  };
+  const fs::path abs = fs::absolute(dir).lexically_normal();
+  const fs::path up = abs.parent_path();
+  if (plateRun(dir)) {
+    plateDir = dir;
+    if (rootName.empty())
+      throw SceneError(o.runDir + ": a plate's run; give --root NAME (a root of its roots/ folder) or pass roots/NAME");
+    dir = dir / "roots" / rootName;
+    if (!fs::is_directory(dir)) throw SceneError("--root " + rootName + ": " + o.runDir + " has no root folder roots/" + rootName);
+  } else if (up.filename() == "roots" && plateRun(up.parent_path())) {
+    if (!rootName.empty() && rootName != abs.filename().string())
+      throw SceneError("--root " + rootName + ": " + o.runDir + " is the folder of root " + abs.filename().string());
+    plateDir = up.parent_path();
+    rootName = abs.filename().string();
+  } else if (!rootName.empty()) {
+    throw SceneError("--root " + rootName + ": " + o.runDir + " is a run of one root (--root picks a root of a plate's run)");
+  }
   // the run directory receives modes.csv and modes.vtp, nothing else; it is locked while they are written
   const OutputLock lock = lockOutput(dir, "modes");
   if (!fs::is_regular_file(dir / "scene.toml") || !fs::is_regular_file(dir / "summary.json"))
     throw SceneError(o.runDir + ": not a complete run directory (no scene.toml and summary.json)");
-  if (const std::string why = whyNotOurs(dir, runFolder()); !why.empty()) throw SceneError(o.runDir + ": " + why);
+  if (const std::string why = whyNotOurs(dir, runFolder()); !why.empty()) throw SceneError(dir.string() + ": " + why);
   WriteRule rule;
   rule.force = o.force;
   rule.inputs = {WriteInput{dir, {"modes.csv", "modes.vtp"}}};
   claimFile(dir / "modes.csv", rule, "modes", OutputFormat::InFolder);
   claimFile(dir / "modes.vtp", rule, "modes", OutputFormat::InFolder);
   // the final state is not stored; the run is repeated from its resolved scene (same scene, same bytes)
-  const Scene sc = loadScene((dir / "scene.toml").string());
-  Simulation sim(singleRootModel(sc, "modes: " + o.runDir));
+  std::optional<Simulation> single;
+  std::optional<PlateSimulation> plate;
+  const Scene sc = loadScene(((plateDir.empty() ? dir : plateDir) / "scene.toml").string());
   const int steps = sc.model.growth.enabled ? sc.model.growth.steps : 0;
+  if (plateDir.empty())
+    single.emplace(singleRootModel(sc, "modes: " + o.runDir));
+  else
+    plate.emplace(sc.plate.params, sc.plate.seedlings);
   Progress pr(steps, o.quiet || steps == 0, "modes: repeating " + sc.model.name);
   for (int k = 1; k <= steps; ++k) {
-    sim.growthStep();
+    if (single)
+      single->growthStep();
+    else
+      plate->growthStep();
     pr.update(k, "");
   }
+  const Simulation* sim = single ? &*single : nullptr;
+  for (int r = 0; plate && r < plate->size(); ++r)
+    if (plate->seedling(r).name == rootName) sim = &plate->root(r);
+  if (!sim)
+    throw SceneError(o.runDir + ": repeating the plate from scene.toml grows no root " + rootName +
+                     " (written by another rootsim version?)");
   // the repeated run must end where the stored one did
   std::ifstream in(dir / "shape.csv");
   std::string header, last, line;
   std::getline(in, header);
   while (std::getline(in, line)) last = line;
-  const std::string now = shapeCsv(sc.model, sim.state(), sim.strains());
+  const std::string now = shapeCsv(sim->model(), sim->state(), sim->strains());
   if (now.empty() || now.find(last) == std::string::npos)
-    throw SceneError(o.runDir + ": repeating the run from scene.toml does not reproduce shape.csv (written by "
+    throw SceneError(dir.string() + ": repeating the run from scene.toml does not reproduce shape.csv (written by "
                      "another rootsim version?)");
-  const StiffnessModes m = softestModes(sc.model.rod, sc.model.env, sim.state(), o.count);
-  writeFileAtomic(dir / "modes.csv", modesCsv(sim.state(), m));
-  writeFileAtomic(dir / "modes.vtp", modesVtp(sim.state(), m));
+  // a plate's root: its own stiffness, the other roots held where they are (their contacts are not in it)
+  const StiffnessModes m = softestModes(sim->model().rod, sim->model().env, sim->state(), o.count);
+  writeFileAtomic(dir / "modes.csv", modesCsv(sim->state(), m));
+  writeFileAtomic(dir / "modes.vtp", modesVtp(sim->state(), m));
   recordWritten({dir / "modes.csv", dir / "modes.vtp"});
   if (!o.quiet) {
-    std::fprintf(stderr, "%s: %d modes, stiffness eigenvalues [N/m]:", o.runDir.c_str(), static_cast<int>(m.modes.size()));
+    std::fprintf(stderr, "%s: %d modes, stiffness eigenvalues [N/m]:", dir.c_str(), static_cast<int>(m.modes.size()));
     for (long q = 0; q < m.eigenvalues.size(); ++q) std::fprintf(stderr, " %.4g", m.eigenvalues[q]);
     std::fprintf(stderr, "\nwrote %s and %s\n", (dir / "modes.csv").c_str(), (dir / "modes.vtp").c_str());
   }

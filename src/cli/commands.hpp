@@ -45,6 +45,7 @@ int fitCommand(const app::FitOptions& o);
 
 struct ModesOptions {
   std::string runDir;
+  std::string root;       // a plate's run: the root NAME (its folder roots/NAME receives the files)
   int count = 6;          // modes to write
   bool force = false;     // replace modes.csv / modes.vtp written earlier
   bool quiet = false;

@@ -165,6 +165,7 @@ int main(int argc, char** argv) {
   CLI::App* cModes = app.add_subcommand("modes", "the softest stiffness modes of a run's final state (modes.csv, modes.vtp)");
   cModes->add_option("run_dir", modes.runDir, "run directory")->required();
   cModes->add_option("--count", modes.count, "number of modes (default 6)")->check(CLI::Range(1, 1000));
+  cModes->add_option("--root", modes.root, "a plate's run: the root NAME (or pass its folder roots/NAME)");
   cModes->add_flag("--force", modes.force, "replace modes.csv and modes.vtp written earlier");
   cModes->add_flag("--quiet", modes.quiet, "no progress output");
 
@@ -206,6 +207,7 @@ int main(int argc, char** argv) {
   traceFlags(cCompare, compare.trace);
   cCompare->add_option("--at-h", compare.atH, "the run's snapshot nearest this time [h] (default: the first as long as the trace)");
   cCompare->add_option("--out", compare.out, "output folder (default compare/<run>_vs_<trace>)");
+  cCompare->add_option("--groups", compare.groups, "a plate's run: a sample sheet pairing plants with seedlings (plant,seedling)");
   cCompare->add_flag("--force", compare.force, "replace a compare folder rootsim wrote earlier");
   cCompare->add_flag("--quiet", compare.quiet, "no progress output");
 

@@ -90,6 +90,58 @@ void saveComparePanel(const Model& m, const Snapshot& sim, const Eigen::Matrix3X
   saveFigure(f, path);
 }
 
+void savePlateComparePanel(const Model& m, const std::vector<Snapshot>& sims, const std::vector<std::string>& names,
+                           const std::vector<Eigen::Matrix3Xd>& tracesMm, const std::vector<std::string>& traceNames,
+                           const std::string& title, const std::string& caption, const std::string& path) {
+  const double alphaDeg = m.env.plane.alpha / units::deg;
+  Figure f;
+  f.cols = 2;
+  f.width = 1400;
+  f.title = title + (caption.empty() ? "" : ": " + caption);
+  // one window for both plates: every root and every trace, with a margin of 2 mm
+  double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
+  auto grow = [&](double x, double y) {
+    x0 = std::min(x0, x), x1 = std::max(x1, x), y0 = std::min(y0, y), y1 = std::max(y1, y);
+  };
+  std::vector<Tube> tubes;
+  for (const Snapshot& s : sims) {
+    tubes.push_back(fig::tubeOf(s, alphaDeg));
+    for (std::size_t i = 0; i < tubes.back().x.size(); ++i) grow(tubes.back().x[i], tubes.back().y[i]);
+  }
+  for (const Eigen::Matrix3Xd& t : tracesMm)
+    for (int i = 0; i < t.cols(); ++i) grow(t(0, i), t(1, i));
+  const PlateWindow win{x0 - 2.0, x1 + 2.0, y0 - 2.0, y1 + 2.0};
+  for (int k = 0; k < 2; ++k) {
+    Axes ax;
+    ax.panelLabel = k == 0 ? "A" : "B";
+    ax.title = k == 0 ? "the simulated plate" : "the traced plate";
+    ax.xlabel = "lateral [mm]";
+    ax.ylabel = "downhill [mm]";
+    f.axes.push_back(ax);
+  }
+  fig::fitHeight(f, f.axes[0], std::clamp(fig::plateAspect(win), 0.6, 2.2), 500, 1100);
+  fig::fitHeight(f, f.axes[1], std::clamp(fig::plateAspect(win), 0.6, 2.2), 500, 1100);
+  for (Axes& ax : f.axes) {
+    fig::setPlateAxes(f, ax, win);
+    ax.obstacles = fig::obstaclesOf(sceneInfoOf(m));
+  }
+  f.axes[0].tubes = tubes;
+  for (std::size_t r = 0; r < sims.size() && r < names.size(); ++r)
+    if (!names[r].empty() && !tubes[r].x.empty())
+      f.axes[0].notes.push_back({{tubes[r].x.front(), tubes[r].y.front() - 1.0}, literalLabel(names[r])});
+  for (std::size_t r = 0; r < tracesMm.size() && r < traceNames.size(); ++r)
+    if (!traceNames[r].empty() && tracesMm[r].cols() > 0)
+      f.axes[1].notes.push_back({{tracesMm[r](0, 0), tracesMm[r](1, 0) - 1.0}, literalLabel(traceNames[r])});
+  for (const Eigen::Matrix3Xd& t : tracesMm) {
+    Series tr;
+    for (int i = 0; i < t.cols(); ++i) tr.x.push_back(t(0, i)), tr.y.push_back(t(1, i));
+    tr.color = kTraceColor;
+    tr.width = 1.2;
+    f.axes[1].series.push_back(tr);
+  }
+  saveFigure(f, path);
+}
+
 void saveLandscapePanel(const std::vector<LandscapePoint>& pts, const std::string& xKey, const std::string& yKey,
                         double xLo, double xHi, double yLo, double yHi, int gridLevels, double bestX, double bestY,
                         const Eigen::Matrix2d* cov, double zoomX, double zoomY, const std::string& title,

@@ -31,7 +31,7 @@ Options are taken in order: --at-h H goes to the last snapshot at or before grow
 --screenshot FILE saves the view as it is then (several --at-h/--screenshot pairs make several pictures
 in one start), --size W H sets the picture's size in pixels (default 1200 800).
 
-The pipeline: root.pvd (the snapshots, point data per node) -> Tube (radius from the point data
+The pipeline, for each root: root.pvd, or a plate's NAME.pvd (the snapshots, point data per node) -> Tube (radius from the point data
 radius_mm, 48 sides) -> Calculator "stripe" = dot(TubeNormals, d1), the cosine of the angle between the
 tube surface's normal and the material direction d1 at each tube vertex -> coloured through a lookup table
 with three bands: pink above cos 38 deg (the normal within 38 deg of +d1), orange below -cos 38 deg
@@ -44,6 +44,9 @@ from paraview.simple import *  # noqa: F401,F403 (ParaView's own scripting inter
 
 # the folder rootsim wrote this script into (ParaView's GUI runs a script without its file name)
 WRITTEN_TO = @FOLDER@
+# each root's name and .pvd: one root's export has root.pvd; a plate's a NAME.pvd per root (a lateral
+# root's lists empty.vtp for the plate's snapshots before it emerged)
+ROOTS = @ROOTS@
 
 
 def here():
@@ -51,7 +54,7 @@ def here():
     (paraview --script=, the Python shell's Run Script), else the working folder."""
     if "__file__" in globals():
         return os.path.dirname(os.path.abspath(__file__))
-    if os.path.isfile(os.path.join(WRITTEN_TO, "root.pvd")):
+    if os.path.isfile(os.path.join(WRITTEN_TO, ROOTS[0][1])):
         return WRITTEN_TO
     return os.getcwd()
 
@@ -72,15 +75,20 @@ TUBE_SIDES = 48
 
 def build():
     """The pipeline, the colours and the top camera; returns the render view."""
-    root = PVDReader(registrationName="root", FileName=os.path.join(HERE, "root.pvd"))
-    tube = Tube(registrationName="tube", Input=root)
-    tube.Scalars = ["POINTS", "radius_mm"]
-    tube.VaryRadius = "By Absolute Scalar"
-    tube.NumberofSides = TUBE_SIDES
-    tube.Capping = 1
-    stripes = Calculator(registrationName="stripes", Input=tube)
-    stripes.Function = "dot(TubeNormals, d1)"
-    stripes.ResultArrayName = "stripe"
+    pipes = []
+    for name, pvd in ROOTS:
+        # one root: "root", "tube", "stripes"; a plate's roots: "NAME", "NAME tube", "NAME stripes"
+        tag = "" if len(ROOTS) == 1 else name + " "
+        root = PVDReader(registrationName=name, FileName=os.path.join(HERE, pvd))
+        tube = Tube(registrationName=tag + "tube", Input=root)
+        tube.Scalars = ["POINTS", "radius_mm"]
+        tube.VaryRadius = "By Absolute Scalar"
+        tube.NumberofSides = TUBE_SIDES
+        tube.Capping = 1
+        stripes = Calculator(registrationName=tag + "stripes", Input=tube)
+        stripes.Function = "dot(TubeNormals, d1)"
+        stripes.ResultArrayName = "stripe"
+        pipes.append((root, tube, stripes))
     plate = XMLPolyDataReader(registrationName="plate", FileName=[os.path.join(HERE, "plate.vtp")])
 
     view = GetActiveViewOrCreate("RenderView")
@@ -99,11 +107,12 @@ def build():
     lut.RGBPoints = ([-1.0] + list(MINUS) + [-STRIPE_COS] + list(MINUS) + [-STRIPE_COS + eps] + list(BODY) +
                      [STRIPE_COS - eps] + list(BODY) + [STRIPE_COS] + list(PLUS) + [1.0] + list(PLUS))
     lut.Discretize = 0
-    tubeShow = Show(stripes, view)
-    ColorBy(tubeShow, ("POINTS", "stripe"))
-    tubeShow.LookupTable = lut
-    tubeShow.SetScalarBarVisibility(view, False)
-    tubeShow.Specular = 0.3
+    for root, tube, stripes in pipes:
+        tubeShow = Show(stripes, view)
+        ColorBy(tubeShow, ("POINTS", "stripe"))
+        tubeShow.LookupTable = lut
+        tubeShow.SetScalarBarVisibility(view, False)
+        tubeShow.Specular = 0.3
 
     # the plate, its grid and the obstacles: the cell array "part" (0 plate, 1 grid, 2 obstacle)
     plateShow = Show(plate, view)
@@ -125,8 +134,9 @@ def build():
     clockShow.Color = [0.1, 0.1, 0.1]
     clockShow.FontSize = 20
     clockShow.WindowLocation = "Upper Left Corner"
-    Hide(root, view)
-    Hide(tube, view)
+    for root, tube, stripes in pipes:
+        Hide(root, view)
+        Hide(tube, view)
 
     # the time slider steps through the snapshots
     scene = GetAnimationScene()
@@ -136,7 +146,7 @@ def build():
     if times:
         scene.AnimationTime = times[-1]
     top(view)
-    SetActiveSource(stripes)
+    SetActiveSource(pipes[-1][2])
     return view
 
 
@@ -210,13 +220,10 @@ void replaceAll(std::string& s, const std::string& from, const std::string& to) 
 }
 }  // namespace
 
-std::string paraviewScript(const SceneInfo& info, const std::array<double, 4>& extentMm, const fs::path& folder) {
-  const PlateFrame plate = PlateFrame::tilted(info.alphaDeg * units::deg);
-  const StripeStyle style;
-  std::string s = kScript;
-  // a Python string literal of the folder (UTF-8 bytes kept; backslash and quote escaped)
+// a Python string literal (UTF-8 bytes kept; backslash, quote and newline escaped)
+static std::string pyString(const std::string& text) {
   std::string lit = "\"";
-  for (char c : fs::absolute(folder).lexically_normal().string()) {
+  for (char c : text) {
     if (c == '\\' || c == '"') lit += '\\';
     if (c == '\n') {
       lit += "\\n";
@@ -224,7 +231,18 @@ std::string paraviewScript(const SceneInfo& info, const std::array<double, 4>& e
     }
     lit += c;
   }
-  lit += '"';
+  return lit + '"';
+}
+
+std::string paraviewScript(const SceneInfo& info, const std::array<double, 4>& extentMm, const fs::path& folder,
+                           const std::vector<std::pair<std::string, std::string>>& roots) {
+  const PlateFrame plate = PlateFrame::tilted(info.alphaDeg * units::deg);
+  const StripeStyle style;
+  std::string s = kScript;
+  const std::string lit = pyString(fs::absolute(folder).lexically_normal().string());
+  std::string rootList = "[";
+  for (const auto& [name, pvd] : roots) rootList += (rootList.size() > 1 ? ", (" : "(") + pyString(name) + ", " + pyString(pvd) + ")";
+  rootList += "]";
   replaceAll(s, "@SIGNATURE@", std::string("written by ") + outputSignatureText());
   replaceAll(s, "@PLATE_NORMAL@", tuple(plate.normal));
   replaceAll(s, "@UPHILL@", tuple(plate.uphill()));
@@ -235,6 +253,7 @@ std::string paraviewScript(const SceneInfo& info, const std::array<double, 4>& e
   replaceAll(s, "@BODY@", tuple(style.body.data(), 3));
   replaceAll(s, "@PLUS@", tuple(style.plus.data(), 3));
   replaceAll(s, "@MINUS@", tuple(style.minus.data(), 3));
+  replaceAll(s, "@ROOTS@", rootList);
   replaceAll(s, "@FOLDER@", lit);  // last: a folder name holding "@...@" stays as it is
   return s;
 }
@@ -251,6 +270,40 @@ void writeParaviewFiles(const fs::path& dir, const std::vector<Snapshot>& snaps,
   writeFileAtomic(dir / "plate.vtp", plateVtp(info, snaps));
   writeFileAtomic(dir / "open_in_paraview.py",
                   paraviewScript(info, plateExtentMm(info, snaps), finalDir.empty() ? dir : finalDir));
+}
+
+void writeParaviewPlateFiles(const fs::path& dir, const std::vector<RootSeries>& roots, const std::vector<double>& timesH,
+                             const SceneInfo& info, const fs::path& finalDir) {
+  std::vector<Snapshot> all;
+  std::vector<std::pair<std::string, std::string>> pvds;
+  bool empty = false;
+  for (const RootSeries& r : roots) {
+    // a root's own folder: a lateral root's files may share step numbers with its parent's
+    fs::create_directory(dir / r.name);
+    std::vector<std::pair<double, std::string>> entries;
+    for (int f = 0; f < r.firstFrame && f < static_cast<int>(timesH.size()); ++f)
+      entries.emplace_back(timesH[static_cast<std::size_t>(f)], "empty.vtp"), empty = true;
+    for (const Snapshot& s : r.snaps) {
+      const std::string name = r.name + "/" + vtpFileName(s);
+      writeFileAtomic(dir / name, snapshotVtp(s, info));
+      entries.emplace_back(s.timeH, name);
+      all.push_back(s);
+    }
+    writeFileAtomic(dir / (r.name + ".pvd"), pvdText(entries));
+    pvds.emplace_back(r.name, r.name + ".pvd");
+  }
+  // no root yet: no points, and the point arrays the script's pipeline reads (radius_mm, d1)
+  if (empty)
+    writeFileAtomic(dir / "empty.vtp",
+                    "<?xml version=\"1.0\"?>\n<VTKFile type=\"PolyData\" version=\"1.0\" byte_order=\"LittleEndian\">\n"
+                    "<PolyData><Piece NumberOfPoints=\"0\" NumberOfVerts=\"0\" NumberOfLines=\"0\" NumberOfStrips=\"0\" "
+                    "NumberOfPolys=\"0\">\n<PointData><DataArray type=\"Float64\" Name=\"radius_mm\" format=\"ascii\"/>"
+                    "<DataArray type=\"Float64\" Name=\"d1\" NumberOfComponents=\"3\" format=\"ascii\"/></PointData>\n"
+                    "<Points><DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\"/></Points>\n"
+                    "</Piece></PolyData>\n</VTKFile>\n");
+  writeFileAtomic(dir / "plate.vtp", plateVtp(info, all));
+  writeFileAtomic(dir / "open_in_paraview.py",
+                  paraviewScript(info, plateExtentMm(info, all), finalDir.empty() ? dir : finalDir, pvds));
 }
 
 }  // namespace rootsim

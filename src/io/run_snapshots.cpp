@@ -59,6 +59,10 @@ std::vector<PlateRoot> plateRoots(const fs::path& runDir) {
   return out;
 }
 
+Vec3 plateOffset(const PlateFrame& plate, const PlateRoot& root) {
+  return root.seedling.position.x() * plate.lateral + root.seedling.position.y() * plate.downhill;
+}
+
 std::vector<Snapshot> loadSnapshots(const fs::path& runDir, const std::string& last) {
   if (!isPlateRun(runDir)) {
     if (!last.empty())
@@ -82,7 +86,7 @@ std::vector<Snapshot> loadSnapshots(const fs::path& runDir, const std::string& l
   size_t count = 0;
   for (const PlateRoot& r : roots) {
     std::vector<Snapshot> s = loadOne(r.dir);
-    const Vec3 offset = r.seedling.position.x() * pf.lateral + r.seedling.position.y() * pf.downhill;
+    const Vec3 offset = plateOffset(pf, r);
     for (Snapshot& one : s) one.x.colwise() += offset;
     count = std::max(count, s.size());
     snaps.push_back(std::move(s));

@@ -187,8 +187,7 @@ SweepPlan loadSweep(const std::string& path) {
     // validate now: a typo in the grid fails before any run starts
     try {
       const Scene point = parseScene(baseText, plan.scenePath, p.overrides);
-      if (point.isPlate())
-        throw SceneError(plan.scenePath + ": a plate's scene; a sweep runs scenes of one root (docs/plate.md)");
+      p.plate = point.isPlate();  // each point a plate (docs/plate.md): a plate run directory
       p.grows = point.model.growth.enabled;
       p.resolvedToml = point.resolvedToml;
     } catch (const SceneError& e) {
@@ -202,7 +201,8 @@ SweepPlan loadSweep(const std::string& path) {
 void writeSweepTable(const SweepPlan& plan, const std::string& out) {
   std::string header, body;
   for (const auto& p : plan.points) {
-    std::ifstream in(fs::path(out) / p.dirName / "result.csv");
+    // a root's result.csv; a plate's plate.csv: one row per root (its seedling, then its result)
+    std::ifstream in(fs::path(out) / p.dirName / (p.plate ? "plate.csv" : "result.csv"));
     std::string h, r;
     if (!in || !std::getline(in, h) || !std::getline(in, r)) continue;
     std::string prefix = std::to_string(p.index) + "," + p.dirName;
@@ -212,7 +212,9 @@ void writeSweepTable(const SweepPlan& plan, const std::string& out) {
       for (const auto& k : plan.gridKeys) header += ",grid:" + k;
       header += "," + h;
     }
-    body += prefix + "," + r + "\n";
+    do
+      body += prefix + "," + r + "\n";
+    while (p.plate && std::getline(in, r) && !r.empty());
   }
   if (header.empty()) return;
   // shards of a job array finish at the same time and each writes the table: every process through a
@@ -248,9 +250,14 @@ PointState stateOf(const SweepPoint& p, const fs::path& dir, std::string& why) {
   };
   if (fs::exists(fs::symlink_status(dir, ec))) {
     if (std::string bad = whyNotOurs(dir, runFolder()); !bad.empty()) throw SceneError(bad);
-    std::ifstream prev(dir / "result.csv");
+    // a plate's plate.csv: the seedling's columns, then those of result.csv
+    std::ifstream prev(dir / (p.plate ? "plate.csv" : "result.csv"));
     std::string head;
-    if (!prev || !std::getline(prev, head) || head != resultHeader(p.grows)) {
+    const std::string cols = resultHeader(p.grows);
+    if (!prev || !std::getline(prev, head) ||
+        (p.plate ? !(head.size() > cols.size() && head.compare(head.size() - cols.size(), cols.size(), cols) == 0 &&
+                     head[head.size() - cols.size() - 1] == ',')
+                 : head != cols)) {
       why = "its result.csv has other columns (written by another rootsim version)";
       return PointState::Stale;
     }

@@ -285,10 +285,28 @@ void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, cons
   auto width = [&](const std::string& t, float size) { return detail::measureText(view.fontPath, t, size); };
   if (view.showTime)
     rs.texts.push_back({"t = " + fmt("%.1f", s.timeH) + " h", m, m, font, OverlayText::Anchor::TopLeft});
+  // a plate's seedlings: their labels on the plate above their seeds
+  for (const View::SeedLabel& sl : view.seedLabels) {
+    Eigen::Vector2d px;
+    if (!projectToPixel(rs, V3(sl.u, sl.v, 0), px)) continue;
+    const float x = static_cast<float>(px.x()), y = static_cast<float>(px.y()) - 0.3f * font;
+    const float subPx = std::round(0.6f * font);
+    if (!sl.sub.empty()) rs.texts.push_back({sl.sub, x, y, subPx, OverlayText::Anchor::BottomCentre});
+    rs.texts.push_back({sl.label, x, sl.sub.empty() ? y : y - 1.25f * subPx, std::round(0.75f * font), OverlayText::Anchor::BottomCentre});
+  }
   if (view.showParams) {
-    std::string p = "\xCE\xB1 = " + fmt("%.0f", info.alphaDeg) + "\xC2\xB0    \xCE\xB2 = " + fmt("%.3g", info.beta) +
-                    "    \xCE\xB3 = " + fmt("%.3g", info.gamma);
-    if (info.rTau != 0.0) p += "    R\xCF\x84 = " + fmt("%.3g", info.rTau);
+    // a plate's seedlings each have their own beta and R tau: those are in the legend, not the header
+    const bool own = !view.seedLabels.empty();
+    std::string p = "\xCE\xB1 = " + fmt("%.0f", info.alphaDeg) + "\xC2\xB0" +
+                    (own ? std::string() : "    \xCE\xB2 = " + fmt("%.3g", info.beta)) + "    \xCE\xB3 = " + fmt("%.3g", info.gamma);
+    if (!own && info.rTau != 0.0) p += "    R\xCF\x84 = " + fmt("%.3g", info.rTau);
+    // the legend: one line per seedling under the header, at the right edge
+    const float small = std::round(0.8f * font);
+    float y = m + (portrait && view.showTime ? 3.0f : 1.5f) * font;
+    for (const View::SeedLabel& sl : view.seedLabels) {
+      rs.texts.push_back({sl.values, W - m, y, small, OverlayText::Anchor::TopRight});
+      y += 1.3f * small;
+    }
     // landscape: top right, beside the time; portrait: a second line under the time
     if (portrait)
       rs.texts.push_back({p, m, m + (view.showTime ? 1.5f * font : 0.0f), font, OverlayText::Anchor::TopLeft});

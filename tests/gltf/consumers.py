@@ -5,6 +5,8 @@
                                               WORKDIR/run, WORKDIR/run.glb (the fixture of the two below)
   consumers.py validator WORKDIR              the Khronos glTF-Validator (Node, npm gltf-validator) on it
   consumers.py blender WORKDIR                Debian's Blender imports it and renders a frame (blender_check.py)
+  consumers.py blender-plate WORKDIR          the same for a plate's run (blender_plate_check.py): every
+                                              root's group and snapshots, one shown per emerged root
 
 A missing consumer (node, the npm package, blender) exits 77 (ctest: skipped) on a developer's machine,
 and fails (exit 1) when ROOTSIM_REQUIRE_CONSUMERS=1, as CI sets it (.ci/run): CI installs them
@@ -73,7 +75,18 @@ def main():
         rc = run([blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python",
                   os.path.join(HERE, "blender_check.py"), "--", glb, png, str(FRAMES)])
         return 1 if rc else 0
-    print("usage: consumers.py export|validator|blender ...")
+    if what == "blender-plate":
+        blender = shutil.which("blender")
+        if not blender:
+            missing("blender (Debian's blender)")
+        png = os.path.join(work, "blender.png")
+        if os.path.exists(png):
+            os.remove(png)
+        roots = sorted(os.listdir(os.path.join(work, "run", "roots")))
+        rc = run([blender, "-b", "--factory-startup", "--python-exit-code", "1", "--python",
+                  os.path.join(HERE, "blender_plate_check.py"), "--", glb, png, ",".join(roots), str(FRAMES)])
+        return 1 if rc else 0
+    print("usage: consumers.py export|validator|blender|blender-plate ...")
     return 2
 
 

@@ -388,3 +388,83 @@ TEST_CASE("glTF: rootsim export --gltf writes every snapshot animated or one wit
   CHECK(nowhere.code == 2);
   fs::remove_all(d);
 }
+
+TEST_CASE("glTF: a plate's roots are one group and one striped tube per snapshot each, shown from their first frame") {
+  // root a: three snapshots from the file's frame 0; root b: two, from frame 1 (a lateral that emerged),
+  // 5 mm across the plate
+  const PlateFrame pf = PlateFrame::tilted(40.0 * units::deg);
+  std::vector<RootSeries> roots{{"a", {arcRoot(6, 2.0, 0.0), arcRoot(10, 3.0, 0.5), arcRoot(15, 4.0, 1.0)}, 0},
+                                {"b", {arcRoot(4, 1.0, 0.5), arcRoot(6, 1.5, 1.0)}, 1}};
+  for (Snapshot& s : roots[1].snaps) s.x.colwise() += 5e-3 * pf.lateral;
+  GltfOptions o;
+  o.plateRectMm = std::array<double, 4>{-1.0, -30.0, 40.0, 0.0};
+  const std::string bytes = gltfPlateBinary(roots, rtest::info(40.0), o);
+  CHECK(bytes == gltfPlateBinary(roots, rtest::info(40.0), o));
+  const Glb g = parseGlb(bytes);
+  const J& js = g.json;
+  // 5 frames, 2 groups, plate, grid, camera, scene root
+  CHECK(js["nodes"].size() == 5 + 2 + 4);
+  CHECK(js["materials"].size() == 6);  // the three tube materials shared by every root, plate, 2 grid
+  for (const RootSeries& r : roots) {
+    const J* group = nodeNamed(g, r.name);
+    REQUIRE_MESSAGE(group, r.name);
+    REQUIRE((*group)["children"].size() == r.snaps.size());
+    const double scale = (*group)["scale"][0].n;
+    const Eigen::Vector3d t((*group)["translation"][0].n, (*group)["translation"][1].n, (*group)["translation"][2].n);
+    for (std::size_t k = 0; k < r.snaps.size(); ++k) {
+      const J& node = js["nodes"][static_cast<std::size_t>((*group)["children"][k].i())];
+      // named after its root and the file's frame
+      char want[64];
+      std::snprintf(want, sizeof want, "%s frame %04d, t = %.2f h", r.name.c_str(), r.firstFrame + static_cast<int>(k), r.snaps[k].timeH);
+      CHECK(node["name"].s == want);
+      const J& mesh = js["meshes"][static_cast<std::size_t>(node["mesh"].i())];
+      REQUIRE(mesh["primitives"].size() == 3);
+      const long pos = mesh["primitives"][0]["attributes"]["POSITION"].i();
+      // every wall vertex of node j lies R from its own root's node, in glTF axes (u, w, -v) [m]
+      double worst = 0;
+      for (long j = 0; j < r.snaps[k].x.cols(); ++j) {
+        const Eigen::Vector3d p = pf.toPlateMm(r.snaps[k].x.col(j));
+        const Eigen::Vector3d c(1e-3 * p.x(), 1e-3 * p.z(), -1e-3 * p.y());
+        for (long q = 0; q < 12; ++q) {
+          Eigen::Vector3d v;
+          for (int cc = 0; cc < 3; ++cc) v[cc] = element(g, pos, 62 + 12 * j + q, cc) * scale + t[cc];
+          worst = std::max(worst, std::abs((v - c).norm() - 1e-4));
+        }
+      }
+      CHECK(worst < 1e-6);
+    }
+  }
+  // the animation: at the file's frame f, a's snapshot f and b's f - 1 (from frame 1 on), nothing else
+  const J& anim = js["animations"][0];
+  REQUIRE(anim["channels"].size() == 5);
+  auto scaleOf = [&](long node, double t) {
+    for (const J& ch : anim["channels"].a) {
+      if (ch["target"]["node"].i() != node) continue;
+      const J& smp = anim["samplers"][static_cast<std::size_t>(ch["sampler"].i())];
+      const long in = smp["input"].i(), out = smp["output"].i();
+      const long keys = js["accessors"][static_cast<std::size_t>(in)]["count"].i();
+      long k = 0;
+      while (k + 1 < keys && element(g, in, k + 1, 0) <= t) ++k;
+      return element(g, out, k, 0);
+    }
+    FAIL("no channel for node " << node);
+    return -1.0;
+  };
+  for (int f = 0; f < 3; ++f) {
+    const double t = static_cast<float>(f / 24.0) + 0.25 / 24;
+    for (const RootSeries& r : roots)
+      for (std::size_t k = 0; k < r.snaps.size(); ++k) {
+        INFO("frame " << f << ", root " << r.name << " snapshot " << k);
+        CHECK(scaleOf((*nodeNamed(g, r.name))["children"][k].i(), t) == (r.firstFrame + static_cast<int>(k) == f ? 1.0 : 0.0));
+      }
+  }
+  // the plate covers the plate's rectangle: u from -1 mm (less its margin) to 40 mm, v from -30 mm to 0
+  const J& plateMesh = js["meshes"][static_cast<std::size_t>((*nodeNamed(g, "plate"))["mesh"].i())];
+  const J& pa = js["accessors"][static_cast<std::size_t>(plateMesh["primitives"][0]["attributes"]["POSITION"].i())];
+  CHECK(pa["min"][0].n == doctest::Approx(-2e-3));
+  CHECK(pa["max"][0].n == doctest::Approx(41e-3));
+  CHECK(pa["max"][2].n == doctest::Approx(31e-3));  // glTF z = -v
+  // a root without snapshots or starting before the file is refused
+  CHECK_THROWS_AS(gltfPlateBinary(std::vector<RootSeries>{{"a", {}, 0}}, rtest::info(40.0)), RenderError);
+  CHECK_THROWS_AS(gltfPlateBinary(std::vector<RootSeries>{{"a", {arcRoot(4, 1.0, 0.0)}, -1}}, rtest::info(40.0)), RenderError);
+}

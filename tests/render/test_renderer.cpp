@@ -393,3 +393,55 @@ TEST_CASE("the ParaView script's stripes (paraview.hpp) are the renderer's: half
     CHECK(static_cast<float>(pv.minus[k]) == m.minus[k]);
   }
 }
+
+TEST_CASE("overlays: a plate view names each seedling above its seed and gives each one's beta and R tau in a legend") {
+  const SceneInfo si = rtest::info(40);
+  const Snapshot s = rtest::straightRod(40, 10, 1.0, 0.1);
+  View v;
+  v.width = 640;
+  v.height = 360;
+  v.showLegend = false;
+  v.showDownhill = false;
+  v.seedLabels = {{"wt1", "wild type", 0.2, 0.3, "wt1   b1"}, {"tw1", "", 0.8, 0.3, "tw1   b2"}};
+  const Framing f = frameFor({s}, si, v);
+  const RenderScene rs = buildRenderScene(s, si, v, f);
+  auto text = [&](const std::string& t) -> const OverlayText* {
+    for (const OverlayText& o : rs.texts)
+      if (o.text == t) return &o;
+    return nullptr;
+  };
+  for (const View::SeedLabel& sl : v.seedLabels) {
+    INFO(sl.label);
+    const OverlayText* name = text(sl.label);
+    REQUIRE(name);
+    // centred on the seed's pixel, above it (up the picture: uphill)
+    const double seedX = 0.5 * v.width + (sl.u - f.centreU) * rs.pxPerMm, seedY = 0.5 * v.height - (sl.v - f.centreV) * rs.pxPerMm;
+    CHECK(name->anchor == OverlayText::Anchor::BottomCentre);
+    CHECK(std::abs(name->x - seedX) < 1.0);
+    CHECK(name->y < seedY);
+    if (!sl.sub.empty()) {
+      const OverlayText* sub = text(sl.sub);
+      REQUIRE(sub);
+      CHECK(sub->x == name->x);
+      CHECK(name->y < sub->y);  // the genotype under the name
+      CHECK(sub->y < seedY);
+      CHECK(sub->sizePx < name->sizePx);
+    }
+    // its legend line at the right edge, under the header
+    const OverlayText* line = text(sl.values);
+    REQUIRE(line);
+    CHECK(line->anchor == OverlayText::Anchor::TopRight);
+    CHECK(line->x > 0.9 * v.width);
+  }
+  CHECK(text("wt1   b1")->y < text("tw1   b2")->y);
+  // the header: alpha and gamma, no beta (each seedling has its own)
+  bool header = false;
+  for (const OverlayText& o : rs.texts)
+    if (o.text.find("\xCE\xB1 = 40") != std::string::npos) {
+      header = true;
+      CHECK(o.text.find("\xCE\xB3 = 0.1") != std::string::npos);
+      CHECK(o.text.find("\xCE\xB2") == std::string::npos);
+      CHECK(o.y < text("wt1   b1")->y);
+    }
+  CHECK(header);
+}

@@ -6,7 +6,7 @@ pkgs=(cmake ninja-build g++ pkg-config
       libeigen3-dev libcli11-dev doctest-dev libtomlplusplus-dev libbenchmark-dev
       libsuitesparse-dev                # KLU: the sparse Newton step with self-contact
       libtinyxml2-dev                   # the RSML reader (src/io/rsml.cpp: XML with line numbers)
-      libnlopt-dev                      # `rootsim fit` (src/app/fit_trace.cpp): BOBYQA on the response surface
+      libnlopt-dev                      # `rootsim fit` (src/analysis/fit_trace.cpp): BOBYQA on the response surface
       libssl-dev                        # OpenSSL's libcrypto: SHA-256 of what rootsim wrote (markers, signatures)
       nlohmann-json3-dev                # the write rule parses a GLB's JSON chunk (src/io/write_rule.cpp)
       libosmesa6-dev libglm-dev libstb-dev libavcodec-dev libavformat-dev libswscale-dev libavutil-dev

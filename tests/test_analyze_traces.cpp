@@ -1,4 +1,4 @@
-// `rootsim analyze` (src/app/analyze_traces.cpp, docs/experiments.md) end to end: a run exported to RSML
+// `rootsim analyze` (src/analysis/analyze_traces.cpp, docs/experiments.md) end to end: a run exported to RSML
 // gives the numbers of its own summary.json; a SmartRoot-style plate with laterals (orders, parents,
 // lengths, insertion angles in closed form); pixel units; growth rates across files; --downhill; bad
 // input (exit 2, nothing written); the write rule

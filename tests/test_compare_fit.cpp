@@ -1,4 +1,4 @@
-// `rootsim compare` and `rootsim fit` (src/app/compare_trace.cpp, src/app/fit_trace.cpp,
+// `rootsim compare` and `rootsim fit` (src/analysis/compare_trace.cpp, src/analysis/fit_trace.cpp,
 // docs/experiments.md) end to end: a run against its own export is at distance 0 with every residual 0;
 // a fit's files, its determinism, and its resumption; bad input (exit 2, nothing written); the write rule.
 #include <doctest/doctest.h>

@@ -1,4 +1,4 @@
-// What a fit may claim (src/sim/goodness.cpp): the chi-square distribution's upper tail against its closed
+// What a fit may claim (src/analysis/goodness.cpp): the chi-square distribution's upper tail against its closed
 // forms and printed tables, the verdict, the rule that picks a fit's answer, and the goodness of a traced
 // root's shape against the run it was traced from, calibrated over noise seeds.
 #include <doctest/doctest.h>

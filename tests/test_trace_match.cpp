@@ -1,5 +1,5 @@
-// A traced root against a simulated one (src/sim/trace_match.cpp) and the fit's response surface
-// (src/sim/response_surface.cpp), against closed forms: distances between straight and bent lines, the
+// A traced root against a simulated one (src/analysis/trace_match.cpp) and the fit's response surface
+// (src/analysis/response_surface.cpp), against closed forms: distances between straight and bent lines, the
 // uncertainties of the observables, the seed's common error, a quadratic recovered exactly, the scatter
 // of known noise, the covariance of a linear model, and a direction the outputs do not see.
 #include <doctest/doctest.h>

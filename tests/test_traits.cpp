@@ -1,4 +1,4 @@
-// phenotyping traits of a centreline (src/sim/traits.cpp): resampling, length, tortuosity, the skew angle's
+// phenotyping traits of a centreline (src/analysis/traits.cpp): resampling, length, tortuosity, the skew angle's
 // sign against the runs' theta, the insertion angle, the run observables of a trace equal to those
 // analyseShape measures on the same shape; a trace's noise estimate, its smoothing, straightness, HGI and
 // VGI, and the noise-aware measurement of roots degraded as a tracer degrades them

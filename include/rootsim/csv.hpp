@@ -3,6 +3,7 @@
 // and the one reader of them. Lab frame of docs/model.md, Frames and signs; millimetres and hours.
 #include <cstdint>
 #include <filesystem>
+#include <istream>
 #include <string>
 #include <vector>
 
@@ -66,11 +67,22 @@ class TimeseriesWriter {
 // and every column's values, parsed with from_chars, so they are the doubles the run wrote (writers use
 // to_chars, a shortest round trip); "nan" and "inf" cells are read as such. Throws SceneError naming
 // the file and line when it is missing or malformed (a cell that is not a whole number, a short row).
-// the cells of a comma-separated line, a trailing comma giving an empty last cell (result.csv rows, the
-// CLI's comma lists)
+// The one CSV reader (RFC 4180) of every file rootsim reads: fields separated by commas; a field in double
+// quotes may hold commas, newlines and quotes (doubled); a trailing comma gives an empty last cell.
+// The cells of one record (a line, or a quoted field's lines joined by '\n'); std::invalid_argument
+// for a quote that is not closed or text after a closing quote
+std::vector<std::string> csvCells(const std::string& record);
+// the next record of a CSV stream into cells: false at the end of the stream. lineNo counts the physical
+// lines read (a quoted field may span several), for messages; throws SceneError "<where>:<line>: ..." for
+// a malformed record
+bool readCsvRecord(std::istream& in, std::vector<std::string>& cells, int& lineNo, const std::string& where);
+// the items of a comma list on the command line (--plot a,b; --free k=lo:hi,...): split at every comma
+// (a list is not a CSV record: a quote is an ordinary character), a trailing comma giving an empty item
 std::vector<std::string> splitCommas(const std::string& line);
-// a text field of a CSV row: as it is, or quoted (quotes doubled) when it holds a comma, quote or newline
+// a text field of a CSV row: as it is, or quoted (csvQuoted) when it holds a comma, quote or newline
 std::string csvField(const std::string& s);
+// a text field of a CSV row in double quotes, its quotes doubled (RFC 4180)
+std::string csvQuoted(const std::string& s);
 
 struct CsvColumns {
   std::vector<std::string> names;

@@ -10,8 +10,8 @@ namespace rootsim {
 
 namespace caps {
 // resampled points of one traced root (analyze, compare, fit, render --trace): the shape analysis holds
-// about 100 bytes a point (positions, tangents, angles, curvature, arc length and their copies; a
-// 999 999 mm root at 0.05 mm, 2e7 points, took 1.7 GB), so a million points is about 100 MB, and 50 m of
+// about 100 bytes a point (positions, tangents, angles, curvature, arc length and their copies), so a
+// million points is about 100 MB, and 50 m of
 // root at the default step of 0.05 mm
 inline constexpr double kTracePoints = 1e6;
 // frames of one movie (render, run --movie): a frame holds a copy of its snapshot, about 120 bytes a node

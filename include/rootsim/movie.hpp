@@ -50,8 +50,7 @@ void renderStill(const std::vector<Snapshot>& snaps, const SceneInfo& info, cons
                  const std::string& path);
 
 // frame planning in time (docs/rendering.md, "Time windows and speed"):
-// the snapshot nearest timeH (ties to the earlier one); timesH increasing, not empty
-int nearestSnapshot(const std::vector<double>& timesH, double timeH);
+// nearestSnapshot (the snapshot nearest a time): rootsim/snapshot.hpp
 // the snapshots of a movie from fromH to toH at hoursPerSecond growth hours per second of movie at fps:
 // the window is the snapshots with fromH <= t <= toH (first t_a, last t_b); with hoursPerSecond <= 0 each
 // of them is one frame; otherwise there are floor((t_b - t_a) fps / hoursPerSecond) + 1 frames and frame

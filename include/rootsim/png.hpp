@@ -7,7 +7,7 @@
 namespace rootsim {
 
 // write img to path atomically (a temporary file beside it, then rename); fast zlib settings
-// (compression level 1, "sub" filter): about 60 ms for a 1080p frame here.
+// (compression level 1, "sub" filter; their cost: docs/rendering.md, "Speed").
 // Throws RenderError naming the path and the system error on failure.
 void writePng(const std::string& path, const Image& img);
 

@@ -29,16 +29,15 @@ enum class Damping {
 };
 
 struct SolverOptions {
-  // Newton is the default: it agrees with the paper's explicit relaxation on the paper's scenes (README,
-  // scripts/compare-solvers.sh) at 6-15 times less CPU
+  // Newton is the default: it agrees with the paper's explicit relaxation on the paper's scenes at a
+  // fraction of its CPU (docs/performance.md, "The two solvers on the paper's scenes")
   SolverKind kind = SolverKind::Newton;
   // Newton: the unknowns are the nodes within this rest length behind the growth zone's start, everything
   // tipward, the oldest part a self-contact touches onward, and the twist of every element before (the
   // adhered mature root keeps its positions, not its twist, which carries the clamp's torque) [m]; 0: the
-  // whole rod. Measured against the whole rod (README): fig2b's lambda, A and theta_tip, fig4a's skew
-  // and tip angle agree to 1e-5 relative, and so do the high-gain Fig. 3 roots (beta 0.5 and 1) that a
-  // 3 mm window got wrong (A 55 % too large at alpha 20, beta 0.5: the frozen adhered nodes stand too
-  // near the growth zone), at 0.75x the cost on fig2b; only where adhesion holds the mature root
+  // whole rod. Checked against the whole rod (docs/numerics.md, "Active window"): a narrower window
+  // freezes adhered nodes too near the growth zone and changes the high-gain roots' amplitude; only
+  // where adhesion holds the mature root
   double window = 6e-3;
   int newtonMaxIterations = 30;   // Newton iterations before a relaxation continues explicitly
   // Newton's Jacobian in closed form (stiffness.hpp) wherever it covers the forces in play; false:

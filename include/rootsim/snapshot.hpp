@@ -29,6 +29,8 @@ struct Snapshot {
   int elements() const { return static_cast<int>(radius.size()); }
 };
 
+// the snapshot nearest timeH (ties to the earlier one); timesH increasing; std::invalid_argument when empty
+int nearestSnapshot(const std::vector<double>& timesH, double timeH);
 // the roots of a plate as one snapshot (the renderer draws each root as its own tube): their nodes in
 // turn, each root's positions as given (already in one frame), the joining elements' fields copied
 // from the next root's first element. Step and time are the first root's.

@@ -853,7 +853,6 @@ def analyze(files: Union[PathLike, Sequence[PathLike]], *, px_per_mm: Optional[f
     +y towards +x; ``times``: one growth time per file [h] (growth rates across files of one plate);
     ``ds_mm``, ``exclude_tip_mm``, ``radius_mm``: as the command line's flags. Bad input raises
     SceneError with the command line's message. Keywords only."""
-    _need_render("analyze")
     files = [os.fspath(files)] if isinstance(files, (str, os.PathLike)) else [os.fspath(f) for f in files]
     if times is not None and not isinstance(times, str):
         times = ",".join(repr(float(t)) for t in times)
@@ -883,7 +882,6 @@ def compare(run_dir: PathLike, trace: PathLike, *, root: Optional[str] = None, p
     uncertainty [mm]; ``at_h``: the run's snapshot nearest this time [h] (default: the first as long as
     the trace); ``groups``: a plate's run, a sample sheet pairing plants with seedlings (docs/plate.md).
     Bad input raises SceneError with the command line's message. Keywords only."""
-    _need_render("compare")
     if downhill is not None:
         downhill = str(downhill)
     folder = _c.compare_trace(_options(locals()))
@@ -910,7 +908,6 @@ def fit(trace: PathLike, *, scene: PathLike, free: Union[str, Dict[str, Sequence
     of its length) or "timelapse" (length, tip position and tip angle at every observation time of a 2D+t
     trace); None: timelapse for a trace with times, else observables; ``jobs``: simultaneous runs; ``budget``: most runs (None: the command line's defaults). The trace's keywords as
     rootsim.compare's. Bad input raises SceneError, a fit whose runs all fail RunError. Keywords only."""
-    _need_render("fit")
     if not isinstance(free, str):
         free = ",".join(f"{k}={float(lo)!r}:{float(hi)!r}" for k, (lo, hi) in free.items())
     if downhill is not None:
@@ -1036,9 +1033,8 @@ class Simulation:
         Units: mm, h, 1/mm, mm/s, named in each field (``positions_mm``, ``downhill_mm``, ...; ``State``).
 
         ``copy`` is accepted for compatibility: the arrays are always copies (views into the rod's memory
-        would dangle after the next ``step()``, which reallocates it). Copying is cheap: 14-17 us for the
-        fig2b root of 42 elements, 18-29 us for its 452 elements after 3000 steps, against 0.7-1.4 ms
-        for one of its growth steps."""
+        would dangle after the next ``step()``, which reallocates it). Copying costs a few per cent of a
+        growth step (docs/performance.md, "A state's copy in Python")."""
         return State(**self._sim.state())
 
     def snapshot(self) -> Frame:

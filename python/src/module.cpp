@@ -40,11 +40,11 @@
 #include "rootsim/units.hpp"
 #include "rootsim/version.hpp"
 
-#ifdef ROOTSIM_HAVE_RENDER
 #include "rootsim/analyze_traces.hpp"
 #include "rootsim/trace_growth.hpp"
 #include "rootsim/compare_trace.hpp"
 #include "rootsim/fit_trace.hpp"
+#ifdef ROOTSIM_HAVE_RENDER
 #include "rootsim/export_run.hpp"
 #include "rootsim/render_run.hpp"
 #endif
@@ -685,6 +685,9 @@ PYBIND11_MODULE(_rootsim, m) {
         return out;
       },
       py::arg("options"));
+#else
+  m.attr("have_render") = false;
+#endif
   m.def(
       "analyze_traces",
       // rootsim.analyze's keywords, as the command line's flags; the rows as dicts of analysis.csv's columns
@@ -755,7 +758,4 @@ PYBIND11_MODULE(_rootsim, m) {
         return r.out;
       },
       py::arg("options"));
-#else
-  m.attr("have_render") = false;
-#endif
 }

@@ -7,7 +7,8 @@ import pytest
 import rootsim
 from conftest import SOURCE, cli
 
-pytestmark = pytest.mark.skipif(not rootsim._rootsim.have_render, reason="built without the app library")
+# rootsim.analyze is in every build (the analysis library needs no renderer); export is the renderer's
+needs_export = pytest.mark.skipif(not rootsim._rootsim.have_render, reason="rootsim.export: built without the renderer")
 
 SMARTROOT = SOURCE / "tests/data/rsml/smartroot_pixels.rsml"
 
@@ -27,6 +28,7 @@ def test_rows_are_the_command_lines_csv(tmp_path):
                 assert value == float(cell), key
 
 
+@needs_export
 def test_a_run_exported_gives_its_own_observables(tmp_path):
     run = rootsim.run(SOURCE / "scenes/fig2b_waving.toml", set={"growth.steps": 600}, out=tmp_path / "wave")
     rootsim.export(run.dir, rsml=tmp_path / "wave.rsml")

@@ -6,7 +6,7 @@ import pytest
 import rootsim
 from conftest import SOURCE, cli
 
-pytestmark = pytest.mark.skipif(not rootsim._rootsim.have_render, reason="built without the app library")
+pytestmark = pytest.mark.skipif(not rootsim._rootsim.have_render, reason="the run is exported to RSML by rootsim.export: built without the renderer")
 
 QUICK = {"growth.steps": 300, "root.element_length_mm": 0.1, "growth.step_h": 0.1, "output.vtk": False}
 

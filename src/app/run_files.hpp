@@ -1,45 +1,15 @@
 #pragma once
-// internal: what `render` and `montage` read from a run directory and how they claim their outputs
+// internal: how `render`, `montage` and `export` claim their outputs (what they read from a run directory:
+// rootsim/run_snapshots.hpp)
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "rootsim/movie.hpp"
-#include "rootsim/plate.hpp"
-#include "rootsim/snapshot.hpp"
+#include "rootsim/run_snapshots.hpp"
 #include "rootsim/write_rule.hpp"
 
 namespace rootsim::app {
-
-// the run's trajectory (trajectory.bin, or trajectory.csv); SceneError when it is missing or empty.
-// A plate's run (docs/plate.md): every root's trajectory in plate coordinates, merged per snapshot
-// (Snapshot::rootStarts), the root named `last` drawn last (the follow camera follows the last root;
-// "": the seedlings' order); SceneError naming --root for a root the plate does not have, or for a
-// run of one root
-std::vector<Snapshot> loadSnapshots(const std::filesystem::path& runDir, const std::string& last = "");
-// true for a plate's run directory (a plate scene with its roots/ folder)
-bool isPlateRun(const std::filesystem::path& runDir);
-// a plate run's roots (docs/plate.md, Outputs): the seedlings in the scene's order, then the lateral roots
-// by name; each with its folder, its parent's name ("" for a seedling) and its seedling as its folder's
-// scene.toml describes it (place, angle, model)
-struct PlateRoot {
-  std::string name, parent;
-  std::filesystem::path dir;
-  Seedling seedling;
-};
-std::vector<PlateRoot> plateRoots(const std::filesystem::path& runDir);
-// where a plate root's own frame lies in the plate's lab frame: its seedling's place on the plate (a
-// root's folder holds its snapshots with its base's foot at the origin)
-Vec3 plateOffset(const PlateFrame& plate, const PlateRoot& root);
-
-// the growth times of the snapshots [h]
-std::vector<double> snapshotTimes(const std::vector<Snapshot>& snaps);
-// the snapshot nearest atH (ties to the earlier one): `render --png --at-h`, `export --at-h`. A time
-// outside timesH's range is refused: SceneError "--at-h H: outside the <range> snapshots, A .. B h"
-// (range: "run's", or "window's" for render's --from-h/--to-h window)
-int snapshotNear(const std::vector<double>& timesH, double atH, const std::string& range = "run's");
-// a flag's number in messages (%g)
-std::string flagNumber(double v);
 
 // the outputs of render and montage, checked by the write rule and locked until they are written
 struct Outputs {

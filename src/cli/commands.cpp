@@ -312,30 +312,15 @@ int exportCommand(const app::ExportOptions& o) {
 }
 
 int analyzeCommand(const app::AnalyzeOptions& o) {
-#ifdef ROOTSIM_HAVE_RENDER
   return app::analyzeCommand(o);
-#else
-  (void)o;
-  throw SceneError("analyze: this rootsim was built without the renderer and the app library (ROOTSIM_BUILD_RENDER=OFF)");
-#endif
 }
 
 int compareCommand(const app::CompareOptions& o) {
-#ifdef ROOTSIM_HAVE_RENDER
   return app::compareCommand(o);
-#else
-  (void)o;
-  throw SceneError("compare: this rootsim was built without the renderer and the app library (ROOTSIM_BUILD_RENDER=OFF)");
-#endif
 }
 
 int fitCommand(const app::FitOptions& o) {
-#ifdef ROOTSIM_HAVE_RENDER
   return app::fitCommand(o);
-#else
-  (void)o;
-  throw SceneError("fit: this rootsim was built without the renderer and the app library (ROOTSIM_BUILD_RENDER=OFF)");
-#endif
 }
 
 }  // namespace rootsim::cli

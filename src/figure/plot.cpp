@@ -696,35 +696,18 @@ double plotAspect(const Figure& f, const Axes& a) {
 }
 
 namespace {
-std::uint32_t crc32(const unsigned char* p, size_t n, std::uint32_t c = 0xFFFFFFFFu) {
-  for (size_t i = 0; i < n; ++i) {
-    c ^= p[i];
-    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
-  }
-  return c;
-}
-void be32(std::string& s, std::uint32_t v) {
-  for (int k = 3; k >= 0; --k) s += static_cast<char>((v >> (8 * k)) & 0xFF);
-}
 cairo_status_t appendBytes(void* closure, const unsigned char* data, unsigned int length) {
   static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
   return CAIRO_STATUS_SUCCESS;
 }
 // the PNG cairo writes with a pHYs chunk (pixels per metre) after its IHDR
 std::string withPhys(const std::string& png, double dpi) {
-  constexpr size_t kIhdrEnd = 8 + 4 + 4 + 13 + 4;  // signature, IHDR length, type, data, CRC
-  if (png.size() < kIhdrEnd || png.compare(12, 4, "IHDR") != 0) return png;
   const auto ppm = static_cast<std::uint32_t>(std::lround(dpi / 0.0254));
-  std::string chunk = "pHYs";
-  be32(chunk, ppm);
-  be32(chunk, ppm);
-  chunk += '\x01';  // unit: metre
-  std::string out = png.substr(0, kIhdrEnd);
-  be32(out, 9);
-  out += chunk;
-  be32(out, crc32(reinterpret_cast<const unsigned char*>(chunk.data()), chunk.size()) ^ 0xFFFFFFFFu);
-  out += png.substr(kIhdrEnd);
-  return out;
+  std::string data;
+  png_detail::putBe32(data, ppm);
+  png_detail::putBe32(data, ppm);
+  data += '\x01';  // unit: metre
+  return withChunkAfterIhdr(png, "pHYs", data);
 }
 }  // namespace
 

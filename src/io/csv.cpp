@@ -7,6 +7,7 @@
 #include <fstream>
 #include <iterator>
 #include <sstream>
+#include <stdexcept>
 #include <system_error>
 
 #include "rootsim/errors.hpp"
@@ -16,6 +17,73 @@
 namespace fs = std::filesystem;
 
 namespace rootsim {
+
+namespace {
+// RFC 4180 over one record's text: the cells, or why it is malformed ("" when it is whole); open: the text
+// ends inside a quoted field (the record continues on the next line)
+std::string parseRecord(const std::string& text, std::vector<std::string>& cells, bool& open) {
+  cells.assign(1, std::string());
+  open = false;
+  std::size_t i = 0;
+  bool quoted = false, closed = false;  // the current cell began with a quote; its closing quote was seen
+  while (i < text.size()) {
+    const char c = text[i];
+    if (quoted && !closed) {
+      if (c == '"') {
+        if (i + 1 < text.size() && text[i + 1] == '"') {
+          cells.back() += '"';
+          i += 2;
+          continue;
+        }
+        closed = true;
+      } else {
+        cells.back() += c;
+      }
+    } else if (c == ',') {
+      cells.emplace_back();
+      quoted = closed = false;
+    } else if (closed) {
+      return "text after a quoted field's closing quote (cell " + std::to_string(cells.size()) + ")";
+    } else if (c == '"' && cells.back().empty() && !quoted) {
+      quoted = true;
+    } else {
+      cells.back() += c;
+    }
+    ++i;
+  }
+  open = quoted && !closed;
+  return "";
+}
+}  // namespace
+
+std::vector<std::string> csvCells(const std::string& record) {
+  std::vector<std::string> cells;
+  bool open = false;
+  const std::string why = parseRecord(record, cells, open);
+  if (!why.empty()) throw std::invalid_argument(why);
+  if (open) throw std::invalid_argument("a quoted field is not closed");
+  return cells;
+}
+
+bool readCsvRecord(std::istream& in, std::vector<std::string>& cells, int& lineNo, const std::string& where) {
+  std::string text, line;
+  if (!std::getline(in, line)) return false;
+  ++lineNo;
+  const int first = lineNo;
+  text = line;
+  if (!text.empty() && text.back() == '\r') text.pop_back();
+  for (;;) {
+    bool open = false;
+    const std::string why = parseRecord(text, cells, open);
+    if (!why.empty()) throw SceneError(where + ":" + std::to_string(lineNo) + ": " + why);
+    if (!open) return true;
+    if (!std::getline(in, line))
+      throw SceneError(where + ":" + std::to_string(first) + ": a quoted field is not closed before the end of the file");
+    ++lineNo;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    text += '\n' + line;
+  }
+}
 
 std::vector<std::string> splitCommas(const std::string& line) {
   std::vector<std::string> cells;
@@ -155,23 +223,14 @@ CsvColumns readCsvColumns(const fs::path& path) {
   std::ifstream in(path);
   if (!in) throw SceneError(path.string() + ": cannot open (not a complete run directory?)");
   CsvColumns t;
-  std::string line;
-  if (!std::getline(in, line) || line.empty()) throw SceneError(path.string() + ":1: no header");
-  auto cells = [](const std::string& l) {
-    std::vector<std::string> f;
-    std::stringstream ss(l);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) f.push_back(cell);
-    if (!l.empty() && l.back() == ',') f.push_back("");
-    return f;
-  };
-  t.names = cells(line);
+  int lineNo = 0;
+  std::vector<std::string> f;
+  if (!readCsvRecord(in, f, lineNo, path.string()) || (f.size() == 1 && f[0].empty()))
+    throw SceneError(path.string() + ":1: no header");
+  t.names = f;
   t.values.resize(t.names.size());
-  int lineNo = 1;
-  while (std::getline(in, line)) {
-    ++lineNo;
-    if (line.empty()) continue;
-    const std::vector<std::string> f = cells(line);
+  while (readCsvRecord(in, f, lineNo, path.string())) {
+    if (f.size() == 1 && f[0].empty()) continue;  // an empty line
     auto bad = [&](const std::string& why) {
       throw SceneError(path.string() + ":" + std::to_string(lineNo) + ": " + why);
     };
@@ -190,11 +249,14 @@ CsvColumns readCsvColumns(const fs::path& path) {
   return t;
 }
 
-std::string csvField(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+std::string csvQuoted(const std::string& s) {
   std::string o = "\"";
   for (char c : s) o += c == '"' ? std::string("\"\"") : std::string(1, c);
   return o + "\"";
+}
+
+std::string csvField(const std::string& s) {
+  return s.find_first_of(",\"\n") == std::string::npos ? s : csvQuoted(s);
 }
 
 }  // namespace rootsim

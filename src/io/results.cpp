@@ -137,7 +137,12 @@ RunResult readResult(const std::filesystem::path& path) {
   r.grows = head == resultHeader(true);
   if (!r.grows && head != resultHeader(false))
     throw RunError(path.string() + ": not a result.csv of this rootsim (header differs)");
-  const std::vector<std::string> cells = splitCommas(line);
+  std::vector<std::string> cells;
+  try {
+    cells = csvCells(line);
+  } catch (const std::invalid_argument& e) {
+    throw RunError(path.string() + ":2: " + e.what());
+  }
   size_t i = 0;
   for (const auto& c : resultColumns()) {
     if (c.growthOnly && !r.grows) continue;

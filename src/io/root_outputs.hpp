@@ -1,5 +1,6 @@
 #pragma once
-// internal: what one growing root writes into its folder (docs/outputs.md), shared by a run of one root
+// internal: what one growing root writes into its folder (docs/outputs.md; defined in root_outputs.cpp),
+// shared by a run of one root
 // (run_scene.cpp) and a plate's roots (run_plate.cpp)
 #include <chrono>
 #include <filesystem>

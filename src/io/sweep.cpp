@@ -15,6 +15,7 @@
 
 #include <toml++/toml.h>
 
+#include "rootsim/csv.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/number_text.hpp"
 #include "rootsim/results.hpp"
@@ -205,7 +206,7 @@ void writeSweepTable(const SweepPlan& plan, const std::string& out) {
     std::string h, r;
     if (!in || !std::getline(in, h) || !std::getline(in, r)) continue;
     std::string prefix = std::to_string(p.index) + "," + p.dirName;
-    for (const auto& [k, v] : p.grid) prefix += ",\"" + v + "\"";
+    for (const auto& [k, v] : p.grid) prefix += "," + csvQuoted(v);
     if (header.empty()) {
       header = "index,run";
       for (const auto& k : plan.gridKeys) header += ",grid:" + k;

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <system_error>
 
+#include "rootsim/csv.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/number_text.hpp"
 #include "rootsim/units.hpp"
@@ -280,14 +281,9 @@ std::vector<Snapshot> readTrajectory(const fs::path& path) {
     out.push_back(std::move(s));
     rows.clear();
   };
-  while (std::getline(in, line)) {
-    ++lineNo;
-    if (line.empty()) continue;
-    std::vector<std::string> f;
-    std::stringstream ss(line);
-    std::string cell;
-    while (std::getline(ss, cell, ',')) f.push_back(cell);
-    if (line.back() == ',') f.push_back("");
+  std::vector<std::string> f;
+  while (readCsvRecord(in, f, lineNo, path.string())) {
+    if (f.size() == 1 && f[0].empty()) continue;  // an empty line
     auto bad = [&](const std::string& why) {
       throw SceneError(path.string() + ":" + std::to_string(lineNo) + ": " + why);
     };

@@ -77,16 +77,6 @@ void renderStill(const std::vector<Snapshot>& snaps, const SceneInfo& info, cons
   writePng(path, img);
 }
 
-int nearestSnapshot(const std::vector<double>& timesH, double timeH) {
-  if (timesH.empty()) throw RenderError("movie: no snapshots");
-  // the first at or after timeH, then the earlier neighbour when it is as near or nearer
-  const auto it = std::lower_bound(timesH.begin(), timesH.end(), timeH);
-  if (it == timesH.end()) return static_cast<int>(timesH.size()) - 1;
-  const int i = static_cast<int>(it - timesH.begin());
-  if (i > 0 && timeH - timesH[static_cast<std::size_t>(i - 1)] <= *it - timeH) return i - 1;
-  return i;
-}
-
 std::vector<int> movieFrames(const std::vector<double>& timesH, double fromH, double toH, double hoursPerSecond,
                              int fps) {
   std::vector<int> window;

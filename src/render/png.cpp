@@ -21,8 +21,8 @@ namespace rootsim {
 
 namespace {
 
-// stb's PNG settings are globals: set them once. Level 1 with the "sub" filter writes a 1080p frame
-// about 3x faster than stb's defaults (docs/rendering.md, Pitfalls) at a slightly larger file.
+// stb's PNG settings are globals: set them once. Level 1 with the "sub" filter writes a frame faster
+// than stb's defaults at a slightly larger file (docs/rendering.md, Pitfalls).
 void configureStb() {
   static std::once_flag once;
   std::call_once(once, [] {

@@ -46,8 +46,7 @@ inline Vec3 nodeAxis(const RodState& s, int i, const Vec3& nh) {
 // relaxation the force is a function of the displacement from the committed stick point, and with an abrupt
 // drop a node that overshoots the static limit by a round-off during the pseudo-dynamics lands on the kinetic
 // branch and, where mu_k N is less than the load, slides away although a sticking equilibrium exists
-// (measured: a free rod on a plate tilted by 60 deg with mu_s = 1.06 cot(alpha) slid). ell = 0 gives the
-// abrupt drop.
+// (docs/contact.md, Friction). ell = 0 gives the abrupt drop.
 inline Vec3 coulomb(const Vec3& u, const Vec3& a, double kt, double N, const Friction& fr, bool& slips) {
   const Vec3 ft = -kt * u;
   const double fa = ft.dot(a);

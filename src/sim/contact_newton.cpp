@@ -11,6 +11,25 @@ namespace rootsim {
 
 using namespace contact_detail;
 
+namespace {
+// K = -dF/dx of a contact's forces on its nodes, by central differences over the four nodes' 12
+// coordinates x (each moved by +-h, then restored): forces(f) evaluates F at the current x
+template <class Forces, class Stiffness>
+void stiffnessByCentralDifferences(std::array<Vec3, 4>& x, double h, Forces& forces, Stiffness& K) {
+  Eigen::Matrix<double, Stiffness::RowsAtCompileTime, 1> fp, fm;
+  for (int col = 0; col < 12; ++col) {
+    double& xc = x[static_cast<size_t>(col / 3)][col % 3];
+    const double x0 = xc;
+    xc = x0 + h;
+    forces(fp);
+    xc = x0 - h;
+    forces(fm);
+    xc = x0;
+    K.col(col) = -(fp - fm) / (2.0 * h);
+  }
+}
+}  // namespace
+
 int firstNodeNearContact(const RodParams& p, const Environment& env, const RodState& s, ContactWorkspace& cw,
                          int from) {
   int first = s.nodes();
@@ -61,17 +80,7 @@ void selfContactStiffness(const RodParams& p, const Environment& env, const RodS
     PairStiffness& ps = cw.stiffness.emplace_back();
     ps.i = i;
     ps.j = j;
-    Eigen::Matrix<double, 12, 1> fp, fm;
-    for (int col = 0; col < 12; ++col) {
-      double& xc = x[static_cast<size_t>(col / 3)][col % 3];
-      const double x0 = xc;
-      xc = x0 + h;
-      forces(fp);
-      xc = x0 - h;
-      forces(fm);
-      xc = x0;
-      ps.K.col(col) = -(fp - fm) / (2.0 * h);
-    }
+    stiffnessByCentralDifferences(x, h, forces, ps.K);
   }
 }
 
@@ -97,17 +106,7 @@ void neighbourContactStiffness(const RodParams& p, const Environment& env, const
     NeighbourStiffness& ns = cw.neighbourStiffness.emplace_back();
     ns.i = i;
     ns.c = c;
-    Eigen::Matrix<double, 6, 1> fp, fm;
-    for (int col = 0; col < 12; ++col) {
-      double& xc = x[static_cast<size_t>(col / 3)][col % 3];
-      const double x0 = xc;
-      xc = x0 + h;
-      forces(fp);
-      xc = x0 - h;
-      forces(fm);
-      xc = x0;
-      ns.K.col(col) = -(fp - fm) / (2.0 * h);
-    }
+    stiffnessByCentralDifferences(x, h, forces, ns.K);
   }
 }
 

@@ -40,8 +40,8 @@ Vec3 PlateFrame::toPlateMm(const Vec3& labM) const {
 
 ClampCouple clampCouple(const RodParams& p, const RodState& s, double e0) {
   // A clamp that fixed element 0's own directors would put the clamped cross-section at the element
-  // centre, l0/2 from the base node, and make every deflection first-order in l0 (measured: 5.9 % and
-  // 3.0 % Timoshenko errors at 25 and 50 elements). Instead the clamp frame sits at s = 0 and couples
+  // centre, l0/2 from the base node, and make every deflection first-order in l0 (the error against
+  // Timoshenko's cantilever halves with the element length). Instead the clamp frame sits at s = 0 and couples
   // to element 0 through a half Voronoi domain, as interior elements couple to each other; the scheme
   // then stays second order. (docs/model.md, Environment says "directors of the first element"; this is the
   // same clamp moved to the base node.)

@@ -49,17 +49,15 @@ constexpr int kBand = 3 * kRadius + 2;    // dof half-bandwidth
 constexpr int kTwistRadius = 2;           // blocks whose forces the twist of an element changes, each side
 constexpr int kTwistColours = kTwistRadius + 1;  // in elements (a pass nudges every third element)
 constexpr int kMaxHalvings = 30;
-// Newton crawls towards a snap: the Newton direction of a stiffness near a fold points far off (measured:
-// 67 mm on a 15 mm coiling root) and the line search keeps a few per cent of it. After this many
-// iterations in a row damped to at most kCrawl, the explicit relaxation takes over (it snaps in a few
-// hundred sub-steps, while the crawl ran into the iteration cap in 9 % of the steps of a coiling Fig. 3
-// root, spending 80 % of its line searches and Jacobians there, and then relaxed explicitly anyway).
+// Newton crawls towards a snap: the Newton direction of a stiffness near a fold points far off and the
+// line search keeps a few per cent of it. After this many iterations in a row damped to at most kCrawl,
+// the explicit relaxation takes over: it snaps in a few hundred sub-steps, where a crawl would run into
+// the iteration cap and relax explicitly anyway (docs/numerics.md, "Fallback").
 constexpr int kMaxCrawl = 3;
 constexpr double kChordTheta = 0.1;
-// Chains of chord steps on sparse factors (self-contact), each contracting by this much or better:
-// measured on 12 full-resolution coiling roots, 11 % less CPU for the same patterns, lambda, A and theta_tip
-// (to 0.1 degree of 2200); with 0.7 one of them coiled differently. On band factors, which cost about
-// three solves, chains gained nothing and added explicit sub-steps at snaps (26 waving and straight roots).
+// Chains of chord steps on sparse factors (self-contact), each contracting by this much or better: a
+// sparse LU costs many solves, so reusing it pays; a looser bound lets a coil take another path. On band
+// factors, which cost about three solves, chains gain nothing and add explicit sub-steps at snaps.
 constexpr double kSparseChordTheta = 0.5;
 // The frozen part's twists form a tridiagonal chain whose nodes never move: its stiffness changes only
 // with those twists, which a growth step changes by little. Its columns are differenced anew for the
@@ -331,8 +329,8 @@ struct NewtonSolver {
     nw.lu.reset(N, kBand, kBand);
     const double h = 1e-6 * lbar;  // [m], and h / lbar [rad]
     if (opt.closedFormStiffness && stiffnessInClosedForm(env)) {
-      // in closed form (stiffness.hpp), from the strains residual() left in ws: measured on fig2b, the
-      // differenced band below was 47 % of the run
+      // in closed form (stiffness.hpp), from the strains residual() left in ws: the differenced band
+      // below is the dearer (docs/numerics.md, "Jacobian")
       BandSink sink(w, nw.lu, lbar);
       addStiffness(p, env, s, ws.strains, w.b0 / 2, sink);
       nw.matureValid = 0;  // the differenced chain is not kept meanwhile
@@ -403,8 +401,8 @@ struct NewtonSolver {
   // the eigenvalue of the symmetric stiffness nearest zero, from the LDL^T factors of the last
   // factorizeSymmetric(), and its vector into nw.mode (unit length; it starts from what nw.mode holds):
   // Lanczos on the inverse, whose extreme Ritz value converges where inverse iteration crawls through
-  // a coil's cluster of soft modes (measured: 8-13 solves a step for inverse iteration to settle
-  // to 1e-8, against kMaxLanczos at most here). Full reorthogonalisation: the basis is short.
+  // a coil's cluster of soft modes (docs/numerics.md, "Stability"). Full reorthogonalisation: the basis
+  // is short.
   double nearestEigenvalue() {
     const int N = w.dofs();
     using SmallVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxLanczos, 1>;
@@ -494,7 +492,7 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
   NewtonSolver ns{p, env, opt, s, ws, nw, windowOf(env, s, firstFreeNode)};
   ns.lbar = s.restLength() / n;
   // the sparse pattern and pivots carry over while the unknowns stay as many (a checkpoint holds them:
-  // same bytes on resume); measured on a coiling root: 1653 -> 359 symbolic analyses and full LUs
+  // same bytes on resume): a coiling root's relaxations then refactorise instead of analysing anew
   nw.sparse.beginRelaxation(ns.w.dofs());
   // the explicit solver's tolerances (relax.hpp: equilibriumTolerance), over the window's nodes
   const EquilibriumTolerance tol = equilibriumTolerance(p, env, opt, s, firstFreeNode);
@@ -539,7 +537,7 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
     // is judged only from a Jacobian of this step: the symmetric part of the last fresh one (the last
     // iterate's, standing in for the converged state's, as Newton's last step is below the equilibrium
     // tolerance), or one of the converged state. (Reusing one factorisation over all iterations,
-    // simplified Newton, misjudged stability after large steps: measured on the Euler test.)
+    // simplified Newton, misjudges stability after large steps: the Euler test, docs/numerics.md.)
     const bool chordStep = chordNext;
     const bool stale = (res.iterations == 1 && reuse) || chordStep;
     if (!stale) {
@@ -572,7 +570,7 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
     // simplified Newton correction there, |K^-1 F(u + a delta)|, is smaller than |delta| by (1 - a/4).
     // This measures the residual in the solver's own metric; a plain |F|^2 test rejects good steps,
     // because a bending step of a stiff-in-stretch rod leaves second-order stretch forces that dwarf
-    // the bending loads (measured: the full step of a cantilever raised |F| 100-fold, yet was exact).
+    // the bending loads (a cantilever's exact full step raises |F| by orders of magnitude).
     double norm0 = 0;
     for (int i = 0; i < N; ++i) norm0 += nw.delta[static_cast<size_t>(i)] * nw.delta[static_cast<size_t>(i)];
     norm0 = std::sqrt(norm0);

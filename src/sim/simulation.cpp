@@ -171,10 +171,8 @@ int Simulation::windowStart() {
   int first = 0;
   while (first < s_.elements() - 2 && s_.S[first] < from) ++first;
   // and back to the oldest part that the window's part of a coil touches (or nearly): frozen turns
-  // would not yield to the new ones (measured on the quick figure's coils: 10 % fewer turns with them
-  // frozen). Turns that only older turns touch stay frozen: reaching back to the oldest touch of all,
-  // two of the dearest coils of the full figure set (alpha 60, beta 1; alpha 90, beta 1 apical) took 8-9 %
-  // longer for the same pattern, lambda and A to 0.1 %, and 12 other coils the same time and results
+  // would not yield to the new ones. Turns that only older turns touch stay frozen: reaching back to the
+  // oldest touch of all costs time for the same results (docs/numerics.md, "Active window")
   // other roots on a plate: back to the oldest element near one (the roots it presses on yield, as the
   // turns of a coil do)
   for (const auto& pr : ws_.contact.neighbours.pairs) first = std::min(first, pr[0]);
@@ -197,8 +195,8 @@ RelaxResult Simulation::newtonOrExplain(int step) {
   if (!r.stalled) return r;
   // no acceptable Newton step from here (far from equilibrium, indefinite): relax explicitly, then let
   // Newton confirm the equilibrium and check its stability. Where Newton wandered off (a node moved
-  // more than the solver's length scale: measured 30 mm in one coiling snap, after which the explicit
-  // relaxation slid away), the explicit relaxation starts again from where Newton started.
+  // more than the solver's length scale, as in a coiling snap, after which the explicit relaxation
+  // slides away), the explicit relaxation starts again from where Newton started.
   const double Lref = m_.solver.lengthScale > 0.0 ? m_.solver.lengthScale : s_.restLength();
   auto restart = [&](const RelaxResult& failed) {
     if (failed.crawled || (s_.x - start_.x).colwise().norm().maxCoeff() > Lref) s_ = start_;
@@ -206,10 +204,9 @@ RelaxResult Simulation::newtonOrExplain(int step) {
   restart(r);
   // The explicit relaxation first moves the window only, the frozen part, twists included, staying
   // where it is: a growth step's snap happens inside the window, and Newton then solves the window and
-  // the frozen twists together (measured on fig2b: the snaps' explicit sub-steps on a 31 mm root cost
-  // 4x less than over the whole rod). Where Newton still finds no equilibrium from there (the snap
-  // reached behind the window: measured on roots of gain beta = 1 at alpha = 20 and 30 degrees), the
-  // whole rod is relaxed explicitly.
+  // the frozen twists together (the window's sub-steps cost a fraction of the whole rod's: docs/numerics.md,
+  // "Fallback"). Where Newton still finds no equilibrium from there (the snap reached behind the window,
+  // as on high-gain roots), the whole rod is relaxed explicitly.
   long its = r.iterations;
   const int window = windowStart();
   RelaxResult d = relaxOrExplain(m_, s_, ws_, step, window);

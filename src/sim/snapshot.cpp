@@ -1,6 +1,7 @@
 #include "rootsim/snapshot.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "rootsim/assert.hpp"
 #include "rootsim/model.hpp"
@@ -116,6 +117,16 @@ Snapshot rootOf(const Snapshot& m, int k) {
   }
   if (m.contactForce.cols() > 0) r.contactForce = m.contactForce.middleCols(first, nn);
   return r;
+}
+
+int nearestSnapshot(const std::vector<double>& timesH, double timeH) {
+  if (timesH.empty()) throw std::invalid_argument("nearestSnapshot: no snapshots");
+  // the first at or after timeH, then the earlier neighbour when it is as near or nearer
+  const auto it = std::lower_bound(timesH.begin(), timesH.end(), timeH);
+  if (it == timesH.end()) return static_cast<int>(timesH.size()) - 1;
+  const int i = static_cast<int>(it - timesH.begin());
+  if (i > 0 && timeH - timesH[static_cast<std::size_t>(i - 1)] <= *it - timeH) return i - 1;
+  return i;
 }
 
 }  // namespace rootsim

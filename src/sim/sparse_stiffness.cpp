@@ -42,8 +42,7 @@ struct SparseStiffness::Impl {
   // pattern, and with it the symbolic analysis, stays the same over the iterations of one relaxation.
   // Band places only where the band held a nonzero: the rod's stiffness leaves about a quarter of its
   // band structurally zero (a node's row reaches two blocks each side, an element's three), and with
-  // those zeros in the pattern KLU's refactorisation of a coil's Jacobian took twice the time (measured:
-  // 0.81 against 0.40 ms at 1055 unknowns; 2.8 against 1.3 Mflop)
+  // those zeros in the pattern KLU's refactorisation of a coil's Jacobian does about twice the flops
   std::vector<std::pair<int, int>> structural;  // (col, row), sorted
   int structuralSize = -1;
 

@@ -246,40 +246,31 @@ std::vector<int> matchRoots(const TraceFile& earlier, const TraceFile& later) {
 
 namespace {
 
-// growth rows of a 2D+t file: each root at every observation it had reached
-std::vector<GrowthRow> timeLapseRows(const TraceFile& tf) {
-  std::vector<GrowthRow> rows;
-  for (const TracedRoot& r : tf.roots)
-    for (std::size_t k = 0; k < tf.observationTimesH.size(); ++k) {
-      const Eigen::Matrix3Xd p = rootAtObservation(r, static_cast<double>(k));
-      if (!hasLength(p)) continue;
-      GrowthRow g;
-      g.file = tf.file;
-      g.plant = r.plant;
-      g.root = r.name;
-      g.track = fileName(tf.file) + ":" + r.key;
-      g.timeH = tf.observationTimesH[k];
-      g.lengthMm = polylineLength(p);
-      g.tipLateralMm = p(0, p.cols() - 1);
-      g.tipDownhillMm = p(1, p.cols() - 1);
-      g.thetaTipDeg = tipAngleDeg(p, tf.pixelMm);
-      rows.push_back(g);
-    }
-  return rows;
-}
-
-GrowthRow growthRowOf(const TraceFile& tf, const TracedRoot& r, double timeH, const std::string& track) {
+// a root's row of growth.csv at timeH: p its polyline then (plate coordinates [mm])
+GrowthRow growthRowOf(const TraceFile& tf, const TracedRoot& r, const Eigen::Matrix3Xd& p, double timeH,
+                      const std::string& track) {
   GrowthRow g;
   g.file = tf.file;
   g.plant = r.plant;
   g.root = r.name;
   g.track = track;
   g.timeH = timeH;
-  g.lengthMm = polylineLength(r.plateMm);
-  g.tipLateralMm = r.plateMm(0, r.plateMm.cols() - 1);
-  g.tipDownhillMm = r.plateMm(1, r.plateMm.cols() - 1);
-  g.thetaTipDeg = tipAngleDeg(r.plateMm, tf.pixelMm);
+  g.lengthMm = polylineLength(p);
+  g.tipLateralMm = p(0, p.cols() - 1);
+  g.tipDownhillMm = p(1, p.cols() - 1);
+  g.thetaTipDeg = tipAngleDeg(p, tf.pixelMm);
   return g;
+}
+
+// growth rows of a 2D+t file: each root at every observation it had reached
+std::vector<GrowthRow> timeLapseRows(const TraceFile& tf) {
+  std::vector<GrowthRow> rows;
+  for (const TracedRoot& r : tf.roots)
+    for (std::size_t k = 0; k < tf.observationTimesH.size(); ++k) {
+      const Eigen::Matrix3Xd p = rootAtObservation(r, static_cast<double>(k));
+      if (hasLength(p)) rows.push_back(growthRowOf(tf, r, p, tf.observationTimesH[k], fileName(tf.file) + ":" + r.key));
+    }
+  return rows;
 }
 
 }  // namespace
@@ -350,7 +341,7 @@ Analysis analyzeAll(const AnalyzeOptions& o) {
         row.growthRateMmPerH = (row.lengthMm - out.roots[firstRow[prev] + j].lengthMm) / (fileTimes[fi] - fileTimes[prev]);
       }
       tracks[{fi, i}] = track;
-      series.push_back(growthRowOf(tf, r, fileTimes[fi], track));
+      series.push_back(growthRowOf(tf, r, r.plateMm, fileTimes[fi], track));
     }
   }
   out.growth.insert(out.growth.end(), series.begin(), series.end());

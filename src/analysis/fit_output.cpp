@@ -15,7 +15,7 @@
 #include "rootsim/signature.hpp"
 #include "rootsim/trajectory.hpp"
 #include "rootsim/write_rule.hpp"
-#include "run_files.hpp"
+#include "rootsim/run_snapshots.hpp"
 
 namespace fs = std::filesystem;
 

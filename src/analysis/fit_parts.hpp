@@ -1,5 +1,5 @@
 #pragma once
-// The parts of `rootsim fit` after its search (src/app/fit_trace.cpp runs the design and the trust
+// The parts of `rootsim fit` after its search (src/analysis/fit_trace.cpp runs the design and the trust
 // regions): the answer and its goodness (fit_goodness.cpp), and the fit folder's files (fit_output.cpp).
 #include <filesystem>
 #include <functional>

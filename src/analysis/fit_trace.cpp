@@ -33,7 +33,7 @@
 #include "rootsim/units.hpp"
 #include "rootsim/write_rule.hpp"
 #include "fit_parts.hpp"
-#include "run_files.hpp"
+#include "rootsim/run_snapshots.hpp"
 
 namespace fs = std::filesystem;
 

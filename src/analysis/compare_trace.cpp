@@ -24,7 +24,7 @@
 #include "rootsim/trace_match.hpp"
 #include "rootsim/units.hpp"
 #include "rootsim/write_rule.hpp"
-#include "run_files.hpp"
+#include "rootsim/run_snapshots.hpp"
 
 namespace fs = std::filesystem;
 

@@ -1053,7 +1053,8 @@ class Plate:
     plate_timeseries.csv's columns (``step``, ``time_h``, ``touching_pairs`` element pairs of two roots in
     contact, ``min_gap_over_contact`` the closest approach of two roots' centrelines over Ra + Rb, NaN
     when no two roots are within reach, ``sweeps``) with ``roots`` (how many there are now) and
-    ``emerged`` (the names of the laterals that emerged in that step).
+    ``emerged`` (the names of the laterals that emerged in that step; in ``step(n)``'s row, in any of
+    its n steps).
 
     ``roots``: a list of ``PlateRoot``, the seedlings in the scene's order, then the laterals in the order
     they emerged (the list grows as they do); ``root(name)`` one of them.

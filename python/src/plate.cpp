@@ -35,7 +35,8 @@ class PyPlate {
     emergedStep_.assign(static_cast<size_t>(plate_->size()), 0);
   }
   // n growth steps of every root (as `rootsim run` of the scene: its growth.steps at most); between steps
-  // the GIL is taken to poll Ctrl-C. Returns the plate's row of the last step.
+  // the GIL is taken to poll Ctrl-C. Returns the plate's row of the last step, its "emerged" the laterals
+  // that emerged in any of the n steps.
   py::dict step(long long n) {
     CallMutex::Lock lock = mu_.acquire("Plate");
     if (n < 1) throw py::value_error("step(n): n must be a positive integer (got " + std::to_string(n) + ")");
@@ -46,15 +47,24 @@ class PyPlate {
       throw py::value_error("step(" + std::to_string(n) + "): only " + std::to_string(std::max(left, 0LL)) +
                             " growth steps left of growth.steps = " + std::to_string(g.steps) + " (at step " +
                             std::to_string(plate_->step()) + "; build a Plate with a larger growth.steps)");
+    const size_t before = emergedStep_.size();
     for (long long k = 0; k < n; ++k) {
-      {
+      try {
         py::gil_scoped_release nogil;
         plate_->growthStep();
+      } catch (...) {
+        // a step that failed may have opened laterals before it did: they are the plate's roots
+        emergedStep_.resize(static_cast<size_t>(plate_->size()), plate_->step() + 1);
+        throw;
       }
       emergedStep_.resize(static_cast<size_t>(plate_->size()), plate_->step());
       if (PyErr_CheckSignals() != 0) throw py::error_already_set();
     }
-    return plateRecord();
+    py::dict d = plateRecord();
+    std::vector<std::string> emerged;
+    for (size_t r = before; r < emergedStep_.size(); ++r) emerged.push_back(plate_->seedling(static_cast<int>(r)).name);
+    d["emerged"] = emerged;
+    return d;
   }
   py::dict record() {
     CallMutex::Lock lock = mu_.acquire("Plate");

@@ -161,6 +161,8 @@ def test_run_steps_what_is_left_and_steps_the_same(cli_run):
     a.step(7)
     last = a.run()
     assert last["step"] == 30 and a.steps_left == 0 and a.run()["step"] == 30
+    # the laterals of step 20, in the row of the 23 steps that ran it; record() has the last step's alone
+    assert last["emerged"] == ["left.1", "right.1"] and a.record()["emerged"] == []
     b = rootsim.Plate(cli_run / "two.toml", set={"growth.steps": 30})
     b.step(30)
     assert [r.name for r in a.roots] == [r.name for r in b.roots] == ["left", "right", "left.1", "right.1"]

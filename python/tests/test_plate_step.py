@@ -175,6 +175,10 @@ def test_a_scene_it_cannot_step_is_refused(cli_run):
     with pytest.raises(rootsim.SceneError, match=r"fig2a_alpha40.toml\): the scene has no \[\[seedling\]\] tables"):
         rootsim.Plate(SOURCE / "scenes/fig2a_alpha40.toml")
     assert isinstance(rootsim.Simulation(SOURCE / "scenes/fig2a_alpha40.toml"), rootsim.Simulation)
+    # the one-root stepper under Simulation never takes a plate's first root for the plate
+    from rootsim import _rootsim
+    with pytest.raises(rootsim.SceneError, match=r"a plate of 2 seedling\(s\) with laterals; .*rootsim.Plate"):
+        _rootsim._Simulation(rootsim.Scene.load(cli_run / "two.toml")._scene)
     # no growth: nothing to step
     p = rootsim.Plate(cli_run / "two.toml", set={"growth.enabled": False})
     with pytest.raises(rootsim.SceneError, match="growth.enabled = false: nothing to step"):

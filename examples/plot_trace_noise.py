@@ -2,8 +2,9 @@
 """The traced roots of a `rootsim analyze` folder drawn as analyze measured them (docs/experiments.md, "Noise").
 
 For each chosen root: the traced points (grey), the curve analyze measured (blue: the trace smoothed at
-its `smoothing_mm`), its mature part's counted peaks (red), and the root's analysis.csv verdict in the
-title. The lateral axis is stretched (its scale is printed) so excursions of a few pixels show.
+its `smoothing_mm`), its mature part's counted peaks (red: excursions above the tracing limit
+`peak_threshold_mm`, one root diameter and the smoothed curve's noise), and the root's analysis.csv
+verdict in the title. The lateral axis is stretched (its scale is printed) so excursions of a few pixels show.
 
     rootsim analyze plate.rsml --px-per-mm 24 --out an
     python3 examples/plot_trace_noise.py an noise.png --order 0
@@ -58,7 +59,8 @@ def main():
         noise = float(r["noise_mm"]) if r["noise_mm"] else math.nan
         amp = f"{float(r['amplitude_mm']):.3g}" if r["amplitude_mm"] else "–"
         ax.set_title(f"{r['plant']}/{r['root']}: {r['pattern']}\nσ {noise * 1000:.0f} µm, "
-                     f"smoothing {float(r['smoothing_mm']):.2f} mm\n{r['lateral_peaks']} peaks, A {amp} mm",
+                     f"smoothing {float(r['smoothing_mm']):.2f} mm\nlimit {float(r['peak_threshold_mm']):.3g} mm: "
+                     f"{r['lateral_peaks']} peaks, A {amp} mm",
                      fontsize=8)
         ax.set_xlabel("lateral [mm]", fontsize=8)
         ax.tick_params(labelsize=7)

@@ -9,8 +9,10 @@
 #include <random>
 
 #include "rootsim/response_surface.hpp"
+#include "rootsim/traits.hpp"
 #include "rootsim/trace_match.hpp"
 #include "rootsim/units.hpp"
+#include "tracer_model.hpp"
 
 using namespace rootsim;
 
@@ -127,6 +129,24 @@ TEST_CASE("trace match: the shape's points carry their own error and the seed's"
   const double chi2 = d.dot(sh.cov.ldlt().solve(d));
   CHECK(chi2 < 1.0);
   CHECK(chi2 > 0.7);
+}
+
+TEST_CASE("trace match: a traced straight root's placement drift gives compare and fit no waves to match") {
+  // a straight root traced with the centreline drifting within the root's width (tests/tracer_model.hpp):
+  // the trace's traits (traceTraits, what compare and fit measure a trace with) have no peaks, so lambda
+  // and A are not observables and the skew is the base-to-tip one; a simulated wave is not pulled to it
+  Eigen::Matrix3Xd truth(3, 2001);
+  for (int i = 0; i <= 2000; ++i) truth.col(i) = Eigen::Vector3d(0, 0.01 * i, 0);
+  for (unsigned long long seed = 1; seed <= 5; ++seed) {
+    test::TracerModel tr;
+    tr.seed = seed;
+    const RootTraits t = traceTraits(test::traceLikeTracer(truth, tr), 0.05, 1.0, 0.1, AnalysisParams{});
+    CAPTURE(seed);
+    CHECK(t.shape.peaks < 2);
+    const RootTraits sim = rootTraits(truth, 0.05, 1.0, 0.1, AnalysisParams{});
+    for (const Observation& o : observeBoth(t, sim, 0.05))
+      if (o.name == "wavelength_mm" || o.name == "amplitude_mm") CHECK_FALSE(o.used);
+  }
 }
 
 TEST_CASE("response surface: a quadratic is recovered, known noise is measured, a linear model's covariance is exact") {

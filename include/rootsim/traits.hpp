@@ -53,12 +53,23 @@ TraceNoise estimateTraceNoise(const Eigen::Matrix3Xd& p);
 struct TraceSmoothing {
   Eigen::Matrix3Xd points;  // the smoothed curve [unit of p]
   double halfWidth = 0;     // b, where the weights reach 0 [unit of p] (0: not smoothed)
+  double leverage = 1;      // the mean hat-matrix diagonal tr H / n of the last pass (1: not smoothed): a
+                            // smoothed value's white noise is at most sigma sqrt(H_ii) (LOESS with weights
+                            // <= 1: sum_j L_ij^2 <= L_ii)
 };
 TraceSmoothing smoothTrace(const Eigen::Matrix3Xd& p, double ds);
 
-// the noise threshold of a traced root's peaks, in sigma: an excursion between neighbouring opposite
-// peaks of the smoothed curve counts only above kNoisePeakK * sigma (docs/experiments.md, "Noise")
+// the excursion a traced root's peak needs (docs/experiments.md, "Noise: a phenotype or the tracing"): the
+// tracing limit. A tracer's error has two parts. One is white: jitter and rounding, sigma per point, a
+// smoothed value's sigma_s = sigma sqrt(tr H / n) (TraceSmoothing::leverage), so an excursion between two
+// smoothed values sqrt(2) sigma_s, passed at kNoisePeakK of it rarely. The other is correlated over
+// millimetres and survives any smoothing that keeps a wave: the tracer puts the centreline anywhere
+// across the root's image, it drifts there and snaps to the edges, so two placements differ by up to one
+// root diameter 2R. An excursion within 2R + kNoisePeakK sqrt(2) sigma_s can be the tracing alone; a peak
+// counts only beyond it. sigma_s unknown (NaN: too few points): 2R alone.
 inline constexpr double kNoisePeakK = 3.0;
+inline constexpr double kPlacementDiameters = 1.0;  // the placement's range, in root diameters
+double tracingLimitMm(double smoothedSigmaMm, double radiusMm);
 
 struct RootTraits {
   double lengthMm = 0;          // arc length of the trace [mm]
@@ -72,8 +83,8 @@ struct RootTraits {
   double noiseMm = std::numeric_limits<double>::quiet_NaN();  // the points' position noise sigma
                                 // (estimateTraceNoise) [mm]; NaN: fewer than 9 distinct points
   double smoothingMm = 0;       // half-width of the smoothing windows [mm]; 0: measured as it is
-  double noiseThresholdMm = 0;  // kNoisePeakK * sigma, the excursion a peak needs beyond the hysteresis of
-                                // R [mm]; 0: no noise threshold (a run, or no estimate)
+  double noiseThresholdMm = 0;  // a trace's tracing limit (tracingLimitMm), the excursion a peak needs
+                                // [mm]; 0: none (a run's nodes: the hysteresis of R alone)
   // the field's traits on the measured curve (smoothed for a trace): Grabov et al. 2005
   double curveLengthMm = 0;     // arc length of the measured curve [mm]
   double straightness = 0;      // its chord / its length (1: straight)
@@ -95,8 +106,11 @@ RootTraits rootTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double exclu
                       const AnalysisParams& set);
 // the same for a traced root (docs/experiments.md, "Noise"): its noise sigma estimated, the shape analysis
 // run on the smoothed curve (smoothTrace of the points less the noise's outliers, evaluated every dsMm, or at the trace's own points for dsMm <= 0)
-// with the peaks' hysteresis raised to kNoisePeakK * sigma. The length, chord, tortuosity and base-to-tip
-// skew stay the trace's own. Throws std::invalid_argument for fewer than two distinct points.
+// with the peaks' hysteresis raised to the tracing limit (tracingLimitMm of the smoothed curve's sigma and
+// radiusMm); peaks beyond it are a wave only as a wave train (3 successive half-waves within 2x of each
+// other), else the root is measured as not waving and wavesNote says which rule it failed. The length,
+// chord, tortuosity and base-to-tip skew stay the trace's own. Throws std::invalid_argument for fewer than
+// two distinct points.
 RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excludeTipMm, double radiusMm,
                        const AnalysisParams& set);
 

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "rootsim/units.hpp"
@@ -119,6 +120,59 @@ Eigen::Vector3d loessAt(const Eigen::Matrix3Xd& q, const std::vector<double>& s,
   return (Minv.row(0) * R).transpose();
 }
 
+// the plane the plate coordinates are put on for the runs' own analysis: any tilt gives the same planar
+// angles, so a vertical plate
+Plane platePlane() {
+  Plane plane;
+  plane.alpha = 90.0 * units::deg;
+  return plane;
+}
+const PlateFrame& plateFrame() {
+  static const PlateFrame frame = PlateFrame::tilted(90.0 * units::deg);
+  return frame;
+}
+
+// the runs' shape analysis of the curve's mature part (columns 0 .. last) with a hysteresis of at least
+// swingMm
+ShapeAnalysis shapeOf(const Eigen::Matrix3Xd& curve, int last, double radiusMm, const AnalysisParams& set, double swingMm) {
+  return analyseCentreline(plateMmToLab(curve, plateFrame()), last, platePlane(), set, radiusMm * units::mm, swingMm * units::mm);
+}
+
+// a wave train (docs/experiments.md, "Noise"): a tilted plate's wave repeats, so its peaks are called a
+// wave only when at least kTrainHalfWaves successive half-waves (downhill distances between neighbouring
+// opposite peaks) lie within kTrainFactor of each other. Two half-waves merged into one where an excursion
+// fell under the limit are 3 times as long as their neighbours; a meander's spacings are anything
+struct WaveTrain {
+  bool regular = false;
+  std::string spacings;  // the half-wave spacings [mm] and their spread, for the note
+};
+constexpr int kTrainHalfWaves = 3;
+constexpr double kTrainFactor = 2.0;
+WaveTrain waveTrainOf(const Eigen::Matrix3Xd& curve, const std::vector<int>& peaks) {
+  WaveTrain w;
+  std::vector<double> d;
+  for (std::size_t k = 1; k < peaks.size(); ++k) d.push_back(std::abs(curve(1, peaks[k]) - curve(1, peaks[k - 1])));
+  const int n = static_cast<int>(d.size());
+  for (int a = 0; a + kTrainHalfWaves <= n && !w.regular; ++a) {
+    const auto [lo, hi] = std::minmax_element(d.begin() + a, d.begin() + a + kTrainHalfWaves);
+    w.regular = *hi <= kTrainFactor * *lo;
+  }
+  char b[120];
+  if (n < kTrainHalfWaves) {
+    std::string list;
+    for (double x : d) {
+      std::snprintf(b, sizeof b, "%s%.3g", list.empty() ? "" : " and ", x);
+      list += b;
+    }
+    w.spacings = list + " mm (a wave needs " + std::to_string(kTrainHalfWaves) + " successive within " + std::to_string(static_cast<int>(kTrainFactor)) + "x)";
+  } else {
+    const auto [lo, hi] = std::minmax_element(d.begin(), d.end());
+    std::snprintf(b, sizeof b, "%.3g to %.3g mm (no %d successive within %gx)", *lo, *hi, kTrainHalfWaves, kTrainFactor);
+    w.spacings = b;
+  }
+  return w;
+}
+
 // the measurement shared by runs and traces: the raw trace q (distinct points) for length, chord,
 // tortuosity and base-to-tip skew; the curve for the shape analysis and the field's traits
 RootTraits measure(const Eigen::Matrix3Xd& q, const Eigen::Matrix3Xd& curve, double dsMm, double excludeTipMm,
@@ -130,12 +184,9 @@ RootTraits measure(const Eigen::Matrix3Xd& q, const Eigen::Matrix3Xd& curve, dou
   const Eigen::Vector2d c2(chord.x(), chord.y());
   t.chordMm = c2.norm();
   t.tortuosity = t.chordMm > 0.0 ? t.lengthMm / t.chordMm : std::numeric_limits<double>::infinity();
-  // the skew angle by the runs' own planarAngle, on a plate put into the lab frame (any tilt gives the same
-  // angle: a vertical plate)
-  const PlateFrame frame = PlateFrame::tilted(90.0 * units::deg);
-  Plane plane;
-  plane.alpha = 90.0 * units::deg;
-  t.skewDeg = planarAngle(plane, plateMmToLab(chord, frame).col(0)) / units::deg;
+  // the skew angle by the runs' own planarAngle
+  const Plane plane = platePlane();
+  t.skewDeg = planarAngle(plane, plateMmToLab(chord, plateFrame()).col(0)) / units::deg;
   // the shape analysis on the mature part of the curve
   t.dsMm = dsMm;
   t.curveMm = curve;
@@ -146,7 +197,7 @@ RootTraits measure(const Eigen::Matrix3Xd& q, const Eigen::Matrix3Xd& curve, dou
   while (last + 1 < static_cast<int>(s.size()) && s[static_cast<std::size_t>(last + 1)] <= matureMm + 1e-12 * t.curveLengthMm) ++last;
   t.matureLast = last;
   t.noiseThresholdMm = noiseThresholdMm;
-  t.shape = analyseCentreline(plateMmToLab(curve, frame), last, plane, set, radiusMm * units::mm, noiseThresholdMm * units::mm);
+  t.shape = shapeOf(curve, last, radiusMm, set, noiseThresholdMm);
   // the field's traits (Grabov et al. 2005): the tip's displacement over the curve's length
   const Eigen::Vector3d d = curve.col(curve.cols() - 1) - curve.col(0);
   if (t.curveLengthMm > 0.0) {
@@ -154,15 +205,13 @@ RootTraits measure(const Eigen::Matrix3Xd& q, const Eigen::Matrix3Xd& curve, dou
     t.hgi = d.x() / t.curveLengthMm;
     t.vgi = d.y() / t.curveLengthMm;
   }
-  t.thetaTipDeg = planarAngle(plane, plateMmToLab(curve.col(curve.cols() - 1) - curve.col(curve.cols() - 2), frame).col(0)) / units::deg;
-  // why the waves are not numbers (no commas: a CSV cell)
+  t.thetaTipDeg = planarAngle(plane, plateMmToLab(curve.col(curve.cols() - 1) - curve.col(curve.cols() - 2), plateFrame()).col(0)) / units::deg;
+  // why the waves are not numbers (no commas: a CSV cell); a trace's reasons are traceTraits'
   if (t.shape.peaks < 3) {
     char b[200];
-    const double hysteresisMm = t.shape.hysteresis / units::mm;
-    if (t.shape.peaks < 2 && noiseThresholdMm > 0.0 && noiseThresholdMm >= set.waveMinAmplitude * radiusMm)
-      std::snprintf(b, sizeof b, "below the noise: no lateral excursion above %g sigma = %.3g mm", kNoisePeakK, hysteresisMm);
-    else if (t.shape.peaks < 2)
-      std::snprintf(b, sizeof b, "no lateral excursion above the hysteresis %g R = %.3g mm", set.waveMinAmplitude, hysteresisMm);
+    if (t.shape.peaks < 2)
+      std::snprintf(b, sizeof b, "no lateral excursion above the hysteresis %g R = %.3g mm", set.waveMinAmplitude,
+                    t.shape.hysteresis / units::mm);
     else
       std::snprintf(b, sizeof b, "one excursion (2 peaks): no wavelength");
     t.wavesNote = b;
@@ -270,7 +319,7 @@ namespace {
 // degree of freedom counted 1.4 times, n RSS / (n - 1.4 tr H)^2 (Kim & Gu, J. R. Stat. Soc. B 66, 337,
 // 2004): plain GCV picks near-interpolating windows now and then (on a noisy straight line, 2.5 spacings
 // with tr H / n = 0.7)
-double gcvHalfWidth(const Eigen::Matrix3Xd& q, const std::vector<double>& s, double h) {
+double gcvHalfWidth(const Eigen::Matrix3Xd& q, const std::vector<double>& s, double h, double* leverage = nullptr) {
   static constexpr double kSpacings[] = {2.5, 3, 3.5, 4, 5, 6, 7, 8, 10, 12, 15, 18, 22, 26, 30};
   const int n = static_cast<int>(q.cols());
   double bestGcv = std::numeric_limits<double>::infinity(), best = kSpacings[0] * h;
@@ -290,6 +339,7 @@ double gcvHalfWidth(const Eigen::Matrix3Xd& q, const std::vector<double>& s, dou
     if (gcv < bestGcv) {
       bestGcv = gcv;
       best = b;
+      if (leverage) *leverage = trace / n;
     }
   }
   return best;
@@ -328,7 +378,7 @@ TraceSmoothing smoothTrace(const Eigen::Matrix3Xd& p, double ds) {
   const Eigen::Matrix3Xd z1 = loessCurve(q, s1, gcvHalfWidth(q, s1, h), s1, nullptr);
   std::vector<double> s2 = arcLengths(z1);
   for (std::size_t i = 1; i < s2.size(); ++i) s2[i] = std::max(s2[i], s2[i - 1] + 1e-12 * (1.0 + s2.back()));
-  const double b = gcvHalfWidth(q, s2, h);
+  const double b = gcvHalfWidth(q, s2, h, &out.leverage);
   // the smoothed curve at the query arc lengths
   const double L = s2.back();
   std::vector<double> at;
@@ -342,6 +392,10 @@ TraceSmoothing smoothTrace(const Eigen::Matrix3Xd& p, double ds) {
   out.points = loessCurve(q, s2, b, at, &widths);
   out.halfWidth = b;
   return out;
+}
+
+double tracingLimitMm(double smoothedSigmaMm, double radiusMm) {
+  return kPlacementDiameters * 2.0 * radiusMm + (std::isfinite(smoothedSigmaMm) ? kNoisePeakK * std::sqrt(2.0) * smoothedSigmaMm : 0.0);
 }
 
 RootTraits rootTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excludeTipMm, double radiusMm,
@@ -369,10 +423,49 @@ RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excl
     kept.col(k++) = q.col(i);
   }
   const TraceSmoothing sm = smoothTrace(kept, dsMm);
-  const double threshold = std::isfinite(noise.sigma) ? kNoisePeakK * noise.sigma : 0.0;
-  RootTraits t = measure(q, sm.points, dsMm, excludeTipMm, radiusMm, set, threshold);
+  const double limit = tracingLimitMm(noise.sigma * std::sqrt(sm.leverage), radiusMm);
+  RootTraits t = measure(q, sm.points, dsMm, excludeTipMm, radiusMm, set, limit);
   t.noiseMm = noise.sigma;
   t.smoothingMm = sm.halfWidth;
+  if (t.shape.peaks >= 2) {
+    // peaks above the limit, but a wave only when they repeat as a tilted plate's wave does
+    const WaveTrain train = waveTrainOf(sm.points, t.shape.peakNodes);
+    if (train.regular) return t;
+    ShapeAnalysis none = shapeOf(sm.points, t.matureLast, radiusMm, set, std::numeric_limits<double>::infinity());
+    none.hysteresis = t.shape.hysteresis;
+    char b[320];
+    std::snprintf(b, sizeof b, "not a wave train: %d excursion%s of %.3g mm above the tracing limit %.3g mm with half-wave spacing%s %s",
+                  t.shape.peaks - 1, t.shape.peaks > 2 ? "s" : "", t.shape.amplitude / units::mm, limit, t.shape.peaks > 2 ? "s" : "",
+                  train.spacings.c_str());
+    t.shape = none;
+    t.wavesNote = b;
+    return t;
+  }
+  {
+    // what the curve does under the limit: its excursions above the white noise alone
+    const double noiseSwing = std::isfinite(noise.sigma) ? kNoisePeakK * noise.sigma : 0.0;
+    const ShapeAnalysis under = shapeOf(sm.points, t.matureLast, radiusMm, set, noiseSwing);
+    char b[320];
+    if (under.peaks >= 2) {
+      double top = 0.0;
+      for (std::size_t k = 1; k < under.peakNodes.size(); ++k)
+        top = std::max(top, std::abs(sm.points(0, under.peakNodes[k]) - sm.points(0, under.peakNodes[k - 1])));
+      char why[96];
+      if (std::isfinite(noise.sigma))
+        std::snprintf(why, sizeof why, "one root diameter %.3g mm + %g sqrt(2) sigma_s %.2g mm", 2.0 * kPlacementDiameters * radiusMm, kNoisePeakK,
+                      limit - 2.0 * kPlacementDiameters * radiusMm);
+      else
+        std::snprintf(why, sizeof why, "one root diameter %.3g mm; sigma unknown", 2.0 * kPlacementDiameters * radiusMm);
+      std::snprintf(b, sizeof b, "below the tracing limit %.3g mm (%s): fewer than 2 peaks beyond it; %d excursion%s of %.3g mm (largest %.3g mm) above the noise",
+                    limit, why, under.peaks - 1, under.peaks > 2 ? "s" : "", under.amplitude / units::mm, top);
+    } else if (std::isfinite(noise.sigma) && noiseSwing > set.waveMinAmplitude * radiusMm) {
+      std::snprintf(b, sizeof b, "below the noise: no lateral excursion above %g sigma = %.3g mm", kNoisePeakK, noiseSwing);
+    } else {
+      std::snprintf(b, sizeof b, "no lateral excursion above the hysteresis %g R = %.3g mm", set.waveMinAmplitude,
+                    under.hysteresis / units::mm);
+    }
+    t.wavesNote = b;
+  }
   return t;
 }
 

@@ -3,6 +3,8 @@
 // PDF's text is text, each PNG has drawn content, and the quick runs show the paper's patterns
 #include <doctest/doctest.h>
 
+#include <map>
+
 #include <cairo.h>
 
 #include <array>
@@ -674,4 +676,198 @@ TEST_CASE("same figure, same bytes: PDF (no CreationDate stamped), SVG and PNG s
   CHECK(slurp(a.string() + ".png") == slurp(b.string() + ".png"));
   CHECK(svgWithoutSurfaceIds(slurp(a.string() + ".svg")) == svgWithoutSurfaceIds(slurp(b.string() + ".svg")));
   CHECK(slurp(a.string() + ".pdf").find("/CreationDate") == std::string::npos);
+}
+
+TEST_CASE("figure titles break between phrases and never inside a formula, at 85 and 180 mm") {
+  const std::string title = "Fig. 2A: final shapes on the plate (β = γ = 0.1; pink +d_1, orange −d_1; downhill is down)";
+  const auto chunks = rootsim::titleChunks(title);
+  bool formulaWhole = false;
+  for (const std::string& c : chunks) {
+    INFO(c);
+    for (const char* op : {"=", "/", "+", "−"}) {
+      CHECK(c.rfind(op, 0) != 0);
+      CHECK(c.compare(c.size() - std::min(c.size(), std::string(op).size()), std::string::npos, op) != 0);
+    }
+    formulaWhole = formulaWhole || c.find("β = γ = 0.1;") != std::string::npos;
+    CHECK(c.rfind("2A", 0) != 0);  // "Fig. 2A" stays together
+  }
+  CHECK(formulaWhole);
+  CHECK(chunks.size() >= 6);
+  // a formula with symbols side by side breaks only between its phrases
+  const auto inner = rootsim::titleChunks("sin⟨θ⟩ / tan α over β L_{gz} / R, at 40° (the mean)", true);
+  CHECK(inner.front() == "sin⟨θ⟩ / tan α over β L_{gz} / R,");
+  CHECK(inner.back() == "mean)");
+  // in the PDF: the title's lines at 85 mm; the line that holds β also holds γ and 0.1
+  for (double mm : {85.0, 180.0}) {
+    INFO(mm << " mm");
+    const fs::path base = fs::temp_directory_path() / "rootsim_plot_title_break";
+    rootsim::SaveOptions so;
+    so.widthMm = mm;
+    rootsim::saveFigure(journalPanel(), base.string(), so);
+    const std::string xml = capture("pdftotext -bbox '" + base.string() + ".pdf' - 2>&1");
+    std::map<long, std::string> lines;  // yMin (0.1 pt) -> words
+    for (size_t p = xml.find("<word "); p != std::string::npos; p = xml.find("<word ", p + 1)) {
+      const double y = std::stod(xml.substr(xml.find("yMin=\"", p) + 6));
+      const size_t a = xml.find('>', p) + 1;
+      lines[std::lround(10 * y)] += xml.substr(a, xml.find('<', a) - a) + " ";
+    }
+    bool seen = false;
+    for (const auto& [y, text] : lines)
+      if (text.find("β") != std::string::npos && text.find("0.1;") != std::string::npos) seen = true;
+    CHECK(seen);
+    for (const auto& [y, text] : lines) {
+      INFO(text);
+      CHECK(text.rfind("= ", 0) != 0);
+      CHECK(text.find(" = \n") == std::string::npos);
+      CHECK(!(text.size() >= 3 && text.compare(text.size() - 3, 3, " = ") == 0));
+    }
+  }
+}
+
+TEST_CASE("at 85 and 180 mm no two words of a panel overlap (pdftotext -bbox)") {
+  rootsim::Figure plot;
+  plot.width = 800;
+  plot.height = 620;
+  rootsim::Axes pa;
+  pa.title = "sin⟨θ⟩ / tan α over β L_{gz} / R";
+  pa.xlabel = "effective gravitropic gain βL_{gz}/R";
+  pa.ylabel = "θ^{tip} [deg]";
+  for (int k = 0; k < 3; ++k) {
+    rootsim::Series s;
+    s.x = {0, 1, 2, 3};
+    s.y = {0.0 + k, 1.0 + k, 0.5 + k, 1.5 + k};
+    s.label = "E_{b} (zone " + std::to_string(k) + ")";
+    pa.series.push_back(s);
+  }
+  plot.axes.push_back(pa);
+  for (const auto& [name, fig] : {std::pair{"rows", journalPanel()}, std::pair{"plot", plot}})
+    for (double mm : {85.0, 180.0}) {
+      INFO(name << " at " << mm << " mm");
+      const fs::path base = fs::temp_directory_path() / ("rootsim_plot_overlap_" + std::string(name));
+      rootsim::SaveOptions so;
+      so.widthMm = mm;
+      rootsim::saveFigure(fig, base.string(), so);
+      const std::string xml = capture("pdftotext -bbox '" + base.string() + ".pdf' - 2>&1");
+      struct Box {
+        std::string w;
+        double x0, y0, x1, y1;
+      };
+      std::vector<Box> boxes;
+      for (size_t p = xml.find("<word "); p != std::string::npos; p = xml.find("<word ", p + 1)) {
+        auto attr = [&](const std::string& k) { return std::stod(xml.substr(xml.find(k + "=\"", p) + k.size() + 2)); };
+        const size_t a = xml.find('>', p) + 1;
+        boxes.push_back({xml.substr(a, xml.find('<', a) - a), attr("xMin"), attr("yMin"), attr("xMax"), attr("yMax")});
+      }
+      CHECK(boxes.size() > 10);
+      int overlaps = 0;
+      for (size_t i = 0; i < boxes.size(); ++i)
+        for (size_t j = i + 1; j < boxes.size(); ++j) {
+          const Box &a = boxes[i], &b = boxes[j];
+          // a subscript and a superscript stacked at one x (κ_f^0) share their column by design
+          auto chars = [](const std::string& w) {
+            size_t n = 0;
+            for (char ch : w) n += (static_cast<unsigned char>(ch) & 0xC0) != 0x80;
+            return n;
+          };
+          if (chars(a.w) <= 2 && chars(b.w) <= 2 && std::abs(a.x0 - b.x0) < 0.05) continue;
+          // the boxes' overlap, less 0.3 pt (a script's box reaches into its base's)
+          const double ox = std::min(a.x1, b.x1) - std::max(a.x0, b.x0), oy = std::min(a.y1, b.y1) - std::max(a.y0, b.y0);
+          if (ox > 0.3 && oy > 0.3) {
+            INFO(a.w << " [" << a.x0 << ", " << a.y0 << "] and " << b.w << " [" << b.x0 << ", " << b.y0 << "]");
+            ++overlaps;
+            CHECK(false);
+          }
+        }
+      CHECK(overlaps == 0);
+    }
+}
+
+TEST_CASE("a legend leaves the corner its curve runs through") {
+  // a curve from the lower left corner to the upper right one: the legend asked for "ne" goes to a
+  // corner the curve does not cross (upper left or lower right)
+  rootsim::Figure f;
+  f.width = 600;
+  f.height = 450;
+  rootsim::Axes a;
+  a.xlabel = "x";
+  a.ylabel = "y";
+  rootsim::Series s;
+  for (int k = 0; k <= 50; ++k) s.x.push_back(k / 50.0), s.y.push_back(k / 50.0);
+  s.label = "diagonal";
+  a.series.push_back(s);
+  a.legendPos = "ne";
+  f.axes.push_back(a);
+  const fs::path base = fs::temp_directory_path() / "rootsim_plot_legend_off";
+  rootsim::saveFigure(f, base.string(), rootsim::SaveOptions{});
+  const std::string xml = capture("pdftotext -bbox '" + base.string() + ".pdf' - 2>&1");
+  const auto page = pageSizePt(base.string() + ".pdf");
+  const size_t p = xml.find(">diagonal<");
+  REQUIRE(p != std::string::npos);
+  const size_t w = xml.rfind("<word ", p);
+  auto attr = [&](const std::string& k) { return std::stod(xml.substr(xml.find(k + "=\"", w) + k.size() + 2)); };
+  const double cx = 0.5 * (attr("xMin") + attr("xMax")) / page[0], cy = 0.5 * (attr("yMin") + attr("yMax")) / page[1];
+  INFO("legend label at " << cx << ", " << cy << " of the page (y down)");
+  // upper left (x small, y small) or lower right (x large, y large): not on the diagonal's corners
+  CHECK(((cx < 0.5 && cy < 0.5) || (cx > 0.5 && cy > 0.5)));
+}
+
+TEST_CASE("a note placed on the frame's edge is drawn inside the frame, clear of its line") {
+  // a note at the bottom edge (y = ymin) above the x tick label 0: its box ends well above that label
+  rootsim::Figure f;
+  f.width = 600;
+  f.height = 450;
+  rootsim::Axes a;
+  a.autoX = a.autoY = false;
+  a.xmin = -1, a.xmax = 1, a.ymin = 0, a.ymax = 1;
+  a.notes.push_back({{0.0, 0.0}, "coiling"});
+  f.axes.push_back(a);
+  const fs::path base = fs::temp_directory_path() / "rootsim_plot_note_inside";
+  rootsim::saveFigure(f, base.string(), rootsim::SaveOptions{});
+  const std::string xml = capture("pdftotext -bbox '" + base.string() + ".pdf' - 2>&1");
+  std::array<double, 2> note{-1, -1};
+  double tickTop = -1;  // the lowest "0" on the page: the x tick label (the y axis' 0 sits beside the frame)
+  for (size_t p = xml.find("<word "); p != std::string::npos; p = xml.find("<word ", p + 1)) {
+    auto attr = [&](const std::string& k) { return std::stod(xml.substr(xml.find(k + "=\"", p) + k.size() + 2)); };
+    const size_t at = xml.find('>', p) + 1;
+    const std::string w = xml.substr(at, xml.find('<', at) - at);
+    if (w == "coiling") note = {attr("yMin"), attr("yMax")};
+    if (w == "0") tickTop = std::max(tickTop, attr("yMin"));
+  }
+  REQUIRE(note[0] > 0);
+  REQUIRE(tickTop > 0);
+  INFO("note " << note[0] << " .. " << note[1] << " pt, tick label from " << tickTop << " pt");
+  // centred on the frame's line, the note's lower half would reach within a point of the tick label
+  CHECK(tickTop - note[1] > 0.5 * (note[1] - note[0]));
+}
+
+TEST_CASE("a row of root tiles at 85 mm shares one x label when equal labels would crowd each other") {
+  for (double mm : {85.0, 180.0}) {
+    INFO(mm << " mm");
+    const fs::path base = fs::temp_directory_path() / "rootsim_plot_row_xlabel";
+    rootsim::SaveOptions so;
+    so.widthMm = mm;
+    rootsim::saveFigure(journalPanel(), base.string(), so);
+    const std::string xml = capture("pdftotext -bbox '" + base.string() + ".pdf' - 2>&1");
+    // each x label's "lateral" and "[mm]" boxes, by line
+    std::map<long, std::vector<std::array<double, 2>>> labels;  // yMin -> [xMin of "lateral", xMax of its "[mm]"]
+    for (size_t p = xml.find("<word "); p != std::string::npos; p = xml.find("<word ", p + 1)) {
+      auto attr = [&](const std::string& k) { return std::stod(xml.substr(xml.find(k + "=\"", p) + k.size() + 2)); };
+      const size_t at = xml.find('>', p) + 1;
+      const std::string w = xml.substr(at, xml.find('<', at) - at);
+      const long y = std::lround(attr("yMin"));
+      if (w == "lateral") labels[y].push_back({attr("xMin"), attr("xMax")});
+      if (w == "[mm]" && labels.count(y) && !labels[y].empty()) labels[y].back()[1] = attr("xMax");
+    }
+    REQUIRE(!labels.empty());
+    int count = 0;
+    for (auto& [y, row] : labels) {
+      std::sort(row.begin(), row.end());
+      count += static_cast<int>(row.size());
+      for (size_t k = 1; k < row.size(); ++k) {
+        INFO("labels at " << row[k - 1][1] << " and " << row[k][0] << " pt");
+        CHECK(row[k][0] - row[k - 1][1] >= 7.0);  // at least an em of the 7 pt labels apart
+      }
+    }
+    if (mm == 85.0) CHECK(count < 6);  // six tiles, fewer labels: a row's one
+  }
 }

@@ -50,8 +50,22 @@ std::array<float, 3> viridis(double t);
 // between its published 33 control points; lightness symmetric about the middle; t clamped; sRGB 0..1
 std::array<float, 3> coolWarm(double t);
 
-// the colour of field value v of f over range: coolWarm for a signed field (0 -> t = 0.5 when the range
-// is symmetric), viridis otherwise; range must be increasing
+// the diverging map of the signed fields, built in CIELAB (D65) so it keeps off the hues of the ±d1
+// stripes (pink, h* ≈ 355°; orange, h* ≈ 62°): blue (h* = 290°) for t < 0.5, green (h* = 150°) for
+// t > 0.5, L* = 88 − 50·|2t − 1| and C* = 44·|2t − 1| (the most chroma both hues hold in sRGB at every
+// lightness), so the neutral grey at 0.5 and the same lightness at ±x; t clamped; sRGB 0..1
+std::array<float, 3> blueGreen(double t);
+
+// the sequential map of the magnitudes: viridis over [0.1, 0.9] (its purple and yellow ends come within
+// 35° of the stripes' hues)
+std::array<float, 3> sequential(double t);
+
+// the smallest CIELAB hue distance [deg] from sRGB colour c to the ±d1 stripes' colours of the renderer's
+// material; 180 for a colour of chroma C* < 10 (a grey is told apart by its missing hue)
+double stripeHueDistanceDeg(const std::array<float, 3>& c);
+
+// the colour of field value v of f over range: blueGreen for a signed field (0 -> t = 0.5 when the
+// range is symmetric), sequential otherwise; range must be increasing
 std::array<float, 3> fieldColour(ColourField f, double v, const std::array<double, 2>& range);
 
 }  // namespace rootsim

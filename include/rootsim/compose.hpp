@@ -8,6 +8,7 @@
 
 #include "rootsim/camera.hpp"
 #include "rootsim/gl_renderer.hpp"
+#include "rootsim/overlay_layout.hpp"
 #include "rootsim/render_scene.hpp"
 #include "rootsim/snapshot.hpp"
 #include "rootsim/video_writer.hpp"
@@ -54,8 +55,14 @@ struct FramePlan {
   std::vector<Framing> view;   // per snapshot (one entry: the same for all)
   std::vector<Framing> inset;  // per snapshot; empty without an inset
   int insetX = -1, insetY = -1;  // the inset's corner in the frame [px]; -1: frameLayout's default.
-                                 // planFrames picks the corner (clear of the overlays) that covers
-                                 // the fewest of the root's nodes over the whole movie
+  int insetSide = -1;            // its side [px]; -1: frameLayout's. planFrames puts it in the first
+                                 // corner (clear of the overlays' bands) the root's footprint over the
+                                 // whole movie leaves free, else the nearest free place, shrunk if need be
+  bool insetDropped = false;     // no free place even shrunk: no inset (it would hide the root)
+  // the root's footprint in the view over the frames whose overlays hold still: frame f uses
+  // footprint[f / footprintFrames] (a fixed camera: one for the movie); empty: each frame its own
+  std::vector<std::shared_ptr<const RootFootprint>> footprint;
+  int footprintFrames = 1;
 };
 FramePlan planFrames(const std::vector<Snapshot>& snaps, const SceneInfo& info, const MovieJob& job);
 

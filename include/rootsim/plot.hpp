@@ -119,6 +119,11 @@ struct LabelLayout {
 // the layout of a label (markup above) at font size `size`, its sub- and superscripts no smaller than
 // scriptMin (same units)
 LabelLayout layoutLabel(const std::string& label, double size, bool bold = false, double scriptMin = 0);
+// a figure title's pieces that a line break may separate: its phrases (broken after , ; : . or a
+// closing parenthesis, before an opening one, and between two plain words outside parentheses), never
+// next to an operator (=, /, +, −, ×, ·, <, >, ≈) or between two symbols of a formula (β L_gz);
+// inside: also between plain words within parentheses (for a phrase wider than a line)
+std::vector<std::string> titleChunks(const std::string& title, bool inside = false);
 // text shown as it is in a label (a scene key such as tropism.twist_r_tau): its _, ^ and \ escaped
 std::string literalLabel(const std::string& text);
 

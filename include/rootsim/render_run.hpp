@@ -38,10 +38,11 @@ struct RenderOptions {
   // --trace FILE (with --trace-root, --trace-px-per-mm, --trace-downhill): a traced root drawn over every
   // frame, aligned at the run's seed as `compare` aligns it (docs/experiments.md); trace.trace "" for none
   TraceFlags trace;
-  // a plate's run (docs/plate.md): --root NAME (drawn last: the followed root), --plate-view (the whole
-  // plate), --scan PX (a scanner's picture at PX px/mm)
+  // a plate's run (docs/plate.md): --root NAME (drawn last: the followed root), --plate-view (the sown
+  // area, or with --whole-plate the whole plate), --scan PX (a scanner's picture at PX px/mm)
   std::string root;
   bool plateView = false;
+  bool wholePlate = false;   // --whole-plate: --plate-view frames the whole plate, not the sown area
   double scanPxPerMm = kUnset;
   bool force = false;        // replace outputs rootsim wrote earlier (never a user's file)
   std::string shaderDir;     // development: load tube/plane shaders from here instead of the built-in copies

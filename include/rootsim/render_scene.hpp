@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,6 +20,8 @@
 #include "rootsim/snapshot.hpp"
 
 namespace rootsim {
+
+class RootFootprint;  // rootsim/overlay_layout.hpp
 
 // what to draw and how; plain data, every field has a usable default
 struct View {
@@ -34,8 +37,10 @@ struct View {
   bool shadows = false;          // the root's shadow on the plate and on itself (shadow map)
   int shadowMapPx = 4096;        // largest shadow map side [px]; the map gets about one texel per
                                  // picture pixel over the root's box, a power of two up to this
-  // overlays, in the margins the framing keeps free (top: time, parameters; bottom left: title, stripe
-  // legend; bottom right: downhill arrow, scale bar; right edge: colour bar)
+  // overlays, preferably in the margins the framing keeps free (top: time, parameters; bottom left: title,
+  // stripe legend; bottom right: downhill arrow, scale bar; right edge: colour bar); the layout step
+  // (rootsim/overlay_layout.hpp) moves each off the root's footprint, and nothing painted over the
+  // picture but a trace changes a pixel of the footprint
   bool overlays = true;          // master switch
   bool showTime = true;          // "t = 12.0 h"
   bool showScaleBar = true;      // top view: a bar of 1, 2, 5, 10 ... mm with its label; 3-D: the grid's
@@ -73,6 +78,11 @@ struct View {
   // the overlay font's pixel height; unset: from the view's size (overlayFontPx). A montage's tiles take
   // the montage's label size, so the common scale bar and downhill arrow match the labels
   std::optional<float> fontPx;
+  // the root's footprint over the frames this picture's overlays hold still over (a movie's, for a fixed
+  // camera); unset: this snapshot's own
+  std::shared_ptr<const RootFootprint> footprint;
+  // rectangles [x0, y0, x1, y1] px the overlays keep clear of (an inset drawn over the view)
+  std::vector<std::array<float, 4>> keepClearPx;
   // framing; unset fields are computed from the snapshots' bounding box
   std::optional<std::array<double, 2>> centreMm;  // picture centre, plate (u, v) [mm]
   std::optional<double> widthMm;                  // visible plate width [mm]
@@ -118,6 +128,7 @@ struct OverlayLine {
   std::vector<std::array<float, 2>> points;   // [px], from the top-left corner
   float widthPx = 2;
   std::array<std::uint8_t, 4> colour{40, 40, 40, 255};
+  bool overRoot = false;                      // drawn over the root's footprint too (a trace)
 };
 
 struct RenderScene {
@@ -164,9 +175,18 @@ struct RenderScene {
   std::vector<OverlayLine> lines;       // then the lines
   std::vector<OverlayText> texts;       // drawn over the rects and lines
   std::string fontPath;                 // TrueType font for texts
+  // this snapshot's footprint: rects, texts and lines (but overRoot ones) leave its pixels as drawn
+  std::shared_ptr<const RootFootprint> keepOut;
 
   double pxPerMm = 0.0;                 // top view scale [px/mm]; 0 in perspective
 };
+
+// a picture's camera: plate [mm] -> eye -> clip, column-major (what buildRenderScene draws with)
+struct CameraMatrices {
+  std::array<float, 16> view{};
+  std::array<float, 16> proj{};
+};
+CameraMatrices cameraFor(const View& view, const Framing& framing);
 
 // the overlay font's pixel height for a view: View::fontPx, or its shorter side / 26, at least 12
 float overlayFontPx(const View& view);

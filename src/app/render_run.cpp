@@ -25,6 +25,9 @@ namespace rootsim::app {
 
 namespace {
 
+// --plate-view's margin around the sown area [mm]
+constexpr double kPlateViewMarginMm = 3.0;
+
 // "auto": 1280x720 for a root that spreads sideways, 720x1280 for one that grows mostly downhill
 // (a long waving root in a landscape frame is a thin line); the top view's bounding box decides
 std::pair<int, int> autoSize(const std::vector<Snapshot>& snaps, const SceneInfo& info) {
@@ -178,7 +181,8 @@ int renderRunCommand(const RenderOptions& o) {
     if (o.png.empty()) throw SceneError("--scan " + num(o.scanPxPerMm) + ": a picture; add --png FILE");
     if (o.plateView) throw SceneError("--scan: shows the whole plate already; drop --plate-view");
   }
-  checkTimeFlags(o, scan);
+  if (o.wholePlate && !o.plateView) throw SceneError("--whole-plate: frames --plate-view's whole plate; add --plate-view");
+  checkTimeFlags(o, scan || o.plateView);  // a plate's picture: the last snapshot unless told
   const MovieLook look = parseLook(o.look);
   if (o.transparent && (look.inset || !look.plots.empty() || look.shadows))
     throw SceneError("--transparent: frames of the root alone, without a plate; not with --inset, --plot or --shadows");
@@ -219,7 +223,7 @@ int renderRunCommand(const RenderOptions& o) {
       job.view.marginMm = 0.0;
       job.view.scanLook = true;
       job.view.overlays = false;
-    } else {
+    } else if (o.wholePlate) {
       if (autoSized) {
         job.view.width = 1080;
         job.view.height = 2 * static_cast<int>(std::lround(540.0 * l / w));
@@ -229,6 +233,25 @@ int renderRunCommand(const RenderOptions& o) {
       const double visible = 1.15 * std::max(w, l * job.view.width / job.view.height);
       job.view.widthMm = visible / (1.0 - kSeedLegendShare);
       (*job.view.centreMm)[0] = 0.5 * w + 0.5 * (*job.view.widthMm - visible);
+    } else {
+      // the sown area: every root over the movie with a margin (frameFor's box), the plate's outline
+      // where it comes into the picture
+      job.view.centreMm.reset();
+      job.view.marginMm = kPlateViewMarginMm;
+      if (autoSized) {
+        double u0 = 1e300, u1 = -1e300, v0 = 1e300, v1 = -1e300;
+        const PlateFrame pf = PlateFrame::tilted(info.alphaDeg * units::deg);
+        for (const Snapshot& sn : snaps)
+          for (long i = 0; i < sn.x.cols(); ++i) {
+            const Vec3 q = pf.toPlateMm(sn.x.col(i));
+            u0 = std::min(u0, q.x()), u1 = std::max(u1, q.x()), v0 = std::min(v0, q.y()), v1 = std::max(v1, q.y());
+          }
+        const double aspect = std::clamp((v1 - v0 + 2 * kPlateViewMarginMm) / (u1 - u0 + 2 * kPlateViewMarginMm), 0.5, 1.8);
+        job.view.width = 1080;
+        job.view.height = std::min(2160, 2 * static_cast<int>(std::lround(540.0 * aspect / 0.8)));  // the roots in the middle 80 %
+      }
+    }
+    if (!scan) {
       // each seedling named on the plate, its own beta and R tau in the legend (docs/plate.md, Pictures)
       for (const Seedling& sd : scene.plate.seedlings) {
         View::SeedLabel sl;
@@ -254,7 +277,9 @@ int renderRunCommand(const RenderOptions& o) {
   if (autoSized && !job.view.plateRectMm) std::tie(job.view.width, job.view.height) = autoSizeFor(snaps, info, look);
   applyLook(look, runDir, snaps, job);
   checkFieldAgainstPlate(look, fitPlateMm(snaps, info, job));
-  const int still = o.png.empty() ? -1 : (scan && !given(o.atH) && !o.frameGiven ? static_cast<int>(snaps.size()) - 1 : stillFrame(snaps, o));
+  // a plate's picture (--scan, --plate-view) without --at-h or --frame: its last snapshot
+  const bool plateStill = plate && (scan || o.plateView);
+  const int still = o.png.empty() ? -1 : (plateStill && !given(o.atH) && !o.frameGiven ? static_cast<int>(snaps.size()) - 1 : stillFrame(snaps, o));
   // the write rule, once the flags and the run are known good: the run directory is read and receives
   // only its own movie.mp4 and final_top.png
   WriteRule rule;

@@ -156,7 +156,8 @@ int main(int argc, char** argv) {
   cRender->add_option("--trace-downhill", render.trace.downhill, "the plate's downhill in the trace: +y (default), -y, or an angle in degrees");
   render.trace.flagPrefix = "--trace-";
   cRender->add_option("--root", render.root, "a plate's run: the root NAME drawn last, the one --camera follow follows (docs/plate.md)");
-  cRender->add_flag("--plate-view", render.plateView, "a plate's run: frame the whole plate, outlined (docs/plate.md)");
+  cRender->add_flag("--plate-view", render.plateView, "a plate's run: frame the sown area with a margin, the plate outlined (docs/plate.md)");
+  cRender->add_flag("--whole-plate", render.wholePlate, "with --plate-view: frame the whole plate");
   cRender->add_option("--scan", render.scanPxPerMm, "a plate's run: a scanner's picture of the whole plate at PX pixels per mm (light roots on a dark plate, no stripes or overlays), the last snapshot or --at-h/--frame, into --png FILE");
   cRender->add_flag("--force", render.force, "replace outputs rootsim wrote earlier (never a file rootsim did not write)");
   cRender->add_flag("--quiet", render.quiet, "no progress output");

@@ -6,6 +6,7 @@
 #include <cairo.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -325,6 +326,11 @@ struct Cell {
   Box box;
   double left = kLeft;
   bool yTickLabels = true;
+  // the x label: its own (centred under its plot), none, or the row's one label centred over
+  // [rowX0, rowX1] (a row sharing its y axis whose equal x labels would crowd each other)
+  bool xLabel = true;
+  bool rowLabel = false;
+  double rowX0 = 0, rowX1 = 0;
 };
 
 // about one tick label per `pitch` layout units of the axis, between lo and hi labels
@@ -395,7 +401,7 @@ void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
   cairo_stroke(cr);
   if (!a.title.empty()) text(p, 0.5 * (L + R), box.y + 8, a.title, 15, 0.5, 0.0, true);
   if (!a.panelLabel.empty()) text(p, box.x + 8, box.y + 6, a.panelLabel, 20, 0.0, 0.0, true);
-  text(p, 0.5 * (L + R), B + 26, a.xlabel, 13, 0.5, 0.0);
+  if (cell.xLabel) text(p, cell.rowLabel ? 0.5 * (cell.rowX0 + cell.rowX1) : 0.5 * (L + R), B + 26, a.xlabel, 13, 0.5, 0.0);
   text(p, box.x + 14, 0.5 * (T + B), a.ylabel, 13, 0.5, 0.5, false, -units::pi / 2);
 
   // data, clipped to the plot area
@@ -466,7 +472,13 @@ void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
     }
   }
   cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-  for (const auto& [at, s] : a.notes) text(p, X(at[0]), Y(at[1]), s, 12, 0.5, 0.5);
+  for (const auto& [at, s] : a.notes) {
+    // a note stays inside the frame: its box (12 units high, its width) clear of the frame's lines
+    const double hw = 0.5 * labelWidth(p, s, 12) + 2, hh = 0.5 * 12 * 1.164 + 2;
+    const double cx = hw < 0.5 * pw ? std::clamp(X(at[0]), L + hw, R - hw) : X(at[0]);
+    const double cy = hh < 0.5 * ph ? std::clamp(Y(at[1]), T + hh, B - hh) : Y(at[1]);
+    text(p, cx, cy, s, 12, 0.5, 0.5);
+  }
   cairo_restore(cr);
 
   // legend
@@ -480,8 +492,49 @@ void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
     for (const auto& fl : a.fills)
       if (!fl.label.empty()) w = std::max(w, labelWidth(p, fl.label, 12));
     const double bw = w + 44, bh = 18.0 * n + 8;
-    const double lx = a.legendPos[1] == 'w' ? L + 8 : R - bw - 8;
-    const double ly = a.legendPos[0] == 's' ? B - bh - 8 : T + 8;
+    // the asked corner unless the curves run through it: then the corner (or edge middle) they cross
+    // least, sampled every 2 units along each curve (and each tube's centreline)
+    auto crossings = [&](double bx, double by) {
+      int hits = 0;
+      auto inside = [&](double px, double py) { return px >= bx - 2 && px <= bx + bw + 2 && py >= by - 2 && py <= by + bh + 2; };
+      auto walk = [&](const std::vector<double>& xs, const std::vector<double>& ys) {
+        for (size_t i = 0; i < xs.size(); ++i) {
+          if (!std::isfinite(xs[i]) || !std::isfinite(ys[i])) continue;
+          const double ax = X(xs[i]), ay = Y(ys[i]);
+          hits += inside(ax, ay);
+          if (i + 1 < xs.size() && std::isfinite(xs[i + 1]) && std::isfinite(ys[i + 1])) {
+            const double bx2 = X(xs[i + 1]), by2 = Y(ys[i + 1]);
+            const int steps = std::min(400, static_cast<int>(std::hypot(bx2 - ax, by2 - ay) / 2.0));
+            for (int k = 1; k < steps; ++k) {
+              const double f = static_cast<double>(k) / steps;
+              hits += inside(ax + f * (bx2 - ax), ay + f * (by2 - ay));
+            }
+          }
+        }
+      };
+      for (const auto& sr : a.series) walk(sr.x, sr.y);
+      for (const auto& tb : a.tubes) walk(tb.x, tb.y);
+      return hits;
+    };
+    const std::string asked = a.legendPos.size() == 2 ? a.legendPos : "ne";
+    std::vector<std::string> order{asked};
+    for (const char* c : {"ne", "nw", "se", "sw", "ec", "wc", "nc", "sc"})
+      if (c != asked) order.emplace_back(c);
+    auto corner = [&](const std::string& c) {
+      const double x = c[1] == 'w' ? L + 8 : c[1] == 'c' && c[0] != 'e' && c[0] != 'w' ? 0.5 * (L + R - bw) : R - bw - 8;
+      const double xx = c == "wc" ? L + 8 : c == "ec" ? R - bw - 8 : x;
+      const double y = c[0] == 's' ? B - bh - 8 : c[0] == 'n' ? T + 8 : 0.5 * (T + B - bh);
+      return std::array<double, 2>{xx, y};
+    };
+    std::array<double, 2> at = corner(asked);
+    int least = crossings(at[0], at[1]);
+    for (const std::string& c : order) {
+      if (least == 0) break;
+      const auto q = corner(c);
+      const int h = crossings(q[0], q[1]);
+      if (h < least) least = h, at = q;
+    }
+    const double lx = at[0], ly = at[1];
     cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
     cairo_rectangle(cr, lx, ly, bw, bh);
     cairo_fill_preserve(cr);
@@ -523,23 +576,24 @@ struct Layout {
   std::vector<Cell> cells;
 };
 
-// the title in lines no wider than `width`, broken at spaces
+// the title in lines no wider than `width`, broken between its phrases (titleChunks), never inside a
+// formula; a phrase wider than a line on its own is broken where titleChunks' second tier allows
 std::vector<std::string> wrapTitle(const Pen& p, const std::string& title, double width) {
   std::vector<std::string> lines;
   std::string line;
-  size_t i = 0;
-  while (i < title.size()) {
-    size_t j = title.find(' ', i);
-    if (j == std::string::npos) j = title.size();
-    const std::string word = title.substr(i, j - i);
-    const std::string longer = line.empty() ? word : line + " " + word;
-    if (!line.empty() && labelWidth(p, longer, kFigureTitleSize, true) > width) {
-      lines.push_back(line);
-      line = word;
-    } else {
-      line = longer;
+  auto fits = [&](const std::string& s) { return labelWidth(p, s, kFigureTitleSize, true) <= width; };
+  for (const std::string& chunk : titleChunks(title)) {
+    std::vector<std::string> parts{chunk};
+    if (!fits(chunk)) parts = titleChunks(chunk, true);
+    for (const std::string& part : parts) {
+      const std::string longer = line.empty() ? part : line + " " + part;
+      if (!line.empty() && !fits(longer)) {
+        lines.push_back(line);
+        line = part;
+      } else {
+        line = longer;
+      }
     }
-    i = j + 1;
   }
   if (!line.empty()) lines.push_back(line);
   return lines;
@@ -593,11 +647,24 @@ Layout layoutOf(cairo_t* cr, const Figure& f, double widthMm) {
       const double aspect = a.equalAspect ? plotAspect(f, a) : std::max(kMinPlotAspect, plotAspect(f, a));
       h = std::max(h, pw * aspect + (a.title.empty() ? kTop : kTopTitle) + kBottom);
     }
-    for (int i = r0; i < std::min(n, r0 + cols); ++i) {
+    // equal x labels in a row sharing its y axis: one under the row when side by side they would come
+    // within 1 em (12 units) of each other
+    const int rowEnd = std::min(n, r0 + cols);
+    bool sameX = shared && rowEnd - r0 > 1 && !f.axes[static_cast<size_t>(r0)].xlabel.empty();
+    for (int i = r0 + 1; i < rowEnd && sameX; ++i) sameX = f.axes[static_cast<size_t>(i)].xlabel == f.axes[static_cast<size_t>(r0)].xlabel;
+    const bool rowLabel = sameX && labelWidth(p, f.axes[static_cast<size_t>(r0)].xlabel, 13) + 12 > inner + pw + kRight;
+    for (int i = r0; i < rowEnd; ++i) {
       const int c = i - r0;
       const double x = c == 0 ? 0 : kLeft + pw + kRight + (c - 1) * (inner + pw + kRight);
       const double left = c == 0 ? kLeft : inner;
       out.cells.push_back({Box{x, y, left + pw + kRight, h}, left, c == 0 || !shared});
+      if (rowLabel) {
+        Cell& cell = out.cells.back();
+        cell.xLabel = c == 0;
+        cell.rowLabel = true;
+        cell.rowX0 = kLeft;
+        cell.rowX1 = kLeft + pw + (rowEnd - r0 - 1) * (kRight + inner + pw);
+      }
     }
     y += h;
   }
@@ -731,6 +798,79 @@ std::string literalLabel(const std::string& text) {
     if (c == '_' || c == '^' || c == '\\') out += '\\';
     out += c;
   }
+  return out;
+}
+
+namespace {
+
+// a word that is part of a formula: an operator, or a symbol with a sub- or superscript or an operator
+// at one end, or a lone symbol that is not a Latin letter word (β, α, γ, 0.1 next to an =)
+const std::vector<std::string>& operators() {
+  static const std::vector<std::string> kOps = {"=", "/", "+", "\xE2\x88\x92", "\xC3\x97", "\xC2\xB7", "<", ">",
+                                                "\xE2\x89\x88", "\xE2\x89\xA4", "\xE2\x89\xA5", "~", "-", "*"};
+  return kOps;
+}
+bool opStart(const std::string& w) {
+  for (const std::string& o : operators())
+    if (w.rfind(o, 0) == 0) return true;
+  return false;
+}
+bool opEnd(const std::string& w) {
+  for (const std::string& o : operators())
+    if (w.size() >= o.size() && w.compare(w.size() - o.size(), o.size(), o) == 0) return true;
+  return false;
+}
+bool operatorWord(const std::string& w) { return opStart(w) || opEnd(w); }
+bool mathWord(const std::string& w) {
+  if (operatorWord(w)) return true;
+  if (w.find('_') != std::string::npos || w.find('^') != std::string::npos) return true;
+  // one code point that is not ASCII (a Greek symbol)
+  std::size_t cps = 0;
+  bool ascii = true;
+  for (char c : w) {
+    cps += (static_cast<unsigned char>(c) & 0xC0) != 0x80;
+    ascii = ascii && static_cast<unsigned char>(c) < 0x80;
+  }
+  return cps == 1 && !ascii;
+}
+bool endsPhrase(const std::string& w) {
+  const char c = w.empty() ? ' ' : w.back();
+  return c == ',' || c == ';' || c == ':' || c == ')';
+}
+
+}  // namespace
+
+std::vector<std::string> titleChunks(const std::string& title, bool inside) {
+  std::vector<std::string> words;
+  for (std::size_t i = 0; i <= title.size();) {
+    std::size_t j = title.find(' ', i);
+    if (j == std::string::npos) j = title.size();
+    if (j > i) words.push_back(title.substr(i, j - i));
+    i = j + 1;
+  }
+  std::vector<std::string> out;
+  std::string cur;
+  int depth = 0;
+  for (std::size_t k = 0; k < words.size(); ++k) {
+    const std::string& w = words[k];
+    if (!cur.empty()) {
+      const std::string& prev = words[k - 1];
+      const bool phraseEnd = endsPhrase(prev) || w.front() == '(';
+      // a number or symbol next to an operator, an operator itself: inside a formula
+      const bool formula = opEnd(prev) || opStart(w) || (mathWord(prev) && mathWord(w)) ||
+                           (prev.back() == '.' && std::isdigit(static_cast<unsigned char>(w.front())));  // "Fig. 2A"
+      const bool plain = !mathWord(prev) && !mathWord(w);
+      const bool brk = !formula && (phraseEnd || (plain && (depth == 0 || inside)));
+      if (brk) {
+        out.push_back(cur);
+        cur.clear();
+      }
+    }
+    cur += (cur.empty() ? "" : " ") + w;
+    for (char c : w) depth += c == '(' ? 1 : c == ')' ? -1 : 0;
+    depth = std::max(depth, 0);
+  }
+  if (!cur.empty()) out.push_back(cur);
   return out;
 }
 

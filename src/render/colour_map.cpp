@@ -7,6 +7,7 @@
 
 #include "rootsim/image.hpp"
 #include "rootsim/node_fields.hpp"
+#include "rootsim/render_scene.hpp"
 #include "rootsim/units.hpp"
 
 namespace rootsim {
@@ -184,9 +185,67 @@ std::array<float, 3> coolWarm(double t) {
   return c;
 }
 
+namespace {
+
+constexpr double kXn = 0.95047, kYn = 1.0, kZn = 1.08883;  // D65 white
+
+double srgbToLinear(double u) { return u <= 0.04045 ? u / 12.92 : std::pow((u + 0.055) / 1.055, 2.4); }
+double linearToSrgb(double u) { return u <= 0.0031308 ? 12.92 * u : 1.055 * std::pow(u, 1.0 / 2.4) - 0.055; }
+
+std::array<double, 3> toLab(const std::array<float, 3>& c) {
+  const double r = srgbToLinear(c[0]), g = srgbToLinear(c[1]), b = srgbToLinear(c[2]);
+  const double X = 0.4124 * r + 0.3576 * g + 0.1805 * b, Y = 0.2126 * r + 0.7152 * g + 0.0722 * b,
+               Z = 0.0193 * r + 0.1192 * g + 0.9505 * b;
+  auto f = [](double t) { return t > 0.008856 ? std::cbrt(t) : 7.787 * t + 16.0 / 116.0; };
+  const double fx = f(X / kXn), fy = f(Y / kYn), fz = f(Z / kZn);
+  return {116 * fy - 16, 500 * (fx - fy), 200 * (fy - fz)};
+}
+
+std::array<float, 3> fromLab(double L, double a, double b) {
+  auto fInv = [](double t) { return t > 0.206893 ? t * t * t : (t - 16.0 / 116.0) / 7.787; };
+  const double fy = (L + 16) / 116, fx = fy + a / 500, fz = fy - b / 200;
+  const double X = kXn * fInv(fx), Y = kYn * fInv(fy), Z = kZn * fInv(fz);
+  const double r = 3.2406 * X - 1.5372 * Y - 0.4986 * Z, g = -0.9689 * X + 1.8758 * Y + 0.0415 * Z,
+               bl = 0.0557 * X - 0.2040 * Y + 1.0570 * Z;
+  auto out = [&](double u) { return static_cast<float>(std::clamp(linearToSrgb(std::max(u, 0.0)), 0.0, 1.0)); };
+  return {out(r), out(g), out(bl)};
+}
+
+double hueDeg(const std::array<double, 3>& lab) {
+  const double h = std::atan2(lab[2], lab[1]) * 180.0 / units::pi;
+  return h < 0 ? h + 360.0 : h;
+}
+
+}  // namespace
+
+std::array<float, 3> blueGreen(double t) {
+  if (!(t >= 0.0)) t = 0.0;  // NaN -> 0
+  t = std::min(t, 1.0);
+  const double x = std::abs(2.0 * t - 1.0);
+  const double L = 88.0 - 50.0 * x, C = 44.0 * x, h = (t < 0.5 ? 290.0 : 150.0) * units::pi / 180.0;
+  return fromLab(L, C * std::cos(h), C * std::sin(h));
+}
+
+std::array<float, 3> sequential(double t) {
+  if (!(t >= 0.0)) t = 0.0;
+  return viridis(0.1 + 0.8 * std::min(t, 1.0));
+}
+
+double stripeHueDistanceDeg(const std::array<float, 3>& c) {
+  const std::array<double, 3> lab = toLab(c);
+  if (std::hypot(lab[1], lab[2]) < 10.0) return 180.0;
+  const RenderScene::Material m;
+  double best = 180.0;
+  for (const auto& s : {m.plus, m.minus}) {
+    const double d = std::abs(hueDeg(lab) - hueDeg(toLab(s)));
+    best = std::min(best, std::min(d, 360.0 - d));
+  }
+  return best;
+}
+
 std::array<float, 3> fieldColour(ColourField f, double v, const std::array<double, 2>& range) {
   const double t = (v - range[0]) / (range[1] - range[0]);
-  return colourFieldSigned(f) ? coolWarm(t) : viridis(t);
+  return colourFieldSigned(f) ? blueGreen(t) : sequential(t);
 }
 
 }  // namespace rootsim

@@ -24,6 +24,11 @@ constexpr std::array<std::array<std::uint8_t, 4>, 5> kSeriesColour{{{31, 119, 18
                                                                     {148, 103, 189, 255},
                                                                     {255, 127, 14, 255}}};
 
+// the inset's least magnification over the view, and the tube width [px] at which the view itself
+// shows the stripes well enough to need no inset
+constexpr double kInsetMagnification = 2.0;
+constexpr double kInsetTubePx = 24.0;
+
 int even(double v) { return 2 * static_cast<int>(std::lround(0.5 * v)); }
 
 std::string fmt(const char* f, double v) {
@@ -115,39 +120,74 @@ FramePlan planFrames(const std::vector<Snapshot>& snaps, const SceneInfo& info, 
     p.view = followFramings(snaps, info, l.viewW, l.viewH, fo);
   else
     p.view = {frameFor(snaps, info, v)};
+  // the footprint the view's overlays keep off: the fit camera's over the whole movie, the follow
+  // camera's over each quarter second of it (the overlays hold still that long)
+  View fv = v;
+  if (job.camera == CameraMode::Follow) {
+    p.footprintFrames = std::max(1, job.video.fps / 4);
+    for (std::size_t g = 0; g < snaps.size(); g += static_cast<std::size_t>(p.footprintFrames)) {
+      auto fp = std::make_shared<RootFootprint>(l.viewW, l.viewH);
+      for (std::size_t f = g; f < std::min(snaps.size(), g + static_cast<std::size_t>(p.footprintFrames)); ++f)
+        fp->add(snaps[f], info, cameraFor(fv, p.view[std::min(f, p.view.size() - 1)]), v.whiskers);
+      p.footprint.push_back(std::move(fp));
+    }
+  } else {
+    p.footprint.push_back(rootFootprint(snaps, info, fv, p.view.front()));
+    p.footprintFrames = std::max<int>(1, static_cast<int>(snaps.size()));
+  }
   if (l.inset) {
-    p.inset = followFramings(snaps, info, l.insetW, l.insetH, fo);
-    // candidate corners, clear of the overlays (time and parameters on top, scale bar bottom right,
-    // colour bar on the right); the one covering the fewest root nodes over the movie wins
-    const Framing fit = frameFor(snaps, info, v);
-    const PlateFrame pf = PlateFrame::tilted(info.alphaDeg * units::deg);
+    // candidate corners, clear of the overlays' bands (time and parameters on top, legend bottom left,
+    // scale bar bottom right, colour bar on the right); the first the root's footprint over the movie
+    // leaves free wins (lower left first); else the nearest free place, shrunk if need be
     const int side = l.insetW, m = l.insetX - l.viewX;
-    const double font = std::max(12.0, std::min(v.width, v.height) / 26.0);
+    const double font = overlayFontPx(v);
     const bool portrait = v.height > v.width;
     const int top = v.overlays ? static_cast<int>((portrait ? 3.4 : 1.9) * font) + m : m;
     const int lowY = v.height - m - side;
     const int barY = v.overlays && v.showScaleBar ? static_cast<int>(2.6 * font) : 0;
-    // the bottom band's left end holds the stripe legend (and the title)
     const int legendY = v.overlays && (v.showLegend || v.showTitle) ? static_cast<int>(2.2 * font) : 0;
     std::vector<std::array<int, 2>> corners = {{m, lowY - legendY}, {m, top}};
     if (v.colourBy == ColourField::None || !v.overlays) {
       corners.push_back({v.width - m - side, lowY - barY});
       corners.push_back({v.width - m - side, top});
     }
-    int best = -1;
+    // every group's footprint: the inset holds still over the whole movie
+    RootFootprint un(l.viewW, l.viewH);
+    for (const auto& g : p.footprint) un.merge(*g);
+    bool placed = false;
     for (const auto& c : corners) {
       if (c[1] < 0 || c[1] + side > v.height) continue;
-      int count = 0;
-      for (const Snapshot& s : snaps)
-        for (long i = 0; i < s.x.cols(); ++i) {
-          const Eigen::Vector3d q = pf.toPlateMm(s.x.col(i));
-          const Eigen::Vector2d px = topViewPixel(fit, v, q.x(), q.y());
-          if (px.x() >= c[0] && px.x() < c[0] + side && px.y() >= c[1] && px.y() < c[1] + side) ++count;
-        }
-      if (best < 0 || count < best) {
-        best = count;
-        p.insetX = l.viewX + c[0];
-        p.insetY = l.viewY + c[1];
+      if (un.hits(static_cast<float>(c[0]), static_cast<float>(c[1]), static_cast<float>(c[0] + side), static_cast<float>(c[1] + side)) > 0) continue;
+      p.insetX = l.viewX + c[0];
+      p.insetY = l.viewY + c[1];
+      placed = true;
+      break;
+    }
+    if (!placed) {
+      const std::array<float, 4> pref{static_cast<float>(m), static_cast<float>(lowY - legendY), static_cast<float>(m + side),
+                                      static_cast<float>(lowY - legendY + side)};
+      const PlacedBlock b = layoutBoxes({pref}, un, {}, v.width, v.height, static_cast<float>(m), {0.6f}).front();
+      if (b.free) {
+        p.insetSide = even(b.scale * static_cast<float>(side));
+        p.insetX = l.viewX + static_cast<int>(std::lround(pref[0] + b.dx));
+        p.insetY = l.viewY + static_cast<int>(std::lround(pref[1] + b.dy));
+      } else {
+        p.insetDropped = true;
+      }
+    }
+    if (!p.insetDropped) {
+      // the inset magnifies: its window at most half as wide as the view shows its side (x2 or more, more
+      // on a long root); none when the view already draws the tube kInsetTubePx wide or more
+      const int s = p.insetSide > 0 ? p.insetSide : side;
+      const double viewPxPerMm = l.viewW / p.view.front().widthMm;
+      double rMaxMm = 0.0;
+      for (const Snapshot& sn : snaps) rMaxMm = std::max(rMaxMm, sn.radius.maxCoeff() / units::mm);
+      if (job.camera != CameraMode::Follow && 2.0 * rMaxMm * viewPxPerMm >= kInsetTubePx) {
+        p.insetDropped = true;
+      } else {
+        FollowOptions fi = fo;
+        fi.fieldMm = std::min(fo.fieldMm, s / (kInsetMagnification * viewPxPerMm));
+        p.inset = followFramings(snaps, info, s, s, fi);
       }
     }
   }
@@ -187,6 +227,10 @@ struct FrameComposer::Impl {
     if (plan.view.empty()) throw RenderError("movie: a frame plan without a view framing");
     if (layout.inset) {
       if (plan.inset.empty()) throw RenderError("movie: an inset without its framings");
+      // the view's overlays keep off the inset
+      mainView.keepClearPx.push_back({static_cast<float>(layout.insetX - layout.viewX - 2), static_cast<float>(layout.insetY - layout.viewY - 2),
+                                      static_cast<float>(layout.insetX - layout.viewX + layout.insetW + 2),
+                                      static_cast<float>(layout.insetY - layout.viewY + layout.insetH + 2)});
       insetView.overlays = false;
       insetGl = std::make_unique<GlRenderer>(layout.insetW, layout.insetH, j.renderer);
     }
@@ -195,8 +239,9 @@ struct FrameComposer::Impl {
   }
 
   static FrameLayout placedLayout(const MovieJob& j, const FramePlan& p) {
-    FrameLayout l = frameLayout(j.view.width, j.view.height, !j.plots.empty(), j.inset);
+    FrameLayout l = frameLayout(j.view.width, j.view.height, !j.plots.empty(), j.inset && !p.insetDropped);
     if (l.inset && p.insetX >= 0 && p.insetY >= 0) l.insetX = p.insetX, l.insetY = p.insetY;
+    if (l.inset && p.insetSide > 0) l.insetW = l.insetH = p.insetSide;
     return l;
   }
 
@@ -298,7 +343,8 @@ struct FrameComposer::Impl {
 
   // the inset's own scale bar and its magnification over the view ("x6"), in its bottom right corner
   // on a light backing so they read over the grid and the root
-  void insetOverlays(const Framing& fv, const Framing& fi, std::vector<OverlayRect>& rects, std::vector<OverlayText>& texts) {
+  void insetOverlays(const Framing& fv, const Framing& fi, const RootFootprint& fpi, std::vector<OverlayRect>& rects,
+                     std::vector<OverlayText>& texts) {
     const float f = std::round(0.8f * overlayFontPx(mainView));
     const float m = 0.5f * f;
     const float x0 = static_cast<float>(layout.insetX), y0 = static_cast<float>(layout.insetY);
@@ -314,7 +360,13 @@ struct FrameComposer::Impl {
     const std::string magText = "\xC3\x97" + (mag >= 3 ? fmt("%.0f", mag) : fmt("%.1f", mag));
     const float magW = painter.textWidth(job.view.fontPath, magText, f);
     const float boxW = magW + f + std::max(len, labelW) + 2 * m, boxH = barH + 1.35f * f + 2 * m;
-    const float bx = x0 + w - 3 - boxW, by = y0 + h - 3 - boxH;
+    float bx = x0 + w - 3 - boxW, by = y0 + h - 3 - boxH;
+    // bottom right of the inset unless the root is there: the layout step within the inset
+    {
+      const std::array<float, 4> pref{bx - x0, by - y0, bx - x0 + boxW, by - y0 + boxH};
+      const PlacedBlock b = layoutBoxes({pref}, fpi, {}, layout.insetW, layout.insetH, 3.0f, {1.0f}).front();
+      bx += std::round(b.dx), by += std::round(b.dy);
+    }
     rects.push_back({bx, by, boxW, boxH, {255, 255, 255, 200}});
     const float barX = std::round(bx + boxW - m - 0.5f * (std::max(len, labelW) + len)), barY = std::round(by + boxH - m - barH);
     rects.push_back({barX, barY, len, barH, kInk});
@@ -328,6 +380,10 @@ struct FrameComposer::Impl {
     const auto pick = [&](const std::vector<Framing>& v) -> const Framing& {
       return v[static_cast<std::size_t>(std::clamp(frame, 0, static_cast<int>(v.size()) - 1))];
     };
+    if (!plan.footprint.empty()) {
+      const int g = std::clamp(frame / std::max(1, plan.footprintFrames), 0, static_cast<int>(plan.footprint.size()) - 1);
+      mainView.footprint = plan.footprint[static_cast<std::size_t>(g)];
+    }
     const RenderScene scene = buildRenderScene(snap, info, mainView, pick(plan.view));
     if (!layout.panel && !layout.inset) {
       mainGl.render(scene, out);
@@ -362,10 +418,19 @@ struct FrameComposer::Impl {
         if (mark.size() < 4) mark.push_back(px);
       }
       lines.push_back(region);
-      if (job.view.overlays) insetOverlays(pick(plan.view), fi, rects, texts);
+      if (job.view.overlays) {
+        // the inset's scale and magnification, off the root the inset shows
+        RootFootprint fpi(layout.insetW, layout.insetH);
+        fpi.add(snap, info, cameraFor(insetView, fi), insetView.whiskers);
+        std::vector<OverlayRect> ir;
+        std::vector<OverlayText> it;
+        insetOverlays(pick(plan.view), fi, fpi, ir, it);
+        painter.draw(ir, {}, it, job.view.fontPath, out, &fpi, layout.insetX, layout.insetY);
+      }
     }
     if (layout.panel) drawPanel(snap.timeH, rects, lines, texts);
-    painter.draw(rects, lines, texts, job.view.fontPath, out);
+    // the mark and the panel: nothing over the view's root
+    painter.draw(rects, lines, texts, job.view.fontPath, out, scene.keepOut.get(), layout.viewX, layout.viewY);
   }
 };
 

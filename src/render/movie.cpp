@@ -34,7 +34,11 @@ struct MovieRecorder::Impl {
 };
 
 MovieRecorder::MovieRecorder(const SceneInfo& info, const MovieJob& job, const Framing& framing)
-    : impl_(std::make_unique<Impl>(info, job, FramePlan{{framing}, {}})) {}
+    : impl_(std::make_unique<Impl>(info, job, [&] {
+        FramePlan p;
+        p.view = {framing};
+        return p;
+      }())) {}
 MovieRecorder::MovieRecorder(const SceneInfo& info, const MovieJob& job, FramePlan plan)
     : impl_(std::make_unique<Impl>(info, job, std::move(plan))) {}
 MovieRecorder::~MovieRecorder() = default;

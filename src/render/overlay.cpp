@@ -82,6 +82,10 @@ struct Font {
 
 struct OverlayPainter::Impl {
   std::map<std::string, Font> fonts;
+  // the pixels left as they are while drawing (the root's footprint), in image pixels offset by off
+  const RootFootprint* keepOut = nullptr;
+  int offX = 0, offY = 0;
+  bool kept(int x, int y) const { return keepOut && keepOut->covers(x - offX, y - offY); }
 
   Font& font(const std::string& path) {
     auto it = fonts.find(path);
@@ -139,7 +143,7 @@ struct OverlayPainter::Impl {
         if (py < 0 || py >= img.height) continue;
         for (int c = 0; c < g.w; ++c) {
           const int px = gx + c;
-          if (px < 0 || px >= img.width) continue;
+          if (px < 0 || px >= img.width || kept(px, py)) continue;
           blend(img.at(px, py), t.colour, g.bitmap[static_cast<std::size_t>(r) * g.w + c]);
         }
       }
@@ -154,6 +158,7 @@ struct OverlayPainter::Impl {
   // the whole line first (max), so joints are not blended twice
   void drawLine(const OverlayLine& l, Image& img) {
     if (l.points.empty()) return;
+    const bool masked = !l.overRoot;
     const float hw = 0.5f * l.widthPx;
     float x0 = 1e30f, y0 = 1e30f, x1 = -1e30f, y1 = -1e30f;
     for (const auto& p : l.points) {
@@ -190,17 +195,18 @@ struct OverlayPainter::Impl {
     for (int y = by0; y < by1; ++y)
       for (int x = bx0; x < bx1; ++x) {
         const float c = cover[static_cast<std::size_t>(y - by0) * bw + (x - bx0)];
-        if (c > 0) blend(img.at(x, y), l.colour, static_cast<unsigned>(std::lround(255.0f * c)));
+        if (c > 0 && !(masked && kept(x, y))) blend(img.at(x, y), l.colour, static_cast<unsigned>(std::lround(255.0f * c)));
       }
   }
 
-  static void drawRect(const OverlayRect& r, Image& img) {
+  void drawRect(const OverlayRect& r, Image& img) const {
     const int x0 = std::max(0, static_cast<int>(std::lround(r.x)));
     const int y0 = std::max(0, static_cast<int>(std::lround(r.y)));
     const int x1 = std::min(img.width, static_cast<int>(std::lround(r.x + r.w)));
     const int y1 = std::min(img.height, static_cast<int>(std::lround(r.y + r.h)));
     for (int y = y0; y < y1; ++y)
-      for (int x = x0; x < x1; ++x) blend(img.at(x, y), r.colour, 255);
+      for (int x = x0; x < x1; ++x)
+        if (!kept(x, y)) blend(img.at(x, y), r.colour, 255);
   }
 };
 
@@ -208,14 +214,17 @@ OverlayPainter::OverlayPainter() : impl_(std::make_unique<Impl>()) {}
 OverlayPainter::~OverlayPainter() = default;
 
 void OverlayPainter::draw(const RenderScene& scene, Image& img) {
-  draw(scene.rects, scene.lines, scene.texts, scene.fontPath, img);
+  draw(scene.rects, scene.lines, scene.texts, scene.fontPath, img, scene.keepOut.get());
 }
 
 void OverlayPainter::draw(const std::vector<OverlayRect>& rects, const std::vector<OverlayLine>& lines,
-                          const std::vector<OverlayText>& texts, const std::string& fontPath, Image& img) {
-  for (const OverlayRect& r : rects) Impl::drawRect(r, img);
+                          const std::vector<OverlayText>& texts, const std::string& fontPath, Image& img,
+                          const RootFootprint* keepOut, int offX, int offY) {
+  impl_->keepOut = keepOut, impl_->offX = offX, impl_->offY = offY;
+  for (const OverlayRect& r : rects) impl_->drawRect(r, img);
   for (const OverlayLine& l : lines) impl_->drawLine(l, img);
   for (const OverlayText& t : texts) impl_->drawText(t, fontPath, img);
+  impl_->keepOut = nullptr;
 }
 
 float OverlayPainter::textWidth(const std::string& fontPath, const std::string& text, float sizePx) {

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "rootsim/image.hpp"
+#include "rootsim/overlay_layout.hpp"
 #include "rootsim/render_scene.hpp"
 
 namespace rootsim::detail {
@@ -18,11 +19,14 @@ class OverlayPainter {
   OverlayPainter(const OverlayPainter&) = delete;
   OverlayPainter& operator=(const OverlayPainter&) = delete;
 
-  // draw scene.rects, scene.lines, then scene.texts over img (straight alpha "over")
+  // draw scene.rects, scene.lines, then scene.texts over img (straight alpha "over"), leaving the
+  // pixels of scene.keepOut as they are (but under lines drawn overRoot)
   void draw(const RenderScene& scene, Image& img);
-  // the same for loose items (the compositor's panels, marks and labels)
+  // the same for loose items (the compositor's panels, marks and labels); keepOut's pixel (x, y) is the
+  // image's (x + offX, y + offY)
   void draw(const std::vector<OverlayRect>& rects, const std::vector<OverlayLine>& lines,
-            const std::vector<OverlayText>& texts, const std::string& fontPath, Image& img);
+            const std::vector<OverlayText>& texts, const std::string& fontPath, Image& img,
+            const RootFootprint* keepOut = nullptr, int offX = 0, int offY = 0);
   // width of text in pixels at sizePx with the font at fontPath
   float textWidth(const std::string& fontPath, const std::string& text, float sizePx);
 

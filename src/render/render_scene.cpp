@@ -14,6 +14,7 @@
 #include "overlay.hpp"
 #include "rootsim/image.hpp"
 #include "rootsim/obstacle_mesh.hpp"
+#include "rootsim/overlay_layout.hpp"
 #include "rootsim/tube_rings.hpp"
 
 namespace rootsim {
@@ -267,6 +268,7 @@ void addTrace(RenderScene& rs, const View& view, double tH) {
   OverlayLine l;
   l.widthPx = std::max(2.0f, std::round(overlayFontPx(view) / 9.0f));
   l.colour = kTraceInk;
+  l.overRoot = true;  // a trace is compared with the root: drawn over it
   for (const auto& p : uv) {
     Eigen::Vector2d px;
     if (projectToPixel(rs, V3(p[0], p[1], 0), px)) l.points.push_back({static_cast<float>(px.x()), static_cast<float>(px.y())});
@@ -274,9 +276,21 @@ void addTrace(RenderScene& rs, const View& view, double tH) {
   if (l.points.size() >= 2) rs.lines.push_back(std::move(l));
 }
 
-void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, const View& view, const Framing& framing) {
-  addTrace(rs, view, s.timeH);
+// the overlays at their preferred places, one block each (time, parameters, title and legend, scale,
+// downhill arrow, colour bar), in the order the layout serves them
+void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, const View& view, const Framing& framing,
+                 std::vector<OverlayBlock>& blocks) {
   if (!view.overlays) return;
+  // each block: the items added to rs since the last cut, moved out of rs
+  std::size_t r0 = rs.rects.size(), l0 = rs.lines.size(), t0 = rs.texts.size();
+  const auto cut = [&]() {
+    OverlayBlock b;
+    b.rects.assign(rs.rects.begin() + static_cast<long>(r0), rs.rects.end());
+    b.lines.assign(rs.lines.begin() + static_cast<long>(l0), rs.lines.end());
+    b.texts.assign(rs.texts.begin() + static_cast<long>(t0), rs.texts.end());
+    rs.rects.resize(r0), rs.lines.resize(l0), rs.texts.resize(t0);
+    if (!b.rects.empty() || !b.lines.empty() || !b.texts.empty()) blocks.push_back(std::move(b));
+  };
   // text scales with the shorter side, so portrait frames get the same text as landscape ones
   const float font = overlayFontPx(view);
   const bool portrait = view.height > view.width;
@@ -285,7 +299,8 @@ void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, cons
   auto width = [&](const std::string& t, float size) { return detail::measureText(view.fontPath, t, size); };
   if (view.showTime)
     rs.texts.push_back({"t = " + fmt("%.1f", s.timeH) + " h", m, m, font, OverlayText::Anchor::TopLeft});
-  // a plate's seedlings: their labels on the plate above their seeds
+  cut();
+  // a plate's seedlings: their labels on the plate above their seeds, each a block of its own
   for (const View::SeedLabel& sl : view.seedLabels) {
     Eigen::Vector2d px;
     if (!projectToPixel(rs, V3(sl.u, sl.v, 0), px)) continue;
@@ -293,6 +308,7 @@ void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, cons
     const float subPx = std::round(0.6f * font);
     if (!sl.sub.empty()) rs.texts.push_back({sl.sub, x, y, subPx, OverlayText::Anchor::BottomCentre});
     rs.texts.push_back({sl.label, x, sl.sub.empty() ? y : y - 1.25f * subPx, std::round(0.75f * font), OverlayText::Anchor::BottomCentre});
+    cut();
   }
   if (view.showParams) {
     // a plate's seedlings each have their own beta and R tau: those are in the legend, not the header
@@ -313,11 +329,13 @@ void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, cons
     else
       rs.texts.push_back({p, W - m, m, font, OverlayText::Anchor::TopRight});
   }
+  cut();
   // the bottom band: from the left the title and the stripe legend, from the right the scale bar (or
   // the grid's pitch) and the downhill arrow; every item's vertical centre on one line
   const float small = std::round(0.8f * font);
   const float midY = std::round(H - m - 0.55f * font);
   float left = m, right = W - m;
+  bool scaleBlock = false;
   if (view.showTitle && !info.title.empty()) {
     rs.texts.push_back({info.title, m, H - m, font, OverlayText::Anchor::BottomLeft});
     left += width(info.title, font) + 1.2f * font;
@@ -338,6 +356,7 @@ void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, cons
       left += tw + 0.3f * font + width("trace", font) + 0.9f * font;
     }
   }
+  cut();
   if (view.showScaleBar && rs.pxPerMm > 0) {
     const double lenMm = niceLength(0.22 * view.width / rs.pxPerMm);
     const float len = static_cast<float>(lenMm * rs.pxPerMm);
@@ -348,6 +367,7 @@ void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, cons
     const std::string label = (lenMm >= 1 ? fmt("%.0f", lenMm) : fmt("%.1f", lenMm)) + " mm";
     rs.texts.push_back({label, x + 0.5f * len, y - 0.35f * font, font, OverlayText::Anchor::BottomCentre});
     right = x - 1.0f * font;
+    scaleBlock = true;
   } else if (view.showScaleBar && rs.plate.visible) {
     // perspective: no single scale, so the grid's pitch
     const std::string pitch = "grid " + (rs.plate.gridMm >= 1 ? fmt("%.0f", rs.plate.gridMm) : fmt("%.1f", rs.plate.gridMm)) +
@@ -355,6 +375,8 @@ void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, cons
     rs.texts.push_back({pitch, right, midY - 0.5f * font, font, OverlayText::Anchor::TopRight});
     right -= width(pitch, font) + 1.0f * font;
   }
+  cut();
+  if (scaleBlock) blocks.back().shrink = false;  // the bar's length is its label's
   if (view.showDownhill && info.plate) {
     // downhill (-v) as the picture shows it at the framing's centre
     Eigen::Vector2d a, b, dir(0, 1);
@@ -368,7 +390,33 @@ void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, cons
     addArrow(rs, centre - half * dir, centre + half * dir, lw);
     rs.texts.push_back({kDownhillLabel, right - 1.3f * font, midY - 0.5f * small, small, OverlayText::Anchor::TopRight});
   }
+  cut();
   if (view.colourBy != ColourField::None && view.showColourBar) addColourBar(rs, view, font);
+  cut();
+}
+
+// the layout step: every block moved off the root's footprint fp and the rectangles the view keeps
+// clear, then added to the scene
+void placeOverlays(RenderScene& rs, const View& view, std::vector<OverlayBlock>& blocks,
+                   std::vector<std::array<float, 4>> keepClear, const RootFootprint& fp) {
+  if (blocks.empty()) return;
+  std::vector<std::array<float, 4>> boxes;
+  boxes.reserve(blocks.size());
+  std::vector<float> minScale;
+  for (const OverlayBlock& b : blocks) {
+    boxes.push_back(blockBox(b, view.fontPath));
+    minScale.push_back(b.shrink ? 0.64f : 1.0f);
+  }
+  const float m = 0.35f * overlayFontPx(view);
+  keepClear.insert(keepClear.end(), view.keepClearPx.begin(), view.keepClearPx.end());
+  const std::vector<PlacedBlock> placed = layoutBoxes(boxes, fp, keepClear, view.width, view.height, m, minScale);
+  for (std::size_t i = 0; i < blocks.size(); ++i) {
+    OverlayBlock& b = blocks[i];
+    applyPlacement(b, boxes[i], placed[i]);
+    rs.rects.insert(rs.rects.end(), b.rects.begin(), b.rects.end());
+    rs.lines.insert(rs.lines.end(), b.lines.begin(), b.lines.end());
+    for (OverlayText& t : b.texts) rs.texts.push_back(std::move(t));
+  }
 }
 
 // the key light's depth view of the root: an orthographic box along the light, fitted around the
@@ -475,6 +523,29 @@ Eigen::Vector2d topViewPixel(const Framing& f, const View& view, double u, doubl
           ((f.centreV + 0.5 * f.heightMm) - v) / f.heightMm * view.height};
 }
 
+CameraMatrices cameraFor(const View& view, const Framing& framing) {
+  CameraMatrices c;
+  const auto cu = static_cast<float>(framing.centreU), cv = static_cast<float>(framing.centreV);
+  const auto hw = static_cast<float>(0.5 * framing.widthMm), hh = static_cast<float>(0.5 * framing.heightMm);
+  const float aspect = static_cast<float>(view.width) / static_cast<float>(view.height);
+  if (view.kind == View::Kind::Top) {
+    // orthographic along -n: u to the right, v (uphill) up, so downhill points down the image
+    const float eyeW = 1000.0f;
+    c.view = toArray(glm::lookAt(glm::vec3(cu, cv, eyeW), glm::vec3(cu, cv, 0), glm::vec3(0, 1, 0)));
+    c.proj = toArray(glm::ortho(-hw, hw, -hh, hh, 1.0f, 2.0f * eyeW));
+  } else {
+    // oblique preset: from above the plate, in front of its lower right part, uphill up the image
+    const float fovY = glm::radians(30.0f);
+    const glm::vec3 target(cu, cv, 0.5f * static_cast<float>(framing.topW));
+    const glm::vec3 dir = glm::normalize(glm::vec3(0.45f, -0.85f, 1.0f));
+    const float fit = std::max(hh, hw / aspect);
+    const float dist = 1.05f * fit / std::tan(0.5f * fovY);
+    c.view = toArray(glm::lookAt(target + dist * dir, target, glm::vec3(0, 1, 0)));
+    c.proj = toArray(glm::perspective(fovY, aspect, 0.02f * dist, 20.0f * dist));
+  }
+  return c;
+}
+
 RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const View& view,
                              const Framing& framing) {
   checkSize(view);
@@ -488,6 +559,7 @@ RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const 
   rs.fontPath = view.fontPath;
   rs.material.stripeCos = static_cast<float>(std::cos(view.stripeHalfWidthDeg * units::deg));
 
+  std::vector<std::array<float, 4>> outlineClear;  // a whole plate's outline, kept clear of the overlays
   // the root
   const PlateFrame pf = PlateFrame::tilted(info.alphaDeg * units::deg);
   rs.vertices.reserve(static_cast<size_t>((snap.x.cols() + rootCount(snap) * (kTipRings + 2)) * kSides));
@@ -496,7 +568,10 @@ RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const 
   for (int k = 0; k < rootCount(snap); ++k) {
     const Snapshot part = rootCount(snap) == 1 ? Snapshot{} : rootOf(snap, k);
     const Snapshot& root = rootCount(snap) == 1 ? snap : part;
-    const std::vector<Ring> rings = tubeRings(root, pf);
+    std::vector<Ring> rings = tubeRings(root, pf);
+    // at least 1.5 px wide in the top view, so a thin root (a lateral on a whole plate) stays one line
+    if (view.kind == View::Kind::Top)
+      for (Ring& g : rings) g.r = std::max(g.r, 0.75 * framing.widthMm / view.width);
     std::vector<std::array<float, 3>> ringColour;
     if (view.colourBy != ColourField::None) {
       const Eigen::VectorXd field = nodeField(root, info, view.colourBy);
@@ -510,29 +585,19 @@ RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const 
   addObstacleMeshes(info, rs);
 
   // camera
+  const CameraMatrices cam = cameraFor(view, framing);
+  rs.viewMatrix = cam.view;
+  rs.projMatrix = cam.proj;
   const auto cu = static_cast<float>(framing.centreU), cv = static_cast<float>(framing.centreV);
   const auto hw = static_cast<float>(0.5 * framing.widthMm), hh = static_cast<float>(0.5 * framing.heightMm);
-  const float aspect = static_cast<float>(view.width) / static_cast<float>(view.height);
   glm::vec3 light, towardsLightPlate;
   if (view.kind == View::Kind::Top) {
-    // orthographic along -n: u to the right, v (uphill) up, so downhill points down the image
-    const float eyeW = 1000.0f;
-    rs.viewMatrix = toArray(glm::lookAt(glm::vec3(cu, cv, eyeW), glm::vec3(cu, cv, 0), glm::vec3(0, 1, 0)));
-    rs.projMatrix = toArray(glm::ortho(-hw, hw, -hh, hh, 1.0f, 2.0f * eyeW));
     rs.pxPerMm = view.width / framing.widthMm;
     rs.plate.u0 = cu - 1.05f * hw, rs.plate.u1 = cu + 1.05f * hw;
     rs.plate.v0 = cv - 1.05f * hh, rs.plate.v1 = cv + 1.05f * hh;
     light = glm::normalize(glm::vec3(-0.35f, 0.5f, 1.0f));
     towardsLightPlate = light;  // the view is a translation: eye axes are the plate axes
   } else {
-    // oblique preset: from above the plate, in front of its lower right part, uphill up the image
-    const float fovY = glm::radians(30.0f);
-    const glm::vec3 target(cu, cv, 0.5f * static_cast<float>(framing.topW));
-    const glm::vec3 dir = glm::normalize(glm::vec3(0.45f, -0.85f, 1.0f));
-    const float fit = std::max(hh, hw / aspect);
-    const float dist = 1.05f * fit / std::tan(0.5f * fovY);
-    rs.viewMatrix = toArray(glm::lookAt(target + dist * dir, target, glm::vec3(0, 1, 0)));
-    rs.projMatrix = toArray(glm::perspective(fovY, aspect, 0.02f * dist, 20.0f * dist));
     const float ext = 4.0f * std::max(hw, hh);
     rs.plate.u0 = cu - ext, rs.plate.u1 = cu + ext;
     rs.plate.v0 = cv - ext, rs.plate.v1 = cv + ext;
@@ -596,7 +661,16 @@ RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const 
       Eigen::Vector2d px;
       if (projectToPixel(rs, V3(u, v, 0), px)) l.points.push_back({static_cast<float>(px.x()), static_cast<float>(px.y())});
     }
-    if (l.points.size() == 5) rs.lines.push_back(std::move(l));
+    if (l.points.size() == 5) {
+      // the overlays keep off the outline: a strip a font's third wide along each side
+      const float k = std::max(4.0f, 0.35f * overlayFontPx(view));
+      for (std::size_t i = 0; i + 1 < l.points.size(); ++i) {
+        const auto& a = l.points[i];
+        const auto& b = l.points[i + 1];
+        outlineClear.push_back({std::min(a[0], b[0]) - k, std::min(a[1], b[1]) - k, std::max(a[0], b[0]) + k, std::max(a[1], b[1]) + k});
+      }
+      rs.lines.push_back(std::move(l));
+    }
   }
   if (view.scanLook) {
     // light roots on a dark plate, no stripes, no grid: a scanner's picture of the plate
@@ -607,7 +681,19 @@ RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const 
     rs.background = {0.0f, 0.0f, 0.0f, 1};
     rs.shadows = false;
   }
-  addOverlays(rs, snap, info, view, framing);
+  addTrace(rs, view, snap.timeH);
+  std::vector<OverlayBlock> blocks;
+  addOverlays(rs, snap, info, view, framing, blocks);
+  if (rs.rects.empty() && rs.texts.empty() && blocks.empty() &&
+      std::all_of(rs.lines.begin(), rs.lines.end(), [](const OverlayLine& l) { return l.overRoot; }))
+    return rs;
+  // the painter keeps this snapshot's footprint; the layout the movie's (View::footprint: every frame
+  // the overlays hold still over), or this snapshot's own
+  auto own = std::make_shared<RootFootprint>(view.width, view.height);
+  own->add(snap, info, cam, view.whiskers);
+  rs.keepOut = std::move(own);
+  const bool movie = view.footprint && view.footprint->width() == view.width && view.footprint->height() == view.height;
+  placeOverlays(rs, view, blocks, outlineClear, movie ? *view.footprint : *rs.keepOut);
   return rs;
 }
 

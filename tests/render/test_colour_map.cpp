@@ -45,16 +45,54 @@ TEST_CASE("the diverging map: neutral at 0, blue below, red above, lightness mir
   for (ColourField f : {ColourField::Twist, ColourField::Kappa1, ColourField::Kappa2}) {
     CHECK(colourFieldSigned(f));
     const auto c = fieldColour(f, 0.0, {-2.0, 2.0});
-    CHECK(c == coolWarm(0.5));
+    CHECK(c == blueGreen(0.5));
     const auto a = fieldColour(f, -1.0, {-2.0, 2.0}), b = fieldColour(f, 1.0, {-2.0, 2.0});
     CHECK(a[2] > a[0]);
-    CHECK(b[0] > b[2]);
+    CHECK(a[2] > a[1]);
+    CHECK(b[1] > b[0]);
+    CHECK(b[1] > b[2]);
   }
-  // the magnitudes stay on viridis
+  // the magnitudes: viridis without its ends
   for (ColourField f : {ColourField::Curvature, ColourField::Kappa0, ColourField::Stretch, ColourField::Contact}) {
     CHECK_FALSE(colourFieldSigned(f));
-    CHECK(fieldColour(f, 0.25, {0.0, 1.0}) == viridis(0.25));
+    CHECK(fieldColour(f, 0.25, {0.0, 1.0}) == viridis(0.3));
   }
+}
+
+TEST_CASE("the signed fields' map: neutral at 0, blue below, green above, lightness mirrored and falling away from 0") {
+  const auto mid = blueGreen(0.5);
+  CHECK(std::abs(mid[0] - mid[1]) < 0.01f);
+  CHECK(std::abs(mid[1] - mid[2]) < 0.01f);
+  CHECK(lightness(mid) == doctest::Approx(88).epsilon(0.01));
+  for (int i = 1; i <= 16; ++i) {
+    const double d = i / 32.0;
+    CAPTURE(d);
+    const auto lo = blueGreen(0.5 - d), hi = blueGreen(0.5 + d);
+    CHECK(lo[2] > lo[0]);
+    CHECK(hi[1] > hi[0]);
+    CHECK(std::abs(lightness(lo) - lightness(hi)) < 1.0);
+    CHECK(lightness(lo) < lightness(blueGreen(0.5 - d + 1 / 32.0)));
+    CHECK(lightness(lo) == doctest::Approx(88 - 100 * d).epsilon(0.02));  // in gamut: not clipped
+  }
+}
+
+TEST_CASE("colour maps keep their hues at least 40 degrees from the stripes' pink and orange") {
+  // CIELAB hue; the stripes sit at about 355 (pink) and 62 degrees (orange). Moreland's cool-warm map
+  // and viridis' ends come within 35 degrees of them (the reason for the maps used now)
+  double worstSigned = 180, worstSeq = 180, worstCoolWarm = 180, worstViridis = 180;
+  for (int i = 0; i <= 200; ++i) {
+    const double t = i / 200.0;
+    worstSigned = std::min(worstSigned, stripeHueDistanceDeg(fieldColour(ColourField::Twist, t, {0.0, 1.0})));
+    worstSeq = std::min(worstSeq, stripeHueDistanceDeg(fieldColour(ColourField::Curvature, t, {0.0, 1.0})));
+    worstCoolWarm = std::min(worstCoolWarm, stripeHueDistanceDeg(coolWarm(t)));
+    worstViridis = std::min(worstViridis, stripeHueDistanceDeg(viridis(t)));
+  }
+  INFO("signed " << worstSigned << ", sequential " << worstSeq << ", cool-warm " << worstCoolWarm << ", viridis " << worstViridis);
+  CHECK(worstSigned >= 40.0);
+  CHECK(worstSeq >= 40.0);
+  // the check can fail: the maps used before would
+  CHECK(worstCoolWarm < 40.0);
+  CHECK(worstViridis < 40.0);
 }
 
 TEST_CASE("signed fields: a symmetric range, and kappa1 and kappa2 are the bending components") {
@@ -98,7 +136,7 @@ TEST_CASE("colour bar: the field's name and unit, 0 marked, the diverging map's 
   CHECK(title);
   CHECK(zero);
   CHECK(titleX > 0.8f * v.width);
-  // the bar's pixels: blue at the bottom, neutral in the middle, red at the top
+  // the bar's pixels: blue at the bottom, neutral in the middle, green at the top
   GlRenderer r(v.width, v.height);
   const Image img = r.render(rs);
   const float m = 0.7f * overlayFontPx(v);
@@ -106,8 +144,9 @@ TEST_CASE("colour bar: the field's name and unit, 0 marked, the diverging map's 
   const int yTop = static_cast<int>(0.28 * v.height) + 4, yBottom = static_cast<int>(0.78 * v.height) - 4;
   const std::uint8_t* top = img.at(x, yTop);
   const std::uint8_t* bottom = img.at(x, yBottom);
-  CHECK(top[0] > top[2] + 80);
-  CHECK(bottom[2] > bottom[0] + 80);
+  CHECK(top[1] > top[0] + 50);
+  CHECK(top[1] > top[2] + 20);
+  CHECK(bottom[2] > bottom[0] + 50);
   // just off the 0 line (it is drawn across the bar): grey
   const std::uint8_t* mid = img.at(x, static_cast<int>(0.53 * v.height) + 4);
   CHECK(std::max({mid[0], mid[1], mid[2]}) - std::min({mid[0], mid[1], mid[2]}) < 30);

@@ -239,8 +239,8 @@ TEST_CASE("stills: --from-h --to-h and --hours-per-second set the frames and the
 TEST_CASE("stills: run --movie defaults to the inset look and its final_top.png is the movie's last frame") {
   const fs::path d = rtest::scratch("first_picture");
   const std::string scene = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2b_waving.toml";
-  // 3.1 mm of root: wider than the 2 mm window in the fit view
-  const std::string base = " --set growth.steps=200 --set output.every_steps=50 --quiet --movie --out ";
+  // about 9 mm of root: its tube under 24 px wide in the fit view, so the inset magnifies it
+  const std::string base = " --set growth.steps=800 --set output.every_steps=200 --quiet --movie --out ";
   const fs::path r1 = d / "default", r2 = d / "fit";
   const Result a = run("run " + scene + base + r1.string());
   REQUIRE_MESSAGE(a.code == 0, a.out);
@@ -274,7 +274,8 @@ TEST_CASE("stills: run --movie defaults to the inset look and its final_top.png 
 TEST_CASE("stills: run --movie --field-mm alone sizes the default inset - and without --movie or with --camera fit it is refused") {
   const fs::path d = rtest::scratch("field_inset");
   const std::string scene = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2b_waving.toml";
-  const std::string base = " --set growth.steps=200 --set output.every_steps=50 --quiet";
+  // about 9 mm of root, as above: the 2 mm window is narrowed to magnify twice, 1.2 mm is kept
+  const std::string base = " --set growth.steps=800 --set output.every_steps=200 --quiet";
   const fs::path r1 = d / "field";
   const Result a = run("run " + scene + base + " --movie --field-mm 1.2 --out " + r1.string());
   REQUIRE_MESSAGE(a.code == 0, a.out);
@@ -410,6 +411,33 @@ TEST_CASE("stills: a plate's run draws every root, and --scan is the plate at PX
   // the plate view and --root; errors name the flag
   CHECK(run("render " + (d / "plate").string() + " --plate-view --png " + (d / "view.png").string() + " --at-h 3 --quiet").code == 0);
   CHECK(readPng((d / "view.png").string()).width == 1080);
+  // the plate view frames the sown area: its roots span more of the picture than on the whole plate; its
+  // still without --at-h is the last snapshot, as --scan's is
+  CHECK(run("render " + (d / "plate").string() + " --plate-view --png " + (d / "sown.png").string() + " --quiet").code == 0);
+  CHECK(run("render " + (d / "plate").string() + " --plate-view --whole-plate --png " + (d / "whole.png").string() + " --quiet").code == 0);
+  // 60 steps of 0.05 h: the last snapshot is the one at 3 h
+  const Image sown = readPng((d / "sown.png").string()), last = readPng((d / "view.png").string()),
+              whole = readPng((d / "whole.png").string());
+  CHECK(sown.rgba == last.rgba);
+  // root pixels (the stripes: warm and saturated), above the legend (its swatches have the stripes'
+  // colours; on the whole plate it lies inside the outline, at about 0.87 of the height) and below the
+  // time; the roots are sown near the plate's top
+  auto rootSpan = [](const Image& im) {
+    int x0 = im.width, x1 = -1;
+    for (int y = im.height * 12 / 100; y < im.height * 82 / 100; ++y)
+      for (int x = 0; x < im.width; ++x) {
+        const std::uint8_t* q = im.at(x, y);
+        if (q[0] > 200 && q[0] > q[2] + 40) x0 = std::min(x0, x), x1 = std::max(x1, x);
+      }
+    return x1 >= x0 ? static_cast<double>(x1 - x0 + 1) / im.width : 0.0;
+  };
+  INFO("root span: sown area " << rootSpan(sown) << ", whole plate " << rootSpan(whole));
+  CHECK(rootSpan(sown) > 2.0 * rootSpan(whole));
+  CHECK(rootSpan(sown) > 0.25);
+  const Result noView = run("render " + (d / "plate").string() + " --whole-plate --png " + (d / "z.png").string() + " --at-h 3");
+  CHECK(noView.code == 2);
+  CHECK(noView.out.find("--whole-plate: ") != std::string::npos);
+  CHECK_FALSE(fs::exists(d / "z.png"));
   CHECK(run("render " + (d / "plate").string() + " --root down --camera follow --png " + (d / "follow.png").string() +
             " --at-h 3 --quiet").code == 0);
   const Result noRoot = run("render " + (d / "plate").string() + " --root sideways --png " + (d / "x.png").string() + " --at-h 3");

@@ -1,4 +1,5 @@
-// checkpoints (src/io/checkpoint.cpp): every field through a round trip, corrupt, truncated and forged files refused.
+// checkpoints (src/io/checkpoint.cpp): every field through a round trip (a root's and a plate's), corrupt,
+// truncated and forged files refused.
 // The field lists (include/rootsim/fields.hpp) through a checkpoint: a simulation of a coil in self-
 // contact on a plate with friction, stepped, carried, written, read back into a fresh Simulation; every
 // field of every persistent struct (the rod state with its friction stick points, the progress, the
@@ -6,6 +7,7 @@
 // name through the same lists, before and after one more growth step of both.
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
@@ -13,6 +15,8 @@
 #include <string>
 
 #include "rootsim/checkpoint.hpp"
+#include "rootsim/errors.hpp"
+#include "rootsim/plate.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/simulation.hpp"
 #include "test_support.hpp"
@@ -172,4 +176,72 @@ TEST_CASE("a forged checkpoint with a recomputed checksum and an impossible fram
   const Result ok = run(args + (d / "b").string() + " --resume");
   CHECK_MESSAGE(ok.code == 0, ok.out);
   fs::remove_all(d);
+}
+
+TEST_CASE("every field of a plate's checkpoint survives a round trip and a plate's and a root's checkpoints refuse each other") {
+  // two seedlings whose laterals (sides drawn from a seed) touch the other's from step ~130: at step 140
+  // the carry holds laterals, pending sites, the sides' draws and the coupled system's memory
+  const Scene sc = loadScene(std::string(ROOTSIM_SOURCE_DIR) + "/tests/data/plate/laterals_touching.toml", {});
+  REQUIRE(sc.isPlate());
+  PlateSimulation a(sc.plate.params, sc.plate.seedlings);
+  int touching = 0;
+  for (int i = 0; i < 140; ++i) touching = std::max(touching, a.growthStep().touchingPairs);
+  REQUIRE(touching > 0);
+  std::vector<std::string> names;
+  for (const Seedling& sd : sc.plate.seedlings) names.push_back(sd.name);
+  auto checkpointOf = [&](const PlateSimulation& p) {
+    PlateCheckpoint c;
+    c.sceneHash = 42;
+    c.step = p.step();
+    c.plate = p.carry();
+    c.roots.resize(static_cast<size_t>(p.size()));
+    c.roots.back().watch.maxSubsteps = 3;
+    c.acc = {2, 0.97, 1.5, 0};
+    return c;
+  };
+  const PlateCheckpoint c = checkpointOf(a);
+  REQUIRE(c.plate.laterals.size() >= 8);
+  REQUIRE(get<&CoupledWorkspace::sparse>(c.plate.coupled).n > 0);
+  const fs::path dir = scratch("plate_round_trip");
+  writePlateCheckpoint(dir / kCheckpointFile, c);
+  const PlateCheckpoint r = readPlateCheckpoint(dir / kCheckpointFile, names);
+  std::string d = plateCheckpointDifference(c, r);
+  CHECK_MESSAGE(d.empty(), "differs after the checkpoint: ", d);
+  // a plate rebuilt from it carries the same again, and both go on bit for bit
+  PlateSimulation b(sc.plate.params, sc.plate.seedlings, r.plate);
+  d = plateCheckpointDifference(c, checkpointOf(b));
+  CHECK_MESSAGE(d.empty(), "differs in the resumed plate's carry: ", d);
+  for (int i = 0; i < 10; ++i) {
+    a.growthStep();
+    b.growthStep();
+  }
+  d = plateCheckpointDifference(checkpointOf(a), checkpointOf(b));
+  CHECK_MESSAGE(d.empty(), "differs after resuming and growing: ", d);
+  // a plate's checkpoint is no root's, and a root's no plate's
+  try {
+    readCheckpoint(dir / kCheckpointFile);
+    FAIL("a plate's checkpoint read as a root's");
+  } catch (const SceneError& e) {
+    CHECK(std::string(e.what()).find("corrupt checkpoint (a plate's checkpoint, this scene is one root") != std::string::npos);
+  }
+  RunCheckpoint one;
+  one.sceneHash = 42;
+  one.step = a.root(0).step();
+  one.state = a.root(0).state();
+  one.carry = a.root(0).carry();
+  writeCheckpoint(dir / "root.bin", one);
+  try {
+    readPlateCheckpoint(dir / "root.bin", names);
+    FAIL("a root's checkpoint read as a plate's");
+  } catch (const SceneError& e) {
+    CHECK(std::string(e.what()).find("corrupt checkpoint (one root's checkpoint, this scene is a plate") != std::string::npos);
+  }
+  // a checkpoint of other seedlings: refused naming what does not fit
+  try {
+    readPlateCheckpoint(dir / kCheckpointFile, {"a"});
+    FAIL("a plate's checkpoint read for other seedlings");
+  } catch (const SceneError& e) {
+    CHECK(std::string(e.what()).find(" roots for 1 seedlings and ") != std::string::npos);
+  }
+  fs::remove_all(dir);
 }

@@ -3,6 +3,7 @@
 #include <doctest/doctest.h>
 
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include "rootsim/analysis.hpp"
@@ -205,4 +206,54 @@ TEST_CASE("plate: lateral roots emerge at the asked spacing and, on a vertical p
     CHECK(theta * plate.seedling(r).model.initial.angle > 0.0);
   }
   CHECK(judged >= 2);
+}
+
+TEST_CASE("plate: a plate restored from its carry continues bit for bit with roots in contact and laterals") {
+  // the collision scene's roots with laterals drawn to random sides: at step 250 they press on each other
+  // and six laterals have emerged; a plate rebuilt from carry() there and the original grow 40 more steps
+  // (through the emergence of more laterals) to the same bits
+  const Model m = waving();
+  Model across = m;
+  across.tropism.beta = 0.02;
+  PlateParams pp;
+  LateralParams& lp = pp.laterals;
+  lp.enabled = true;
+  lp.first = 1e-3;
+  lp.spacing = 0.4e-3;
+  lp.apicalUnbranched = 0.6e-3;
+  lp.alternate = false;
+  lp.seed = 3;
+  const std::vector<Seedling> seedlings{sow("down", 20, 5, m), sow("across", 23, 7, across, -90)};
+  PlateSimulation plate(pp, seedlings);
+  int touching = 0;
+  for (int k = 0; k < 250; ++k) touching = std::max(touching, plate.growthStep().touchingPairs);
+  const int before = plate.size();
+  INFO(before << " roots at step 250, " << touching << " element pairs touching at most");
+  REQUIRE(touching > 0);
+  REQUIRE(before > 2);
+  const PlateCarry carry = plate.carry();
+  PlateSimulation resumed(pp, seedlings, carry);
+  REQUIRE(resumed.size() == before);
+  for (int k = 0; k < 40; ++k) {
+    const PlateStepRecord& a = plate.growthStep();
+    const PlateStepRecord& b = resumed.growthStep();
+    REQUIRE(a.step == b.step);
+    CHECK(a.touchingPairs == b.touchingPairs);
+    CHECK(a.sweeps == b.sweeps);
+    CHECK(std::memcmp(&a.minGap, &b.minGap, sizeof(double)) == 0);
+  }
+  CHECK(plate.size() > before);  // laterals emerged after the carry was taken
+  REQUIRE(resumed.size() == plate.size());
+  for (int r = 0; r < plate.size(); ++r) {
+    const RodState& a = plate.root(r).state();
+    const RodState& b = resumed.root(r).state();
+    INFO(plate.seedling(r).name);
+    CHECK(resumed.seedling(r).name == plate.seedling(r).name);
+    REQUIRE(a.nodes() == b.nodes());
+    CHECK((a.x - b.x).cwiseAbs().maxCoeff() == 0.0);
+    CHECK((a.S - b.S).cwiseAbs().maxCoeff() == 0.0);
+    for (int i = 0; i < a.elements(); ++i) CHECK((a.Q[static_cast<size_t>(i)] - b.Q[static_cast<size_t>(i)]).cwiseAbs().maxCoeff() == 0.0);
+    CHECK(plate.root(r).totalIterations() == resumed.root(r).totalIterations());
+    CHECK(std::memcmp(&plate.root(r).last().lowestEigenvalue, &resumed.root(r).last().lowestEigenvalue, sizeof(double)) == 0);
+  }
 }

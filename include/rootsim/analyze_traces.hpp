@@ -30,6 +30,7 @@ struct AnalyzeOptions {
   std::string out;                 // --out DIR (default analysis/<first file's stem>)
   bool force = false;
   bool quiet = false;
+  bool printLines = true;          // a line per root on stdout (the command line's; not Python's)
   std::string flagPrefix = "--";   // how messages name the flags: "--px-per-mm", or render's "--trace-px-per-mm"
 };
 
@@ -114,7 +115,8 @@ struct RowField {
 std::vector<RowField> rowFields(const RootRow& r);
 
 // the command: analysis.csv and analysis.json into --out (a rootsim analysis folder, written whole), one
-// summary line per root on stdout. Returns 0.
-int analyzeCommand(const AnalyzeOptions& o);
+// summary line per root on stdout (printLines); result (may be null) receives the tables written. Returns 0.
+struct Analysis;  // trace_growth.hpp
+int analyzeCommand(const AnalyzeOptions& o, Analysis* result = nullptr);
 
 }  // namespace rootsim::app

@@ -79,7 +79,8 @@ struct ContactWorkspace {
   std::vector<PairStiffness> stiffness;   // selfContactStiffness: one per pair in contact (grows once)
   std::vector<NeighbourStiffness> neighbourStiffness;  // neighbourContactStiffness: one per pair in contact
   NeighbourCapsules neighbours;           // other roots on a plate (not scratch: the plate's input, kept
-                                          // by resize; not in fields(): plates are not checkpointed)
+                                          // by resize; not in fields(): a plate lists them anew from the
+                                          // roots' states before every relaxation and when restored)
 
   void resize(int n);
   void invalidate() { builtElements = -1; }

@@ -18,11 +18,36 @@ namespace rootsim {
 // node's plate coordinates lateral_mm, downhill_mm, height_mm (PlateFrame::coords of the scene's plate:
 // across the plate, down it, above it; for a free organ the frame of plane.alpha_deg it started in)
 std::string shapeCsv(const Model& m, const RodState& s, const RodStrains& k);
+// one node of shape.csv in the file's units, and its columns declared once (shapeColumns: the writer's
+// header and rows, docs/outputs.md's table)
+struct ShapeNode {
+  double s = 0;                     // [mm]
+  Vec3 x, d1, d2, d3, kappa, plate; // [mm], unit vectors, [1/mm], [mm]
+  double stretch = 0, radius = 0;   // [-], [mm]
+};
+struct ShapeColumn {
+  const char* name;
+  const char* unit;
+  const char* help;
+  double (*value)(const ShapeNode&);
+};
+const std::vector<ShapeColumn>& shapeColumns();
 
 // stiffness modes of a state (`rootsim modes`): modes.csv, one row per mode and node
 // (mode,eigenvalue_n_per_m,node,s_mm,x_mm,y_mm,z_mm,ux,uy,uz: the node's position and its displacement
 // in the mode, largest 1), and modes.vtp, the centreline with one point-data vector per mode
 std::string modesCsv(const RodState& s, const StiffnessModes& m);
+// one column of timeseries.csv, declared once (timeseriesColumns): it writes the file's header and rows,
+// fills the Python package's records (rootsim.Simulation.step) and docs/outputs.md's column table
+struct RecordColumn {
+  const char* name;                        // the header's name (its unit in it: time_h, length_mm)
+  const char* unit;                        // "" for a count or a dimensionless value
+  const char* help;
+  double (*real)(const StepRecord&);       // the value, in the file's unit; null for a whole number
+  long long (*whole)(const StepRecord&);   // a whole number (a step, a count), written as an integer
+};
+const std::vector<RecordColumn>& timeseriesColumns();
+
 // time series, one row per output step, streamed (temp file renamed on close)
 class TimeseriesWriter {
  public:

@@ -44,7 +44,7 @@ struct AnalysisParams {
 
 // how the trajectory is written (docs/outputs.md)
 enum class TrajectoryFormat {
-  Binary,  // trajectory.bin: raw little-endian doubles, about a third of the CSV, read back exactly
+  Binary,  // trajectory.bin: raw little-endian doubles, about half the CSV (docs/outputs.md), read back exactly
   Csv,     // trajectory.csv: one text row per node and snapshot
   Both     // both files
 };

@@ -86,6 +86,58 @@ struct RootPairForces {
   int contacts = 0;           // element pairs in contact
 };
 
+// a lateral root as it emerged (emergeLaterals): its parent (plate index), its site's index along the parent,
+// where it starts (the parent's node at the site, plate coordinates [m], and that node's rest arc length
+// [m]), its initial direction [rad] and the time [s]. The rest of its seedling follows from these, the
+// parent and [laterals] (PlateSimulation builds it so when it emerges and when a plate is restored).
+struct LateralBirth {
+  int parent = 0;
+  int site = 0;
+  double lateral = 0, downhill = 0;
+  double siteS = 0;
+  double angle = 0;
+  double time = 0;
+  static constexpr auto fields() {
+    using B = LateralBirth;
+    return std::tuple{field("parent", &B::parent), field("site", &B::site), field("lateral", &B::lateral),
+                      field("downhill", &B::downhill), field("siteS", &B::siteS), field("angle", &B::angle),
+                      field("time", &B::time)};
+  }
+};
+
+// the name of a parent's lateral at site index `site` (its folder roots/NAME): "s1.3" for s1's third site
+std::string lateralName(const std::string& parent, int site);
+
+// one root of a plate as a growth step leaves it: its state and its simulation's carry (simulation.hpp)
+struct RootCarry {
+  RodState state;
+  SimulationCarry carry;
+  static constexpr auto fields() {
+    using C = RootCarry;
+    return std::tuple{field("state", &C::state), field("carry", &C::carry)};
+  }
+};
+
+// what a plate carries from one growth step to the next (a checkpoint saves it; PlateSimulation(plate,
+// seedlings, carry) continues bit for bit where carry() left): the last record, every root's state and
+// carry (seedlings, then laterals in the order they emerged), the laterals emerged, each root's next
+// lateral site, the sides' draws, and the coupled Newton system's memory. The lists of nearby elements
+// are rebuilt from the states (they are before every relaxation).
+struct PlateCarry {
+  PlateStepRecord last;
+  std::vector<RootCarry> roots;
+  std::vector<LateralBirth> laterals;
+  std::vector<int> nextSite;
+  std::uint64_t sideStream = 1;
+  Memory<CoupledWorkspace> coupled;
+  static constexpr auto fields() {
+    using C = PlateCarry;
+    return std::tuple{field("last", &C::last), field("roots", &C::roots), field("laterals", &C::laterals),
+                      field("nextSite", &C::nextSite), field("sideStream", &C::sideStream),
+                      field("coupled", &C::coupled)};
+  }
+};
+
 // a lateral root's model as it emerges from a parent of model `parent`: the parent's keys with the lateral's
 // own root, growth and tropism ([laterals]); its angle, start time, seed and obstacles are the site's
 // (PlateSimulation sets them). One function, so that the scene check at the start sees what emerges.
@@ -95,6 +147,11 @@ class PlateSimulation {
  public:
   // builds every seedling's initial root and relaxes it (seeing the roots built before it)
   PlateSimulation(const PlateParams& plate, std::vector<Seedling> seedlings);
+  // continues a plate of the same params and seedlings exactly where carry() of it left (a checkpoint):
+  // the laterals emerge again from their births, every root from its state and carry. Throws
+  // std::invalid_argument when the carry does not fit the seedlings (a caller checks it first)
+  PlateSimulation(const PlateParams& plate, std::vector<Seedling> seedlings, const PlateCarry& carry);
+  PlateCarry carry() const;
 
   // one growth step of every root: each grows; roots apart relax alone (the single root's step); roots
   // within reach of another are solved together by one Newton system on their cluster, then each
@@ -142,6 +199,10 @@ class PlateSimulation {
   PlateStepRecord observe(int sweeps) const;
   // the lateral roots whose sites the last growth step opened (docs/plate.md, Lateral roots)
   void emergeLaterals();
+  // the seedling of a lateral born so (its model from its parent's and [laterals]); adds its root, new or
+  // (from a carry) as it was
+  Seedling lateralSeedling(const LateralBirth& b) const;
+  void addLateral(const LateralBirth& b, const RootCarry* from);
   // pairs of root r's element i and root o's element j that contact skips: within 3 (Ra + Rb) of arc
   // length of a lateral's junction with its parent, on both
   bool nearJunction(int r, int i, int o, int j) const;
@@ -167,6 +228,7 @@ class PlateSimulation {
   std::vector<char> near_;         // the root's box overlaps another's: it is in the grid
   std::vector<int> nextSite_;      // per root: the index of its next lateral site
   std::vector<int> emerged_;
+  std::vector<LateralBirth> births_;  // the laterals emerged, in order (root seedlings + i)
   std::uint64_t sideStream_ = 1;   // the sides' draws (LateralParams::alternate false)
   std::vector<CoupledRoot> cluster_;  // the roots within reach of another (scratch)
   CoupledWorkspace coupled_;       // their coupled Newton system's memory

@@ -96,6 +96,12 @@ struct CoupledWorkspace {
   std::vector<int> first;             // each root's first unknown
   std::vector<int> clusterOf;         // plate index -> position in the system (-1: not in it)
   std::vector<RodState> start;        // the states before a relaxation (a stalled one returns to them)
+  // what the next coupled relaxation depends on (fields.hpp): the sparse pattern and pivots, reused by a
+  // system of the same size; the rest is scratch
+  static constexpr auto fields() {
+    using W = CoupledWorkspace;
+    return std::tuple{field("sparse", &W::sparse)};
+  }
 };
 
 // Newton's method on the roots' joint equilibrium: converged when every root is within its own

@@ -15,7 +15,8 @@ N; velocities mm/s), named in every field and column (``positions_mm``, ``downhi
 - ``run(scene_or_path, set=..., out=..., progress=...)`` -> ``Run`` (options: keywords only); ``load_run(dir)``
 - ``Scene.load(path)``, ``scene.set(key, value)``, ``scene.to_toml()``, ``scene.check()``
 - ``sweep(...)`` yields points as they finish; ``render(run_dir, ...)`` is ``rootsim render``;
-  ``export(run_dir, rsml=...)`` is ``rootsim export`` (RSML)
+  ``export(run_dir, rsml=...)`` is ``rootsim export`` (RSML); every command is a function whose keywords
+  are its flags (``check``, ``modes``, ``montage``, ``figure``, ``analyze``, ``compare``, ``fit``)
 - ``Simulation(scene)``: ``step(n)``, ``state()`` (numpy copies, mm), ``set("tropism.beta", ...)``;
   one Simulation may be shared by threads: its calls are serialised; of a plate scene it returns a
   ``Plate``: ``step(n)``, ``run()``, ``roots`` (each a ``PlateRoot``: name, parent, order, ``state()``)
@@ -27,8 +28,9 @@ directory stays ``DIR.partial/``. Built with the project (PYTHONPATH=build/pytho
 /usr/bin/python3.
 """
 from ._api import (Analysis, Frame, Plate, PlateRoot, Run, RunError, Scene, SceneError, Simulation, State, Sweep, SweepPoint, analyze,
-                   compare, export, fit, load_run, render, run, sweep)
+                   check, compare, export, figure, fit, load_run, modes, montage, render, run, sweep)
 from ._rootsim import __version__
 
 __all__ = ["Analysis", "Frame", "Plate", "PlateRoot", "Run", "RunError", "Scene", "SceneError", "Simulation", "State", "Sweep", "SweepPoint",
-           "analyze", "compare", "export", "fit", "load_run", "render", "run", "sweep", "__version__"]
+           "analyze", "check", "compare", "export", "figure", "fit", "load_run", "modes", "montage", "render", "run",
+           "sweep", "__version__"]

@@ -60,6 +60,19 @@ def _overrides(values: Optional[Mapping[str, Value]]) -> List[str]:
     return out
 
 
+def _options(args: Mapping[str, Any]) -> Dict[str, Any]:
+    """A function's arguments as its command's options, by keyword: the C++ binding reads them through the
+    command's option table (src/cli/options.hpp: the command line's flags), so names, defaults and checks
+    are the command line's. None leaves an option at the command's default; paths become text."""
+    return {k: os.fspath(v) if isinstance(v, os.PathLike) else v for k, v in args.items()}
+
+
+def _need_render(command: str) -> None:
+    if not _c.have_render:
+        raise SceneError(f"{command}: this rootsim was built without the renderer and the app library "
+                         "(ROOTSIM_BUILD_RENDER=OFF)")
+
+
 # ---------------------------------------------------------------------------------------------------
 # scenes
 
@@ -170,13 +183,17 @@ def _scene_of(scene_or_path: Union[Scene, PathLike], set: Optional[Mapping[str, 
 # run directories
 
 
-def _renamed(cls_name: str, renames: Mapping[str, str]) -> Callable[[Any, str], Any]:
-    """A __getattr__ naming the field an old (SI-unit) name became."""
+_UNITS_RENAME = "the package's units are the files': mm, h, deg, N; docs/python.md, Units"
+
+
+def _renamed(cls_name: str, renames: Mapping[str, str],
+             why: Optional[Mapping[str, str]] = None) -> Callable[[Any, str], Any]:
+    """A __getattr__ naming the field an old name became (why: the reason per name; default the units)."""
 
     def __getattr__(self: Any, name: str) -> Any:
         if name in renames:
-            raise AttributeError(f"{cls_name}.{name} was renamed {renames[name]} (the package's units are the "
-                                 f"files': mm, h, deg, N; docs/python.md, Units)")
+            reason = (why or {}).get(name, _UNITS_RENAME)
+            raise AttributeError(f"{cls_name}.{name} was renamed {renames[name]} ({reason})")
         raise AttributeError(f"{cls_name!r} object has no attribute {name!r}")
 
     return __getattr__
@@ -355,7 +372,9 @@ def load_run(dir: PathLike) -> Run:
 
 def run(scene_or_path: Union[Scene, PathLike], *, set: Optional[Mapping[str, Value]] = None,
         out: Optional[PathLike] = None, progress: Optional[Callable[[int, int], None]] = None,
-        force: bool = False) -> Run:
+        force: bool = False, resume: bool = False, movie: bool = False, camera: Optional[str] = None,
+        field_mm: Optional[float] = None, inset: bool = False, color_by: Optional[str] = None,
+        plot: Union[str, Sequence[str], None] = None, shadows: bool = False, quiet: bool = True) -> Run:
     """Simulates a scene into a run directory, exactly as ``rootsim run SCENE --set ... --out OUT``.
 
     Units: ``set`` values are in the scene keys' units (named in the key: plane.alpha_deg is degrees);
@@ -367,6 +386,10 @@ def run(scene_or_path: Union[Scene, PathLike], *, set: Optional[Mapping[str, Val
     out: the run directory; written as ``OUT.partial/`` and renamed when complete. An existing run there
         is replaced only with ``force=True`` (never a folder rootsim did not write). ``None``: a temporary
         directory, deleted when the returned Run is garbage-collected (``run.dir`` tells where it is).
+    resume: continue a killed run from its last checkpoint in ``OUT.partial/`` (``--resume``).
+    movie, camera, field_mm, inset, color_by, plot, shadows: ``--movie`` and its look, as the command
+        line's (movie.mp4 and final_top.png in the run directory; the look without ``movie`` is refused).
+    quiet: no progress output on stderr (``quiet=False`` prints the command line's progress).
     progress: called as ``progress(step, total)`` after every growth step (from the calling thread).
         An exception it raises stops the run and propagates; the directory stays ``OUT.partial/``
         (with ``out=None`` the temporary directory is removed: nothing is kept).
@@ -385,6 +408,10 @@ def run(scene_or_path: Union[Scene, PathLike], *, set: Optional[Mapping[str, Val
         r.summary["pattern"], r.timeseries["theta_tip_deg"][-1]
         f = r.frames[-1]; plt.plot(f.lateral_mm, f.downhill_mm)   # the root on the plate, in mm
     """
+    if plot is not None and not isinstance(plot, str):
+        plot = ",".join(plot)
+    # the command's options: every keyword but the scene (made here, with set) and the callback
+    options = _options({k: v for k, v in locals().items() if k not in ("scene_or_path", "set", "progress")})
     if progress is not None and not callable(progress):
         raise TypeError(f"progress: expected a callable progress(step, total) (got {type(progress).__name__})")
     scene = _scene_of(scene_or_path, set)
@@ -394,13 +421,14 @@ def run(scene_or_path: Union[Scene, PathLike], *, set: Optional[Mapping[str, Val
         target = os.path.join(tmp.name, scene.name)
     else:
         target = os.fspath(out)
+    options["out"] = target
     try:
-        _c.run_scene(scene._scene, target, bool(force), progress)
+        done = _c.run_scene(scene._scene, options, progress)
     except BaseException:
         if tmp is not None:
             tmp.cleanup()
         raise
-    return Run(_c.normalise_out_dir(target), tmp)
+    return Run(done, tmp)
 
 
 # ---------------------------------------------------------------------------------------------------
@@ -497,7 +525,8 @@ class Sweep:
 
 def sweep(sweep_file: Optional[PathLike] = None, *, scene: Union[Scene, PathLike, None] = None,
           grid: Optional[Mapping[str, Sequence[Value]]] = None, set: Optional[Mapping[str, Value]] = None,
-          out: Optional[PathLike] = None, jobs: int = 1, shard: Optional[str] = None, force: bool = False) -> Sweep:
+          out: Optional[PathLike] = None, jobs: Optional[int] = None, shard: Optional[str] = None, force: bool = False,
+          quiet: bool = True) -> Sweep:
     """Runs a grid of scenes, as ``rootsim sweep``, and yields each point as it finishes.
 
     Either a sweep file (``rootsim.sweep("sweeps/fig3d_phase.toml", jobs=2)``) or the same in Python:
@@ -512,7 +541,8 @@ def sweep(sweep_file: Optional[PathLike] = None, *, scene: Union[Scene, PathLike
     out: the sweep folder (one run directory per point, table.csv); resumable: points already complete
         there are not run again (they are yielded with ``skipped=True``). ``None``: a temporary folder,
         deleted when the Sweep and every point taken from it are garbage-collected.
-    jobs: parallel runs (threads; the GIL is not held while simulating). shard: "K/N", as ``--shard``.
+    jobs: parallel runs (threads; the GIL is not held while simulating; default: the command line's).
+    shard: "K/N", as ``--shard``. quiet: False prints the command line's line per point on stderr.
 
     Returns a ``Sweep``: ``for p in rootsim.sweep(...): print(p.grid, p.run.summary["pattern"])``.
     Ctrl-C while iterating stops the sweep (KeyboardInterrupt); leaving the loop early (break) does not:
@@ -524,9 +554,6 @@ def sweep(sweep_file: Optional[PathLike] = None, *, scene: Union[Scene, PathLike
         raise TypeError("sweep: scene= needs grid= (a dict of key -> list of values)")
     if sweep_file is not None and (grid is not None or set is not None):
         raise TypeError("sweep: grid= and set= go with scene=; a sweep file has its own [grid] and [set]")
-    if int(jobs) < 1:
-        raise SceneError(f"jobs={jobs}: expected at least 1 parallel run")
-    k, n = (1, 1) if shard is None else _c.parse_shard(shard)
     keep = None
     if sweep_file is None:
         # the same plan as a sweep file: written to a temporary folder and read by the C++ loader
@@ -555,7 +582,8 @@ def sweep(sweep_file: Optional[PathLike] = None, *, scene: Union[Scene, PathLike
         tmp = tempfile.TemporaryDirectory(prefix="rootsim-")
         out = os.path.join(tmp.name, "sweep")
     grid_arrays = _grid_arrays(sweep_path)  # read before the C++ reads it
-    runner = _c._SweepRunner(sweep_path, os.fspath(out), int(jobs), k, n, bool(force))
+    runner = _c._SweepRunner(_options(dict(sweep_file=sweep_path, out=out, jobs=jobs, shard=shard, force=force,
+                                           quiet=quiet)))
     return Sweep(runner, os.fspath(out), tmp, keep, grid_arrays)
 
 
@@ -656,15 +684,16 @@ def _toml_literal(key: str, v: Any) -> str:
 
 
 def render(run_dir: PathLike, *, mp4: Optional[PathLike] = None, png_dir: Optional[PathLike] = None,
-           final_png: Optional[PathLike] = None, view: str = "top", size: str = "auto", fps: int = 30,
-           crf: int = 18, whiskers: bool = False, transparent: bool = False, overlays: bool = True,
-           camera: str = "fit", field_mm: Optional[float] = None, inset: bool = False, color_by: str = "none",
-           plot: Union[str, Sequence[str], None] = None, shadows: bool = False, shader_dir: Optional[PathLike] = None,
-           force: bool = False, quiet: bool = True, png: Optional[PathLike] = None,
-           at_h: Optional[float] = None, frame: Optional[int] = None, from_h: Optional[float] = None,
-           to_h: Optional[float] = None, hours_per_second: Optional[float] = None,
-           trace: Optional[PathLike] = None, trace_root: Optional[str] = None, trace_px_per_mm: Optional[float] = None,
-           trace_downhill: Union[str, float] = "+y") -> List[pathlib.Path]:
+           final_png: Optional[PathLike] = None, png: Optional[PathLike] = None, at_h: Optional[float] = None,
+           frame: Optional[int] = None, from_h: Optional[float] = None, to_h: Optional[float] = None,
+           hours_per_second: Optional[float] = None, view: Optional[str] = None, size: Optional[str] = None,
+           fps: Optional[int] = None, crf: Optional[int] = None, whiskers: bool = False, transparent: bool = False,
+           overlays: bool = True, shader_dir: Optional[PathLike] = None, camera: Optional[str] = None,
+           field_mm: Optional[float] = None, inset: bool = False, color_by: Optional[str] = None,
+           plot: Union[str, Sequence[str], None] = None, shadows: bool = False, trace: Optional[PathLike] = None,
+           trace_root: Optional[str] = None, trace_px_per_mm: Optional[float] = None,
+           trace_downhill: Union[str, float, None] = None, root: Optional[str] = None, plate_view: bool = False,
+           whole_plate: bool = False, scan: Optional[float] = None, force: bool = False, quiet: bool = True) -> List[pathlib.Path]:
     """Renders a saved run, as ``rootsim render RUN_DIR`` with the same options (the same C++ code).
 
     ``trace``: a traced root (RSML) drawn over every frame, aligned at the run's seed (``--trace``; its
@@ -684,29 +713,80 @@ def render(run_dir: PathLike, *, mp4: Optional[PathLike] = None, png_dir: Option
     Bad options raise SceneError with the command line's message; render failures RunError. The options
     are keywords only: a positional option or an unknown keyword raises TypeError naming it.
 
+    A plate's run: ``root`` (the root drawn last, the one ``camera="follow"`` follows), ``plate_view``
+    (the sown area with a margin, the plate outlined; ``whole_plate`` the whole plate), ``scan`` (a scanner's picture at that many px/mm, into ``png``).
+    An option left at None is the command line's default (``rootsim render --help``, docs/cli.md).
+
     Units: ``field_mm`` in mm (the camera's field of view, as ``--field-mm``); ``fps`` frames per second.
     """
-    if not _c.have_render:
-        raise SceneError("render: this rootsim was built without the renderer (ROOTSIM_BUILD_RENDER=OFF)")
+    _need_render("render")
     if plot is not None and not isinstance(plot, str):
         plot = ",".join(plot)
-    s = lambda p: "" if p is None else os.fspath(p)  # noqa: E731
-    _c.render_run(os.fspath(run_dir), dict(
-        mp4=s(mp4), png_dir=s(png_dir), final_png=s(final_png), view=view, size=size, fps=int(fps), crf=int(crf),
-        whiskers=bool(whiskers), transparent=bool(transparent), overlays=bool(overlays), camera=camera,
-        field_mm=None if field_mm is None else float(field_mm), inset=bool(inset), color_by=color_by,
-        plot=plot or "", shadows=bool(shadows), shader_dir=s(shader_dir), force=bool(force), quiet=bool(quiet),
-        png=s(png), at_h=None if at_h is None else float(at_h), frame=None if frame is None else int(frame),
-        from_h=None if from_h is None else float(from_h), to_h=None if to_h is None else float(to_h),
-        hours_per_second=None if hours_per_second is None else float(hours_per_second), trace=s(trace),
-        trace_root=trace_root, trace_px_per_mm=None if trace_px_per_mm is None else float(trace_px_per_mm),
-        trace_downhill=str(trace_downhill)))
+    _c.render_run(_options(locals()))
     if png is not None:
         return [pathlib.Path(png)]
     if mp4 is None and png_dir is None and final_png is None:
         d = pathlib.Path(run_dir)
         return [d / "movie.mp4", d / "final_top.png"]
     return [pathlib.Path(p) for p in (mp4, png_dir, final_png) if p is not None]
+
+
+def montage(run_dirs: Sequence[PathLike], *, mp4: Optional[PathLike] = None, png_dir: Optional[PathLike] = None,
+            size: Optional[str] = None, labels: Union[str, Sequence[str], None] = None, view: Optional[str] = None,
+            fps: Optional[int] = None, crf: Optional[int] = None, color_by: Optional[str] = None,
+            shadows: bool = False, force: bool = False, quiet: bool = True) -> List[pathlib.Path]:
+    """Several runs side by side on one scale and one clock, as ``rootsim montage RUN_DIR...`` (the same C++
+    code): ``mp4`` (H.264 movie) and/or ``png_dir`` (every frame as PNG); ``labels`` one per run (a list
+    or "a,b"; default the scene keys that differ); ``size``, ``view``, ``fps``, ``crf``, ``color_by``,
+    ``shadows`` as ``render``'s. An option left at None is the command line's default. Returns the files
+    and folders written. Bad options raise SceneError with the command line's message. Keywords only.
+
+    Units: ``fps`` frames per second; ``size`` pixels."""
+    _need_render("montage")
+    if labels is not None and not isinstance(labels, str):
+        labels = ",".join(labels)
+    args = _options(locals())
+    args["run_dirs"] = [os.fspath(d) for d in run_dirs]
+    _c.montage(args)
+    return [pathlib.Path(p) for p in (mp4, png_dir) if p is not None]
+
+
+def modes(run_dir: PathLike, *, count: Optional[int] = None, root: Optional[str] = None, force: bool = False,
+          quiet: bool = True) -> List[pathlib.Path]:
+    """The softest stiffness modes of a run's final state, as ``rootsim modes RUN_DIR`` (the same C++
+    code): repeats the run from its scene.toml and writes modes.csv (eigenvalue, per-node displacement)
+    and modes.vtp (ParaView) into the run directory; ``count`` modes (default: the command line's). A
+    plate's run: ``root`` names the root (or pass its folder roots/NAME); the whole plate is repeated and
+    the root's folder receives the files. Returns the two files. Bad input raises SceneError with the command line's message. Keywords only.
+
+    Units: eigenvalues in N/m (modes.csv's columns name them)."""
+    _c.modes(_options(locals()))
+    d = pathlib.Path(run_dir) if root is None else pathlib.Path(run_dir) / "roots" / root
+    return [d / "modes.csv", d / "modes.vtp"]
+
+
+def check(scene: PathLike, *, set: Optional[Mapping[str, Value]] = None) -> Dict[str, Any]:
+    """Validates a scene file, as ``rootsim check SCENE --set ...``: a bad key or value raises SceneError
+    with the command line's message. Returns {"resolved_toml": every key with its value, "theory": the
+    theory's predictions (docs/model.md, Theory; {} for a mechanics-only scene)}.
+
+    Units: the scene keys' own (``set`` values too); the theory's named in each key."""
+    got = _c.check_scene(dict(scene=os.fspath(scene), set=_overrides(set)))
+    return {"resolved_toml": got["resolved_toml"], "theory": {} if got["theory"] is None else json.loads(got["theory"])}
+
+
+def figure(name: str, *, quick: bool = False, out: Optional[PathLike] = None, jobs: Optional[int] = None,
+           force: bool = False, quiet: bool = True, dpi: Optional[float] = None, width_mm: Optional[float] = None,
+           title: bool = True) -> pathlib.Path:
+    """The paper's figure panels, as ``rootsim figure NAME`` (the same C++ code): NAME one of fig2a fig2b
+    fig2cde fig3a fig3b fig3d fig3d_gamma1 fig3d_apical fig4a fig4g, or "all" (with report.md and
+    report.html); PDF + SVG + PNG per panel into ``out``. ``quick``: coarsened runs; ``jobs``: parallel
+    simulations; ``dpi``: the PNGs' resolution; ``width_mm``: each panel's physical width;
+    ``title=False`` is ``--no-title``. An option left at None is the command line's default. Returns
+    the folder written. Bad input raises SceneError with the command line's message. Keywords only.
+
+    Units: ``width_mm`` in mm; ``dpi`` pixels per inch."""
+    return pathlib.Path(_c.figure(_options(locals())))
 
 
 def export(run_dir: PathLike, *, rsml: Optional[PathLike] = None, gltf: Optional[PathLike] = None,
@@ -727,14 +807,8 @@ def export(run_dir: PathLike, *, rsml: Optional[PathLike] = None, gltf: Optional
     order). Bad options raise SceneError with the command line's message. Keywords only.
 
     Units: ``at_h``, ``every_h`` in hours of growth time."""
-    if not _c.have_render:
-        raise SceneError("export: this rootsim was built without the renderer and the app library "
-                         "(ROOTSIM_BUILD_RENDER=OFF)")
-    s = lambda p: "" if p is None else os.fspath(p)  # noqa: E731
-    written = _c.export_run(os.fspath(run_dir), dict(
-        rsml=s(rsml), gltf=s(gltf), paraview=s(paraview), at_h=None if at_h is None else float(at_h),
-        every_h=None if every_h is None else float(every_h), force=bool(force), quiet=bool(quiet)))
-    return [pathlib.Path(p) for p in written]
+    _need_render("export")
+    return [pathlib.Path(p) for p in _c.export_run(_options(locals()))]
 
 
 def _columns(rows: List[Dict[str, Any]], names: Sequence[str]) -> Dict[str, np.ndarray]:
@@ -765,27 +839,27 @@ class Analysis(list):
 
 
 def analyze(files: Union[PathLike, Sequence[PathLike]], *, px_per_mm: Optional[float] = None,
-            downhill: Union[str, float] = "+y", times: Optional[Sequence[float]] = None,
+            downhill: Union[str, float, None] = None, times: Union[str, Sequence[float], None] = None,
             ds_mm: Optional[float] = None, exclude_tip_mm: Optional[float] = None,
-            radius_mm: Optional[float] = None) -> Analysis:
+            radius_mm: Optional[float] = None, out: Optional[PathLike] = None, force: bool = False,
+            quiet: bool = True) -> Analysis:
     """The traits and run observables of every root of RSML files, as ``rootsim analyze`` computes them
     (docs/experiments.md; the same C++ code), one dict per root with analysis.csv's columns (numbers as
     floats, NaN where the CSV cell is empty); the same as numpy arrays in ``.columns``, and plants.csv
-    and growth.csv's columns in ``.plants`` and ``.growth`` (an :class:`Analysis`). Writes nothing.
+    and growth.csv's columns in ``.plants`` and ``.growth`` (an :class:`Analysis`). Writes nothing unless ``out`` is given: then also the command line's folder
+    (analysis.csv, analysis.json, curves.csv, plants.csv, growth.csv; replaced only with ``force``).
 
     ``px_per_mm``: for files whose unit is pixel; ``downhill``: "+y", "-y" or an angle in degrees from
     +y towards +x; ``times``: one growth time per file [h] (growth rates across files of one plate);
     ``ds_mm``, ``exclude_tip_mm``, ``radius_mm``: as the command line's flags. Bad input raises
     SceneError with the command line's message. Keywords only."""
-    if not _c.have_render:
-        raise SceneError("analyze: this rootsim was built without the renderer and the app library "
-                         "(ROOTSIM_BUILD_RENDER=OFF)")
-    paths = [os.fspath(files)] if isinstance(files, (str, os.PathLike)) else [os.fspath(f) for f in files]
-    opts: Dict[str, Any] = dict(px_per_mm=px_per_mm, downhill=str(downhill), ds_mm=ds_mm,
-                                exclude_tip_mm=exclude_tip_mm, radius_mm=radius_mm)
-    if times is not None:
-        opts["times"] = ",".join(repr(float(t)) for t in times)
-    got = _c.analyze_traces(paths, opts)
+    _need_render("analyze")
+    files = [os.fspath(files)] if isinstance(files, (str, os.PathLike)) else [os.fspath(f) for f in files]
+    if times is not None and not isinstance(times, str):
+        times = ",".join(repr(float(t)) for t in times)
+    if downhill is not None:
+        downhill = str(downhill)
+    got = _c.analyze_traces(_options(locals()))
     out = Analysis(dict(r) for r in got["roots"])
     out.columns = _columns(got["roots"], got["root_columns"])
     out.plants = _columns(got["plants"], got["plant_columns"])
@@ -795,8 +869,9 @@ def analyze(files: Union[PathLike, Sequence[PathLike]], *, px_per_mm: Optional[f
 
 
 def compare(run_dir: PathLike, trace: PathLike, *, root: Optional[str] = None, px_per_mm: Optional[float] = None,
-            downhill: Union[str, float] = "+y", sigma_mm: Optional[float] = None, at_h: Optional[float] = None,
-            out: Optional[PathLike] = None, force: bool = False, quiet: bool = True) -> Dict[str, Any]:
+            downhill: Union[str, float, None] = None, sigma_mm: Optional[float] = None, at_h: Optional[float] = None,
+            out: Optional[PathLike] = None, groups: Optional[PathLike] = None, force: bool = False,
+            quiet: bool = True) -> Dict[str, Any]:
     """A traced root (RSML) over a run's root, as ``rootsim compare RUN_DIR TRACE`` (docs/experiments.md;
     the same C++ code): writes compare.json, compare.csv and the picture (compare.pdf/.svg/.png) into
     ``out`` (default compare/<run>_vs_<trace>) and returns compare.json as a dict, with "out" added: the
@@ -806,13 +881,12 @@ def compare(run_dir: PathLike, trace: PathLike, *, root: Optional[str] = None, p
     ``root``: the traced root (id, #k or plant/root; default the file's one primary root); ``px_per_mm``:
     for a pixel file; ``downhill``: "+y", "-y" or an angle in degrees; ``sigma_mm``: a traced point's
     uncertainty [mm]; ``at_h``: the run's snapshot nearest this time [h] (default: the first as long as
-    the trace). Bad input raises SceneError with the command line's message. Keywords only."""
-    if not _c.have_render:
-        raise SceneError("compare: this rootsim was built without the renderer and the app library "
-                         "(ROOTSIM_BUILD_RENDER=OFF)")
-    folder = _c.compare_trace(os.fspath(run_dir), os.fspath(trace), dict(
-        root=root, px_per_mm=px_per_mm, downhill=str(downhill), sigma_mm=sigma_mm, at_h=at_h,
-        out=None if out is None else os.fspath(out), force=bool(force), quiet=bool(quiet)))
+    the trace); ``groups``: a plate's run, a sample sheet pairing plants with seedlings (docs/plate.md).
+    Bad input raises SceneError with the command line's message. Keywords only."""
+    _need_render("compare")
+    if downhill is not None:
+        downhill = str(downhill)
+    folder = _c.compare_trace(_options(locals()))
     with open(os.path.join(folder, "compare.json"), encoding="utf-8") as f:
         result = json.load(f)
     result["out"] = pathlib.Path(folder)
@@ -820,9 +894,9 @@ def compare(run_dir: PathLike, trace: PathLike, *, root: Optional[str] = None, p
 
 
 def fit(trace: PathLike, *, scene: PathLike, free: Union[str, Dict[str, Sequence[float]]], out: PathLike,
-        root: Optional[str] = None, px_per_mm: Optional[float] = None, downhill: Union[str, float] = "+y",
-        sigma_mm: Optional[float] = None, objective: Optional[str] = None, jobs: int = 1, budget: int = 150,
-        force: bool = False, quiet: bool = True) -> Dict[str, Any]:
+        root: Optional[str] = None, px_per_mm: Optional[float] = None, downhill: Union[str, float, None] = None,
+        sigma_mm: Optional[float] = None, objective: Optional[str] = None, jobs: Optional[int] = None,
+        budget: Optional[int] = None, force: bool = False, quiet: bool = True) -> Dict[str, Any]:
     """Fits free scene keys to a traced root, as ``rootsim fit TRACE --scene SCENE --free ... --out OUT``
     (docs/experiments.md; the same C++ code). ``free``: {"tropism.beta": (0.05, 0.5), ...} or the command
     line's "KEY=LO:HI,..." text. Every evaluation is a run directory in OUT/runs: a fit called again with
@@ -834,17 +908,14 @@ def fit(trace: PathLike, *, scene: PathLike, free: Union[str, Dict[str, Sequence
 
     ``objective``: "observables" (skew, wavelength, amplitude), "shape" (the centreline at 8 fractions
     of its length) or "timelapse" (length, tip position and tip angle at every observation time of a 2D+t
-    trace); None: timelapse for a trace with times, else observables; ``jobs``: simultaneous runs; ``budget``: most runs. The trace's keywords as
+    trace); None: timelapse for a trace with times, else observables; ``jobs``: simultaneous runs; ``budget``: most runs (None: the command line's defaults). The trace's keywords as
     rootsim.compare's. Bad input raises SceneError, a fit whose runs all fail RunError. Keywords only."""
-    if not _c.have_render:
-        raise SceneError("fit: this rootsim was built without the renderer and the app library "
-                         "(ROOTSIM_BUILD_RENDER=OFF)")
+    _need_render("fit")
     if not isinstance(free, str):
         free = ",".join(f"{k}={float(lo)!r}:{float(hi)!r}" for k, (lo, hi) in free.items())
-    folder = _c.fit_trace(os.fspath(trace), dict(
-        scene=os.fspath(scene), free=free, out=os.fspath(out), root=root, px_per_mm=px_per_mm,
-        downhill=str(downhill), sigma_mm=sigma_mm, objective=objective, jobs=int(jobs), budget=int(budget),
-        force=bool(force), quiet=bool(quiet)))
+    if downhill is not None:
+        downhill = str(downhill)
+    folder = _c.fit_trace(_options(locals()))
     with open(os.path.join(folder, "fit.json"), encoding="utf-8") as f:
         result = json.load(f)
     result["out"] = pathlib.Path(folder)
@@ -867,8 +938,9 @@ class State:
     ``height_mm`` the nodes in plate coordinates [mm] (nodes each; as ``Frame``'s); ``velocities_mm_per_s``
     [mm/s] (nodes x 3); ``directors`` element frames, ``directors[e, i]`` is d_{i+1} of element e in lab
     components, unit vectors (elements x 3 x 3); ``rest_lengths_mm`` [mm] (elements); ``s_mm`` rest arc
-    length of each node from the base [mm] (nodes; shape.csv's s_mm); ``kappa0_per_mm`` intrinsic
-    curvature per rest length, material components [1/mm] (elements-1 x 3).
+    length of each node from the base [mm] (nodes; shape.csv's s_mm); ``kappa0_vector_per_mm`` intrinsic
+    curvature per rest length of each Voronoi domain (interior node), material components [1/mm]
+    (elements-1 x 3): the vector whose bending part's magnitude is ``Frame.kappa0_per_mm``.
     """
 
     step: int
@@ -881,11 +953,13 @@ class State:
     directors: np.ndarray
     rest_lengths_mm: np.ndarray
     s_mm: np.ndarray
-    kappa0_per_mm: np.ndarray
+    kappa0_vector_per_mm: np.ndarray
 
     __getattr__ = _renamed("State", {"positions": "positions_mm", "velocities": "velocities_mm_per_s",
                                      "rest_lengths": "rest_lengths_mm", "material_coordinates": "s_mm",
-                                     "kappa0": "kappa0_per_mm"})
+                                     "kappa0": "kappa0_vector_per_mm", "kappa0_per_mm": "kappa0_vector_per_mm"},
+                           {"kappa0_per_mm": "Frame.kappa0_per_mm is the per-node magnitude trajectory.csv "
+                                             "holds; the State's is the per-Voronoi vector"})
 
 
 def _step_count_arg(n: Any) -> int:

@@ -16,11 +16,16 @@
 #include <cstring>
 #include <deque>
 #include <filesystem>
+#include <functional>
 #include <mutex>
 #include <optional>
 #include <thread>
+#include <tuple>
 #include <utility>
 
+#include "commands.hpp"
+#include "options.hpp"
+#include "rootsim/csv.hpp"
 #include "rootsim/environment.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/outputs.hpp"
@@ -54,6 +59,69 @@ namespace {
 // the Python exception classes (created once, alive as long as the interpreter: never released)
 PyObject* gSceneError = nullptr;  // rootsim.SceneError(ValueError): bad scene, key, value, flag or path
 PyObject* gRunError = nullptr;    // rootsim.RunError(RuntimeError): a run that started and failed
+
+// ---- a command's keywords ----
+
+// rootsim.<command>'s keywords (a dict, positionals included) into the command's options struct through
+// its table (src/cli/options.hpp), as the command line's flags: None leaves the default; an unknown name or
+// a value of the wrong type is a SceneError naming the command
+template <class O>
+O commandOptions(const std::string& name, const py::dict& options) {
+  const cli::CommandSpec& spec = cli::command(name);
+  const std::shared_ptr<O> o = spec.makeAs<O>();
+  for (const auto& item : options) {
+    const std::string key = py::str(item.first);
+    const cli::OptionSpec* s = spec.find(key);
+    if (s == nullptr) throw SceneError(name + ": unknown option " + key);
+    const py::handle v = item.second;
+    if (v.is_none()) continue;
+    std::string refused;  // the table's range or choices, as the command line checks them
+    try {
+      switch (s->kind) {
+        case cli::OptionKind::Text: {
+          const std::string t = py::str(v);
+          refused = cli::checkText(spec, *s, t);
+          cli::setText(*s, o.get(), t);
+          break;
+        }
+        case cli::OptionKind::Texts: cli::setTexts(*s, o.get(), v.cast<std::vector<std::string>>()); break;
+        case cli::OptionKind::Int: {
+          const int n = v.cast<int>();
+          refused = cli::checkNumber(spec, *s, n);
+          cli::setInt(*s, o.get(), n);
+          break;
+        }
+        case cli::OptionKind::Real: {
+          const double x = v.cast<double>();
+          refused = cli::checkNumber(spec, *s, x);
+          cli::setReal(*s, o.get(), x);
+          break;
+        }
+        case cli::OptionKind::Flag: cli::setFlag(*s, o.get(), s->negated() != v.cast<bool>()); break;
+      }
+    } catch (const py::cast_error&) {
+      throw SceneError(name + ": option " + key + " has the wrong type");
+    }
+    if (!refused.empty()) throw SceneError(refused);
+    cli::markGiven(*s, o.get(), true);
+  }
+  return *o;
+}
+
+// every command's options as rootsim.<command>'s keywords: name -> list of (keyword, flag, kind, default,
+// unit, help, required, positional)
+py::dict commandTable() {
+  static const char* kKind[] = {"text", "texts", "int", "real", "flag"};
+  py::dict d;
+  for (const cli::CommandSpec& c : cli::commands()) {
+    py::list l;
+    for (const cli::OptionSpec& o : c.options)
+      l.append(py::make_tuple(o.pythonName(), o.displayName(), kKind[static_cast<int>(o.kind)], cli::defaultText(c, o),
+                              o.unit, o.help, o.required, o.positional()));
+    d[py::str(c.name)] = l;
+  }
+  return d;
+}
 
 // ---- numpy helpers ----
 
@@ -107,33 +175,14 @@ py::dict snapshotDict(const Snapshot& s, const PlateFrame& f) {
   return d;
 }
 
-// one time-series row: the columns and units of timeseries.csv (outputs.cpp TimeseriesWriter::add),
-// computed the same way, so the values are the doubles the file holds
+// one time-series row: timeseries.csv's columns (timeseriesColumns: the writer's own), so the values are
+// the doubles the file holds
 py::dict recordDict(const StepRecord& r) {
   py::dict d;
-  d["step"] = r.step;
-  d["time_h"] = r.timeH;
-  d["length_mm"] = r.length / units::mm;
-  d["elements"] = r.elements;
-  d["theta_tip_deg"] = r.thetaTip / units::deg;
-  d["Eb"] = r.zone.Eb;
-  d["Et"] = r.zone.Et;
-  d["Wr"] = r.zone.Wr;
-  d["Tw"] = r.zone.Tw;
-  d["substeps"] = r.substeps;
-  d["residual_force_n"] = r.residualForce;
-  d["splits"] = r.splits;
-  d["unstable"] = r.unstable;
-  d["tip_x_mm"] = r.tip.x() / units::mm;
-  d["tip_y_mm"] = r.tip.y() / units::mm;
-  d["tip_z_mm"] = r.tip.z() / units::mm;
-  d["newton_iterations"] = r.iterations;
-  d["lowest_eigenvalue_n_per_m"] = r.lowestEigenvalue;
-  d["self_contacts"] = r.selfContacts;
-  d["min_self_distance_r"] = r.minSelfDistance;
-  d["obstacle_contacts"] = r.obstacleContacts;
-  d["slip_events"] = r.slipEvents;
-  d["frictional_work_j"] = r.frictionWork;
+  for (const RecordColumn& c : timeseriesColumns()) {
+    if (c.real) d[c.name] = c.real(r);
+    else d[c.name] = c.whole(r);
+  }
   return d;
 }
 
@@ -160,7 +209,7 @@ py::dict stateDict(const Simulation& sim, const PlateFrame& f) {
   d["directors"] = q;
   d["rest_lengths_mm"] = vecMm(s.l0);
   d["s_mm"] = vecMm(s.S);
-  d["kappa0_per_mm"] = rows3(Eigen::Matrix3Xd(s.kappa0 * units::mm));  // (elements - 1) x 3
+  d["kappa0_vector_per_mm"] = rows3(Eigen::Matrix3Xd(s.kappa0 * units::mm));  // (elements - 1) x 3
   return d;
 }
 
@@ -241,20 +290,19 @@ class StepHook {
   std::optional<py::error_already_set> kept_;
 };
 
-double runScene(const Scene& sc, const std::string& out, bool force, py::object progress) {
-  RunDirOptions ro;
-  ro.force = force;
-  // as the command line: the run directory may not be (or contain) the scene file or the working folder
-  if (!sc.path.empty()) ro.protect.push_back(fs::path(sc.path));
-  ro.protect.push_back(fs::current_path());
+// rootsim.run: the run command (cli::runLoaded) on the Python Scene, its other options (out, movie and the
+// look, force, resume, quiet) by name through the command's table; returns the run directory
+std::string runScene(const Scene& sc, const py::dict& options, py::object progress) {
+  const cli::RunOptions o = commandOptions<cli::RunOptions>("run", options);
   StepHook hook(std::move(progress));
   try {
     py::gil_scoped_release nogil;
-    return runSceneToDir(sc, normaliseOutDir(out).string(), ro, [&](const StepRecord& r, int n) { hook(r, n); });
+    cli::runLoaded(sc, o, [&](const StepRecord& r, int n) { hook(r, n); });
   } catch (const RunInterrupted&) {
     hook.rethrowIfKept();
     throw;
   }
+  return normaliseOutDir(o.out.empty() ? (fs::path("runs") / sc.model.name).string() : o.out).string();
 }
 
 // ---- stepping ----
@@ -367,15 +415,17 @@ class PySimulation {
 
 class SweepRunner {
  public:
-  SweepRunner(const std::string& sweepFile, const std::string& out, int jobs, int shard, int shards, bool force) {
-    plan_ = loadSweep(sweepFile);
-    opt_.force = force;
-    opt_.inputs = {sweepFile, plan_.scenePath};
-    opt_.jobs = jobs;
-    opt_.shard = shard;
-    opt_.shards = shards;
-    opt_.out = out;
-    opt_.quiet = true;
+  // rootsim.sweep's keywords (sweep_file, out, jobs, shard, force, quiet) through the sweep command's table
+  explicit SweepRunner(const py::dict& options) {
+    const cli::SweepCliOptions o = commandOptions<cli::SweepCliOptions>("sweep", options);
+    plan_ = loadSweep(o.sweep);
+    opt_.force = o.force;
+    opt_.inputs = {o.sweep, plan_.scenePath};
+    opt_.jobs = o.jobs;
+    if (!o.shard.empty()) std::tie(opt_.shard, opt_.shards) = parseShard(o.shard);
+    opt_.out = o.out.empty() ? (fs::path("runs") / fs::path(o.sweep).stem()).string() : o.out;
+    opt_.quiet = true;  // no per-run progress; the sweep's own lines with quiet=False, as the command line's
+    if (!o.quiet) log_ = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
     opt_.cancelled = [this] { return cancel_.load(); };
     opt_.onPoint = [this](const SweepPointDone& d) {
       std::lock_guard<std::mutex> lock(mu_);
@@ -384,7 +434,7 @@ class SweepRunner {
     };
     thread_ = std::thread([this] {
       try {
-        result_ = runSweep(plan_, opt_, nullptr);
+        result_ = runSweep(plan_, opt_, log_);
       } catch (...) {
         error_ = std::current_exception();
       }
@@ -469,6 +519,7 @@ class SweepRunner {
   }
   SweepPlan plan_;
   SweepOptions opt_;
+  std::function<void(const std::string&)> log_;
   SweepResult result_;
   std::exception_ptr error_;
   std::atomic<bool> cancel_{false};
@@ -478,21 +529,6 @@ class SweepRunner {
   bool finished_ = false;
   std::thread thread_;
 };
-
-// rootsim.render's, export's, analyze's, compare's and fit's keywords, one at a time: set(key, value)
-// takes one (value may be None) and returns false for a name it does not know; an unknown name or a
-// value of the wrong type is a SceneError naming the command, as the command line's bad flags are
-template <class Set>
-void readOptions(const py::dict& options, const std::string& command, Set set) {
-  for (const auto& item : options) {
-    const std::string key = py::str(item.first);
-    try {
-      if (!set(key, item.second)) throw SceneError(command + ": unknown option " + key);
-    } catch (const py::cast_error&) {
-      throw SceneError(command + ": option " + key + " has the wrong type");
-    }
-  }
-}
 
 }  // namespace
 
@@ -541,7 +577,29 @@ PYBIND11_MODULE(_rootsim, m) {
     return py::str(theoryJson(theoryFor(s.model)).dump());
   });
 
-  m.def("run_scene", &runScene, py::arg("scene"), py::arg("out"), py::arg("force"), py::arg("progress"));
+  m.def("run_scene", &runScene, py::arg("scene"), py::arg("options"), py::arg("progress"));
+  m.def("command_table", &commandTable);
+  m.def("check_scene", [](const py::dict& options) {
+    const cli::CheckOptions o = commandOptions<cli::CheckOptions>("check", options);
+    const Scene sc = loadScene(o.scene, o.sets);
+    py::dict d;
+    d["resolved_toml"] = sc.resolvedToml;
+    d["theory"] = sc.model.growth.enabled ? py::object(py::str(theoryJson(theoryFor(sc.model)).dump())) : py::object(py::none());
+    return d;
+  }, py::arg("options"));
+  m.def("modes", [](const py::dict& options) {
+    const cli::ModesOptions o = commandOptions<cli::ModesOptions>("modes", options);
+    py::gil_scoped_release nogil;
+    cli::modesCommand(o);
+  }, py::arg("options"));
+  m.def("figure", [](const py::dict& options) {
+    const cli::FigureCliOptions o = commandOptions<cli::FigureCliOptions>("figure", options);
+    {
+      py::gil_scoped_release nogil;
+      cli::figureCommand(o);
+    }
+    return o.out;
+  }, py::arg("options"));
   m.def("normalise_out_dir", [](const std::string& s) { return normaliseOutDir(s).string(); });
   m.def("read_csv", &readCsv, py::arg("path"));
   m.def("read_trajectory", &readFrames, py::arg("path"), py::arg("scene"));
@@ -580,8 +638,7 @@ PYBIND11_MODULE(_rootsim, m) {
   registerPlate(m);
 
   py::class_<SweepRunner>(m, "_SweepRunner")
-      .def(py::init<const std::string&, const std::string&, int, int, int, bool>(), py::arg("sweep_file"),
-           py::arg("out"), py::arg("jobs"), py::arg("shard"), py::arg("shards"), py::arg("force"))
+      .def(py::init<const py::dict&>(), py::arg("options"))
       .def("next", &SweepRunner::next)
       .def("cancel", &SweepRunner::cancel)
       .def("summary", &SweepRunner::summary);
@@ -589,76 +646,22 @@ PYBIND11_MODULE(_rootsim, m) {
 
 #ifdef ROOTSIM_HAVE_RENDER
   m.attr("have_render") = true;
-  m.def(
-      "render_run",
-      // the options by name (rootsim.render's keywords, as the command line's flags): an unknown name or
-      // a value of the wrong type is a SceneError
-      [](const std::string& runDir, const py::dict& options) {
-        app::RenderOptions o;
-        o.runDir = runDir;
-        o.trace.flagPrefix = "--trace-";
-        readOptions(options, "render", [&](const std::string& key, const py::handle v) {
-          auto text = [&] { return v.is_none() ? std::string() : std::string(py::str(v)); };
-          if (key == "mp4") o.mp4 = text();
-          else if (key == "png_dir") o.pngDir = text();
-          else if (key == "final_png") o.finalPng = text();
-          else if (key == "png") o.png = text();
-          else if (key == "at_h") { if (!v.is_none()) o.atH = v.cast<double>(); }
-          else if (key == "frame") {
-            o.frameGiven = !v.is_none();
-            if (o.frameGiven) o.frame = v.cast<int>();
-          }
-          else if (key == "from_h") { if (!v.is_none()) o.fromH = v.cast<double>(); }
-          else if (key == "to_h") { if (!v.is_none()) o.toH = v.cast<double>(); }
-          else if (key == "hours_per_second") { if (!v.is_none()) o.hoursPerSecond = v.cast<double>(); }
-          else if (key == "view") o.view = v.cast<std::string>();
-          else if (key == "size") o.size = v.cast<std::string>();
-          else if (key == "fps") o.fps = v.cast<int>();
-          else if (key == "crf") o.crf = v.cast<int>();
-          else if (key == "whiskers") o.whiskers = v.cast<bool>();
-          else if (key == "transparent") o.transparent = v.cast<bool>();
-          else if (key == "overlays") o.noOverlays = !v.cast<bool>();
-          else if (key == "camera") o.look.camera = v.cast<std::string>();
-          else if (key == "field_mm") {
-            o.look.fieldGiven = !v.is_none();
-            if (o.look.fieldGiven) o.look.fieldMm = v.cast<double>();
-          } else if (key == "inset") o.look.inset = v.cast<bool>();
-          else if (key == "color_by") o.look.colorBy = v.cast<std::string>();
-          else if (key == "plot") o.look.plot = text();
-          else if (key == "shadows") o.look.shadows = v.cast<bool>();
-          else if (key == "shader_dir") o.shaderDir = text();
-          else if (key == "trace") o.trace.trace = text();
-          else if (key == "trace_root") o.trace.root = text();
-          else if (key == "trace_px_per_mm") { if (!v.is_none()) o.trace.pxPerMm = v.cast<double>(); }
-          else if (key == "trace_downhill") o.trace.downhill = v.is_none() ? std::string("+y") : std::string(py::str(v));
-          else if (key == "force") o.force = v.cast<bool>();
-          else if (key == "quiet") o.quiet = v.cast<bool>();
-          else return false;
-          return true;
-        });
-        py::gil_scoped_release nogil;
-        app::renderRunCommand(o);
-      },
-      py::arg("run_dir"), py::arg("options"));
+  // rootsim.render's, montage's, export's, analyze's, compare's and fit's keywords (a dict, positionals
+  // included) go through the command's table: commandOptions
+  m.def("render_run", [](const py::dict& options) {
+    const app::RenderOptions o = commandOptions<app::RenderOptions>("render", options);
+    py::gil_scoped_release nogil;
+    app::renderRunCommand(o);
+  }, py::arg("options"));
+  m.def("montage", [](const py::dict& options) {
+    const app::MontageOptions o = commandOptions<app::MontageOptions>("montage", options);
+    py::gil_scoped_release nogil;
+    app::montageRunsCommand(o);
+  }, py::arg("options"));
   m.def(
       "export_run",
-      // rootsim.export's keywords, as the command line's flags: an unknown name or a value of the wrong
-      // type is a SceneError
-      [](const std::string& runDir, const py::dict& options) {
-        app::ExportOptions o;
-        o.runDir = runDir;
-        readOptions(options, "export", [&](const std::string& key, const py::handle v) {
-          auto text = [&] { return v.is_none() ? std::string() : std::string(py::str(v)); };
-          if (key == "rsml") o.rsml = text();
-          else if (key == "gltf") o.gltf = text();
-          else if (key == "paraview") o.paraview = text();
-          else if (key == "at_h") { if (!v.is_none()) o.atH = v.cast<double>(); }
-          else if (key == "every_h") { if (!v.is_none()) o.everyH = v.cast<double>(); }
-          else if (key == "force") o.force = v.cast<bool>();
-          else if (key == "quiet") o.quiet = v.cast<bool>();
-          else return false;
-          return true;
-        });
+      [](const py::dict& options) {
+        const app::ExportOptions o = commandOptions<app::ExportOptions>("export", options);
         std::vector<fs::path> written;
         {
           py::gil_scoped_release nogil;
@@ -668,28 +671,19 @@ PYBIND11_MODULE(_rootsim, m) {
         for (const fs::path& f : written) out.push_back(f.string());
         return out;
       },
-      py::arg("run_dir"), py::arg("options"));
+      py::arg("options"));
   m.def(
       "analyze_traces",
       // rootsim.analyze's keywords, as the command line's flags; the rows as dicts of analysis.csv's columns
-      [](const std::vector<std::string>& files, const py::dict& options) {
-        app::AnalyzeOptions o;
-        o.files = files;
-        readOptions(options, "analyze", [&](const std::string& key, const py::handle v) {
-          if (v.is_none()) return true;
-          if (key == "px_per_mm") o.pxPerMm = v.cast<double>();
-          else if (key == "downhill") o.downhill = std::string(py::str(v));
-          else if (key == "times") o.times = std::string(py::str(v));
-          else if (key == "ds_mm") o.dsMm = v.cast<double>();
-          else if (key == "exclude_tip_mm") o.excludeTipMm = v.cast<double>();
-          else if (key == "radius_mm") o.radiusMm = v.cast<double>();
-          else return false;
-          return true;
-        });
+      [](const py::dict& options) {
+        app::AnalyzeOptions o = commandOptions<app::AnalyzeOptions>("analyze", options);
+        o.printLines = false;
         app::Analysis all;
         {
+          // with out: the command's folder too (analysis.csv, ...), else nothing written
           py::gil_scoped_release nogil;
-          all = app::analyzeAll(o);
+          if (o.out.empty()) all = app::analyzeAll(o);
+          else app::analyzeCommand(o, &all);
         }
         // each table as a list of dicts of its CSV's columns
         auto table = [](const auto& rows, auto fields) {
@@ -720,35 +714,13 @@ PYBIND11_MODULE(_rootsim, m) {
         out["warnings"] = all.warnings;
         return out;
       },
-      py::arg("files"), py::arg("options"));
-  // the traced root's keywords of rootsim.compare and rootsim.fit (their --root, --px-per-mm, --downhill,
-  // --sigma-mm); false for a key that is not one of them
-  auto traceOption = [](app::TraceFlags& t, const std::string& key, const py::handle v) {
-    if (key == "root") t.root = std::string(py::str(v));
-    else if (key == "px_per_mm") t.pxPerMm = v.cast<double>();
-    else if (key == "downhill") t.downhill = std::string(py::str(v));
-    else if (key == "sigma_mm") t.sigmaMm = v.cast<double>();
-    else return false;
-    return true;
-  };
+      py::arg("options"));
   m.def(
       "compare_trace",
-      // rootsim.compare's keywords, as the command line's flags; returns the folder written
-      [traceOption](const std::string& runDir, const std::string& trace, const py::dict& options) {
-        app::CompareOptions o;
-        o.runDir = runDir;
-        o.trace.trace = trace;
-        o.printTable = false;
-        readOptions(options, "compare", [&](const std::string& key, const py::handle v) {
-          if (v.is_none()) return true;
-          if (traceOption(o.trace, key, v)) return true;
-          if (key == "at_h") o.atH = v.cast<double>();
-          else if (key == "out") o.out = std::string(py::str(v));
-          else if (key == "force") o.force = v.cast<bool>();
-          else if (key == "quiet") o.quiet = v.cast<bool>();
-          else return false;
-          return true;
-        });
+      // returns the folder written
+      [](const py::dict& options) {
+        app::CompareOptions o = commandOptions<app::CompareOptions>("compare", options);
+        o.printTable = false;  // the command line's table on stdout
         std::string out;
         {
           py::gil_scoped_release nogil;
@@ -756,27 +728,12 @@ PYBIND11_MODULE(_rootsim, m) {
         }
         return out;
       },
-      py::arg("run_dir"), py::arg("trace"), py::arg("options"));
+      py::arg("options"));
   m.def(
       "fit_trace",
       // rootsim.fit's keywords, as the command line's flags; returns the folder written
-      [traceOption](const std::string& trace, const py::dict& options) {
-        app::FitOptions o;
-        o.trace.trace = trace;
-        readOptions(options, "fit", [&](const std::string& key, const py::handle v) {
-          if (v.is_none()) return true;
-          if (traceOption(o.trace, key, v)) return true;
-          if (key == "scene") o.scene = std::string(py::str(v));
-          else if (key == "free") o.free = std::string(py::str(v));
-          else if (key == "objective") o.objective = std::string(py::str(v));
-          else if (key == "jobs") o.jobs = v.cast<int>();
-          else if (key == "budget") o.budget = v.cast<int>();
-          else if (key == "out") o.out = std::string(py::str(v));
-          else if (key == "force") o.force = v.cast<bool>();
-          else if (key == "quiet") o.quiet = v.cast<bool>();
-          else return false;
-          return true;
-        });
+      [](const py::dict& options) {
+        const app::FitOptions o = commandOptions<app::FitOptions>("fit", options);
         app::FitReport r;
         {
           py::gil_scoped_release nogil;
@@ -784,7 +741,7 @@ PYBIND11_MODULE(_rootsim, m) {
         }
         return r.out;
       },
-      py::arg("trace"), py::arg("options"));
+      py::arg("options"));
 #else
   m.attr("have_render") = false;
 #endif

@@ -62,7 +62,7 @@ def test_the_write_rule_holds_in_python(run_dir, tmp_path):
 
 def test_render_options_are_named_not_positional(run_dir, tmp_path):
     with pytest.raises(ValueError, match="unknown option colour"):
-        rootsim._rootsim.render_run(str(run_dir), {"final_png": str(tmp_path / "x.png"), "colour": "twist"})
+        rootsim._rootsim.render_run({"run_dir": str(run_dir), "final_png": str(tmp_path / "x.png"), "colour": "twist"})
 
 
 def test_render_takes_keywords_only(run_dir, tmp_path):

@@ -49,7 +49,10 @@ def test_state_views_shapes_and_contents():
     assert st.positions_mm.shape == (n + 1, 3) and st.velocities_mm_per_s.shape == (n + 1, 3)
     assert st.lateral_mm.shape == st.downhill_mm.shape == st.height_mm.shape == (n + 1,)
     assert st.directors.shape == (n, 3, 3) and st.rest_lengths_mm.shape == (n,)
-    assert st.s_mm.shape == (n + 1,) and st.kappa0_per_mm.shape == (n - 1, 3)
+    assert st.s_mm.shape == (n + 1,) and st.kappa0_vector_per_mm.shape == (n - 1, 3)
+    # kappa0_per_mm is the Frame's per-node magnitude; the State's vector has its own name, the old one says so
+    with pytest.raises(AttributeError, match="renamed kappa0_vector_per_mm.*per-node magnitude"):
+        st.kappa0_per_mm
     # copies: owned, C-contiguous float64 arrays
     arrays = [v for v in vars(st).values() if isinstance(v, np.ndarray)]
     assert len(arrays) == 9
@@ -83,7 +86,7 @@ def test_one_unit_system_the_files_units():
     R = tomllib.loads(sim.scene.to_toml())["root"]["radius_mm"]
     assert snap.radius_mm == pytest.approx(R, rel=0.01)  # R / sqrt(stretch), stretch within 1e-4 of 1
     # curvatures in 1/mm: a waving root of wavelength ~2.3 mm bends at ~1/mm, not ~1000/m
-    assert 0.05 < np.abs(st.kappa0_per_mm).max() < 20
+    assert 0.05 < np.abs(st.kappa0_vector_per_mm).max() < 20
     assert 0.05 < snap.kappa0_per_mm.max() < 20
     # the old SI names say what they became
     with pytest.raises(AttributeError, match=r"State\.positions was renamed positions_mm"):

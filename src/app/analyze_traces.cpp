@@ -549,7 +549,7 @@ std::string summaryLine(const RootRow& r) {
 
 }  // namespace
 
-int analyzeCommand(const AnalyzeOptions& o) {
+int analyzeCommand(const AnalyzeOptions& o, Analysis* result) {
   // the output folder's name is checked before anything is read
   const std::string outText =
       o.out.empty() ? (fs::path("analysis") / fs::path(o.files.empty() ? std::string("analysis") : o.files.front()).stem()).string() : o.out;
@@ -570,10 +570,12 @@ int analyzeCommand(const AnalyzeOptions& o) {
   writeFileAtomic(folder.work() / "analysis.json", analysisJson(rows));
   writeSeriesFiles(folder.work(), all);
   folder.commit();
-  for (const RootRow& r : rows) std::printf("%s\n", summaryLine(r).c_str());
+  if (o.printLines)
+    for (const RootRow& r : rows) std::printf("%s\n", summaryLine(r).c_str());
   if (!o.quiet)
     std::fprintf(stderr, "wrote %s (analysis.csv, analysis.json, curves.csv: %zu roots; plants.csv: %zu plants; growth.csv: %zu rows)\n",
                  out.c_str(), rows.size(), all.plants.size(), all.growth.size());
+  if (result != nullptr) *result = all;
   return 0;
 }
 

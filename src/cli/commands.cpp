@@ -72,7 +72,10 @@ void Progress::finish(const std::string& detail) {
 
 int runCommand(const RunOptions& o) {
   // validate first so a bad scene exits 2 before anything is written
-  const Scene sc = loadScene(o.scene, o.sets);
+  return runLoaded(loadScene(o.scene, o.sets), o, nullptr);
+}
+
+int runLoaded(const Scene& sc, const RunOptions& o, const std::function<void(const StepRecord&, int)>& onStep) {
   const fs::path out = normaliseOutDir(o.out.empty() ? (fs::path("runs") / sc.model.name).string() : o.out);
   // contradictory options are refused before the run, not after it
 #ifndef ROOTSIM_HAVE_RENDER
@@ -131,13 +134,15 @@ int runCommand(const RunOptions& o) {
   ro.resume = o.resume;
   ro.note = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
   // the run directory may not be (or contain) the scene file or the folder we are working in
-  ro.protect = {fs::path(o.scene), fs::current_path()};
+  if (!sc.path.empty()) ro.protect.push_back(fs::path(sc.path));
+  ro.protect.push_back(fs::current_path());
   Progress pr(steps, o.quiet || steps == 0, sc.model.name);
   runSceneToDir(sc, out.string(), ro, [&](const StepRecord& r, int n) {
     char buf[160];
     std::snprintf(buf, sizeof buf, "step %d/%d  t=%.1f h  L=%.2f mm  theta_tip=%.0f deg  %ld sub-steps", r.step, n,
                   r.timeH, r.length / units::mm, r.thetaTip / units::deg, r.substeps);
     pr.update(r.step, buf);
+    if (onStep) onStep(r, n);
   });
   if (steps > 0) pr.finish(std::to_string(steps) + " steps");
 #ifdef ROOTSIM_HAVE_RENDER

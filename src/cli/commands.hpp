@@ -1,6 +1,7 @@
 #pragma once
 // The subcommands, free of CLI11 (main.cpp parses; these run). Each returns the process exit code or
 // throws SceneError (exit 2) / RunError or RelaxError (exit 1).
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -11,6 +12,8 @@
 #include "rootsim/montage_runs.hpp"
 #include "rootsim/movie_look.hpp"
 #include "rootsim/render_run.hpp"
+#include "rootsim/scene.hpp"
+#include "rootsim/simulation.hpp"
 
 namespace rootsim::cli {
 
@@ -25,6 +28,10 @@ struct RunOptions {
   bool quiet = false;
 };
 int runCommand(const RunOptions& o);
+// the run command on a scene already loaded (rootsim.run's Scene; o.scene and o.sets are not read):
+// checks the movie's flags, runs into o.out (default runs/<scene name>), renders the movie; onStep (may
+// be empty) is called after every growth step, as the progress bar is
+int runLoaded(const Scene& sc, const RunOptions& o, const std::function<void(const StepRecord&, int)>& onStep);
 
 struct CheckOptions {
   std::string scene;

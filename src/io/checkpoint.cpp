@@ -131,6 +131,11 @@ template <class T>
 struct IsMemory : std::false_type {};
 template <class S>
 struct IsMemory<Memory<S>> : std::true_type {};
+// a list of structs with field lists (each written field by field)
+template <class T>
+constexpr bool kVectorOfFields = false;
+template <class T>
+constexpr bool kVectorOfFields<std::vector<T>> = HasFields<T>;
 using VtkEntries = std::vector<std::pair<double, std::string>>;
 
 // one field as its bytes (checkpoint.hpp: the payload); a struct with a field list field by field (no
@@ -157,6 +162,9 @@ void put(Out& o, const T& v) {
       o.pod(t);
       o.str(f);
     }
+  } else if constexpr (kVectorOfFields<T>) {
+    o.count(v.size());
+    for (const auto& e : v) put(o, e);
   } else if constexpr (IsVector<T>::value) {
     o.list(v);
   } else if constexpr (std::is_same_v<T, BandLU>) {
@@ -197,6 +205,10 @@ void get(In& in, T& v) {
       if (name.rfind("vtk/step_", 0) != 0 || name.find("..") != std::string::npos) in.bad("bad ParaView entry");
       v.emplace_back(t, std::move(name));
     }
+  } else if constexpr (kVectorOfFields<T>) {
+    // each element at least one byte: the count is bounded by what is left
+    v.assign(in.count(1), typename T::value_type{});
+    for (auto& e : v) get(in, e);
   } else if constexpr (IsVector<T>::value) {
     in.list(v);
   } else if constexpr (std::is_same_v<T, BandLU>) {
@@ -223,6 +235,9 @@ std::string difference(const T& a, const T& b, const std::string& name) {
     forEachField<T>([&](const auto& f) {
       if (d.empty()) d = difference(a.*f.member, b.*f.member, name + "." + f.name);
     });
+  } else if constexpr (kVectorOfFields<T>) {
+    if (a.size() != b.size()) return name + ".size";
+    for (size_t i = 0; i < a.size() && d.empty(); ++i) d = difference(a[i], b[i], name + "[" + std::to_string(i) + "]");
   } else if constexpr (IsMemory<T>::value) {
     forEachCarried(a, b, [&](const auto& f, const auto& va, const auto& vb) {
       if (d.empty()) d = difference(va, vb, name + "." + f.name);
@@ -240,7 +255,7 @@ std::string difference(const T& a, const T& b, const std::string& name) {
 // position is checked against its range and against the run's own files it describes (a negative
 // frame count resumed to other output). Files shorter than the checkpoint says are left to the caller
 // (resuming refuses them naming the file).
-[[noreturn]] void refuse(const fs::path& path, const std::string& field, const std::string& why) {
+[[noreturn]] void refuseField(const fs::path& path, const std::string& field, const std::string& why) {
   throw SceneError(path.string() + ": corrupt checkpoint (" + field + " " + why +
                    "); rerun with --force to discard it and start again");
 }
@@ -287,19 +302,28 @@ std::string lastRowFirstField(const std::string& t) {
   return t.substr(from, t.find(',', from) == std::string::npos ? std::string::npos : t.find(',', from) - from);
 }
 
-void checkRanges(const RunCheckpoint& c, long elements, const fs::path& path) {
+// one root's part of a checkpoint (a run's, or a plate's root: what its folder dir holds), written after
+// growth step `step` (the run's; a plate's lateral has grown fewer of its own)
+void checkRanges(const RodState& state, const SimulationCarry& carry, const RunWatch& watch, double wallBefore,
+                 const WriterPositions& w, int step, long elements, const fs::path& path, const fs::path& dir,
+                 const std::string& who) {
+  auto refuse = [&](const fs::path& p, const std::string& field, const std::string& why) {
+    refuseField(p, who + field, why);
+  };
   auto num = [](auto v) { return std::to_string(v); };
-  const SimulationProgress& k = c.carry.progress;
-  const Memory<NewtonWorkspace>& nw = c.carry.newton;
-  const Memory<ContactWorkspace>& cw = c.carry.contact;
+  const SimulationProgress& k = carry.progress;
+  const Memory<NewtonWorkspace>& nw = carry.newton;
+  const Memory<ContactWorkspace>& cw = carry.contact;
   const SparseMemory& sparse = get<&NewtonWorkspace::sparse>(nw);
-  const RunAccumulators& a = c.acc;
-  const WriterPositions& w = c.writers;
+  struct {
+    const RunWatch& watch;
+    double wallBefore;
+  } a{watch, wallBefore};
   // a checkpoint is written after a growth step (1, 2, ...): every output step so far left at most one
   // snapshot (and time-series row), the initial state's included
-  if (c.step < 1) refuse(path, "growth step", num(c.step) + " out of range (>= 1)");
-  const long maxFrames = static_cast<long>(c.step) + 1;
-  if (!(std::isfinite(c.state.time) && c.state.time >= 0))
+  if (step < 1) refuse(path, "growth step", num(step) + " out of range (>= 1)");
+  const long maxFrames = static_cast<long>(step) + 1;
+  if (!(std::isfinite(state.time) && state.time >= 0))
     refuse(path, "rod time", "out of range (finite, >= 0)");
   for (const auto& [name, v] : {std::pair<const char*, long>{"total substeps", k.totalSubsteps},
                                 {"total iterations", k.totalIterations},
@@ -325,14 +349,13 @@ void checkRanges(const RunCheckpoint& c, long elements, const fs::path& path) {
     refuse(path, "earlier wall time", "out of range (finite, >= 0 s)");
   if (w.trajectoryFrames < 0 || w.trajectoryFrames > maxFrames)
     refuse(path, "trajectory frame count", num(w.trajectoryFrames) + " out of range (0 .. " + num(maxFrames) +
-                                               ": at most one per growth step up to " + num(c.step) + ", and the initial one)");
+                                               ": at most one per growth step up to " + num(step) + ", and the initial one)");
   if (static_cast<long>(w.vtkEntries.size()) > maxFrames)
     refuse(path, "ParaView entry count", num(w.vtkEntries.size()) + " out of range (0 .. " + num(maxFrames) + ")");
   for (const auto& [t, name] : w.vtkEntries)
     if (!(std::isfinite(t) && t >= 0)) refuse(path, "ParaView entry time", "out of range (finite, >= 0 h)");
   // the run's own files agree (where they hold what the checkpoint says: shorter ones are refused by
   // the caller, naming the file)
-  const fs::path dir = path.parent_path();
   const bool trajectory = w.trajectoryBytes > 0 || w.trajectoryBinaryBytes > 0;
   if (!trajectory && w.trajectoryFrames != 0)
     refuse(path, "trajectory frame count", num(w.trajectoryFrames) + " with no trajectory written (must be 0)");
@@ -363,42 +386,47 @@ void checkRanges(const RunCheckpoint& c, long elements, const fs::path& path) {
 
 std::uint64_t sceneHash(const std::string& resolvedToml) { return fnv1a(resolvedToml.data(), resolvedToml.size()); }
 
-void writeCheckpoint(const fs::path& path, const RunCheckpoint& c) {
-  static_assert(std::is_trivially_copyable_v<ZoneObservables>);
-  Out o;
-  put(o, c.state);
-  put(o, c.carry);
-  put(o, c.acc);
-  put(o, c.writers);
+namespace {
 
+enum class Kind : std::uint32_t { Root = 0, Plate = 1 };
+
+// the header, the payload and its checksum, written atomically
+void writeFramed(const fs::path& path, Kind kind, std::uint64_t hash, int step, const std::string& payload) {
   Out h;
   h.raw(kMagic, sizeof kMagic);
   h.pod(kCheckpointVersion);
+  h.pod(static_cast<std::uint32_t>(kind));
+  h.pod(hash);
+  h.pod(static_cast<std::int32_t>(step));
   h.pod(std::uint32_t{0});
-  h.pod(c.sceneHash);
-  h.pod(static_cast<std::int32_t>(c.step));
-  h.pod(std::uint32_t{0});
-  h.pod(static_cast<std::uint64_t>(o.b.size()));
-  h.b += o.b;
-  h.pod(fnv1a(o.b.data(), o.b.size()));
+  h.pod(static_cast<std::uint64_t>(payload.size()));
+  h.b += payload;
+  h.pod(fnv1a(payload.data(), payload.size()));
   writeFileAtomic(path, h.b);
 }
 
-RunCheckpoint readCheckpoint(const fs::path& path) {
+std::string readBytes(const fs::path& path) {
   std::ifstream f(path, std::ios::binary);
   if (!f) throw SceneError(path.string() + ": cannot open the checkpoint");
-  const std::string b((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
-  In in{b, 0, b.size(), path.string()};
+  return std::string((std::istreambuf_iterator<char>(f)), std::istreambuf_iterator<char>());
+}
+
+// checks the header and the checksum; leaves `in` at the payload, its end before the checksum
+void readHeader(In& in, Kind kind, std::uint64_t& hash, int& step) {
+  const std::string& b = in.b;
   if (b.size() < kHeaderBytes + 8 || std::memcmp(b.data(), kMagic, sizeof kMagic) != 0)
     in.bad("not a rootsim checkpoint, or truncated");
   in.pos = sizeof kMagic;
   const auto version = in.pod<std::uint32_t>();
   if (version != kCheckpointVersion)
     in.bad("version " + std::to_string(version) + ", this rootsim reads version " + std::to_string(kCheckpointVersion));
-  in.pod<std::uint32_t>();
-  RunCheckpoint c;
-  c.sceneHash = in.pod<std::uint64_t>();
-  c.step = in.pod<std::int32_t>();
+  const auto k = in.pod<std::uint32_t>();
+  if (k != static_cast<std::uint32_t>(kind))
+    in.bad(k == static_cast<std::uint32_t>(Kind::Plate)   ? "a plate's checkpoint, this scene is one root"
+           : k == static_cast<std::uint32_t>(Kind::Root) ? "one root's checkpoint, this scene is a plate"
+                                                         : "kind " + std::to_string(k) + " unknown");
+  hash = in.pod<std::uint64_t>();
+  step = in.pod<std::int32_t>();
   in.pod<std::uint32_t>();
   const auto payload = in.pod<std::uint64_t>();
   if (payload != b.size() - kHeaderBytes - 8) in.bad("length " + std::to_string(b.size()) + " does not match its header");
@@ -406,10 +434,12 @@ RunCheckpoint readCheckpoint(const fs::path& path) {
   std::memcpy(&sum, b.data() + b.size() - 8, 8);
   if (sum != fnv1a(b.data() + kHeaderBytes, payload)) in.bad("checksum mismatch");
   in.end = b.size() - 8;
+}
 
-  RodState& s = c.state;
-  get(in, s);
-  // the fields must agree on the element count (a checksum collision aside, a writer bug)
+// a root's state and carry, checked against each other (a checksum collision aside, a writer
+// bug); its growth step is its own (`step`: a plate's laterals count theirs from their emergence)
+long checkRoot(const In& in, const RodState& s, const SimulationCarry& k, int step) {
+  // the fields must agree on the element count
   const long n = s.l0.size();
   if (n < 1 || s.x.cols() != n + 1 || s.v.cols() != n + 1 || static_cast<long>(s.Q.size()) != n || s.w.cols() != n ||
       s.S.size() != n + 1 || s.kappa0.cols() != std::max(n - 1, 0L) || s.anchor.cols() != n + 1 ||
@@ -417,15 +447,14 @@ RunCheckpoint readCheckpoint(const fs::path& path) {
       static_cast<long>(s.hasPlateStick.size()) != n + 1 || s.obstacleStick.cols() != n + 1 ||
       static_cast<long>(s.hasObstacleStick.size()) != n + 1)
     in.bad("rod state fields disagree on the element count");
-  SimulationCarry& k = c.carry;
-  get(in, k);
   const Memory<NewtonWorkspace>& nw = k.newton;
   const auto& mode = get<&NewtonWorkspace::mode>(nw);
   const int modeSize = get<&NewtonWorkspace::modeSize>(nw);
   const auto& matureK = get<&NewtonWorkspace::matureK>(nw);
   const int matureValid = get<&NewtonWorkspace::matureValid>(nw);
-  if (k.progress.step != c.step || modeSize < 0 || static_cast<std::size_t>(modeSize) > mode.size() ||
-      matureValid < 0 || 3 * static_cast<std::size_t>(matureValid) > matureK.size())
+  if ((step >= 0 && k.progress.step != step) || k.progress.step < 0 || modeSize < 0 ||
+      static_cast<std::size_t>(modeSize) > mode.size() || matureValid < 0 ||
+      3 * static_cast<std::size_t>(matureValid) > matureK.size())
     in.bad("inconsistent solver state");
   for (const auto& [i, j] : get<&ContactWorkspace::pairs>(k.contact))
     if (i < 0 || j < 0 || i >= n || j >= n) in.bad("contact pair out of range");
@@ -433,10 +462,84 @@ RunCheckpoint readCheckpoint(const fs::path& path) {
   if (get<&NewtonWorkspace::factorsValid>(nw) && !get<&NewtonWorkspace::sparseActive>(nw) &&
       get<&NewtonWorkspace::lu>(nw).size() < 1)
     in.bad("inconsistent Newton factors");
+  return n;
+}
+
+}  // namespace
+
+void writeCheckpoint(const fs::path& path, const RunCheckpoint& c) {
+  static_assert(std::is_trivially_copyable_v<ZoneObservables>);
+  Out o;
+  put(o, c.state);
+  put(o, c.carry);
+  put(o, c.acc);
+  put(o, c.writers);
+  writeFramed(path, Kind::Root, c.sceneHash, c.step, o.b);
+}
+
+RunCheckpoint readCheckpoint(const fs::path& path) {
+  RunCheckpoint c;
+  const std::string b = readBytes(path);
+  In in{b, 0, b.size(), path.string()};
+  readHeader(in, Kind::Root, c.sceneHash, c.step);
+  get(in, c.state);
+  get(in, c.carry);
+  const long n = checkRoot(in, c.state, c.carry, c.step);
   get(in, c.acc);
   get(in, c.writers);
   if (in.pos != in.end) in.bad("trailing bytes");
-  checkRanges(c, static_cast<long>(n), path);
+  checkRanges(c.state, c.carry, c.acc.watch, c.acc.wallBefore, c.writers, c.step, n, path, path.parent_path(), "");
+  return c;
+}
+
+void writePlateCheckpoint(const fs::path& path, const PlateCheckpoint& c) {
+  Out o;
+  put(o, c.plate);
+  put(o, c.roots);
+  put(o, c.acc);
+  writeFramed(path, Kind::Plate, c.sceneHash, c.step, o.b);
+}
+
+PlateCheckpoint readPlateCheckpoint(const fs::path& path, const std::vector<std::string>& seedlingNames) {
+  PlateCheckpoint c;
+  const std::string b = readBytes(path);
+  In in{b, 0, b.size(), path.string()};
+  readHeader(in, Kind::Plate, c.sceneHash, c.step);
+  get(in, c.plate);
+  get(in, c.roots);
+  get(in, c.acc);
+  const PlateCarry& p = c.plate;
+  const std::size_t roots = p.roots.size();
+  // every root's state and carry checked as a single root's (a lateral counts its steps from its emergence)
+  std::vector<long> elements;
+  for (std::size_t r = 0; r < roots; ++r)
+    elements.push_back(checkRoot(in, p.roots[r].state, p.roots[r].carry, r < seedlingNames.size() ? c.step : -1));
+  if (in.pos != in.end) in.bad("trailing bytes");
+  // the plate's bookkeeping fits its seedlings: every lateral after its parent, one root each
+  const std::size_t seedlings = seedlingNames.size();
+  if (p.last.step != c.step) in.bad("the plate's step disagrees with the header");
+  if (roots != seedlings + p.laterals.size() || p.nextSite.size() != roots || c.roots.size() != roots)
+    in.bad(std::to_string(roots) + " roots for " + std::to_string(seedlings) + " seedlings and " +
+           std::to_string(p.laterals.size()) + " laterals");
+  std::vector<std::string> names = seedlingNames;
+  for (std::size_t i = 0; i < p.laterals.size(); ++i) {
+    const LateralBirth& lb = p.laterals[i];
+    if (lb.parent < 0 || static_cast<std::size_t>(lb.parent) >= seedlings + i || lb.site < 0 ||
+        lb.site >= p.nextSite[static_cast<std::size_t>(lb.parent)] || p.roots[seedlings + i].carry.progress.step > c.step)
+      in.bad("lateral " + std::to_string(i + 1) + " does not fit its parent");
+    names.push_back(lateralName(names[static_cast<std::size_t>(lb.parent)], lb.site));
+  }
+  for (int v : p.nextSite)
+    if (v < 0) in.bad("a root's next lateral site is negative");
+  const auto& sparse = get<&CoupledWorkspace::sparse>(p.coupled);
+  if (sparse.n < -1 || sparse.kl < 0 || sparse.ku < 0) in.bad("the coupled system's sparse pattern is out of range");
+  const PlateRunAccumulators& a = c.acc;
+  if (a.maxSweeps < 1 || !(std::isfinite(a.wallBefore) && a.wallBefore >= 0) || !(std::isnan(a.minGap) || a.minGap >= 0))
+    in.bad("the plate's accumulators are out of range");
+  const fs::path dir = path.parent_path();
+  for (std::size_t r = 0; r < roots; ++r)
+    checkRanges(p.roots[r].state, p.roots[r].carry, c.roots[r].watch, 0.0, c.roots[r].writers, c.step, elements[r], path,
+                dir / "roots" / names[r], "root " + names[r] + ": ");
   return c;
 }
 
@@ -455,5 +558,13 @@ std::string checkpointDifference(const RunCheckpoint& a, const RunCheckpoint& b)
 }
 std::string carryDifference(const SimulationCarry& a, const SimulationCarry& b) { return difference(a, b, "carry"); }
 std::string stateDifference(const RodState& a, const RodState& b) { return difference(a, b, "state"); }
+std::string plateCheckpointDifference(const PlateCheckpoint& a, const PlateCheckpoint& b) {
+  if (a.sceneHash != b.sceneHash) return "sceneHash";
+  if (a.step != b.step) return "step";
+  std::string d = difference(a.plate, b.plate, "plate");
+  if (d.empty()) d = difference(a.roots, b.roots, "roots");
+  if (d.empty()) d = difference(a.acc, b.acc, "acc");
+  return d;
+}
 
 }  // namespace rootsim

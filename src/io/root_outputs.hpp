@@ -3,9 +3,11 @@
 // (run_scene.cpp) and a plate's roots (run_plate.cpp)
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "rootsim/checkpoint.hpp"
 #include "rootsim/outputs.hpp"
@@ -54,9 +56,38 @@ struct RootFinal {
 };
 RootFinal finishRoot(const Model& m, const Simulation& sim, const RunWatch& watch, double wallS);
 
+// the growth steps of a run, one root's or a plate's, from `first` to `steps`: grow(k), then write(k)
+// (what step k writes) and, at the run's cadence (checkpointEvery seconds of wall time; the test binary's
+// seams: run_seams.hpp) but after the last step, checkpoint(k); a writer's RunError names the step
+// ("at growth step k of N"); then progress(k). On a failure (not RunInterrupted) closeQuietly() keeps the
+// streams whole before the error goes on.
+struct RunSteps {
+  std::function<void(int)> grow, write, checkpoint, progress;
+  std::function<void()> closeQuietly;
+};
+void runGrowthSteps(int first, int steps, double checkpointEvery, const RunSteps& f);
+
 // what to do with an interrupted run DIR.partial when resuming (run_scene.cpp): continue it from its
-// checkpoint (ck filled), discard it, or refuse
-PartialRun resumePlan(const Scene& sc, const std::string& outDir, std::uint64_t hash, bool force,
-                      std::optional<RunCheckpoint>& ck);
+// checkpoint (load(checkpoint file) read it: it throws SceneError when the checkpoint cannot be used),
+// discard it, or refuse. The same for a run of one root and a plate.
+PartialRun resumePlan(const Scene& sc, const std::string& outDir, bool force,
+                      const std::function<void(const std::filesystem::path&)>& load);
+// what a resumed run says it does (RunDirOptions::note)
+void noteResume(const RunDirOptions& o, const RunDir& rd, PartialRun partial, int step, int steps);
+// the streams of a root's folder hold at least what its checkpoint saw (before anything is touched);
+// throws SceneError naming the file
+void checkStreamLengths(const std::filesystem::path& dir, const Model& m, const WriterPositions& w);
+void checkStreamLength(const std::filesystem::path& file, std::uint64_t bytes);
+// a checkpoint of this scene (its hash: sceneHash of the resolved scene); throws SceneError naming the file
+void checkSceneHash(const std::filesystem::path& file, std::uint64_t found, std::uint64_t expected);
+// "FILE:LINE: KEY is A there, B in SCENE" for the first key where two resolved scenes differ (file: where
+// `written` was read)
+std::string sceneDifference(const std::string& file, const std::string& written, const std::string& current,
+                            const std::string& scenePath);
+// removes the leftovers of atomic writes a kill interrupted in dir and dir/vtk, but the streams being
+// continued (names: their final names)
+void removeStaleTemps(const std::filesystem::path& dir, const std::vector<std::string>& streams);
+// the streams a root continues (RootStreams)
+inline const std::vector<std::string> kRootStreams = {"timeseries.csv", "trajectory.csv", "trajectory.bin"};
 
 }  // namespace rootsim::detail

@@ -1,8 +1,13 @@
 // A plate scene -> one run directory (docs/plate.md, Outputs): roots/NAME per root, each a run directory
-// of that root alone (its own frame), and the plate's summary, time series and ParaView series.
+// of that root alone (its own frame), and the plate's summary, time series and ParaView series; checkpoints
+// and --resume as a run of one root's (run_scene.cpp).
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <memory>
+#include <optional>
+#include <set>
 
 #include "rootsim/csv.hpp"
 #include "rootsim/errors.hpp"
@@ -10,6 +15,7 @@
 #include "rootsim/json.hpp"
 #include "rootsim/plate.hpp"
 #include "rootsim/run_scene.hpp"
+#include "rootsim/checkpoint.hpp"
 #include "rootsim/units.hpp"
 #include "rootsim/version.hpp"
 #include "root_outputs.hpp"
@@ -36,42 +42,98 @@ std::string plateSeriesRow(const PlateStepRecord& r) {
 double runPlateToDir(const Scene& sc, const std::string& outDir, const RunDirOptions& dirOptions,
                      const std::function<void(const StepRecord&, int total)>& progress) {
   const PlateSpec& spec = sc.plate;
-  std::optional<RunCheckpoint> ck;
-  // a plate writes no checkpoint: an interrupted plate run (DIR.partial) is discarded and started again
+  const std::uint64_t hash = sceneHash(sc.resolvedToml);
+  std::vector<std::string> seedlingNames;
+  for (const Seedling& sd : spec.seedlings) seedlingNames.push_back(sd.name);
+  // an interrupted plate (DIR.partial) continues from its checkpoint, as a run of one root does
+  std::optional<PlateCheckpoint> ck;
   const PartialRun partial =
-      dirOptions.resume ? resumePlan(sc, outDir, sceneHash(sc.resolvedToml), dirOptions.force, ck) : PartialRun::Refuse;
+      dirOptions.resume ? resumePlan(sc, outDir, dirOptions.force,
+                                     [&](const fs::path& file) {
+                                       ck.reset();
+                                       ck = readPlateCheckpoint(file, seedlingNames);
+                                       checkSceneHash(file, ck->sceneHash, hash);
+                                       const fs::path w = file.parent_path();
+                                       checkStreamLength(w / "plate_timeseries.csv", ck->acc.seriesBytes);
+                                       const PlateCarry& pc = ck->plate;
+                                       std::vector<std::string> names = seedlingNames;
+                                       for (const LateralBirth& b : pc.laterals)
+                                         names.push_back(lateralName(names[static_cast<size_t>(b.parent)], b.site));
+                                       for (size_t r = 0; r < names.size(); ++r)
+                                         checkStreamLengths(w / "roots" / names[r], sc.model, ck->roots[r].writers);
+                                     })
+                        : PartialRun::Refuse;
+  if (partial != PartialRun::Continue) ck.reset();
   RunDir rd(outDir, dirOptions, partial);
-  if (dirOptions.note && partial == PartialRun::Discard)
-    dirOptions.note("a plate has no checkpoints: starting " + rd.final().string() + " again");
+  const int steps = sc.model.growth.enabled ? sc.model.growth.steps : 0;
+  noteResume(dirOptions, rd, partial, ck ? ck->step : 0, steps);
   const double t0 = now();
   try {
     const fs::path w = rd.work();
-    rd.write("scene.toml", sc.resolvedToml);
-    fs::create_directories(w / "roots");
+    std::unique_ptr<PlateSimulation> platep;
+    std::unique_ptr<AtomicFile> seriesp;
     std::vector<fs::path> dirs;
-    for (size_t r = 0; r < spec.seedlings.size(); ++r) {
-      const fs::path d = w / "roots" / spec.seedlings[r].name;
-      fs::create_directories(d);
-      markRunFolder(d);  // first, as every run directory's (again at the end, with its files listed)
-      writeFileAtomic(d / "scene.toml", sc.rootToml[r]);
-      dirs.push_back(d);
-    }
-    PlateSimulation plate(spec.params, spec.seedlings);
-    const int n = plate.size();
     std::vector<std::unique_ptr<RootStreams>> out;
-    std::vector<RunWatch> watch(static_cast<size_t>(n));
-    for (int r = 0; r < n; ++r)
-      out.push_back(std::make_unique<RootStreams>(dirs[static_cast<size_t>(r)], plate.seedling(r).model, nullptr,
-                                                  plate.offset(r)));
-    AtomicFile series(w / "plate_timeseries.csv");
-    series.stream() << plateSeriesHeader();
+    std::vector<RunWatch> watch;
+    int maxSweeps = 1;
+    double minGap = std::numeric_limits<double>::quiet_NaN();
+    double wallBefore = 0;  // wall time of earlier attempts (resumed) [s]
+    int first = 1;          // the first growth step this process runs
+    if (ck) {
+      // resumed: every root where the checkpoint saw it, its streams cut back to their positions; the
+      // folders of laterals that emerged after the checkpoint go (they emerge again, the same)
+      platep = std::make_unique<PlateSimulation>(spec.params, spec.seedlings, ck->plate);
+      std::set<std::string> kept;
+      for (int r = 0; r < platep->size(); ++r) kept.insert(platep->seedling(r).name);
+      std::error_code ec;
+      std::vector<fs::path> later;
+      for (const auto& e : fs::directory_iterator(w / "roots", ec))
+        if (!kept.count(e.path().filename().string()) && fs::is_regular_file(e.path() / kRunMarker, ec))
+          later.push_back(e.path());
+      for (const fs::path& d : later) fs::remove_all(d, ec);
+      removeStaleTemps(w, {"plate_timeseries.csv"});
+      for (int r = 0; r < platep->size(); ++r) {
+        const fs::path d = w / "roots" / platep->seedling(r).name;
+        removeStaleTemps(d, kRootStreams);
+        dirs.push_back(d);
+        const PlateRootRun& rr = ck->roots[static_cast<size_t>(r)];
+        out.push_back(std::make_unique<RootStreams>(d, platep->seedling(r).model, &rr.writers, platep->offset(r)));
+        watch.push_back(rr.watch);
+      }
+      seriesp = std::make_unique<AtomicFile>(w / "plate_timeseries.csv", ck->acc.seriesBytes);
+      maxSweeps = ck->acc.maxSweeps;
+      minGap = ck->acc.minGap;
+      wallBefore = ck->acc.wallBefore;
+      first = ck->step + 1;
+    } else {
+      rd.write("scene.toml", sc.resolvedToml);
+      fs::create_directories(w / "roots");
+      for (size_t r = 0; r < spec.seedlings.size(); ++r) {
+        const fs::path d = w / "roots" / spec.seedlings[r].name;
+        fs::create_directories(d);
+        markRunFolder(d);  // first, as every run directory's (again at the end, with its files listed)
+        writeFileAtomic(d / "scene.toml", sc.rootToml[r]);
+        dirs.push_back(d);
+      }
+      platep = std::make_unique<PlateSimulation>(spec.params, spec.seedlings);
+      for (int r = 0; r < platep->size(); ++r)
+        out.push_back(std::make_unique<RootStreams>(dirs[static_cast<size_t>(r)], platep->seedling(r).model, nullptr,
+                                                    platep->offset(r)));
+      seriesp = std::make_unique<AtomicFile>(w / "plate_timeseries.csv");
+      seriesp->stream() << plateSeriesHeader();
+    }
+    PlateSimulation& plate = *platep;
+    AtomicFile& series = *seriesp;
+    const int n = static_cast<int>(spec.seedlings.size());
     auto record = [&] {
       for (int r = 0; r < plate.size(); ++r) out[static_cast<size_t>(r)]->add(plate.root(r));
       series.stream() << plateSeriesRow(plate.last());
       series.flush();
     };
-    record();
-    for (int r = 0; r < n; ++r) watch[static_cast<size_t>(r)].start(plate.root(r).last());
+    if (!ck) {
+      record();
+      for (int r = 0; r < plate.size(); ++r) watch.emplace_back().start(plate.root(r).last());
+    }
     // a lateral root that emerged: its folder, its scene (the plate with it alone), its streams (its first
     // snapshot at the next output step, so that every root's snapshots fall on the plate's output steps)
     auto open = [&](int r) {
@@ -85,39 +147,53 @@ double runPlateToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
       watch.emplace_back();
       watch.back().start(plate.root(r).last());
     };
+    // a checkpoint: the plate's carry, each root's accumulators and where its files stand, the plate's own
+    auto checkpoint = [&](int k) {
+      PlateCheckpoint c;
+      c.sceneHash = hash;
+      c.step = k;
+      c.plate = plate.carry();
+      for (int r = 0; r < plate.size(); ++r)
+        c.roots.push_back({watch[static_cast<size_t>(r)], out[static_cast<size_t>(r)]->positions()});
+      c.acc = {maxSweeps, minGap, wallBefore + (now() - t0), series.size()};
+      writePlateCheckpoint(w / kCheckpointFile, c);
+    };
     const Model m0 = plate.seedling(0).model;  // a copy: the plate's roots grow as laterals emerge
-    const int steps = m0.growth.enabled ? m0.growth.steps : 0;
-    int maxSweeps = 1;
-    double minGap = std::numeric_limits<double>::quiet_NaN();
-    try {
-      for (int k = 1; k <= steps; ++k) {
-        const PlateStepRecord& pr = plate.growthStep();
-        maxSweeps = std::max(maxSweeps, pr.sweeps);
-        if (!std::isnan(pr.minGap) && !(pr.minGap >= minGap)) minGap = pr.minGap;
-        for (int r : plate.emerged()) open(r);
-        for (int r = 0; r < plate.size(); ++r)
-          if (std::find(plate.emerged().begin(), plate.emerged().end(), r) == plate.emerged().end())
-            watch[static_cast<size_t>(r)].see(plate.root(r).last());
-        if (k % m0.output.everySteps == 0 || k == steps) record();
-        if (progress) progress(plate.root(0).last(), steps);
-      }
-    } catch (const RunInterrupted&) {
-      throw;
-    } catch (const std::exception&) {
-      for (auto& o : out) o->closeQuietly();
-      try {
-        series.close();
-      } catch (const std::exception&) {
-      }
-      throw;
-    }
+    runGrowthSteps(first, steps, m0.output.checkpointEvery, RunSteps{
+        [&](int) {
+          const PlateStepRecord& pr = plate.growthStep();
+          maxSweeps = std::max(maxSweeps, pr.sweeps);
+          if (!std::isnan(pr.minGap) && !(pr.minGap >= minGap)) minGap = pr.minGap;
+        },
+        [&](int k) {
+          for (int r : plate.emerged()) open(r);
+          for (int r = 0; r < plate.size(); ++r)
+            if (std::find(plate.emerged().begin(), plate.emerged().end(), r) == plate.emerged().end())
+              watch[static_cast<size_t>(r)].see(plate.root(r).last());
+          if (k % m0.output.everySteps == 0 || k == steps) record();
+        },
+        checkpoint,
+        [&](int) {
+          if (progress) progress(plate.root(0).last(), steps);
+        },
+        [&] {
+          for (auto& o : out) o->closeQuietly();
+          try {
+            series.close();
+          } catch (const std::exception&) {
+            // a series that cannot close (the disk that failed the run) keeps nothing; the roots' streams still do
+          }
+        }});
     std::vector<std::vector<std::pair<double, std::string>>> vtkEntries;
     for (auto& o : out) {
       vtkEntries.push_back(o->positions().vtkEntries);
       o->close();
     }
     series.close();
-    const double wall = now() - t0;
+    // the finished run holds no checkpoint: it is the same as a plate never interrupted
+    std::error_code ec;
+    fs::remove(w / kCheckpointFile, ec);
+    const double wall = wallBefore + (now() - t0);
 
     // each root's folder is a finished run directory of that root alone
     std::string table;

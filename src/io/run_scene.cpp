@@ -23,6 +23,12 @@
 #include "rootsim/version.hpp"
 #include "root_outputs.hpp"
 
+#include <algorithm>
+#include <optional>
+#include <sstream>
+
+#include <toml++/toml.h>
+
 namespace fs = std::filesystem;
 
 namespace rootsim {
@@ -36,6 +42,9 @@ RootStreams::RootStreams(const fs::path& w, const Model& m, const WriterPosition
   const bool traj = m.output.trajectory;
   const bool csv = traj && m.output.trajectoryFormat != TrajectoryFormat::Binary;
   const bool bin = traj && m.output.trajectoryFormat != TrajectoryFormat::Csv;
+  // a root that had written nothing when the checkpoint saw it (a plate's lateral that emerged after the
+  // last output step: its writers had not handed even their headers to the system) starts its files anew
+  if (p && p->timeseriesBytes == 0) p = nullptr;
   if (p) {
     ts_ = std::make_unique<TimeseriesWriter>(w / "timeseries.csv", p->timeseriesBytes);
     if (csv) tr_ = std::make_unique<TrajectoryWriter>(w / "trajectory.csv", p->trajectoryBytes, p->trajectoryFrames);
@@ -145,11 +154,11 @@ RootFinal finishRoot(const Model& m, const Simulation& sim, const RunWatch& watc
   return f;
 }
 
-// what to do with an interrupted run DIR.partial when resuming: continue it from its checkpoint (ck
-// filled), discard it (killed before its first checkpoint: nothing to lose), or refuse (another scene,
+// what to do with an interrupted run DIR.partial when resuming: continue it from its checkpoint (load
+// read it), discard it (killed before its first checkpoint: nothing to lose), or refuse (another scene,
 // a corrupt checkpoint; with force those are discarded too)
-PartialRun resumePlan(const Scene& sc, const std::string& outDir, std::uint64_t hash, bool force,
-                      std::optional<RunCheckpoint>& ck) {
+PartialRun resumePlan(const Scene& sc, const std::string& outDir, bool force,
+                      const std::function<void(const fs::path&)>& load) {
   fs::path work = normaliseOutDir(outDir);
   work += ".partial";
   std::error_code ec;
@@ -161,8 +170,9 @@ PartialRun resumePlan(const Scene& sc, const std::string& outDir, std::uint64_t 
   const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (text != sc.resolvedToml) {
     if (force) return PartialRun::Discard;
-    throw SceneError("--resume: " + work.string() + " was written by another scene (its scene.toml differs from " +
-                     sc.path + " with these --set values); pass --force to discard it and start again");
+    throw SceneError("--resume: " + work.string() + " was written by another scene (" +
+                     sceneDifference((work / "scene.toml").string(), text, sc.resolvedToml, sc.path) +
+                     "); pass the same scene and --set values, or --force to discard it and start again");
   }
   if (!fs::exists(work / kCheckpointFile, ec)) {
     // killed before its first checkpoint: nothing to lose. But a run that finished there (its
@@ -173,56 +183,194 @@ PartialRun resumePlan(const Scene& sc, const std::string& outDir, std::uint64_t 
     return PartialRun::Discard;
   }
   try {
-    ck = readCheckpoint(work / kCheckpointFile);
-    if (ck->sceneHash != hash)
-      throw SceneError((work / kCheckpointFile).string() + ": written by another scene (scene hash differs); pass "
-                       "--force to discard it and start again");
-    // the streamed files hold at least what the checkpoint saw (checked here, before anything is touched)
-    const Model& m = sc.model;
-    const bool traj = m.output.trajectory;
-    const std::pair<const char*, std::uint64_t> streams[] = {
-        {"timeseries.csv", ck->writers.timeseriesBytes},
-        {"trajectory.csv", traj && m.output.trajectoryFormat != TrajectoryFormat::Binary ? ck->writers.trajectoryBytes : 0},
-        {"trajectory.bin", traj && m.output.trajectoryFormat != TrajectoryFormat::Csv ? ck->writers.trajectoryBinaryBytes : 0}};
-    for (const auto& [name, bytes] : streams) {
-      if (bytes == 0) continue;
-      fs::path f = work / name;
-      f += ".tmp";
-      if (!fs::is_regular_file(f, ec)) f = work / name;  // killed after it was closed
-      const std::uintmax_t have = fs::is_regular_file(f, ec) ? fs::file_size(f, ec) : 0;
-      if (have < bytes)
-        throw SceneError(f.string() + ": missing or shorter (" + std::to_string(have) + " bytes) than its checkpoint says (" +
-                         std::to_string(bytes) + " bytes); pass --force to discard the interrupted run and start again");
-    }
+    load(work / kCheckpointFile);
   } catch (const SceneError&) {
-    ck.reset();
     if (force) return PartialRun::Discard;
     throw;
   }
   return PartialRun::Continue;
 }
 
-}  // namespace detail
+void noteResume(const RunDirOptions& o, const RunDir& rd, PartialRun partial, int step, int steps) {
+  if (!o.note) return;
+  if (partial == PartialRun::Continue)
+    o.note("resuming " + rd.final().string() + " from the checkpoint of growth step " + std::to_string(step) + " of " +
+           std::to_string(steps));
+  else if (partial == PartialRun::Discard)
+    o.note("no usable checkpoint in " + rd.work().string() + ": starting " + rd.final().string() + " again");
+}
+
+void checkStreamLengths(const fs::path& dir, const Model& m, const WriterPositions& w) {
+  const bool traj = m.output.trajectory;
+  const std::pair<const char*, std::uint64_t> streams[] = {
+      {"timeseries.csv", w.timeseriesBytes},
+      {"trajectory.csv", traj && m.output.trajectoryFormat != TrajectoryFormat::Binary ? w.trajectoryBytes : 0},
+      {"trajectory.bin", traj && m.output.trajectoryFormat != TrajectoryFormat::Csv ? w.trajectoryBinaryBytes : 0}};
+  for (const auto& [name, bytes] : streams) checkStreamLength(dir / name, bytes);
+}
+
+void checkStreamLength(const fs::path& file, std::uint64_t bytes) {
+  if (bytes == 0) return;
+  std::error_code ec;
+  fs::path f = file;
+  f += ".tmp";
+  if (!fs::is_regular_file(f, ec)) f = file;  // killed after it was closed
+  const std::uintmax_t have = fs::is_regular_file(f, ec) ? fs::file_size(f, ec) : 0;
+  if (have < bytes)
+    throw SceneError(f.string() + ": missing or shorter (" + std::to_string(have) + " bytes) than its checkpoint says (" +
+                     std::to_string(bytes) + " bytes); pass --force to discard the interrupted run and start again");
+}
+
+void runGrowthSteps(int first, int steps, double checkpointEvery, const RunSteps& f) {
+  const StepSeams seams = stepSeams();
+  double lastCheckpoint = now();
+  // A run that fails keeps what its writers hold, closed so that the files are whole and readable: the
+  // time series and trajectory up to the last output step before the failure, the ParaView series. The
+  // directory becomes DIR.incomplete with ERROR.txt (RunDir::fail), which marks it. (A stop on purpose
+  // leaves DIR.partial as a kill does, its files where the checkpoint expects them.)
+  try {
+    for (int k = first; k <= steps; ++k) {
+      f.grow(k);
+      try {
+        f.write(k);
+        const bool due = seams.checkpointAfter ? seams.checkpointAfter(k) : now() - lastCheckpoint >= checkpointEvery;
+        if (k < steps && due) {
+          f.checkpoint(k);
+          lastCheckpoint = now();
+        }
+      } catch (const RunError& e) {
+        throw RunError(std::string(e.what()) + " (at growth step " + std::to_string(k) + " of " + std::to_string(steps) + ")");
+      }
+      if (seams.afterStep) seams.afterStep(k);
+      f.progress(k);
+    }
+  } catch (const RunInterrupted&) {
+    throw;
+  } catch (const std::exception&) {
+    f.closeQuietly();
+    throw;
+  }
+}
+
+void checkSceneHash(const fs::path& file, std::uint64_t found, std::uint64_t expected) {
+  if (found != expected)
+    throw SceneError(file.string() + ": written by another scene (scene hash differs); pass --force to discard it and "
+                     "start again");
+}
 
 namespace {
 
-// leftovers of atomic writes a kill interrupted (the streams being continued excepted)
-void removeStaleTemps(const fs::path& work) {
+// the first place where two TOML nodes differ: its dotted key and line in a (0: a's whole node), "" when
+// they are the same
+// the text of a node's value as its file wrote it (its source region)
+std::string sourceText(const std::string& file, const toml::node& n) {
+  if (n.is_table()) return "a table";
+  const toml::source_region& r = n.source();
+  auto offset = [&](const toml::source_position& p) {
+    std::size_t pos = 0;
+    for (toml::source_index l = 1; l < p.line && pos != std::string::npos; ++l) {
+      pos = file.find('\n', pos);
+      if (pos != std::string::npos) ++pos;
+    }
+    return pos == std::string::npos ? file.size() : std::min(file.size(), pos + p.column - 1);
+  };
+  const std::size_t from = offset(r.begin), to = offset(r.end);
+  return to > from ? file.substr(from, to - from) : "?";
+}
+
+struct SceneTexts {
+  const std::string& a;
+  const std::string& b;
+};
+
+std::string nodeDifference(const toml::node& a, const toml::node& b, const std::string& key, int& line,
+                           std::string& valueA, std::string& valueB, const SceneTexts& texts) {
+  auto textA = [&](const toml::node& n) { return sourceText(texts.a, n); };
+  auto textB = [&](const toml::node& n) { return sourceText(texts.b, n); };
+  if (const toml::table* ta = a.as_table(); ta && b.is_table()) {
+    const toml::table& tb = *b.as_table();
+    for (const auto& [k, v] : *ta) {
+      const std::string sub = key.empty() ? std::string(k.str()) : key + "." + std::string(k.str());
+      const toml::node* w = tb.get(k.str());
+      if (!w) {
+        line = static_cast<int>(v.source().begin.line);
+        valueA = textA(v);
+        valueB = "not set";
+        return sub;
+      }
+      if (std::string d = nodeDifference(v, *w, sub, line, valueA, valueB, texts); !d.empty()) return d;
+    }
+    for (const auto& [k, v] : tb)
+      if (!ta->get(k.str())) {
+        line = static_cast<int>(a.source().begin.line);
+        valueA = "not set";
+        valueB = textB(v);
+        return key.empty() ? std::string(k.str()) : key + "." + std::string(k.str());
+      }
+    return "";
+  }
+  if (const toml::array* aa = a.as_array(); aa && b.is_array() && aa->is_array_of_tables() == b.as_array()->is_array_of_tables() &&
+                                            aa->is_array_of_tables() && aa->size() == b.as_array()->size()) {
+    // [[seedling]] and the like: element by element, named by their name (else their index from 1)
+    for (std::size_t i = 0; i < aa->size(); ++i) {
+      const toml::table* e = aa->get(i)->as_table();
+      const std::optional<std::string> name = e ? e->get("name") ? e->get("name")->value<std::string>() : std::nullopt
+                                                : std::nullopt;
+      const std::string sub = key + (name ? " \"" + *name + "\"" : " " + std::to_string(i + 1));
+      if (std::string d = nodeDifference(*aa->get(i), *b.as_array()->get(i), sub, line, valueA, valueB, texts); !d.empty())
+        return d;
+    }
+    return "";
+  }
+  auto repr = [](const toml::node& n) {
+    std::ostringstream os;
+    if (const toml::array* arr = n.as_array()) os << *arr;
+    else if (const toml::table* t = n.as_table()) os << *t;
+    else n.visit([&](const auto& v) { os << v; });
+    return os.str();
+  };
+  if (a.type() == b.type() && repr(a) == repr(b)) return "";
+  valueA = textA(a);
+  valueB = textB(b);
+  line = static_cast<int>(a.source().begin.line);
+  return key;
+}
+
+}  // namespace
+
+std::string sceneDifference(const std::string& file, const std::string& written, const std::string& current,
+                            const std::string& scenePath) {
+  toml::table a, b;
+  try {
+    a = toml::parse(written, file);
+    b = toml::parse(current, scenePath);
+  } catch (const toml::parse_error& e) {
+    return file + " is not the resolved scene (" + std::string(e.description()) + ")";
+  }
+  int line = 0;
+  std::string va, vb;
+  const std::string key = nodeDifference(a, b, "", line, va, vb, SceneTexts{written, current});
+  if (key.empty()) return file + " differs from this scene in its text only";
+  return file + ":" + std::to_string(std::max(line, 1)) + ": " + key + " is " + va + " there, " + vb + " in " + scenePath +
+         " with these --set values";
+}
+
+void removeStaleTemps(const fs::path& dir, const std::vector<std::string>& streams) {
   std::error_code ec;
-  for (const fs::path& dir : {work, work / "vtk"}) {
-    if (!fs::is_directory(dir, ec)) continue;
+  for (const fs::path& d : {dir, dir / "vtk"}) {
+    if (!fs::is_directory(d, ec)) continue;
     std::vector<fs::path> stale;
-    for (const auto& e : fs::directory_iterator(dir, ec)) {
+    for (const auto& e : fs::directory_iterator(d, ec)) {
       const std::string name = e.path().filename().string();
-      if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0 && name != "timeseries.csv.tmp" &&
-          name != "trajectory.csv.tmp" && name != "trajectory.bin.tmp")
+      if (name.size() > 4 && name.compare(name.size() - 4, 4, ".tmp") == 0 &&
+          std::find(streams.begin(), streams.end(), name.substr(0, name.size() - 4)) == streams.end())
         stale.push_back(e.path());
     }
     for (const auto& f : stale) fs::remove(f, ec);
   }
 }
 
-}  // namespace
+}  // namespace detail
 
 double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOptions& dirOptions,
                      const std::function<void(const StepRecord&, int total)>& progress) {
@@ -230,16 +378,18 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
   const Model& m = sc.model;
   const std::uint64_t hash = sceneHash(sc.resolvedToml);
   std::optional<RunCheckpoint> ck;
-  const PartialRun partial =
-      dirOptions.resume ? resumePlan(sc, outDir, hash, dirOptions.force, ck) : PartialRun::Refuse;
+  const PartialRun partial = dirOptions.resume ? resumePlan(sc, outDir, dirOptions.force,
+                                                            [&](const fs::path& file) {
+                                                              ck.reset();
+                                                              ck = readCheckpoint(file);
+                                                              checkSceneHash(file, ck->sceneHash, hash);
+                                                              checkStreamLengths(file.parent_path(), m, ck->writers);
+                                                            })
+                                               : PartialRun::Refuse;
+  if (partial != PartialRun::Continue) ck.reset();
   RunDir rd(outDir, dirOptions, partial);
-  if (dirOptions.note && ck)
-    dirOptions.note("resuming " + rd.final().string() + " from the checkpoint of growth step " +
-                    std::to_string(ck->step) + " of " + std::to_string(m.growth.steps));
-  else if (dirOptions.note && partial == PartialRun::Discard)
-    dirOptions.note("no usable checkpoint in " + rd.work().string() + ": starting " + rd.final().string() + " again");
+  noteResume(dirOptions, rd, partial, ck ? ck->step : 0, m.growth.steps);
   const double t0 = now();
-  const StepSeams seams = stepSeams();
   try {
     const fs::path w = rd.work();
     std::unique_ptr<Simulation> simp;
@@ -249,7 +399,7 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     int first = 1;                 // the first growth step this process runs
     if (ck) {
       // resumed: the state, the solvers' memory and the writers where the checkpoint saw them
-      removeStaleTemps(w);
+      removeStaleTemps(w, kRootStreams);
       simp = std::make_unique<Simulation>(m, ck->state, ck->carry);
       out = std::make_unique<RootStreams>(w, m, &ck->writers);
       watch = ck->acc.watch;
@@ -276,37 +426,21 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
       c.writers = out->positions();
       writeCheckpoint(w / kCheckpointFile, c);
     };
-    double lastCheckpoint = now();
     const int steps = m.growth.enabled ? m.growth.steps : 0;
-    // A run that fails keeps what its writers hold, closed so that the files are whole and readable: the
-    // time series and trajectory up to the last output step before the failure, the ParaView series. The
-    // directory becomes DIR.incomplete with ERROR.txt (RunDir::fail), which marks it. (A stop on purpose
-    // leaves DIR.partial as a kill does, its files where the checkpoint expects them.)
-    try {
-      for (int k = first; k <= steps; ++k) {
-        const StepRecord& r = sim.growthStep();
-        watch.see(r);
-        try {
+    const StepRecord* r = nullptr;
+    runGrowthSteps(first, steps, m.output.checkpointEvery, RunSteps{
+        [&](int) {
+          r = &sim.growthStep();
+          watch.see(*r);
+        },
+        [&](int k) {
           if (k % m.output.everySteps == 0 || k == steps) out->add(sim);
-          const bool due = seams.checkpointAfter ? seams.checkpointAfter(k)
-                                                 : now() - lastCheckpoint >= m.output.checkpointEvery;
-          if (k < steps && due) {
-            checkpoint(k);
-            lastCheckpoint = now();
-          }
-        } catch (const RunError& e) {
-          throw RunError(std::string(e.what()) + " (at growth step " + std::to_string(k) + " of " +
-                         std::to_string(steps) + ")");
-        }
-        if (seams.afterStep) seams.afterStep(k);
-        if (progress) progress(r, steps);
-      }
-    } catch (const RunInterrupted&) {
-      throw;
-    } catch (const std::exception&) {
-      out->closeQuietly();
-      throw;
-    }
+        },
+        checkpoint,
+        [&](int) {
+          if (progress) progress(*r, steps);
+        },
+        [&] { out->closeQuietly(); }});
     out->close();
     // the finished run holds no checkpoint: it is the same as a run never interrupted
     std::error_code ec;

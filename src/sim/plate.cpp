@@ -9,6 +9,7 @@
 #include <functional>
 #include <limits>
 #include <sstream>
+#include <stdexcept>
 
 #include "rootsim/contact.hpp"
 #include "rootsim/initial.hpp"
@@ -51,6 +52,45 @@ PlateSimulation::PlateSimulation(const PlateParams& plate, std::vector<Seedling>
   nextSite_.assign(roots_.size(), 0);
   sideStream_ = plate_.laterals.seed;
   last_ = observe(1);
+}
+
+PlateSimulation::PlateSimulation(const PlateParams& plate, std::vector<Seedling> seedlings, const PlateCarry& c)
+    : plate_(plate), seedlings_(std::move(seedlings)) {
+  const size_t n = seedlings_.size();
+  if (c.roots.size() != n + c.laterals.size() || c.nextSite.size() != c.roots.size())
+    throw std::invalid_argument("a plate's carry does not fit its seedlings (roots, laterals or sites)");
+  frame_ = seedlings_.empty() ? PlateFrame{} : seedlings_.front().model.env.plane.frame();
+  for (const Seedling& sd : seedlings_) offset_.push_back(sd.position.x() * frame_.lateral + sd.position.y() * frame_.downhill);
+  for (size_t r = 0; r < n; ++r)
+    roots_.push_back(std::make_unique<Simulation>(seedlings_[r].model, c.roots[r].state, c.roots[r].carry));
+  nextSite_.assign(n, 0);
+  // the laterals in the order they emerged, each from its parent (an earlier root) as emergeLaterals built it
+  for (size_t i = 0; i < c.laterals.size(); ++i) {
+    const LateralBirth& b = c.laterals[i];
+    if (b.parent < 0 || b.parent >= size() || b.site < 0)
+      throw std::invalid_argument("a plate's carry names a lateral's parent that is not before it");
+    addLateral(b, &c.roots[n + i]);
+  }
+  nextSite_ = c.nextSite;
+  sideStream_ = c.sideStream;
+  restore(coupled_, c.coupled);
+  last_ = c.last;
+  // the lists of nearby elements as the last step left them (growthStep)
+  if (size() > 1) {
+    indexElements();
+    for (int r = 0; r < size(); ++r) listNeighbours(r);
+  }
+}
+
+PlateCarry PlateSimulation::carry() const {
+  PlateCarry c;
+  c.last = last_;
+  for (const auto& sim : roots_) c.roots.push_back({sim->state(), sim->carry()});
+  c.laterals = births_;
+  c.nextSite = nextSite_;
+  c.sideStream = sideStream_;
+  c.coupled = save(coupled_);
+  return c;
 }
 
 Vec3 PlateSimulation::offset(int r) const { return offset_[static_cast<size_t>(r)]; }
@@ -410,15 +450,17 @@ Model lateralModel(const Model& parent, const LateralParams& lp) {
   return m;
 }
 
+std::string lateralName(const std::string& parent, int site) { return parent + "." + std::to_string(site + 1); }
+
 void PlateSimulation::emergeLaterals() {
   emerged_.clear();
   const LateralParams& lp = plate_.laterals;
   if (!lp.enabled) return;
   const int existing = size();
   for (int r = 0; r < existing; ++r) {
-    const Seedling parent = seedling(r);  // a copy: seedlings_ grows below
-    if (parent.order >= lp.maxOrder) continue;
+    if (seedling(r).order >= lp.maxOrder) continue;
     for (;;) {
+      const Seedling& parent = seedling(r);
       const RodState& s = root(r).state();
       const int k = nextSite_[static_cast<size_t>(r)];
       const double site = lp.first + k * lp.spacing;
@@ -436,40 +478,61 @@ void PlateSimulation::emergeLaterals() {
       const Vec3 t = s.x.col(i + 1) - s.x.col(i - 1);
       const double theta = std::atan2(frame_.downhill.cross(t).dot(frame_.normal), t.dot(frame_.downhill));
       const double side = lp.alternate ? (k % 2 == 0 ? 1.0 : -1.0) : (splitmixUniform(sideStream_) < 0.0 ? -1.0 : 1.0);
-      Seedling sd;
-      sd.name = parent.name + "." + std::to_string(k + 1);
-      sd.genotype = parent.genotype;
-      sd.position = Eigen::Vector2d(frame_.lateral.dot(p), frame_.downhill.dot(p));
-      sd.parent = r;
-      sd.order = parent.order + 1;
-      sd.siteS = s.S[i];
-      sd.emergedH = s.time / units::hour;
-      Model& m = sd.model;
-      m = lateralModel(parent.model, lp);
-      m.initial.angle = std::remainder(theta + side * lp.insertion, 2.0 * units::pi);
-      m.initial.startTime = s.time;
-      // its own initial perturbation (each organ its own noise: with its parent's, every lateral would lean
-      // the same way relative to its frame, and the laterals of one side would all curl back)
-      std::uint64_t seed = parent.model.initial.seed ^ (0x9e3779b97f4a7c15ULL * static_cast<std::uint64_t>(k + 1));
-      m.initial.seed = static_cast<std::uint64_t>((splitmixUniform(seed) + 1.0) * 0x1.0p51);
-      // the obstacles in the lateral's own frame (from the parent's)
-      const Eigen::Vector2d shift = sd.position - parent.position;
-      for (Obstacle& ob : m.env.obstacles) {
-        ob.from -= shift;
-        ob.to -= shift;
-      }
-      completeModel(m);
-      try {
-        roots_.push_back(std::make_unique<Simulation>(m));
-      } catch (const RelaxError& e) {
-        throw namedError(sd.name, e);
-      }
-      offset_.push_back(sd.position.x() * frame_.lateral + sd.position.y() * frame_.downhill);
-      seedlings_.push_back(std::move(sd));
-      nextSite_.push_back(0);
+      LateralBirth b;
+      b.parent = r;
+      b.site = k;
+      b.lateral = frame_.lateral.dot(p);
+      b.downhill = frame_.downhill.dot(p);
+      b.siteS = s.S[i];
+      b.angle = std::remainder(theta + side * lp.insertion, 2.0 * units::pi);
+      b.time = s.time;
+      addLateral(b, nullptr);
       emerged_.push_back(size() - 1);
     }
   }
+}
+
+Seedling PlateSimulation::lateralSeedling(const LateralBirth& b) const {
+  const LateralParams& lp = plate_.laterals;
+  const Seedling& parent = seedling(b.parent);
+  Seedling sd;
+  sd.name = lateralName(parent.name, b.site);
+  sd.genotype = parent.genotype;
+  sd.position = Eigen::Vector2d(b.lateral, b.downhill);
+  sd.parent = b.parent;
+  sd.order = parent.order + 1;
+  sd.siteS = b.siteS;
+  sd.emergedH = b.time / units::hour;
+  Model& m = sd.model;
+  m = lateralModel(parent.model, lp);
+  m.initial.angle = b.angle;
+  m.initial.startTime = b.time;
+  // its own initial perturbation (each organ its own noise: with its parent's, every lateral would lean
+  // the same way relative to its frame, and the laterals of one side would all curl back)
+  std::uint64_t seed = parent.model.initial.seed ^ (0x9e3779b97f4a7c15ULL * static_cast<std::uint64_t>(b.site + 1));
+  m.initial.seed = static_cast<std::uint64_t>((splitmixUniform(seed) + 1.0) * 0x1.0p51);
+  // the obstacles in the lateral's own frame (from the parent's)
+  const Eigen::Vector2d shift = sd.position - parent.position;
+  for (Obstacle& ob : m.env.obstacles) {
+    ob.from -= shift;
+    ob.to -= shift;
+  }
+  completeModel(m);
+  return sd;
+}
+
+void PlateSimulation::addLateral(const LateralBirth& b, const RootCarry* from) {
+  Seedling sd = lateralSeedling(b);
+  try {
+    roots_.push_back(from ? std::make_unique<Simulation>(sd.model, from->state, from->carry)
+                          : std::make_unique<Simulation>(sd.model));
+  } catch (const RelaxError& e) {
+    throw namedError(sd.name, e);
+  }
+  offset_.push_back(sd.position.x() * frame_.lateral + sd.position.y() * frame_.downhill);
+  seedlings_.push_back(std::move(sd));
+  nextSite_.push_back(0);
+  births_.push_back(b);
 }
 
 PlateStepRecord PlateSimulation::observe(int sweeps) const {

@@ -18,7 +18,8 @@ N; velocities mm/s), named in every field and column (``positions_mm``, ``downhi
   ``export(run_dir, rsml=...)`` is ``rootsim export`` (RSML); every command is a function whose keywords
   are its flags (``check``, ``modes``, ``montage``, ``figure``, ``analyze``, ``compare``, ``fit``)
 - ``Simulation(scene)``: ``step(n)``, ``state()`` (numpy copies, mm), ``set("tropism.beta", ...)``;
-  one Simulation may be shared by threads: its calls are serialised
+  one Simulation may be shared by threads: its calls are serialised; of a plate scene it returns a
+  ``Plate``: ``step(n)``, ``run()``, ``roots`` (each a ``PlateRoot``: name, parent, order, ``state()``)
 
 Errors are the command line's: ``SceneError`` (a ValueError: bad key, value, path or option; the
 message names file:line or the --set flag) and ``RunError`` (a RuntimeError: the run failed, naming
@@ -26,10 +27,10 @@ the growth step and node). Ctrl-C raises KeyboardInterrupt between growth steps;
 directory stays ``DIR.partial/``. Built with the project (PYTHONPATH=build/python) for Debian's
 /usr/bin/python3.
 """
-from ._api import (Analysis, Frame, Run, RunError, Scene, SceneError, Simulation, State, Sweep, SweepPoint, analyze,
+from ._api import (Analysis, Frame, Plate, PlateRoot, Run, RunError, Scene, SceneError, Simulation, State, Sweep, SweepPoint, analyze,
                    check, compare, export, figure, fit, load_run, modes, montage, render, run, sweep)
 from ._rootsim import __version__
 
-__all__ = ["Analysis", "Frame", "Run", "RunError", "Scene", "SceneError", "Simulation", "State", "Sweep", "SweepPoint",
+__all__ = ["Analysis", "Frame", "Plate", "PlateRoot", "Run", "RunError", "Scene", "SceneError", "Simulation", "State", "Sweep", "SweepPoint",
            "analyze", "check", "compare", "export", "figure", "fit", "load_run", "modes", "montage", "render", "run",
            "sweep", "__version__"]

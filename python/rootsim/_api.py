@@ -10,7 +10,7 @@ import re
 import tempfile
 from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any, Callable, Dict, Iterator, List, Mapping, Optional, Sequence, Union
+from typing import Any, Callable, Dict, Iterator, List, Mapping, Optional, Sequence, Tuple, Union
 
 import numpy as np
 
@@ -987,14 +987,26 @@ class Simulation:
     scene's growth, which its element cap was checked against): ``step(n)`` beyond that raises
     ValueError, running nothing.
 
+    A plate scene (``[[seedling]]`` tables, docs/plate.md): ``Simulation(scene)`` returns a ``Plate``,
+    whose roots step together (their contacts, their laterals), never its first root alone.
+
     Threads: every method holds the Simulation's own lock, so calls from several threads on one
     Simulation are serialised (a second ``step()`` waits until the first returns; each runs whole
     growth steps, never interleaved). Separate Simulations step in parallel (the GIL is released while
     they compute).
     """
 
+    def __new__(cls, scene: Union[Scene, PathLike], *, set: Optional[Mapping[str, Value]] = None):
+        # a plate scene ([[seedling]] tables): its roots step together, as a Plate
+        sc = _scene_of(scene, set)
+        if cls is Simulation and sc._scene.is_plate:
+            return Plate(sc)
+        obj = super().__new__(cls)
+        obj.scene = sc
+        return obj
+
     def __init__(self, scene: Union[Scene, PathLike], *, set: Optional[Mapping[str, Value]] = None):
-        self.scene = _scene_of(scene, set)
+        # self.scene: made by __new__ (the scene with set applied)
         self._sim = _c._Simulation(self.scene._scene)
 
     def step(self, n: int = 1) -> Dict[str, Any]:
@@ -1055,3 +1067,125 @@ class Simulation:
 
     def __repr__(self) -> str:
         return f"rootsim.Simulation({self.scene.name!r}, step {self.step_count})"
+
+
+class PlateRoot:
+    """One root of a ``Plate``, as it is now: a seedling or a lateral that emerged. ``state()``,
+    ``snapshot()`` and ``record()`` are a ``Simulation``'s (``State``, ``Frame``, a timeseries.csv row),
+    in the root's own frame: its base's foot at the origin of the plate coordinates, as ``roots/NAME`` of
+    the plate's run directory (``offset_mm``: the lab vector from the plate's origin to that foot).
+
+    ``name``, ``genotype``, ``parent`` (the parent's name, "" for a seedling), ``order`` (0 for a
+    seedling), ``emerged_h`` and ``emerged_step`` (the growth time and step it emerged at; 0 for a
+    seedling), ``position_lateral_mm``, ``position_downhill_mm`` (its seed's place on the plate; a
+    lateral's: its parent's), ``overrides`` (its keys that differ from the plate's, "section.key=value")."""
+
+    def __init__(self, plate: "Plate", index: int):
+        self._plate = plate
+        self.index = index
+        info = plate._plate.root_info(index)
+        self.name: str = info["name"]
+        self.genotype: str = info["genotype"]
+        self.parent: str = info["parent"]
+        self.order: int = info["order"]
+        self.emerged_h: float = info["emerged_h"]
+        self.emerged_step: int = info["emerged_step"]
+        self.offset_mm: Tuple[float, float, float] = info["offset_mm"]
+        self.position_lateral_mm: float = info["position_lateral_mm"]
+        self.position_downhill_mm: float = info["position_downhill_mm"]
+        self.overrides: List[str] = list(info["overrides"])
+
+    def state(self) -> State:
+        """The root's state now, as copies (``Simulation.state``'s fields and units)."""
+        return State(**self._plate._plate.root_state(self.index))
+
+    def snapshot(self) -> Frame:
+        """The root's snapshot now, as a trajectory frame (``Simulation.snapshot``'s)."""
+        return Frame(**self._plate._plate.root_snapshot(self.index))
+
+    def record(self) -> Dict[str, Any]:
+        """The root's time-series row of the last step (timeseries.csv's columns and units)."""
+        return self._plate._plate.root_record(self.index)
+
+    def __repr__(self) -> str:
+        return f"rootsim.PlateRoot({self.name!r}, order {self.order})"
+
+
+class Plate:
+    """A plate scene (``[[seedling]]`` tables, docs/plate.md) stepped by hand: every root grows and relaxes
+    together, through the plate's simulation ``rootsim run`` uses, from the scene as the scene loader
+    resolves it (each seedling's ``[seedling.set]`` keys and the values ``[population]`` draws for it):
+    the same scene gives the same numbers as ``rootsim run``. ``rootsim.Simulation(plate_scene)`` returns
+    one.
+
+    ``step(n)`` runs n growth steps of the plate (at most ``growth.steps``, as ``Simulation.step``) and
+    returns the plate's row of the last one; ``run()`` runs the steps left. ``record()`` is that row:
+    plate_timeseries.csv's columns (``step``, ``time_h``, ``touching_pairs`` element pairs of two roots in
+    contact, ``min_gap_over_contact`` the closest approach of two roots' centrelines over Ra + Rb, NaN
+    when no two roots are within reach, ``sweeps``) with ``roots`` (how many there are now) and
+    ``emerged`` (the names of the laterals that emerged in that step; in ``step(n)``'s row, in any of
+    its n steps).
+
+    ``roots``: a list of ``PlateRoot``, the seedlings in the scene's order, then the laterals in the order
+    they emerged (the list grows as they do); ``root(name)`` one of them.
+
+    Threads: as a ``Simulation``'s (every call holds the Plate's own lock).
+    """
+
+    def __init__(self, scene: Union[Scene, PathLike], *, set: Optional[Mapping[str, Value]] = None):
+        self.scene = _scene_of(scene, set)
+        self._plate = _c._Plate(self.scene._scene)
+        self._roots: List[PlateRoot] = []
+
+    def step(self, n: int = 1) -> Dict[str, Any]:
+        """Runs n growth steps of every root; returns the plate's row of the last one (``record()``).
+
+        ``n`` as ``Simulation.step``'s: TypeError for a float, string or bool, ValueError for n <= 0 or
+        beyond ``steps_left`` (nothing run); RunError naming the root when relaxation fails."""
+        n = _step_count_arg(n)
+        if n > 2**31 - 1:
+            raise ValueError(f"step({n}): only {self.steps_left} growth steps left of growth.steps = "
+                             f"{self.scene.steps}")
+        return self._plate.step(n)
+
+    def run(self) -> Dict[str, Any]:
+        """Runs the growth steps left (``steps_left``); returns the plate's row of the last step."""
+        left = self.steps_left
+        return self._plate.step(left) if left > 0 else self._plate.record()
+
+    def record(self) -> Dict[str, Any]:
+        """The plate's row of the last step (step 0 after construction; see the class)."""
+        return self._plate.record()
+
+    @property
+    def roots(self) -> List[PlateRoot]:
+        """Every root now: the seedlings, then the laterals as they emerged."""
+        for i in range(len(self._roots), self._plate.size):
+            self._roots.append(PlateRoot(self, i))
+        return list(self._roots)
+
+    def root(self, name: str) -> PlateRoot:
+        """The root called ``name`` (KeyError naming the roots there are)."""
+        roots = self.roots
+        for r in roots:
+            if r.name == name:
+                return r
+        raise KeyError(f"no root {name!r} on the plate (roots: {', '.join(r.name for r in roots)})")
+
+    @property
+    def time_h(self) -> float:
+        """Growth time now [h]."""
+        return float(self._plate.record()["time_h"])
+
+    @property
+    def step_count(self) -> int:
+        """Growth steps done so far."""
+        return self._plate.step_count
+
+    @property
+    def steps_left(self) -> int:
+        """Growth steps ``step()`` may still run: ``growth.steps - step_count`` (0 without growth)."""
+        return self._plate.steps_left
+
+    def __repr__(self) -> str:
+        return f"rootsim.Plate({self.scene.name!r}, {self._plate.size} roots, step {self.step_count})"

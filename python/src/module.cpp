@@ -39,6 +39,7 @@
 #include "rootsim/theory.hpp"
 #include "rootsim/units.hpp"
 #include "rootsim/version.hpp"
+#include "convert.hpp"
 
 #include "rootsim/analyze_traces.hpp"
 #include "rootsim/trace_growth.hpp"
@@ -152,6 +153,11 @@ void putPlateCoords(py::dict& d, const PlateFrame& f, const Eigen::Matrix3Xd& la
   d["height_mm"] = vec(c.row(2).transpose());
 }
 
+}  // namespace
+
+// the converters the other binding files share (convert.hpp)
+namespace rootsim::pyconv {
+
 // one snapshot as a dict of numpy arrays, in the package's units (trajectory.csv's: x_mm, radius_mm,
 // kappa0_per_mm, plate_force_n, ...), with the nodes' plate coordinates in the frame f
 py::dict snapshotDict(const Snapshot& s, const PlateFrame& f) {
@@ -179,6 +185,39 @@ py::dict recordDict(const StepRecord& r) {
   }
   return d;
 }
+
+// the state as copies (owned, C-contiguous numpy arrays): they stay valid whatever the Simulation does
+// next (growth reallocates its arrays when it splits elements)
+py::dict stateDict(const Simulation& sim, const PlateFrame& f) {
+  const RodState& s = sim.state();
+  static_assert(sizeof(Mat3) == 9 * sizeof(double), "directors must be packed 3x3 doubles");
+  const auto n = static_cast<py::ssize_t>(s.elements());
+  py::dict d;
+  d["step"] = sim.step();
+  d["time_h"] = s.time / units::hour;
+  d["positions_mm"] = rows3Mm(s.x);
+  putPlateCoords(d, f, s.x);
+  d["velocities_mm_per_s"] = rows3Mm(s.v);
+  // Q[e] is column-major: Q(r, c) at r + 3c; directors[e, r] is d_{r+1} (row r of Q)
+  py::array_t<double> q({n, py::ssize_t{3}, py::ssize_t{3}});
+  double* out = q.mutable_data();
+  for (py::ssize_t e = 0; e < n; ++e) {
+    const double* Q = s.Q[static_cast<size_t>(e)].data();
+    for (int r = 0; r < 3; ++r)
+      for (int c = 0; c < 3; ++c) out[9 * e + 3 * r + c] = Q[r + 3 * c];
+  }
+  d["directors"] = q;
+  d["rest_lengths_mm"] = vecMm(s.l0);
+  d["s_mm"] = vecMm(s.S);
+  d["kappa0_vector_per_mm"] = rows3(Eigen::Matrix3Xd(s.kappa0 * units::mm));  // (elements - 1) x 3
+  return d;
+}
+
+}  // namespace rootsim::pyconv
+
+namespace {
+
+using namespace rootsim::pyconv;
 
 // ---- readers of a run directory (the library's; nothing parsed twice) ----
 
@@ -268,12 +307,8 @@ std::string runScene(const Scene& sc, const py::dict& options, py::object progre
 
 // ---- stepping ----
 
-// One C++ Simulation per Python object, used by one thread at a time: every method takes the object's
-// mutex first, so concurrent calls from several threads are serialised (they run one after the other,
-// never interleaved). The mutex is waited for with the GIL released (a thread inside step() takes the
-// GIL back between growth steps: waiting with it held would deadlock). A call made by the thread that
-// already holds the mutex (a signal handler or progress code running between growth steps of the
-// same object) raises RuntimeError instead of deadlocking.
+// One C++ Simulation per Python object, used by one thread at a time (CallMutex: calls from several
+// threads are serialised, a call from inside its own step() raises RuntimeError).
 class PySimulation {
  public:
   explicit PySimulation(const Scene& sc) : scene_(sc) {
@@ -283,7 +318,7 @@ class PySimulation {
       throw SceneError("rootsim.Simulation(" + scene_.path + "): the scene is a plate of " +
                        std::to_string(scene_.plate.seedlings.size()) + " seedling(s)" +
                        (scene_.plate.params.laterals.enabled ? " with laterals" : "") +
-                       "; a Simulation steps one root: run the plate with rootsim.run (docs/plate.md)");
+                       "; a _Simulation steps one root: step the plate with rootsim.Plate (docs/python.md)");
     py::gil_scoped_release nogil;
     sim_.emplace(scene_.model);
   }
@@ -326,32 +361,10 @@ class PySimulation {
     }
     sim_->setTropism(changed.model.tropism);
   }
-  // the state as copies (owned, C-contiguous numpy arrays): they stay valid whatever the Simulation does
-  // next (growth reallocates its arrays when it splits elements)
+  // the state as copies (stateDict)
   py::dict state() {
     Lock lock = acquire();
-    const RodState& s = sim_->state();
-    static_assert(sizeof(Mat3) == 9 * sizeof(double), "directors must be packed 3x3 doubles");
-    const auto n = static_cast<py::ssize_t>(s.elements());
-    py::dict d;
-    d["step"] = sim_->step();
-    d["time_h"] = s.time / units::hour;
-    d["positions_mm"] = rows3Mm(s.x);
-    putPlateCoords(d, scene_.model.env.plane.frame(), s.x);
-    d["velocities_mm_per_s"] = rows3Mm(s.v);
-    // Q[e] is column-major: Q(r, c) at r + 3c; directors[e, r] is d_{r+1} (row r of Q)
-    py::array_t<double> q({n, py::ssize_t{3}, py::ssize_t{3}});
-    double* out = q.mutable_data();
-    for (py::ssize_t e = 0; e < n; ++e) {
-      const double* Q = s.Q[static_cast<size_t>(e)].data();
-      for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) out[9 * e + 3 * r + c] = Q[r + 3 * c];
-    }
-    d["directors"] = q;
-    d["rest_lengths_mm"] = vecMm(s.l0);
-    d["s_mm"] = vecMm(s.S);
-    d["kappa0_vector_per_mm"] = rows3(Eigen::Matrix3Xd(s.kappa0 * units::mm));  // (elements - 1) x 3
-    return d;
+    return stateDict(*sim_, scene_.model.env.plane.frame());
   }
   py::dict record() {
     Lock lock = acquire();
@@ -373,35 +386,8 @@ class PySimulation {
   const Scene& scene() const { return scene_; }  // constant after construction: no lock
 
  private:
-  // the object's mutex, owned by this call; releases it (and forgets the owner) when it goes
-  class Lock {
-   public:
-    explicit Lock(PySimulation& p) : p_(&p) {}
-    Lock(Lock&& o) noexcept : p_(std::exchange(o.p_, nullptr)) {}
-    Lock(const Lock&) = delete;
-    Lock& operator=(const Lock&) = delete;
-    Lock& operator=(Lock&&) = delete;
-    ~Lock() {
-      if (p_) {
-        p_->owner_.store(std::thread::id{});
-        p_->mu_.unlock();
-      }
-    }
-
-   private:
-    PySimulation* p_;
-  };
-  Lock acquire() {
-    if (owner_.load() == std::this_thread::get_id())
-      throw std::runtime_error("Simulation is busy in this thread: a call from inside its own step() (a signal "
-                               "handler or callback between growth steps); call it after step() returns");
-    if (!mu_.try_lock()) {
-      py::gil_scoped_release nogil;  // another thread is in a call: wait for it without the GIL
-      mu_.lock();
-    }
-    owner_.store(std::this_thread::get_id());
-    return Lock(*this);
-  }
+  using Lock = CallMutex::Lock;
+  Lock acquire() { return mu_.acquire("Simulation"); }
   // before growth step k (0-based) of step(n): an element splits at most once per step, and only when
   // its rest length, grown by at most the factor 1 + rate * dt, passes growth.split_factor * h
   void checkElementCap(long long n, long long k) const {
@@ -422,8 +408,7 @@ class PySimulation {
   Scene scene_;
   std::vector<std::string> overrides_;
   std::optional<Simulation> sim_;
-  std::mutex mu_;
-  std::atomic<std::thread::id> owner_{};
+  CallMutex mu_;
 };
 
 // ---- sweeps: runSweep on a thread of its own, results handed over as they finish ----
@@ -583,7 +568,8 @@ PYBIND11_MODULE(_rootsim, m) {
       .def_property_readonly("resolved_toml", [](const Scene& s) { return s.resolvedToml; })
       .def_property_readonly("grows", [](const Scene& s) { return s.model.growth.enabled; })
       .def_property_readonly("steps", [](const Scene& s) { return s.model.growth.enabled ? s.model.growth.steps : 0; })
-      .def_property_readonly("trajectory", [](const Scene& s) { return s.model.output.trajectory; });
+      .def_property_readonly("trajectory", [](const Scene& s) { return s.model.output.trajectory; })
+      .def_property_readonly("is_plate", [](const Scene& s) { return s.isPlate(); });
   m.def("load_scene", &loadScene, py::arg("path"), py::arg("overrides"));
   m.def("parse_scene", &parseScene, py::arg("text"), py::arg("source_name"), py::arg("overrides"));
   m.def("theory_json", [](const Scene& s) -> py::object {
@@ -649,6 +635,7 @@ PYBIND11_MODULE(_rootsim, m) {
       .def_property_readonly("step_count", &PySimulation::stepCount)
       .def_property_readonly("steps_left", &PySimulation::stepsLeft)
       .def_property_readonly("scene", &PySimulation::scene, py::return_value_policy::copy);
+  registerPlate(m);
 
   py::class_<SweepRunner>(m, "_SweepRunner")
       .def(py::init<const py::dict&>(), py::arg("options"))

@@ -39,10 +39,10 @@ def test_a_single_root_has_no_roots(tmp_path):
     assert r.plate_roots == []
 
 
-def test_a_simulation_of_a_plate_is_refused_naming_the_plate():
-    """A Simulation steps one root; a plate's roots step together (contacts, laterals): a plate scene is
-    refused (rootsim.SceneError, a ValueError) naming it, never simulated as its first root alone."""
-    with pytest.raises(rootsim.SceneError, match=r"plate_collision.toml\): the scene is a plate of 2 seedling\(s\)"):
-        rootsim.Simulation(SOURCE / "scenes/plate_collision.toml")
-    with pytest.raises(ValueError, match="a Simulation steps one root"):
-        rootsim.Simulation(SOURCE / "scenes/plate_wildtype.toml")
+def test_a_simulation_of_a_plate_is_the_plate():
+    """A Simulation steps one root; a plate's roots step together (contacts, laterals): Simulation of a
+    plate scene is a Plate of all its roots, never its first root alone (test_plate_step.py steps it)."""
+    p = rootsim.Simulation(SOURCE / "scenes/plate_collision.toml")
+    assert isinstance(p, rootsim.Plate) and [r.name for r in p.roots] == ["down", "across"]
+    p = rootsim.Simulation(SOURCE / "scenes/plate_wildtype.toml", set={"growth.steps": 3})
+    assert isinstance(p, rootsim.Plate) and len(p.roots) == 6 and p.steps_left == 3

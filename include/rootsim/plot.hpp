@@ -136,6 +136,22 @@ struct SaveOptions {
 // writes path.pdf, path.svg and path.png (atomically), one drawing; throws RunError
 void saveFigure(const Figure& f, const std::string& pathWithoutExtension, const SaveOptions& so = {});
 
+// one axes of a figure as saveFigure lays it out, in points from the page's top left (the PDF's units):
+// its plot area, data range and legend. The legend sits inside the plot area where nothing drawn there
+// (curves with half their width, markers, tubes, shapes, notes) comes within 2 layout units of its box,
+// at the corner asked for (Axes::legendPos) when that is free, else at the free place nearest it; where
+// no place is free it goes under the axes, its entries in rows
+struct AxesLayout {
+  std::array<double, 4> plot{};    // x, y, width, height
+  std::array<double, 4> legend{};  // x, y, width, height (width 0: no legend)
+  bool legendInside = true;        // false: under the axes
+  double x0 = 0, x1 = 1, y0 = 0, y1 = 1;
+  bool logX = false, yDown = false;
+};
+std::vector<AxesLayout> figureLayout(const Figure& f, const SaveOptions& so = {});
+// the page point [pt] of data point (x, y) in axes laid out as l
+std::array<double, 2> pagePoint(const AxesLayout& l, double x, double y);
+
 // colours of a qualitative palette (Okabe-Ito)
 Rgb paletteColor(int i);
 

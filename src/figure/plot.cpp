@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <optional>
 
 #include "rootsim/errors.hpp"
 #include "rootsim/png_signature.hpp"
@@ -76,6 +77,10 @@ constexpr double kScriptMinPt = 6;
 constexpr double kInnerLeft = 10;   // left margin of a tile that shares its row's y axis [layout units]
 constexpr double kMinPlotMm = 12;   // narrowest plot area before a row of tiles wraps into more rows [mm]
 constexpr double kMinPlotAspect = 0.45;  // height / width of a plot's area at least (not for pictures)
+// a legend entry: its swatch (a line, marker or patch) and the label after it, and the gap to the next
+// entry in a row; the room kept between the legend's box and anything drawn in the plot area; how far a
+// marker reaches from its point (4.5 units, 1.3 of it for a diamond, with half its 1.6-unit outline)
+constexpr double kLegendSwatch = 38, kLegendGap = 14, kLegendClear = 2, kMarkerReach = 1.3 * 4.5 + 0.8;
 
 // a cairo context and the smallest size of sub- and superscripts on it [layout units]
 struct Pen {
@@ -331,6 +336,11 @@ struct Cell {
   bool xLabel = true;
   bool rowLabel = false;
   double rowX0 = 0, rowX1 = 0;
+  // the legend's box (w = 0: none), inside the plot area or under the axes; the room kept under the
+  // axes for it (0 when inside)
+  Box legend{0, 0, 0, 0};
+  bool legendInside = true;
+  double legendBelow = 0;
 };
 
 // about one tick label per `pitch` layout units of the axis, between lo and hi labels
@@ -338,8 +348,19 @@ int tickTarget(double length, double pitch, int lo, int hi) {
   return std::clamp(static_cast<int>(length / pitch), lo, hi);
 }
 
-void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
-  cairo_t* cr = p.cr;
+// an axes' plot area [layout units] and data range, and the map from data to layout units
+struct Geo {
+  double L = 0, R = 0, T = 0, B = 0;
+  double x0 = 0, x1 = 1, y0 = 0, y1 = 1;
+  bool logX = false, yDown = false;
+  double X(double x) const {
+    return logX ? L + std::log(x / x0) / std::log(x1 / x0) * (R - L) : L + (x - x0) / (x1 - x0) * (R - L);
+  }
+  double Y(double y) const { return yDown ? T + (y - y0) / (y1 - y0) * (B - T) : B - (y - y0) / (y1 - y0) * (B - T); }
+  double unit() const { return (R - L) / (x1 - x0); }  // layout units per data unit along x
+};
+
+Geo geometryOf(const Axes& a, const Cell& cell) {
   const Box box = cell.box;
   // data range
   double x0 = a.xmin, x1 = a.xmax, y0 = a.ymin, y1 = a.ymax;
@@ -360,21 +381,206 @@ void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
     else if (a.autoX) { x0 = lx - px; x1 = hx + px; }
     if (a.autoY) { y0 = ly - py; y1 = hy + py; }
   }
-  const double L = box.x + cell.left, R = box.x + box.w - kRight, T = box.y + (a.title.empty() ? kTop : kTopTitle),
-               B = box.y + box.h - kBottom;
-  double pw = R - L, ph = B - T;
+  Geo g;
+  g.L = box.x + cell.left;
+  g.R = box.x + box.w - kRight;
+  g.T = box.y + (a.title.empty() ? kTop : kTopTitle);
+  g.B = box.y + box.h - kBottom - cell.legendBelow;
+  const double pw = g.R - g.L, ph = g.B - g.T;
   if (a.equalAspect) {
     // widen the smaller range so one data unit has the same length on both axes
     const double sx = pw / (x1 - x0), sy = ph / (y1 - y0);
     if (sx > sy) { const double c = 0.5 * (x0 + x1), h = 0.5 * pw / sy; x0 = c - h; x1 = c + h; }
     else { const double c = 0.5 * (y0 + y1), h = 0.5 * ph / sx; y0 = c - h; y1 = c + h; }
   }
-  const bool logX = a.logX && x0 > 0 && x1 > x0;
-  auto X = [&](double x) {
-    return logX ? L + std::log(x / x0) / std::log(x1 / x0) * pw : L + (x - x0) / (x1 - x0) * pw;
+  g.x0 = x0, g.x1 = x1, g.y0 = y0, g.y1 = y1;
+  g.logX = a.logX && x0 > 0 && x1 > x0;
+  g.yDown = a.yDown;
+  return g;
+}
+
+// a note's box: 12 units high, its width, kept inside the plot area clear of the frame's lines
+Box noteBox(const Pen& p, const Geo& g, const std::array<double, 2>& at, const std::string& s) {
+  const double hw = 0.5 * labelWidth(p, s, 12) + 2, hh = 0.5 * 12 * 1.164 + 2;
+  const double pw = g.R - g.L, ph = g.B - g.T;
+  const double cx = hw < 0.5 * pw ? std::clamp(g.X(at[0]), g.L + hw, g.R - hw) : g.X(at[0]);
+  const double cy = hh < 0.5 * ph ? std::clamp(g.Y(at[1]), g.T + hh, g.B - hh) : g.Y(at[1]);
+  return {cx - hw, cy - hh, 2 * hw, 2 * hh};
+}
+
+// the legend's entries (series, then fills, with a label) and their widths
+struct LegendEntries {
+  int n = 0;
+  double widest = 0;             // the widest label [layout units]
+  std::vector<double> widths;    // each entry's swatch + label + gap, for a legend in rows
+};
+LegendEntries legendEntries(const Pen& p, const Axes& a) {
+  LegendEntries e;
+  if (a.legendPos == "none") return e;
+  auto add = [&](const std::string& label) {
+    if (label.empty()) return;
+    const double w = labelWidth(p, label, 12);
+    ++e.n;
+    e.widest = std::max(e.widest, w);
+    e.widths.push_back(kLegendSwatch + w + kLegendGap);
   };
-  auto Y = [&](double y) { return a.yDown ? T + (y - y0) / (y1 - y0) * ph : B - (y - y0) / (y1 - y0) * ph; };
-  const double unit = pw / (x1 - x0);  // pixels per data unit along x
+  for (const auto& s : a.series) add(s.label);
+  for (const auto& fl : a.fills) add(fl.label);
+  return e;
+}
+
+// distance from the segment a-b to the rectangle r (0 where they meet)
+double segmentToBox(double ax, double ay, double bx, double by, const Box& r) {
+  auto inBox = [&](double x, double y) { return x >= r.x && x <= r.x + r.w && y >= r.y && y <= r.y + r.h; };
+  if (inBox(ax, ay) || inBox(bx, by)) return 0;
+  // the segment crosses the rectangle: clip it to the box's slab in x, then in y (Liang-Barsky)
+  double t0 = 0, t1 = 1;
+  const double dx = bx - ax, dy = by - ay;
+  auto clip = [&](double pp, double q) {
+    if (pp == 0) return q >= 0;
+    const double t = q / pp;
+    if (pp < 0) { if (t > t1) return false; t0 = std::max(t0, t); }
+    else { if (t < t0) return false; t1 = std::min(t1, t); }
+    return true;
+  };
+  if (clip(-dx, ax - r.x) && clip(dx, r.x + r.w - ax) && clip(-dy, ay - r.y) && clip(dy, r.y + r.h - ay) && t0 <= t1)
+    return 0;
+  auto pointToBox = [&](double x, double y) {
+    const double ex = std::max({r.x - x, 0.0, x - r.x - r.w}), ey = std::max({r.y - y, 0.0, y - r.y - r.h});
+    return std::hypot(ex, ey);
+  };
+  auto pointToSegment = [&](double x, double y) {
+    const double l2 = dx * dx + dy * dy;
+    const double t = l2 > 0 ? std::clamp(((x - ax) * dx + (y - ay) * dy) / l2, 0.0, 1.0) : 0.0;
+    return std::hypot(ax + t * dx - x, ay + t * dy - y);
+  };
+  return std::min({pointToBox(ax, ay), pointToBox(bx, by), pointToSegment(r.x, r.y), pointToSegment(r.x + r.w, r.y),
+                   pointToSegment(r.x, r.y + r.h), pointToSegment(r.x + r.w, r.y + r.h)});
+}
+
+// whether a legend box inside the plot area stays kLegendClear units off everything the axes draw in
+// it: each series' line (half its width) and markers, each tube (its radius), each shape (half its
+// width) and each note's box
+bool legendClear(const Pen& p, const Axes& a, const Geo& g, const Box& box) {
+  const double unit = g.unit();
+  auto off = [&](double ax, double ay, double bx, double by, double half) {
+    return segmentToBox(ax, ay, bx, by, box) > half + kLegendClear;
+  };
+  auto finite = [](double x, double y) { return std::isfinite(x) && std::isfinite(y); };
+  for (const auto& s : a.series) {
+    const bool lines = s.kind != Series::Kind::Markers, marks = s.kind != Series::Kind::Line;
+    for (size_t i = 0; i < s.x.size(); ++i) {
+      if (!finite(s.x[i], s.y[i])) continue;
+      const double ax = g.X(s.x[i]), ay = g.Y(s.y[i]);
+      if (marks && !off(ax, ay, ax, ay, kMarkerReach)) return false;
+      if (lines && i + 1 < s.x.size() && finite(s.x[i + 1], s.y[i + 1]) &&
+          !off(ax, ay, g.X(s.x[i + 1]), g.Y(s.y[i + 1]), 0.5 * s.width))
+        return false;
+      if (lines && s.x.size() == 1 && !off(ax, ay, ax, ay, 0.5 * s.width)) return false;
+    }
+  }
+  for (const auto& t : a.tubes)
+    for (size_t i = 0; i + 1 < t.x.size(); ++i)
+      if (!off(g.X(t.x[i]), g.Y(t.y[i]), g.X(t.x[i + 1]), g.Y(t.y[i + 1]), std::max(t.r[i], t.r[i + 1]) * unit)) return false;
+  for (const auto& s : a.shapes)
+    for (size_t i = 0; i + 1 < s.x.size(); ++i)
+      if (!off(g.X(s.x[i]), g.Y(s.y[i]), g.X(s.x[i + 1]), g.Y(s.y[i + 1]), 0.5 * std::max(1.0, s.width * unit))) return false;
+  for (const auto& [at, s] : a.notes) {
+    const Box nb = noteBox(p, g, at, s);
+    const double ox = std::min(nb.x + nb.w, box.x + box.w) - std::max(nb.x, box.x);
+    const double oy = std::min(nb.y + nb.h, box.y + box.h) - std::max(nb.y, box.y);
+    if (ox > -kLegendClear && oy > -kLegendClear) return false;
+  }
+  return true;
+}
+
+// a place for the legend inside the plot area g: the corner asked for (Axes::legendPos) when nothing drawn
+// in the plot area comes within kLegendClear of it; else the other corners, the edges' middles, then
+// every place on a grid of about 4 units, nearest the asked corner first; none when every place meets a
+// curve (the legend then goes under the axes: legendBelowHeight)
+std::optional<Box> legendInside(const Pen& p, const Axes& a, const Geo& g, const LegendEntries& e) {
+  const double bw = e.widest + kLegendSwatch + 6, bh = 18.0 * e.n + 8;
+  const double lo_x = g.L + 8, hi_x = g.R - bw - 8, lo_y = g.T + 8, hi_y = g.B - bh - 8;
+  if (hi_x < lo_x || hi_y < lo_y) return std::nullopt;
+  auto corner = [&](const std::string& c) {
+    const double x = c[1] == 'w' ? lo_x : c[1] == 'e' ? hi_x : 0.5 * (lo_x + hi_x);
+    const double y = c[0] == 'n' ? lo_y : c[0] == 's' ? hi_y : 0.5 * (lo_y + hi_y);
+    return Box{x, y, bw, bh};
+  };
+  const std::string asked = a.legendPos.size() == 2 ? a.legendPos : "ne";
+  std::vector<Box> order{corner(asked)};
+  for (const char* c : {"ne", "nw", "se", "sw", "ce", "cw", "nc", "sc"})
+    if (c != asked) order.push_back(corner(c));
+  const Box home = order.front();
+  std::vector<Box> grid;
+  const int nx = static_cast<int>((hi_x - lo_x) / 4), ny = static_cast<int>((hi_y - lo_y) / 4);
+  for (int i = 0; i <= nx; ++i)
+    for (int j = 0; j <= ny; ++j) grid.push_back({lo_x + (hi_x - lo_x) * (nx ? static_cast<double>(i) / nx : 0), lo_y + (hi_y - lo_y) * (ny ? static_cast<double>(j) / ny : 0), bw, bh});
+  std::stable_sort(grid.begin(), grid.end(), [&](const Box& u, const Box& v) {
+    return std::hypot(u.x - home.x, u.y - home.y) < std::hypot(v.x - home.x, v.y - home.y);
+  });
+  order.insert(order.end(), grid.begin(), grid.end());
+  for (const Box& b : order)
+    if (legendClear(p, a, g, b)) return b;
+  return std::nullopt;
+}
+
+// a legend under the axes (below the x label): its entries in rows no wider than the plot area, each
+// row as many entries as fit; the rows' count
+int legendRows(const LegendEntries& e, double width) {
+  int rows = e.n > 0 ? 1 : 0;
+  double x = 0;
+  for (double w : e.widths) {
+    if (x > 0 && x + w > width) { ++rows; x = 0; }
+    x += w;
+  }
+  return rows;
+}
+double legendBelowHeight(const LegendEntries& e, double width) { return e.n > 0 ? 18.0 * legendRows(e, width) + 8 + 4 : 0; }
+
+// the room a legend needs under the axes in this cell: 0 when a place inside its plot area is free
+double legendRoom(const Pen& p, const Axes& a, Cell cell) {
+  const LegendEntries e = legendEntries(p, a);
+  if (e.n == 0) return 0;
+  cell.legendBelow = 0;
+  const Geo g = geometryOf(a, cell);
+  return legendInside(p, a, g, e) ? 0 : legendBelowHeight(e, g.R - g.L);
+}
+
+// the legend's box in a cell whose room under the axes is set: inside the plot area where a place is
+// free, else under the axes (below the x label), its rows centred under the plot area
+void placeLegend(const Pen& p, const Axes& a, Cell& cell) {
+  cell.legend = Box{0, 0, 0, 0};
+  cell.legendInside = true;
+  const LegendEntries e = legendEntries(p, a);
+  if (e.n == 0) return;
+  const Geo g = geometryOf(a, cell);
+  if (const auto in = legendInside(p, a, g, e)) {
+    cell.legend = *in;
+    return;
+  }
+  const double width = g.R - g.L;
+  double widest = 0, x = 0;
+  for (double w : e.widths) {
+    if (x > 0 && x + w > width) x = 0;
+    x += w;
+    widest = std::max(widest, x);
+  }
+  cell.legendInside = false;
+  cell.legend = Box{0.5 * (g.L + g.R - widest), g.B + kBottom, widest, 18.0 * legendRows(e, width) + 8};
+}
+
+void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
+  cairo_t* cr = p.cr;
+  const Geo g = geometryOf(a, cell);
+  const double L = g.L, R = g.R, T = g.T, B = g.B;
+  const double x0 = g.x0, x1 = g.x1, y0 = g.y0, y1 = g.y1;
+  const double pw = R - L, ph = B - T;
+  const bool logX = g.logX;
+  auto X = [&](double x) { return g.X(x); };
+  auto Y = [&](double y) { return g.Y(y); };
+  const double unit = g.unit();  // layout units per data unit along x
+  const Box box = cell.box;
 
   // frame, grid, ticks
   cairo_set_source_rgb(cr, 1, 1, 1);
@@ -416,13 +622,13 @@ void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
   }
   if (a.plateGridPitch > 0) {
     // the plate's grid (as the raster renderer's plate, docs/rendering.md): light lines every pitch
-    const double g = a.plateGridPitch;
+    const double pitch = a.plateGridPitch;
     const double lo = std::min(y0, y1), hi = std::max(y0, y1);
-    if ((x1 - x0) / g < 2000 && (hi - lo) / g < 2000) {
+    if ((x1 - x0) / pitch < 2000 && (hi - lo) / pitch < 2000) {
       cairo_set_source_rgb(cr, 0.85, 0.85, 0.85);
       cairo_set_line_width(cr, 0.7);
-      for (double v = std::ceil(x0 / g) * g; v <= x1; v += g) { cairo_move_to(cr, X(v), T); cairo_line_to(cr, X(v), B); }
-      for (double v = std::ceil(lo / g) * g; v <= hi; v += g) { cairo_move_to(cr, L, Y(v)); cairo_line_to(cr, R, Y(v)); }
+      for (double v = std::ceil(x0 / pitch) * pitch; v <= x1; v += pitch) { cairo_move_to(cr, X(v), T); cairo_line_to(cr, X(v), B); }
+      for (double v = std::ceil(lo / pitch) * pitch; v <= hi; v += pitch) { cairo_move_to(cr, L, Y(v)); cairo_line_to(cr, R, Y(v)); }
       cairo_stroke(cr);
     }
   }
@@ -474,96 +680,54 @@ void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
   cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
   for (const auto& [at, s] : a.notes) {
     // a note stays inside the frame: its box (12 units high, its width) clear of the frame's lines
-    const double hw = 0.5 * labelWidth(p, s, 12) + 2, hh = 0.5 * 12 * 1.164 + 2;
-    const double cx = hw < 0.5 * pw ? std::clamp(X(at[0]), L + hw, R - hw) : X(at[0]);
-    const double cy = hh < 0.5 * ph ? std::clamp(Y(at[1]), T + hh, B - hh) : Y(at[1]);
-    text(p, cx, cy, s, 12, 0.5, 0.5);
+    const Box nb = noteBox(p, g, at, s);
+    text(p, nb.x + 0.5 * nb.w, nb.y + 0.5 * nb.h, s, 12, 0.5, 0.5);
   }
   cairo_restore(cr);
 
-  // legend
-  int n = 0;
-  for (const auto& s : a.series) n += !s.label.empty();
-  for (const auto& fl : a.fills) n += !fl.label.empty();
-  if (n > 0 && a.legendPos != "none") {
-    double w = 0;
-    for (const auto& s : a.series)
-      if (!s.label.empty()) w = std::max(w, labelWidth(p, s.label, 12));
-    for (const auto& fl : a.fills)
-      if (!fl.label.empty()) w = std::max(w, labelWidth(p, fl.label, 12));
-    const double bw = w + 44, bh = 18.0 * n + 8;
-    // the asked corner unless the curves run through it: then the corner (or edge middle) they cross
-    // least, sampled every 2 units along each curve (and each tube's centreline)
-    auto crossings = [&](double bx, double by) {
-      int hits = 0;
-      auto inside = [&](double px, double py) { return px >= bx - 2 && px <= bx + bw + 2 && py >= by - 2 && py <= by + bh + 2; };
-      auto walk = [&](const std::vector<double>& xs, const std::vector<double>& ys) {
-        for (size_t i = 0; i < xs.size(); ++i) {
-          if (!std::isfinite(xs[i]) || !std::isfinite(ys[i])) continue;
-          const double ax = X(xs[i]), ay = Y(ys[i]);
-          hits += inside(ax, ay);
-          if (i + 1 < xs.size() && std::isfinite(xs[i + 1]) && std::isfinite(ys[i + 1])) {
-            const double bx2 = X(xs[i + 1]), by2 = Y(ys[i + 1]);
-            const int steps = std::min(400, static_cast<int>(std::hypot(bx2 - ax, by2 - ay) / 2.0));
-            for (int k = 1; k < steps; ++k) {
-              const double f = static_cast<double>(k) / steps;
-              hits += inside(ax + f * (bx2 - ax), ay + f * (by2 - ay));
-            }
-          }
-        }
-      };
-      for (const auto& sr : a.series) walk(sr.x, sr.y);
-      for (const auto& tb : a.tubes) walk(tb.x, tb.y);
-      return hits;
-    };
-    const std::string asked = a.legendPos.size() == 2 ? a.legendPos : "ne";
-    std::vector<std::string> order{asked};
-    for (const char* c : {"ne", "nw", "se", "sw", "ec", "wc", "nc", "sc"})
-      if (c != asked) order.emplace_back(c);
-    auto corner = [&](const std::string& c) {
-      const double x = c[1] == 'w' ? L + 8 : c[1] == 'c' && c[0] != 'e' && c[0] != 'w' ? 0.5 * (L + R - bw) : R - bw - 8;
-      const double xx = c == "wc" ? L + 8 : c == "ec" ? R - bw - 8 : x;
-      const double y = c[0] == 's' ? B - bh - 8 : c[0] == 'n' ? T + 8 : 0.5 * (T + B - bh);
-      return std::array<double, 2>{xx, y};
-    };
-    std::array<double, 2> at = corner(asked);
-    int least = crossings(at[0], at[1]);
-    for (const std::string& c : order) {
-      if (least == 0) break;
-      const auto q = corner(c);
-      const int h = crossings(q[0], q[1]);
-      if (h < least) least = h, at = q;
-    }
-    const double lx = at[0], ly = at[1];
+  // legend: at the place the layout chose (Cell::legend), inside the plot area or in rows under the axes
+  if (cell.legend.w > 0) {
+    const double lx = cell.legend.x, ly = cell.legend.y, bw = cell.legend.w, bh = cell.legend.h;
     cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
     cairo_rectangle(cr, lx, ly, bw, bh);
     cairo_fill_preserve(cr);
     cairo_set_source_rgb(cr, 0.7, 0.7, 0.7);
     cairo_set_line_width(cr, 0.8);
     cairo_stroke(cr);
-    int k = 0;
+    // each entry's swatch and label: one per line inside, or left to right in rows under the axes
+    double ex = lx, ey = ly + 13;
+    auto next = [&](const std::string& label) {
+      if (!cell.legendInside) {
+        const double w = kLegendSwatch + labelWidth(p, label, 12) + kLegendGap;
+        if (ex > lx && ex + w > lx + bw) { ex = lx; ey += 18; }
+      }
+      const std::array<double, 2> at{ex, ey};
+      if (cell.legendInside) ey += 18;
+      else ex += kLegendSwatch + labelWidth(p, label, 12) + kLegendGap;
+      return at;
+    };
     for (const auto& s : a.series) {
       if (s.label.empty()) continue;
-      const double yy = ly + 13 + 18.0 * k++;
+      const auto [ex0, yy] = next(s.label);
       cairo_set_source_rgb(cr, s.color[0], s.color[1], s.color[2]);
       if (s.kind != Series::Kind::Markers) {
         cairo_set_line_width(cr, s.width);
         if (s.dashed) { const double d[] = {6, 4}; cairo_set_dash(cr, d, 2, 0); }
-        cairo_move_to(cr, lx + 6, yy); cairo_line_to(cr, lx + 32, yy); cairo_stroke(cr);
+        cairo_move_to(cr, ex0 + 6, yy); cairo_line_to(cr, ex0 + 32, yy); cairo_stroke(cr);
         cairo_set_dash(cr, nullptr, 0, 0);
       }
-      if (s.kind != Series::Kind::Line) marker(cr, s.marker, lx + 19, yy, 4.5);
+      if (s.kind != Series::Kind::Line) marker(cr, s.marker, ex0 + 19, yy, 4.5);
       cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-      text(p, lx + 38, yy, s.label, 12, 0.0, 0.5);
+      text(p, ex0 + kLegendSwatch, yy, s.label, 12, 0.0, 0.5);
     }
     for (const auto& fl : a.fills) {
       if (fl.label.empty()) continue;
-      const double yy = ly + 13 + 18.0 * k++;
+      const auto [ex0, yy] = next(fl.label);
       cairo_set_source_rgba(cr, fl.color[0], fl.color[1], fl.color[2], std::max(fl.alpha, 0.6));
-      cairo_rectangle(cr, lx + 8, yy - 6, 22, 12);
+      cairo_rectangle(cr, ex0 + 8, yy - 6, 22, 12);
       cairo_fill(cr);
       cairo_set_source_rgb(cr, 0.1, 0.1, 0.1);
-      text(p, lx + 38, yy, fl.label, 12, 0.0, 0.5);
+      text(p, ex0 + kLegendSwatch, yy, fl.label, 12, 0.0, 0.5);
     }
   }
 }
@@ -628,7 +792,13 @@ Layout layoutOf(cairo_t* cr, const Figure& f, double widthMm) {
   if (!physical) {
     out.height = f.height;
     const double cw = static_cast<double>(f.width) / f.cols, ch = (f.height - top) / static_cast<double>(f.rows);
-    for (int i = 0; i < n; ++i) out.cells.push_back({Box{i % f.cols * cw, top + i / f.cols * ch, cw, ch}});
+    for (int i = 0; i < n; ++i) {
+      out.cells.push_back({Box{i % f.cols * cw, top + i / f.cols * ch, cw, ch}});
+      // a legend that finds no free place in the plot area takes room from it, under the axes
+      Cell& cell = out.cells.back();
+      cell.legendBelow = legendRoom(p, f.axes[static_cast<size_t>(i)], cell);
+      placeLegend(p, f.axes[static_cast<size_t>(i)], cell);
+    }
     return out;
   }
   const bool shared = sharesY(f);
@@ -666,7 +836,17 @@ Layout layoutOf(cairo_t* cr, const Figure& f, double widthMm) {
         cell.rowX1 = kLeft + pw + (rowEnd - r0 - 1) * (kRight + inner + pw);
       }
     }
-    y += h;
+    // a legend that finds no free place in its plot area goes under the axes: the row grows by its room
+    double extra = 0;
+    for (int i = r0; i < rowEnd; ++i)
+      extra = std::max(extra, legendRoom(p, f.axes[static_cast<size_t>(i)], out.cells[static_cast<size_t>(i)]));
+    for (int i = r0; i < rowEnd; ++i) {
+      Cell& cell = out.cells[static_cast<size_t>(i)];
+      cell.box.h += extra;
+      cell.legendBelow = extra;
+      placeLegend(p, f.axes[static_cast<size_t>(i)], cell);
+    }
+    y += h + extra;
   }
   out.height = n > 0 ? y : top + f.height * out.width / f.width;
   return out;
@@ -710,6 +890,37 @@ std::string withPhys(const std::string& png, double dpi) {
   return withChunkAfterIhdr(png, "pHYs", data);
 }
 }  // namespace
+
+std::vector<AxesLayout> figureLayout(const Figure& fig, const SaveOptions& so) {
+  Figure f = fig;
+  if (!so.titles) f.title.clear();
+  cairo_surface_t* s = cairo_image_surface_create(CAIRO_FORMAT_RGB24, 1, 1);
+  cairo_t* cr = cairo_create(s);
+  const Layout lay = layoutOf(cr, f, so.widthMm);
+  cairo_destroy(cr);
+  cairo_surface_destroy(s);
+  const double pt = so.widthMm > 0 ? kPtPerUnit : 72.0 / 96.0;
+  std::vector<AxesLayout> out;
+  for (size_t i = 0; i < f.axes.size(); ++i) {
+    const Cell& cell = lay.cells[i];
+    const Geo g = geometryOf(f.axes[i], cell);
+    AxesLayout l;
+    l.plot = {g.L * pt, g.T * pt, (g.R - g.L) * pt, (g.B - g.T) * pt};
+    l.legend = {cell.legend.x * pt, cell.legend.y * pt, cell.legend.w * pt, cell.legend.h * pt};
+    l.legendInside = cell.legendInside;
+    l.x0 = g.x0, l.x1 = g.x1, l.y0 = g.y0, l.y1 = g.y1;
+    l.logX = g.logX;
+    l.yDown = g.yDown;
+    out.push_back(l);
+  }
+  return out;
+}
+
+std::array<double, 2> pagePoint(const AxesLayout& l, double x, double y) {
+  const double fx = l.logX ? std::log(x / l.x0) / std::log(l.x1 / l.x0) : (x - l.x0) / (l.x1 - l.x0);
+  const double fy = (y - l.y0) / (l.y1 - l.y0);
+  return {l.plot[0] + fx * l.plot[2], l.yDown ? l.plot[1] + fy * l.plot[3] : l.plot[1] + (1 - fy) * l.plot[3]};
+}
 
 void saveFigure(const Figure& fig, const std::string& base, const SaveOptions& so) {
   Figure f = fig;

@@ -871,3 +871,123 @@ TEST_CASE("a row of root tiles at 85 mm shares one x label when equal labels wou
     if (mm == 85.0) CHECK(count < 6);  // six tiles, fewer labels: a row's one
   }
 }
+
+namespace {
+// three dense plots shaped like Figs. 2C-E (a square wave swinging over the whole height with a decaying
+// wave and a vertical line through it; sharp peaks over a low curve; a sawtooth over a flat line), with
+// the panels' legends
+rootsim::Figure densePanels() {
+  rootsim::Figure f;
+  f.width = 1100;
+  f.height = 1050;
+  f.rows = 3;
+  rootsim::Axes c, d, e;
+  auto curve = [](auto fn, int color, const std::string& label, bool dashed = false) {
+    rootsim::Series s;
+    for (int k = 0; k <= 240; ++k) s.x.push_back(0.25 * k), s.y.push_back(fn(0.25 * k));
+    s.color = rootsim::paletteColor(color);
+    s.label = label;
+    s.dashed = dashed;
+    return s;
+  };
+  c.title = "tip angle";
+  c.xlabel = "time [h]";
+  c.ylabel = "θ^{tip} [deg]";
+  c.series.push_back(curve([](double t) { return t < 5 ? 0.0 : 53 * std::tanh(3 * std::sin(0.46 * (t - 5) - 1.2)); }, 0,
+                           "on the plate: planar tip angle"));
+  c.series.push_back(curve([](double t) { return -40 * std::exp(-t / 6) * std::cos(0.5 * t) + 20 * std::sin(0.2 * t); }, 1,
+                           "free organ: angle from gravity"));
+  c.series.push_back(curve([](double t) { return 95 * std::sin(0.9 * t); }, 2, "a third curve"));
+  rootsim::Series t0;
+  t0.x = {5.3, 5.3};
+  t0.y = {-90, 90};
+  t0.dashed = true;
+  t0.color = rootsim::paletteColor(7);
+  t0.label = "T_0 (Eq. 7)";
+  c.series.push_back(t0);
+  c.legendPos = "se";
+  d.title = "growth-zone energies";
+  d.xlabel = "time [h]";
+  d.ylabel = "energy [nJ]";
+  d.series.push_back(curve([](double t) { return 250 + 450 * std::pow(0.5 + 0.5 * std::sin(0.95 * t), 8); }, 0, "bending E_{b}"));
+  d.series.push_back(curve([](double t) { return 40 + 35 * std::sin(0.95 * t); }, 1, "twisting E_{t}"));
+  e.title = "growth-zone topology";
+  e.xlabel = "time [h]";
+  e.ylabel = "Wr, Tw [turns]";
+  e.series.push_back(curve([](double t) { return 0.001 * std::sin(0.5 * t); }, 2, "writhe Wr"));
+  e.series.push_back(curve([](double t) { return 0.02 * (2 * std::fmod(0.15 * t, 1.0) - 1); }, 3, "twist Tw"));
+  e.series.back().kind = rootsim::Series::Kind::LineMarkers;
+  f.axes = {c, d, e};
+  return f;
+}
+}  // namespace
+
+TEST_CASE("a legend lies where no curve or marker passes, else under the axes, at 85 and 180 mm") {
+  const rootsim::Figure f = densePanels();
+  for (double mm : {85.0, 180.0}) {
+    INFO(mm << " mm");
+    rootsim::SaveOptions so;
+    so.widthMm = mm;
+    const auto lay = rootsim::figureLayout(f, so);
+    REQUIRE(lay.size() == f.axes.size());
+    const double pt = 7.0 / 12.0;  // points per layout unit at --width-mm
+    for (size_t i = 0; i < lay.size(); ++i) {
+      const auto& l = lay[i];
+      const auto& box = l.legend;
+      INFO("axes " << i << ", legend at " << box[0] << ", " << box[1] << " (" << box[2] << " x " << box[3]
+                   << " pt), " << (l.legendInside ? "inside" : "under the axes"));
+      REQUIRE(box[2] > 0);
+      if (!l.legendInside) {
+        // under the plot area, clear of it
+        CHECK(box[1] >= l.plot[1] + l.plot[3] + 1);
+        continue;
+      }
+      CHECK(box[0] >= l.plot[0]);
+      CHECK(box[1] >= l.plot[1]);
+      CHECK(box[0] + box[2] <= l.plot[0] + l.plot[2]);
+      CHECK(box[1] + box[3] <= l.plot[1] + l.plot[3]);
+      // every curve, densely sampled, and every marker stays off the box by more than half its stroke
+      for (const auto& s : f.axes[i].series) {
+        const double reach = s.kind == rootsim::Series::Kind::Line ? 0.5 * s.width * pt : (1.3 * 4.5 + 0.8) * pt;
+        for (size_t k = 0; k + 1 < s.x.size(); ++k)
+          for (int m = 0; m <= 20; ++m) {
+            const double u = m / 20.0;
+            const auto q = rootsim::pagePoint(l, s.x[k] + u * (s.x[k + 1] - s.x[k]), s.y[k] + u * (s.y[k + 1] - s.y[k]));
+            const double ex = std::max({box[0] - q[0], 0.0, q[0] - box[0] - box[2]});
+            const double ey = std::max({box[1] - q[1], 0.0, q[1] - box[1] - box[3]});
+            if (std::hypot(ex, ey) <= reach) {
+              INFO(s.label << " passes through the legend at " << q[0] << ", " << q[1] << " pt");
+              CHECK(false);
+              k = s.x.size();
+              break;
+            }
+          }
+      }
+    }
+    // the square wave, the swinging third curve and the vertical line leave no free place in Fig. 2C's
+    // plot area: its legend goes under it; at 180 mm Fig. 2D has room between its peaks
+    CHECK(!lay[0].legendInside);
+    if (mm == 180.0) {
+      CHECK(lay[1].legendInside);
+    }
+    // the drawing puts the legend where the layout says: its labels' words (pdftotext -bbox) inside the box
+    const fs::path base = fs::temp_directory_path() / "rootsim_plot_dense_legend";
+    rootsim::saveFigure(f, base.string(), so);
+    const std::string xml = capture("pdftotext -bbox '" + base.string() + ".pdf' - 2>&1");
+    int found = 0;
+    for (const auto& [word, axes] : std::vector<std::pair<std::string, size_t>>{{"planar", 0}, {"gravity", 0}, {"bending", 1}, {"twisting", 1}, {"writhe", 2}}) {
+      const size_t p = xml.find(">" + word + "<");
+      REQUIRE(p != std::string::npos);
+      const size_t w = xml.rfind("<word ", p);
+      auto attr = [&](const std::string& k) { return std::stod(xml.substr(xml.find(k + "=\"", w) + k.size() + 2)); };
+      const auto& box = lay[axes].legend;
+      INFO(word << " at " << attr("xMin") << ".." << attr("xMax") << ", " << attr("yMin") << ".." << attr("yMax"));
+      CHECK(attr("xMin") >= box[0]);
+      CHECK(attr("xMax") <= box[0] + box[2] + 0.5);
+      CHECK(attr("yMin") >= box[1]);
+      CHECK(attr("yMax") <= box[1] + box[3]);
+      ++found;
+    }
+    CHECK(found == 5);
+  }
+}

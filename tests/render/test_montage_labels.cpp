@@ -71,7 +71,9 @@ TEST_CASE("montage: a label sits under its own root, not in the middle of the ti
   const PlateFrame pf = PlateFrame::tilted(40 * units::deg);
   const Eigen::Vector3d baseA = pf.toPlateMm(a.snaps[0].x.col(0));
   const Eigen::Vector2d baseAPx = topViewPixel(l.framing[0], tile, baseA.x(), baseA.y());
-  CHECK(std::abs(pa[0] - baseAPx.x()) < 3);
+  // (a label 100 px wide stops at the tile's edge: half its width plus 0.3 em from it)
+  const double half = 50 + 0.3 * l.labelPx;
+  CHECK(std::abs(pa[0] - std::clamp(baseAPx.x(), half, l.tileW - half)) < 3);
   CHECK(pb[0] > pa[0] + 0.5 * l.tileW / l.framing[1].widthMm);  // at least 0.5 mm further right
   // under the root's lowest point, inside the tile
   const Eigen::Vector3d tipA = pf.toPlateMm(a.snaps[0].x.col(a.snaps[0].x.cols() - 1));
@@ -116,5 +118,53 @@ TEST_CASE("montage: the last tile's scale bar and downhill text match the labels
     }
     CHECK(scale == last);
     CHECK(downhill == last);
+  }
+}
+
+TEST_CASE("montage: the tiles are framed on the union footprint of all runs, in the top and the 3-D view") {
+  // a short root hanging downhill and one leaving its base sideways: every node of both, in its tile,
+  // lies inside the tile above the label band, and their union's box fills the tile in its tighter
+  // direction (a fixed 1 mm margin left a 1 mm root a third of the tile)
+  const SceneInfo info = rtest::info(40);
+  MontageRun a, b;
+  a.info = b.info = info;
+  a.snaps = {rtest::straightRod(40, 20, 1.0, 0.05)};
+  Snapshot side = rtest::straightRod(40, 20, 1.2, 0.05);
+  const double al = 40 * rtest::kDeg;
+  const Eigen::Vector3d lateral(1, 0, 0), downhill(0, -std::sin(al), -std::cos(al));
+  for (long i = 0; i < side.x.cols(); ++i) {
+    const double t = static_cast<double>(i) / static_cast<double>(side.x.cols() - 1);
+    side.x.col(i) += (1.0e-3 * t) * lateral - (0.6e-3 * t) * downhill;
+  }
+  b.snaps = {side};
+  for (View::Kind kind : {View::Kind::Top, View::Kind::Perspective}) {
+    INFO((kind == View::Kind::Top ? "top" : "3-D") << " view");
+    View v;
+    v.width = 640;
+    v.height = 360;
+    v.kind = kind;
+    const std::vector<MontageRun> runs{a, b};
+    const MontageLayout l = montageLayout(runs, v);
+    const double band = 2.1 * l.labelPx;
+    double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
+    for (std::size_t k = 0; k < runs.size(); ++k) {
+      View tv = montageTileView(l, v, k, runs.size());
+      tv.overlays = false;
+      const RenderScene rs = buildRenderScene(runs[k].snaps.back(), info, tv, l.framing[k]);
+      const PlateFrame pf = PlateFrame::tilted(40 * units::deg);
+      for (long i = 0; i < runs[k].snaps.back().x.cols(); ++i) {
+        Eigen::Vector2d px;
+        REQUIRE(projectToPixel(rs, pf.toPlateMm(runs[k].snaps.back().x.col(i)), px));
+        x0 = std::min(x0, px.x()), x1 = std::max(x1, px.x()), y0 = std::min(y0, px.y()), y1 = std::max(y1, px.y());
+      }
+    }
+    INFO("union box " << x0 << ".." << x1 << " x " << y0 << ".." << y1 << " px in a tile of " << l.tileW << " x "
+                      << l.tileH << " with a label band of " << band << " px");
+    CHECK(x0 > 0);
+    CHECK(x1 < l.tileW);
+    CHECK(y0 > 0);
+    CHECK(y1 < l.tileH - band);
+    const double fill = std::max((x1 - x0) / l.tileW, (y1 - y0) / (l.tileH - band));
+    CHECK(fill > 0.8);
   }
 }

@@ -287,7 +287,7 @@ TEST_CASE("plate scenes: laterals are checked when the plate is read - their spa
   CHECK(errorOf(kHead + seedling("a", 20, 5), {"root.element_length_mm=0.1"}) == "(no error)");
 }
 
-TEST_CASE("root.initial_angle_deg: a one-root scene's start direction; a seedling's set refuses it") {
+TEST_CASE("root.initial_angle_deg: a one-root scene's start direction, which a seedling's set refuses") {
   // a one-root scene sows its root at the angle, positive towards +lateral like theta
   const Scene one = parseScene("[root]\ninitial_angle_deg = 30\n", "scenes/one.toml");
   CHECK(one.model.initial.angle == doctest::Approx(30 * units::deg));

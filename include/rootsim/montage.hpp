@@ -44,10 +44,15 @@ struct MontageLayout {
 std::array<float, 2> montageLabelAnchor(const MontageRun& run, const View& tileView, const Framing& framing,
                                         float labelWidthPx, float labelPx);
 MontageLayout montageLayout(const std::vector<MontageRun>& runs, const View& view);
+// the box [x0, y0, x1, y1] px a run's label covers in its tile (anchor from montageLabelAnchor), with a
+// margin of 0.3 of its height: kept clear by the tile's overlays (the last tile's colour bar, scale bar)
+std::array<float, 4> montageLabelBox(const std::array<float, 2>& anchor, float labelWidthPx, float labelPx);
 // the view tile i of n is rendered with (the montage's view at the tile's size, its overlays in the
 // labels' size labelPx): no time, parameters, title or legend (the header has them); the scale bar,
 // downhill arrow and colour bar on the last tile only (they are common)
-View montageTileView(const MontageLayout& l, const View& view, std::size_t i, std::size_t n);
+// labelBox (montageLabelBox; none when empty) is kept clear by the tile's overlays
+View montageTileView(const MontageLayout& l, const View& view, std::size_t i, std::size_t n,
+                     const std::array<float, 4>& labelBox = {});
 void renderMontage(const std::vector<MontageRun>& runs, const MontageJob& job, const MovieProgress& progress = {});
 
 }  // namespace rootsim

@@ -185,8 +185,16 @@ std::array<float, 2> montageLabelAnchor(const MontageRun& run, const View& tileV
   return {x, y};
 }
 
-View montageTileView(const MontageLayout& l, const View& view, std::size_t i, std::size_t n) {
+std::array<float, 4> montageLabelBox(const std::array<float, 2>& anchor, float labelWidthPx, float labelPx) {
+  const float m = 0.3f * labelPx;
+  return {anchor[0] - 0.5f * labelWidthPx - m, anchor[1] - 1.2f * labelPx - m, anchor[0] + 0.5f * labelWidthPx + m,
+          anchor[1] + m};
+}
+
+View montageTileView(const MontageLayout& l, const View& view, std::size_t i, std::size_t n,
+                     const std::array<float, 4>& labelBox) {
   View v = view;
+  if (labelBox[2] > labelBox[0] && labelBox[3] > labelBox[1]) v.keepClearPx.push_back(labelBox);
   v.width = l.tileW;
   v.height = l.tileH;
   v.showTime = false;
@@ -221,11 +229,14 @@ void renderMontage(const std::vector<MontageRun>& runs, const MontageJob& job, c
   GlRenderer gl(l.tileW, l.tileH, job.renderer);
   detail::OverlayPainter painter;
   const float font = l.labelPx;
-  // labels under their roots, fixed for the whole movie
+  // labels under their roots, fixed for the whole movie; the tile's overlays keep clear of them
   std::vector<std::array<float, 2>> anchors;
-  for (std::size_t i = 0; i < runs.size(); ++i)
-    anchors.push_back(montageLabelAnchor(runs[i], tileView, l.framing[i],
-                                         painter.textWidth(job.view.fontPath, runs[i].label, font), font));
+  std::vector<std::array<float, 4>> labelBoxes;
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const float w = painter.textWidth(job.view.fontPath, runs[i].label, font);
+    anchors.push_back(montageLabelAnchor(runs[i], tileView, l.framing[i], w, font));
+    labelBoxes.push_back(job.view.overlays ? montageLabelBox(anchors.back(), w, font) : std::array<float, 4>{});
+  }
   // the header: time on the left, then the caption; the stripe legend at the right end
   const float m = 0.5f * font;
   const float timeW = painter.textWidth(job.view.fontPath, "t = " + fmt("%.1f", clock.back()) + " h", font);
@@ -243,7 +254,7 @@ void renderMontage(const std::vector<MontageRun>& runs, const MontageJob& job, c
     for (std::size_t i = 0; i < runs.size(); ++i) {
       const MontageRun& r = runs[i];
       const int col = static_cast<int>(i) % l.cols, row = static_cast<int>(i) / l.cols;
-      View v = montageTileView(l, job.view, i, runs.size());
+      View v = montageTileView(l, job.view, i, runs.size(), labelBoxes[i]);
       v.colourRange = tileView.colourRange;
       const Snapshot& s = r.snaps[static_cast<std::size_t>(snapshotAt(r.snaps, t))];
       gl.render(buildRenderScene(s, r.info, v, l.framing[i]), tile);

@@ -168,3 +168,55 @@ TEST_CASE("montage: the tiles are framed on the union footprint of all runs, in 
     CHECK(fill > 0.8);
   }
 }
+
+TEST_CASE("montage: the last tile's colour bar keeps clear of the run's label") {
+  // a root going down and to the left, and a short one hanging down: the second tile's root stands at
+  // its upper right, its label under it at the height of the colour bar's title at the right edge
+  const SceneInfo info = rtest::info(40);
+  MontageRun a, b;
+  a.info = b.info = info;
+  Snapshot side = rtest::straightRod(40, 20, 3.0, 0.05);
+  const Eigen::Vector3d lateral(1, 0, 0);
+  for (long i = 0; i < side.x.cols(); ++i) {
+    const double t = static_cast<double>(i) / static_cast<double>(side.x.cols() - 1);
+    side.x.col(i) += (-1.5e-3 * t) * lateral;
+  }
+  a.snaps = {side};
+  b.snaps = {rtest::straightRod(40, 20, 0.6, 0.05)};
+  a.label = "\xCE\xB1 = 40\xC2\xB0";
+  b.label = "\xCE\xB1 = 80\xC2\xB0, \xCE\xB2 = 0.2";
+  View v;
+  v.width = 800;
+  v.height = 450;
+  v.colourBy = ColourField::Twist;
+  v.colourRange = {-1.0, 1.0};
+  const std::vector<MontageRun> runs{a, b};
+  const MontageLayout l = montageLayout(runs, v);
+  const View plain = montageTileView(l, v, 1, 2);
+  const float labelW = 0.55f * l.labelPx * 16;  // wider than the label's 16 characters are drawn
+  const auto anchor = montageLabelAnchor(b, plain, l.framing[1], labelW, l.labelPx);
+  const auto box = montageLabelBox(anchor, labelW, l.labelPx);
+  INFO("label box " << box[0] << ", " << box[1] << " .. " << box[2] << ", " << box[3] << " in a tile of " << l.tileW
+                    << " x " << l.tileH);
+  auto meets = [&](const RenderScene& rs) {
+    int n = 0;
+    auto overlap = [&](const std::array<float, 4>& q) {
+      return std::min(q[2], box[2]) > std::max(q[0], box[0]) && std::min(q[3], box[3]) > std::max(q[1], box[1]);
+    };
+    for (const OverlayRect& r : rs.rects) {
+      n += overlap({r.x, r.y, r.x + r.w, r.y + r.h});
+    }
+    for (const OverlayText& t : rs.texts) {
+      OverlayBlock one;
+      one.texts = {t};
+      const auto q = blockBox(one, v.fontPath);
+      n += overlap(q);
+    }
+    return n;
+  };
+  const View kept = montageTileView(l, v, 1, 2, box);
+  CHECK(kept.keepClearPx.size() == plain.keepClearPx.size() + 1);
+  // without the label's box the colour bar lies on the label (so the case tests something); with it, clear
+  CHECK(meets(buildRenderScene(b.snaps.back(), info, plain, l.framing[1])) > 0);
+  CHECK(meets(buildRenderScene(b.snaps.back(), info, kept, l.framing[1])) == 0);
+}

@@ -197,8 +197,17 @@ inline constexpr const char* kDownhillLabel = "downhill";
 
 // framing for a whole movie: the bounding box of every node of every snapshot in plate (u, v),
 // plus the element radius and View::marginMm on each side, widened to the picture's aspect
-// (View::centreMm / widthMm override). Throws RenderError on an empty list or a bad view size.
+// (View::centreMm / widthMm override). In the 3-D view (whose oblique camera shows that box smaller)
+// the window is then fitted to the nodes' projection (fitFramingsToBox) in the part of the picture the
+// top view keeps for the root. Throws RenderError on an empty list or a bad view size.
 Framing frameFor(const std::vector<Snapshot>& snaps, const SceneInfo& info, const View& view);
+
+// windows refined together so that points[k] (plate mm, seen through framings[k] by view's camera)
+// projected, widened by padMm at the windows' scale, fill the goal box [x0, y0, x1, y1] px of the
+// picture: the windows keep one size (scaled by one factor) and move by one offset; a few rounds, as
+// the perspective projection is not linear (one for the top view)
+void fitFramingsToBox(std::vector<Framing>& framings, const std::vector<std::vector<Eigen::Vector3d>>& points,
+                      const View& view, const std::array<double, 4>& goal, double padMm);
 
 // the scene for one snapshot. Throws RenderError on inconsistent snapshot shapes or sizes <= 0.
 RenderScene buildRenderScene(const Snapshot& snap, const SceneInfo& info, const View& view,

@@ -69,12 +69,13 @@ void renderRun(const std::vector<Snapshot>& snaps, const SceneInfo& info, MovieJ
   }
 }
 
-// the fit view's plate width for this job [mm]
+// the fit view's plate width for this job [mm], in the top view
 double fitPlateMm(const std::vector<Snapshot>& snaps, const SceneInfo& info, const MovieJob& job) {
   const FrameLayout l = frameLayout(job.view.width, job.view.height, !job.plots.empty(), false);
   View v = job.view;
   v.width = l.viewW;
   v.height = l.viewH;
+  v.kind = View::Kind::Top;  // the plate's width as the top view frames it (the 3-D fit zooms to the root)
   return frameFor(snaps, info, v).widthMm;
 }
 

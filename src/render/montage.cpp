@@ -92,11 +92,9 @@ MontageLayout montageLayout(const std::vector<MontageRun>& runs, const View& vie
   const double width = std::max(wMm, hMm * l.tileW / std::max(1.0, l.tileH - 2.1 * font));
   const double height = width * l.tileH / l.tileW;
   const double labelMm = 2.1 * font / l.tileH * height;
-  std::vector<Eigen::Vector3d> bases;
   for (const MontageRun& r : runs) {
     const PlateFrame pf = PlateFrame::tilted(r.info.alphaDeg * units::deg);
     const Eigen::Vector3d base = pf.toPlateMm(r.snaps.front().x.col(0));
-    bases.push_back(base);
     Framing f;
     f.widthMm = width;
     f.heightMm = height;
@@ -110,56 +108,20 @@ MontageLayout montageLayout(const std::vector<MontageRun>& runs, const View& vie
   }
   // framed on the union footprint: every run's nodes over the movie, projected into its tile (the same
   // offset from each base), their box with the tube's radius made to fill the tile above the label band
-  // with a margin, in the top view and in the perspective one (whose projection is not linear: a few
-  // rounds of scaling the window and moving its centre)
+  // with a margin, in the top view and in the perspective one
   View tile = view;
   tile.width = l.tileW;
   tile.height = l.tileH;
   const double band = 2.1 * font;
   const double margin = std::max(6.0, 0.04 * std::min<double>(l.tileW, l.tileH - band));
-  const double goalW = l.tileW - 2 * margin, goalH = l.tileH - band - 2 * margin;
-  if (goalW < 8 || goalH < 8) return l;
-  for (int round = 0; round < 8; ++round) {
-    double x0 = inf, x1 = -inf, y0 = inf, y1 = -inf;
-    Eigen::Matrix2d jac = Eigen::Matrix2d::Zero();  // px per mm along u and v at the windows' centre
-    for (std::size_t k = 0; k < runs.size(); ++k) {
-      RenderScene cam;
-      cam.width = tile.width;
-      cam.height = tile.height;
-      const CameraMatrices m = cameraFor(tile, l.framing[k]);
-      cam.viewMatrix = m.view;
-      cam.projMatrix = m.proj;
-      const PlateFrame pf = PlateFrame::tilted(runs[k].info.alphaDeg * units::deg);
-      for (const Snapshot& s : runs[k].snaps)
-        for (long i = 0; i < s.x.cols(); ++i) {
-          Eigen::Vector2d px;
-          if (!projectToPixel(cam, pf.toPlateMm(s.x.col(i)), px)) continue;
-          x0 = std::min(x0, px.x()), x1 = std::max(x1, px.x()), y0 = std::min(y0, px.y()), y1 = std::max(y1, px.y());
-        }
-      if (k == 0) {
-        const Eigen::Vector3d c(l.framing[0].centreU, l.framing[0].centreV, 0.0);
-        Eigen::Vector2d p0, pu, pv;
-        if (projectToPixel(cam, c, p0) && projectToPixel(cam, c + Eigen::Vector3d(1, 0, 0), pu) &&
-            projectToPixel(cam, c + Eigen::Vector3d(0, 1, 0), pv)) {
-          jac.col(0) = pu - p0;
-          jac.col(1) = pv - p0;
-        }
-      }
-    }
-    if (!(x1 >= x0) || std::abs(jac.determinant()) < 1e-12) break;
-    const double rPx = rMax * tile.width / l.framing[0].widthMm;
-    const double bw = x1 - x0 + 2 * rPx, bh = y1 - y0 + 2 * rPx;
-    const double k = std::min(goalW / std::max(bw, 1.0), goalH / std::max(bh, 1.0));
-    // the box's centre to the goal's centre (a shift of the window by d mm moves the picture by -J d)
-    const Eigen::Vector2d shift(0.5 * (x0 + x1) - 0.5 * l.tileW, 0.5 * (y0 + y1) - (margin + 0.5 * goalH));
-    const Eigen::Vector2d d = jac.inverse() * shift;
-    if (std::abs(k - 1) < 1e-3 && shift.norm() < 0.25) break;
-    for (Framing& f : l.framing) {
-      f.centreU += d.x(), f.centreV += d.y();
-      // scaled about the goal's centre: keep the shifted centre, shrink the window by k
-      f.widthMm /= k, f.heightMm /= k;
-    }
+  std::vector<std::vector<Eigen::Vector3d>> points;
+  for (const MontageRun& r : runs) {
+    const PlateFrame pf = PlateFrame::tilted(r.info.alphaDeg * units::deg);
+    points.emplace_back();
+    for (const Snapshot& s : r.snaps)
+      for (long i = 0; i < s.x.cols(); ++i) points.back().push_back(pf.toPlateMm(s.x.col(i)));
   }
+  fitFramingsToBox(l.framing, points, tile, {margin, margin, l.tileW - margin, l.tileH - band - margin}, rMax);
   return l;
 }
 

@@ -505,7 +505,65 @@ Framing frameFor(const std::vector<Snapshot>& snaps, const SceneInfo& info, cons
   }
   f.heightMm = f.widthMm / aspect;
   f.topW = wTop + rMax;
+  if (view.kind == View::Kind::Perspective && !view.widthMm && !view.centreMm) {
+    // the oblique camera shows the box smaller than the top view: fit the nodes' projection into the
+    // part of the picture the top view keeps for the root (the middle of the height with overlays, left
+    // of the colour bar's strip), less a margin of max(6 px, 4 % of it)
+    std::vector<Eigen::Vector3d> pts;
+    for (const Snapshot& s : snaps)
+      for (long i = 0; i < s.x.cols(); ++i) pts.push_back(pf.toPlateMm(s.x.col(i)));
+    const double W = view.width, H = view.height;
+    const double m = std::max(6.0, 0.04 * std::min(W, usable * H));  // as a montage's tiles
+    std::vector<Framing> one{f};
+    fitFramingsToBox(one, {pts}, view, {m, 0.5 * (1 - usable) * H + m, (1 - barFrac) * W - m, H - 0.5 * (1 - usable) * H - m}, rMax);
+    f = one.front();
+  }
   return f;
+}
+
+void fitFramingsToBox(std::vector<Framing>& framings, const std::vector<std::vector<Eigen::Vector3d>>& points,
+                      const View& view, const std::array<double, 4>& goal, double padMm) {
+  const double goalW = goal[2] - goal[0], goalH = goal[3] - goal[1];
+  if (framings.empty() || !(goalW > 4) || !(goalH > 4)) return;
+  const double inf = std::numeric_limits<double>::infinity();
+  for (int round = 0; round < 8; ++round) {
+    double x0 = inf, x1 = -inf, y0 = inf, y1 = -inf;
+    Eigen::Matrix2d jac = Eigen::Matrix2d::Zero();  // px per mm along u and v at the first window's centre
+    for (std::size_t k = 0; k < framings.size() && k < points.size(); ++k) {
+      RenderScene cam;
+      cam.width = view.width;
+      cam.height = view.height;
+      const CameraMatrices mx = cameraFor(view, framings[k]);
+      cam.viewMatrix = mx.view;
+      cam.projMatrix = mx.proj;
+      for (const Eigen::Vector3d& p : points[k]) {
+        Eigen::Vector2d px;
+        if (!projectToPixel(cam, p, px)) continue;
+        x0 = std::min(x0, px.x()), x1 = std::max(x1, px.x()), y0 = std::min(y0, px.y()), y1 = std::max(y1, px.y());
+      }
+      if (k == 0) {
+        const Eigen::Vector3d c(framings[0].centreU, framings[0].centreV, 0.0);
+        Eigen::Vector2d p0, pu, pv;
+        if (projectToPixel(cam, c, p0) && projectToPixel(cam, c + Eigen::Vector3d(1, 0, 0), pu) &&
+            projectToPixel(cam, c + Eigen::Vector3d(0, 1, 0), pv)) {
+          jac.col(0) = pu - p0;
+          jac.col(1) = pv - p0;
+        }
+      }
+    }
+    if (!(x1 >= x0) || std::abs(jac.determinant()) < 1e-12) return;
+    const double rPx = padMm * view.width / framings[0].widthMm;
+    const double bw = x1 - x0 + 2 * rPx, bh = y1 - y0 + 2 * rPx;
+    const double k = std::min(goalW / std::max(bw, 1.0), goalH / std::max(bh, 1.0));
+    // the box's centre to the goal's (a window moved by d mm moves the picture by -J d)
+    const Eigen::Vector2d shift(0.5 * (x0 + x1) - 0.5 * (goal[0] + goal[2]), 0.5 * (y0 + y1) - 0.5 * (goal[1] + goal[3]));
+    if (std::abs(k - 1) < 1e-3 && shift.norm() < 0.25) return;
+    const Eigen::Vector2d d = jac.inverse() * shift;
+    for (Framing& f : framings) {
+      f.centreU += d.x(), f.centreV += d.y();
+      f.widthMm /= k, f.heightMm /= k;
+    }
+  }
 }
 
 bool projectToPixel(const RenderScene& rs, const Eigen::Vector3d& p, Eigen::Vector2d& px) {

@@ -341,6 +341,36 @@ TEST_CASE("3-D preset: the root is in the picture, the plate around it") {
   CHECK(std::abs(sy / n - 180) < 80);
 }
 
+TEST_CASE("3-D preset: the fit view fills the picture with the root's projection") {
+  // the oblique camera shows the top view's box smaller: the fit window is fitted to the nodes'
+  // projection, so a coil-sized root fills the part of the picture the top view keeps for it
+  View v;
+  v.width = 640;
+  v.height = 360;
+  v.kind = View::Kind::Perspective;
+  const SceneInfo si = rtest::info(40);
+  Snapshot s = rtest::straightRod(40, 30, 2.0, 0.1);
+  for (long i = 0; i < s.x.cols(); ++i) {
+    const double t = static_cast<double>(i) / static_cast<double>(s.x.cols() - 1);
+    s.x.col(i) += Eigen::Vector3d(1.5e-3 * std::sin(3 * t), 0, 0);
+  }
+  const RenderScene rs = buildRenderScene(s, si, v, frameFor({s}, si, v));
+  const PlateFrame pf = PlateFrame::tilted(40 * units::deg);
+  double x0 = 1e9, x1 = -1e9, y0 = 1e9, y1 = -1e9;
+  for (long i = 0; i < s.x.cols(); ++i) {
+    Eigen::Vector2d px;
+    REQUIRE(projectToPixel(rs, pf.toPlateMm(s.x.col(i)), px));
+    x0 = std::min(x0, px.x()), x1 = std::max(x1, px.x()), y0 = std::min(y0, px.y()), y1 = std::max(y1, px.y());
+  }
+  INFO("nodes at " << x0 << ".." << x1 << " x " << y0 << ".." << y1 << " px");
+  // inside the middle 80 % of the height the overlays leave, and filling it or the width
+  CHECK(x0 > 0);
+  CHECK(x1 < 640);
+  CHECK(y0 > 0.1 * 360);
+  CHECK(y1 < 0.9 * 360);
+  CHECK(std::max((x1 - x0) / 640, (y1 - y0) / (0.8 * 360)) > 0.75);  // less the margin and the radius
+}
+
 TEST_CASE("errors name the problem") {
   const SceneInfo si = rtest::info(40);
   const Snapshot s = rtest::straightRod(40, 10, 1.0, 0.1);

@@ -30,6 +30,7 @@ EQUIVALENT = {
     "src/render/video_writer.cpp": ("tests/render/test_output.cpp", "MP4 files read back with libavformat"),
     "src/app/render_run.cpp": ("tests/render/test_stills.cpp", "`rootsim render` stills and windows"),
     "src/io/json.cpp": ("tests/test_outputs.cpp", "summary.json: the JSON writer and a run's summary"),
+    "src/io/run_seams.cpp": ("tests/test_run_scene.cpp", "the production binary has no kill seam"),
     "src/figure/report_html.cpp": ("tests/figure/report_html_check.py", "report.html in headless chromium"),
 }
 

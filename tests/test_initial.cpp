@@ -99,7 +99,7 @@ TEST_CASE("initial rod: the perturbation moves nodes 2.. laterally by at most it
   CHECK((makeInitialRod(p, plane, sh).x - a.x).norm() > 0.0);
 }
 
-TEST_CASE("splitmixUniform: the splitmix64 stream's first value, and uniform in [-1, 1) (mean and variance within 5 sigma)") {
+TEST_CASE("splitmixUniform: the splitmix64 stream's first value, and uniform from -1 to 1 (mean and variance within 5 sigma)") {
   // splitmix64 of seed 0 is 0xe220a8397b1dcdaf (the reference sequence of Steele, Lea and Flood)
   std::uint64_t st = 0;
   CHECK(splitmixUniform(st) == static_cast<double>(0xe220a8397b1dcdafULL >> 11) * 0x1.0p-52 - 1.0);

@@ -56,7 +56,7 @@ TEST_CASE("response surface: an exact quadratic is recovered, value and gradient
     const ResponseSurface s = fitResponseSurface(u, y, Eigen::Vector2d(0.5, 0.5), scale);
     CHECK(s.points == 16);
     CHECK(s.noiseCov.cwiseAbs().maxCoeff() < 1e-24);
-    for (const Eigen::Vector2d at : {Eigen::Vector2d(0.33, 0.71), Eigen::Vector2d(0.9, 0.1)}) {
+    for (const Eigen::Vector2d& at : {Eigen::Vector2d(0.33, 0.71), Eigen::Vector2d(0.9, 0.1)}) {
       CHECK((s.value(at) - truth(at)).norm() < 1e-12);
       CHECK((s.jacobian(at) - truthJacobian(at)).norm() < 1e-11);
     }

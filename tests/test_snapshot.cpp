@@ -45,6 +45,7 @@ TEST_CASE("snapshot of a state: positions, d1 and d3 rows of Q, radius R / sqrt(
   Cantilever c(6);
   c.s.time = 2.5 * units::hour;
   for (int j = 0; j < c.s.kappa0.cols(); ++j) c.s.kappa0.col(j) = Vec3(30.0 * j, 40.0 * j, 7.0);
+  c.ws.resize(c.s.elements());
   computeStrains(c.p, c.s, c.ws.strains);
   c.ws.strains.e.setLinSpaced(6, 1.0, 1.5);
   const Snapshot sn = makeSnapshot(c.p, c.s, c.ws.strains, 9);

@@ -678,11 +678,14 @@ FitReport runFit(const FitOptions& given, const std::function<void(const std::st
   // around the answer (kBootstrap resamples, each refitted and minimised)
   std::vector<double> sigmaU(static_cast<std::size_t>(n), kNaN);
   std::vector<double> bootSigma(static_cast<std::size_t>(n), kNaN);
+  double surfaceScale = unc.scale;  // the covariance scale sigmaU's statistical part already carries
   if (atSmallest.empty()) {
     for (int i = 0; i < n; ++i) sigmaU[static_cast<std::size_t>(i)] = unc.sigma[static_cast<std::size_t>(i)];
   } else {
     ustar = Eigen::VectorXd::Zero(n);
     for (const Eigen::VectorXd& m : atSmallest) ustar += m / static_cast<double>(atSmallest.size());
+    surfaceScale = 0;
+    for (const FitUncertainty& u : smallestUnc) surfaceScale += u.scale / static_cast<double>(smallestUnc.size());
     ustar = (ustar * 1e6).array().round().matrix() / 1e6;
     const Eigen::VectorXd lo = (ustar.array() - rho).max(0.0).matrix(), hi = (ustar.array() + rho).min(1.0).matrix();
     std::vector<Eigen::VectorXd> us, ys;
@@ -773,6 +776,14 @@ FitReport runFit(const FitOptions& given, const std::function<void(const std::st
     const SimRoot sim = simRootOf(fit.sceneAt(e.x).model, loadSnapshots(e.dir).back());
     return chiSquareOf(e.sim, tc.trace, shapeNoiseCovariance(tracedLike(sim.plateMm, target.plateMm), target.sigmaMm, kShapeSamples));
   });
+  // the answer's run against the trace's uncertainty alone fits worse than that uncertainty allows (chi2 /
+  // dof above 1, beyond the surface's scale the sigmas already carry): every sigma widens by the square
+  // root of the rest (the Birge ratio), so a fit the model follows less closely than the data's noise
+  // claims no more than its data (docs/experiments.md, "What a fit may claim")
+  if (rep.goodness.dof > 0) {
+    rep.answerScale = std::max(1.0, rep.goodness.chi2 / rep.goodness.dof / std::max(1.0, surfaceScale));
+    for (double& s : rep.sigma) s *= std::sqrt(rep.answerScale);
+  }
   if (lapse) growthAgainstTrace(rep, lapseTrace, bm);
   const FitEvaluation& b = rep.evaluations[static_cast<std::size_t>(rep.best)];
   if (rep.surfaceRun >= 0 && rep.best != rep.surfaceRun) {

@@ -29,7 +29,6 @@ EQUIVALENT = {
     "src/render/png.cpp": ("tests/render/test_output.cpp", "PNG files read back independently"),
     "src/render/video_writer.cpp": ("tests/render/test_output.cpp", "MP4 files read back with libavformat"),
     "src/app/render_run.cpp": ("tests/render/test_stills.cpp", "`rootsim render` stills and windows"),
-    "src/io/json.cpp": ("tests/test_outputs.cpp", "summary.json: the JSON writer and a run's summary"),
     "src/io/run_seams.cpp": ("tests/test_run_scene.cpp", "the production binary has no kill seam"),
     "src/figure/report_html.cpp": ("tests/figure/report_html_check.py", "report.html in headless chromium"),
 }
@@ -43,6 +42,8 @@ NOT_A_MIRROR = {
     "tests/render/test_montage_labels.cpp": "the montage (EQUIVALENT)",
     "tests/render/test_output.cpp": "PNG and MP4 files (EQUIVALENT)",
     "tests/render/test_stills.cpp": "`rootsim render`'s stills (EQUIVALENT)",
+    "tests/test_outputs.cpp": "a run directory's files together (outputs.hpp): summary.json against the time series",
+    "tests/test_number_text.cpp": "include/rootsim/number_text.hpp, header only (numbers as text for every library)",
     "tests/render/test_write_render.cpp": "the write rule (src/io/write_rule.cpp) where pictures are drawn",
 }
 

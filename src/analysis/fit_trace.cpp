@@ -154,9 +154,7 @@ class Fit {
     std::vector<double> x(keys_.size());
     for (std::size_t i = 0; i < keys_.size(); ++i) {
       // to 9 significant digits: the value is its own text, in the scene and in the run's name
-      char b[32];
-      std::snprintf(b, sizeof b, "%.9g", keys_[i].lo + std::clamp(u(static_cast<int>(i)), 0.0, 1.0) * (keys_[i].hi - keys_[i].lo));
-      x[i] = std::strtod(b, nullptr);
+      x[i] = std::strtod(significantText(keys_[i].lo + std::clamp(u(static_cast<int>(i)), 0.0, 1.0) * (keys_[i].hi - keys_[i].lo), 9).c_str(), nullptr);
     }
     return x;
   }
@@ -413,11 +411,9 @@ Eigen::VectorXd surfaceMinimum(const ResponseSurface& s, const FitComponents& t,
 void growthAgainstTrace(FitReport& rep, const TimeLapseObjective& lapse, const Model& base) {
   if (std::any_of(rep.keys.begin(), rep.keys.end(), [](const FreeKey& k) { return k.key == "growth.rate_per_h"; })) return;
   const double scene = base.growth.rate * base.growth.zoneLength / (units::mm / units::hour);
-  char b[64];
-  std::snprintf(b, sizeof b, "%.4g", lapse.growthMmPerH);
   auto at = std::find_if(rep.fixed.begin(), rep.fixed.end(), [](const FixedKey& f) { return f.key == "tip_speed_mm_per_h"; });
   rep.fixed.insert(at == rep.fixed.end() ? at : at + 1,
-                   FixedKey{"trace_growth_mm_per_h", b, "the trace's dL/dt: least-squares slope of its lengths over its observation times"});
+                   FixedKey{"trace_growth_mm_per_h", significantText(lapse.growthMmPerH, 4), "the trace's dL/dt: least-squares slope of its lengths over its observation times"});
   const double apart = std::abs(lapse.growthMmPerH - scene) / scene;
   if (apart > kGrowthMismatch) {
     char line[300];
@@ -538,9 +534,7 @@ FitReport runFit(const FitOptions& given, const std::function<void(const std::st
   for (const FreeKey& fk : keys) {
     designText += "\"" + fk.key + "\" = [";
     for (int i = 0; i < k; ++i) {
-      char b[32];
-      std::snprintf(b, sizeof b, "%.9g", fk.lo + (i + 0.5) / k * (fk.hi - fk.lo));
-      designText += (i ? ", " : "") + numberText(std::strtod(b, nullptr));
+      designText += (i ? ", " : "") + numberText(std::strtod(significantText(fk.lo + (i + 0.5) / k * (fk.hi - fk.lo), 9).c_str(), nullptr));
     }
     designText += "]\n";
   }

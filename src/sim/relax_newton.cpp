@@ -737,12 +737,8 @@ struct Coupled {
       NewtonWorkspace& nw = s.nw;
       s.jacobian(false, keepMature && nw.matureAge < kMatureRefresh, false);
       nw.factorsValid = false;  // nw.lu holds this block unfactorised
-      const int o = cw.first[static_cast<size_t>(k)], nk = s.w.dofs();
-      for (int j = 0; j < nk; ++j)
-        for (int i = std::max(0, j - kBand); i <= std::min(nk - 1, j + kBand); ++i) {
-          const double v = nw.lu.at(i, j);
-          if (v != 0.0) cw.band.add(o + i, o + j, v);
-        }
+      const int o = cw.first[static_cast<size_t>(k)];
+      cw.band.addDiagonalBlock(o, nw.lu, kBand);
       for (const OffBandEntry& e : nw.offBand) cw.offBand.push_back({o + e.row, o + e.col, e.value});
     }
     // each root's rows of its contacts with the others, in the other root's columns (node translations:

@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <chrono>
 #include <cmath>
+#include <random>
 #include <regex>
 #include <string>
 #include <vector>
@@ -552,4 +553,34 @@ TEST_CASE("self-contact: Newton's Jacobian, band and off-band entries, equals on
                         << ", largest difference " << (K - ref).cwiseAbs().maxCoeff());
   CHECK(farRef > 1e-3 * ref.cwiseAbs().maxCoeff());
   CHECK((K - ref).cwiseAbs().maxCoeff() <= 1e-6 * ref.cwiseAbs().maxCoeff());
+}
+
+TEST_CASE("contact between roots: a force exactly where the contact points are closer than Ra + Rb") {
+  // random element pairs at distances around the contact distance, apart along every axis in turn (the
+  // law first rejects pairs whose boxes lie farther apart than that): the force exists exactly when the
+  // distance between the pair's contact points is below Ra + Rb, and is k (Ra + Rb - d) there
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const double ra = 0.1e-3, rb = 0.06e-3, k = 1000, len = 0.05e-3;
+  const Vec3 up(0, 0, 1), origin(0.02, -0.013, 0.004);  // plate coordinates: away from zero, as on a plate
+  int touching = 0, apart = 0;
+  for (int t = 0; t < 20000; ++t) {
+    const Vec3 a0 = origin + len * Vec3(u(rng), u(rng), u(rng));
+    const Vec3 a1 = a0 + len * Vec3(u(rng), u(rng), u(rng));
+    Vec3 shift = 0.3 * (ra + rb) * Vec3(u(rng), u(rng), u(rng));
+    shift[t % 3] += (ra + rb + len) * (1.0 + 0.5 * u(rng));  // near the box test's threshold on that axis
+    const Vec3 b0 = a0 + shift, b1 = b0 + len * Vec3(u(rng), u(rng), u(rng));
+    double sa = 0, sb = 0;
+    contactSegmentPoints(a0, a1, b0, b1, sa, sb);
+    const double d = ((a0 + sa * (a1 - a0)) - (b0 + sb * (b1 - b0))).norm();
+    RootPairForce pf;
+    const bool force = rootPairForce(ra, rb, k, up, a0, a1, b0, b1, pf);
+    INFO("pair " << t << ": d / (Ra + Rb) = " << d / (ra + rb));
+    REQUIRE(force == (d < ra + rb));
+    if (force) CHECK(pf.F.norm() == doctest::Approx(k * (ra + rb - d)).epsilon(1e-12));
+    (force ? touching : apart) += 1;
+  }
+  INFO(touching << " pairs touching, " << apart << " apart");
+  CHECK(touching > 1000);
+  CHECK(apart > 1000);
 }

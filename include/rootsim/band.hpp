@@ -42,6 +42,9 @@ class BandLU {
     }
   }
   double at(int i, int j) const { return ab_[static_cast<size_t>(kv_ + i - j + j * ld_)]; }
+  // A(o + i, o + j) += B(i, j) for B's nonzeros within half-bandwidth k of its diagonal (B unfactorised,
+  // k at most B's and this matrix's bands): a block of a larger system, as add() would place each
+  void addDiagonalBlock(int o, const BandLU& b, int k);
   bool inBand(int i, int j) const { return i - j <= kl_ && j - i <= ku_; }
   // factorises in place; false when a pivot is exactly zero (singular)
   bool factorize();

@@ -224,6 +224,7 @@ class PlateSimulation {
   Eigen::Matrix3Xd before_;        // a sweep's scratch: a root's nodes before it relaxed again
   std::vector<Eigen::Matrix3Xd> listed_;  // every root's nodes when the step's lists were built
   std::vector<int> capsuleOf_;      // global element -> capsule index in the list being built (-1: none)
+  std::vector<int> capsules_;       // listNeighbours: the global elements listed, in the order first listed
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> boxes_;  // each root's box in the plate, widened
   std::vector<char> near_;         // the root's box overlaps another's: it is in the grid
   std::vector<int> nextSite_;      // per root: the index of its next lateral site

@@ -2,6 +2,7 @@
 // The quasi-static Newton solver (docs/model.md, Newton solver; relax_newton.cpp) and the memory it keeps
 // across growth steps.
 #include <functional>
+#include <cstddef>
 #include <vector>
 
 #include "rootsim/band.hpp"
@@ -96,6 +97,7 @@ struct CoupledWorkspace {
   std::vector<int> first;             // each root's first unknown
   std::vector<int> clusterOf;         // plate index -> position in the system (-1: not in it)
   std::vector<RodState> start;        // the states before a relaxation (a stalled one returns to them)
+  std::vector<std::max_align_t> solvers;  // room for the roots' Newton solvers (relax_newton.cpp: Coupled)
   // what the next coupled relaxation depends on (fields.hpp): the sparse pattern and pivots, reused by a
   // system of the same size; the rest is scratch
   static constexpr auto fields() {

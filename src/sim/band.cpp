@@ -26,6 +26,24 @@ void BandLU::reset(int n, int kl, int ku) {
   for (int j = 0; j < n; ++j) colLast_[static_cast<size_t>(j)] = rowLast_[static_cast<size_t>(j)] = j;
 }
 
+void BandLU::addDiagonalBlock(int o, const BandLU& b, int k) {
+  ROOTSIM_ASSERT(o >= 0 && o + b.n_ <= n_ && k <= b.kl_ && k <= b.ku_ && k <= kl_ && k <= ku_, "a block inside the band");
+  for (int j = 0; j < b.n_; ++j) {
+    const int i0 = std::max(0, j - k), i1 = std::min(b.n_ - 1, j + k);
+    const double* src = b.ab_.data() + static_cast<size_t>(b.kv_ - j + j * b.ld_);  // src[i] = B(i, j)
+    double* dst = ab_.data() + static_cast<size_t>(kv_ - j + (o + j) * ld_);     // dst[i] = A(o + i, o + j)
+    int& colLast = colLast_[static_cast<size_t>(o + j)];
+    for (int i = i0; i <= i1; ++i) {
+      const double v = src[i];
+      if (v == 0.0) continue;
+      dst[i] += v;
+      colLast = std::max(colLast, o + i);
+      int& rowLast = rowLast_[static_cast<size_t>(o + i)];
+      rowLast = std::max(rowLast, o + j);
+    }
+  }
+}
+
 void BandLU::scanProfile() {
   for (int j = 0; j < n_; ++j) {
     const double* col = ab_.data() + static_cast<size_t>(j) * ld_ + kv_;  // col[i] = L(j + i, j)

@@ -162,7 +162,8 @@ void PlateSimulation::listNeighbours(int r) {
   }
   const RodState& s = root(r).state();
   const double Ra = seedling(r).model.rod.radius;
-  std::vector<int> capsules;  // global element indices, in the order they are first listed
+  std::vector<int>& capsules = capsules_;  // global element indices, in the order they are first listed
+  capsules.clear();
   for (int i = 0; i < s.elements(); ++i) {
     const Vec3 a0 = s.x.col(i) + offset(r), a1 = s.x.col(i + 1) + offset(r);
     const Vec3 mid = 0.5 * (a0 + a1);
@@ -193,9 +194,14 @@ void PlateSimulation::listNeighbours(int r) {
   }
   std::sort(nb.pairs.begin(), nb.pairs.end());
   const int m = static_cast<int>(capsules.size());
-  nb.a.resize(3, m);
-  nb.b.resize(3, m);
-  nb.radius.resize(m);
+  // the capsules' arrays only grow (a resize to another length reallocates): columns past source.size()
+  // are unused, every capsule is named by its index
+  if (nb.a.cols() < m) {
+    const int room = std::max(m, 2 * static_cast<int>(nb.a.cols()));
+    nb.a.resize(3, room);
+    nb.b.resize(3, room);
+    nb.radius.resize(room);
+  }
   nb.first.assign(static_cast<size_t>(m), 0);
   nb.source.resize(static_cast<size_t>(m));
   for (int c = 0; c < m; ++c) {

@@ -23,10 +23,13 @@
 // same factors gives the eigenvalue nearest zero and its mode.
 #include "rootsim/relax_newton.hpp"
 
-#include <algorithm>
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
+#include <new>
+#include <span>
 #include <sstream>
+#include <type_traits>
 #include <cstdio>
 #include <cstdlib>
 
@@ -668,12 +671,18 @@ struct Coupled {
   const std::vector<CoupledRoot>& roots;
   const std::function<void()>& refresh;
   CoupledWorkspace& cw;
-  std::vector<NewtonSolver> ns;
+  // one solver per root, built in cw.solvers (kept from system to system: no allocation once it is large
+  // enough); ns.size() of them
+  std::span<NewtonSolver> ns;
   int N = 0;
 
   Coupled(const std::vector<CoupledRoot>& rs, const std::function<void()>& rf, CoupledWorkspace& w)
       : roots(rs), refresh(rf), cw(w) {
-    ns.reserve(roots.size());
+    static_assert(std::is_trivially_destructible_v<NewtonSolver> && alignof(NewtonSolver) <= alignof(std::max_align_t));
+    const size_t words = (roots.size() * sizeof(NewtonSolver) + sizeof(std::max_align_t) - 1) / sizeof(std::max_align_t);
+    if (cw.solvers.size() < words) cw.solvers.resize(words);
+    auto* room = reinterpret_cast<NewtonSolver*>(cw.solvers.data());
+    size_t built = 0;
     cw.first.clear();
     int last = 0;
     for (const CoupledRoot& cr : roots) {
@@ -683,8 +692,9 @@ struct Coupled {
       cr.nw->reserve(n);
       cr.s->v.setZero();
       cr.s->w.setZero();
-      NewtonSolver& s = ns.emplace_back(NewtonSolver{*cr.rod, *cr.env, *cr.opt, *cr.s, *cr.ws, *cr.nw,
-                                                     windowOf(*cr.env, *cr.s, cr.firstFreeNode)});
+      NewtonSolver& s = *new (room + built++) NewtonSolver{*cr.rod, *cr.env, *cr.opt, *cr.s, *cr.ws, *cr.nw,
+                                                           windowOf(*cr.env, *cr.s, cr.firstFreeNode)};
+      ns = std::span<NewtonSolver>(room, built);
       s.lbar = cr.s->restLength() / n;
       const EquilibriumTolerance tol = equilibriumTolerance(*cr.rod, *cr.env, *cr.opt, *cr.s, cr.firstFreeNode);
       s.ftol = tol.force;
@@ -737,12 +747,8 @@ struct Coupled {
       NewtonWorkspace& nw = s.nw;
       s.jacobian(false, keepMature && nw.matureAge < kMatureRefresh, false);
       nw.factorsValid = false;  // nw.lu holds this block unfactorised
-      const int o = cw.first[static_cast<size_t>(k)], nk = s.w.dofs();
-      for (int j = 0; j < nk; ++j)
-        for (int i = std::max(0, j - kBand); i <= std::min(nk - 1, j + kBand); ++i) {
-          const double v = nw.lu.at(i, j);
-          if (v != 0.0) cw.band.add(o + i, o + j, v);
-        }
+      const int o = cw.first[static_cast<size_t>(k)];
+      cw.band.addDiagonalBlock(o, nw.lu, kBand);
       for (const OffBandEntry& e : nw.offBand) cw.offBand.push_back({o + e.row, o + e.col, e.value});
     }
     // each root's rows of its contacts with the others, in the other root's columns (node translations:
@@ -809,39 +815,59 @@ RelaxResult relaxNewtonCoupled(const std::vector<CoupledRoot>& roots, const std:
   };
   cw.sparse.beginRelaxation(c.N);
   int crawl = 0;
+  bool chordNext = false;  // the next iteration reuses this one's factors (as relaxNewton's chord steps)
+  long chords = 0;         // iterations that did so (not counted against the limit: they cost no Jacobian)
   c.residual();
   for (;;) {
     if (c.converged(res)) break;
-    if (res.iterations >= opt.newtonMaxIterations) {
+    if (res.iterations - chords >= opt.newtonMaxIterations) {
       std::ostringstream os;
       os << "no joint equilibrium in " << res.iterations << " iterations (residual force " << res.residualForce
          << " N, couple " << res.residualTorque << " N m)";
       return stall(os.str());
     }
     ++res.iterations;
-    c.jacobian(res.iterations <= kMatureTrust);
-    cw.sparse.assemble(cw.band, cw.offBand);
-    if (!cw.sparse.factorizeLU()) return stall("singular stiffness at iteration " + std::to_string(res.iterations));
-    std::copy(cw.r.begin(), cw.r.begin() + c.N, cw.delta.begin());
-    cw.sparse.solveLU(cw.delta.data());
+    const bool chord = chordNext;
+    chordNext = false;
+    if (chord) {
+      // the simplified Newton correction of the accepted trial is this step (same factors, same state)
+      ++chords;
+      std::copy(cw.r0.begin(), cw.r0.begin() + c.N, cw.delta.begin());
+    } else {
+      c.jacobian(res.iterations <= kMatureTrust);
+      cw.sparse.assemble(cw.band, cw.offBand);
+      if (!cw.sparse.factorizeLU()) return stall("singular stiffness at iteration " + std::to_string(res.iterations));
+      std::copy(cw.r.begin(), cw.r.begin() + c.N, cw.delta.begin());
+      cw.sparse.solveLU(cw.delta.data());
+    }
     c.scatterDelta();
     const double norm0 = c.norm(cw.delta);
     for (NewtonSolver& s : c.ns) s.saveState();
     // damped as relaxNewton's steps (Deuflhard's natural monotonicity test), over all the roots' unknowns
-    double a = 1.0;
+    double a = 1.0, norm1 = 0;
     int halvings = 0;
     for (;;) {
       for (NewtonSolver& s : c.ns) s.applyStep(a);
       c.residual();
       std::copy(cw.r.begin(), cw.r.begin() + c.N, cw.r0.begin());
       cw.sparse.solveLU(cw.r0.data());
-      const double norm1 = c.norm(cw.r0);
+      norm1 = c.norm(cw.r0);
       if (std::isfinite(norm1) && norm1 <= (1.0 - 0.25 * a) * norm0) break;
       for (NewtonSolver& s : c.ns) s.restoreState();
+      if (chord && halvings >= 2) break;  // the chord direction is poor: a fresh Jacobian instead
       if (++halvings > kMaxHalvings)
         return stall("no acceptable step along the Newton direction at iteration " + std::to_string(res.iterations));
       a *= 0.5;
     }
+    if (chord && halvings >= 2) {
+      c.residual();  // of the restored state
+      --res.iterations;
+      --chords;
+      continue;
+    }
+    // a full step that contracted well: Newton is in its quadratic range and these factors serve the next
+    // step (relaxNewton's rule, kChordTheta)
+    chordNext = !chord && a == 1.0 && norm1 <= kChordTheta * norm0;
     crawl = a <= kCrawl ? crawl + 1 : 0;
     if (crawl >= kMaxCrawl && !c.converged(res))
       return stall("crawls (" + std::to_string(crawl) + " iterations in a row damped to " + std::to_string(a) + ")");

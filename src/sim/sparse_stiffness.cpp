@@ -110,15 +110,6 @@ struct SparseStiffness::Impl {
     return true;
   }
 
-  // true when the band holds a nonzero where the current pattern has no place
-  bool bandMisses(const BandLU& band) const {
-    const int n = band.size();
-    for (int j = 0; j < n; ++j)
-      for (int i = std::max(0, j - bandKu); i <= std::min(n - 1, j + bandKl); ++i)
-        if (slotOf(i, j) < 0 && band.at(i, j) != 0.0) return true;
-    return false;
-  }
-
   // the band's nonzeros and the entries' places merged into the pattern, which is rebuilt (a new size
   // starts it afresh); each place is kept once, as (lower, higher) index (the pattern mirrors it)
   void mergePlaces(const BandLU& band, const std::vector<OffBandEntry>& extra) {
@@ -179,20 +170,31 @@ void SparseStiffness::assemble(const BandLU& band, const std::vector<OffBandEntr
   Impl& m = *impl_;
   const int n = band.size(), kl = band.kl(), ku = band.ku();
   const bool samePattern = m.structuralSize == n && m.a.rows() == n && m.bandKl == kl && m.bandKu == ku;
-  if (!samePattern || m.bandMisses(band) || !m.locate(extra)) {
+  // the band's values into their places; false when a nonzero has none in the current pattern
+  auto fillBand = [&] {
+    double* val = m.a.valuePtr();
+    std::fill(val, val + m.a.nonZeros(), 0.0);
+    const int width = m.bandWidth();
+    for (int j = 0; j < n; ++j) {
+      const int* slots = m.slot.data() + static_cast<size_t>(j) * width + ku - j;  // slots[i]: place of (i, j)
+      for (int i = std::max(0, j - ku); i <= std::min(n - 1, j + kl); ++i) {
+        const double v = band.at(i, j);
+        if (slots[i] >= 0) val[slots[i]] = v;
+        else if (v != 0.0) return false;
+      }
+    }
+    return true;
+  };
+  if (!samePattern || !fillBand() || !m.locate(extra)) {
     m.mergePlaces(band, extra);
     const bool found = m.locate(extra);
     ROOTSIM_ASSERT(found, "every off-band entry has its place once merged in");
     (void)found;
+    const bool placed = fillBand();
+    ROOTSIM_ASSERT(placed, "every nonzero of the band has its place once merged in");
+    (void)placed;
   }
-  // the values
   double* val = m.a.valuePtr();
-  std::fill(val, val + m.a.nonZeros(), 0.0);
-  for (int j = 0; j < n; ++j)
-    for (int i = std::max(0, j - ku); i <= std::min(n - 1, j + kl); ++i) {
-      const int k = m.slotOf(i, j);
-      if (k >= 0) val[k] = band.at(i, j);
-    }
   for (size_t e = 0; e < extra.size(); ++e) val[m.extraIndex[e]] += extra[e].value;
   m.symReady = m.luReady = false;
 }

@@ -40,12 +40,12 @@ TEST_CASE("a run is compared as the plate shows it: its height dropped and its s
   CHECK(s.plateMm.row(2).cwiseAbs().maxCoeff() == 0.0);
   CHECK(s.traits.lengthMm == doctest::Approx(11.0 * onPlate).epsilon(1e-12));
   CHECK(s.plateMm(1, s.plateMm.cols() - 1) == doctest::Approx(11.0 * onPlate).epsilon(1e-12));
-  // a trace 10.9 mm long: the snapshot whose root is 10.9 mm on the plate (11.12 mm of root: the 12th),
-  // not the one 10.9 mm long in three dimensions (the 9th)
-  const int k = snapshotAsLong(m, snaps, 10.9);
-  CHECK(k == 12);
-  CHECK(10.0 + 0.1 * k >= 10.9 / onPlate - 1e-9);
-  CHECK(10.0 + 0.1 * (k - 1) < 10.9 / onPlate);
-  // a trace longer than every snapshot on the plate: the last
-  CHECK(snapshotAsLong(m, snaps, 11.9) == 20);
+  // a trace 10.9 mm long: the snapshot whose root is nearest 10.9 mm on the plate (11.12 mm of root: the
+  // 11th, 11.1 mm), not the one 10.9 mm long in three dimensions (the 9th)
+  const int k = snapshotOfLength(m, snaps, 10.9);
+  CHECK(k == 11);
+  CHECK(std::abs((10.0 + 0.1 * k) * onPlate - 10.9) <= 0.05 * onPlate);
+  // a trace longer than every snapshot on the plate: the last; shorter than all: the first
+  CHECK(snapshotOfLength(m, snaps, 11.9) == 20);
+  CHECK(snapshotOfLength(m, snaps, 5.0) == 0);
 }

@@ -68,9 +68,9 @@ struct SimRoot {
 // (the run as a scan of the plate sees it, as the trace was seen: its height off the plate dropped, so its
 // length, distances and shape samples are the plate's, the trace's)
 SimRoot simRootOf(const Model& m, const Snapshot& s);
-// the snapshot a trace of one time is compared with: the first whose root is lengthMm long on the plate
-// (the trace's root length, rootLengthMm), else the last
-int snapshotAsLong(const Model& m, const std::vector<Snapshot>& snaps, double lengthMm);
+// the snapshot a trace of one time is compared with: the one whose root's length on the plate is nearest
+// lengthMm (the trace's root length, rootLengthMm), the earlier of two as near
+int snapshotOfLength(const Model& m, const std::vector<Snapshot>& snaps, double lengthMm);
 
 struct Comparison {
   std::vector<Observation> obs;

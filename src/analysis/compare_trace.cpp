@@ -102,11 +102,15 @@ Eigen::Matrix3Xd plateView(const Model& m, const Snapshot& s) {
 
 }  // namespace
 
-int snapshotAsLong(const Model& m, const std::vector<Snapshot>& snaps, double lengthMm) {
+int snapshotOfLength(const Model& m, const std::vector<Snapshot>& snaps, double lengthMm) {
+  int best = static_cast<int>(snaps.size()) - 1;
+  double off = std::numeric_limits<double>::infinity();
   for (int i = 0; i < static_cast<int>(snaps.size()); ++i)
-    // (to a micrometre: a run's own export has its nodes' length up to rounding)
-    if (polylineLength(plateView(m, snaps[static_cast<std::size_t>(i)])) >= lengthMm - 1e-3) return i;
-  return static_cast<int>(snaps.size()) - 1;
+    if (const double d = std::abs(polylineLength(plateView(m, snaps[static_cast<std::size_t>(i)])) - lengthMm); d < off) {
+      off = d;
+      best = i;
+    }
+  return best;
 }
 
 SimRoot simRootOf(const Model& m, const Snapshot& s) {
@@ -380,10 +384,10 @@ int pickSnapshot(const Model& m, const std::vector<Snapshot>& snaps, const Trace
     why = "the snapshot nearest --at-h";
     return snapshotNear(snapshotTimes(snaps), atH);
   }
-  const int i = snapshotAsLong(m, snaps, target.rootLengthMm);
-  if (polylineLength(plateView(m, snaps[static_cast<std::size_t>(i)])) >= target.rootLengthMm - 1e-3) {
-    why = "the first snapshot as long as the trace on the plate";
-    return i;
+  // (to a micrometre: a run's own export has its nodes' length up to rounding)
+  if (polylineLength(plateView(m, snaps.back())) >= target.rootLengthMm - 1e-3) {
+    why = "the snapshot as long as the trace on the plate (the nearest)";
+    return snapshotOfLength(m, snaps, target.rootLengthMm);
   }
   why = "the final snapshot (the run is shorter than the trace)";
   return pick;

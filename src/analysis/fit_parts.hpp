@@ -24,10 +24,10 @@ namespace rootsim::app {
 inline constexpr double kSmallestBox = 0.5;
 
 // the snapshot of an evaluation that is compared with the trace: a time-lapse's last (the trace's last
-// observation time); for a trace of one time, the first whose root is as long on the plate as the traced
-// root (snapshotAsLong), so a root that leaves the plate's plane is not compared younger than the trace
+// observation time); for a trace of one time, the one whose root is as long on the plate as the traced
+// root (snapshotOfLength), so a root that leaves the plate's plane is not compared younger than the trace
 inline const Snapshot& comparedSnapshot(const Model& m, const std::vector<Snapshot>& snaps, const TraceTarget& t, bool lapse) {
-  return snaps[static_cast<std::size_t>(lapse ? static_cast<int>(snaps.size()) - 1 : snapshotAsLong(m, snaps, t.rootLengthMm))];
+  return snaps[static_cast<std::size_t>(lapse ? static_cast<int>(snaps.size()) - 1 : snapshotOfLength(m, snaps, t.rootLengthMm))];
 }
 
 // the fixed keys of the base model that shape a fit's answer, the plate's tilt and the growth first, the

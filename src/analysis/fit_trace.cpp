@@ -487,8 +487,9 @@ FitReport runFit(const FitOptions& given, const std::function<void(const std::st
   // (the largest common divisor of their steps; else every step)
   const double stepH = bm.growth.stepTime / units::hour;
   // a trace of one time: past the root's length by kLengthMargin, a snapshot every kSnapshotMm of growth,
-  // and the first snapshot as long on the plate as the root compared (comparedSnapshot): a root that rises
-  // off the plate is longer than a scan of it shows
+  // and the snapshot as long on the plate as the root compared (comparedSnapshot; the nearest, within
+  // kSnapshotMm / 2, where stopping at the root's length held it to a step): a root that rises off the
+  // plate is longer than a scan of it shows
   constexpr double kLengthMargin = 0.03, kSnapshotMm = 0.025;
   const long steps = lapse ? std::lround(std::ceil(lapseTrace.timesH.back() / stepH - 1e-9))
                            : std::lround(std::ceil((target.rootLengthMm * (1.0 + kLengthMargin) - l0) / perStepMm - 1e-9));

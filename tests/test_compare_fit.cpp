@@ -208,7 +208,7 @@ TEST_CASE("compare: a run against its own export / distance 0, every residual 0,
   CHECK(jsonNumber(js, "frechet_mm") < 1e-9);
   CHECK(jsonNumber(js, "chi2") < 1e-12);
   CHECK(jsonNumber(js, "observables_used") >= 2);  // it waves: the skew, lambda and A
-  CHECK(js.find("\"snapshot\": \"the first snapshot as long as the trace\"") != std::string::npos);
+  CHECK(js.find("\"snapshot\": \"the snapshot as long as the trace on the plate (the nearest)\"") != std::string::npos);
   // the table on stdout and in compare.csv
   CHECK(r.out.find("wavelength_mm") != std::string::npos);
   const std::string csv = slurp(d / "c" / "compare.csv");

@@ -40,7 +40,7 @@ ZoneObservables observeZone(const Model& m, const RodState& s, const RodStrains&
 // of the lateral displacement of the mature part along the rod, found with a hysteresis of
 // analysis.wave_min_amplitude_r * R so numerical ripples are not peaks; consecutive peaks alternate sides.
 struct ShapeAnalysis {
-  std::string pattern;        // straight | waving | coiling | skewing
+  std::string pattern;        // straight | waving | coiling | skewing (and a trace's curved: traits.hpp)
   double wavelength = 0;      // lambda: mean downhill distance between successive peaks on the same side
                               //   (a full wave) [m] (0: fewer than 3 peaks)
   double amplitude = 0;       // A: mean lateral distance between neighbouring (opposite) peaks, the

@@ -48,7 +48,7 @@ struct RootRow {
   double noiseMm = 0, smoothingMm = 0, peakThresholdMm = 0;  // sigma (NaN: not estimated), the smoothing's
                                      // half-width, the peaks' hysteresis used [mm]
   std::string wavesNote;             // why wavelength_mm (and amplitude_mm) are empty
-  double straightness = 0, hgi = 0, vgi = 0, thetaTipDeg = 0;
+  double straightness = 0, hgi = 0, vgi = 0, thetaTipDeg = 0, bowMm = 0, bendDeg = 0;
   Eigen::Matrix3Xd traceMm;          // the file's points, plate coordinates [mm]
   Eigen::Matrix3Xd curveMm;          // the curve measured (smoothed for a trace), plate coordinates [mm]
   std::vector<int> peakNodes;        // its columns at the counted peaks

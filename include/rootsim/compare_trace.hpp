@@ -65,7 +65,12 @@ struct SimRoot {
   double timeH = 0;
   int step = 0;
 };
+// (the run as a scan of the plate sees it, as the trace was seen: its height off the plate dropped, so its
+// length, distances and shape samples are the plate's, the trace's)
 SimRoot simRootOf(const Model& m, const Snapshot& s);
+// the snapshot a trace of one time is compared with: the one whose root's length on the plate is nearest
+// lengthMm (the trace's root length, rootLengthMm), the earlier of two as near
+int snapshotOfLength(const Model& m, const std::vector<Snapshot>& snaps, double lengthMm);
 
 struct Comparison {
   std::vector<Observation> obs;

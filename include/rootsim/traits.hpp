@@ -91,6 +91,10 @@ struct RootTraits {
   double hgi = 0;               // horizontal growth index: tip's lateral displacement from the base / length,
                                 // signed as the skew angle (towards +lateral positive)
   double vgi = 0;               // vertical growth index: tip's downhill displacement from the base / length
+  double bowMm = 0;             // the mature part's bow: the largest distance of its curve from the chord
+                                // between its ends [mm]
+  double bendDeg = 0;           // its turning angle: the direction of its last third (the chord across
+                                // it) less that of its first third, sign as theta [deg]
   double thetaTipDeg = 0;       // planar tip angle of the measured curve's last segment, sign as theta [deg]
   std::string wavesNote;        // why lambda (or lambda and A) are not measured; "" when both are
   Eigen::Matrix3Xd curveMm;     // the curve the shape analysis measured (plate coordinates [mm])
@@ -108,7 +112,9 @@ RootTraits rootTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double exclu
 // run on the smoothed curve (smoothTrace of the points less the noise's outliers, evaluated every dsMm, or at the trace's own points for dsMm <= 0)
 // with the peaks' hysteresis raised to the tracing limit (tracingLimitMm of the smoothed curve's sigma and
 // radiusMm); peaks beyond it are a wave only as a wave train (3 successive half-waves within 2x of each
-// other), else the root is measured as not waving and wavesNote says which rule it failed. The length,
+// other), else the root is measured as not waving and wavesNote says which rule it failed. A root then
+// "straight" with at most one excursion above the limit, its bow beyond it and its turning beyond the skew
+// threshold and 2 atan(3 limit / L) is "curved" (one bend). The length,
 // chord, tortuosity and base-to-tip skew stay the trace's own. Throws std::invalid_argument for fewer than
 // two distinct points.
 RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excludeTipMm, double radiusMm,

@@ -299,6 +299,8 @@ void fillNoiseTraits(RootRow& row, const RootTraits& t) {
   row.hgi = t.hgi;
   row.vgi = t.vgi;
   row.thetaTipDeg = t.thetaTipDeg;
+  row.bowMm = t.bowMm;
+  row.bendDeg = t.bendDeg;
   row.curveMm = t.curveMm;
   row.peakNodes = t.shape.peakNodes;
   row.matureLast = t.matureLast;
@@ -403,6 +405,8 @@ const std::vector<Column>& columns() {
       {"straightness", "", nullptr, [](const RootRow& r) { return r.straightness; }},
       {"hgi", "", nullptr, [](const RootRow& r) { return r.hgi; }},
       {"vgi", "", nullptr, [](const RootRow& r) { return r.vgi; }},
+      {"bow_mm", "mm", nullptr, [](const RootRow& r) { return r.bowMm; }},
+      {"bend_deg", "deg", nullptr, [](const RootRow& r) { return r.bendDeg; }},
       {"growth_rate_mm_per_h", "mm/h", nullptr, [](const RootRow& r) { return r.growthRateMmPerH; }},
       {"ds_mm", "mm", nullptr, [](const RootRow& r) { return r.dsMm; }},
       {"exclude_tip_mm", "mm", nullptr, [](const RootRow& r) { return r.excludeTipMm; }},

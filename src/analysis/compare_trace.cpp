@@ -63,7 +63,10 @@ TraceTarget loadTarget(const TraceFlags& f, const Model& m) {
   a.flagPrefix = f.flagPrefix;
   checkTraceFlags(a);
   const TraceFile tf = readTraceFile(f.trace, a);
-  const TracedRoot& r = pickRoot(tf, f.root, f.flagPrefix + "root");
+  // the root as a scan of the plate shows it, as every run it is compared with (simRootOf): a rootsim
+  // export's height off the plate dropped (a tracer's points have none)
+  TracedRoot r = pickRoot(tf, f.root, f.flagPrefix + "root");
+  r.plateMm.row(2).setZero();
   TraceTarget t;
   t.file = f.trace;
   t.rootKey = r.key;
@@ -85,13 +88,36 @@ TraceTarget loadTarget(const TraceFlags& f, const Model& m) {
   return t;
 }
 
-SimRoot simRootOf(const Model& m, const Snapshot& s) {
+namespace {
+
+// a snapshot's nodes on the plate as a scan sees them [mm]: lateral and downhill from the seed, the height
+// off the plate dropped
+Eigen::Matrix3Xd plateView(const Model& m, const Snapshot& s) {
   const PlateFrame pf = m.env.plane.frame();
+  Eigen::Matrix3Xd p(3, s.x.cols());
+  for (int i = 0; i < s.x.cols(); ++i) p.col(i) = pf.coords(s.x.col(i) - s.x.col(0)) / units::mm;
+  p.row(2).setZero();
+  return p;
+}
+
+}  // namespace
+
+int snapshotOfLength(const Model& m, const std::vector<Snapshot>& snaps, double lengthMm) {
+  int best = static_cast<int>(snaps.size()) - 1;
+  double off = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < static_cast<int>(snaps.size()); ++i)
+    if (const double d = std::abs(polylineLength(plateView(m, snaps[static_cast<std::size_t>(i)])) - lengthMm); d < off) {
+      off = d;
+      best = i;
+    }
+  return best;
+}
+
+SimRoot simRootOf(const Model& m, const Snapshot& s) {
   SimRoot r;
   r.timeH = s.timeH;
   r.step = s.step;
-  r.plateMm.resize(3, s.x.cols());
-  for (int i = 0; i < s.x.cols(); ++i) r.plateMm.col(i) = pf.coords(s.x.col(i) - s.x.col(0)) / units::mm;
+  r.plateMm = plateView(m, s);
   // the run's nodes as they are, its growth zone left out: what summary.json measures (analyseShape)
   r.traits = rootTraits(r.plateMm, 0.0, m.growth.zoneLength / units::mm, m.rod.radius / units::mm, m.analysis);
   return r;
@@ -351,19 +377,18 @@ std::string timeLapseCsv(const std::vector<TimeLapseRow>& rows) {
 
 // the run's snapshot a trace is compared with: the one nearest --at-h, else the first as long as the trace
 // (the final one when none is); why says which
-int pickSnapshot(const std::vector<Snapshot>& snaps, const TraceTarget& target, double atH, std::string& why) {
+int pickSnapshot(const Model& m, const std::vector<Snapshot>& snaps, const TraceTarget& target, double atH, std::string& why) {
   int pick = static_cast<int>(snaps.size()) - 1;
   why = "the final snapshot";
   if (atH != CompareOptions::kUnset) {
     why = "the snapshot nearest --at-h";
     return snapshotNear(snapshotTimes(snaps), atH);
   }
-  for (int i = 0; i < static_cast<int>(snaps.size()); ++i)
-    // (to a micrometre: a run's own export has its nodes' length up to rounding)
-    if (polylineLength(snaps[static_cast<std::size_t>(i)].x) / units::mm >= target.rootLengthMm - 1e-3) {
-      why = "the first snapshot as long as the trace";
-      return i;
-    }
+  // (to a micrometre: a run's own export has its nodes' length up to rounding)
+  if (polylineLength(plateView(m, snaps.back())) >= target.rootLengthMm - 1e-3) {
+    why = "the snapshot as long as the trace on the plate (the nearest)";
+    return snapshotOfLength(m, snaps, target.rootLengthMm);
+  }
   why = "the final snapshot (the run is shorter than the trace)";
   return pick;
 }
@@ -528,7 +553,7 @@ int comparePlate(const CompareOptions& o, const fs::path& run, const fs::path& o
     p.plant = plant.id + (plant.label.empty() ? "" : " (" + plant.label + ")");
     p.target = loadTarget(f, m);
     const std::vector<Snapshot> snaps = loadSnapshots(root.dir);
-    const int pick = pickSnapshot(snaps, p.target, o.atH, p.why);
+    const int pick = pickSnapshot(m, snaps, p.target, o.atH, p.why);
     p.sim = simRootOf(m, snaps[static_cast<std::size_t>(pick)]);
     p.c = compareRoots(p.target, p.sim);
     done.push_back(std::move(p));
@@ -661,7 +686,7 @@ int compareCommand(const CompareOptions& o, std::string* outDir) {
   const TraceTarget target = loadTarget(o.trace, m);
   const std::vector<Snapshot> snaps = loadSnapshots(run);
   std::string why;
-  const int pick = pickSnapshot(snaps, target, o.atH, why);
+  const int pick = pickSnapshot(m, snaps, target, o.atH, why);
   const Snapshot& snap = snaps[static_cast<std::size_t>(pick)];
   const SimRoot sim = simRootOf(m, snap);
   const Comparison c = compareRoots(target, sim);

@@ -46,7 +46,7 @@ void writeFitOutputs(const FitOutcome& f, const FitReport& rep, const Scene& bes
   const FitEvaluation& b = rep.evaluations[static_cast<std::size_t>(rep.best)];
   auto width = [&](int i) { return keys[static_cast<std::size_t>(i)].hi - keys[static_cast<std::size_t>(i)].lo; };
   const std::vector<Snapshot> bestSnaps = loadSnapshots(b.dir);
-  const SimRoot bestSim = simRootOf(bestScene.model, bestSnaps.back());
+  const SimRoot bestSim = simRootOf(bestScene.model, comparedSnapshot(bestScene.model, bestSnaps, target, o.objective == "timelapse"));
   const Comparison bc = compareRoots(target, bestSim);
   const std::string why = rep.best == rep.surfaceRun ? "the surface's minimum" : "the fit's best run, better by the objective than the surface's minimum's";
   writeFileAtomic(out / "best.toml", "# rootsim fit: " + why + " (" + b.dir + ")\n" + bestScene.resolvedToml);
@@ -60,7 +60,7 @@ void writeFitOutputs(const FitOutcome& f, const FitReport& rep, const Scene& bes
   }
   char caption[200];
   std::snprintf(caption, sizeof caption, "distance %.3g mm (RMS at equal arc length), Fréchet %.3g mm; ", bc.distanceMm, bc.frechetMm);
-  saveComparePanel(bestScene.model, bestSnaps.back(), target.plateMm, title, caption + goodnessText(rep.goodness, "χ²") + (rep.growthMismatch.empty() ? "" : "; " + rep.growthMismatch),
+  saveComparePanel(bestScene.model, comparedSnapshot(bestScene.model, bestSnaps, target, o.objective == "timelapse"), target.plateMm, title, caption + goodnessText(rep.goodness, "χ²") + (rep.growthMismatch.empty() ? "" : "; " + rep.growthMismatch),
                    (out / "compare").string());
   if (n == 2) {
     std::vector<LandscapePoint> pts;

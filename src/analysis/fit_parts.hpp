@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include "rootsim/compare_trace.hpp"
 #include "rootsim/fit_trace.hpp"
 #include "rootsim/response_surface.hpp"
 #include "rootsim/scene.hpp"
@@ -21,6 +22,13 @@ namespace rootsim::app {
 // Half a design cell (one halving of the first box): over the synthetic traces of docs/experiments.md
 // ("Validation") it covered the truth within 2 sigma more often than a quarter cell did.
 inline constexpr double kSmallestBox = 0.5;
+
+// the snapshot of an evaluation that is compared with the trace: a time-lapse's last (the trace's last
+// observation time); for a trace of one time, the one whose root is as long on the plate as the traced
+// root (snapshotOfLength), so a root that leaves the plate's plane is not compared younger than the trace
+inline const Snapshot& comparedSnapshot(const Model& m, const std::vector<Snapshot>& snaps, const TraceTarget& t, bool lapse) {
+  return snaps[static_cast<std::size_t>(lapse ? static_cast<int>(snaps.size()) - 1 : snapshotOfLength(m, snaps, t.rootLengthMm))];
+}
 
 // the fixed keys of the base model that shape a fit's answer, the plate's tilt and the growth first, the
 // free keys left out; fileKeys: the keys the base scene file sets (sceneFileKeys), the others are defaults

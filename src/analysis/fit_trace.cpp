@@ -188,7 +188,7 @@ class Fit {
       try {
         const Scene sc = sceneAt(x);
         const std::vector<Snapshot> snaps = loadSnapshots(dir);
-        const SimRoot sim = simRootOf(sc.model, snaps.back());
+        const SimRoot sim = simRootOf(sc.model, comparedSnapshot(sc.model, snaps, target_, o_.objective == "timelapse"));
         const Comparison c = compareRoots(target_, sim);
         const FitComponents fc = componentsOf(o_.objective, target_, shapeCov_, lapse_, sc.model, snaps, sim, c);
         {
@@ -482,9 +482,14 @@ FitReport runFit(const FitOptions& given, const std::function<void(const std::st
   // a time-lapse: to its last observation time, a snapshot at every observation time that falls on a step
   // (the largest common divisor of their steps; else every step)
   const double stepH = bm.growth.stepTime / units::hour;
+  // a trace of one time: past the root's length by kLengthMargin, a snapshot every kSnapshotMm of growth,
+  // and the snapshot as long on the plate as the root compared (comparedSnapshot; the nearest, within
+  // kSnapshotMm / 2, where stopping at the root's length held it to a step): a root that rises off the
+  // plate is longer than a scan of it shows
+  constexpr double kLengthMargin = 0.03, kSnapshotMm = 0.025;
   const long steps = lapse ? std::lround(std::ceil(lapseTrace.timesH.back() / stepH - 1e-9))
-                           : std::lround(std::ceil((target.rootLengthMm - l0) / perStepMm - 1e-9));
-  long every = bm.output.everySteps;
+                           : std::lround(std::ceil((target.rootLengthMm * (1.0 + kLengthMargin) - l0) / perStepMm - 1e-9));
+  long every = std::max(1L, static_cast<long>(std::floor(kSnapshotMm / perStepMm)));
   if (lapse) {
     every = steps;
     for (double t : lapseTrace.timesH) {
@@ -513,7 +518,7 @@ FitReport runFit(const FitOptions& given, const std::function<void(const std::st
               " --root " + (o.trace.root.empty() ? std::string("default") : o.trace.root) + " --px-per-mm " +
               flagNum(o.trace.pxPerMm) + " --downhill " + o.trace.downhill + " --sigma-mm " + flagNum(o.trace.sigmaMm) + "\n";
   const std::string baseText = "# rootsim fit: " + o.scene + " with growth.steps = " + std::to_string(steps) +
-                               (lapse ? " (the trace's last observation time), output.every_steps = " + std::to_string(every) : std::string(" (the trace's length)")) +
+                               (lapse ? " (the trace's last observation time), output.every_steps = " + std::to_string(every) : " (the trace's length and 3 %), output.every_steps = " + std::to_string(every)) +
                                " and output.vtk = false\n" + settings + grown.resolvedToml;
   const bool stale = fs::exists(out / "base.toml") && fileText(out / "base.toml") != baseText;
   if (stale && !o.force)
@@ -767,7 +772,8 @@ FitReport runFit(const FitOptions& given, const std::function<void(const std::st
   // against their uncertainties
   chooseAnswer(rep, target, tc, surface.noiseVar().cwiseSqrt(), bm, sceneFileKeys(o.scene), [&](const FitEvaluation& e) {
     if (o.objective != "shape") return e.chi2Trace;
-    const SimRoot sim = simRootOf(fit.sceneAt(e.x).model, loadSnapshots(e.dir).back());
+    const Model em = fit.sceneAt(e.x).model;
+    const SimRoot sim = simRootOf(em, comparedSnapshot(em, loadSnapshots(e.dir), target, lapse));
     return chiSquareOf(e.sim, tc.trace, shapeNoiseCovariance(tracedLike(sim.plateMm, target.plateMm), target.sigmaMm, kShapeSamples));
   });
   // the answer's run against the trace's uncertainty alone fits worse than that uncertainty allows (chi2 /

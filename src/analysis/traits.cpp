@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <numbers>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -173,6 +174,27 @@ WaveTrain waveTrainOf(const Eigen::Matrix3Xd& curve, const std::vector<int>& pea
   return w;
 }
 
+// the bend of the curve's mature part (columns 0 .. last, in the plate's plane): its bow, the largest
+// distance of a point from the chord between its ends, and its turning angle, from the direction of its
+// first third (the chord across it) to that of its last third, signed as theta. Chords over a third of
+// the length: a smoothed curve's residual noise turns a tangent, not a chord that long
+void bendOf(const Eigen::Matrix3Xd& curve, int last, RootTraits& t) {
+  if (last < 2) return;
+  const Eigen::Vector2d a = curve.col(0).head<2>(), b = curve.col(last).head<2>();
+  const Eigen::Vector2d c = b - a;
+  if (!(c.norm() > 0.0)) return;
+  const Eigen::Vector2d n(-c.y() / c.norm(), c.x() / c.norm());
+  for (int i = 1; i < last; ++i) t.bowMm = std::max(t.bowMm, std::abs((curve.col(i).head<2>() - a).dot(n)));
+  const Eigen::Matrix3Xd mature = curve.leftCols(last + 1);
+  const std::vector<double> s = arcLengths(mature);
+  const double L = s.back();
+  const Eigen::Vector3d first = pointAt(mature, s, L / 3.0) - mature.col(0);
+  const Eigen::Vector3d end = mature.col(last) - pointAt(mature, s, 2.0 * L / 3.0);
+  const Plane plane = platePlane();
+  const double turn = planarAngle(plane, plateMmToLab(end, plateFrame()).col(0)) - planarAngle(plane, plateMmToLab(first, plateFrame()).col(0));
+  t.bendDeg = std::remainder(turn, 2.0 * std::numbers::pi) / units::deg;
+}
+
 // the measurement shared by runs and traces: the raw trace q (distinct points) for length, chord,
 // tortuosity and base-to-tip skew; the curve for the shape analysis and the field's traits
 RootTraits measure(const Eigen::Matrix3Xd& q, const Eigen::Matrix3Xd& curve, double dsMm, double excludeTipMm,
@@ -206,6 +228,7 @@ RootTraits measure(const Eigen::Matrix3Xd& q, const Eigen::Matrix3Xd& curve, dou
     t.vgi = d.y() / t.curveLengthMm;
   }
   t.thetaTipDeg = planarAngle(plane, plateMmToLab(curve.col(curve.cols() - 1) - curve.col(curve.cols() - 2), plateFrame()).col(0)) / units::deg;
+  bendOf(curve, last, t);
   // why the waves are not numbers (no commas: a CSV cell); a trace's reasons are traceTraits'
   if (t.shape.peaks < 3) {
     char b[200];
@@ -408,6 +431,27 @@ RootTraits rootTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double exclu
   return t;
 }
 
+namespace {
+
+// a root that is not waving, coiling or skewing but turned once (docs/experiments.md, "One bend"): at most
+// one excursion above the tracing limit (one half-wave), its bow beyond the limit and its turning beyond
+// both the skew threshold and the turning the limit alone can give the chords of its thirds,
+// 2 atan(3 limit / L). A straight root traced with a root diameter of drift bows by up to the limit but
+// does not turn: its thirds' chords are too long for the drift to tilt
+void markBend(RootTraits& t, int excursions, double limitMm, const AnalysisParams& set) {
+  if (t.shape.pattern != "straight" || excursions > 1 || !(t.bowMm > limitMm)) return;
+  const std::vector<double> s = arcLengths(t.curveMm.leftCols(t.matureLast + 1));
+  const double bendLimitDeg = std::max(set.skewThresholdDeg, 2.0 * std::atan(3.0 * limitMm / s.back()) / units::deg);
+  if (!(std::abs(t.bendDeg) > bendLimitDeg)) return;
+  t.shape.pattern = "curved";
+  char b[200];
+  std::snprintf(b, sizeof b, "; curved: bow %.3g mm beyond the tracing limit %.3g mm and turning %.3g deg beyond %.3g deg", t.bowMm, limitMm,
+                t.bendDeg, bendLimitDeg);
+  t.wavesNote += b;
+}
+
+}  // namespace
+
 RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excludeTipMm, double radiusMm,
                        const AnalysisParams& set) {
   const Eigen::Matrix3Xd q = distinctPoints(plateMm);
@@ -437,8 +481,10 @@ RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excl
     std::snprintf(b, sizeof b, "not a wave train: %d excursion%s of %.3g mm above the tracing limit %.3g mm with half-wave spacing%s %s",
                   t.shape.peaks - 1, t.shape.peaks > 2 ? "s" : "", t.shape.amplitude / units::mm, limit, t.shape.peaks > 2 ? "s" : "",
                   train.spacings.c_str());
+    const int excursions = t.shape.peaks - 1;
     t.shape = none;
     t.wavesNote = b;
+    markBend(t, excursions, limit, set);
     return t;
   }
   {
@@ -466,6 +512,7 @@ RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excl
     }
     t.wavesNote = b;
   }
+  markBend(t, 0, limit, set);
   return t;
 }
 

@@ -12,6 +12,7 @@
 #include "rootsim/number_text.hpp"
 #include "rootsim/run_dir.hpp"
 #include "rootsim/scene.hpp"
+#include "rootsim/signature.hpp"
 #include "rootsim/units.hpp"
 #include "rootsim/write_rule.hpp"
 #include "fit_parts.hpp"
@@ -297,29 +298,27 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
 
   // fit.json: each group's answer and goodness, and the contrasts
   Json js;
-  js.str("sheet", o.groups).str("scene", o.scene);
+  js.str("software", outputSignatureText()).str("sheet", o.groups).str("scene", o.scene).strings("traces", files);
   {
-    std::string fl;
-    for (const std::string& f : files) fl += (fl.empty() ? "" : ", ") + f;
-    js.str("traces", fl);
+    std::vector<std::string> names;
+    for (const FreeKey& k : keys) names.push_back(k.key);
+    js.strings("keys", names);
   }
   js.str("method", "each group's mean observables against one run per evaluation of the group's values, measured as each seedling is; "
                    "covariance: the mean's, from the seedlings' scatter (its diagonal at least their tracing noise) / n");
   Json gj;
   for (const GroupFit& g : rep.groups) {
     Json one;
-    std::string pl;
-    for (const std::string& p : g.plants) pl += (pl.empty() ? "" : ",") + p;
-    one.str("plants", pl).integer("seedlings", static_cast<long long>(g.plants.size())).str("folder", "groups/" + g.name);
+    one.strings("plants", g.plants).integer("seedlings", static_cast<long long>(g.plants.size())).str("folder", "groups/" + g.name);
     Json best;
     for (std::size_t i = 0; i < keys.size(); ++i) best.object(keys[i].key, Json().num("value", g.value[i]).num("sigma", g.sigma[i]));
     one.object("best", best);
     one.object("goodness", goodnessJson(g.report.goodness));
     if (!g.report.misfit.empty()) one.str("misfit", g.report.misfit);
-    std::vector<Json> flat, notes, obs;
+    std::vector<std::string> flat;
+    std::vector<Json> obs;
     for (std::size_t i = 0; i < keys.size(); ++i)
-      if (!std::isfinite(g.sigma[i])) flat.push_back(Json().str("key", keys[i].key));
-    for (const std::string& n : g.report.notes) notes.push_back(Json().str("note", n));
+      if (!std::isfinite(g.sigma[i])) flat.push_back(keys[i].key);
     for (std::size_t j = 0; j < g.outputs.names.size(); ++j) {
       const int jj = static_cast<int>(j);
       obs.push_back(Json()
@@ -329,14 +328,14 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
                         .num("scatter_sd", std::sqrt(g.scatter(jj, jj)))
                         .num("answer", g.answerSim.size() > jj ? g.answerSim(jj) : kNaN));
     }
-    one.array("flat", flat).array("notes", notes).array("observables", obs);
+    one.strings("flat", flat).strings("notes", g.report.notes).array("observables", obs);
     gj.object(g.name, one);
   }
   js.object("groups", gj);
   std::vector<Json> cj;
   for (const GroupContrast& c : rep.contrasts) {
     Json one;
-    one.str("key", c.key).str("group_a", c.a).str("group_b", c.b);
+    one.str("key", c.key).strings("groups", {c.a, c.b});
     if (c.flat)
       one.str("difference", "flat").str("why", c.why);
     else

@@ -36,6 +36,12 @@ Json& Json::str(const std::string& key, const std::string& v) {
   items_.push_back({key, jsonEscape(v), nullptr, {}, false});
   return *this;
 }
+Json& Json::strings(const std::string& key, const std::vector<std::string>& v) {
+  std::string raw = "[";
+  for (std::size_t i = 0; i < v.size(); ++i) raw += (i ? ", " : "") + jsonEscape(v[i]);
+  items_.push_back({key, raw + "]", nullptr, {}, false});
+  return *this;
+}
 Json& Json::boolean(const std::string& key, bool v) {
   items_.push_back({key, v ? "true" : "false", nullptr, {}, false});
   return *this;

@@ -236,7 +236,9 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
       it = groups.end() - 1;
     }
     const TracedPlant& p = plants[static_cast<std::size_t>(r.plant)];
-    it->plants.push_back(p.label.empty() ? p.id : p.label);
+    // its label where no other plant has it (the plants of a scan may all be labelled alike), else its id
+    const bool unique = !p.label.empty() && std::count_if(plants.begin(), plants.end(), [&](const TracedPlant& q) { return q.label == p.label; }) == 1;
+    it->plants.push_back(unique ? p.label : p.id);
     TraceFlags f = o.trace;
     f.trace = p.file;
     f.root = rootKeys[static_cast<std::size_t>(r.plant)];

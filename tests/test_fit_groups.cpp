@@ -149,6 +149,7 @@ TEST_CASE("fit by group: bad input exits 2 naming the sheet's line or the flag, 
       {traced + " --groups " + (d / "good.csv").string() + scene + " --free plane.alpha_deg=30:50", "the plate's tilt, the same for every group"},
       {traced + " --groups " + (d / "good.csv").string() + scene + free + " --objective shape", "--objective shape: a fit by group"},
       {traced + " --groups " + (d / "nothere.csv").string() + scene + free, "nothere.csv: cannot be read"},
+      {traced + " --groups " + (d / "good.csv").string() + scene + free + " --budget 5", "--budget 5: too small"},
       {traced + " " + plate().traced.string() + scene + free, "several files are a plate fitted by group; give --groups"},
   };
   for (const Case& c : cases) {

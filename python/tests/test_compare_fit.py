@@ -97,10 +97,10 @@ def test_fit_by_group_is_the_command_lines(tmp_path):
     rsml = tmp_path / "plate.rsml"
     rootsim.export(run.dir, rsml=rsml)
     free = {"tropism.twist_r_tau": (-0.05, 0.1)}
-    res = rootsim.fit([rsml], scene=tmp_path / "base.toml", free=free, groups=tmp_path / "sheet.csv", budget=16, jobs=2,
+    res = rootsim.fit([rsml], scene=tmp_path / "base.toml", free=free, groups=tmp_path / "sheet.csv", budget=18, jobs=2,
                       out=tmp_path / "py")
     cli("fit", rsml, "--scene", tmp_path / "base.toml", "--free", "tropism.twist_r_tau=-0.05:0.1", "--groups", tmp_path / "sheet.csv",
-        "--budget", "16", "-j", "2", "--out", tmp_path / "cli", "--quiet")
+        "--budget", "18", "-j", "2", "--out", tmp_path / "cli", "--quiet")
     ours = json.loads((tmp_path / "cli" / "fit.json").read_text())
     assert res["keys"] == ["tropism.twist_r_tau"]
     assert list(res["groups"]) == ["WT", "mut"]

@@ -194,6 +194,12 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
   if (base.isPlate())
     throw SceneError("--scene " + o.scene + ": a plate's scene; fit --groups takes the scene of one root, run once per group");
   const std::vector<FreeKey> keys = parseFreeKeys(o.free, o.scene);
+  if (o.jobs < 1 || o.jobs > 256) throw SceneError("-j " + std::to_string(o.jobs) + ": must be in [1, 256]");
+  {
+    FitOptions oo = o;
+    oo.objective = "observables";
+    fitSize(oo, static_cast<int>(keys.size()));  // the budget, checked before anything is written
+  }
   std::vector<std::string> files = {o.trace.trace};
   files.insert(files.end(), o.more.begin(), o.more.end());
   AnalyzeOptions a;

@@ -37,6 +37,12 @@ struct GroupSide {
 };
 // the group's outputs of a run's root: the mean over seedlings of the run measured as each is (observeBoth)
 FitComponents groupComponents(const GroupSide& g, const SimRoot& sim);
+// the size of a fit of n keys: the start design's levels per key and runs, the surface's terms, a trust
+// region's runs; SceneError when --budget cannot hold the design and one trust region
+struct FitSize {
+  int levels = 0, design = 0, terms = 0, regionPoints = 0;
+};
+FitSize fitSize(const FitOptions& o, int n);
 // runFit, or a group's fit when group is given (its outputs the group's: groupComponents)
 FitReport runFitOn(const FitOptions& o, const GroupSide* group, const std::function<void(const std::string&)>& log);
 

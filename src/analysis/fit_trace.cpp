@@ -431,6 +431,26 @@ void growthAgainstTrace(FitReport& rep, const TimeLapseObjective& lapse, const M
 
 }  // namespace
 
+FitSize fitSize(const FitOptions& o, int n) {
+  if (o.budget < 1 || o.budget > 100000)
+    throw SceneError("--budget " + std::to_string(o.budget) + ": expected an integer in [1, 100000] runs");
+  const int k = designLevels(n, o.budget);
+  const int design = static_cast<int>(std::lround(std::pow(k, n)));
+  const int terms = quadraticTerms(n);
+  // runs a trust region's surface is fitted to: enough beyond the surface's terms to estimate the
+  // scatter's covariance between the outputs
+  // (a time-lapse's many outputs: their scatter's covariance from fewer runs is singular, the trace's own
+  // covariance added to it in every chi-square is not)
+  const int outputs = o.objective == "shape" ? 2 * kShapeSamples : 3;
+  const int regionPoints = std::max(2 * terms + 4, terms + outputs + 4);
+  // the budget: the design, a trust region's runs and its minimum's, and the answer's run
+  if (o.budget < design + regionPoints + 2)
+    throw SceneError("--budget " + std::to_string(o.budget) + ": too small for " + std::to_string(n) + " free key(s): the start design takes " +
+                     std::to_string(design) + " runs and one trust region " + std::to_string(regionPoints + 2) +
+                     "; give at least " + std::to_string(design + regionPoints + 2));
+  return FitSize{k, design, terms, regionPoints};
+}
+
 FitReport runFit(const FitOptions& given, const std::function<void(const std::string&)>& log) {
   if (!given.groups.empty() || !given.more.empty()) throw SceneError("fit: --groups and more than one RSML file: a fit by group (runGroupFit)");
   return runFitOn(given, nullptr, log);
@@ -464,20 +484,8 @@ FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::f
   const TimeLapseObjective lapseTrace = lapse ? timeLapseObjective(target) : TimeLapseObjective{};
   const std::vector<FreeKey> keys = parseFreeKeys(o.free, o.scene, lapse);
   const int n = static_cast<int>(keys.size());
-  const int k = designLevels(n, o.budget);
-  const int design = static_cast<int>(std::lround(std::pow(k, n)));
-  const int terms = quadraticTerms(n);
-  // runs a trust region's surface is fitted to: enough beyond the surface's terms to estimate the
-  // scatter's covariance between the outputs
-  // (a time-lapse's many outputs: their scatter's covariance from fewer runs is singular, the trace's own
-  // covariance added to it in every chi-square is not)
-  const int outputs = o.objective == "shape" ? 2 * kShapeSamples : 3;
-  const int regionPoints = std::max(2 * terms + 4, terms + outputs + 4);
-  // the budget: the design, a trust region's runs and its minimum's, and the answer's run
-  if (o.budget < design + regionPoints + 2)
-    throw SceneError("--budget " + std::to_string(o.budget) + ": too small for " + std::to_string(n) + " free key(s): the start design takes " +
-                     std::to_string(design) + " runs and one trust region " + std::to_string(regionPoints + 2) +
-                     "; give at least " + std::to_string(design + regionPoints + 2));
+  const FitSize size = fitSize(o, n);
+  const int k = size.levels, terms = size.terms, regionPoints = size.regionPoints;
   if (!group && o.objective == "observables" && usedCount(observeBoth(target.traits, target.traits, target.sigmaMm)) < n)
     log("fit: note: the trace defines " + std::to_string(usedCount(observeBoth(target.traits, target.traits, target.sigmaMm))) +
         " observable(s) for " + std::to_string(n) + " free key(s): some direction stays undetermined (try --objective shape)");

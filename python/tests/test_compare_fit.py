@@ -116,6 +116,6 @@ def test_fit_by_group_is_the_command_lines(tmp_path):
     # the mutant twists more: WT - mut is negative
     assert c["difference"] < 0
     (tmp_path / "solo.csv").write_text("plant,group\nw1,WT\nw2,WT\nm1,mut\nm2,solo\n")
-    with pytest.raises(rootsim.SceneError, match="solo.csv:5: group solo has one seedling"):
+    with pytest.raises(rootsim.SceneError, match="solo.csv:4: group mut has one seedling"):
         rootsim.fit(rsml, scene=tmp_path / "base.toml", free=free, groups=tmp_path / "solo.csv", out=tmp_path / "bad")
     assert not (tmp_path / "bad").exists()

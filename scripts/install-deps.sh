@@ -8,7 +8,7 @@ pkgs=(cmake ninja-build g++ pkg-config
       libtinyxml2-dev                   # the RSML reader (src/io/rsml.cpp: XML with line numbers)
       libnlopt-dev                      # `rootsim fit` (src/analysis/fit_trace.cpp): BOBYQA on the response surface
       libssl-dev                        # OpenSSL's libcrypto: SHA-256 of what rootsim wrote (markers, signatures)
-      nlohmann-json3-dev                # the write rule parses a GLB's JSON chunk (src/io/write_rule.cpp)
+      nlohmann-json3-dev                # every JSON file rootsim writes (src/io/json.cpp), a GLB's JSON read back (write_rule.cpp)
       libosmesa6-dev libglm-dev libstb-dev libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
       libcairo2-dev fonts-dejavu-core python3 zlib1g-dev
       python3-dev pybind11-dev python3-pybind11 python3-numpy   # the Python package (python/)

@@ -13,6 +13,7 @@
 #include <vector>
 #include <Eigen/Dense>
 
+#include "rootsim/contact.hpp"
 #include "rootsim/forces.hpp"
 #include "rootsim/initial.hpp"
 #include "rootsim/model.hpp"
@@ -181,6 +182,43 @@ inline Model coarse(double alphaDeg, double beta, int steps) {
   m.growth.steps = steps;
   completeModel(m);
   return m;
+}
+
+// --- self-contact geometry by brute force ---
+// a hairpin of elements 0.5 R long: up along +y at x = 0 for 12 R, across to x = gap, back down
+inline RodState hairpin(const RodParams& p, double gap) {
+  const double R = p.radius, l = 0.5 * R;
+  std::vector<Vec3> pts;
+  for (int i = 0; i <= 24; ++i) pts.push_back(Vec3(0, i * l, 0));
+  const int across = static_cast<int>(std::ceil(gap / l));
+  for (int i = 1; i <= across; ++i) pts.push_back(Vec3(gap * i / across, 24 * l, 0));
+  for (int i = 1; i <= 24; ++i) pts.push_back(Vec3(gap, (24 - i) * l, 0));
+  RodState s;
+  s.resize(static_cast<int>(pts.size()) - 1);
+  s.S[0] = 0.0;
+  for (int i = 0; i < s.nodes(); ++i) s.x.col(i) = pts[static_cast<size_t>(i)];
+  for (int i = 0; i < s.elements(); ++i) s.S[i + 1] = s.S[i] + (s.x.col(i + 1) - s.x.col(i)).norm();
+  return s;
+}
+// every element pair self-contact considers (not excluded along the rod) whose segments come closer than
+// reach, by brute force over all pairs, sorted
+inline std::vector<std::array<int, 2>> closePairs(const RodParams& p, const RodState& s, double reach) {
+  std::vector<std::array<int, 2>> pairs;
+  for (int i = 0; i < s.elements(); ++i)
+    for (int j = i + 2; j < s.elements(); ++j) {
+      if (s.S[j] - s.S[i + 1] < kSelfExclusionRadii * p.radius) continue;
+      double a = 0, b = 0;
+      closestSegmentPoints(s.x.col(i), s.x.col(i + 1), s.x.col(j), s.x.col(j + 1), a, b);
+      const Vec3 d = (s.x.col(i) + a * (s.x.col(i + 1) - s.x.col(i))) - (s.x.col(j) + b * (s.x.col(j + 1) - s.x.col(j)));
+      if (d.norm() < reach) pairs.push_back({i, j});
+    }
+  return pairs;
+}
+// the centreline distance of elements i and j (closest points)
+inline double pairDistance(const RodState& s, int i, int j) {
+  double a = 0, b = 0;
+  closestSegmentPoints(s.x.col(i), s.x.col(i + 1), s.x.col(j), s.x.col(j + 1), a, b);
+  return ((s.x.col(i) + a * (s.x.col(i + 1) - s.x.col(i))) - (s.x.col(j) + b * (s.x.col(j + 1) - s.x.col(j)))).norm();
 }
 
 // --- heap allocations of this test binary so far: operator new counts them (count_allocations.cpp) ---

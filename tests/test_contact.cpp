@@ -116,21 +116,6 @@ Vec3 bruteForceOnB(const RodParams& p, double k, const Crossing& c) {
 
 }  // namespace
 
-TEST_CASE("segment closest points: crossing, parallel overlap and end cases") {
-  double a = 0, b = 0;
-  closestSegmentPoints(Vec3(-1, 0, 0), Vec3(1, 0, 0), Vec3(0.5, -1, 1), Vec3(0.5, 1, 1), a, b);
-  CHECK(a == doctest::Approx(0.75));
-  CHECK(b == doctest::Approx(0.5));
-  // parallel, overlapping over x in [0, 1]: the middle of the overlap
-  closestSegmentPoints(Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(-1, 0, 1), Vec3(1, 0, 1), a, b);
-  CHECK(a == doctest::Approx(0.25));
-  CHECK(b == doctest::Approx(0.75));
-  // end to end
-  closestSegmentPoints(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 1, 0), Vec3(3, 2, 0), a, b);
-  CHECK(a == doctest::Approx(1.0));
-  CHECK(b == doctest::Approx(0.0));
-}
-
 TEST_CASE("self-contact: two rods pressed across each other stop at 2R apart, forces and moments sum to zero") {
   RodParams p;
   Environment env;

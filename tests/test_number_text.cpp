@@ -1,5 +1,5 @@
-// numbers as text (src/io/number_text.cpp): the shortest form that reads back exactly, as scene values,
-// sweep run names and table.csv's grid columns show them
+// numbers as text (include/rootsim/number_text.hpp): the shortest form that reads back exactly, as scene values,
+// sweep run names and table.csv's grid columns show them; and the numbers of messages and labels
 #include <doctest/doctest.h>
 
 #include <charconv>
@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <string>
 
@@ -68,5 +69,46 @@ TEST_CASE("decimal numbers: the shortest text without an exponent that reads bac
     const auto r = std::from_chars(t.data(), t.data() + t.size(), back);
     REQUIRE(r.ec == std::errc());
     CHECK(std::memcmp(&back, &x, sizeof x) == 0);
+  }
+}
+
+TEST_CASE("numbers for people: significant digits as %g writes them, fixed decimals, ticks") {
+  CHECK(significantText(0.15) == "0.15");
+  CHECK(significantText(1000.0) == "1000");
+  CHECK(significantText(1e6) == "1e+06");
+  CHECK(significantText(1.0 / 3.0) == "0.333333");
+  CHECK(significantText(1.0 / 3.0, 3) == "0.333");
+  CHECK(significantText(123456.0, 4) == "1.235e+05");
+  CHECK(significantText(2.0 / 3.0, 10) == "0.6666666667");
+  CHECK(significantText(-0.0) == "-0");
+  CHECK(significantText(std::numeric_limits<double>::infinity()) == "inf");
+  CHECK(fixedText(12.25, 1) == "12.2");  // 12.25 is exact: round half to even
+  CHECK(fixedText(2.5, 0) == "2");
+  CHECK(fixedText(0.049, 2) == "0.05");
+  CHECK(fixedText(-1.0, 1) == "-1.0");
+  CHECK(tickText(0.0) == "0");
+  CHECK(tickText(1e-301) == "0");
+  CHECK(tickText(-1e-301) == "0");
+  CHECK(tickText(1e-299) == "1e-299");
+  CHECK(tickText(0.12345) == "0.123");
+  CHECK(tickText(-2500.0) == "-2.5e+03");
+}
+
+TEST_CASE("niceLength: the largest 1, 2 or 5 times a power of ten not above the limit") {
+  CHECK(niceLength(1.0) == 1.0);
+  CHECK(niceLength(1.99) == 1.0);
+  CHECK(niceLength(2.0) == 2.0);
+  CHECK(niceLength(4.99) == 2.0);
+  CHECK(niceLength(5.0) == 5.0);
+  CHECK(niceLength(9.99) == 5.0);
+  CHECK(niceLength(10.0) == 10.0);
+  CHECK(niceLength(730.0) == 500.0);
+  CHECK(niceLength(0.37) == doctest::Approx(0.2).epsilon(1e-15));
+  CHECK(niceLength(0.05) == doctest::Approx(0.05).epsilon(1e-15));
+  for (double x : {0.0123, 0.7, 3.3, 42.0, 999.0, 1e5 + 1}) {
+    const double n = niceLength(x);
+    CAPTURE(x);
+    CHECK(n <= x);
+    CHECK(n > x / 2.5);  // the next round length up (2x or 2.5x) is above x
   }
 }

@@ -236,25 +236,28 @@ TEST_CASE("plate runs: lateral roots get their folders, rows in plate.csv and pl
   CHECK(doc.plants[1].roots[0].y.front() == doctest::Approx(5.0).epsilon(1e-9));
 }
 
-TEST_CASE("plate runs: the commands of one root refuse a plate, naming what to pass") {
+TEST_CASE("plate runs: a command of one root given a plate names the root to pass, and fit refuses a plate's scene") {
   const fs::path dir = test::scratchDir("plate", "refuse");
   const std::string scene = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/plate_collision.toml";
   REQUIRE(test::run("run " + scene + " --set growth.steps=10 --quiet --out " + (dir / "run").string()).code == 0);
+  // modes of a plate's run without --root: which root is not guessed
   const test::Result modes = test::run("modes " + (dir / "run").string());
   CHECK(modes.code == 2);
-  CHECK(modes.out.find("is a plate of 2 roots; this command takes one root: pass its folder roots/NAME") != std::string::npos);
-  const test::Result gltf = test::run("export " + (dir / "run").string() + " --gltf " + (dir / "p.glb").string());
-  CHECK(gltf.code == 2);
-  CHECK(gltf.out.find("a plate's run; export one root's folder roots/NAME") != std::string::npos);
-  CHECK_FALSE(fs::exists(dir / "p.glb"));
-  // each root's folder is a run of one root: the same commands take it
+  CHECK(modes.out.find("a plate's run; give --root NAME (a root of its roots/ folder) or pass roots/NAME") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "run" / "modes.csv"));
+  // each root's folder, or --root, is a run of one root: the same command takes it
   CHECK(test::run("modes " + (dir / "run" / "roots" / "down").string() + " --quiet").code == 0);
-  // a sweep and a fit take scenes of one root
-  {
-    std::ofstream f(dir / "sweep.toml");
-    f << "[sweep]\nscene = \"" << scene << "\"\n[grid]\n\"tropism.beta\" = [0.1, 0.2]\n";
-  }
-  CHECK(test::sweepError(dir / "sweep.toml").find("a plate's scene; a sweep runs scenes of one root") != std::string::npos);
+  CHECK(test::run("modes " + (dir / "run").string() + " --root across --quiet").code == 0);
+  const test::Result stray = test::run("modes " + (dir / "run").string() + " --root sideways");
+  CHECK(stray.code == 2);
+  CHECK(stray.out.find("--root sideways: " + (dir / "run").string() + " has no root folder roots/sideways") != std::string::npos);
+  // a fit runs the scene of one root against one traced root
+  CHECK(test::run("export " + (dir / "run" / "roots" / "down").string() + " --rsml " + (dir / "down.rsml").string()).code == 0);
+  const test::Result fit = test::run("fit " + (dir / "down.rsml").string() + " --scene " + scene +
+                                     " --free tropism.beta=0.1:0.3 --out " + (dir / "fit").string());
+  CHECK(fit.code == 2);
+  CHECK(fit.out.find("--scene " + scene + ": a plate's scene; fit takes the scene of one root") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir / "fit"));
 }
 
 TEST_CASE("plate scenes: laterals are checked when the plate is read - their spacing and count and their own scene") {
@@ -284,7 +287,7 @@ TEST_CASE("plate scenes: laterals are checked when the plate is read - their spa
   CHECK(errorOf(kHead + seedling("a", 20, 5), {"root.element_length_mm=0.1"}) == "(no error)");
 }
 
-TEST_CASE("root.initial_angle_deg: a one-root scene's start direction; a seedling's set refuses it") {
+TEST_CASE("root.initial_angle_deg: a one-root scene's start direction, which a seedling's set refuses") {
   // a one-root scene sows its root at the angle, positive towards +lateral like theta
   const Scene one = parseScene("[root]\ninitial_angle_deg = 30\n", "scenes/one.toml");
   CHECK(one.model.initial.angle == doctest::Approx(30 * units::deg));

@@ -37,7 +37,5 @@ std::vector<double> snapshotTimes(const std::vector<Snapshot>& snaps);
 // outside timesH's range is refused: SceneError "--at-h H: outside the <range> snapshots, A .. B h"
 // (range: "run's", or "window's" for render's --from-h/--to-h window)
 int snapshotNear(const std::vector<double>& timesH, double atH, const std::string& range = "run's");
-// a flag's number in messages (%g)
-std::string flagNumber(double v);
 
 }  // namespace rootsim

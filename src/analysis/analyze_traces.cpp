@@ -45,7 +45,6 @@ constexpr NumberRange kPxPerMm{0.01, 1e5, false, false, "px/mm"};
 // (compare_trace.cpp, kDistanceStepMm)
 constexpr double kDistanceStepMm = 0.05;
 
-std::string num(double v) { return numberText(v); }
 
 double parseNumber(const std::string& text, const std::string& flag) {
   double v = 0;
@@ -160,15 +159,15 @@ TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
     scale = 1.0 / o.pxPerMm;
     tf.pixelMm = scale;
   } else if (given(o.pxPerMm)) {
-    throw SceneError(o.flagPrefix + "px-per-mm " + num(o.pxPerMm) + ": " + file + " is in " + doc.meta.unit +
+    throw SceneError(o.flagPrefix + "px-per-mm " + numberText(o.pxPerMm) + ": " + file + " is in " + doc.meta.unit +
                      ", not pixels (its scale is known)");
   } else {
     tf.pixelMm = doc.pixelMm;  // the pixel size the file gives (a resolution, RootSystemTracker's <size>), or 0
   }
-  tf.scaleSource = rsml::isPixelUnit(doc.meta.unit) ? o.flagPrefix + "px-per-mm " + num(o.pxPerMm)
+  tf.scaleSource = rsml::isPixelUnit(doc.meta.unit) ? o.flagPrefix + "px-per-mm " + numberText(o.pxPerMm)
                    : !rsml::pixelSizeUnit(doc.meta.unit).empty()
-                       ? "<unit>" + doc.meta.unit + "</unit> and <size>" + num(doc.meta.size) + "</size> in the file"
-                       : "<unit>" + doc.meta.unit + "</unit> and <resolution>" + num(doc.meta.resolution) + "</resolution> in the file";
+                       ? "<unit>" + doc.meta.unit + "</unit> and <size>" + numberText(doc.meta.size) + "</size> in the file"
+                       : "<unit>" + doc.meta.unit + "</unit> and <resolution>" + numberText(doc.meta.resolution) + "</resolution> in the file";
   std::size_t roots = 0;
   for (const rsml::Plant& p : doc.plants) roots += p.roots.size();
   if (roots == 0) throw SceneError(file + ":1: no root in the file (no <plant> with a <root>)");
@@ -220,16 +219,16 @@ TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
       if (scale != 1.0)
         for (Eigen::Index k = 0; k < c.cols(); ++k)
           if (!(c.col(k).cwiseAbs().maxCoeff() <= rsml::kMaxCoordMm))
-            throw SceneError(o.flagPrefix + "px-per-mm " + num(o.pxPerMm) + ": puts point " + std::to_string(k + 1) + " of root " +
-                             t.name + " (" + file + ":" + std::to_string(r.line) + ") " + num(c.col(k).cwiseAbs().maxCoeff()) +
+            throw SceneError(o.flagPrefix + "px-per-mm " + numberText(o.pxPerMm) + ": puts point " + std::to_string(k + 1) + " of root " +
+                             t.name + " (" + file + ":" + std::to_string(r.line) + ") " + numberText(c.col(k).cwiseAbs().maxCoeff()) +
                              " mm from the first, beyond " + decimalNumber(rsml::kMaxCoordMm) + " mm (1 km): a wrong resolution?");
       // the points its shape analysis and its distances will resample it into, before they are made
       double length = 0;
       for (Eigen::Index k = 1; k < c.cols(); ++k) length += (c.col(k) - c.col(k - 1)).norm();
       const double step = tf.dsMm > 0 ? std::min(tf.dsMm, kDistanceStepMm) : kDistanceStepMm;
       const bool byFlag = given(o.dsMm) && o.dsMm > 0 && o.dsMm < kDistanceStepMm;
-      checkCount((byFlag ? "--ds-mm " + num(o.dsMm) + ": " : std::string()) + file + ":" + std::to_string(r.line) + ": root " +
-                     t.name + " (" + num(length) + " mm long, resampled every " + num(step) + " mm)",
+      checkCount((byFlag ? "--ds-mm " + numberText(o.dsMm) + ": " : std::string()) + file + ":" + std::to_string(r.line) + ": root " +
+                     t.name + " (" + numberText(length) + " mm long, resampled every " + numberText(step) + " mm)",
                  length / step, caps::kTracePoints, "points",
                  "caps::kTracePoints: about 100 bytes a point in the shape analysis; docs/outputs.md, Caps");
       t.plateMm = std::move(c);

@@ -33,11 +33,7 @@ const FixedKey* findFixed(const std::vector<FixedKey>& fixed, const std::string&
   return nullptr;
 }
 
-std::string mm(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%.2g", v);
-  return b;
-}
+std::string mm(double v) { return significantText(v, 2); }
 
 }  // namespace
 
@@ -53,9 +49,8 @@ std::vector<FixedKey> sceneFixedKeys(const Model& base, const std::vector<FreeKe
     if (fixed.back().key == "growth.growth_zone_mm") {
       // the tip speed v = rate * Lgz: what a time-lapse measures
       const double speed = base.growth.rate * base.growth.zoneLength / (units::mm / units::hour);
-      char b[32];
-      std::snprintf(b, sizeof b, "%.6g", speed);  // a product: to the scene values' own digits
-      fixed.push_back(FixedKey{"tip_speed_mm_per_h", b, "growth.rate_per_h * growth.growth_zone_mm"});
+      // a product: to the scene values' own digits
+      fixed.push_back(FixedKey{"tip_speed_mm_per_h", significantText(speed, 6), "growth.rate_per_h * growth.growth_zone_mm"});
     }
   }
   return fixed;

@@ -120,7 +120,8 @@ void writeFitOutputs(const FitOutcome& f, const FitReport& rep, const Scene& bes
       .str("uncertainty", "variance = the linearised surface's, (J' C^-1 J)^-1 with C = the trace's covariance + the covariance "
                           "of the runs' scatter about the surface, scaled by max(1, chi2 / dof), mean over the last trust "
                           "regions; plus the surface's own estimation error: the larger of its minima's spread over those "
-                          "regions and a bootstrap of 200 resamples of the runs around the answer")
+                          "regions and a bootstrap of 200 resamples of the runs around the answer; all times answer_scale, the "
+                          "answer's chi2 / dof against the trace's uncertainty beyond the surface's scale, at least 1")
       .integer("trust_regions", f.regions)
       .num("last_box_half_width", f.rho)
       .integer("evaluations", static_cast<long long>(rep.evaluations.size()))
@@ -152,6 +153,7 @@ void writeFitOutputs(const FitOutcome& f, const FitReport& rep, const Scene& bes
       .integer("dof", unc.dof)
       .str("chi2_with", "the surface's value at its minimum against the trace's covariance plus the model's scatter")
       .num("covariance_scale", unc.scale)
+      .num("answer_scale", rep.answerScale)
       .str("best_run", fs::path(b.dir).filename().string())
       .num("best_run_objective", b.objective)
       .num("best_run_distance_mm", b.distanceMm);

@@ -154,9 +154,7 @@ class Fit {
     std::vector<double> x(keys_.size());
     for (std::size_t i = 0; i < keys_.size(); ++i) {
       // to 9 significant digits: the value is its own text, in the scene and in the run's name
-      char b[32];
-      std::snprintf(b, sizeof b, "%.9g", keys_[i].lo + std::clamp(u(static_cast<int>(i)), 0.0, 1.0) * (keys_[i].hi - keys_[i].lo));
-      x[i] = std::strtod(b, nullptr);
+      x[i] = std::strtod(significantText(keys_[i].lo + std::clamp(u(static_cast<int>(i)), 0.0, 1.0) * (keys_[i].hi - keys_[i].lo), 9).c_str(), nullptr);
     }
     return x;
   }
@@ -414,11 +412,9 @@ Eigen::VectorXd surfaceMinimum(const ResponseSurface& s, const FitComponents& t,
 void growthAgainstTrace(FitReport& rep, const TimeLapseObjective& lapse, const Model& base) {
   if (std::any_of(rep.keys.begin(), rep.keys.end(), [](const FreeKey& k) { return k.key == "growth.rate_per_h"; })) return;
   const double scene = base.growth.rate * base.growth.zoneLength / (units::mm / units::hour);
-  char b[64];
-  std::snprintf(b, sizeof b, "%.4g", lapse.growthMmPerH);
   auto at = std::find_if(rep.fixed.begin(), rep.fixed.end(), [](const FixedKey& f) { return f.key == "tip_speed_mm_per_h"; });
   rep.fixed.insert(at == rep.fixed.end() ? at : at + 1,
-                   FixedKey{"trace_growth_mm_per_h", b, "the trace's dL/dt: least-squares slope of its lengths over its observation times"});
+                   FixedKey{"trace_growth_mm_per_h", significantText(lapse.growthMmPerH, 4), "the trace's dL/dt: least-squares slope of its lengths over its observation times"});
   const double apart = std::abs(lapse.growthMmPerH - scene) / scene;
   if (apart > kGrowthMismatch) {
     char line[300];
@@ -556,9 +552,7 @@ FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::f
   for (const FreeKey& fk : keys) {
     designText += "\"" + fk.key + "\" = [";
     for (int i = 0; i < k; ++i) {
-      char b[32];
-      std::snprintf(b, sizeof b, "%.9g", fk.lo + (i + 0.5) / k * (fk.hi - fk.lo));
-      designText += (i ? ", " : "") + numberText(std::strtod(b, nullptr));
+      designText += (i ? ", " : "") + numberText(std::strtod(significantText(fk.lo + (i + 0.5) / k * (fk.hi - fk.lo), 9).c_str(), nullptr));
     }
     designText += "]\n";
   }
@@ -696,11 +690,14 @@ FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::f
   // around the answer (kBootstrap resamples, each refitted and minimised)
   std::vector<double> sigmaU(static_cast<std::size_t>(n), kNaN);
   std::vector<double> bootSigma(static_cast<std::size_t>(n), kNaN);
+  double surfaceScale = unc.scale;  // the covariance scale sigmaU's statistical part already carries
   if (atSmallest.empty()) {
     for (int i = 0; i < n; ++i) sigmaU[static_cast<std::size_t>(i)] = unc.sigma[static_cast<std::size_t>(i)];
   } else {
     ustar = Eigen::VectorXd::Zero(n);
     for (const Eigen::VectorXd& m : atSmallest) ustar += m / static_cast<double>(atSmallest.size());
+    surfaceScale = 0;
+    for (const FitUncertainty& u : smallestUnc) surfaceScale += u.scale / static_cast<double>(smallestUnc.size());
     ustar = (ustar * 1e6).array().round().matrix() / 1e6;
     const Eigen::VectorXd lo = (ustar.array() - rho).max(0.0).matrix(), hi = (ustar.array() + rho).min(1.0).matrix();
     std::vector<Eigen::VectorXd> us, ys;
@@ -791,6 +788,14 @@ FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::f
     const SimRoot sim = simRootOf(fit.sceneAt(e.x).model, loadSnapshots(e.dir).back());
     return chiSquareOf(e.sim, tc.trace, shapeNoiseCovariance(tracedLike(sim.plateMm, target.plateMm), target.sigmaMm, kShapeSamples));
   });
+  // the answer's run against the trace's uncertainty alone fits worse than that uncertainty allows (chi2 /
+  // dof above 1, beyond the surface's scale the sigmas already carry): every sigma widens by the square
+  // root of the rest (the Birge ratio), so a fit the model follows less closely than the data's noise
+  // claims no more than its data (docs/experiments.md, "What a fit may claim")
+  if (rep.goodness.dof > 0) {
+    rep.answerScale = std::max(1.0, rep.goodness.chi2 / rep.goodness.dof / std::max(1.0, surfaceScale));
+    for (double& s : rep.sigma) s *= std::sqrt(rep.answerScale);
+  }
   if (lapse) growthAgainstTrace(rep, lapseTrace, bm);
   const FitEvaluation& b = rep.evaluations[static_cast<std::size_t>(rep.best)];
   if (rep.surfaceRun >= 0 && rep.best != rep.surfaceRun) {

@@ -64,9 +64,7 @@ std::vector<std::string> plausibilityWarnings(const TraceFile& tf, const Analyze
     const std::string check = tf.scaleSource.rfind("--", 0) == 0 || tf.scaleSource.rfind(o.flagPrefix, 0) == 0
                                   ? "check " + tf.scaleSource
                                   : "check the scale, " + tf.scaleSource + " (a file in pixels takes " + o.flagPrefix + "px-per-mm)";
-    char length[32];
-    std::snprintf(length, sizeof length, "%.4g", len);
-    out.push_back(tf.file + ":" + std::to_string(r.line) + ": primary root " + r.key + " is " + length +
+    out.push_back(tf.file + ":" + std::to_string(r.line) + ": primary root " + r.key + " is " + significantText(len, 4) +
                   " mm long, implausible for a seedling (" + decimalNumber(kPlausiblePrimaryMinMm) + " to " +
                   decimalNumber(kPlausiblePrimaryMaxMm) + " mm): " + check);
   }

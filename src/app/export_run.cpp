@@ -91,7 +91,7 @@ std::vector<Pick> pickSnapshots(const std::vector<Snapshot>& snaps, const Export
   if (given(o.atH)) return {Pick{snapshotNear(t, o.atH), o.atH}};
   if (!given(o.everyH)) return {Pick{static_cast<int>(snaps.size()) - 1, t.back()}};
   const double span = t.back() - t.front();
-  checkCount("--every-h " + flagNumber(o.everyH) + ": a series over the run's " + flagNumber(span) + " h", span / o.everyH + 1,
+  checkCount("--every-h " + significantText(o.everyH) + ": a series over the run's " + significantText(span) + " h", span / o.everyH + 1,
              caps::kSeriesFiles, "files", "caps::kSeriesFiles: one file each; docs/outputs.md, Caps");
   std::vector<Pick> picks;
   // k H from the first snapshot while within the run (a rounding margin of 1e-9 H at the end)
@@ -99,9 +99,9 @@ std::vector<Pick> pickSnapshots(const std::vector<Snapshot>& snaps, const Export
     const double at = std::min(t.front() + static_cast<double>(k) * o.everyH, t.back());
     const int i = nearestSnapshot(t, at);
     if (!picks.empty() && picks.back().index == i)
-      throw SceneError("--every-h " + flagNumber(o.everyH) + ": shorter than the run's snapshot spacing (" +
-                       flagNumber(at) + " h and " + flagNumber(picks.back().requestedH) + " h are both nearest the snapshot at " +
-                       flagNumber(t[static_cast<std::size_t>(i)]) + " h)");
+      throw SceneError("--every-h " + significantText(o.everyH) + ": shorter than the run's snapshot spacing (" +
+                       significantText(at) + " h and " + significantText(picks.back().requestedH) + " h are both nearest the snapshot at " +
+                       significantText(t[static_cast<std::size_t>(i)]) + " h)");
     picks.push_back(Pick{i, at});
   }
   return picks;
@@ -127,7 +127,7 @@ std::vector<fs::path> seriesNames(const fs::path& file, const std::vector<Pick>&
     std::snprintf(b, sizeof b, "_t%0*.*fh", intDigits + 1 + decimals, decimals, p.requestedH);
     fs::path f = file.parent_path() / (file.stem().string() + b + file.extension().string());
     if (!out.empty() && f == out.back())
-      throw SceneError("--every-h " + flagNumber(everyH) + ": two times give the name " + f.string());
+      throw SceneError("--every-h " + significantText(everyH) + ": two times give the name " + f.string());
     out.push_back(std::move(f));
   }
   return out;
@@ -395,7 +395,7 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
   if (o.rsml.empty() && o.gltf.empty() && o.paraview.empty())
     throw SceneError("export: no output asked for; give --rsml FILE (or --gltf FILE.glb, --paraview DIR)");
   if (given(o.atH) && given(o.everyH))
-    throw SceneError("--at-h " + flagNumber(o.atH) + ": give --at-h or --every-h, not both");
+    throw SceneError("--at-h " + significantText(o.atH) + ": give --at-h or --every-h, not both");
   if (given(o.atH)) checkedNumber("--at-h", o.atH, kGrowthHours);
   if (given(o.everyH)) checkedNumber("--every-h", o.everyH, {0, kGrowthHours.hi, true, false, "h"});
   if (const std::string why = whyUnfinished(runDir); !why.empty()) throw SceneError(o.runDir + ": " + why);

@@ -21,10 +21,14 @@
 #include <cstdint>
 #include <cstdio>
 #include <limits>
+#include <utility>
+
+#include <nlohmann/json.hpp>
 
 #include "rootsim/content_hash.hpp"
 #include "rootsim/environment.hpp"
 #include "rootsim/image.hpp"
+#include "rootsim/json.hpp"
 #include "rootsim/number_text.hpp"
 #include "rootsim/obstacle_mesh.hpp"
 #include "rootsim/signature.hpp"
@@ -96,50 +100,40 @@ struct Bin {
   }
 };
 
-// ---- JSON text: arrays and objects of already formatted members ----
+// ---- the JSON chunk: nlohmann-json values, laid out compact by jsonText (rootsim's numbers) ----
 
-std::string num(double v) { return numberText(v); }
-std::string num(float v) { return numberText(static_cast<double>(v)); }
-std::string num(int v) { return std::to_string(v); }
-std::string num(std::size_t v) { return std::to_string(v); }
-std::string quote(const std::string& s) {
-  std::string q = "\"";
-  for (char c : s) {
-    if (static_cast<unsigned char>(c) < 0x20) {  // control characters: \u00XX
-      char buf[8];
-      std::snprintf(buf, sizeof buf, "\\u%04x", static_cast<unsigned>(static_cast<unsigned char>(c)));
-      q += buf;
-      continue;
-    }
-    if (c == '"' || c == '\\') q += '\\';
-    q += c;
-  }
-  return q + "\"";
+using J = nlohmann::ordered_json;
+J num(double v) { return J(v); }
+J num(float v) { return J(static_cast<double>(v)); }
+J num(int v) { return J(v); }
+J num(std::size_t v) { return J(static_cast<std::uint64_t>(v)); }
+J quote(const std::string& s) { return J(s); }
+struct Member {
+  std::string key;
+  J value;
+};
+using Members = std::vector<Member>;
+J arr(const std::vector<J>& items) {
+  J a = J::array();
+  for (const J& x : items) a.push_back(x);
+  return a;
 }
-std::string join(const std::vector<std::string>& items, const char* open, const char* close) {
-  std::string s = open;
-  for (std::size_t i = 0; i < items.size(); ++i) s += (i ? "," : "") + items[i];
-  return s + close;
+J obj(const Members& members) {
+  J o = J::object();
+  for (const Member& m : members) o[m.key] = m.value;
+  return o;
 }
-std::string arr(const std::vector<std::string>& items) { return join(items, "[", "]"); }
-std::string obj(const std::vector<std::string>& members) { return join(members, "{", "}"); }
-std::string kv(const std::string& key, const std::string& value) { return quote(key) + ":" + value; }
-template <class T>
-std::string arrOf(const std::vector<T>& v) {
-  std::vector<std::string> items;
-  for (const T& x : v) items.push_back(num(x));
-  return arr(items);
-}
+Member kv(const std::string& key, J value) { return {key, std::move(value)}; }
 
 // the file's tables: what the JSON lists, built in order
 struct Doc {
   Bin bin;
-  std::vector<std::string> views, accessors, meshes, nodes, materials;
+  std::vector<J> views, accessors, meshes, nodes, materials;
 
   // a buffer view of bytes appended now; target 0: none (animation data)
   int view(const std::string& data, int target, int stride = 0) {
     bin.align4();
-    std::vector<std::string> m{kv("buffer", "0"), kv("byteOffset", num(bin.bytes.size())),
+    Members m{kv("buffer", num(0)), kv("byteOffset", num(bin.bytes.size())),
                                kv("byteLength", num(data.size()))};
     if (stride) m.push_back(kv("byteStride", num(stride)));
     if (target) m.push_back(kv("target", num(target)));
@@ -148,27 +142,26 @@ struct Doc {
     return static_cast<int>(views.size()) - 1;
   }
   int accessor(int view, std::size_t offset, int componentType, bool normalized, std::size_t count,
-               const char* type, const std::string& minMax = "") {
-    std::vector<std::string> m{kv("bufferView", num(view))};
+               const char* type, const Members& minMax = {}) {
+    Members m{kv("bufferView", num(view))};
     if (offset) m.push_back(kv("byteOffset", num(offset)));
     m.push_back(kv("componentType", num(componentType)));
-    if (normalized) m.push_back(kv("normalized", "true"));
+    if (normalized) m.push_back(kv("normalized", J(true)));
     m.push_back(kv("count", num(count)));
     m.push_back(kv("type", quote(type)));
-    std::string a = obj(m);
-    if (!minMax.empty()) a.insert(a.size() - 1, "," + minMax);
-    accessors.push_back(a);
+    m.insert(m.end(), minMax.begin(), minMax.end());
+    accessors.push_back(obj(m));
     return static_cast<int>(accessors.size()) - 1;
   }
   int material(const std::string& name, const std::array<float, 3>& srgb, bool doubleSided) {
-    std::vector<std::string> c;
+    std::vector<J> c;
     for (float v : srgb) c.push_back(num(static_cast<float>(srgbToLinear(v))));
-    c.push_back("1");
-    std::vector<std::string> m{
+    c.push_back(num(1));
+    Members m{
         kv("name", quote(name)),
-        kv("pbrMetallicRoughness", obj({kv("baseColorFactor", arr(c)), kv("metallicFactor", "0"),
+        kv("pbrMetallicRoughness", obj({kv("baseColorFactor", arr(c)), kv("metallicFactor", num(0)),
                                         kv("roughnessFactor", num(kRoughness))}))};
-    if (doubleSided) m.push_back(kv("doubleSided", "true"));
+    if (doubleSided) m.push_back(kv("doubleSided", J(true)));
     materials.push_back(obj(m));
     return static_cast<int>(materials.size()) - 1;
   }
@@ -189,7 +182,7 @@ struct FloatMesh {
 };
 
 // a primitive of a float mesh: its attributes and indices (32-bit: these meshes are small) appended
-std::string floatPrimitive(Doc& doc, const FloatMesh& m, int material) {
+J floatPrimitive(Doc& doc, const FloatMesh& m, int material) {
   Bin data;
   std::array<float, 3> lo{}, hi{};
   lo.fill(std::numeric_limits<float>::max());
@@ -204,8 +197,7 @@ std::string floatPrimitive(Doc& doc, const FloatMesh& m, int material) {
     for (int k = 0; k < 3; ++k) data.f32(static_cast<float>(m.nrm[i][k]));
   }
   const int v = doc.view(data.bytes, kArrayBuffer, 24);
-  const std::string minMax = kv("min", arr({num(lo[0]), num(lo[1]), num(lo[2])})) + "," +
-                             kv("max", arr({num(hi[0]), num(hi[1]), num(hi[2])}));
+  const Members minMax{kv("min", arr({num(lo[0]), num(lo[1]), num(lo[2])})), kv("max", arr({num(hi[0]), num(hi[1]), num(hi[2])}))};
   const int pos = doc.accessor(v, 0, kFloat, false, m.pos.size(), "VEC3", minMax);
   const int nrm = doc.accessor(v, 12, kFloat, false, m.pos.size(), "VEC3");
   Bin ib;
@@ -313,7 +305,7 @@ std::string gltfOf(const std::vector<RootSeries>& roots, const SceneInfo& info, 
   const int matPlus = doc.material("stripe +d1", look.plus, false);
   const int matMinus = doc.material("stripe -d1", look.minus, false);
   const std::array<int, 3> tubeMaterial{matBody, matPlus, matMinus};
-  std::vector<std::string> top;
+  std::vector<J> top;
   std::vector<std::pair<int, int>> frameNodes;  // (node, the file's frame it shows)
 
   for (const RootSeries& root : roots) {
@@ -347,7 +339,7 @@ std::string gltfOf(const std::vector<RootSeries>& roots, const SceneInfo& info, 
     }
 
     // pass 2: one mesh and one node per snapshot
-    std::vector<std::string> children;
+    std::vector<J> children;
     std::vector<V3> pos, nrm;
     for (std::size_t k = 0; k < root.snaps.size(); ++k) {
       const Snapshot& s = root.snaps[k];
@@ -370,12 +362,11 @@ std::string gltfOf(const std::vector<RootSeries>& roots, const SceneInfo& info, 
         vb.u8(0);
       }
       const int v = doc.view(vb.bytes, kArrayBuffer, 12);
-      const std::string minMax = kv("min", arr({num(qlo[0]), num(qlo[1]), num(qlo[2])})) + "," +
-                                 kv("max", arr({num(qhi[0]), num(qhi[1]), num(qhi[2])}));
+      const Members minMax{kv("min", arr({num(qlo[0]), num(qlo[1]), num(qlo[2])})), kv("max", arr({num(qhi[0]), num(qhi[1]), num(qhi[2])}))};
       const int pa = doc.accessor(v, 0, kShort, true, pos.size(), "VEC3", minMax);
       const int na = doc.accessor(v, 8, kByte, true, pos.size(), "VEC3");
       const auto counts = tubeIndexCounts(static_cast<int>(rings.size()));
-      std::vector<std::string> prims;
+      std::vector<J> prims;
       for (std::size_t m = 0; m < 3; ++m) {
         const int ia = doc.accessor(indexView[m], 0, shortIndices ? kUnsignedShort : kUnsignedInt, false, counts[m], "SCALAR");
         prims.push_back(obj({kv("attributes", obj({kv("POSITION", num(pa)), kv("NORMAL", num(na))})),
@@ -386,7 +377,7 @@ std::string gltfOf(const std::vector<RootSeries>& roots, const SceneInfo& info, 
       const bool shown = f == frames - 1;
       const std::string nodeName = prefixed ? root.name + " " + frameName(f, s) : frameName(f, s);
       doc.nodes.push_back(obj({kv("name", quote(nodeName)), kv("mesh", num(static_cast<int>(doc.meshes.size()) - 1)),
-                               kv("scale", shown ? "[1,1,1]" : "[0,0,0]"),
+                               kv("scale", shown ? arr({num(1), num(1), num(1)}) : arr({num(0), num(0), num(0)})),
                                kv("extras", obj({kv("step", num(s.step)), kv("time_h", num(s.timeH))}))}));
       frameNodes.emplace_back(static_cast<int>(doc.nodes.size()) - 1, f);
       children.push_back(num(static_cast<int>(doc.nodes.size()) - 1));
@@ -430,7 +421,7 @@ std::string gltfOf(const std::vector<RootSeries>& roots, const SceneInfo& info, 
       const double w = (isMajor ? kGridMajorLiftMm : kGridLiftMm) + kGridCrossLiftMm;
       (isMajor ? major : minor).quad(P(u0, v - hw, w), P(u1, v - hw, w), P(u1, v + hw, w), P(u0, v + hw, w), up);
     }
-    std::vector<std::string> prims{floatPrimitive(doc, minor, doc.material("grid 1 mm", plateLook.line, false))};
+    std::vector<J> prims{floatPrimitive(doc, minor, doc.material("grid 1 mm", plateLook.line, false))};
     if (!major.pos.empty()) prims.push_back(floatPrimitive(doc, major, doc.material("grid 10 mm", plateLook.major, false)));
     doc.meshes.push_back(obj({kv("name", quote("grid")), kv("primitives", arr(prims))}));
     doc.nodes.push_back(obj({kv("name", quote("grid")), kv("mesh", num(static_cast<int>(doc.meshes.size()) - 1))}));
@@ -456,13 +447,13 @@ std::string gltfOf(const std::vector<RootSeries>& roots, const SceneInfo& info, 
   // picture: its node turned -90 degrees about x
   const V3 plateCentre = P(0.5 * (u0 + u1), 0.5 * (v0 + v1), 0);
   const double xmag = 0.5 * (u1 - u0) * units::mm, ymag = 0.5 * (v1 - v0) * units::mm;
-  const std::string camera =
+  const J camera =
       obj({kv("name", quote("top view")), kv("type", quote("orthographic")),
            kv("orthographic", obj({kv("xmag", num(xmag)), kv("ymag", num(ymag)), kv("znear", num(0.01 * kCameraHeightM)),
                                    kv("zfar", num(2.0 * kCameraHeightM))}))});
   const double s2 = std::sqrt(0.5);
-  doc.nodes.push_back(obj({kv("name", quote("top view")), kv("camera", "0"),
-                           kv("rotation", arr({num(-s2), "0", "0", num(s2)})),
+  doc.nodes.push_back(obj({kv("name", quote("top view")), kv("camera", num(0)),
+                           kv("rotation", arr({num(-s2), num(0), num(0), num(s2)})),
                            kv("translation", arr({num(plateCentre.x()), num(kCameraHeightM), num(plateCentre.z())}))}));
   top.push_back(num(static_cast<int>(doc.nodes.size()) - 1));
 
@@ -470,19 +461,19 @@ std::string gltfOf(const std::vector<RootSeries>& roots, const SceneInfo& info, 
   // sampler reads a slice of one time list and one value list [0, 1, 0]
   // the animation: the node of the file's frame f has scale 1 on [f, f + 1) / fps and 0 elsewhere (STEP);
   // each sampler reads a slice of one time list and one value list [0, 1, 0]
-  std::string animations;
+  Members animations;
   if (frames > 1) {
     Bin times, values;
     for (int f = 0; f < frames; ++f) times.f32(static_cast<float>(f / kGltfFramesPerSecond));
     for (float v : {0.0f, 1.0f, 0.0f})
       for (int k = 0; k < 3; ++k) values.f32(v);
     const int tv = doc.view(times.bytes, 0), vv = doc.view(values.bytes, 0);
-    std::vector<std::string> samplers, channels;
+    std::vector<J> samplers, channels;
     for (const auto& [node, f] : frameNodes) {
       const int first = std::max(0, f - 1), last = std::min(frames - 1, f + 1);
       const auto t0 = static_cast<float>(first / kGltfFramesPerSecond), t1 = static_cast<float>(last / kGltfFramesPerSecond);
       const int in = doc.accessor(tv, static_cast<std::size_t>(first) * 4, kFloat, false, static_cast<std::size_t>(last - first + 1),
-                                  "SCALAR", kv("min", arr({num(t0)})) + "," + kv("max", arr({num(t1)})));
+                                  "SCALAR", {kv("min", arr({num(t0)})), kv("max", arr({num(t1)}))});
       // values from [0, 1, 0]: the first frame starts at its 1, the last ends at its 1
       const std::size_t valueOffset = f == 0 ? 12 : 0;
       const int out = doc.accessor(vv, valueOffset, kFloat, false, static_cast<std::size_t>(last - first + 1), "VEC3");
@@ -490,21 +481,21 @@ std::string gltfOf(const std::vector<RootSeries>& roots, const SceneInfo& info, 
       channels.push_back(obj({kv("sampler", num(static_cast<int>(samplers.size()) - 1)),
                               kv("target", obj({kv("node", num(node)), kv("path", quote("scale"))}))}));
     }
-    animations = kv("animations", arr({obj({kv("name", quote("growth")), kv("channels", arr(channels)),
-                                            kv("samplers", arr(samplers))})}));
+    animations.push_back(kv("animations", arr({obj({kv("name", quote("growth")), kv("channels", arr(channels)),
+                                            kv("samplers", arr(samplers))})})));
   }
   doc.nodes.push_back(obj({kv("name", quote("rootsim")), kv("children", arr(top))}));
   const int sceneRoot = static_cast<int>(doc.nodes.size()) - 1;
   doc.bin.align4();
 
-  std::vector<std::string> members{
+  Members members{
       // the generator is rootsim's signature; extras hold the BIN chunk's SHA-256, so that the write rule
       // (write_rule.hpp) replaces the file only while its geometry is as written
       kv("asset", obj({kv("version", quote("2.0")), kv("generator", quote(outputSignatureText())),
                        kv("extras", obj({kv("rootsim_bin_sha256", quote(sha256Hex(doc.bin.bytes)))}))})),
       kv("extensionsUsed", arr({quote("KHR_mesh_quantization")})),
       kv("extensionsRequired", arr({quote("KHR_mesh_quantization")})),
-      kv("scene", "0"),
+      kv("scene", num(0)),
       kv("scenes", arr({obj({kv("name", quote(info.title.empty() ? "rootsim" : info.title)), kv("nodes", arr({num(sceneRoot)}))})})),
       kv("nodes", arr(doc.nodes)),
       kv("meshes", arr(doc.meshes)),
@@ -513,8 +504,8 @@ std::string gltfOf(const std::vector<RootSeries>& roots, const SceneInfo& info, 
       kv("accessors", arr(doc.accessors)),
       kv("bufferViews", arr(doc.views)),
       kv("buffers", arr({obj({kv("byteLength", num(doc.bin.bytes.size()))})}))};
-  if (!animations.empty()) members.push_back(animations);
-  std::string json = obj(members);
+  members.insert(members.end(), animations.begin(), animations.end());
+  std::string json = jsonText(obj(members), -1);
   while (json.size() % 4) json += ' ';
 
   const std::size_t total = 12 + 8 + json.size() + 8 + doc.bin.bytes.size();

@@ -19,6 +19,7 @@
 #include "rootsim/limits.hpp"
 #include "rootsim/montage.hpp"
 #include "rootsim/csv.hpp"
+#include "rootsim/number_text.hpp"
 #include "rootsim/trajectory.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/write_rule.hpp"
@@ -65,9 +66,7 @@ std::string shortNumber(const std::string& text) {
   char* end = nullptr;
   const double v = std::strtod(text.c_str(), &end);
   if (text.empty() || end != text.c_str() + text.size() || !std::isfinite(v)) return text;
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.4g", v);
-  return buf;
+  return significantText(v, 4);
 }
 
 // "value unit" of key (symbol table), or the TOML text

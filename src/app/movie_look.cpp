@@ -9,6 +9,7 @@
 #include "rootsim/errors.hpp"
 #include "rootsim/limits.hpp"
 #include "rootsim/csv.hpp"
+#include "rootsim/number_text.hpp"
 #include "rootsim/trajectory.hpp"
 
 namespace fs = std::filesystem;
@@ -33,11 +34,6 @@ constexpr PlotKey kPlotKeys[] = {
     {"Tw", "Tw", "twist Tw (growth zone)", "turns", false},
 };
 
-std::string fmtNumber(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
 
 }  // namespace
 
@@ -54,7 +50,7 @@ MovieLook parseLook(const LookOptions& o) {
   // run --movie's default look is the fit view with a follow inset: there --field-mm alone sizes the inset
   const bool impliedInset = o.insetByDefault && o.fieldGiven && !o.cameraGiven && !o.inset;
   if (o.fieldGiven && l.camera != CameraMode::Follow && !o.inset && !impliedInset)
-    throw SceneError("--field-mm " + fmtNumber(o.fieldMm) + ": sizes the follow window; add --camera follow or --inset");
+    throw SceneError("--field-mm " + significantText(o.fieldMm) + ": sizes the follow window; add --camera follow or --inset");
   if (o.inset && l.camera == CameraMode::Follow)
     throw SceneError("--inset: puts a follow window into the fit view; use it with --camera fit");
   l.inset = o.inset || impliedInset;
@@ -77,7 +73,7 @@ MovieLook parseLook(const LookOptions& o) {
 void checkFieldAgainstPlate(const MovieLook& look, double plateMm) {
   if (look.camera == CameraMode::Follow || look.inset)
     if (look.fieldMm > plateMm)
-      throw SceneError("--field-mm " + fmtNumber(look.fieldMm) + ": larger than the plate (" + fmtNumber(plateMm) +
+      throw SceneError("--field-mm " + significantText(look.fieldMm) + ": larger than the plate (" + significantText(plateMm) +
                        " mm wide in the fit view)");
 }
 

@@ -13,6 +13,7 @@
 #include "rootsim/errors.hpp"
 #include "rootsim/limits.hpp"
 #include "rootsim/movie.hpp"
+#include "rootsim/number_text.hpp"
 #include "rootsim/render_scene.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/units.hpp"
@@ -78,7 +79,6 @@ double fitPlateMm(const std::vector<Snapshot>& snaps, const SceneInfo& info, con
   return frameFor(snaps, info, v).widthMm;
 }
 
-std::string num(double v) { return flagNumber(v); }
 // the plate view's right-hand share of the picture kept for the legend of the seedlings' values
 constexpr double kSeedLegendShare = 0.22;
 
@@ -88,23 +88,23 @@ bool given(double v) { return v != RenderOptions::kUnset; }
 // (scan: --scan's picture, the last snapshot unless --at-h or --frame says)
 void checkTimeFlags(const RenderOptions& o, bool scan) {
   const bool still = !o.png.empty() || given(o.atH) || o.frameGiven;
-  if (given(o.atH) && o.frameGiven) throw SceneError("--at-h " + num(o.atH) + ": give --at-h or --frame, not both");
+  if (given(o.atH) && o.frameGiven) throw SceneError("--at-h " + significantText(o.atH) + ": give --at-h or --frame, not both");
   if (still) {
     if (o.png.empty())
-      throw SceneError(std::string(given(o.atH) ? "--at-h " + num(o.atH) : "--frame " + std::to_string(o.frame)) +
+      throw SceneError(std::string(given(o.atH) ? "--at-h " + significantText(o.atH) : "--frame " + std::to_string(o.frame)) +
                        ": writes a still; add --png FILE");
     if (!scan && !given(o.atH) && !o.frameGiven) throw SceneError("--png " + o.png + ": a still; add --at-h H or --frame N");
     if (!o.mp4.empty() || !o.pngDir.empty() || !o.finalPng.empty())
       throw SceneError("--png " + o.png + ": a still is one picture; not with --mp4, --png-dir or --final-png");
     if (given(o.hoursPerSecond))
-      throw SceneError("--hours-per-second " + num(o.hoursPerSecond) + ": paces a movie; a still (--png) has no speed");
+      throw SceneError("--hours-per-second " + significantText(o.hoursPerSecond) + ": paces a movie; a still (--png) has no speed");
     if (o.frameGiven && o.frame < 0) throw SceneError("--frame " + std::to_string(o.frame) + ": must be >= 0");
   }
   if (given(o.atH)) checkedNumber("--at-h", o.atH, kGrowthHours);
   if (given(o.fromH)) checkedNumber("--from-h", o.fromH, kGrowthHours);
   if (given(o.toH)) checkedNumber("--to-h", o.toH, kGrowthHours);
   if (given(o.fromH) && given(o.toH) && o.fromH > o.toH)
-    throw SceneError("--from-h " + num(o.fromH) + ": after --to-h " + num(o.toH));
+    throw SceneError("--from-h " + significantText(o.fromH) + ": after --to-h " + significantText(o.toH));
   if (given(o.hoursPerSecond)) checkedNumber("--hours-per-second", o.hoursPerSecond, {0, 1e6, true, false, "h/s"});
 }
 
@@ -117,17 +117,17 @@ std::vector<Snapshot> framesOf(const std::vector<Snapshot>& snaps, const RenderO
   // the frames, counted before they are made (each holds a copy of its snapshot)
   const double lo = std::max(from, t.front()), hi = std::min(to, t.back());
   const double frames = hps > 0 ? std::max(0.0, hi - lo) * fps / hps + 1 : static_cast<double>(t.size());
-  checkCount((hps > 0 ? "--hours-per-second " + num(hps) + ": " : std::string()) + "a movie of " + num(std::max(0.0, hi - lo)) +
+  checkCount((hps > 0 ? "--hours-per-second " + significantText(hps) + ": " : std::string()) + "a movie of " + significantText(std::max(0.0, hi - lo)) +
                  " h at " + std::to_string(fps) + " fps",
              frames, caps::kMovieFrames, "frames", "caps::kMovieFrames: each frame holds a copy of its snapshot; docs/outputs.md, Caps");
   const std::vector<int> idx = movieFrames(t, from, to, hps, fps);
   if (idx.empty()) {
     std::string flags;
-    if (given(o.fromH)) flags += "--from-h " + num(o.fromH);
-    if (given(o.toH)) flags += std::string(flags.empty() ? "" : " ") + "--to-h " + num(o.toH);
-    throw SceneError(flags + ": no snapshot in [" + num(given(o.fromH) ? o.fromH : t.front()) + ", " +
-                     num(given(o.toH) ? o.toH : t.back()) + "] h (the run's snapshots: " + num(t.front()) + " .. " +
-                     num(t.back()) + " h)");
+    if (given(o.fromH)) flags += "--from-h " + significantText(o.fromH);
+    if (given(o.toH)) flags += std::string(flags.empty() ? "" : " ") + "--to-h " + significantText(o.toH);
+    throw SceneError(flags + ": no snapshot in [" + significantText(given(o.fromH) ? o.fromH : t.front()) + ", " +
+                     significantText(given(o.toH) ? o.toH : t.back()) + "] h (the run's snapshots: " + significantText(t.front()) + " .. " +
+                     significantText(t.back()) + " h)");
   }
   std::vector<Snapshot> out;
   out.reserve(idx.size());
@@ -178,7 +178,7 @@ int renderRunCommand(const RenderOptions& o) {
   const bool scan = given(o.scanPxPerMm);
   if (scan) {
     checkedNumber("--scan", o.scanPxPerMm, {0, 200, true, false, "px/mm"});
-    if (o.png.empty()) throw SceneError("--scan " + num(o.scanPxPerMm) + ": a picture; add --png FILE");
+    if (o.png.empty()) throw SceneError("--scan " + significantText(o.scanPxPerMm) + ": a picture; add --png FILE");
     if (o.plateView) throw SceneError("--scan: shows the whole plate already; drop --plate-view");
   }
   if (o.wholePlate && !o.plateView) throw SceneError("--whole-plate: frames --plate-view's whole plate; add --plate-view");
@@ -215,7 +215,7 @@ int renderRunCommand(const RenderOptions& o) {
     if (scan) {
       const auto px = [&](double mm) { return 2 * static_cast<int>(std::lround(0.5 * mm * o.scanPxPerMm)); };
       if (px(w) > 16384 || px(l) > 16384)
-        throw SceneError("--scan " + num(o.scanPxPerMm) + ": a picture of " + std::to_string(px(w)) + "x" + std::to_string(px(l)) +
+        throw SceneError("--scan " + significantText(o.scanPxPerMm) + ": a picture of " + std::to_string(px(w)) + "x" + std::to_string(px(l)) +
                          " px; at most 16384 on a side");
       job.view.width = std::max(2, px(w));
       job.view.height = std::max(2, px(l));

@@ -62,7 +62,7 @@ std::string fig2a(const Ctx& c) {
     const RunResult r = result(c, cases[i]);
     Axes ax;
     if (i == 0) ax.panelLabel = "A";
-    ax.title = "α = " + num(cases[i].alpha) + "°";
+    ax.title = "α = " + significantText(cases[i].alpha) + "°";
     ax.xlabel = "lateral [mm]";
     if (i == 0) ax.ylabel = "downhill [mm]";
     // centre each root laterally in the common window
@@ -77,9 +77,9 @@ std::string fig2a(const Ctx& c) {
     f.axes.push_back(ax);
     const std::string pat = r.pattern;
     if (cases[i].alpha == 0) straight0 = pat == "straight";
-    table += "| " + num(cases[i].alpha) + " | " + pat + " | " + fmt3(val(r, "wavelength_mm")) + " | " +
-             fmt3(val(r, "amplitude_mm")) + " | " + num(std::round(val(r, "theta_min_deg"))) + " .. " +
-             num(std::round(val(r, "theta_max_deg"))) + " |\n";
+    table += "| " + significantText(cases[i].alpha) + " | " + pat + " | " + fmt3(val(r, "wavelength_mm")) + " | " +
+             fmt3(val(r, "amplitude_mm")) + " | " + significantText(std::round(val(r, "theta_min_deg"))) + " .. " +
+             significantText(std::round(val(r, "theta_max_deg"))) + " |\n";
   }
   saveFigure(f, (fs::path(c.opt.out) / "fig2a").string(), c.save());
   const Theory t = theoryFor(modelOf(c, cases[0]));
@@ -103,11 +103,11 @@ std::string fig2a(const Ctx& c) {
   auto transitionClaim = [&](const std::string& what, const Transition& tr, double theoryDeg, const std::string& eq,
                              const std::string& paper) {
     const double mid = 0.5 * (tr.lo + tr.hi);
-    const std::string meas = std::isfinite(mid) ? fmt3(mid) + "° (bracket " + num(tr.lo) + "° … " + num(tr.hi) + "°, " +
+    const std::string meas = std::isfinite(mid) ? fmt3(mid) + "° (bracket " + significantText(tr.lo) + "° … " + significantText(tr.hi) + "°, " +
                                                       std::to_string(tr.runs) + " bisection runs)"
                                                 : "no bracket on the grid";
     c.claims->push_back({what, fmt3(theoryDeg) + "° (" + eq + ")", paper, meas,
-                         "within the phase step (" + num(step) + "°) of " + eq, std::abs(mid - theoryDeg) <= step});
+                         "within the phase step (" + significantText(step) + "°) of " + eq, std::abs(mid - theoryDeg) <= step});
   };
   transitionClaim("Fig. 2A: waving sets in at α_s→w (β = 0.1), by bisection", sw, t.alphaStraightToWave / units::deg, "Eq. 12",
                   "≈ 15°");
@@ -116,17 +116,17 @@ std::string fig2a(const Ctx& c) {
   // the Fig. 2A scene as shipped: a short root that waves
   const RunResult rs = result(c, short40);
   c.claims->push_back({"Fig. 2A: the 10 mm root at α = 40° (β = γ = 0.1) waves", "waving", "waving (Fig. 2A)",
-                       rs.pattern + " (" + num(rs.lateralPeaks) + " lateral peaks, θ " +
-                           num(std::round(val(rs, "theta_min_deg"))) + "° … " + num(std::round(val(rs, "theta_max_deg"))) +
+                       rs.pattern + " (" + significantText(rs.lateralPeaks) + " lateral peaks, θ " +
+                           significantText(std::round(val(rs, "theta_min_deg"))) + "° … " + significantText(std::round(val(rs, "theta_max_deg"))) +
                            "°, mean angle " + fmt3(val(rs, "skew_deg")) + "°)",
                        "pattern", rs.pattern == "waving"});
-  table += "\nTransition angles by bisection (the grid's bracket halved down to " + num(width) +
+  table += "\nTransition angles by bisection (the grid's bracket halved down to " + significantText(width) +
            "°; each row one run):\n\n| α (deg) | pattern |\n|---|---|\n" + sw.log + wc.log;
-  return md("fig2a", "Final top views for increasing tilt. Theory (Eqs. 12, 13) at β Lgz/R = " + num(t.effectiveGain) +
+  return md("fig2a", "Final top views for increasing tilt. Theory (Eqs. 12, 13) at β Lgz/R = " + significantText(t.effectiveGain) +
                          ": straight → waving at " + fmt3(t.alphaStraightToWave / units::deg) + "°, waving → coiling at " +
                          fmt3(t.alphaWaveToCoil / units::deg) + "°. Measured by bisection: straight → waving between " +
-                         num(sw.lo) + "° and " + num(sw.hi) + "°, waving → coiling between " + num(wc.lo) + "° and " +
-                         num(wc.hi) + "°.",
+                         significantText(sw.lo) + "° and " + significantText(sw.hi) + "°, waving → coiling between " + significantText(wc.lo) + "° and " +
+                         significantText(wc.hi) + "°.",
          table);
 }
 

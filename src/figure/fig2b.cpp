@@ -60,7 +60,7 @@ std::string fig2b(const Ctx& c) {
   for (int k = 0; k < 5; ++k) {
     Axes ax;
     if (k == 0) ax.panelLabel = "B";
-    ax.title = "t = " + num(std::round(snaps[static_cast<size_t>(k)]->timeH)) + " h";
+    ax.title = "t = " + significantText(std::round(snaps[static_cast<size_t>(k)]->timeH)) + " h";
     ax.xlabel = "lateral [mm]";
     if (k == 0) ax.ylabel = "downhill [mm]";
     addRoot(c, f, ax, *snaps[static_cast<size_t>(k)], w, win);

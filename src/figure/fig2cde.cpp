@@ -88,7 +88,7 @@ std::string fig2cde(const Ctx& c) {
   for (const auto& k : frees) {
     const RunResult rk = result(c, k);
     const double g = val(rk, "effective_gain"), T = val(rk, "first_snap_or_turning_h"), T0k = val(rk, "T0_h");
-    table += "| " + num(k.beta) + " | " + num(g) + " | " + fmt3(T0k) + " | " + fmt3(T) + " | " + fmt3(T / T0k) + " |\n";
+    table += "| " + significantText(k.beta) + " | " + significantText(g) + " | " + fmt3(T0k) + " | " + fmt3(T) + " | " + fmt3(T / T0k) + " |\n";
     if (!std::isfinite(T)) continue;
     const double x = std::log(g), y = std::log(T);
     sx += x; sy += y; sxx += x * x; sxy += x * y;
@@ -113,8 +113,8 @@ std::string fig2cde(const Ctx& c) {
                        "fit to its own free-organ runs (SI 5), derived with γ = 0. On the plate the same root snaps first "
                        "at " + fmt3(snap / T0h) + " T0 and grows half a wave in λ / (2 v_tip) = " + fmt3(halfWave / T0h) +
                        " T0, as Eq. 7's T0 says (Eqs. 7, 9 hold); the free organ crosses the vertical earlier, and its "
-                       "turning time / T0 drifts with β from " + fmt3(Tf.front()) + " (β = " + num(betas.front()) +
-                       ") to " + fmt3(Tf.back()) + " (β = " + num(betas.back()) + "; table under fig2cde), so no O(1) "
+                       "turning time / T0 drifts with β from " + fmt3(Tf.front()) + " (β = " + significantText(betas.front()) +
+                       ") to " + fmt3(Tf.back()) + " (β = " + significantText(betas.back()) + "; table under fig2cde), so no O(1) "
                        "prefactor makes Eq. 7 hold for all β. The crossing time is interpolated between growth steps; "
                        "docs/claims.md lists the full-resolution runs (γ = 0 and a horizontal start included) that "
                        "give the same picture."});
@@ -123,9 +123,9 @@ std::string fig2cde(const Ctx& c) {
                        "exponent " + fmt3(slope) + " (least squares over " + std::to_string(nfit) + " runs; ratio " +
                            fmt3(slope / -0.6) + ")",
                        std::string(kScaleTol) + " of the exponent", within(slope / -0.6, kScaleLo, kScaleHi),
-                       "The local exponent steepens with the gain: " + fmt3(eLo) + " between β = " + num(betas[0]) +
-                           " and " + num(betas[1]) + ", " + fmt3(eHi) + " between β = " + num(betas[betas.size() - 2]) +
-                           " and " + num(betas.back()) + ". This model, as docs/model.md specifies it, does not reproduce "
+                       "The local exponent steepens with the gain: " + fmt3(eLo) + " between β = " + significantText(betas[0]) +
+                           " and " + significantText(betas[1]) + ", " + fmt3(eHi) + " between β = " + significantText(betas[betas.size() - 2]) +
+                           " and " + significantText(betas.back()) + ". This model, as docs/model.md specifies it, does not reproduce "
                            "the paper's fitted −3/5; not refitted."});
   // Fig. 2C: "both profiles present oscillations with a similar period": the mean time between crossings
   // of theta_tip = 0 (half a period), for the waving root after its first snap and for the free organ

@@ -64,7 +64,7 @@ std::string fig3a(const Ctx& c) {
   for (const auto& k : cs) {
     const RunResult r = result(c, k);
     const double p = val(r, "max_kappa_eq8_per_mm"), mk = val(r, "max_kappa_per_mm");
-    table += "| " + num(k.alpha) + " | " + num(k.beta) + " | " + r.pattern + " | " + fmt3(mk) + " | " + fmt3(p) +
+    table += "| " + significantText(k.alpha) + " | " + significantText(k.beta) + " | " + r.pattern + " | " + fmt3(mk) + " | " + fmt3(p) +
              " | " + fmt3(mk / p) + " |\n";
     if (r.pattern != "waving") continue;
     pred.push_back(p);
@@ -92,7 +92,7 @@ std::string fig3b(const Ctx& c) {
     const RunResult r = result(c, k);
     const double lam = val(r, "wavelength_mm"), A = val(r, "amplitude_mm");
     const double pred = 4 * A / std::tan(k.alpha * units::deg);
-    table += "| " + num(k.alpha) + " | " + num(k.beta) + " | " + r.pattern + " | " + fmt3(lam) + " | " + fmt3(A) +
+    table += "| " + significantText(k.alpha) + " | " + significantText(k.beta) + " | " + r.pattern + " | " + fmt3(lam) + " | " + fmt3(A) +
              " | " + fmt3(val(r, "amplitude_half_mm")) + " | " + fmt3(pred) + " | " + fmt3(lam / pred) + " | " +
              fmt3(val(r, "wavelength_eq9_mm")) + " | " + fmt3(val(r, "amplitude_eq10_mm")) + " |\n";
     if (r.pattern != "waving" || !std::isfinite(lam) || !std::isfinite(A)) continue;

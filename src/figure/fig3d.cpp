@@ -78,11 +78,11 @@ std::string phaseDiagram(const Ctx& c, const std::string& name, const std::strin
       if (std::isfinite(b) && std::abs(k.alpha - b) <= step) ++nearMiss;
       else {
         ++farMiss;
-        far += (far.empty() ? "" : ", ") + std::string("g ") + num(g) + " α " + num(k.alpha) + "°: " + r.pattern +
+        far += (far.empty() ? "" : ", ") + std::string("g ") + significantText(g) + " α " + significantText(k.alpha) + "°: " + r.pattern +
                " (theory " + th + ")";
       }
     }
-    table += "| " + num(g) + " | " + num(k.alpha) + " | " + r.pattern + " | " + th + (ok ? "" : " **≠**") + " |\n";
+    table += "| " + significantText(g) + " | " + significantText(k.alpha) + " | " + r.pattern + " | " + th + (ok ? "" : " **≠**") + " |\n";
   }
   Axes ax;
   if (name == "fig3d") ax.panelLabel = "D";  // the SI's variants have no letter of the paper's Fig. 3
@@ -136,14 +136,14 @@ std::string phaseDiagram(const Ctx& c, const std::string& name, const std::strin
                        std::to_string(agree) + " of " + std::to_string(total) + " cells agree; " +
                            std::to_string(nearMiss) + " disagree as the neighbouring phase within one step of its boundary, " +
                            std::to_string(farMiss) + " farther" + (far.empty() ? "" : ": " + far),
-                       "a disagreement only as the neighbouring phase within the phase step (" + num(step) +
+                       "a disagreement only as the neighbouring phase within the phase step (" + significantText(step) +
                            "°) of their boundary",
                        farMiss == 0,
                        "Eqs. 12-13 were derived for γ = 0 and local sensing; the paper reports no qualitative difference "
                        "for γ = 1 and apical sensing (SI 7). The cells are listed under the " + name + " panel (≠ marks a "
                        "disagreement); docs/claims.md lists full-resolution runs of the cells the quick report gets "
                        "wrong, which tell a resolution effect from a property of the model."});
-  return md(name, "Simulated pattern (symbols) over tilt (" + num(step) + "° grid) and effective gain (" + variant +
+  return md(name, "Simulated pattern (symbols) over tilt (" + significantText(step) + "° grid) and effective gain (" + variant +
                       "), on the regions predicted by Eqs. 12 and 13 (derived for γ = 0 and local sensing).",
          table);
 }

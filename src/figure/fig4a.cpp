@@ -49,7 +49,7 @@ std::string fig4a(const Ctx& c) {
     addRoot(c, f, ax, *finals[i], cs[i], win);
     f.axes.push_back(ax);
     skews.push_back(std::abs(val(r, "skew_deg")));
-    table += "| " + num(cs[i].rTau) + " | " + fmt3(val(r, "omega_T0")) + " | " + fmt3(val(r, "skew_deg")) + " | " +
+    table += "| " + significantText(cs[i].rTau) + " | " + fmt3(val(r, "omega_T0")) + " | " + fmt3(val(r, "skew_deg")) + " | " +
              r.pattern + " |\n";
   }
   saveFigure(f, (fs::path(c.opt.out) / "fig4a").string(), c.save());

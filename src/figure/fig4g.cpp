@@ -41,10 +41,10 @@ std::string fig4g(const Ctx& c) {
       y.push_back(std::abs(std::sin(sk)) / std::tan(k.alpha * units::deg));
       xmax = std::max(xmax, x.back());
       if (wt > largeWT) { largeWT = wt; largeRatio = y.back(); }
-      table += "| " + num(k.alpha) + " | " + num(k.rTau) + " | " + fmt3(wt) + " | " + fmt3(val(r, "skew_deg")) + " | " +
+      table += "| " + significantText(k.alpha) + " | " + significantText(k.rTau) + " | " + fmt3(wt) + " | " + fmt3(val(r, "skew_deg")) + " | " +
                fmt3(y.back()) + " |\n";
     }
-    ax.series.push_back(points(x, y, static_cast<int>(ia), ia ? 's' : 'o', "α = " + num(alphas[ia]) + "°"));
+    ax.series.push_back(points(x, y, static_cast<int>(ia), ia ? 's' : 'o', "α = " + significantText(alphas[ia]) + "°"));
   }
   std::vector<double> gx, g14;
   for (double x = 0; x <= 1.1 * xmax + 1e-9; x += xmax / 200) {

@@ -120,7 +120,7 @@ std::string makeFigure(const std::string& name, const FigureOptions& opt,
         "Tolerances (a referee's, never widened to make a claim pass): a scaling law holds when measured / predicted "
         "is within ±25 %; a ratio the paper says is 1 within 0.75 … 1.33; a transition angle within the phase "
         "diagram's step in α (" +
-        num(c.alphaStep()) + "° here).\n\n";
+        significantText(c.alphaStep()) + "° here).\n\n";
     // the runs of the big panels in one batch, dearest first (runCases), so that both jobs stay busy
     // to its end; each figure then finds its runs done
     {

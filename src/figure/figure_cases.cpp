@@ -5,20 +5,16 @@
 #include <cmath>
 #include <sstream>
 
+#include "rootsim/number_text.hpp"
 #include "rootsim/units.hpp"
 
 namespace rootsim::fig {
 
-std::string num(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
 
 std::string dirOf(const Ctx& c, const Case& k) {
-  return std::string(c.opt.quick ? "quick" : "full") + "_a" + num(k.alpha) + "_b" + num(k.beta) + "_g" +
-         num(k.gamma) + "_t" + num(k.rTau) + (k.free ? "_free" : "") + (k.apical ? "_apical" : "") + "_L" +
-         num(k.lengthMm);
+  return std::string(c.opt.quick ? "quick" : "full") + "_a" + significantText(k.alpha) + "_b" + significantText(k.beta) + "_g" +
+         significantText(k.gamma) + "_t" + significantText(k.rTau) + (k.free ? "_free" : "") + (k.apical ? "_apical" : "") + "_L" +
+         significantText(k.lengthMm);
 }
 
 Model modelOf(const Ctx& c, const Case& k) {

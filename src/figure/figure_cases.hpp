@@ -8,6 +8,7 @@
 
 #include "rootsim/figure.hpp"
 #include "rootsim/model.hpp"
+#include "rootsim/number_text.hpp"
 #include "rootsim/snapshot.hpp"
 
 namespace rootsim::fig {
@@ -40,8 +41,6 @@ struct Ctx {
   SaveOptions save() const { return SaveOptions{opt.dpi, opt.widthMm, opt.titles}; }
 };
 
-// short decimal text of a number ("0.2", "40")
-std::string num(double v);
 // the run directory of a case inside ctx's runs folder (the same case, the same directory: resumable)
 std::string dirOf(const Ctx& c, const Case& k);
 // the scene name of every figure run (result.csv's scene column, summary.json, scene.toml's header:

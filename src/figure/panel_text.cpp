@@ -4,13 +4,12 @@
 #include <cmath>
 #include <cstdio>
 
+#include "rootsim/number_text.hpp"
+
 namespace rootsim::fig {
 
 std::string fmt3(double v) {
-  if (!std::isfinite(v)) return "n/a";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.3g", v);
-  return b;
+  return std::isfinite(v) ? significantText(v, 3) : "n/a";
 }
 
 std::string yesNo(bool b) { return b ? "yes" : "**no**"; }

@@ -14,6 +14,7 @@
 #include <limits>
 
 #include "rootsim/errors.hpp"
+#include "rootsim/number_text.hpp"
 #include "rootsim/png_signature.hpp"
 #include "rootsim/units.hpp"
 #include "rootsim/write_rule.hpp"
@@ -57,11 +58,6 @@ std::vector<double> logTicks(double lo, double hi) {
   return t;
 }
 
-std::string tickLabel(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
 
 struct Box { double x, y, w, h; };
 
@@ -387,13 +383,13 @@ void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
     if (a.grid) { cairo_set_source_rgb(cr, 0.9, 0.9, 0.9); cairo_move_to(cr, X(v), T); cairo_line_to(cr, X(v), B); cairo_stroke(cr); }
     cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
     cairo_move_to(cr, X(v), B); cairo_line_to(cr, X(v), B + 5); cairo_stroke(cr);
-    text(p, X(v), B + 8, tickLabel(v), 12, 0.5, 0.0);
+    text(p, X(v), B + 8, significantText(v), 12, 0.5, 0.0);
   }
   for (double v : yt) {
     if (a.grid) { cairo_set_source_rgb(cr, 0.9, 0.9, 0.9); cairo_move_to(cr, L, Y(v)); cairo_line_to(cr, R, Y(v)); cairo_stroke(cr); }
     cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
     cairo_move_to(cr, L - 5, Y(v)); cairo_line_to(cr, L, Y(v)); cairo_stroke(cr);
-    if (cell.yTickLabels) text(p, L - 8, Y(v), tickLabel(v), 12, 1.0, 0.5);
+    if (cell.yTickLabels) text(p, L - 8, Y(v), significantText(v), 12, 1.0, 0.5);
   }
   cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
   cairo_set_line_width(cr, 1.2);

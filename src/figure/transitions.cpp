@@ -32,7 +32,7 @@ void bisect(const Ctx& c, const Case& base, std::vector<Transition*> trs, double
       const std::string pat = result(c, cs[j]).pattern;
       (who[j]->above(pat) ? who[j]->hi : who[j]->lo) = cs[j].alpha;
       ++who[j]->runs;
-      who[j]->log += "| " + num(cs[j].alpha) + " | " + pat + " |\n";
+      who[j]->log += "| " + significantText(cs[j].alpha) + " | " + pat + " |\n";
     }
   }
 }

@@ -1,9 +1,11 @@
-// summary.json's builder (json.hpp).
+// the JSON files' builder and layout (json.hpp).
 #include "rootsim/json.hpp"
 
 #include <cmath>
-#include <cstdio>
+#include <cstdint>
 #include <utility>
+
+#include <nlohmann/json.hpp>
 
 #include "rootsim/number_text.hpp"
 
@@ -11,70 +13,97 @@
 namespace rootsim {
 
 namespace {
-std::string jsonEscape(const std::string& s) {
-  std::string o = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') { o += '\\'; o += c; }
-    else if (c == '\n') o += "\\n";
-    else if (static_cast<unsigned char>(c) < 0x20) { char b[8]; std::snprintf(b, sizeof b, "\\u%04x", c); o += b; }
-    else o += c;
+using OJ = nlohmann::ordered_json;
+
+// a scalar's text: numbers as numberText (what the CSV files write), the rest as nlohmann-json writes it
+std::string scalarText(const OJ& v) {
+  if (v.is_number_float()) {
+    const double x = v.get<double>();
+    return std::isfinite(x) ? numberText(x) : "null";
   }
-  return o + "\"";
+  return v.dump(-1, ' ', false, OJ::error_handler_t::replace);
+}
+
+void write(const OJ& v, int indent, std::string& o) {
+  const bool pretty = indent >= 0;
+  const std::string pad = pretty ? std::string(static_cast<size_t>(indent) + 2, ' ') : std::string();
+  const char* next = pretty ? ",\n" : ",";
+  if (v.is_object()) {
+    o += pretty ? "{\n" : "{";
+    size_t i = 0;
+    for (const auto& [key, member] : v.items()) {
+      o += pad + scalarText(OJ(key)) + (pretty ? ": " : ":");
+      write(member, pretty ? indent + 2 : indent, o);
+      o += ++i < v.size() ? next : (pretty ? "\n" : "");
+    }
+    o += (pretty ? std::string(static_cast<size_t>(indent), ' ') : std::string()) + "}";
+  } else if (v.is_array()) {
+    if (v.empty()) { o += "[]"; return; }
+    o += pretty ? "[\n" : "[";
+    for (size_t i = 0; i < v.size(); ++i) {
+      o += pad;
+      write(v[i], pretty ? indent + 2 : indent, o);
+      o += i + 1 < v.size() ? next : (pretty ? "\n" : "");
+    }
+    o += (pretty ? std::string(static_cast<size_t>(indent), ' ') : std::string()) + "]";
+  } else {
+    o += scalarText(v);
+  }
 }
 }  // namespace
 
+std::string jsonText(const OJ& v, int indent) {
+  std::string o;
+  write(v, indent, o);
+  return o;
+}
+
+Json::Json() : doc_(std::make_unique<OJ>(OJ::object())) {}
+Json::Json(const Json& other) : doc_(std::make_unique<OJ>(*other.doc_)) {}
+Json::Json(Json&& other) noexcept : doc_(std::make_unique<OJ>(OJ::object())) { doc_.swap(other.doc_); }
+Json& Json::operator=(const Json& other) {
+  if (this != &other) *doc_ = *other.doc_;
+  return *this;
+}
+Json& Json::operator=(Json&& other) noexcept {
+  doc_.swap(other.doc_);
+  return *this;
+}
+Json::~Json() = default;
 
 Json& Json::num(const std::string& key, double v) {
-  items_.push_back({key, std::isfinite(v) ? numberText(v) : "null", nullptr, {}, false});
+  (*doc_)[key] = std::isfinite(v) ? OJ(v) : OJ(nullptr);
   return *this;
 }
 Json& Json::integer(const std::string& key, long long v) {
-  items_.push_back({key, std::to_string(v), nullptr, {}, false});
+  (*doc_)[key] = static_cast<std::int64_t>(v);
   return *this;
 }
 Json& Json::str(const std::string& key, const std::string& v) {
-  items_.push_back({key, jsonEscape(v), nullptr, {}, false});
+  (*doc_)[key] = v;
   return *this;
 }
 Json& Json::strings(const std::string& key, const std::vector<std::string>& v) {
-  std::string raw = "[";
-  for (std::size_t i = 0; i < v.size(); ++i) raw += (i ? ", " : "") + jsonEscape(v[i]);
-  items_.push_back({key, raw + "]", nullptr, {}, false});
+  OJ a = OJ::array();
+  for (const std::string& s : v) a.push_back(s);
+  (*doc_)[key] = std::move(a);
   return *this;
 }
 Json& Json::boolean(const std::string& key, bool v) {
-  items_.push_back({key, v ? "true" : "false", nullptr, {}, false});
+  (*doc_)[key] = v;
   return *this;
 }
 Json& Json::object(const std::string& key, const Json& v) {
-  items_.push_back({key, "", std::make_shared<Json>(v), {}, false});
+  (*doc_)[key] = *v.doc_;
   return *this;
 }
 Json& Json::array(const std::string& key, const std::vector<Json>& v) {
-  Item it{key, "", nullptr, {}, true};
-  it.elems = v;
-  it.isArray = true;
-  items_.push_back(std::move(it));
+  OJ a = OJ::array();
+  for (const Json& e : v) a.push_back(*e.doc_);
+  (*doc_)[key] = std::move(a);
   return *this;
 }
-std::string Json::dump(int indent) const {
-  const std::string pad(static_cast<size_t>(indent + 2), ' ');
-  std::string o = "{\n";
-  for (size_t i = 0; i < items_.size(); ++i) {
-    const Item& it = items_[i];
-    std::string value = it.child ? it.child->dump(indent + 2) : it.raw;
-    if (it.isArray) {
-      const std::string inner(static_cast<size_t>(indent + 4), ' ');
-      value = it.elems.empty() ? "[]" : "[\n";
-      for (size_t k = 0; k < it.elems.size(); ++k)
-        value += inner + it.elems[k].dump(indent + 4) + (k + 1 < it.elems.size() ? ",\n" : "\n");
-      if (!it.elems.empty()) value += pad + "]";
-    }
-    o += pad + jsonEscape(it.key) + ": " + value;
-    o += i + 1 < items_.size() ? ",\n" : "\n";
-  }
-  return o + std::string(static_cast<size_t>(indent), ' ') + "}";
-}
+std::string Json::dump(int indent) const { return jsonText(*doc_, indent < 0 ? 0 : indent); }
 
 Json theoryJson(const Theory& t) {
   Json j;

@@ -14,6 +14,7 @@
 #include "rootsim/contact.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/initial.hpp"
+#include "rootsim/number_text.hpp"
 #include "rootsim/units.hpp"
 #include "scene_toml.hpp"
 
@@ -83,12 +84,6 @@ double draw(const Spread& s, std::uint64_t& state) {
   return s.law == Spread::Law::Normal ? s.width * normalDraw(state) : s.width * splitmixUniform(state);
 }
 
-// a number in a message (%g: "0", "1000", "0.15")
-std::string shortNumber(double x) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", x);
-  return b;
-}
 
 // a length in a message [m -> "0.15 mm"]
 std::string mmText(double m) {
@@ -221,8 +216,8 @@ PlateTables parsePlateTables(const toml::table& root, const std::string& sourceN
       auto num = [&](double lo, double hi, bool closedLo, double unit) {
         const double x = number(n, loc, full);
         if (!(closedLo ? x >= lo : x > lo) || !(x <= hi))
-          throw SceneError(loc + ": " + full + " must be in " + (closedLo ? "[" : "(") + shortNumber(lo) + ", " + shortNumber(hi) +
-                           "] (got " + shortNumber(x) + ")");
+          throw SceneError(loc + ": " + full + " must be in " + (closedLo ? "[" : "(") + significantText(lo) + ", " + significantText(hi) +
+                           "] (got " + significantText(x) + ")");
         return x * unit;
       };
       if (key == "enabled") {

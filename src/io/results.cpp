@@ -7,6 +7,7 @@
 
 #include "rootsim/csv.hpp"
 #include "rootsim/errors.hpp"
+#include "rootsim/number_text.hpp"
 #include "rootsim/units.hpp"
 
 namespace rootsim {
@@ -16,10 +17,7 @@ namespace {
 #define STR(name, growth, field) ResultColumn{name, "", growth, true, nullptr, &RunResult::field}
 
 std::string csvNum(double x) {
-  if (!std::isfinite(x)) return "";
-  char b[32];
-  std::snprintf(b, sizeof b, "%.10g", x);
-  return b;
+  return std::isfinite(x) ? significantText(x, 10) : "";
 }
 
 }  // namespace

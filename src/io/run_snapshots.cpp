@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "rootsim/errors.hpp"
+#include "rootsim/number_text.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/trajectory.hpp"
 
@@ -110,16 +111,11 @@ std::vector<double> snapshotTimes(const std::vector<Snapshot>& snaps) {
   return t;
 }
 
-std::string flagNumber(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
 
 int snapshotNear(const std::vector<double>& t, double atH, const std::string& range) {
   if (t.empty() || atH < t.front() || atH > t.back())
-    throw SceneError("--at-h " + flagNumber(atH) + ": outside the " + range + " snapshots, " +
-                     (t.empty() ? std::string("none") : flagNumber(t.front()) + " .. " + flagNumber(t.back()) + " h"));
+    throw SceneError("--at-h " + significantText(atH) + ": outside the " + range + " snapshots, " +
+                     (t.empty() ? std::string("none") : significantText(t.front()) + " .. " + significantText(t.back()) + " h"));
   return nearestSnapshot(t, atH);
 }
 

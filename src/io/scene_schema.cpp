@@ -328,33 +328,24 @@ std::string formatNumber(double x, bool integer) {
   return shortestNumber(x);
 }
 
-namespace {
-// shortest text of a number for messages ("0", "-0.1", "1e+300")
-std::string pretty(double x) {
-  char buf[64];
-  auto r = std::to_chars(buf, buf + sizeof buf, x);
-  return std::string(buf, r.ptr);
-}
-}  // namespace
-
 std::string rangeText(const KeySpec& k) {
   std::ostringstream e;
   if (k.lo > -kInf && k.hi < kInf)
-    e << "in " << (k.loOpen ? "(" : "[") << pretty(k.lo) << ", " << pretty(k.hi) << (k.hiOpen ? ")" : "]");
+    e << "in " << (k.loOpen ? "(" : "[") << numberText(k.lo) << ", " << numberText(k.hi) << (k.hiOpen ? ")" : "]");
   else if (k.lo > -kInf)
-    e << (k.loOpen ? "> " : ">= ") << pretty(k.lo);
+    e << (k.loOpen ? "> " : ">= ") << numberText(k.lo);
   else if (k.hi < kInf)
-    e << (k.hiOpen ? "< " : "<= ") << pretty(k.hi);
+    e << (k.hiOpen ? "< " : "<= ") << numberText(k.hi);
   return e.str();
 }
 
 std::string checkValue(const KeySpec& k, const Value& v) {
   std::ostringstream os;
   auto range = [&](double x) -> std::string {
-    if (!std::isfinite(x)) return "must be finite (got " + pretty(x) + ")";
+    if (!std::isfinite(x)) return "must be finite (got " + numberText(x) + ")";
     const bool low = k.loOpen ? x <= k.lo : x < k.lo;
     const bool high = k.hiOpen ? x >= k.hi : x > k.hi;
-    if (low || high) return "must be " + rangeText(k) + " (got " + pretty(x) + ")";
+    if (low || high) return "must be " + rangeText(k) + " (got " + numberText(x) + ")";
     return "";
   };
   switch (k.type) {
@@ -438,17 +429,17 @@ Model buildModel(const Values& v, const std::string& name) {
       if (!key && v.at(k).origin != "default") key = k;
     if (!key) key = *keys.begin();
     const double x = num(key);
-    const std::string shown = x == std::floor(x) && x < 1e15 ? formatNumber(x, true) : pretty(x);
+    const std::string shown = x == std::floor(x) && x < 1e15 ? formatNumber(x, true) : numberText(x);
     throw SceneError(v.at(key).origin + ": " + key + " = " + shown + ": " + what + "; at most " +
-                     pretty(kMaxElements) + " elements are allowed");
+                     numberText(kMaxElements) + " elements are allowed");
   };
   const double h = num("root.element_length_mm");
-  auto count = [](double x) { return x < 1e15 ? formatNumber(std::ceil(x), true) : pretty(x); };
+  auto count = [](double x) { return x < 1e15 ? formatNumber(std::ceil(x), true) : numberText(x); };
   const double initialElements = num("root.initial_length_mm") / h;
   if (initialElements > kMaxElements)
     capError({"root.initial_length_mm", "root.element_length_mm"},
-             "root.initial_length_mm / root.element_length_mm = " + pretty(num("root.initial_length_mm")) + " mm / " +
-                 pretty(h) + " mm = " + count(initialElements) + " elements at the start");
+             "root.initial_length_mm / root.element_length_mm = " + numberText(num("root.initial_length_mm")) + " mm / " +
+                 numberText(h) + " mm = " + count(initialElements) + " elements at the start");
   if (m.growth.enabled) {
     const double grown = num("root.initial_length_mm") +
                          num("growth.steps") * num("growth.step_h") * num("growth.rate_per_h") * num("growth.growth_zone_mm");
@@ -456,10 +447,10 @@ Model buildModel(const Values& v, const std::string& name) {
     if (finalElements > kMaxElements)
       capError({"growth.steps", "growth.step_h", "growth.rate_per_h", "growth.growth_zone_mm", "root.element_length_mm",
                 "root.initial_length_mm"},
-               "the root grows to " + pretty(grown) +
+               "the root grows to " + numberText(grown) +
                    " mm (root.initial_length_mm + growth.steps * growth.step_h * growth.rate_per_h * "
                    "growth.growth_zone_mm) = " + count(finalElements) + " elements of root.element_length_mm = " +
-                   pretty(h) + " mm");
+                   numberText(h) + " mm");
   }
   if (!m.env.plane.enabled && m.env.base == BaseCondition::Free && !m.growth.enabled &&
       (m.env.tipForce.norm() > 0 || m.env.gravity.norm() > 0))

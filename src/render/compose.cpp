@@ -8,6 +8,7 @@
 
 #include "overlay.hpp"
 #include "rootsim/compose.hpp"
+#include "rootsim/number_text.hpp"
 #include "rootsim/units.hpp"
 
 namespace rootsim {
@@ -31,13 +32,6 @@ constexpr double kInsetTubePx = 24.0;
 
 int even(double v) { return 2 * static_cast<int>(std::lround(0.5 * v)); }
 
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-std::string tick(double v) { return std::abs(v) < 1e-300 ? "0" : fmt("%.3g", v); }
-
 
 // a round axis step: 1, 2 or 5 x 10^n giving about `count` intervals over span
 double niceStep(double span, int count) {
@@ -48,13 +42,6 @@ double niceStep(double span, int count) {
   return 10 * p;
 }
 
-// a round bar length: 1, 2 or 5 times a power of ten [mm], at most maxMm
-double niceLength(double maxMm) {
-  const double p = std::pow(10.0, std::floor(std::log10(maxMm)));
-  for (double m : {5.0, 2.0, 1.0})
-    if (m * p <= maxMm) return m * p;
-  return p;
-}
 
 // SI prefix for values up to maxAbs: (factor to multiply by, prefix)
 std::pair<double, std::string> siScale(double maxAbs) {
@@ -308,7 +295,7 @@ struct FrameComposer::Impl {
         const float y = std::round(static_cast<float>(toPixel(c, c.t0, vv).y()));
         rects.push_back({c.x0, y, c.x1 - c.x0, 1, kGrid});
         rects.push_back({c.x0 - 5, y, 5, 1, kInk});
-        texts.push_back({tick(vv), c.x0 - 8, y - 0.55f * small, small, OverlayText::Anchor::TopRight});
+        texts.push_back({tickText(vv), c.x0 - 8, y - 0.55f * small, small, OverlayText::Anchor::TopRight});
       }
       // time ticks in hours; the unit on the last one
       const double step = niceStep(c.t1 - c.t0, 4);
@@ -317,7 +304,7 @@ struct FrameComposer::Impl {
         const float x = std::round(static_cast<float>(toPixel(c, t, c.lo).x()));
         rects.push_back({x, c.y1, 1, 5, kInk});
         const bool last = std::abs(t - tLast) < 1e-6 * step;
-        texts.push_back({tick(t) + (last ? " h" : ""), x, c.y1 + 6 + small * 1.05f, small, OverlayText::Anchor::BottomCentre});
+        texts.push_back({tickText(t) + (last ? " h" : ""), x, c.y1 + 6 + small * 1.05f, small, OverlayText::Anchor::BottomCentre});
       }
       // axes
       rects.push_back({c.x0, c.y0, 1, c.y1 - c.y0 + 1, kInk});
@@ -337,7 +324,7 @@ struct FrameComposer::Impl {
       lines.push_back(curve);
       lines.push_back({{{static_cast<float>(pn.x()), static_cast<float>(pn.y())}}, 3.2f * lw, col});
       texts.push_back({c.title, c.x0, c.y0 - 1.6f * font, font, OverlayText::Anchor::TopLeft});
-      texts.push_back({tick(c.scale * vNow), c.x1, c.y0 - 1.6f * font, font, OverlayText::Anchor::TopRight, col});
+      texts.push_back({tickText(c.scale * vNow), c.x1, c.y0 - 1.6f * font, font, OverlayText::Anchor::TopRight, col});
     }
   }
 
@@ -353,11 +340,11 @@ struct FrameComposer::Impl {
     const double lenMm = niceLength(0.3 * w / pxPerMm);
     const float len = std::round(static_cast<float>(lenMm * pxPerMm));
     const float barH = std::max(3.0f, std::round(0.22f * f));
-    const std::string label = (lenMm >= 1 ? fmt("%.0f", lenMm) : lenMm >= 0.1 ? fmt("%.1f", lenMm) : fmt("%.2f", lenMm)) + " mm";
+    const std::string label = (lenMm >= 1 ? fixedText(lenMm, 0) : lenMm >= 0.1 ? fixedText(lenMm, 1) : fixedText(lenMm, 2)) + " mm";
     const float labelW = painter.textWidth(job.view.fontPath, label, f);
     // magnification: the inset's pixels per mm over the view's, left of the bar in the same box
     const double mag = pxPerMm / (static_cast<double>(layout.viewW) / fv.widthMm);
-    const std::string magText = "\xC3\x97" + (mag >= 3 ? fmt("%.0f", mag) : fmt("%.1f", mag));
+    const std::string magText = "\xC3\x97" + (mag >= 3 ? fixedText(mag, 0) : fixedText(mag, 1));
     const float magW = painter.textWidth(job.view.fontPath, magText, f);
     const float boxW = magW + f + std::max(len, labelW) + 2 * m, boxH = barH + 1.35f * f + 2 * m;
     float bx = x0 + w - 3 - boxW, by = y0 + h - 3 - boxH;

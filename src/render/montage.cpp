@@ -12,17 +12,12 @@
 #include "frame_sink.hpp"
 #include "overlay.hpp"
 #include "rootsim/montage.hpp"
+#include "rootsim/number_text.hpp"
 #include "rootsim/units.hpp"
 
 namespace rootsim {
 
 namespace {
-
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
 
 
 void checkRuns(const std::vector<MontageRun>& runs) {
@@ -174,7 +169,7 @@ void renderMontage(const std::vector<MontageRun>& runs, const MontageJob& job, c
                                          painter.textWidth(job.view.fontPath, runs[i].label, font), font));
   // the header: time on the left, then the caption; the stripe legend at the right end
   const float m = 0.5f * font;
-  const float timeW = painter.textWidth(job.view.fontPath, "t = " + fmt("%.1f", clock.back()) + " h", font);
+  const float timeW = painter.textWidth(job.view.fontPath, "t = " + fixedText(clock.back(), 1) + " h", font);
   const bool overlays = job.view.overlays;
   detail::FrameSink sink(job.mp4, job.pngDir, "", job.view.width, job.view.height, job.video);
   Image frame(job.view.width, job.view.height), tile;
@@ -203,7 +198,7 @@ void renderMontage(const std::vector<MontageRun>& runs, const MontageJob& job, c
     }
     {
       const float ty = std::round(0.5f * (static_cast<float>(l.headerH) - font));
-      texts.push_back({"t = " + fmt("%.1f", t) + " h", m, ty, font, OverlayText::Anchor::TopLeft});
+      texts.push_back({"t = " + fixedText(t, 1) + " h", m, ty, font, OverlayText::Anchor::TopLeft});
       if (!job.caption.empty()) texts.push_back({job.caption, m + timeW + 1.5f * font, ty, font, OverlayText::Anchor::TopLeft});
       if (overlays && job.view.showLegend) {
         float right = static_cast<float>(job.view.width) - m;

@@ -13,6 +13,7 @@
 
 #include "overlay.hpp"
 #include "rootsim/image.hpp"
+#include "rootsim/number_text.hpp"
 #include "rootsim/obstacle_mesh.hpp"
 #include "rootsim/overlay_layout.hpp"
 #include "rootsim/tube_rings.hpp"
@@ -149,25 +150,6 @@ void addWhiskers(RenderScene& rs, const std::vector<Ring>& rings) {
   }
 }
 
-// a round bar length: 1, 2 or 5 times a power of ten [mm], at most maxMm
-double niceLength(double maxMm) {
-  const double p = std::pow(10.0, std::floor(std::log10(maxMm)));
-  for (double m : {5.0, 2.0, 1.0})
-    if (m * p <= maxMm) return m * p;
-  return p;
-}
-
-std::string fmt(const char* f, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, f, v);
-  return buf;
-}
-
-// a number for an axis or colour bar label: 3 significant digits, no trailing zeros
-std::string tick(double v) {
-  if (std::abs(v) < 1e-300) return "0";
-  return fmt("%.3g", v);
-}
 
 constexpr std::array<std::uint8_t, 4> kInk{40, 40, 40, 255};
 
@@ -188,7 +170,7 @@ ColourBarBox colourBarBox(const View& view, float font) {
   b.small = std::round(0.8f * font);
   const auto [lo, hi] = view.colourRange;
   float ticks = 0;
-  for (double v : {lo, 0.5 * (lo + hi), hi}) ticks = std::max(ticks, detail::measureText(view.fontPath, tick(v), b.small));
+  for (double v : {lo, 0.5 * (lo + hi), hi}) ticks = std::max(ticks, detail::measureText(view.fontPath, tickText(v), b.small));
   const float title = detail::measureText(view.fontPath, colourFieldLabel(view.colourBy), b.small);
   b.reserve = m + std::max(b.barW + 7 + ticks, title) + 0.5f * font;
   return b;
@@ -220,7 +202,7 @@ void addColourBar(RenderScene& rs, const View& view, float font) {
     const double v = lo + (hi - lo) * k / 2.0;
     const float y = y1 - (y1 - y0) * static_cast<float>(k) / 2.0f;
     rs.rects.push_back({x - 5, std::round(y), 5, 1, kInk});
-    rs.texts.push_back({tick(v), x - 7, y - 0.5f * small, small, OverlayText::Anchor::TopRight});
+    rs.texts.push_back({tickText(v), x - 7, y - 0.5f * small, small, OverlayText::Anchor::TopRight});
   }
   if (colourFieldSigned(view.colourBy) && lo < 0 && hi > 0) {
     // 0 across the bar, and its label (the middle tick when the range is symmetric)
@@ -298,7 +280,7 @@ void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, cons
   const auto W = static_cast<float>(view.width), H = static_cast<float>(view.height);
   auto width = [&](const std::string& t, float size) { return detail::measureText(view.fontPath, t, size); };
   if (view.showTime)
-    rs.texts.push_back({"t = " + fmt("%.1f", s.timeH) + " h", m, m, font, OverlayText::Anchor::TopLeft});
+    rs.texts.push_back({"t = " + fixedText(s.timeH, 1) + " h", m, m, font, OverlayText::Anchor::TopLeft});
   cut();
   // a plate's seedlings: their labels on the plate above their seeds, each a block of its own
   for (const View::SeedLabel& sl : view.seedLabels) {
@@ -313,9 +295,9 @@ void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, cons
   if (view.showParams) {
     // a plate's seedlings each have their own beta and R tau: those are in the legend, not the header
     const bool own = !view.seedLabels.empty();
-    std::string p = "\xCE\xB1 = " + fmt("%.0f", info.alphaDeg) + "\xC2\xB0" +
-                    (own ? std::string() : "    \xCE\xB2 = " + fmt("%.3g", info.beta)) + "    \xCE\xB3 = " + fmt("%.3g", info.gamma);
-    if (!own && info.rTau != 0.0) p += "    R\xCF\x84 = " + fmt("%.3g", info.rTau);
+    std::string p = "\xCE\xB1 = " + fixedText(info.alphaDeg, 0) + "\xC2\xB0" +
+                    (own ? std::string() : "    \xCE\xB2 = " + significantText(info.beta, 3)) + "    \xCE\xB3 = " + significantText(info.gamma, 3);
+    if (!own && info.rTau != 0.0) p += "    R\xCF\x84 = " + significantText(info.rTau, 3);
     // the legend: one line per seedling under the header, at the right edge
     const float small = std::round(0.8f * font);
     float y = m + (portrait && view.showTime ? 3.0f : 1.5f) * font;
@@ -364,13 +346,13 @@ void addOverlays(RenderScene& rs, const Snapshot& s, const SceneInfo& info, cons
     const float x = std::round(W - m - len);
     const float y = std::round(H - m - h);
     rs.rects.push_back({x, y, std::round(len), h});
-    const std::string label = (lenMm >= 1 ? fmt("%.0f", lenMm) : fmt("%.1f", lenMm)) + " mm";
+    const std::string label = (lenMm >= 1 ? fixedText(lenMm, 0) : fixedText(lenMm, 1)) + " mm";
     rs.texts.push_back({label, x + 0.5f * len, y - 0.35f * font, font, OverlayText::Anchor::BottomCentre});
     right = x - 1.0f * font;
     scaleBlock = true;
   } else if (view.showScaleBar && rs.plate.visible) {
     // perspective: no single scale, so the grid's pitch
-    const std::string pitch = "grid " + (rs.plate.gridMm >= 1 ? fmt("%.0f", rs.plate.gridMm) : fmt("%.1f", rs.plate.gridMm)) +
+    const std::string pitch = "grid " + (rs.plate.gridMm >= 1 ? fixedText(rs.plate.gridMm, 0) : fixedText(rs.plate.gridMm, 1)) +
                               " mm" + (rs.plate.gridMm < 1 ? ", dark every 1 mm" : "");
     rs.texts.push_back({pitch, right, midY - 0.5f * font, font, OverlayText::Anchor::TopRight});
     right -= width(pitch, font) + 1.0f * font;

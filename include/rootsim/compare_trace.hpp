@@ -16,6 +16,26 @@
 
 namespace rootsim::app {
 
+// a traced plant: its first primary root (order 0) and where its seed lies in the file's plate frame [mm]
+struct TracedPlant {
+  std::string id, label;
+  std::string file;          // the RSML file it is in
+  int root = -1;             // index in TraceFile::roots
+  Eigen::Vector2d seedMm = Eigen::Vector2d::Zero();
+};
+// the plants of a traced file, in its order (file: TracedPlant::file)
+std::vector<TracedPlant> tracedPlants(const TraceFile& tf, const std::string& file = "");
+
+// a sample sheet (compare --groups, fit --groups): a CSV whose header names the columns plant and
+// `column` (others ignored), then one row per plant, named by its id or its label. SceneError naming
+// SHEET:LINE for a plant absent from plants, named twice, naming two plants, or an empty value
+struct SheetRow {
+  int plant = -1;            // index into plants
+  std::string value;         // its cell in `column`
+  int line = 0;              // the sheet's line
+};
+std::vector<SheetRow> readSampleSheet(const std::string& sheet, const std::string& column, const std::vector<TracedPlant>& plants);
+
 // how to read the traced root (the flags compare and fit share)
 struct TraceFlags {
   static constexpr double kUnset = AnalyzeOptions::kUnset;

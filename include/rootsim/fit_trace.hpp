@@ -19,6 +19,8 @@ namespace rootsim::app {
 
 struct FitOptions {
   TraceFlags trace;
+  std::vector<std::string> more;         // more RSML files of the plate (with --groups)
+  std::string groups;                    // --groups SHEET.csv: a fit per group of the plate's plants
   std::string scene;                     // --scene BASE.toml
   std::string free;                      // --free KEY=LO:HI[,KEY=LO:HI...]
   std::string objective;                 // --objective observables | shape | timelapse ("": timelapse for a
@@ -88,7 +90,40 @@ struct FitReport {
 // landscape.*); SceneError for bad input before anything is written, RunError when no evaluation ran
 FitReport runFit(const FitOptions& o, const std::function<void(const std::string&)>& log);
 
-// the command: runFit, then the values and notes on stdout
+// the command: runFit (runGroupFit with --groups), then the values and notes on stdout
 int fitCommand(const FitOptions& o);
+
+// ---- a traced plate fitted by group (fit --groups; docs/experiments.md, "A plate by group") ----
+struct GroupFit {
+  std::string name;
+  std::vector<std::string> plants;  // its seedlings, as the sheet names them
+  FitReport report;                 // its fit (folder OUT/groups/NAME)
+  std::vector<double> value, sigma; // per key: the answer's value, its sigma (NaN: flat or at a bound)
+  FitComponents outputs;            // the group's mean observables and their covariance (sim empty)
+  Eigen::MatrixXd scatter;          // the seedlings' sample covariance of those observables
+  Eigen::VectorXd answerSim;        // the answer's run's outputs
+};
+// one key between two groups: difference A - B with its sigma and two-sided Wald p-value; flat (no
+// difference, no p-value) when either group does not determine the key
+struct GroupContrast {
+  std::string key, a, b;
+  bool flat = false;
+  std::string why;                  // a flat contrast's reason
+  double difference = 0, sigma = 0, pValue = 1;
+};
+struct GroupFitReport {
+  std::vector<FreeKey> keys;
+  std::vector<GroupFit> groups;     // in the order the sheet first names them
+  std::vector<GroupContrast> contrasts;  // every pair of groups (a before b in the sheet), every key
+  std::string out;
+};
+// every key of every pair of groups (a named before b)
+std::vector<GroupContrast> groupContrasts(const std::vector<FreeKey>& keys, const std::vector<GroupFit>& groups);
+// "mut - WT: tropism.beta +0.20 +- 0.03, p < 0.001; rod.youngs_modulus_mpa flat (...)" one line per pair
+std::string contrastsTable(const std::vector<GroupContrast>& contrasts);
+// SceneError for bad input (the sheet naming SHEET:LINE, a plate key free, ...) before anything is written;
+// writes OUT/fit.json and one fit folder per group in OUT/groups
+GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const std::string&)>& log);
+int groupFitCommand(const FitOptions& o);
 
 }  // namespace rootsim::app

@@ -26,6 +26,7 @@ class Json {
   Json& num(const std::string& key, double v);
   Json& integer(const std::string& key, long long v);
   Json& str(const std::string& key, const std::string& v);
+  Json& strings(const std::string& key, const std::vector<std::string>& v);  // an array of strings
   Json& boolean(const std::string& key, bool v);
   Json& object(const std::string& key, const Json& v);
   Json& array(const std::string& key, const std::vector<Json>& v);   // an array of objects

@@ -42,6 +42,7 @@ const FolderSpec& analysisFolder();
 const FolderSpec& compareFolder();
 // the folder of `fit`: marker .rootsim-fit, fit.json, evaluations.csv, base.toml, design.toml, best.toml,
 // compare.* and landscape.* pictures, and runs/ (a sweep folder: its evaluations' run directories)
+// (a fit by group, fit --groups: fit.json and groups/NAME, a fit folder per group)
 const FolderSpec& fitFolder();
 // a ParaView folder (export --paraview): marker .rootsim-paraview, step_NNNNNN.vtp, root.pvd, plate.vtp,
 // open_in_paraview.py (docs/paraview.md)

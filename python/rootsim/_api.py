@@ -891,10 +891,11 @@ def compare(run_dir: PathLike, trace: PathLike, *, root: Optional[str] = None, p
     return result
 
 
-def fit(trace: PathLike, *, scene: PathLike, free: Union[str, Dict[str, Sequence[float]]], out: PathLike,
-        root: Optional[str] = None, px_per_mm: Optional[float] = None, downhill: Union[str, float, None] = None,
-        sigma_mm: Optional[float] = None, objective: Optional[str] = None, jobs: Optional[int] = None,
-        budget: Optional[int] = None, force: bool = False, quiet: bool = True) -> Dict[str, Any]:
+def fit(trace: Union[PathLike, Sequence[PathLike]], *, scene: PathLike, free: Union[str, Dict[str, Sequence[float]]],
+        out: PathLike, root: Optional[str] = None, px_per_mm: Optional[float] = None,
+        downhill: Union[str, float, None] = None, sigma_mm: Optional[float] = None, objective: Optional[str] = None,
+        jobs: Optional[int] = None, budget: Optional[int] = None, groups: Optional[PathLike] = None,
+        force: bool = False, quiet: bool = True) -> Dict[str, Any]:
     """Fits free scene keys to a traced root, as ``rootsim fit TRACE --scene SCENE --free ... --out OUT``
     (docs/experiments.md; the same C++ code). ``free``: {"tropism.beta": (0.05, 0.5), ...} or the command
     line's "KEY=LO:HI,..." text. Every evaluation is a run directory in OUT/runs: a fit called again with
@@ -907,15 +908,37 @@ def fit(trace: PathLike, *, scene: PathLike, free: Union[str, Dict[str, Sequence
     ``objective``: "observables" (skew, wavelength, amplitude), "shape" (the centreline at 8 fractions
     of its length) or "timelapse" (length, tip position and tip angle at every observation time of a 2D+t
     trace); None: timelapse for a trace with times, else observables; ``jobs``: simultaneous runs; ``budget``: most runs (None: the command line's defaults). The trace's keywords as
-    rootsim.compare's. Bad input raises SceneError, a fit whose runs all fail RunError. Keywords only."""
+    rootsim.compare's. Bad input raises SceneError, a fit whose runs all fail RunError. Keywords only.
+
+    ``groups``: a sample sheet (CSV ``plant,group``), as ``rootsim fit PLATE.rsml [MORE.rsml...] --groups
+    SHEET``: ``trace`` is then the plate's RSML file or a list of them, every group's keys are fitted to its
+    seedlings together, and the result is the group fit's fit.json: "groups" maps each group's name to
+    {"best": {KEY: {"value", "sigma"}}, "goodness", "flat", "notes", "observables", "plants", ...} with
+    "values" and "sigmas" added as numpy arrays in the order of the free keys; "contrasts" is a list of
+    {"key", "groups": [A, B], "difference" (A - B, or "flat"), "sigma", "p_value"} for every pair; "keys"
+    lists the free keys. Each group's own fit folder is OUT/groups/NAME."""
+    more: List[PathLike] = []
+    if not isinstance(trace, (str, bytes, os.PathLike)):
+        trace, *more = list(trace)
+        if groups is None:
+            raise SceneError("fit: several RSML files are a plate fitted by group; give groups=SHEET")
     if not isinstance(free, str):
         free = ",".join(f"{k}={float(lo)!r}:{float(hi)!r}" for k, (lo, hi) in free.items())
     if downhill is not None:
         downhill = str(downhill)
-    folder = _c.fit_trace(_options(locals()))
+    args = {k: v for k, v in locals().items() if k not in ("more",)}
+    if more:
+        args["more"] = [os.fspath(m) for m in more]
+    folder = _c.fit_trace(_options(args))
     with open(os.path.join(folder, "fit.json"), encoding="utf-8") as f:
         result = json.load(f)
     result["out"] = pathlib.Path(folder)
+    if groups is not None:
+        keys = result["keys"]
+        for g in result["groups"].values():
+            # null (a flat key's sigma) as NaN
+            g["values"] = np.array([g["best"][k]["value"] for k in keys], dtype=float)
+            g["sigmas"] = np.array([g["best"][k]["sigma"] for k in keys], dtype=float)
     return result
 
 

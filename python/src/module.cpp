@@ -737,12 +737,14 @@ PYBIND11_MODULE(_rootsim, m) {
       // rootsim.fit's keywords, as the command line's flags; returns the folder written
       [](const py::dict& options) {
         const app::FitOptions o = commandOptions<app::FitOptions>("fit", options);
-        app::FitReport r;
+        std::string out;
         {
           py::gil_scoped_release nogil;
-          r = app::runFit(o, [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
+          const auto log = [](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); };
+          // a plate by group (groups=SHEET): its fit.json holds the groups and their contrasts
+          out = o.groups.empty() ? app::runFit(o, log).out : app::runGroupFit(o, log).out;
         }
-        return r.out;
+        return out;
       },
       py::arg("options"));
 }

@@ -1,6 +1,7 @@
 """rootsim.compare and rootsim.fit are `rootsim compare` and `rootsim fit`: the same files, the same checks."""
 import json
 
+import numpy as np
 import pytest
 
 import rootsim
@@ -61,3 +62,60 @@ def test_bad_options_raise_the_command_lines_message(tmp_path, quick):
     with pytest.raises(rootsim.SceneError, match="--sigma-mm -1"):
         rootsim.compare(run.dir, trace, sigma_mm=-1, out=tmp_path / "c")
     assert not (tmp_path / "f").exists() and not (tmp_path / "c").exists()
+
+
+BASE = """[root]
+radius_mm = 0.1
+initial_length_mm = 1.1
+element_length_mm = 0.1
+[growth]
+growth_zone_mm = 1.0
+rate_per_h = 0.2
+step_h = 0.1
+[tropism]
+beta = 0.2
+gamma = 0.1
+sensing = "local"
+[plane]
+alpha_deg = 40
+[output]
+every_steps = 50
+"""
+
+
+def test_fit_by_group_is_the_command_lines(tmp_path):
+    # two seedlings of each genotype (twist 0 and 0.05), 7 mm, exported: fitted in the twist by group
+    plate = BASE.replace("step_h = 0.1\n", "step_h = 0.1\nsteps = 300\n") + "vtk = false\n[plate]\nwidth_mm = 60\nlength_mm = 20\n"
+    for i, (name, angle) in enumerate([("w1", -3), ("w2", 2), ("m1", 3), ("m2", -2)]):
+        plate += f'[[seedling]]\nname = "{name}"\nposition_mm = [{5 + 12 * i}, 5]\nangle_deg = {angle}\n'
+        if name.startswith("m"):
+            plate += 'set = { "tropism.twist_r_tau" = 0.05 }\n'
+    (tmp_path / "plate.toml").write_text(plate)
+    (tmp_path / "base.toml").write_text(BASE)
+    (tmp_path / "sheet.csv").write_text("plant,group\nw1,WT\nw2,WT\nm1,mut\nm2,mut\n")
+    run = rootsim.run(tmp_path / "plate.toml", out=tmp_path / "run")
+    rsml = tmp_path / "plate.rsml"
+    rootsim.export(run.dir, rsml=rsml)
+    free = {"tropism.twist_r_tau": (-0.05, 0.1)}
+    res = rootsim.fit([rsml], scene=tmp_path / "base.toml", free=free, groups=tmp_path / "sheet.csv", budget=18, jobs=2,
+                      out=tmp_path / "py")
+    cli("fit", rsml, "--scene", tmp_path / "base.toml", "--free", "tropism.twist_r_tau=-0.05:0.1", "--groups", tmp_path / "sheet.csv",
+        "--budget", "18", "-j", "2", "--out", tmp_path / "cli", "--quiet")
+    ours = json.loads((tmp_path / "cli" / "fit.json").read_text())
+    assert res["keys"] == ["tropism.twist_r_tau"]
+    assert list(res["groups"]) == ["WT", "mut"]
+    for name, g in res["groups"].items():
+        assert g["plants"] == ours["groups"][name]["plants"]
+        assert g["best"] == ours["groups"][name]["best"]
+        assert isinstance(g["values"], np.ndarray) and g["values"].shape == (1,)
+        assert g["values"][0] == g["best"]["tropism.twist_r_tau"]["value"]
+        assert g["goodness"]["verdict"] in ("consistent", "poor")
+    (c,) = res["contrasts"]
+    assert c == ours["contrasts"][0]
+    assert c["groups"] == ["WT", "mut"] and c["key"] == "tropism.twist_r_tau"
+    # the mutant twists more: WT - mut is negative
+    assert c["difference"] < 0
+    (tmp_path / "solo.csv").write_text("plant,group\nw1,WT\nw2,WT\nm1,mut\nm2,solo\n")
+    with pytest.raises(rootsim.SceneError, match="solo.csv:4: group mut has one seedling"):
+        rootsim.fit(rsml, scene=tmp_path / "base.toml", free=free, groups=tmp_path / "solo.csv", out=tmp_path / "bad")
+    assert not (tmp_path / "bad").exists()

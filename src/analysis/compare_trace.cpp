@@ -406,14 +406,9 @@ void printTable(const Comparison& c) {
 
 // ---- a plate's run against a traced plate ----
 
-// a traced plant: its first primary root (order 0) and where its seed lies in the file's plate frame [mm]
-struct TracedPlant {
-  std::string id, label;
-  int root = -1;             // index in TraceFile::roots
-  Eigen::Vector2d seedMm = Eigen::Vector2d::Zero();
-};
+}  // namespace
 
-std::vector<TracedPlant> tracedPlants(const TraceFile& tf) {
+std::vector<TracedPlant> tracedPlants(const TraceFile& tf, const std::string& file) {
   std::vector<TracedPlant> plants;
   for (int k = 0; k < static_cast<int>(tf.roots.size()); ++k) {
     const TracedRoot& r = tf.roots[static_cast<std::size_t>(k)];
@@ -423,6 +418,7 @@ std::vector<TracedPlant> tracedPlants(const TraceFile& tf) {
     TracedPlant p;
     p.id = id;
     p.label = r.plantLabel;
+    p.file = file;
     p.root = k;
     p.seedMm = (r.originMm + r.plateMm.col(0)).head<2>();
     plants.push_back(p);
@@ -430,56 +426,75 @@ std::vector<TracedPlant> tracedPlants(const TraceFile& tf) {
   return plants;
 }
 
-// --groups SHEET.csv: a header naming the columns plant and seedling (others ignored), then one row per
-// pair; a plant is named by its id or its label. Bad rows exit 2 naming SHEET:LINE
-std::vector<std::pair<int, int>> sheetPairs(const std::string& sheet, const std::vector<PlateRoot>& seedlings,
-                                            const std::vector<TracedPlant>& plants) {
+std::vector<SheetRow> readSampleSheet(const std::string& sheet, const std::string& column, const std::vector<TracedPlant>& plants) {
   std::ifstream in(sheet);
   if (!in) throw SceneError("--groups " + sheet + ": cannot be read (not found?)");
   std::string line;
-  if (!std::getline(in, line)) throw SceneError(sheet + ":1: empty; expected a header with the columns plant and seedling");
+  const std::string expected = "plant," + column;
+  if (!std::getline(in, line)) throw SceneError(sheet + ":1: empty; expected a header with the columns " + expected);
   if (!line.empty() && line.back() == '\r') line.pop_back();
   const std::vector<std::string> head = splitCommas(line);
-  const auto col = [&](const char* name) {
+  const auto col = [&](const std::string& name) {
     const auto it = std::find(head.begin(), head.end(), name);
-    if (it == head.end()) throw SceneError(sheet + ":1: no column " + name + " (the header: " + line + "; expected plant,seedling)");
+    if (it == head.end()) throw SceneError(sheet + ":1: no column " + name + " (the header: " + line + "; expected " + expected + ")");
     return static_cast<std::size_t>(it - head.begin());
   };
-  const std::size_t cp = col("plant"), cs = col("seedling");
-  std::vector<std::pair<int, int>> pairs;
-  std::vector<int> plantLine(plants.size(), 0), seedlingLine(seedlings.size(), 0);
+  const std::size_t cp = col("plant"), cv = col(column);
+  std::vector<SheetRow> rows;
+  std::vector<int> plantLine(plants.size(), 0);
   for (int n = 2; std::getline(in, line); ++n) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (line.empty()) continue;
     const std::vector<std::string> cells = splitCommas(line);
     const std::string at = sheet + ":" + std::to_string(n);
-    if (cells.size() <= std::max(cp, cs)) throw SceneError(at + ": " + std::to_string(cells.size()) + " cell(s); expected " + std::to_string(head.size()));
+    if (cells.size() <= std::max(cp, cv)) throw SceneError(at + ": " + std::to_string(cells.size()) + " cell(s); expected " + std::to_string(head.size()));
     const std::string& pn = cells[cp];
-    const std::string& sn = cells[cs];
-    int p = -1, sd = -1;
-    for (int k = 0; k < static_cast<int>(plants.size()); ++k)
-      if (plants[static_cast<std::size_t>(k)].id == pn || (!plants[static_cast<std::size_t>(k)].label.empty() && plants[static_cast<std::size_t>(k)].label == pn)) p = k;
-    for (int k = 0; k < static_cast<int>(seedlings.size()); ++k)
-      if (seedlings[static_cast<std::size_t>(k)].name == sn) sd = k;
+    if (cells[cv].empty()) throw SceneError(at + ": plant " + pn + ": no " + column + " (the " + column + " column is empty)");
+    int p = -1;
+    for (int k = 0; k < static_cast<int>(plants.size()); ++k) {
+      const TracedPlant& q = plants[static_cast<std::size_t>(k)];
+      if (q.id != pn && (q.label.empty() || q.label != pn)) continue;
+      if (p >= 0)
+        throw SceneError(at + ": plant " + pn + " names two plants (" + plants[static_cast<std::size_t>(p)].file + " and " + q.file +
+                         "); name it by a label or id only one of them has");
+      p = k;
+    }
     if (p < 0) {
       std::string names;
       for (const TracedPlant& q : plants) names += (names.empty() ? "" : ", ") + q.id + (q.label.empty() ? "" : " (" + q.label + ")");
-      throw SceneError(at + ": plant " + pn + ": not a plant of the trace (its plants: " + names + ")");
-    }
-    if (sd < 0) {
-      std::string names;
-      for (const PlateRoot& q : seedlings) names += (names.empty() ? "" : ", ") + q.name;
-      throw SceneError(at + ": seedling " + sn + ": not a seedling of the run (its seedlings: " + names + ")");
+      throw SceneError(at + ": plant " + pn + ": not a plant of the trace (its plants: " + names + "); correct the name or remove the line");
     }
     if (const int first = plantLine[static_cast<std::size_t>(p)])
       throw SceneError(at + ": plant " + pn + " named twice (first on line " + std::to_string(first) + ")");
-    if (const int first = seedlingLine[static_cast<std::size_t>(sd)])
-      throw SceneError(at + ": seedling " + sn + " named twice (first on line " + std::to_string(first) + ")");
     plantLine[static_cast<std::size_t>(p)] = n;
-    seedlingLine[static_cast<std::size_t>(sd)] = n;
-    pairs.emplace_back(sd, p);
+    rows.push_back(SheetRow{p, cells[cv], n});
   }
-  if (pairs.empty()) throw SceneError(sheet + ": no rows; expected one plant,seedling pair per line after the header");
+  if (rows.empty()) throw SceneError(sheet + ": no rows; expected one " + expected + " row per line after the header");
+  return rows;
+}
+
+namespace {
+
+// --groups SHEET.csv pairing plants with seedlings: readSampleSheet's rows, each seedling named once
+std::vector<std::pair<int, int>> sheetPairs(const std::string& sheet, const std::vector<PlateRoot>& seedlings,
+                                            const std::vector<TracedPlant>& plants) {
+  std::vector<std::pair<int, int>> pairs;
+  std::vector<int> seedlingLine(seedlings.size(), 0);
+  for (const SheetRow& row : readSampleSheet(sheet, "seedling", plants)) {
+    const std::string at = sheet + ":" + std::to_string(row.line);
+    int sd = -1;
+    for (int k = 0; k < static_cast<int>(seedlings.size()); ++k)
+      if (seedlings[static_cast<std::size_t>(k)].name == row.value) sd = k;
+    if (sd < 0) {
+      std::string names;
+      for (const PlateRoot& q : seedlings) names += (names.empty() ? "" : ", ") + q.name;
+      throw SceneError(at + ": seedling " + row.value + ": not a seedling of the run (its seedlings: " + names + ")");
+    }
+    if (const int first = seedlingLine[static_cast<std::size_t>(sd)])
+      throw SceneError(at + ": seedling " + row.value + " named twice (first on line " + std::to_string(first) + ")");
+    seedlingLine[static_cast<std::size_t>(sd)] = row.line;
+    pairs.emplace_back(sd, row.plant);
+  }
   return pairs;
 }
 

@@ -27,6 +27,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string csvCell(double v) { return std::isfinite(v) ? numberText(v) : std::string(); }
 
+}  // namespace
+
 Json goodnessJson(const Goodness& g) {
   Json j;
   j.num("chi2", g.chi2).integer("dof", g.dof).integer("outputs", g.outputs).integer("p_dof", g.pDof).num("p_value", g.pValue)
@@ -34,8 +36,6 @@ Json goodnessJson(const Goodness& g) {
       .str("against", "the answer's own run against the trace's uncertainty alone (the model's scatter is in the keys' sigma, not here)");
   return j;
 }
-
-}  // namespace
 
 void writeFitOutputs(const FitOutcome& f, const FitReport& rep, const Scene& bestScene) {
   const FitOptions& o = *f.options;

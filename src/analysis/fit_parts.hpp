@@ -1,6 +1,7 @@
 #pragma once
 // The parts of `rootsim fit` after its search (src/analysis/fit_trace.cpp runs the design and the trust
 // regions): the answer and its goodness (fit_goodness.cpp), and the fit folder's files (fit_output.cpp).
+#include <algorithm>
 #include <filesystem>
 #include <functional>
 #include <string>
@@ -10,10 +11,41 @@
 
 #include "rootsim/compare_trace.hpp"
 #include "rootsim/fit_trace.hpp"
+#include "rootsim/json.hpp"
 #include "rootsim/response_surface.hpp"
 #include "rootsim/scene.hpp"
 
 namespace rootsim::app {
+
+// a group of a plate's seedlings fitted together (fit --groups, docs/experiments.md "A plate by group"):
+// the outputs are the observables two or more seedlings' traces use, the group's mean against the mean over
+// those seedlings of one run's values measured as each seedling is; their covariance the mean's, from the
+// seedlings' own scatter
+struct GroupSide {
+  std::string name;
+  std::vector<std::string> plants;     // the sheet's names of its seedlings
+  std::vector<TraceTarget> seedlings;  // each seedling's primary root
+  TraceTarget target;                  // the first seedling's, grown to the group's mean root length: the
+                                       // length every run grows to, and the root of the compare picture
+  FitComponents trace;                 // names, the mean (trace), the mean's covariance (cov) and sigma
+  std::vector<std::vector<bool>> users;  // per output, per seedling: its trace measures it
+  double userCount(std::size_t output) const {
+    return static_cast<double>(std::count(users[output].begin(), users[output].end(), true));
+  }
+  Eigen::MatrixXd scatter;             // the seedlings' sample covariance
+  std::vector<std::string> inputs;     // the RSML files and the sheet
+  std::string settings;                // for base.toml's settings line: the sheet, the group and its plants
+};
+// the group's outputs of a run's root: the mean over seedlings of the run measured as each is (observeBoth)
+FitComponents groupComponents(const GroupSide& g, const SimRoot& sim);
+// the size of a fit of n keys: the start design's levels per key and runs, the surface's terms, a trust
+// region's runs; SceneError when --budget cannot hold the design and one trust region
+struct FitSize {
+  int levels = 0, design = 0, terms = 0, regionPoints = 0;
+};
+FitSize fitSize(const FitOptions& o, int n);
+// runFit, or a group's fit when group is given (its outputs the group's: groupComponents)
+FitReport runFitOn(const FitOptions& o, const GroupSide* group, const std::function<void(const std::string&)>& log);
 
 // the smallest trust region's half width, in design cells. A root's outputs are a sensitive function of
 // its parameters: a skewing root's skew jumps by 1-2 degrees between runs whose twist differs by 0.005
@@ -66,6 +98,8 @@ struct FitOutcome {
   std::vector<double> surfaceX, bootSigma;  // its values, and the bootstrap's sigma per key
   FitComponents trace;        // the trace's side of the outputs
 };
+// fit.json's goodness block
+Json goodnessJson(const Goodness& g);
 // fit.json, evaluations.csv, best.toml, compare.* and for two keys landscape.* of rep's answer
 void writeFitOutputs(const FitOutcome& f, const FitReport& rep, const Scene& bestScene);
 

@@ -139,8 +139,8 @@ double chi2Of(const FitComponents& t, const Eigen::VectorXd& sim) {
 class Fit {
  public:
   Fit(const FitOptions& o, std::vector<FreeKey> keys, const fs::path& out, std::string baseText, TraceTarget target,
-      const std::function<void(const std::string&)>& log)
-      : o_(o), keys_(std::move(keys)), out_(out), baseText_(std::move(baseText)), target_(std::move(target)), log_(log) {
+      const std::function<void(const std::string&)>& log, const GroupSide* group)
+      : o_(o), keys_(std::move(keys)), out_(out), baseText_(std::move(baseText)), target_(std::move(target)), log_(log), group_(group) {
     // the trace's side of the shape: its covariance once, from its points' noise
     if (o_.objective == "shape") shapeCov_ = shapeTraceCovariance(target_.plateMm, target_.sigmaMm, kShapeSamples);
     if (o_.objective == "timelapse") lapse_ = timeLapseObjective(target_);
@@ -190,7 +190,7 @@ class Fit {
         const std::vector<Snapshot> snaps = loadSnapshots(dir);
         const SimRoot sim = simRootOf(sc.model, comparedSnapshot(sc.model, snaps, target_, o_.objective == "timelapse"));
         const Comparison c = compareRoots(target_, sim);
-        const FitComponents fc = componentsOf(o_.objective, target_, shapeCov_, lapse_, sc.model, snaps, sim, c);
+        const FitComponents fc = group_ ? groupComponents(*group_, sim) : componentsOf(o_.objective, target_, shapeCov_, lapse_, sc.model, snaps, sim, c);
         {
           std::lock_guard lk(mu_);
           if (traceComp_.names.empty()) traceComp_ = fc;  // the trace's side: the same for every run
@@ -336,6 +336,7 @@ class Fit {
   std::string baseText_;
   TraceTarget target_;
   const std::function<void(const std::string&)>& log_;
+  const GroupSide* group_;    // a group of seedlings (fit --groups): their mean observables, else nullptr
   std::mutex mu_;
   std::condition_variable cv_;
   std::map<std::string, int> cache_;  // values' text -> index into evals_ (-1: running)
@@ -426,7 +427,32 @@ void growthAgainstTrace(FitReport& rep, const TimeLapseObjective& lapse, const M
 
 }  // namespace
 
+FitSize fitSize(const FitOptions& o, int n) {
+  if (o.budget < 1 || o.budget > 100000)
+    throw SceneError("--budget " + std::to_string(o.budget) + ": expected an integer in [1, 100000] runs");
+  const int k = designLevels(n, o.budget);
+  const int design = static_cast<int>(std::lround(std::pow(k, n)));
+  const int terms = quadraticTerms(n);
+  // runs a trust region's surface is fitted to: enough beyond the surface's terms to estimate the
+  // scatter's covariance between the outputs
+  // (a time-lapse's many outputs: their scatter's covariance from fewer runs is singular, the trace's own
+  // covariance added to it in every chi-square is not)
+  const int outputs = o.objective == "shape" ? 2 * kShapeSamples : 3;
+  const int regionPoints = std::max(2 * terms + 4, terms + outputs + 4);
+  // the budget: the design, a trust region's runs and its minimum's, and the answer's run
+  if (o.budget < design + regionPoints + 2)
+    throw SceneError("--budget " + std::to_string(o.budget) + ": too small for " + std::to_string(n) + " free key(s): the start design takes " +
+                     std::to_string(design) + " runs and one trust region " + std::to_string(regionPoints + 2) +
+                     "; give at least " + std::to_string(design + regionPoints + 2));
+  return FitSize{k, design, terms, regionPoints};
+}
+
 FitReport runFit(const FitOptions& given, const std::function<void(const std::string&)>& log) {
+  if (!given.groups.empty() || !given.more.empty()) throw SceneError("fit: --groups and more than one RSML file: a fit by group (runGroupFit)");
+  return runFitOn(given, nullptr, log);
+}
+
+FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::function<void(const std::string&)>& log) {
   FitOptions o = given;  // its objective resolved below (the trace's own default)
   // bad input first, before anything is written
   if (o.scene.empty()) throw SceneError("--scene: give the base scene (a TOML file)");
@@ -444,7 +470,7 @@ FitReport runFit(const FitOptions& given, const std::function<void(const std::st
     throw SceneError("--scene " + o.scene + ": a plate's scene; fit takes the scene of one root (docs/experiments.md)");
   const Model& bm = base.model;
   if (!bm.growth.enabled) throw SceneError(o.scene + ": growth.enabled = false; fit grows the root to the trace's length");
-  const TraceTarget target = loadTarget(o.trace, bm);
+  const TraceTarget target = group ? group->target : loadTarget(o.trace, bm);
   // a trace with times is fitted at every observation time unless another objective is asked for
   if (o.objective.empty()) o.objective = target.timesH.empty() ? "observables" : "timelapse";
   const bool lapse = o.objective == "timelapse";
@@ -454,21 +480,9 @@ FitReport runFit(const FitOptions& given, const std::function<void(const std::st
   const TimeLapseObjective lapseTrace = lapse ? timeLapseObjective(target) : TimeLapseObjective{};
   const std::vector<FreeKey> keys = parseFreeKeys(o.free, o.scene, lapse);
   const int n = static_cast<int>(keys.size());
-  const int k = designLevels(n, o.budget);
-  const int design = static_cast<int>(std::lround(std::pow(k, n)));
-  const int terms = quadraticTerms(n);
-  // runs a trust region's surface is fitted to: enough beyond the surface's terms to estimate the
-  // scatter's covariance between the outputs
-  // (a time-lapse's many outputs: their scatter's covariance from fewer runs is singular, the trace's own
-  // covariance added to it in every chi-square is not)
-  const int outputs = o.objective == "shape" ? 2 * kShapeSamples : 3;
-  const int regionPoints = std::max(2 * terms + 4, terms + outputs + 4);
-  // the budget: the design, a trust region's runs and its minimum's, and the answer's run
-  if (o.budget < design + regionPoints + 2)
-    throw SceneError("--budget " + std::to_string(o.budget) + ": too small for " + std::to_string(n) + " free key(s): the start design takes " +
-                     std::to_string(design) + " runs and one trust region " + std::to_string(regionPoints + 2) +
-                     "; give at least " + std::to_string(design + regionPoints + 2));
-  if (o.objective == "observables" && usedCount(observeBoth(target.traits, target.traits, target.sigmaMm)) < n)
+  const FitSize size = fitSize(o, n);
+  const int k = size.levels, terms = size.terms, regionPoints = size.regionPoints;
+  if (!group && o.objective == "observables" && usedCount(observeBoth(target.traits, target.traits, target.sigmaMm)) < n)
     log("fit: note: the trace defines " + std::to_string(usedCount(observeBoth(target.traits, target.traits, target.sigmaMm))) +
         " observable(s) for " + std::to_string(n) + " free key(s): some direction stays undetermined (try --objective shape)");
   // grow every evaluation to the trace's length: L0 + steps * step * rate * Lgz
@@ -503,7 +517,10 @@ FitReport runFit(const FitOptions& given, const std::function<void(const std::st
   WriteRule rule;
   rule.force = o.force;
   rule.inputs.push_back(WriteInput{o.scene, {}, true});
-  rule.inputs.push_back(WriteInput{o.trace.trace, {}, true});
+  if (group)
+    for (const std::string& f : group->inputs) rule.inputs.push_back(WriteInput{f, {}, true});
+  else
+    rule.inputs.push_back(WriteInput{o.trace.trace, {}, true});
   rule.inputs.push_back(workingFolder());
   claimFolder(out, fitFolder(), rule, "--out", false);
   // the base scene every evaluation starts from: the scene, grown to the trace's length, without ParaView files
@@ -516,7 +533,8 @@ FitReport runFit(const FitOptions& given, const std::function<void(const std::st
   auto flagNum = [](double v) { return v == TraceFlags::kUnset ? std::string("default") : numberText(v); };
   settings += " --objective " + o.objective + " --budget " + std::to_string(o.budget) + " --trace " + o.trace.trace +
               " --root " + (o.trace.root.empty() ? std::string("default") : o.trace.root) + " --px-per-mm " +
-              flagNum(o.trace.pxPerMm) + " --downhill " + o.trace.downhill + " --sigma-mm " + flagNum(o.trace.sigmaMm) + "\n";
+              flagNum(o.trace.pxPerMm) + " --downhill " + o.trace.downhill + " --sigma-mm " + flagNum(o.trace.sigmaMm) +
+              (group ? " " + group->settings : std::string()) + "\n";
   const std::string baseText = "# rootsim fit: " + o.scene + " with growth.steps = " + std::to_string(steps) +
                                (lapse ? " (the trace's last observation time), output.every_steps = " + std::to_string(every) : " (the trace's length and 3 %), output.every_steps = " + std::to_string(every)) +
                                " and output.vtk = false\n" + settings + grown.resolvedToml;
@@ -545,7 +563,7 @@ FitReport runFit(const FitOptions& given, const std::function<void(const std::st
   }
   writeFileAtomic(out / "design.toml", designText);
   recordWritten({out / "design.toml"});
-  Fit fit(o, keys, out, baseText, target, log);
+  Fit fit(o, keys, out, baseText, target, log, group);
 
   // 1. the start design, as a sweep
   const SweepPlan plan = loadSweep((out / "design.toml").string());
@@ -814,6 +832,9 @@ FitReport runFit(const FitOptions& given, const std::function<void(const std::st
 }
 
 int fitCommand(const FitOptions& o) {
+  if (!o.groups.empty()) return groupFitCommand(o);
+  if (!o.more.empty())
+    throw SceneError("fit: " + std::to_string(o.more.size() + 1) + " RSML files: several files are a plate fitted by group; give --groups SHEET.csv");
   const FitReport r = runFit(o, [&](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
   const FitEvaluation& b = r.evaluations[static_cast<std::size_t>(r.best)];
   for (std::size_t i = 0; i < r.keys.size(); ++i) {

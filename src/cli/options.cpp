@@ -229,12 +229,14 @@ CommandSpec fitSpec() {
   using O = app::FitOptions;
   Table<O> t("fit", "fit free scene keys to a traced root (RSML): fit.json, the best fit's picture, the landscape");
   t.opt("trace", FIELD(trace.trace), "", "RSML file").required()
+      .opt("more", FIELD(more), "", "more RSML files of the plate (with --groups)")
       .opt("--scene", FIELD(scene), "", "base scene (TOML)").required()
       .opt("--free", FIELD(free), "", "free keys and their bounds: KEY=LO:HI[,KEY=LO:HI...]").required();
   traceOptions(t);
   t.opt("--objective", FIELD(objective), "", "observables (chi-square of skew, wavelength, amplitude; the default for a trace of one time), shape (the centreline at 8 fractions of its length) or timelapse (length, tip position and tip angle at every observation time; the default for a 2D+t trace)")
       .opt("-j,--jobs", FIELD(jobs), "", "simultaneous runs")
       .opt("--budget", FIELD(budget), "", "most runs (default 150)")
+      .opt("--groups", FIELD(groups), "", "a traced plate by group: a sample sheet (plant,group) naming each plant's group; each group's keys are fitted to its seedlings together, and every key compared between groups")
       .opt("--out", FIELD(out), "", "the fit's folder (resumable: a killed fit continues where it stopped)").required()
       .opt("--force", FIELD(force), "", "start again in a fit folder of another scene or trace")
       .opt("--quiet", FIELD(quiet), "", "no progress output");

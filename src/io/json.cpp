@@ -83,6 +83,12 @@ Json& Json::str(const std::string& key, const std::string& v) {
   (*doc_)[key] = v;
   return *this;
 }
+Json& Json::strings(const std::string& key, const std::vector<std::string>& v) {
+  OJ a = OJ::array();
+  for (const std::string& s : v) a.push_back(s);
+  (*doc_)[key] = std::move(a);
+  return *this;
+}
 Json& Json::boolean(const std::string& key, bool v) {
   (*doc_)[key] = v;
   return *this;

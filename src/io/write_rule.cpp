@@ -143,8 +143,18 @@ bool isFitEntry(const fs::path& dir, const std::string& name) {
   if (base == ".rootsim-fit" || base == "fit.json" || base == "evaluations.csv" || base == "base.toml" ||
       base == "design.toml" || base == "best.toml" || isFigureFile(base, "compare") || isFigureFile(base, "landscape"))
     return true;
-  if (name != "runs") return false;
   std::error_code ec;
+  if (name == "groups") {
+    // a fit by group (fit --groups): one fit folder per group, and their locks
+    if (!fs::is_directory(fs::symlink_status(dir / name, ec))) return false;
+    for (const auto& e : fs::directory_iterator(dir / name, ec)) {
+      const std::string g = e.path().filename().string();
+      if (isLockFile(g)) continue;
+      if (e.is_symlink(ec) || !e.is_directory(ec) || !whyNotOurs(e.path(), fitFolder()).empty()) return false;
+    }
+    return !ec;
+  }
+  if (name != "runs") return false;
   return fs::is_directory(fs::symlink_status(dir / name, ec)) && whyNotOurs(dir / name, sweepFolder()).empty();
 }
 

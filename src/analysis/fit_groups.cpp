@@ -1,0 +1,377 @@
+// `rootsim fit PLATE.rsml --groups SHEET.csv`: the free keys fitted per group of a traced plate's
+// seedlings, and every key's contrast between every two groups (docs/experiments.md, "A plate by group").
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+
+#include "rootsim/analyze_traces.hpp"
+#include "rootsim/csv.hpp"
+#include "rootsim/errors.hpp"
+#include "rootsim/json.hpp"
+#include "rootsim/number_text.hpp"
+#include "rootsim/run_dir.hpp"
+#include "rootsim/scene.hpp"
+#include "rootsim/signature.hpp"
+#include "rootsim/units.hpp"
+#include "rootsim/write_rule.hpp"
+#include "fit_parts.hpp"
+
+namespace fs = std::filesystem;
+
+namespace rootsim::app {
+
+FitComponents groupComponents(const GroupSide& g, const SimRoot& sim) {
+  FitComponents c = g.trace;
+  c.sim = Eigen::VectorXd::Zero(static_cast<int>(c.names.size()));
+  for (std::size_t i = 0; i < g.seedlings.size(); ++i) {
+    const TraceTarget& t = g.seedlings[i];
+    const std::vector<Observation> obs = observeBoth(t.traits, sim.traits, t.sigmaMm);
+    for (std::size_t j = 0; j < c.names.size(); ++j) {
+      if (!g.users[j][i]) continue;
+      for (const Observation& o : obs)
+        // a run without the waves the trace has: its missing value counts as 0 (observableComponents)
+        if (o.name == c.names[j]) c.sim(static_cast<int>(j)) += (std::isfinite(o.sim) ? o.sim : 0.0) / g.userCount(j);
+    }
+  }
+  return c;
+}
+
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// the group's outputs: each observable two or more of its seedlings' traces use (a trace without a wave
+// train has no wavelength), the mean over those seedlings, and the mean's covariance S / n from their
+// sample covariance S, its diagonal at least the mean of their own tracing variances (a few seedlings that
+// happen to agree do not claim more than their traces can). Two outputs measured on different seedlings,
+// or on fewer seedlings than it takes to estimate their covariance (n - 1 < outputs): no covariance between them
+void groupTraceSide(GroupSide& g, const std::string& sheet) {
+  const std::size_t n = g.seedlings.size();
+  std::vector<std::vector<Observation>> own;
+  for (const TraceTarget& t : g.seedlings) own.push_back(observeBoth(t.traits, t.traits, t.sigmaMm));
+  const auto find = [&](std::size_t i, const std::string& name) -> const Observation* {
+    for (const Observation& o : own[i])
+      if (o.name == name && o.used) return &o;
+    return nullptr;
+  };
+  g.trace = FitComponents{};
+  g.users.clear();
+  for (const Observation& o : own.front()) {
+    std::vector<bool> users(n, false);
+    int count = 0;
+    for (std::size_t i = 0; i < n; ++i) count += (users[i] = find(i, o.name) != nullptr) ? 1 : 0;
+    if (count >= 2) {
+      g.trace.names.push_back(o.name);
+      g.users.push_back(users);
+    }
+  }
+  if (g.trace.names.empty())
+    throw SceneError(sheet + ": group " + g.name + ": no observable is measured on two of its seedlings' traces (skew, wavelength, amplitude)");
+  const int m = static_cast<int>(g.trace.names.size());
+  Eigen::VectorXd mean = Eigen::VectorXd::Zero(m), tracing = Eigen::VectorXd::Zero(m);
+  for (int j = 0; j < m; ++j)
+    for (std::size_t i = 0; i < n; ++i)
+      if (const Observation* o = g.users[static_cast<std::size_t>(j)][i] ? find(i, g.trace.names[static_cast<std::size_t>(j)]) : nullptr) {
+        mean(j) += o->trace / g.userCount(static_cast<std::size_t>(j));
+        tracing(j) += o->sigma * o->sigma / g.userCount(static_cast<std::size_t>(j));
+      }
+  g.scatter = Eigen::MatrixXd::Zero(m, m);
+  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(m, m);
+  for (int j = 0; j < m; ++j)
+    for (int k = 0; k < m; ++k) {
+      const auto& uj = g.users[static_cast<std::size_t>(j)];
+      if (uj != g.users[static_cast<std::size_t>(k)]) continue;
+      const double nj = g.userCount(static_cast<std::size_t>(j));
+      // the outputs measured on the same seedlings: their sample covariance is singular unless it has more
+      // seedlings than outputs (n - 1 >= m); without, their variances alone
+      const auto block = std::count(g.users.begin(), g.users.end(), uj);
+      if (j != k && nj - 1 < static_cast<double>(block)) continue;
+      double sjk = 0;
+      for (std::size_t i = 0; i < n; ++i)
+        if (uj[i])
+          sjk += (find(i, g.trace.names[static_cast<std::size_t>(j)])->trace - mean(j)) *
+                 (find(i, g.trace.names[static_cast<std::size_t>(k)])->trace - mean(k)) / (nj - 1);
+      g.scatter(j, k) = sjk;
+      cov(j, k) = (j == k ? std::max(sjk, tracing(j)) : sjk) / nj;
+    }
+  g.trace.trace = mean;
+  g.trace.cov = cov;
+  g.trace.sigma = cov.diagonal().cwiseSqrt();
+}
+
+bool isPlateKey(const std::string& key) {
+  const std::string section = key.substr(0, key.find('.'));
+  for (const char* s : {"plate", "population", "seedling", "laterals"})
+    if (section == s) return true;
+  for (const char* s : {"name", "genotype", "position_mm", "angle_deg", "set_point_deg"})
+    if (key == s) return true;
+  return false;
+}
+
+bool goodGroupName(const std::string& s) {
+  if (s.empty() || s == "." || s == ".." || s.size() > 64) return false;
+  return std::all_of(s.begin(), s.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.'; });
+}
+
+// "+0.2 +- 0.03, p < 0.001" (the values to the sigma's second significant digit)
+std::string contrastText(const GroupContrast& c) {
+  if (c.flat) return "flat (" + c.why + ")";
+  char b[160];
+  const int digits = c.sigma > 0 ? std::max(0, 1 - static_cast<int>(std::floor(std::log10(c.sigma)))) : 3;
+  std::snprintf(b, sizeof b, "%+.*f +- %.*f, ", digits, c.difference, digits, c.sigma);
+  std::string t = b;
+  if (c.pValue < 0.001)
+    t += "p < 0.001";
+  else {
+    std::snprintf(b, sizeof b, "p = %.2g", c.pValue);
+    t += b;
+  }
+  return t;
+}
+
+}  // namespace
+
+std::vector<GroupContrast> groupContrasts(const std::vector<FreeKey>& keys, const std::vector<GroupFit>& groups) {
+  std::vector<GroupContrast> out;
+  for (std::size_t a = 0; a < groups.size(); ++a)
+    for (std::size_t b = a + 1; b < groups.size(); ++b)
+      for (std::size_t i = 0; i < keys.size(); ++i) {
+        GroupContrast c;
+        c.key = keys[i].key;
+        c.a = groups[a].name;
+        c.b = groups[b].name;
+        const double sa = groups[a].sigma[i], sb = groups[b].sigma[i];
+        c.difference = groups[a].value[i] - groups[b].value[i];
+        if (!std::isfinite(sa) || !std::isfinite(sb)) {
+          // a key a group's seedlings do not determine (or whose best value lies at a bound of the box)
+          c.flat = true;
+          c.difference = c.sigma = c.pValue = kNaN;
+          c.why = "not determined in " + (!std::isfinite(sa) ? c.a : c.b) + ": see its notes";
+          out.push_back(c);
+          continue;
+        }
+        c.sigma = std::hypot(sa, sb);
+        // Wald: the two groups' estimates are independent (their own seedlings, their own runs)
+        c.pValue = c.sigma > 0 ? std::erfc(std::abs(c.difference) / c.sigma / std::sqrt(2.0)) : (c.difference == 0 ? 1.0 : 0.0);
+        out.push_back(c);
+      }
+  return out;
+}
+
+std::string contrastsTable(const std::vector<GroupContrast>& contrasts) {
+  std::string out, pair;
+  for (const GroupContrast& c : contrasts) {
+    const std::string p = c.a + " - " + c.b;
+    if (p != pair) {
+      out += (pair.empty() ? "" : "\n") + p + ": ";
+      pair = p;
+    } else {
+      out += "; ";
+    }
+    out += c.key + " " + contrastText(c);
+  }
+  return out.empty() ? out : out + "\n";
+}
+
+GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const std::string&)>& log) {
+  // bad input first, before anything is written
+  if (o.scene.empty()) throw SceneError("--scene: give the base scene (a TOML file)");
+  if (o.out.empty()) throw SceneError("--out: give the fit's folder");
+  if (!o.objective.empty() && o.objective != "observables")
+    throw SceneError("--objective " + o.objective +
+                     ": a fit by group (--groups) compares each group's mean observables; use --objective observables or leave it out");
+  if (!o.trace.root.empty()) throw SceneError("--root " + o.trace.root + ": a fit by group takes each plant's primary root; leave --root out");
+  for (const std::string& item : splitCommas(o.free)) {
+    const std::string key = item.substr(0, item.find('='));
+    if (isPlateKey(key))
+      throw SceneError("--free " + item + ": " + key + " is a plate's key ([plate], [population], [[seedling]], [laterals]); " +
+                       "a fit by group runs the root of the base scene per group: free a key of the root (tropism.*, rod.*, growth.rate_per_h, ...)");
+    if (key.rfind("plane.", 0) == 0)
+      throw SceneError("--free " + item + ": " + key + " is the plate's tilt, the same for every group: set it in the scene");
+  }
+  const Scene base = loadScene(o.scene);
+  if (base.isPlate())
+    throw SceneError("--scene " + o.scene + ": a plate's scene; fit --groups takes the scene of one root, run once per group");
+  const std::vector<FreeKey> keys = parseFreeKeys(o.free, o.scene);
+  if (o.jobs < 1 || o.jobs > 256) throw SceneError("-j " + std::to_string(o.jobs) + ": must be in [1, 256]");
+  {
+    FitOptions oo = o;
+    oo.objective = "observables";
+    fitSize(oo, static_cast<int>(keys.size()));  // the budget, checked before anything is written
+  }
+  std::vector<std::string> files = {o.trace.trace};
+  files.insert(files.end(), o.more.begin(), o.more.end());
+  AnalyzeOptions a;
+  a.pxPerMm = o.trace.pxPerMm;
+  a.downhill = o.trace.downhill;
+  a.excludeTipMm = base.model.growth.zoneLength / units::mm;
+  a.radiusMm = base.model.rod.radius / units::mm;
+  a.flagPrefix = o.trace.flagPrefix;
+  checkTraceFlags(a);
+  std::vector<TracedPlant> plants;
+  std::vector<std::string> rootKeys;
+  for (const std::string& f : files) {
+    const TraceFile tf = readTraceFile(f, a);
+    for (const TracedPlant& p : tracedPlants(tf, f)) {
+      plants.push_back(p);
+      rootKeys.push_back(tf.roots[static_cast<std::size_t>(p.root)].key);
+    }
+  }
+  const std::vector<SheetRow> rows = readSampleSheet(o.groups, "group", plants);
+  {
+    std::vector<bool> named(plants.size(), false);
+    for (const SheetRow& r : rows) named[static_cast<std::size_t>(r.plant)] = true;
+    for (std::size_t p = 0; p < plants.size(); ++p)
+      if (!named[p])
+        throw SceneError(o.groups + ": plant " + plants[p].id + (plants[p].label.empty() ? "" : " (" + plants[p].label + ")") + " of " +
+                         plants[p].file + " has no line; add \"" + plants[p].id + ",GROUP\" for it (every traced plant belongs to a group)");
+  }
+  // the groups in the order the sheet first names them
+  std::vector<GroupSide> groups;
+  std::map<std::string, int> firstLine;
+  for (const SheetRow& r : rows) {
+    if (!goodGroupName(r.value))
+      throw SceneError(o.groups + ":" + std::to_string(r.line) + ": group " + r.value +
+                       ": letters, digits, '-', '_' and '.' only (it names the group's folder)");
+    auto it = std::find_if(groups.begin(), groups.end(), [&](const GroupSide& g) { return g.name == r.value; });
+    if (it == groups.end()) {
+      groups.push_back(GroupSide{});
+      groups.back().name = r.value;
+      firstLine[r.value] = r.line;
+      it = groups.end() - 1;
+    }
+    const TracedPlant& p = plants[static_cast<std::size_t>(r.plant)];
+    // its label where no other plant has it (the plants of a scan may all be labelled alike), else its id
+    const bool unique = !p.label.empty() && std::count_if(plants.begin(), plants.end(), [&](const TracedPlant& q) { return q.label == p.label; }) == 1;
+    it->plants.push_back(unique ? p.label : p.id);
+    TraceFlags f = o.trace;
+    f.trace = p.file;
+    f.root = rootKeys[static_cast<std::size_t>(r.plant)];
+    it->seedlings.push_back(loadTarget(f, base.model));
+  }
+  for (GroupSide& g : groups) {
+    if (g.seedlings.size() < 2)
+      throw SceneError(o.groups + ":" + std::to_string(firstLine[g.name]) + ": group " + g.name + " has one seedling (" + g.plants.front() +
+                       "); a group's fit needs at least two: add the group's other plants or put this one in another group");
+    groupTraceSide(g, o.groups);
+    g.target = g.seedlings.front();
+    double mean = 0;
+    for (const TraceTarget& t : g.seedlings) mean += t.rootLengthMm / static_cast<double>(g.seedlings.size());
+    g.target.rootLengthMm = mean;
+    g.inputs = files;
+    g.inputs.push_back(o.groups);
+    g.settings = "--groups " + o.groups + " group " + g.name + " plants";
+    for (const std::string& p : g.plants) g.settings += " " + p;
+  }
+
+  const fs::path out = checkOutputName(o.out, "--out");
+  const OutputLock lock = lockOutput(out, "--out");
+  WriteRule rule;
+  rule.force = o.force;
+  rule.inputs.push_back(WriteInput{o.scene, {}, true});
+  for (const std::string& f : groups.front().inputs) rule.inputs.push_back(WriteInput{f, {}, true});
+  rule.inputs.push_back(workingFolder());
+  claimFolder(out, fitFolder(), rule, "--out", false);
+  createOwnFolder(out, fitFolder());
+
+  GroupFitReport rep;
+  rep.keys = keys;
+  rep.out = out.string();
+  for (const GroupSide& g : groups) {
+    FitOptions go = o;
+    go.objective = "observables";
+    go.out = (out / "groups" / g.name).string();
+    if (!o.quiet) {
+      std::string line = "fit: group " + g.name + " (" + std::to_string(g.seedlings.size()) + " seedlings):";
+      for (int j = 0; j < g.trace.trace.size(); ++j)
+        line += " " + g.trace.names[static_cast<std::size_t>(j)] + " " + numberText(std::round(g.trace.trace(j) * 1e4) / 1e4) + " +- " +
+                numberText(std::round(g.trace.sigma(j) * 1e4) / 1e4) + " (" +
+                std::to_string(static_cast<int>(g.userCount(static_cast<std::size_t>(j)))) + " seedlings)";
+      log(line);
+    }
+    GroupFit gf;
+    gf.name = g.name;
+    gf.plants = g.plants;
+    gf.report = runFitOn(go, &g, [&](const std::string& l) { log("[" + g.name + "] " + l); });
+    gf.outputs = g.trace;
+    gf.scatter = g.scatter;
+    const FitEvaluation& b = gf.report.evaluations[static_cast<std::size_t>(gf.report.best)];
+    gf.value = b.x;
+    gf.sigma = gf.report.sigma;
+    gf.answerSim = b.sim;
+    rep.groups.push_back(gf);
+  }
+  rep.contrasts = groupContrasts(keys, rep.groups);
+
+  // fit.json: each group's answer and goodness, and the contrasts
+  Json js;
+  js.str("software", outputSignatureText()).str("sheet", o.groups).str("scene", o.scene).strings("traces", files);
+  {
+    std::vector<std::string> names;
+    for (const FreeKey& k : keys) names.push_back(k.key);
+    js.strings("keys", names);
+  }
+  js.str("method", "each group's mean observables against one run per evaluation of the group's values, measured as each seedling is; "
+                   "covariance: the mean's, from the seedlings' scatter (its diagonal at least their tracing noise) / n");
+  Json gj;
+  for (const GroupFit& g : rep.groups) {
+    Json one;
+    one.strings("plants", g.plants).integer("seedlings", static_cast<long long>(g.plants.size())).str("folder", "groups/" + g.name);
+    Json best;
+    for (std::size_t i = 0; i < keys.size(); ++i) best.object(keys[i].key, Json().num("value", g.value[i]).num("sigma", g.sigma[i]));
+    one.object("best", best);
+    one.object("goodness", goodnessJson(g.report.goodness));
+    if (!g.report.misfit.empty()) one.str("misfit", g.report.misfit);
+    std::vector<std::string> flat;
+    std::vector<Json> obs;
+    for (std::size_t i = 0; i < keys.size(); ++i)
+      if (!std::isfinite(g.sigma[i])) flat.push_back(keys[i].key);
+    for (std::size_t j = 0; j < g.outputs.names.size(); ++j) {
+      const int jj = static_cast<int>(j);
+      obs.push_back(Json()
+                        .str("name", g.outputs.names[j])
+                        .num("mean", g.outputs.trace(jj))
+                        .num("sigma_of_mean", g.outputs.sigma(jj))
+                        .num("scatter_sd", std::sqrt(g.scatter(jj, jj)))
+                        .num("answer", g.answerSim.size() > jj ? g.answerSim(jj) : kNaN));
+    }
+    one.strings("flat", flat).strings("notes", g.report.notes).array("observables", obs);
+    gj.object(g.name, one);
+  }
+  js.object("groups", gj);
+  std::vector<Json> cj;
+  for (const GroupContrast& c : rep.contrasts) {
+    Json one;
+    one.str("key", c.key).strings("groups", {c.a, c.b});
+    if (c.flat)
+      one.str("difference", "flat").str("why", c.why);
+    else
+      one.num("difference", c.difference).num("sigma", c.sigma).num("p_value", c.pValue);
+    cj.push_back(one);
+  }
+  js.array("contrasts", cj);
+  writeFileAtomic(out / "fit.json", js.dump(2) + "\n");
+  recordWritten({out / "fit.json"});
+  return rep;
+}
+
+int groupFitCommand(const FitOptions& o) {
+  const GroupFitReport r = runGroupFit(o, [&](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
+  for (const GroupFit& g : r.groups) {
+    std::printf("%s (%zu seedlings):", g.name.c_str(), g.plants.size());
+    for (std::size_t i = 0; i < r.keys.size(); ++i) {
+      if (std::isfinite(g.sigma[i]))
+        std::printf(" %s = %.6g +- %.3g%s", r.keys[i].key.c_str(), g.value[i], g.sigma[i], i + 1 < r.keys.size() ? "," : "");
+      else
+        std::printf(" %s = %.6g (flat)%s", r.keys[i].key.c_str(), g.value[i], i + 1 < r.keys.size() ? "," : "");
+    }
+    std::printf("; goodness: %s\n", goodnessText(g.report.goodness).c_str());
+    if (!g.report.misfit.empty()) std::printf("  poor fit: %s\n", g.report.misfit.c_str());
+  }
+  std::printf("%s", contrastsTable(r.contrasts).c_str());
+  if (!o.quiet) std::fprintf(stderr, "wrote %s (fit.json, groups/NAME: each group's fit folder)\n", r.out.c_str());
+  return 0;
+}
+
+}  // namespace rootsim::app

@@ -1,0 +1,212 @@
+// `rootsim fit PLATE.rsml --groups SHEET.csv` (src/analysis/fit_groups.cpp, docs/experiments.md "A plate by
+// group") end to end: a synthetic plate of two genotypes traced as a scan (whole pixels, jitter) whose
+// twist differs and whose beta does not; bad input (exit 2 naming the sheet's line, nothing written).
+#include <doctest/doctest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "test_support.hpp"
+
+namespace fs = std::filesystem;
+using namespace rootsim;
+using rootsim::test::run;
+using rootsim::test::slurp;
+
+namespace {
+
+fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("fit_groups", name); }
+
+// the base scene of every group's runs: a waving root at the quick resolution (0.1 mm elements, 0.1 h steps)
+const char* const kBase =
+    "[root]\nradius_mm = 0.1\ninitial_length_mm = 1.1\nelement_length_mm = 0.1\n"
+    "[growth]\ngrowth_zone_mm = 1.0\nrate_per_h = 0.2\nstep_h = 0.1\n"
+    "[tropism]\nbeta = 0.2\ngamma = 0.1\nsensing = \"local\"\n[plane]\nalpha_deg = 40\n[output]\nevery_steps = 50\n";
+
+// a plate of three wild-type seedlings (twist 0) and three mutants (twist 0.05), beta 0.2 in both, each
+// sown at its own angle (the seedling-to-seedling spread), grown to 15 mm
+std::string plateScene() {
+  std::string s = kBase;
+  s.replace(s.find("step_h = 0.1\n"), 13, "step_h = 0.1\nsteps = 700\n");
+  s += "vtk = false\n[plate]\nwidth_mm = 80\nlength_mm = 30\n";
+  const char* names[] = {"w1", "w2", "w3", "m1", "m2", "m3"};
+  const int angles[] = {-3, 2, 4, 3, -2, -4};
+  for (int i = 0; i < 6; ++i) {
+    s += "[[seedling]]\nname = \"" + std::string(names[i]) + "\"\nposition_mm = [" + std::to_string(5 + 11 * i) + ", 5]\nangle_deg = " +
+         std::to_string(angles[i]) + "\n";
+    if (i >= 3) s += "set = { \"tropism.twist_r_tau\" = 0.05 }\n";
+  }
+  return s;
+}
+
+// each plant's primary root of a plate's RSML export as a scan's tracer gives it: at 20 px/mm a point every
+// 4 px along the root, each moved by Gaussian jitter of 0.5 px (seeded), snapped to whole pixels; the
+// plants keep their ids and labels
+void traceLikeAScan(const fs::path& exported, const fs::path& out, unsigned seed) {
+  const std::string text = slurp(exported);
+  std::mt19937 gen(seed);
+  std::normal_distribution<double> jitter(0.0, 0.5);
+  std::ofstream f(out);
+  f << "<?xml version=\"1.0\"?>\n<rsml><metadata><unit>pixel</unit><resolution>1</resolution></metadata><scene>\n";
+  for (std::size_t at = text.find("<plant id=\""); at != std::string::npos; at = text.find("<plant id=\"", at + 1)) {
+    const std::size_t end = text.find("</plant>", at);
+    const std::string head = text.substr(at, text.find('>', at) - at);
+    const std::string id = head.substr(11, head.find('"', 11) - 11);
+    const auto lab = head.find("label=\"");
+    const std::string label = lab == std::string::npos ? "" : head.substr(lab + 7, head.find('"', lab + 7) - lab - 7);
+    // the primary's points: the first polyline of the plant
+    const std::size_t polyEnd = text.find("</polyline>", at);
+    std::vector<std::pair<double, double>> p;
+    for (std::size_t q = text.find("<point x=\"", at); q != std::string::npos && q < std::min(end, polyEnd); q = text.find("<point x=\"", q + 1))
+      p.emplace_back(std::stod(text.substr(q + 10)), std::stod(text.substr(text.find(" y=\"", q) + 4)));
+    REQUIRE(p.size() > 10);
+    std::vector<double> s(1, 0.0);
+    for (std::size_t i = 1; i < p.size(); ++i) s.push_back(s.back() + std::hypot(p[i].first - p[i - 1].first, p[i].second - p[i - 1].second));
+    const int n = static_cast<int>(std::lround(s.back() / 0.2));
+    f << "<plant id=\"" << id << "\" label=\"" << label << "\"><root id=\"" << id << ".1\"><geometry><polyline>\n";
+    std::size_t j = 1;
+    for (int k = 0; k <= n; ++k) {
+      const double a = s.back() * k / n;
+      while (j + 1 < s.size() && s[j] < a) ++j;
+      const double w = (a - s[j - 1]) / (s[j] - s[j - 1]);
+      const double x = p[j - 1].first + w * (p[j].first - p[j - 1].first), y = p[j - 1].second + w * (p[j].second - p[j - 1].second);
+      f << "<point x=\"" << std::round(20 * x + jitter(gen)) << "\" y=\"" << std::round(20 * y + jitter(gen)) << "\"/>\n";
+    }
+    f << "</polyline></geometry></root></plant>\n";
+  }
+  f << "</scene></rsml>\n";
+}
+
+struct Plate {
+  fs::path traced, base, sheet;
+};
+const Plate& plate() {
+  static const Plate p = [] {
+    Plate r;
+    const fs::path d = scratch("plate");
+    std::ofstream(d / "plate.toml") << plateScene();
+    REQUIRE(run("run " + (d / "plate.toml").string() + " --out " + (d / "run").string() + " --quiet").code == 0);
+    REQUIRE(run("export " + (d / "run").string() + " --rsml " + (d / "plate.rsml").string() + " --quiet").code == 0);
+    r.traced = d / "traced.rsml";
+    traceLikeAScan(d / "plate.rsml", r.traced, 1);
+    r.base = d / "base.toml";
+    std::ofstream(r.base) << kBase;
+    r.sheet = d / "sheet.csv";
+    std::ofstream(r.sheet) << "plant,group\nw1,WT\nw2,WT\nw3,WT\nm1,mut\nm2,mut\nm3,mut\n";
+    return r;
+  }();
+  return p;
+}
+
+bool built() {
+  const auto r = run("export /nonexistent-run --rsml /nonexistent-folder/x.rsml");
+  if (r.out.find("built without") != std::string::npos) {
+    test::skipCase("rootsim built without the app library: no export to make the plate's RSML");
+    return false;
+  }
+  return true;
+}
+
+// the number after "key": from position `from`
+double jsonNumber(const std::string& s, const std::string& key, std::size_t from = 0) {
+  const auto at = s.find("\"" + key + "\": ", from);
+  REQUIRE_MESSAGE(at != std::string::npos, key);
+  return std::stod(s.substr(at + key.size() + 4));
+}
+
+}  // namespace
+
+TEST_CASE("fit by group: bad input exits 2 naming the sheet's line or the flag, and writes nothing") {
+  if (!built()) return;
+  const fs::path d = scratch("bad");
+  const std::string traced = plate().traced.string() + " --px-per-mm 20", scene = " --scene " + plate().base.string();
+  const std::string free = " --free tropism.beta=0.1:0.3";
+  auto sheet = [&](const std::string& name, const std::string& text) {
+    std::ofstream(d / name) << text;
+    return " --groups " + (d / name).string();
+  };
+  struct Case {
+    std::string args, expect;
+  };
+  const std::vector<Case> cases = {
+      {traced + sheet("absent.csv", "plant,group\nw1,WT\nw2,WT\nw3,WT\nm1,mut\nm2,mut\nm3,mut\nm9,mut\n") + scene + free,
+       "absent.csv:8: plant m9: not a plant of the trace (its plants: 1 (w1), 2 (w2)"},
+      {traced + sheet("missing.csv", "plant,group\nw1,WT\nw2,WT\nm1,mut\nm2,mut\nm3,mut\n") + scene + free,
+       "missing.csv: plant 3 (w3) of " + plate().traced.string() + " has no line; add \"3,GROUP\" for it"},
+      {traced + sheet("one.csv", "plant,group\nw1,WT\nw2,WT\nw3,solo\nm1,mut\nm2,mut\nm3,mut\n") + scene + free,
+       "one.csv:4: group solo has one seedling (w3); a group's fit needs at least two"},
+      {traced + sheet("twice.csv", "plant,group\nw1,WT\nw1,WT\n") + scene + free, "twice.csv:3: plant w1 named twice (first on line 2)"},
+      {traced + sheet("nocol.csv", "plant,genotype\nw1,WT\n") + scene + free, "nocol.csv:1: no column group"},
+      {traced + sheet("empty.csv", "plant,group\nw1,\n") + scene + free, "empty.csv:2: plant w1: no group"},
+      {traced + sheet("slash.csv", "plant,group\nw1,a/b\nw2,a/b\nw3,WT\nm1,WT\nm2,WT\nm3,WT\n") + scene + free, "slash.csv:2: group a/b: letters"},
+      {traced + sheet("good.csv", "plant,group\nw1,WT\nw2,WT\nw3,WT\nm1,mut\nm2,mut\nm3,mut\n") + scene + " --free plate.width_mm=10:20",
+       "--free plate.width_mm=10:20: plate.width_mm is a plate's key"},
+      {traced + " --groups " + (d / "good.csv").string() + scene + " --free angle_deg=-5:5", "angle_deg is a plate's key"},
+      {traced + " --groups " + (d / "good.csv").string() + scene + " --free plane.alpha_deg=30:50", "the plate's tilt, the same for every group"},
+      {traced + " --groups " + (d / "good.csv").string() + scene + free + " --objective shape", "--objective shape: a fit by group"},
+      {traced + " --groups " + (d / "nothere.csv").string() + scene + free, "nothere.csv: cannot be read"},
+      {traced + " --groups " + (d / "good.csv").string() + scene + free + " --budget 5", "--budget 5: too small"},
+      {traced + " " + plate().traced.string() + scene + free, "several files are a plate fitted by group; give --groups"},
+  };
+  for (const Case& c : cases) {
+    const auto r = run("fit " + c.args + " --out " + (d / "out").string());
+    CHECK_MESSAGE(r.code == 2, c.args << " -> " << r.out);
+    CHECK_MESSAGE(r.out.find(c.expect) != std::string::npos, c.args << " -> " << r.out);
+    CHECK_MESSAGE(r.out.find("rootsim: error: ") != std::string::npos, r.out);
+    CHECK_MESSAGE(!fs::exists(d / "out"), c.args);
+  }
+}
+
+TEST_CASE("fit by group: two genotypes differing in the twist / the difference recovered, the equal beta not called different") {
+  if (!built()) return;
+  const fs::path d = scratch("fit");
+  const std::string args = "fit " + plate().traced.string() + " --px-per-mm 20 --groups " + plate().sheet.string() + " --scene " +
+                           plate().base.string() + " --free tropism.beta=0.1:0.3,tropism.twist_r_tau=-0.05:0.1 --budget 40 -j 2 --quiet --out " +
+                           (d / "g").string();
+  const auto r = run(args);
+  REQUIRE_MESSAGE(r.code == 0, r.out);
+  INFO(r.out);
+  for (const char* f : {"fit.json", "groups/WT/fit.json", "groups/mut/fit.json", "groups/WT/evaluations.csv", "groups/mut/best.toml"})
+    CHECK_MESSAGE(fs::exists(d / "g" / f), f);
+  const std::string js = slurp(d / "g" / "fit.json");
+  INFO(js);
+  // the contrasts: WT - mut, each key
+  const auto twist = js.find("\"key\": \"tropism.twist_r_tau\"");
+  const auto beta = js.find("\"key\": \"tropism.beta\"", js.find("\"contrasts\""));
+  REQUIRE(twist != std::string::npos);
+  REQUIRE(beta != std::string::npos);
+  {
+    // [A, B]: WT before mut (whatever the layout of the array)
+    const auto open = js.find("\"groups\": [", twist);
+    REQUIRE(open != std::string::npos);
+    const std::string pair = js.substr(open, js.find(']', open) - open);
+    CHECK(pair.find("\"WT\"") != std::string::npos);
+    CHECK(pair.find("\"WT\"") < pair.find("\"mut\""));
+  }
+  // the truth: twist WT - mut = -0.05, found within 20 % and with p < 0.01
+  const double diff = jsonNumber(js, "difference", twist), sigma = jsonNumber(js, "sigma", twist), p = jsonNumber(js, "p_value", twist);
+  CHECK(std::abs(diff + 0.05) < 0.2 * 0.05);
+  CHECK(sigma > 0);
+  CHECK(p < 0.01);
+  // beta equal in both: not called different
+  CHECK(jsonNumber(js, "p_value", beta) > 0.05);
+  // each group's answer and goodness: the model reproduces its seedlings
+  for (const char* g : {"\"WT\": {", "\"mut\": {"}) {
+    const auto at = js.find(g);
+    REQUIRE(at != std::string::npos);
+    CHECK(js.find("\"verdict\": \"consistent\"", at) != std::string::npos);
+    CHECK(jsonNumber(js, "seedlings", at) == 3);
+  }
+  // the table on stdout
+  CHECK(r.out.find("WT - mut: tropism.beta ") != std::string::npos);
+  CHECK(r.out.find("; tropism.twist_r_tau -0.0") != std::string::npos);
+  CHECK(r.out.find(", p < 0.001") != std::string::npos);
+  // a second call finds every run complete: the same answer, the same bytes
+  const auto again = run(args);
+  REQUIRE_MESSAGE(again.code == 0, again.out);
+  CHECK(slurp(d / "g" / "fit.json") == js);
+}

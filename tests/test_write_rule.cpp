@@ -87,6 +87,14 @@ fs::path makeSweep(const fs::path& d) {
   std::ofstream(d / "sweep.toml") << kSweep;
   return d / "sweep.toml";
 }
+
+// shell text that writes the exit code of the command before it into rc whole: beside it, then renamed, so a
+// test polling for rc never reads it half-written
+std::string exitCodeTo(const fs::path& rc) {
+  fs::path tmp = rc;
+  tmp += ".tmp";
+  return "echo $? > " + q(tmp) + " && mv " + q(tmp) + " " + q(rc);
+}
 }  // namespace
 
 TEST_CASE("render and montage never write over a run's own data, nor into or onto a run directory they read") {
@@ -246,7 +254,7 @@ TEST_CASE("two real processes on one run directory: the second is refused, the f
   // a run of a few seconds (the explicit solver), in the background
   const std::string slow = " --set growth.steps=300 --set solver.kind=dynamic --quiet --out " + q(d / "C");
   const std::string cmd = std::string(ROOTSIM_BINARY) + " run " + kScene + slow + " > " + q(d / "first.log") +
-                          " 2>&1; echo $? > " + q(d / "first.rc");
+                          " 2>&1; " + exitCodeTo(d / "first.rc");
   REQUIRE(std::system(("(" + cmd + ") &").c_str()) == 0);
   for (int i = 0; i < 500 && !fs::exists(d / "C.partial" / "scene.toml"); ++i) ::usleep(10000);
   REQUIRE(fs::exists(d / "C.partial"));
@@ -328,8 +336,8 @@ TEST_CASE("the same sweep started twice into one folder: the second is refused, 
   std::ofstream(d / "sweep.toml") << "[sweep]\nscene = \"base.toml\"\n[grid]\n\"plane.alpha_deg\" = [30.0, 35.0, 40.0, 45.0]\n"
                                      "[set]\n\"growth.steps\" = 150\n\"solver.kind\" = \"dynamic\"\n";
   const std::string args = " sweep " + q(d / "sweep.toml") + " --quiet --out " + q(d / "S");
-  REQUIRE(std::system(("(" + std::string(ROOTSIM_BINARY) + args + " > " + q(d / "first.log") + " 2>&1; echo $? > " +
-                       q(d / "first.rc") + ") &").c_str()) == 0);
+  REQUIRE(std::system(("(" + std::string(ROOTSIM_BINARY) + args + " > " + q(d / "first.log") + " 2>&1; " +
+                       exitCodeTo(d / "first.rc") + ") &").c_str()) == 0);
   // until the first sweep's first point is being written
   auto started = [&] {
     std::error_code ec;
@@ -576,7 +584,7 @@ struct SlowRun {
   explicit SlowRun(const fs::path& dir, const std::string& name) : d(dir) {
     const std::string cmd = std::string(ROOTSIM_BINARY) + " run " + kScene +
                             " --set growth.steps=400 --set solver.kind=dynamic --quiet --out " + q(d / name) + " > " +
-                            q(d / "slow.log") + " 2>&1; echo $? > " + q(d / "slow.rc");
+                            q(d / "slow.log") + " 2>&1; " + exitCodeTo(d / "slow.rc");
     REQUIRE(std::system(("(" + cmd + ") &").c_str()) == 0);
     for (int i = 0; i < 500 && !fs::exists(d / (name + ".partial") / "scene.toml"); ++i) ::usleep(10000);
     REQUIRE(fs::exists(d / (name + ".partial")));

@@ -13,23 +13,9 @@
 #include <utility>
 
 #include "rootsim/assert.hpp"
+#include "rootsim/high_water.hpp"
 
 namespace rootsim {
-
-namespace {
-// a vector's storage grows only past its high-water mark, and then geometrically (at least doubling): a
-// workspace that has seen its largest size allocates nothing, and a slowly growing one rarely
-template <class V>
-void growTo(V& v, size_t n) {
-  if (n > v.capacity()) v.reserve(std::max(n, 2 * v.capacity()));
-  v.resize(n);
-}
-template <class V, class It>
-void assignGrowing(V& v, It first, It last) {
-  growTo(v, static_cast<size_t>(last - first));
-  std::copy(first, last, v.begin());
-}
-}  // namespace
 
 struct SparseStiffness::Impl {
   using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
@@ -90,7 +76,7 @@ struct SparseStiffness::Impl {
     // each column: its diagonal and the rows of the places in it, both ways (a place (p, q), p < q, is
     // row q of column p and row p of column q), sorted
     n = size;
-    growTo(ap, static_cast<size_t>(n) + 1);
+    resizeHighWater(ap, static_cast<size_t>(n) + 1);
     std::fill(ap.begin(), ap.end(), 0);
     for (int j = 0; j < n; ++j) ++ap[static_cast<size_t>(j) + 1];
     for (const auto& [p, q] : structural) {
@@ -98,10 +84,10 @@ struct SparseStiffness::Impl {
       ++ap[static_cast<size_t>(q) + 1];
     }
     for (int j = 0; j < n; ++j) ap[static_cast<size_t>(j) + 1] += ap[static_cast<size_t>(j)];
-    growTo(ai, static_cast<size_t>(nnz()));
-    growTo(ax, static_cast<size_t>(nnz()));
+    resizeHighWater(ai, static_cast<size_t>(nnz()));
+    resizeHighWater(ax, static_cast<size_t>(nnz()));
     std::fill(ax.begin(), ax.end(), 0.0);
-    growTo(slot, static_cast<size_t>(n));  // slot as each column's fill count for now
+    resizeHighWater(slot, static_cast<size_t>(n));  // slot as each column's fill count for now
     std::copy(ap.begin(), ap.begin() + n, slot.begin());
     auto put = [&](int row, int col) { ai[static_cast<size_t>(slot[static_cast<size_t>(col)]++)] = row; };
     for (int j = 0; j < n; ++j) put(j, j);
@@ -112,7 +98,7 @@ struct SparseStiffness::Impl {
     for (int j = 0; j < n; ++j) std::sort(ai.begin() + ap[static_cast<size_t>(j)], ai.begin() + ap[static_cast<size_t>(j) + 1]);
     const int* outer = ap.data();
     const int* inner = ai.data();
-    growTo(slot, static_cast<size_t>(n) * bandWidth());
+    resizeHighWater(slot, static_cast<size_t>(n) * bandWidth());
     std::fill(slot.begin(), slot.end(), -1);
     for (int j = 0; j < n; ++j)
       for (int k = outer[j]; k < outer[j + 1]; ++k)
@@ -126,7 +112,7 @@ struct SparseStiffness::Impl {
     if (!transposed.empty()) return;
     const int* outer = ap.data();
     const int* inner = ai.data();
-    growTo(transposed, static_cast<size_t>(nnz()));
+    resizeHighWater(transposed, static_cast<size_t>(nnz()));
     for (int j = 0; j < n; ++j)
       for (int k = outer[j]; k < outer[j + 1]; ++k)
         transposed[static_cast<size_t>(k)] =
@@ -138,7 +124,7 @@ struct SparseStiffness::Impl {
   bool locate(const std::vector<OffBandEntry>& extra) {
     const int* outer = ap.data();
     const int* inner = ai.data();
-    growTo(extraIndex, extra.size());
+    resizeHighWater(extraIndex, extra.size());
     for (size_t e = 0; e < extra.size(); ++e) {
       const int* end = inner + outer[extra[e].col + 1];
       const int* k = std::lower_bound(inner + outer[extra[e].col], end, extra[e].row);
@@ -177,7 +163,7 @@ struct SparseStiffness::Impl {
     std::sort(mid, structural.end());
     structural.erase(std::unique(mid, structural.end()), structural.end());
     // merged in scratch kept from call to call (std::inplace_merge takes a buffer of its own each time)
-    growTo(merged, structural.size());
+    resizeHighWater(merged, structural.size());
     std::merge(structural.begin(), mid, mid, structural.end(), merged.begin());
     structural.swap(merged);
     bandKl = kl;
@@ -192,8 +178,8 @@ struct SparseStiffness::Impl {
     const bool same = static_cast<int>(outer.size()) == cols + 1 && static_cast<int>(inner.size()) == nnz &&
                       std::equal(outer.begin(), outer.end(), mOuter) && std::equal(inner.begin(), inner.end(), mInner);
     if (same) return false;
-    assignGrowing(outer, mOuter, mOuter + cols + 1);
-    assignGrowing(inner, mInner, mInner + nnz);
+    assignHighWater(outer, mOuter, mOuter + cols + 1);
+    assignHighWater(inner, mInner, mInner + nnz);
     return true;
   }
 };
@@ -329,7 +315,7 @@ bool SparseStiffness::factorizeLU() {
     if (klu_refactor(ap, ai, ax, m.symbolic, m.numeric, &m.common) && klu_rcond(m.symbolic, m.numeric, &m.common) &&
         m.common.rcond > 1e-12) {
       m.luReady = true;
-      assignGrowing(m.lastValues, ax, ax + m.nnz());
+      assignHighWater(m.lastValues, ax, ax + m.nnz());
       m.lastFull = false;
       return true;
     }
@@ -337,7 +323,7 @@ bool SparseStiffness::factorizeLU() {
   if (m.numeric) klu_free_numeric(&m.numeric, &m.common);
   m.numeric = klu_factor(ap, ai, ax, m.symbolic, &m.common);
   if (!m.numeric || m.common.status != KLU_OK) return false;
-  assignGrowing(m.pivotValues, ax, ax + m.nnz());
+  assignHighWater(m.pivotValues, ax, ax + m.nnz());
   m.pivotPlaces = m.structural.size();
   m.freshPivots = false;
   m.luReady = true;

@@ -257,3 +257,41 @@ TEST_CASE("plate: a plate restored from its carry continues bit for bit with roo
     CHECK(std::memcmp(&plate.root(r).last().lowestEigenvalue, &resumed.root(r).last().lowestEigenvalue, sizeof(double)) == 0);
   }
 }
+
+TEST_CASE("plate: a growth step of two roots pressed together allocates nothing once their contact has set in") {
+  // the collision scene's roots: after warm-up (the roots have met and their contact lists, the coupled
+  // system and its sparse pattern have reached their size) no growth step allocates, whether the coupled
+  // Newton converges, its pattern changes with the contacts and the windows, or it stalls and the roots
+  // relax together explicitly. Steps that split elements are not counted (a split rebuilds the roots'
+  // states, as a single root's step does: test_simulation.cpp)
+  const Model m = waving();
+  Model across = m;
+  across.tropism.beta = 0.02;
+  PlateSimulation plate(PlateParams{}, {sow("down", 20, 5, m), sow("across", 23, 7, across, -90)});
+  constexpr int kSetIn = 20;  // steps after the roots first touch
+  int met = -1, checked = 0, touchingChecked = 0, jointChecked = 0;
+  for (int k = 0; k < 600; ++k) {
+    const long before = rootsim::test::gAllocs.load();
+    const PlateStepRecord& r = plate.growthStep();
+    const long allocs = rootsim::test::gAllocs.load() - before;
+    if (met < 0 && r.touchingPairs > 0) met = k;
+    int splits = 0;
+    long substeps = 0;
+    for (int q = 0; q < plate.size(); ++q) {
+      splits += plate.root(q).last().splits;
+      substeps += plate.root(q).last().substeps;
+    }
+    if (met < 0 || k < met + kSetIn || splits > 0) continue;
+    INFO("growth step " << r.step << ": " << allocs << " allocations, " << r.touchingPairs << " element pairs touching, "
+                        << r.sweeps << " sweeps");
+    CHECK(allocs == 0);
+    ++checked;
+    touchingChecked += r.touchingPairs > 0;
+    jointChecked += substeps > 0;  // the coupled Newton stalled: the roots relaxed together explicitly
+  }
+  INFO("the roots met at step " << met << "; " << checked << " steps counted, " << touchingChecked
+                                 << " with roots touching, " << jointChecked << " with a joint relaxation");
+  REQUIRE(met > 0);
+  CHECK(touchingChecked > 200);
+  CHECK(jointChecked > 0);
+}

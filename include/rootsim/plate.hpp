@@ -225,6 +225,7 @@ class PlateSimulation {
   std::vector<Eigen::Matrix3Xd> listed_;  // every root's nodes when the step's lists were built
   std::vector<int> capsuleOf_;      // global element -> capsule index in the list being built (-1: none)
   std::vector<int> capsules_;       // listNeighbours: the global elements listed, in the order first listed
+  std::vector<int> jointRoots_;     // relaxJointly: the roots relaxing together
   std::vector<std::pair<Eigen::Vector2d, Eigen::Vector2d>> boxes_;  // each root's box in the plate, widened
   std::vector<char> near_;         // the root's box overlaps another's: it is in the grid
   std::vector<int> nextSite_;      // per root: the index of its next lateral site

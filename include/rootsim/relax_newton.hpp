@@ -1,6 +1,7 @@
 #pragma once
 // The quasi-static Newton solver (docs/model.md, Newton solver; relax_newton.cpp) and the memory it keeps
 // across growth steps.
+#include <array>
 #include <functional>
 #include <cstddef>
 #include <vector>
@@ -98,6 +99,7 @@ struct CoupledWorkspace {
   std::vector<int> clusterOf;         // plate index -> position in the system (-1: not in it)
   std::vector<RodState> start;        // the states before a relaxation (a stalled one returns to them)
   std::vector<std::max_align_t> solvers;  // room for the roots' Newton solvers (relax_newton.cpp: Coupled)
+  std::array<char, 256> stallReason{};    // why the last relaxation stalled (empty when it did not)
   // what the next coupled relaxation depends on (fields.hpp): the sparse pattern and pivots, reused by a
   // system of the same size; the rest is scratch
   static constexpr auto fields() {
@@ -111,7 +113,8 @@ struct CoupledWorkspace {
 // capsules where the other roots now are (before each force evaluation). No stability check here (the
 // plate confirms each root's equilibrium alone: relaxAgain). Returns stalled, with every root back where
 // it started, when no acceptable step is found, the iterations run out, the stiffness is singular or
-// Newton crawls (the plate then relaxes the roots together explicitly); throws RelaxError on divergence.
+// Newton crawls (the plate then relaxes the roots together explicitly), and why in cw.stallReason (not in
+// the result's message: formatted in place, a stall allocates nothing); throws RelaxError on divergence.
 RelaxResult relaxNewtonCoupled(const std::vector<CoupledRoot>& roots, const std::function<void()>& refresh,
                                CoupledWorkspace& cw);
 

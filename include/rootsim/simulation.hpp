@@ -3,6 +3,7 @@
 #include <array>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "rootsim/analysis.hpp"
@@ -157,7 +158,7 @@ class Simulation {
   NewtonWorkspace nw_;
   SimulationProgress p_;
   ContactWorkspace observed_;   // contact counts' own scratch (the solver's list stays untouched)
-  std::unique_ptr<DynamicRelaxation> joint_;  // a plate's joint relaxation under way (beginJoint)
+  std::optional<DynamicRelaxation> joint_;  // a plate's joint relaxation under way (beginJoint; in place: no allocation)
   // a step begun and not finished: its splits, and the plate's coupled iterations and joint sub-steps
   // so far (the record finishStep makes adds them)
   struct Open {

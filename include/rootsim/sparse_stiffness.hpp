@@ -24,8 +24,10 @@ struct OffBandEntry {
 // since the size last changed (a quarter of the rod's band is structurally zero; factorising those zeros
 // doubled KLU's work), so it changes with the size, the contacts, and the rare band entry that turns
 // nonzero; each symbolic analysis is reused while it stays the same, and after the first LU of a
-// relaxation, later ones keep its pivot sequence (KLU's refactorisation) unless a pivot became small. Unlike the band classes this allocates while assembling and factorising: it serves only
-// the steps with self-contact. A copy starts empty.
+// relaxation, later ones keep its pivot sequence (KLU's refactorisation) unless a pivot became small. The
+// pattern's arrays are kept from pattern to pattern and grow only past their largest size (high_water.hpp);
+// KLU allocates its own analysis when the pattern changes and its factors at a full factorisation. A copy
+// starts empty.
 // what SparseStiffness carries from one relaxation to the next (a checkpoint holds it, so that a resumed
 // run factorises exactly as the uninterrupted one): the size and places of the pattern (band and
 // off-band; the diagonal is always there), and the matrix whose full LU chose the pivots that later

@@ -6,6 +6,7 @@
 #include <array>
 
 #include "contact_geometry.hpp"
+#include "rootsim/high_water.hpp"
 
 namespace rootsim {
 
@@ -88,6 +89,8 @@ void neighbourContactStiffness(const RodParams& p, const Environment& env, const
                                 ContactWorkspace& cw) {
   cw.neighbourStiffness.clear();
   const NeighbourCapsules& nb = cw.neighbours;
+  // a stiffness per listed pair at most: room for as many as the pairs' list has (the plate sizes it)
+  reserveHighWater(cw.neighbourStiffness, nb.pairs.capacity());
   const Vec3 up = env.plane.normal();
   for (const std::array<int, 2>& pair : nb.pairs) {
     // plain ints, not a structured binding: the lambda below captures c (clang rejects capturing bindings)

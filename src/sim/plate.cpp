@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "rootsim/contact.hpp"
+#include "rootsim/high_water.hpp"
 #include "rootsim/initial.hpp"
 #include "rootsim/tolerance.hpp"
 #include "rootsim/units.hpp"
@@ -128,6 +129,12 @@ void PlateSimulation::indexElements() {
     const Eigen::Matrix3Xd& x = root(r).state().x;
     firstElement_.push_back(total);
     total += static_cast<int>(x.cols()) - 1;
+  }
+  // every list of elements at its bound, the plate's element count (it changes when elements split)
+  reserveHighWater(grid_, static_cast<size_t>(total));
+  reserveHighWater(capsules_, static_cast<size_t>(total));
+  for (int r = 0; r < size(); ++r) {
+    const Eigen::Matrix3Xd& x = root(r).state().x;
     if (!near_[static_cast<size_t>(r)]) continue;
     const double R = seedling(r).model.rod.radius;
     for (int i = 0; i + 1 < x.cols(); ++i) reach = std::max(reach, (x.col(i + 1) - x.col(i)).norm() + 2.0 * R);
@@ -164,6 +171,11 @@ void PlateSimulation::listNeighbours(int r) {
   const double Ra = seedling(r).model.rod.radius;
   std::vector<int>& capsules = capsules_;  // global element indices, in the order they are first listed
   capsules.clear();
+  // a capsule per element of the other roots at most; the pairs have no such bound short of elements times
+  // capsules: they start at a few per element and double when more are within reach
+  reserveHighWater(nb.source, capsuleOf_.size());
+  reserveHighWater(nb.first, capsuleOf_.size());
+  reserveHighWater(nb.pairs, 4 * static_cast<size_t>(s.elements()));
   for (int i = 0; i < s.elements(); ++i) {
     const Vec3 a0 = s.x.col(i) + offset(r), a1 = s.x.col(i + 1) + offset(r);
     const Vec3 mid = 0.5 * (a0 + a1);
@@ -297,7 +309,8 @@ std::vector<int> PlateSimulation::coupledRoots() const {
 
 void PlateSimulation::relaxJointly() {
   indexElements();
-  std::vector<int> cluster;
+  std::vector<int>& cluster = jointRoots_;
+  cluster.clear();
   for (int r = 0; r < size(); ++r) {
     listNeighbours(r);
     if (!roots_[static_cast<size_t>(r)]->neighbours().empty()) cluster.push_back(r);
@@ -387,7 +400,7 @@ int PlateSimulation::settleStep() {
         if (joint == kJointRelaxations) {
           std::ostringstream os;
           os << "growth step " << root(0).step() << ": the roots in contact did not settle (" << kJointRelaxations
-             << " joint relaxations; " << rc.message << ")";
+             << " joint relaxations; " << coupled_.stallReason.data() << ")";
           throw RelaxError(os.str());
         }
         relaxJointly();

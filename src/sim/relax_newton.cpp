@@ -37,6 +37,7 @@
 #include "rootsim/contact.hpp"
 #include "rootsim/contact_newton.hpp"
 #include "rootsim/forces.hpp"
+#include "rootsim/high_water.hpp"
 #include "rootsim/relax_dynamic.hpp"
 #include "rootsim/rotation.hpp"
 #include "rootsim/stiffness.hpp"
@@ -749,6 +750,7 @@ struct Coupled {
       nw.factorsValid = false;  // nw.lu holds this block unfactorised
       const int o = cw.first[static_cast<size_t>(k)];
       cw.band.addDiagonalBlock(o, nw.lu, kBand);
+      reserveHighWater(cw.offBand, cw.offBand.size() + nw.offBand.size());
       for (const OffBandEntry& e : nw.offBand) cw.offBand.push_back({o + e.row, o + e.col, e.value});
     }
     // each root's rows of its contacts with the others, in the other root's columns (node translations:
@@ -756,6 +758,8 @@ struct Coupled {
     for (int k = 0; k < size(); ++k) {
       const NewtonSolver& s = ns[static_cast<size_t>(k)];
       const NeighbourCapsules& nb = s.ws.contact.neighbours;
+      // at most the 2 x 2 node blocks of 3 x 3 entries of each contact
+      reserveHighWater(cw.offBand, cw.offBand.size() + 36 * s.ws.contact.neighbourStiffness.size());
       for (const NeighbourStiffness& st : s.ws.contact.neighbourStiffness) {
         const auto [o, j] = nb.source[static_cast<size_t>(st.c)];
         const int l = o < static_cast<int>(cw.clusterOf.size()) ? cw.clusterOf[static_cast<size_t>(o)] : -1;
@@ -802,17 +806,21 @@ RelaxResult relaxNewtonCoupled(const std::vector<CoupledRoot>& roots, const std:
   cw.start.resize(roots.size());
   for (size_t k = 0; k < roots.size(); ++k) cw.start[k] = *roots[k].s;
   RelaxResult res;
-  // no acceptable step: every root back where it started (the plate relaxes them together explicitly)
-  auto stall = [&](const std::string& why) {
+  // no acceptable step: every root back where it started (the plate relaxes them together explicitly);
+  // why, a printf format and its arguments, into cw.stallReason (a stall is an ordinary event of a step:
+  // it must not allocate)
+  auto stall = [&](const char* why, auto... args) {
     for (size_t k = 0; k < roots.size(); ++k) {
       *roots[k].s = cw.start[k];
       roots[k].nw->matureAge = kMatureRefresh;
     }
     refresh();
     res.stalled = true;
-    res.message = "coupled Newton solver of the roots in contact: " + why;
+    const int n = std::snprintf(cw.stallReason.data(), cw.stallReason.size(), "coupled Newton solver of the roots in contact: ");
+    std::snprintf(cw.stallReason.data() + n, cw.stallReason.size() - static_cast<size_t>(n), why, args...);
     return res;
   };
+  cw.stallReason[0] = '\0';
   cw.sparse.beginRelaxation(c.N);
   int crawl = 0;
   bool chordNext = false;  // the next iteration reuses this one's factors (as relaxNewton's chord steps)
@@ -821,10 +829,8 @@ RelaxResult relaxNewtonCoupled(const std::vector<CoupledRoot>& roots, const std:
   for (;;) {
     if (c.converged(res)) break;
     if (res.iterations - chords >= opt.newtonMaxIterations) {
-      std::ostringstream os;
-      os << "no joint equilibrium in " << res.iterations << " iterations (residual force " << res.residualForce
-         << " N, couple " << res.residualTorque << " N m)";
-      return stall(os.str());
+      return stall("no joint equilibrium in %ld iterations (residual force %g N, couple %g N m)", res.iterations,
+                   res.residualForce, res.residualTorque);
     }
     ++res.iterations;
     const bool chord = chordNext;
@@ -836,7 +842,7 @@ RelaxResult relaxNewtonCoupled(const std::vector<CoupledRoot>& roots, const std:
     } else {
       c.jacobian(res.iterations <= kMatureTrust);
       cw.sparse.assemble(cw.band, cw.offBand);
-      if (!cw.sparse.factorizeLU()) return stall("singular stiffness at iteration " + std::to_string(res.iterations));
+      if (!cw.sparse.factorizeLU()) return stall("singular stiffness at iteration %ld", res.iterations);
       std::copy(cw.r.begin(), cw.r.begin() + c.N, cw.delta.begin());
       cw.sparse.solveLU(cw.delta.data());
     }
@@ -856,7 +862,7 @@ RelaxResult relaxNewtonCoupled(const std::vector<CoupledRoot>& roots, const std:
       for (NewtonSolver& s : c.ns) s.restoreState();
       if (chord && halvings >= 2) break;  // the chord direction is poor: a fresh Jacobian instead
       if (++halvings > kMaxHalvings)
-        return stall("no acceptable step along the Newton direction at iteration " + std::to_string(res.iterations));
+        return stall("no acceptable step along the Newton direction at iteration %ld", res.iterations);
       a *= 0.5;
     }
     if (chord && halvings >= 2) {
@@ -870,7 +876,7 @@ RelaxResult relaxNewtonCoupled(const std::vector<CoupledRoot>& roots, const std:
     chordNext = !chord && a == 1.0 && norm1 <= kChordTheta * norm0;
     crawl = a <= kCrawl ? crawl + 1 : 0;
     if (crawl >= kMaxCrawl && !c.converged(res))
-      return stall("crawls (" + std::to_string(crawl) + " iterations in a row damped to " + std::to_string(a) + ")");
+      return stall("crawls (%d iterations in a row damped to %f)", crawl, a);
   }
   res.converged = true;
   return res;

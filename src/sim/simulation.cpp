@@ -132,7 +132,7 @@ const StepRecord& Simulation::relaxAgain() {
 }
 
 void Simulation::beginJoint() {
-  joint_ = std::make_unique<DynamicRelaxation>(m_.rod, m_.env, m_.solver, s_, ws_, windowStart());
+  joint_.emplace(m_.rod, m_.env, m_.solver, s_, ws_, windowStart());
 }
 
 bool Simulation::jointStep() {

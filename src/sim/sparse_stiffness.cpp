@@ -13,13 +13,20 @@
 #include <utility>
 
 #include "rootsim/assert.hpp"
+#include "rootsim/high_water.hpp"
 
 namespace rootsim {
 
 struct SparseStiffness::Impl {
   using Matrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
-  Matrix a, sym;
-  std::vector<Eigen::Triplet<double, int>> triplets;
+  // A in compressed columns (column starts, row indices, values) in storage kept from pattern to pattern
+  // (an Eigen matrix reallocates whenever its pattern is rebuilt); sym, A's symmetric part, only for the
+  // stability check
+  int n = 0;
+  std::vector<int> ap, ai;
+  std::vector<double> ax;
+  Matrix sym;
+  int nnz() const { return n > 0 ? ap[static_cast<size_t>(n)] : 0; }
   Eigen::SimplicialLDLT<Matrix, Eigen::Lower, Eigen::AMDOrdering<int>> ldlt;
   // KLU (SuiteSparse) for A itself: a symbolic analysis per pattern, a full factorisation (partial
   // pivoting) at the first Newton iteration of a relaxation, refactorisations with the same pivots after
@@ -44,6 +51,7 @@ struct SparseStiffness::Impl {
   // band structurally zero (a node's row reaches two blocks each side, an element's three), and with
   // those zeros in the pattern KLU's refactorisation of a coil's Jacobian does about twice the flops
   std::vector<std::pair<int, int>> structural;  // (col, row), sorted
+  std::vector<std::pair<int, int>> merged;      // scratch of mergePlaces (swapped with structural)
   int structuralSize = -1;
 
   Impl() { klu_defaults(&common); }
@@ -64,18 +72,34 @@ struct SparseStiffness::Impl {
   int bandWidth() const { return bandKl + bandKu + 1; }
   int slotOf(int i, int j) const { return slot[static_cast<size_t>(j) * bandWidth() + (i - j + bandKu)]; }
 
-  void buildPattern(int n) {
-    triplets.clear();
-    for (int j = 0; j < n; ++j) triplets.emplace_back(j, j, 0.0);
-    for (const auto& [col, row] : structural) {
-      triplets.emplace_back(row, col, 0.0);
-      triplets.emplace_back(col, row, 0.0);
+  void buildPattern(int size) {
+    // each column: its diagonal and the rows of the places in it, both ways (a place (p, q), p < q, is
+    // row q of column p and row p of column q), sorted
+    n = size;
+    resizeHighWater(ap, static_cast<size_t>(n) + 1);
+    std::fill(ap.begin(), ap.end(), 0);
+    for (int j = 0; j < n; ++j) ++ap[static_cast<size_t>(j) + 1];
+    for (const auto& [p, q] : structural) {
+      ++ap[static_cast<size_t>(p) + 1];
+      ++ap[static_cast<size_t>(q) + 1];
     }
-    a.resize(n, n);
-    a.setFromTriplets(triplets.begin(), triplets.end());
-    const int* outer = a.outerIndexPtr();
-    const int* inner = a.innerIndexPtr();
-    slot.assign(static_cast<size_t>(n) * bandWidth(), -1);
+    for (int j = 0; j < n; ++j) ap[static_cast<size_t>(j) + 1] += ap[static_cast<size_t>(j)];
+    resizeHighWater(ai, static_cast<size_t>(nnz()));
+    resizeHighWater(ax, static_cast<size_t>(nnz()));
+    std::fill(ax.begin(), ax.end(), 0.0);
+    resizeHighWater(slot, static_cast<size_t>(n));  // slot as each column's fill count for now
+    std::copy(ap.begin(), ap.begin() + n, slot.begin());
+    auto put = [&](int row, int col) { ai[static_cast<size_t>(slot[static_cast<size_t>(col)]++)] = row; };
+    for (int j = 0; j < n; ++j) put(j, j);
+    for (const auto& [p, q] : structural) {
+      put(q, p);
+      put(p, q);
+    }
+    for (int j = 0; j < n; ++j) std::sort(ai.begin() + ap[static_cast<size_t>(j)], ai.begin() + ap[static_cast<size_t>(j) + 1]);
+    const int* outer = ap.data();
+    const int* inner = ai.data();
+    resizeHighWater(slot, static_cast<size_t>(n) * bandWidth());
+    std::fill(slot.begin(), slot.end(), -1);
     for (int j = 0; j < n; ++j)
       for (int k = outer[j]; k < outer[j + 1]; ++k)
         if (inner[k] - j <= bandKl && j - inner[k] <= bandKu)
@@ -86,21 +110,21 @@ struct SparseStiffness::Impl {
   // transposed[] and sym's pattern, once per pattern
   void deriveSymmetricPattern() {
     if (!transposed.empty()) return;
-    const int* outer = a.outerIndexPtr();
-    const int* inner = a.innerIndexPtr();
-    transposed.resize(static_cast<size_t>(a.nonZeros()));
-    for (int j = 0; j < a.outerSize(); ++j)
+    const int* outer = ap.data();
+    const int* inner = ai.data();
+    resizeHighWater(transposed, static_cast<size_t>(nnz()));
+    for (int j = 0; j < n; ++j)
       for (int k = outer[j]; k < outer[j + 1]; ++k)
         transposed[static_cast<size_t>(k)] =
             static_cast<int>(std::lower_bound(inner + outer[inner[k]], inner + outer[inner[k] + 1], j) - inner);
-    sym = a;
+    sym = Eigen::Map<const Matrix>(n, n, nnz(), ap.data(), ai.data(), ax.data());
   }
 
   // the value places of the off-band entries in the current pattern; false when it lacks one
   bool locate(const std::vector<OffBandEntry>& extra) {
-    const int* outer = a.outerIndexPtr();
-    const int* inner = a.innerIndexPtr();
-    extraIndex.resize(extra.size());
+    const int* outer = ap.data();
+    const int* inner = ai.data();
+    resizeHighWater(extraIndex, extra.size());
     for (size_t e = 0; e < extra.size(); ++e) {
       const int* end = inner + outer[extra[e].col + 1];
       const int* k = std::lower_bound(inner + outer[extra[e].col], end, extra[e].row);
@@ -113,24 +137,24 @@ struct SparseStiffness::Impl {
   // the band's nonzeros and the entries' places merged into the pattern, which is rebuilt (a new size
   // starts it afresh); each place is kept once, as (lower, higher) index (the pattern mirrors it)
   void mergePlaces(const BandLU& band, const std::vector<OffBandEntry>& extra) {
-    const int n = band.size(), kl = band.kl(), ku = band.ku();
-    const bool have = structuralSize == n && bandKl == kl && bandKu == ku && a.rows() == n;
+    const int size = band.size(), kl = band.kl(), ku = band.ku();
+    const bool have = structuralSize == size && bandKl == kl && bandKu == ku && n == size;
     if (!have) {
       structural.clear();
-      structuralSize = n;
+      structuralSize = size;
     }
     // what the current pattern lacks is appended, then sorted and merged in once (one insertion at a
     // time was quadratic in the contact pairs: 10 % of a coiling run; a search of the sorted list for
     // each of the band's nonzeros was 5 %)
     const size_t known = structural.size();
-    const int* outer = a.outerIndexPtr();
-    const int* inner = a.innerIndexPtr();
+    const int* outer = ap.data();
+    const int* inner = ai.data();
     auto add = [&](int row, int col) { structural.emplace_back(std::min(row, col), std::max(row, col)); };
-    for (int j = 0; j < n; ++j)
-      for (int i = std::max(0, j - ku); i <= std::min(n - 1, j + kl); ++i)
+    for (int j = 0; j < size; ++j)
+      for (int i = std::max(0, j - ku); i <= std::min(size - 1, j + kl); ++i)
         if (i != j && band.at(i, j) != 0.0 && !(have && slotOf(i, j) >= 0)) add(i, j);
     for (const OffBandEntry& e : extra) {
-      ROOTSIM_ASSERT(e.row >= 0 && e.row < n && e.col >= 0 && e.col < n && (e.row - e.col > kl || e.col - e.row > ku),
+      ROOTSIM_ASSERT(e.row >= 0 && e.row < size && e.col >= 0 && e.col < size && (e.row - e.col > kl || e.col - e.row > ku),
                      "an off-band entry inside the matrix");
       if (have && std::binary_search(inner + outer[e.col], inner + outer[e.col + 1], e.row)) continue;
       add(e.row, e.col);
@@ -138,22 +162,24 @@ struct SparseStiffness::Impl {
     const auto mid = structural.begin() + static_cast<std::ptrdiff_t>(known);
     std::sort(mid, structural.end());
     structural.erase(std::unique(mid, structural.end()), structural.end());
-    std::inplace_merge(structural.begin(), mid, structural.end());
+    // merged in scratch kept from call to call (std::inplace_merge takes a buffer of its own each time)
+    resizeHighWater(merged, structural.size());
+    std::merge(structural.begin(), mid, mid, structural.end(), merged.begin());
+    structural.swap(merged);
     bandKl = kl;
     bandKu = ku;
-    buildPattern(n);
+    buildPattern(size);
   }
 
   // true (and the pattern remembered) when m's pattern differs from the one saved
-  static bool patternChanged(const Matrix& m, std::vector<int>& outer, std::vector<int>& inner) {
-    const int cols = static_cast<int>(m.outerSize());
-    const int nnz = static_cast<int>(m.nonZeros());
+  static bool patternChanged(int cols, const int* mOuter, const int* mInner, std::vector<int>& outer,
+                             std::vector<int>& inner) {
+    const int nnz = mOuter[cols];
     const bool same = static_cast<int>(outer.size()) == cols + 1 && static_cast<int>(inner.size()) == nnz &&
-                      std::equal(outer.begin(), outer.end(), m.outerIndexPtr()) &&
-                      std::equal(inner.begin(), inner.end(), m.innerIndexPtr());
+                      std::equal(outer.begin(), outer.end(), mOuter) && std::equal(inner.begin(), inner.end(), mInner);
     if (same) return false;
-    outer.assign(m.outerIndexPtr(), m.outerIndexPtr() + cols + 1);
-    inner.assign(m.innerIndexPtr(), m.innerIndexPtr() + nnz);
+    assignHighWater(outer, mOuter, mOuter + cols + 1);
+    assignHighWater(inner, mInner, mInner + nnz);
     return true;
   }
 };
@@ -169,11 +195,11 @@ SparseStiffness& SparseStiffness::operator=(const SparseStiffness& o) {
 void SparseStiffness::assemble(const BandLU& band, const std::vector<OffBandEntry>& extra) {
   Impl& m = *impl_;
   const int n = band.size(), kl = band.kl(), ku = band.ku();
-  const bool samePattern = m.structuralSize == n && m.a.rows() == n && m.bandKl == kl && m.bandKu == ku;
+  const bool samePattern = m.structuralSize == n && m.n == n && m.bandKl == kl && m.bandKu == ku;
   // the band's values into their places; false when a nonzero has none in the current pattern
   auto fillBand = [&] {
-    double* val = m.a.valuePtr();
-    std::fill(val, val + m.a.nonZeros(), 0.0);
+    double* val = m.ax.data();
+    std::fill(val, val + m.nnz(), 0.0);
     const int width = m.bandWidth();
     for (int j = 0; j < n; ++j) {
       const int* slots = m.slot.data() + static_cast<size_t>(j) * width + ku - j;  // slots[i]: place of (i, j)
@@ -194,7 +220,7 @@ void SparseStiffness::assemble(const BandLU& band, const std::vector<OffBandEntr
     ROOTSIM_ASSERT(placed, "every nonzero of the band has its place once merged in");
     (void)placed;
   }
-  double* val = m.a.valuePtr();
+  double* val = m.ax.data();
   for (size_t e = 0; e < extra.size(); ++e) val[m.extraIndex[e]] += extra[e].value;
   m.symReady = m.luReady = false;
 }
@@ -246,15 +272,15 @@ bool SparseStiffness::restore(const SparseMemory& mem) {
   m.bandKu = mem.ku;
   m.buildPattern(n);
   if (mem.pivotValues.empty()) return true;
-  if (static_cast<long>(mem.pivotValues.size()) != static_cast<long>(m.a.nonZeros())) return false;
+  if (static_cast<long>(mem.pivotValues.size()) != static_cast<long>(m.nnz())) return false;
   // the factors the checkpointed run had: the same matrix through the same analysis and factorisation
-  std::copy(mem.pivotValues.begin(), mem.pivotValues.end(), m.a.valuePtr());
+  std::copy(mem.pivotValues.begin(), mem.pivotValues.end(), m.ax.data());
   if (!factorizeLU()) return false;
   if (mem.lastValues.empty()) return true;
   // and the refactorisation that followed, with those pivots (it succeeded in the checkpointed run)
   if (mem.lastValues.size() != mem.pivotValues.size()) return false;
-  std::copy(mem.lastValues.begin(), mem.lastValues.end(), m.a.valuePtr());
-  if (!klu_refactor(m.a.outerIndexPtr(), m.a.innerIndexPtr(), m.a.valuePtr(), m.symbolic, m.numeric, &m.common))
+  std::copy(mem.lastValues.begin(), mem.lastValues.end(), m.ax.data());
+  if (!klu_refactor(m.ap.data(), m.ai.data(), m.ax.data(), m.symbolic, m.numeric, &m.common))
     return false;
   m.lastValues = mem.lastValues;
   m.lastFull = false;
@@ -263,16 +289,16 @@ bool SparseStiffness::restore(const SparseMemory& mem) {
 
 bool SparseStiffness::hasFactors() const { return impl_->luReady && impl_->numeric != nullptr; }
 
-int SparseStiffness::size() const { return static_cast<int>(impl_->a.rows()); }
+int SparseStiffness::size() const { return impl_->n; }
 
 bool SparseStiffness::factorizeLU() {
   Impl& m = *impl_;
   m.luReady = false;
-  const int n = static_cast<int>(m.a.rows());
-  int* ap = m.a.outerIndexPtr();
-  int* ai = m.a.innerIndexPtr();
-  double* ax = m.a.valuePtr();
-  if (Impl::patternChanged(m.a, m.luOuter, m.luInner) || !m.symbolic) {
+  const int n = m.n;
+  int* ap = m.ap.data();
+  int* ai = m.ai.data();
+  double* ax = m.ax.data();
+  if (Impl::patternChanged(n, ap, ai, m.luOuter, m.luInner) || !m.symbolic) {
     m.freeKlu();
     m.symbolic = klu_analyze(n, ap, ai, &m.common);
     ++m.luAnalyses;
@@ -289,7 +315,7 @@ bool SparseStiffness::factorizeLU() {
     if (klu_refactor(ap, ai, ax, m.symbolic, m.numeric, &m.common) && klu_rcond(m.symbolic, m.numeric, &m.common) &&
         m.common.rcond > 1e-12) {
       m.luReady = true;
-      m.lastValues.assign(ax, ax + m.a.nonZeros());
+      assignHighWater(m.lastValues, ax, ax + m.nnz());
       m.lastFull = false;
       return true;
     }
@@ -297,7 +323,7 @@ bool SparseStiffness::factorizeLU() {
   if (m.numeric) klu_free_numeric(&m.numeric, &m.common);
   m.numeric = klu_factor(ap, ai, ax, m.symbolic, &m.common);
   if (!m.numeric || m.common.status != KLU_OK) return false;
-  m.pivotValues.assign(ax, ax + m.a.nonZeros());
+  assignHighWater(m.pivotValues, ax, ax + m.nnz());
   m.pivotPlaces = m.structural.size();
   m.freshPivots = false;
   m.luReady = true;
@@ -315,10 +341,11 @@ bool SparseStiffness::factorizeSymmetric() {
   Impl& m = *impl_;
   if (m.symReady) return true;
   m.deriveSymmetricPattern();
-  const double* av = m.a.valuePtr();
+  const double* av = m.ax.data();
   double* sv = m.sym.valuePtr();
-  for (Eigen::Index k = 0; k < m.a.nonZeros(); ++k) sv[k] = 0.5 * (av[m.transposed[static_cast<size_t>(k)]] + av[k]);
-  if (Impl::patternChanged(m.sym, m.symOuter, m.symInner)) m.ldlt.analyzePattern(m.sym);
+  for (int k = 0; k < m.nnz(); ++k) sv[k] = 0.5 * (av[m.transposed[static_cast<size_t>(k)]] + av[k]);
+  if (Impl::patternChanged(m.n, m.sym.outerIndexPtr(), m.sym.innerIndexPtr(), m.symOuter, m.symInner))
+    m.ldlt.analyzePattern(m.sym);
   m.ldlt.factorize(m.sym);
   if (m.ldlt.info() != Eigen::Success) return false;
   const auto& d = m.ldlt.vectorD();

@@ -248,10 +248,14 @@ py::dict stateDict(const Simulation& sim, const PlateFrame& f) {
   return d;
 }
 
-// the names stateDict gives the rod state's fields, in the list's order
+// the names stateDict gives the rod state's fields, in the list's order, each with where it lives
+// ("node", "element", "voronoi": one value per node, element or interior node; "rod": one)
+const char* alongName(Along a) {
+  return a == Along::Node ? "node" : a == Along::Element ? "element" : a == Along::Voronoi ? "voronoi" : "rod";
+}
 py::list stateFieldNames() {
   py::list l;
-  forEachField<RodState>([&](const auto& field) { l.append(field.python); });
+  forEachField<RodState>([&](const auto& field) { l.append(py::make_tuple(field.python, alongName(field.along))); });
   return l;
 }
 

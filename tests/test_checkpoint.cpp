@@ -19,6 +19,7 @@
 #include "rootsim/plate.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/simulation.hpp"
+#include "rod_fields_support.hpp"
 #include "test_support.hpp"
 
 namespace fs = std::filesystem;
@@ -93,6 +94,60 @@ TEST_CASE("every field of every persistent struct survives a checkpoint round tr
     if (d.empty()) d = carryDifference(a.carry(), b.carry());
     CAPTURE(i);
     CHECK_MESSAGE(d.empty(), "differs after resuming and growing: ", d);
+  }
+  fs::remove_all(dir);
+}
+
+TEST_CASE("each field of the rod state's list reaches the checkpoint file and comes back from it") {
+  const Scene sc = loadScene(std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2a_alpha90.toml", {"growth.step_h=0.2"});
+  Simulation a(sc.model);
+  a.growthStep();
+  RunCheckpoint c;
+  c.sceneHash = 7;
+  c.step = a.step();
+  c.state = a.state();
+  c.carry = a.carry();
+  const fs::path dir = scratch("each_rod_field");
+  fs::create_directories(dir);
+  writeCheckpoint(dir / kCheckpointFile, c);
+  const std::string before = slurp(dir / kCheckpointFile);
+  forEachRodField([&](auto index) {
+    constexpr std::size_t I = decltype(index)::value;
+    const std::string name = rootsim::test::rodField<I>().name;
+    CAPTURE(name);
+    // this field alone changed: the file changes, and reads back as the changed state, differing from
+    // the first in this field
+    RunCheckpoint changed = c;
+    rootsim::test::perturbField<I>(changed.state, 0.5);
+    writeCheckpoint(dir / kCheckpointFile, changed);
+    CHECK(slurp(dir / kCheckpointFile) != before);
+    const RunCheckpoint r = readCheckpoint(dir / kCheckpointFile);
+    CHECK(stateDifference(r.state, changed.state).empty());
+    CHECK(stateDifference(r.state, c.state) == "state." + name);
+    CHECK(checkpointDifference(r, changed).empty());
+  });
+  fs::remove_all(dir);
+}
+
+TEST_CASE("a checkpoint whose rod state arrays disagree on the element count is refused naming the field") {
+  const Scene sc = loadScene(std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2a_alpha90.toml", {"growth.step_h=0.2"});
+  Simulation a(sc.model);
+  a.growthStep();
+  RunCheckpoint c;
+  c.step = a.step();
+  c.state = a.state();
+  c.carry = a.carry();
+  c.state.hasObstacleStick.push_back(0);
+  const fs::path dir = scratch("element_count");
+  fs::create_directories(dir);
+  writeCheckpoint(dir / kCheckpointFile, c);
+  try {
+    readCheckpoint(dir / kCheckpointFile);
+    FAIL("read a checkpoint whose arrays disagree");
+  } catch (const SceneError& e) {
+    const std::string what = e.what();
+    CHECK(what.find("rod state fields disagree on the element count: hasObstacleStick does not fit") != std::string::npos);
+    CHECK(what.find(kCheckpointFile) != std::string::npos);
   }
   fs::remove_all(dir);
 }

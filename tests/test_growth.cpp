@@ -1,10 +1,16 @@
 // growth (src/sim/growth.cpp) and coarse versions of the paper's patterns
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <string>
+#include <utility>
+#include <vector>
 #include <numbers>
 
 #include "physics_support.hpp"
+#include "rod_fields_support.hpp"
 #include "rootsim/growth.hpp"
 #include "rootsim/simulation.hpp"
 #include "rootsim/theory.hpp"
@@ -77,6 +83,74 @@ TEST_CASE("splitting keeps the centreline, directors, kappa0 and the total rest 
   CHECK((s.kappa0.col(4) - before.kappa0.col(4)).norm() == 0.0);   // node left of the split element
   CHECK((s.kappa0.col(6) - before.kappa0.col(5)).norm() == 0.0);   // node right of it
   CHECK((s.kappa0.col(5) - 0.5 * (before.kappa0.col(4) + before.kappa0.col(5))).norm() < 1e-15);
+}
+
+TEST_CASE("splitting carries every field of the rod state's list by the rule its entry names") {
+  Model m = coarse(40, 0.1, 0);
+  Simulation sim(m);
+  RodState base = sim.state();
+  test::fillDistinct(base);
+  const int n = base.elements();
+  for (int i = 0; i < n; ++i) base.l0[i] = m.initial.elementLength;
+  // the first, an inner and the last element long: both ends' Voronoi rules and an inner one
+  for (int i : {0, 5, n - 1}) base.l0[i] *= 2.5;
+  RodState split = base;
+  REQUIRE(splitLongElements(m, split) == 3);
+  REQUIRE(split.elements() == n + 3);
+  CHECK(fieldOffElementCount(split) == nullptr);
+
+  forEachRodField([&](auto index) {
+    constexpr std::size_t I = decltype(index)::value;
+    constexpr auto f = test::rodField<I>();
+    CAPTURE(f.name);
+    // the field changed on its own (rest lengths by less than would change which elements split)
+    RodState changed = base;
+    test::perturbField<I>(changed, 1e-7);
+    REQUIRE(splitLongElements(m, changed) == 3);
+    const std::vector<std::string> d = test::differingFields(split, changed);
+    if constexpr (f.split == OnSplit::Zero || f.split == OnSplit::Recompute) {
+      // reset or recomputed: the split state does not depend on it
+      CHECK(std::find(d.begin(), d.end(), std::string(f.name)) == d.end());
+    } else {
+      // carried: the split state changes in it, and otherwise only in what is recomputed from it
+      CHECK(std::find(d.begin(), d.end(), std::string(f.name)) != d.end());
+      for (const std::string& other : d) {
+        bool recomputed = other == f.name;
+        forEachRodField([&](auto j) {
+          constexpr auto g = test::rodField<decltype(j)::value>();
+          if (other == g.name && g.split == OnSplit::Recompute) recomputed = true;
+        });
+        CHECK_MESSAGE(recomputed, other, " changed with ", f.name);
+      }
+    }
+  });
+
+  // the rules' values at the inner split element 5 (output elements 6 and 7, new node 7)
+  const RodState& t = split;
+  CHECK((t.anchor.col(7) == 0.5 * (base.anchor.col(5) + base.anchor.col(6))));
+  CHECK((t.plateStick.col(7) == 0.5 * (base.plateStick.col(5) + base.plateStick.col(6))));
+  CHECK((t.obstacleStick.col(7) == 0.5 * (base.obstacleStick.col(5) + base.obstacleStick.col(6))));
+  using Flags = std::vector<std::uint8_t> RodState::*;
+  for (Flags flags : {&RodState::anchored, &RodState::hasPlateStick, &RodState::hasObstacleStick}) {
+    const auto &got = t.*flags, &from = base.*flags;
+    CHECK(got[7] == (from[5] && from[6] ? 1 : 0));
+    CHECK(got[6] == from[5]);
+    CHECK(got[8] == from[6]);
+  }
+  CHECK(t.l0[6] == 0.5 * base.l0[5]);
+  CHECK(t.l0[7] == 0.5 * base.l0[5]);
+  CHECK((t.Q[6] == base.Q[5]));
+  CHECK((t.Q[7] == base.Q[5]));
+  CHECK(t.v.isZero(0.0));
+  CHECK(t.w.isZero(0.0));
+  CHECK((t.clampFrame == base.clampFrame));
+  CHECK(t.time == base.time);
+  // the end domains: the first split element's new domain takes its one neighbour's value, the last's too
+  CHECK((t.kappa0.col(0) == base.kappa0.col(0)));
+  CHECK((t.kappa0.col(t.elements() - 2) == base.kappa0.col(n - 2)));
+  // material coordinates recomputed from the split rest lengths
+  CHECK(t.S[0] == 0.0);
+  for (int i = 0; i < t.elements(); ++i) CHECK(t.S[i + 1] == t.S[i] + t.l0[i]);
 }
 
 TEST_CASE("twist profile (Eqs. 20-21): zero at the apex, tau at the zone start and beyond") {

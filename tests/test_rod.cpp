@@ -1,9 +1,11 @@
-// unit tests of the discrete rod operators (src/sim/rod.cpp)
+// unit tests of the discrete rod operators and the state's field list walkers (src/sim/rod.cpp)
 #include <doctest/doctest.h>
 
 #include <Eigen/Geometry>
+#include <string>
 
 #include "physics_support.hpp"
+#include "rootsim/rod_fields.hpp"
 #include "rootsim/rotation.hpp"
 
 using namespace rootsim;
@@ -93,4 +95,48 @@ TEST_CASE("internal forces balance: no net force or couple on a free rod") {
   const double fs = a.ws.force.cwiseAbs().maxCoeff();
   CHECK(F.norm() < 1e-12 * fs);
   CHECK(M.norm() < 1e-8 * fs * a.L);  // round-off: stretch forces cancel
+}
+
+TEST_CASE("resize sizes every field of the rod state's list along its nodes, elements or Voronoi domains") {
+  for (int n : {1, 2, 7}) {
+    RodState s;
+    s.resize(n);
+    CAPTURE(n);
+    CHECK(s.elements() == n);
+    forEachRodField([&](auto index) {
+      constexpr auto f = std::get<decltype(index)::value>(FieldsOf<RodState>::list());
+      CAPTURE(f.name);
+      CHECK(valueCount(s.*f.member) == valuesAlong(f.along, n));
+    });
+    CHECK(fieldOffElementCount(s) == nullptr);
+    // flags start cleared
+    for (auto b : s.anchored) CHECK(b == 0);
+  }
+  CHECK(valuesAlong(Along::Node, 5) == 6);
+  CHECK(valuesAlong(Along::Element, 5) == 5);
+  CHECK(valuesAlong(Along::Voronoi, 5) == 4);
+  CHECK(valuesAlong(Along::Voronoi, 1) == 0);
+  CHECK(valuesAlong(Along::Rod, 5) == 1);
+}
+
+TEST_CASE("the element-count check names each listed array whose length does not fit") {
+  forEachRodField([&](auto index) {
+    constexpr auto f = std::get<decltype(index)::value>(FieldsOf<RodState>::list());
+    if constexpr (f.along != Along::Rod) {
+      RodState s;
+      s.resize(6);
+      // one value too many in this field alone
+      RodState longer;
+      longer.resize(7);
+      s.*f.member = longer.*f.member;
+      if (std::string(f.name) == "l0") {
+        // the rest lengths set the count: every other array is then off, the first one named
+        CHECK(std::string(fieldOffElementCount(s)) == "x");
+      } else {
+        CAPTURE(f.name);
+        REQUIRE(fieldOffElementCount(s) != nullptr);
+        CHECK(std::string(fieldOffElementCount(s)) == f.name);
+      }
+    }
+  });
 }

@@ -5,7 +5,7 @@
 //
 //   header (40 bytes)  magic "RSCHKPT\0" (8) | u32 version | u32 kind (0 one root, 1 a plate) | u64 scene hash (FNV-1a of
 //                      the resolved scene.toml) | i32 growth step | u32 reserved 0 | u64 payload bytes
-//   payload            the rod state, SimulationCarry, the run's accumulators and the output writers'
+//   payload            the rod state (its field list in rod_fields.hpp), SimulationCarry, the run's accumulators and the output writers'
 //                      positions: each struct's field list (fields.hpp) in order, a field as its raw
 //                      bytes (bool: 1 byte; an array or matrix: u64 length (columns), then its values;
 //                      a string: u64 length, then its bytes; a BandLU: i32 n, kl, ku, then its storage
@@ -29,6 +29,7 @@
 #include "rootsim/plate.hpp"
 #include "rootsim/run_watch.hpp"
 #include "rootsim/rod.hpp"
+#include "rootsim/rod_fields.hpp"
 #include "rootsim/simulation.hpp"
 
 namespace rootsim {
@@ -61,21 +62,6 @@ struct WriterPositions {
     return std::tuple{field("timeseriesBytes", &W::timeseriesBytes), field("trajectoryBytes", &W::trajectoryBytes),
                       field("trajectoryBinaryBytes", &W::trajectoryBinaryBytes),
                       field("trajectoryFrames", &W::trajectoryFrames), field("vtkEntries", &W::vtkEntries)};
-  }
-};
-
-// the rod state's field list (fields.hpp), in the checkpoint's order: all of it persists (the friction
-// stick points included)
-template <>
-struct FieldsOf<RodState> {
-  static constexpr auto list() {
-    using R = RodState;
-    return std::tuple{field("x", &R::x), field("v", &R::v), field("Q", &R::Q), field("w", &R::w),
-                      field("l0", &R::l0), field("S", &R::S), field("kappa0", &R::kappa0),
-                      field("anchor", &R::anchor), field("anchored", &R::anchored),
-                      field("plateStick", &R::plateStick), field("hasPlateStick", &R::hasPlateStick),
-                      field("obstacleStick", &R::obstacleStick), field("hasObstacleStick", &R::hasObstacleStick),
-                      field("clampFrame", &R::clampFrame), field("time", &R::time)};
   }
 };
 

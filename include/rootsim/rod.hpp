@@ -30,7 +30,9 @@ struct RodParams {
   Vec3 bendStiffness() const;     // diagonal of B [N m^2]
 };
 
-// changing state of the rod
+// changing state of the rod; its members are listed once, with where each lives and how a split treats
+// it, in rootsim/rod_fields.hpp (resize, splitLongElements, the checkpoint and Python's State walk that
+// list; a member left out of it stops the build)
 struct RodState {
   Eigen::Matrix3Xd x;        // node positions [m]                             (3 x n+1)
   Eigen::Matrix3Xd v;        // node velocities [m/s] (pseudo-velocities when mass is scaled) (3 x n+1)
@@ -55,7 +57,7 @@ struct RodState {
   int elements() const { return static_cast<int>(l0.size()); }
   int nodes() const { return elements() + 1; }
   double restLength() const { return l0.sum(); }
-  // resize every field for n elements (fields are left unset)
+  // resize every listed field for n elements (arrays left unset, flags 0)
   void resize(int n);
 };
 

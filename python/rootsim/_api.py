@@ -948,8 +948,10 @@ def fit(trace: Union[PathLike, Sequence[PathLike]], *, scene: PathLike, free: Un
 
 @dataclass(frozen=True)
 class State:
-    """The rod's state as numpy float64 arrays that are copies: owned by the State, unaffected by later
-    ``step()`` calls, free to modify.
+    """The rod's state as numpy arrays that are copies: owned by the State, unaffected by later
+    ``step()`` calls, free to modify. Every field of the rod's state is here (the field list in the
+    C++ header rod_fields.hpp names each one's Python name; ``_rootsim.state_fields()``), with the step and
+    the nodes' plate coordinates.
 
     Units: the files' (lengths mm, time h, curvatures 1/mm), velocities mm/s (of the relaxation, whose
     clock is seconds), named in each field.
@@ -957,10 +959,16 @@ class State:
     ``positions_mm`` node positions, lab frame [mm] (nodes x 3); ``lateral_mm``, ``downhill_mm``,
     ``height_mm`` the nodes in plate coordinates [mm] (nodes each; as ``Frame``'s); ``velocities_mm_per_s``
     [mm/s] (nodes x 3); ``directors`` element frames, ``directors[e, i]`` is d_{i+1} of element e in lab
-    components, unit vectors (elements x 3 x 3); ``rest_lengths_mm`` [mm] (elements); ``s_mm`` rest arc
-    length of each node from the base [mm] (nodes; shape.csv's s_mm); ``kappa0_vector_per_mm`` intrinsic
-    curvature per rest length of each Voronoi domain (interior node), material components [1/mm]
-    (elements-1 x 3): the vector whose bending part's magnitude is ``Frame.kappa0_per_mm``.
+    components, unit vectors (elements x 3 x 3); ``angular_velocities_rad_per_s`` each element's angular
+    velocity, material components [rad/s] (elements x 3); ``rest_lengths_mm`` [mm] (elements); ``s_mm``
+    rest arc length of each node from the base [mm] (nodes; shape.csv's s_mm); ``kappa0_vector_per_mm``
+    intrinsic curvature per rest length of each Voronoi domain (interior node), material components
+    [1/mm] (elements-1 x 3): the vector whose bending part's magnitude is ``Frame.kappa0_per_mm``;
+    ``anchors_mm`` each node's adhesion anchor [mm] (nodes x 3) and ``anchored`` whether the node is
+    pinned to it (bool, nodes); ``plate_sticks_mm``, ``obstacle_sticks_mm`` each node's friction stick
+    point on the plate and on an obstacle [mm] (nodes x 3), valid where ``has_plate_stick``,
+    ``has_obstacle_stick`` (bool, nodes); ``clamp_frame`` the clamped base's frame, ``clamp_frame[i]`` is
+    d_{i+1} (3 x 3); ``time_h`` growth time [h].
     """
 
     step: int
@@ -971,9 +979,17 @@ class State:
     height_mm: np.ndarray
     velocities_mm_per_s: np.ndarray
     directors: np.ndarray
+    angular_velocities_rad_per_s: np.ndarray
     rest_lengths_mm: np.ndarray
     s_mm: np.ndarray
     kappa0_vector_per_mm: np.ndarray
+    anchors_mm: np.ndarray
+    anchored: np.ndarray
+    plate_sticks_mm: np.ndarray
+    has_plate_stick: np.ndarray
+    obstacle_sticks_mm: np.ndarray
+    has_obstacle_stick: np.ndarray
+    clamp_frame: np.ndarray
 
     __getattr__ = _renamed("State", {"positions": "positions_mm", "velocities": "velocities_mm_per_s",
                                      "rest_lengths": "rest_lengths_mm", "material_coordinates": "s_mm",

@@ -31,6 +31,7 @@
 #include "rootsim/outputs.hpp"
 #include "rootsim/relax.hpp"
 #include "rootsim/results.hpp"
+#include "rootsim/rod_fields.hpp"
 #include "rootsim/run_scene.hpp"
 #include "rootsim/scene.hpp"
 #include "rootsim/simulation.hpp"
@@ -186,31 +187,76 @@ py::dict recordDict(const StepRecord& r) {
   return d;
 }
 
+// one listed field of the rod state (rod_fields.hpp) as a copy in the package's units (its Unit); a 3x3 frame
+// (rows d1 d2 d3) as frame[r] = d_{r+1}, a flag array as bool
+template <class T>
+py::object stateField(const T& v, Unit unit) {
+  // the writers' operations: a length / units::mm, a time / units::hour, a curvature * units::mm
+  auto scaled = [&](const auto& m) {
+    using M = std::remove_cvref_t<decltype(m)>;
+    if (unit == Unit::Length) return M(m / units::mm);
+    if (unit == Unit::Time) return M(m / units::hour);
+    if (unit == Unit::Curvature) return M(m * units::mm);
+    return M(m);
+  };
+  static_assert(sizeof(Mat3) == 9 * sizeof(double), "directors must be packed 3x3 doubles");
+  // Q is column-major: Q(r, c) at r + 3c; frame[r, c] = Q(r, c)
+  auto frames = [](const Mat3* q, py::ssize_t count, std::vector<py::ssize_t> shape) {
+    py::array_t<double> a(shape);
+    double* out = a.mutable_data();
+    for (py::ssize_t e = 0; e < count; ++e) {
+      const double* Q = q[e].data();
+      for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) out[9 * e + 3 * r + c] = Q[r + 3 * c];
+    }
+    return a;
+  };
+  if constexpr (std::is_same_v<T, Eigen::Matrix3Xd>) {
+    return rows3(scaled(v));
+  } else if constexpr (std::is_same_v<T, Eigen::VectorXd>) {
+    return vec(scaled(v));
+  } else if constexpr (std::is_same_v<T, std::vector<Mat3>>) {
+    if (unit != Unit::None) throw std::logic_error("a frame has no unit");
+    const auto n = static_cast<py::ssize_t>(v.size());
+    return frames(v.data(), n, {n, 3, 3});
+  } else if constexpr (std::is_same_v<T, Mat3>) {
+    if (unit != Unit::None) throw std::logic_error("a frame has no unit");
+    return frames(&v, 1, {3, 3});
+  } else if constexpr (std::is_same_v<T, std::vector<std::uint8_t>>) {
+    py::array_t<bool> a(static_cast<py::ssize_t>(v.size()));
+    bool* out = a.mutable_data();
+    for (size_t i = 0; i < v.size(); ++i) out[i] = v[i] != 0;
+    return a;
+  } else {
+    static_assert(std::is_same_v<T, double>, "a rod state field Python cannot show");
+    return py::float_(unit == Unit::Length ? v / units::mm
+                      : unit == Unit::Time ? v / units::hour
+                      : unit == Unit::Curvature ? v * units::mm
+                                                : v);
+  }
+}
+
 // the state as copies (owned, C-contiguous numpy arrays): they stay valid whatever the Simulation does
-// next (growth reallocates its arrays when it splits elements)
+// next (growth reallocates its arrays when it splits elements). Every field of the rod state's list
+// (rod_fields.hpp) under its Python name, the step, and the nodes' plate coordinates.
 py::dict stateDict(const Simulation& sim, const PlateFrame& f) {
   const RodState& s = sim.state();
-  static_assert(sizeof(Mat3) == 9 * sizeof(double), "directors must be packed 3x3 doubles");
-  const auto n = static_cast<py::ssize_t>(s.elements());
   py::dict d;
   d["step"] = sim.step();
-  d["time_h"] = s.time / units::hour;
-  d["positions_mm"] = rows3Mm(s.x);
+  forEachField<RodState>([&](const auto& field) { d[field.python] = stateField(s.*field.member, field.unit); });
   putPlateCoords(d, f, s.x);
-  d["velocities_mm_per_s"] = rows3Mm(s.v);
-  // Q[e] is column-major: Q(r, c) at r + 3c; directors[e, r] is d_{r+1} (row r of Q)
-  py::array_t<double> q({n, py::ssize_t{3}, py::ssize_t{3}});
-  double* out = q.mutable_data();
-  for (py::ssize_t e = 0; e < n; ++e) {
-    const double* Q = s.Q[static_cast<size_t>(e)].data();
-    for (int r = 0; r < 3; ++r)
-      for (int c = 0; c < 3; ++c) out[9 * e + 3 * r + c] = Q[r + 3 * c];
-  }
-  d["directors"] = q;
-  d["rest_lengths_mm"] = vecMm(s.l0);
-  d["s_mm"] = vecMm(s.S);
-  d["kappa0_vector_per_mm"] = rows3(Eigen::Matrix3Xd(s.kappa0 * units::mm));  // (elements - 1) x 3
   return d;
+}
+
+// the names stateDict gives the rod state's fields, in the list's order, each with where it lives
+// ("node", "element", "voronoi": one value per node, element or interior node; "rod": one)
+const char* alongName(Along a) {
+  return a == Along::Node ? "node" : a == Along::Element ? "element" : a == Along::Voronoi ? "voronoi" : "rod";
+}
+py::list stateFieldNames() {
+  py::list l;
+  forEachField<RodState>([&](const auto& field) { l.append(py::make_tuple(field.python, alongName(field.along))); });
+  return l;
 }
 
 }  // namespace rootsim::pyconv
@@ -579,6 +625,7 @@ PYBIND11_MODULE(_rootsim, m) {
 
   m.def("run_scene", &runScene, py::arg("scene"), py::arg("options"), py::arg("progress"));
   m.def("command_table", &commandTable);
+  m.def("state_fields", &stateFieldNames);
   m.def("check_scene", [](const py::dict& options) {
     const cli::CheckOptions o = commandOptions<cli::CheckOptions>("check", options);
     const Scene sc = loadScene(o.scene, o.sets);

@@ -1,5 +1,6 @@
 """rootsim.Simulation: stepping by hand gives the run's numbers; state copies; tropism changes; the step
 count argument and the end of growth; one Simulation used from several threads."""
+import dataclasses
 import signal
 import threading
 import tomllib
@@ -53,11 +54,18 @@ def test_state_views_shapes_and_contents():
     # kappa0_per_mm is the Frame's per-node magnitude; the State's vector has its own name, the old one says so
     with pytest.raises(AttributeError, match="renamed kappa0_vector_per_mm.*per-node magnitude"):
         st.kappa0_per_mm
-    # copies: owned, C-contiguous float64 arrays
+    assert st.angular_velocities_rad_per_s.shape == (n, 3) and st.clamp_frame.shape == (3, 3)
+    for name in ("anchors_mm", "plate_sticks_mm", "obstacle_sticks_mm"):
+        assert getattr(st, name).shape == (n + 1, 3), name
+    for name in ("anchored", "has_plate_stick", "has_obstacle_stick"):
+        assert getattr(st, name).shape == (n + 1,) and getattr(st, name).dtype == np.bool_, name
+    # the base is clamped to the first element's frame at the start: an orthonormal frame
+    np.testing.assert_allclose(st.clamp_frame @ st.clamp_frame.T, np.eye(3), atol=1e-12)
+    # copies: owned, C-contiguous arrays (float64; the flags bool)
     arrays = [v for v in vars(st).values() if isinstance(v, np.ndarray)]
-    assert len(arrays) == 9
+    assert len(arrays) == len(dataclasses.fields(rootsim.State)) - 2  # all but step and time_h
     for a in arrays:
-        assert a.dtype == np.float64 and a.flags.owndata and a.flags.c_contiguous
+        assert a.dtype in (np.float64, np.bool_) and a.flags.owndata and a.flags.c_contiguous
     # the positions are the snapshot's node positions; directors orthonormal and d1, d3 the snapshot's
     snap = sim.snapshot()
     for name in ("positions_mm", "lateral_mm", "downhill_mm", "height_mm"):
@@ -72,6 +80,27 @@ def test_state_views_shapes_and_contents():
     kept = sim.state(copy=True)
     sim.step(1)
     assert kept.positions_mm.flags.owndata and kept.step == 30
+
+
+def test_state_holds_every_field_of_the_rod_states_list():
+    # the binding walks the C++ field list (rod_fields.hpp): State declares each of its Python names, and
+    # nothing else besides the step and the plate coordinates; each field has one value per node, element
+    # or interior node (Voronoi domain) as the list says, or one for the rod
+    listed = dict(rootsim._rootsim.state_fields())
+    assert len(listed) == len(rootsim._rootsim.state_fields()) > 0
+    declared = [f.name for f in dataclasses.fields(rootsim.State)]
+    assert sorted(declared) == sorted(list(listed) + ["step", "lateral_mm", "downhill_mm", "height_mm"])
+    sim = rootsim.Simulation(SCENE, set=STEPS)
+    sim.step(30)
+    st = sim.state()
+    n = sim.record()["elements"]
+    count = {"node": n + 1, "element": n, "voronoi": n - 1}
+    for name, along in listed.items():
+        value = getattr(st, name)
+        if along == "rod":
+            assert np.ndim(value) in (0, 2), name  # a number, or a frame
+        else:
+            assert value.shape[0] == count[along], name
 
 
 def test_one_unit_system_the_files_units():

@@ -452,7 +452,26 @@ FitReport runFit(const FitOptions& given, const std::function<void(const std::st
   return runFitOn(given, nullptr, log);
 }
 
-FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::function<void(const std::string&)>& log) {
+namespace {
+
+// what a fit is asked, checked before anything is written: its options (the objective resolved: the
+// trace's own default), its folder (locked before any work: a run, sweep or second fit there is refused),
+// the base scene, the trace, the free keys, and how long every evaluation grows
+struct FitSetup {
+  FitOptions o;
+  fs::path out;
+  OutputLock lock;
+  Scene base;
+  TraceTarget target;
+  bool lapse = false;  // the time-lapse objective
+  TimeLapseObjective lapseTrace;
+  std::vector<FreeKey> keys;
+  FitSize size;
+  long steps = 0;  // every evaluation's growth.steps
+  long every = 1;  // and output.every_steps
+};
+
+FitSetup checkFit(const FitOptions& given, const GroupSide* group, const std::function<void(const std::string&)>& log) {
   FitOptions o = given;  // its objective resolved below (the trace's own default)
   // bad input first, before anything is written
   if (o.scene.empty()) throw SceneError("--scene: give the base scene (a TOML file)");
@@ -463,8 +482,7 @@ FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::f
     throw SceneError("--objective " + o.objective + ": expected observables, shape or timelapse");
   if (o.out.empty()) throw SceneError("--out: give the fit's folder");
   const fs::path out = checkOutputName(o.out, "--out");
-  // the fit's folder is locked before any work: a run, sweep or second fit there is refused
-  const OutputLock lock = lockOutput(out, "--out");
+  OutputLock lock = lockOutput(out, "--out");
   const Scene base = loadScene(o.scene);
   if (base.isPlate())
     throw SceneError("--scene " + o.scene + ": a plate's scene; fit takes the scene of one root (docs/experiments.md)");
@@ -481,7 +499,6 @@ FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::f
   const std::vector<FreeKey> keys = parseFreeKeys(o.free, o.scene, lapse);
   const int n = static_cast<int>(keys.size());
   const FitSize size = fitSize(o, n);
-  const int k = size.levels, terms = size.terms, regionPoints = size.regionPoints;
   if (!group && o.objective == "observables" && usedCount(observeBoth(target.traits, target.traits, target.sigmaMm)) < n)
     log("fit: note: the trace defines " + std::to_string(usedCount(observeBoth(target.traits, target.traits, target.sigmaMm))) +
         " observable(s) for " + std::to_string(n) + " free key(s): some direction stays undetermined (try --objective shape)");
@@ -513,7 +530,18 @@ FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::f
     }
     every = std::max(1L, every);
   }
+  return FitSetup{std::move(o), out, std::move(lock), base, target, lapse, lapseTrace, keys, size, steps, every};
+}
 
+// the fit's folder claimed, its base scene (base.toml: the scene grown to the trace, with the fit's
+// settings) and its start design (design.toml) written; returns base.toml's text
+std::string writeBaseAndDesign(const FitSetup& setup, const GroupSide* group) {
+  const FitOptions& o = setup.o;
+  const fs::path& out = setup.out;
+  const std::vector<FreeKey>& keys = setup.keys;
+  const long steps = setup.steps, every = setup.every;
+  const bool lapse = setup.lapse;
+  const int k = setup.size.levels;
   WriteRule rule;
   rule.force = o.force;
   rule.inputs.push_back(WriteInput{o.scene, {}, true});
@@ -563,9 +591,14 @@ FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::f
   }
   writeFileAtomic(out / "design.toml", designText);
   recordWritten({out / "design.toml"});
-  Fit fit(o, keys, out, baseText, target, log, group);
+  return baseText;
+}
 
-  // 1. the start design, as a sweep
+// 1. the start design, as a sweep: every point's run recorded in the fit
+void runStartDesign(const FitSetup& setup, Fit& fit, const std::function<void(const std::string&)>& log) {
+  const FitOptions& o = setup.o;
+  const fs::path& out = setup.out;
+  const std::vector<FreeKey>& keys = setup.keys;
   const SweepPlan plan = loadSweep((out / "design.toml").string());
   SweepOptions so;
   so.jobs = o.jobs;
@@ -590,14 +623,60 @@ FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::f
     if (std::all_of(ev.begin(), ev.end(), [](const FitEvaluation& e) { return !e.error.empty(); }))
       throw RunError("fit: every run of the start design failed; the first: " + ev.front().error);
   }
+}
 
-  // 2. trust regions: runs spread over a box around the best point so far, a quadratic surface of the
-  //    outputs fitted to them, its minimum the next centre; a minimum inside the box halves it (down to
-  //    kSmallestBox), one on its edge moves it. At the smallest box it stops when the minimum moves by
-  //    less than half its uncertainty, when a direction is flat, or when the budget is spent.
-  FitReport rep;
-  rep.keys = keys;
-  rep.out = out.string();
+// `count` points of the Halton sequence from index `index` on (advanced past them), spread over the box
+// [lo, hi]: one prime base per key (at most 12 keys)
+std::vector<Eigen::VectorXd> haltonPoints(const Eigen::VectorXd& lo, const Eigen::VectorXd& hi, int count, long& index) {
+  static const int kPrimes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37};
+  const auto n = static_cast<int>(lo.size());
+  std::vector<Eigen::VectorXd> batch;
+  for (int i = 0; i < count; ++i, ++index) {
+    Eigen::VectorXd u(n);
+    for (int d = 0; d < n; ++d) u(d) = lo(d) + halton(index, kPrimes[d]) * (hi(d) - lo(d));
+    batch.push_back(u);
+  }
+  return batch;
+}
+
+// the progress line of trust region `region` (from 1): its half width, its runs, the surface's minimum xs
+// with each key's sigma, the minimum's chi-square and the model's scatter
+std::string regionLine(int region, double rho, std::size_t runs, const std::vector<FreeKey>& keys, const std::vector<double>& xs,
+                       const FitUncertainty& unc, const ResponseSurface& surface) {
+  std::string line = "fit: trust region " + std::to_string(region) + " (half width " + numberText(std::round(rho * 1e4) / 1e4) +
+                     " of the box, " + std::to_string(runs) + " runs): surface minimum";
+  for (std::size_t i = 0; i < keys.size(); ++i) {
+    char b[96];
+    std::snprintf(b, sizeof b, " %s=%.5g +- %.2g", keys[i].key.c_str(), xs[i], unc.sigma[i] * (keys[i].hi - keys[i].lo));
+    line += b;
+  }
+  char b[96];
+  std::snprintf(b, sizeof b, ", chi2 %.3g for %d dof, model scatter %.3g (RMS over outputs)", unc.chi2, unc.dof,
+                std::sqrt(surface.noiseVar().mean()));
+  return line + b;
+}
+
+// what the trust regions found: the last box's half width (scaled), surface and minimum's uncertainty, the
+// minima of the regions at the smallest box and their uncertainties, the last minimum, the regions' count
+struct TrustRegions {
+  double rho = 0;
+  ResponseSurface surface;
+  FitUncertainty unc;
+  std::vector<Eigen::VectorXd> atSmallest;
+  std::vector<FitUncertainty> smallestUnc;
+  Eigen::VectorXd ustar;
+  int regions = 0;
+};
+
+// 2. trust regions: runs spread over a box around the best point so far, a quadratic surface of the
+//   outputs fitted to them, its minimum the next centre; a minimum inside the box halves it (down to
+//   kSmallestBox), one on its edge moves it. At the smallest box it stops when the minimum moves by
+//   less than half its uncertainty, when a direction is flat, or when the budget is spent.
+TrustRegions runTrustRegions(const FitSetup& setup, Fit& fit, const std::function<void(const std::string&)>& log) {
+  const FitOptions& o = setup.o;
+  const std::vector<FreeKey>& keys = setup.keys;
+  const int n = static_cast<int>(keys.size());
+  const int k = setup.size.levels, terms = setup.size.terms, regionPoints = setup.size.regionPoints;
   Eigen::VectorXd centre;
   {
     double bestF = std::numeric_limits<double>::infinity();
@@ -613,10 +692,9 @@ FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::f
   FitUncertainty unc;
   std::vector<Eigen::VectorXd> atSmallest;   // the minima of the regions at the smallest box
   std::vector<FitUncertainty> smallestUnc;   // and their uncertainties
-  Eigen::VectorXd ustar = centre, boxLo, boxHi;
+  Eigen::VectorXd ustar = centre;
   bool haveSurface = false;
   int regions = 0;
-  static const int kPrimes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37};
   if (n > 12) throw SceneError("--free: at most 12 free keys");
   for (; regions < 20; ++regions) {
     const Eigen::VectorXd lo = (centre.array() - rho).max(0.0).matrix(), hi = (centre.array() + rho).min(1.0).matrix();
@@ -629,13 +707,7 @@ FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::f
     const int left = o.budget - fit.count() - 2;
     const int need = std::min(std::max(0, regionPoints - have), std::max(0, left));
     if (have + need <= terms + 1) break;  // no budget for a surface here
-    std::vector<Eigen::VectorXd> batch;
-    for (int i = 0; i < need; ++i, ++haltonIndex) {
-      Eigen::VectorXd u(n);
-      for (int d = 0; d < n; ++d) u(d) = lo(d) + halton(haltonIndex, kPrimes[d]) * (hi(d) - lo(d));
-      batch.push_back(u);
-    }
-    fit.evaluateAll(batch, "region " + std::to_string(regions + 1));
+    fit.evaluateAll(haltonPoints(lo, hi, need, haltonIndex), "region " + std::to_string(regions + 1));
     std::vector<Eigen::VectorXd> us, ys;
     for (const FitEvaluation& e : fit.evaluations())
       if (e.error.empty() && inBox(fit.uOf(e.x))) {
@@ -649,23 +721,7 @@ FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::f
     unc = uncertaintyAt(surface, next, fit.traceComponents().trace, fit.traceComponents().cov);
     haveSurface = true;
     ustar = next;
-    boxLo = lo;
-    boxHi = hi;
-    if (!o.quiet) {
-      const std::vector<double> xs = fit.xOf(next);
-      std::string line = "fit: trust region " + std::to_string(regions + 1) + " (half width " + numberText(std::round(rho * 1e4) / 1e4) +
-                         " of the box, " + std::to_string(us.size()) + " runs): surface minimum";
-      for (int i = 0; i < n; ++i) {
-        char b[96];
-        std::snprintf(b, sizeof b, " %s=%.5g +- %.2g", keys[static_cast<std::size_t>(i)].key.c_str(), xs[static_cast<std::size_t>(i)],
-                      unc.sigma[static_cast<std::size_t>(i)] * (keys[static_cast<std::size_t>(i)].hi - keys[static_cast<std::size_t>(i)].lo));
-        line += b;
-      }
-      char b[96];
-      std::snprintf(b, sizeof b, ", chi2 %.3g for %d dof, model scatter %.3g (RMS over outputs)", unc.chi2, unc.dof,
-                    std::sqrt(surface.noiseVar().mean()));
-      log(line + b);
-    }
+    if (!o.quiet) log(regionLine(regions + 1, rho, us.size(), keys, fit.xOf(next), unc, surface));
     if (fit.count() < o.budget - 1) fit.evaluate(fit.xOf(next), "minimum " + std::to_string(regions + 1), fit.nextOrder(1));
     bool onEdge = false;
     for (int d = 0; d < n; ++d)
@@ -688,11 +744,30 @@ FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::f
     if (static_cast<int>(atSmallest.size()) >= kFinalRegions) break;
   }
   if (!haveSurface) throw RunError("fit: the budget ran out before a surface could be fitted (raise --budget)");
-  rep.evaluations = fit.evaluations();
-  // the answer: the mean of the minima at the smallest box. Its variance: the linearised surface's (the
-  // trace's error and the model's scatter, mean over those regions) plus the surface's own estimation
-  // error, the larger of the minima's spread over the regions and a bootstrap over the runs in the box
-  // around the answer (kBootstrap resamples, each refitted and minimised)
+  return TrustRegions{rho, surface, unc, atSmallest, smallestUnc, ustar, regions};
+}
+
+// the answer's values (scaled) and their uncertainty: per key the scaled sigma, the bootstrap's part
+// (in the key's units; NaN without one), and the covariance scale the sigmas' statistical part carries
+struct AnswerUncertainty {
+  Eigen::VectorXd ustar;
+  std::vector<double> sigmaU, bootSigma;
+  double surfaceScale = 1;
+};
+
+// 3. the answer: the mean of the minima at the smallest box. Its variance: the linearised surface's (the
+// trace's error and the model's scatter, mean over those regions) plus the surface's own estimation
+// error, the larger of the minima's spread over the regions and a bootstrap over the runs in the box
+// around the answer (kBootstrap resamples, each refitted and minimised)
+AnswerUncertainty answerUncertainty(const FitSetup& setup, Fit& fit, const TrustRegions& tr) {
+  const std::vector<FreeKey>& keys = setup.keys;
+  const int n = static_cast<int>(keys.size());
+  const int terms = setup.size.terms;
+  const FitUncertainty& unc = tr.unc;
+  const std::vector<Eigen::VectorXd>& atSmallest = tr.atSmallest;
+  const std::vector<FitUncertainty>& smallestUnc = tr.smallestUnc;
+  const double rho = tr.rho;
+  Eigen::VectorXd ustar = tr.ustar;
   std::vector<double> sigmaU(static_cast<std::size_t>(n), kNaN);
   std::vector<double> bootSigma(static_cast<std::size_t>(n), kNaN);
   double surfaceScale = unc.scale;  // the covariance scale sigmaU's statistical part already carries
@@ -748,6 +823,25 @@ FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::f
       sigmaU[static_cast<std::size_t>(i)] = std::sqrt(var + std::max(spread, boot));  // NaN when a surface had none
     }
   }
+  return AnswerUncertainty{ustar, sigmaU, bootSigma, surfaceScale};
+}
+
+// 4. the answer: the run at the surface's minimum (made when no run had its values), the run chosen,
+// its sigmas (widened by the Birge ratio), the notes; returns the surface minimum's values
+std::vector<double> chooseFitAnswer(FitReport& rep, const FitSetup& setup, Fit& fit, const TrustRegions& tr,
+                                    const AnswerUncertainty& au) {
+  const FitOptions& o = setup.o;
+  const std::vector<FreeKey>& keys = setup.keys;
+  const int n = static_cast<int>(keys.size());
+  const Model& bm = setup.base.model;
+  const TraceTarget& target = setup.target;
+  const bool lapse = setup.lapse;
+  const TimeLapseObjective& lapseTrace = setup.lapseTrace;
+  const ResponseSurface& surface = tr.surface;
+  const FitUncertainty& unc = tr.unc;
+  const Eigen::VectorXd& ustar = au.ustar;
+  const std::vector<double>& sigmaU = au.sigmaU;
+  const double surfaceScale = au.surfaceScale;
   const std::vector<double> bx = fit.xOf(ustar);
   rep.sigma.assign(static_cast<std::size_t>(n), kNaN);
   for (int i = 0; i < n; ++i)
@@ -784,7 +878,7 @@ FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::f
   const FitComponents& tc = fit.traceComponents();
   for (FitEvaluation& e : rep.evaluations)
     if (e.error.empty()) e.objective = chiSquareOf(e.sim, tc.trace, totalCovariance(surface, tc.cov));
-  // 3. the answer: never worse than a run the fit made; its goodness against the trace's uncertainty alone
+  // the answer: never worse than a run the fit made; its goodness against the trace's uncertainty alone
   // the goodness: the shape's against the covariance a trace of the answer's run would have (its points'
   // noise propagated through the sampling: the null hypothesis that the run is the root), the observables'
   // against their uncertainties
@@ -803,31 +897,50 @@ FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::f
     for (double& s : rep.sigma) s *= std::sqrt(rep.answerScale);
   }
   if (lapse) growthAgainstTrace(rep, lapseTrace, bm);
-  const FitEvaluation& b = rep.evaluations[static_cast<std::size_t>(rep.best)];
+  const FitEvaluation& best = rep.evaluations[static_cast<std::size_t>(rep.best)];
   if (rep.surfaceRun >= 0 && rep.best != rep.surfaceRun) {
     char line[240];
     std::snprintf(line, sizeof line, "the answer is the run %s (objective %.4g), better than the surface minimum's run (%.4g)",
-                  fs::path(b.dir).filename().string().c_str(), b.objective, rep.evaluations[static_cast<std::size_t>(rep.surfaceRun)].objective);
+                  fs::path(best.dir).filename().string().c_str(), best.objective, rep.evaluations[static_cast<std::size_t>(rep.surfaceRun)].objective);
     rep.notes.push_back(line);
   }
+  return bx;
+}
 
-  // 4. the outputs
+}  // namespace
+
+// the fit in its steps: the input checked, the folder's base scene and start design written, the start
+// design run, the trust regions, the answer's uncertainty, the answer, the outputs
+FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::function<void(const std::string&)>& log) {
+  const FitSetup setup = checkFit(given, group, log);
+  const std::string baseText = writeBaseAndDesign(setup, group);
+  Fit fit(setup.o, setup.keys, setup.out, baseText, setup.target, log, group);
+  runStartDesign(setup, fit, log);
+  const TrustRegions tr = runTrustRegions(setup, fit, log);
+  FitReport rep;
+  rep.keys = setup.keys;
+  rep.out = setup.out.string();
+  rep.evaluations = fit.evaluations();
+  const AnswerUncertainty au = answerUncertainty(setup, fit, tr);
+  const std::vector<double> bx = chooseFitAnswer(rep, setup, fit, tr, au);
+
+  // 5. the outputs
   FitOutcome f;
-  f.options = &o;
-  f.target = &target;
-  f.out = out;
-  f.steps = steps;
-  f.levels = k;
-  f.regionPoints = regionPoints;
-  f.regions = regions;
-  f.rho = rho;
-  f.surface = surface;
-  f.unc = unc;
-  f.ustar = ustar;
+  f.options = &setup.o;
+  f.target = &setup.target;
+  f.out = setup.out;
+  f.steps = setup.steps;
+  f.levels = setup.size.levels;
+  f.regionPoints = setup.size.regionPoints;
+  f.regions = tr.regions;
+  f.rho = tr.rho;
+  f.surface = tr.surface;
+  f.unc = tr.unc;
+  f.ustar = au.ustar;
   f.surfaceX = bx;
-  f.bootSigma = bootSigma;
-  f.trace = tc;
-  writeFitOutputs(f, rep, fit.sceneAt(b.x));
+  f.bootSigma = au.bootSigma;
+  f.trace = fit.traceComponents();
+  writeFitOutputs(f, rep, fit.sceneAt(rep.evaluations[static_cast<std::size_t>(rep.best)].x));
   return rep;
 }
 

@@ -439,14 +439,12 @@ void readHeader(In& in, Kind kind, std::uint64_t& hash, int& step) {
 // a root's state and carry, checked against each other (a checksum collision aside, a writer
 // bug); its growth step is its own (`step`: a plate's laterals count theirs from their emergence)
 long checkRoot(const In& in, const RodState& s, const SimulationCarry& k, int step) {
-  // the fields must agree on the element count
+  // the fields must agree on the element count (each along its nodes, elements or Voronoi domains)
   const long n = s.l0.size();
-  if (n < 1 || s.x.cols() != n + 1 || s.v.cols() != n + 1 || static_cast<long>(s.Q.size()) != n || s.w.cols() != n ||
-      s.S.size() != n + 1 || s.kappa0.cols() != std::max(n - 1, 0L) || s.anchor.cols() != n + 1 ||
-      static_cast<long>(s.anchored.size()) != n + 1 || s.plateStick.cols() != n + 1 ||
-      static_cast<long>(s.hasPlateStick.size()) != n + 1 || s.obstacleStick.cols() != n + 1 ||
-      static_cast<long>(s.hasObstacleStick.size()) != n + 1)
-    in.bad("rod state fields disagree on the element count");
+  if (n < 1) in.bad("rod state with no element");
+  if (const char* off = fieldOffElementCount(s))
+    in.bad(std::string("rod state fields disagree on the element count: ") + off + " does not fit " +
+           std::to_string(n) + " elements");
   const Memory<NewtonWorkspace>& nw = k.newton;
   const auto& mode = get<&NewtonWorkspace::mode>(nw);
   const int modeSize = get<&NewtonWorkspace::modeSize>(nw);

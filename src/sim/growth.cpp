@@ -2,7 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
+#include "rootsim/rod_fields.hpp"
 #include "rootsim/rotation.hpp"
 #include "rootsim/units.hpp"
 
@@ -130,65 +132,92 @@ void applyTwistProfile(const Model& m, RodState& s) {
   }
 }
 
+namespace {
+
+// value i of a listed field (a column of a 3 x k array)
+template <class T>
+decltype(auto) item(T& v, int i) {
+  using U = std::remove_const_t<T>;
+  if constexpr (std::is_same_v<U, Eigen::Matrix3Xd>) return v.col(i);
+  else if constexpr (std::is_same_v<U, Eigen::VectorXd>) return (v[i]);
+  else return (v[static_cast<size_t>(i)]);
+}
+
+// field I of s split into t (t sized for the new element count), by the rule the field list gives it
+// (rod_fields.hpp, OnSplit); `split(i)` says whether input element i is split
+template <std::size_t I, class Split>
+void splitField(const RodState& s, RodState& t, const Split& split) {
+  constexpr auto f = std::get<I>(FieldsOf<RodState>::list());
+  const auto& from = s.*f.member;
+  auto& to = t.*f.member;
+  using T = std::remove_cvref_t<decltype(to)>;
+  const int n = s.elements();
+  if constexpr (f.split == OnSplit::Zero) {
+    static_assert(std::is_base_of_v<Eigen::DenseBase<T>, T>, "OnSplit::Zero: an Eigen array");
+    to.setZero();
+  } else if constexpr (f.split == OnSplit::Recompute) {
+    // splitLongElements recomputes it
+  } else if constexpr (f.along == Along::Rod) {
+    static_assert(f.split == OnSplit::Copy, "a whole-rod field is copied");
+    to = from;
+  } else if constexpr (f.along == Along::Node) {
+    static_assert(f.split == OnSplit::Mean || f.split == OnSplit::Both, "a node field: Mean, Both, Zero or Recompute");
+    item(to, 0) = item(from, 0);
+    for (int i = 0, o = 0; i < n; ++i) {
+      if (split(i)) {
+        if constexpr (f.split == OnSplit::Mean) item(to, o + 1) = 0.5 * (item(from, i) + item(from, i + 1));
+        else item(to, o + 1) = item(from, i) && item(from, i + 1) ? 1 : 0;
+        o += 2;
+      } else {
+        o += 1;
+      }
+      item(to, o) = item(from, i + 1);
+    }
+  } else if constexpr (f.along == Along::Element) {
+    static_assert(f.split == OnSplit::Copy || f.split == OnSplit::Halve, "an element field: Copy, Halve or Zero");
+    for (int i = 0, o = 0; i < n; ++i) {
+      if constexpr (f.split == OnSplit::Halve) item(to, o) = split(i) ? 0.5 * item(from, i) : item(from, i);
+      else item(to, o) = item(from, i);
+      if (split(i)) item(to, o + 1) = item(to, o);
+      o += split(i) ? 2 : 1;
+    }
+  } else {
+    static_assert(f.along == Along::Voronoi && f.split == OnSplit::Mean, "a Voronoi field: Mean");
+    static_assert(std::is_same_v<T, Eigen::Matrix3Xd>, "a Voronoi field: a 3 x n-1 array");
+    // the domain on the left of output element o (between o-1 and o) is an input one; the new one inside
+    // a split element takes the mean of its neighbours (an end one's of its one neighbour)
+    for (int i = 0, o = 0; i < n; ++i) {
+      if (i > 0) to.col(o - 1) = from.col(i - 1);
+      if (split(i)) {
+        if (n > 1) {
+          Vec3 left = i > 0 ? Vec3(from.col(i - 1)) : Vec3(from.col(i));
+          const Vec3 right = i + 1 < n ? Vec3(from.col(i)) : left;
+          if (i == 0) left = right;
+          to.col(o) = 0.5 * (left + right);
+        } else {
+          to.col(o).setZero();  // one element has no domain to take it from
+        }
+        o += 2;
+      } else {
+        o += 1;
+      }
+    }
+  }
+}
+
+}  // namespace
+
 int splitLongElements(const Model& m, RodState& s) {
   const double limit = m.growth.splitFactor * m.initial.elementLength;
   int count = 0;
   for (int i = 0; i < s.elements(); ++i)
     if (s.l0[i] > limit) ++count;
   if (count == 0) return 0;
-  const int n = s.elements(), nn = n + count;
   RodState t;
-  t.resize(nn);
-  // every whole-rod field carries over (a field added to RodState must be added here)
-  t.time = s.time;
-  t.clampFrame = s.clampFrame;
-  int o = 0;  // output element index
-  // node-wise fields: a kept node carries its own; a node made inside a split element takes the mean of
-  // the element's two nodes (a friction stick point only when both nodes had one)
-  auto copyNode = [&](int to, int from) {
-    t.x.col(to) = s.x.col(from);
-    t.anchor.col(to) = s.anchor.col(from);
-    t.anchored[static_cast<size_t>(to)] = s.anchored[static_cast<size_t>(from)];
-    t.plateStick.col(to) = s.plateStick.col(from);
-    t.hasPlateStick[static_cast<size_t>(to)] = s.hasPlateStick[static_cast<size_t>(from)];
-    t.obstacleStick.col(to) = s.obstacleStick.col(from);
-    t.hasObstacleStick[static_cast<size_t>(to)] = s.hasObstacleStick[static_cast<size_t>(from)];
-  };
-  auto midNode = [&](int to, int a) {
-    const size_t ua = static_cast<size_t>(a), ub = static_cast<size_t>(a + 1), ut = static_cast<size_t>(to);
-    t.plateStick.col(to) = 0.5 * (s.plateStick.col(a) + s.plateStick.col(a + 1));
-    t.hasPlateStick[ut] = s.hasPlateStick[ua] && s.hasPlateStick[ub] ? 1 : 0;
-    t.obstacleStick.col(to) = 0.5 * (s.obstacleStick.col(a) + s.obstacleStick.col(a + 1));
-    t.hasObstacleStick[ut] = s.hasObstacleStick[ua] && s.hasObstacleStick[ub] ? 1 : 0;
-  };
-  copyNode(0, 0);
-  for (int i = 0; i < n; ++i) {
-    const bool split = s.l0[i] > limit;
-    // Voronoi value on the left of output element o (between o-1 and o) comes from the input
-    if (i > 0) t.kappa0.col(o - 1) = s.kappa0.col(i - 1);
-    if (split) {
-      t.l0[o] = t.l0[o + 1] = 0.5 * s.l0[i];
-      t.Q[static_cast<size_t>(o)] = t.Q[static_cast<size_t>(o + 1)] = s.Q[static_cast<size_t>(i)];
-      t.x.col(o + 1) = 0.5 * (s.x.col(i) + s.x.col(i + 1));
-      const bool both = s.anchored[static_cast<size_t>(i)] && s.anchored[static_cast<size_t>(i + 1)];
-      t.anchored[static_cast<size_t>(o + 1)] = both ? 1 : 0;
-      t.anchor.col(o + 1) = 0.5 * (s.anchor.col(i) + s.anchor.col(i + 1));
-      midNode(o + 1, i);
-      // the new Voronoi node inside the split element takes the mean of its neighbours' kappa0
-      Vec3 left = i > 0 ? Vec3(s.kappa0.col(i - 1)) : Vec3(s.kappa0.col(i));
-      Vec3 right = i + 1 < n ? Vec3(s.kappa0.col(i)) : left;
-      if (i == 0) left = right;
-      t.kappa0.col(o) = 0.5 * (left + right);
-      o += 2;
-    } else {
-      t.l0[o] = s.l0[i];
-      t.Q[static_cast<size_t>(o)] = s.Q[static_cast<size_t>(i)];
-      o += 1;
-    }
-    copyNode(o, i + 1);
-  }
-  t.v.setZero();
-  t.w.setZero();
+  t.resize(s.elements() + count);
+  const auto split = [&](int i) { return s.l0[i] > limit; };
+  // every listed field by its rule (rod_fields.hpp): a field added to the list is split with it
+  forEachRodField([&](auto index) { splitField<decltype(index)::value>(s, t, split); });
   recomputeMaterialCoordinates(t);
   s = std::move(t);
   return count;

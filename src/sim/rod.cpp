@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <type_traits>
 
+#include "rootsim/rod_fields.hpp"
 #include "rootsim/rotation.hpp"
 
 namespace rootsim {
@@ -17,19 +19,25 @@ Vec3 RodParams::bendStiffness() const {
 }
 
 void RodState::resize(int n) {
-  x.resize(3, n + 1);
-  v.resize(3, n + 1);
-  Q.resize(static_cast<size_t>(n));
-  w.resize(3, n);
-  l0.resize(n);
-  S.resize(n + 1);
-  kappa0.resize(3, std::max(n - 1, 0));
-  anchor.resize(3, n + 1);
-  anchored.assign(static_cast<size_t>(n + 1), 0);
-  plateStick.resize(3, n + 1);
-  hasPlateStick.assign(static_cast<size_t>(n + 1), 0);
-  obstacleStick.resize(3, n + 1);
-  hasObstacleStick.assign(static_cast<size_t>(n + 1), 0);
+  forEachField<RodState>([&](const auto& f) {
+    auto& slot = this->*f.member;
+    using T = std::remove_cvref_t<decltype(slot)>;
+    const int count = valuesAlong(f.along, n);
+    if constexpr (std::is_same_v<T, Eigen::Matrix3Xd>) slot.resize(3, count);
+    else if constexpr (std::is_same_v<T, Eigen::VectorXd>) slot.resize(count);
+    else if constexpr (std::is_same_v<T, std::vector<std::uint8_t>>) slot.assign(static_cast<size_t>(count), 0);
+    else if constexpr (std::is_same_v<T, std::vector<Mat3>>) slot.resize(static_cast<size_t>(count));
+    else static_assert(std::is_same_v<T, Mat3> || std::is_arithmetic_v<T>, "resize: a slot of a type it cannot size");
+  });
+}
+
+const char* fieldOffElementCount(const RodState& s) {
+  const char* off = nullptr;
+  const int n = s.elements();
+  forEachField<RodState>([&](const auto& f) {
+    if (!off && valueCount(s.*f.member) != valuesAlong(f.along, n)) off = f.name;
+  });
+  return off;
 }
 
 void RodStrains::resize(int n) {

@@ -170,10 +170,18 @@ TEST_CASE("fit by group: two genotypes differing in the twist / the difference r
   const auto r = run(args);
   REQUIRE_MESSAGE(r.code == 0, r.out);
   INFO(r.out);
-  for (const char* f : {"fit.json", "groups/WT/fit.json", "groups/mut/fit.json", "groups/WT/evaluations.csv", "groups/mut/best.toml"})
+  for (const char* f : {"fit.json", "groups/WT/fit.json", "groups/mut/fit.json", "groups/WT/evaluations.csv", "groups/mut/best.toml",
+                        "keys.png", "keys.svg", "keys.pdf", "compare_WT.png", "compare_mut.png", "compare_mut.pdf"})
     CHECK_MESSAGE(fs::exists(d / "g" / f), f);
   const std::string js = slurp(d / "g" / "fit.json");
   INFO(js);
+  // each seedling's own answer (its best run of its group's): the twist of its own genotype
+  for (const char* plant : {"w1", "w2", "w3", "m1", "m2", "m3"}) {
+    const auto at = js.find("\"plant\": \"" + std::string(plant) + "\"");
+    REQUIRE_MESSAGE(at != std::string::npos, plant);
+    const double twistOwn = jsonNumber(js, "tropism.twist_r_tau", at);
+    CHECK_MESSAGE(std::abs(twistOwn - (plant[0] == 'm' ? 0.05 : 0.0)) < 0.02, plant << " " << twistOwn);
+  }
   // the contrasts: WT - mut, each key
   const auto twist = js.find("\"key\": \"tropism.twist_r_tau\"");
   const auto beta = js.find("\"key\": \"tropism.beta\"", js.find("\"contrasts\""));

@@ -56,6 +56,8 @@ struct FitEvaluation {
   double amplitudeMm = 0;    // its root's peak-to-peak amplitude [mm] (0 without waves)
   double straightness = 0;   // its root's chord / length
   long order = 0;            // when it was asked for: the design's point index, then each batch's in turn
+  std::vector<double> seedlingChi2;  // a fit by group: each seedling's own observables against its run
+                                     // (compareRoots' chi-square, its trace's uncertainty alone); else empty
 };
 inline constexpr double kFailedObjective = 1e12;
 // a time-lapse trace's dL/dt this far (relative) from a fixed tip speed is named beside the verdict
@@ -102,6 +104,10 @@ struct GroupFit {
   FitComponents outputs;            // the group's mean observables and their covariance (sim empty)
   Eigen::MatrixXd scatter;          // the seedlings' sample covariance of those observables
   Eigen::VectorXd answerSim;        // the answer's run's outputs
+  // per seedling: its own answer among the group's runs, the run whose values its own observables fit
+  // best (seedlingChi2), and that chi-square; the keys' values per seedling (NaN: no run measured)
+  std::vector<std::vector<double>> seedlingValue;
+  std::vector<double> seedlingChi2;
 };
 // one key between two groups: difference A - B with its sigma and two-sided Wald p-value; flat (no
 // difference, no p-value) when either group does not determine the key

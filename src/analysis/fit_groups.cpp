@@ -6,6 +6,9 @@
 #include <map>
 
 #include "rootsim/analyze_traces.hpp"
+#include "rootsim/compare_panel.hpp"
+#include "rootsim/plot.hpp"
+#include "rootsim/run_snapshots.hpp"
 #include "rootsim/csv.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/json.hpp"
@@ -300,9 +303,57 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
     gf.value = b.x;
     gf.sigma = gf.report.sigma;
     gf.answerSim = b.sim;
+    // each seedling's own answer among the group's runs: a single fit of it would cost a fit per seedling;
+    // its best run of the group's shows where its own observables point, within the box the group searched
+    for (std::size_t i = 0; i < g.seedlings.size(); ++i) {
+      int at = -1;
+      for (std::size_t e = 0; e < gf.report.evaluations.size(); ++e) {
+        const FitEvaluation& ev = gf.report.evaluations[e];
+        if (ev.error.empty() && i < ev.seedlingChi2.size() && std::isfinite(ev.seedlingChi2[i]) &&
+            (at < 0 || ev.seedlingChi2[i] < gf.report.evaluations[static_cast<std::size_t>(at)].seedlingChi2[i]))
+          at = static_cast<int>(e);
+      }
+      gf.seedlingValue.push_back(at < 0 ? std::vector<double>(keys.size(), kNaN) : gf.report.evaluations[static_cast<std::size_t>(at)].x);
+      gf.seedlingChi2.push_back(at < 0 ? kNaN : gf.report.evaluations[static_cast<std::size_t>(at)].seedlingChi2[i]);
+    }
+    // the group's compare picture: every traced seedling over the answer's run
+    {
+      const Scene best = loadScene((fs::path(go.out) / "best.toml").string());
+      std::vector<Eigen::Matrix3Xd> traces;
+      for (const TraceTarget& t : g.seedlings) traces.push_back(t.plateMm);
+      std::string title = "group " + literalLabel(g.name) + " (" + std::to_string(g.seedlings.size()) + " seedlings):";
+      for (std::size_t i = 0; i < keys.size(); ++i) {
+        title += (i ? ", " : " ") + literalLabel(keys[i].key) + " = " + numberText(std::round(gf.value[i] * 1e4) / 1e4);
+        if (std::isfinite(gf.sigma[i])) title += " ± " + numberText(std::round(gf.sigma[i] * 1e4) / 1e4);
+      }
+      saveGroupComparePanel(best.model, {comparedSnapshot(best.model, loadSnapshots(b.dir), g.target, false)}, traces, g.plants, title,
+                            "every seedling's trace over the answer's run; " + goodnessText(gf.report.goodness, "χ²"),
+                            (out / ("compare_" + g.name)).string());
+    }
     rep.groups.push_back(gf);
   }
   rep.contrasts = groupContrasts(keys, rep.groups);
+  // each key per group: its value and sigma, and each seedling's own answer as a dot
+  {
+    std::vector<std::string> names;
+    std::vector<double> lo, hi;
+    std::vector<std::vector<GroupKeyValue>> perKey(keys.size());
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      names.push_back(keys[i].key);
+      lo.push_back(keys[i].lo);
+      hi.push_back(keys[i].hi);
+      for (const GroupFit& g : rep.groups) {
+        GroupKeyValue v;
+        v.group = g.name;
+        v.value = g.value[i];
+        v.sigma = g.sigma[i];
+        for (const std::vector<double>& sv : g.seedlingValue) v.seedlings.push_back(sv[i]);
+        perKey[i].push_back(v);
+      }
+    }
+    saveGroupKeysPanel(names, lo, hi, perKey, "the free keys per group: the group's fit and each seedling's own",
+                       "a seedling's best run of its group's", (out / "keys").string());
+  }
 
   // fit.json: each group's answer and goodness, and the contrasts
   Json js;
@@ -336,7 +387,13 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
                         .num("scatter_sd", std::sqrt(g.scatter(jj, jj)))
                         .num("answer", g.answerSim.size() > jj ? g.answerSim(jj) : kNaN));
     }
-    one.strings("flat", flat).strings("notes", g.report.notes).array("observables", obs);
+    std::vector<Json> own;
+    for (std::size_t p = 0; p < g.plants.size(); ++p) {
+      Json values;
+      for (std::size_t i = 0; i < keys.size(); ++i) values.num(keys[i].key, g.seedlingValue[p][i]);
+      own.push_back(Json().str("plant", g.plants[p]).object("values", values).num("chi2", g.seedlingChi2[p]));
+    }
+    one.strings("flat", flat).strings("notes", g.report.notes).array("observables", obs).array("seedlings_own", own);
     gj.object(g.name, one);
   }
   js.object("groups", gj);

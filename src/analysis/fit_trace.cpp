@@ -196,6 +196,8 @@ class Fit {
           if (traceComp_.names.empty()) traceComp_ = fc;  // the trace's side: the same for every run
         }
         e.sim = fc.sim;
+        if (group_)
+          for (const TraceTarget& t : group_->seedlings) e.seedlingChi2.push_back(compareRoots(t, sim).chi2);
         e.chi2 = c.chi2;
         e.distanceMm = c.distanceMm;
         e.objective = e.chi2Trace = chi2Of(fc, fc.sim);

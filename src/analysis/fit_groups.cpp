@@ -24,12 +24,12 @@ namespace fs = std::filesystem;
 
 namespace rootsim::app {
 
-FitComponents groupComponents(const GroupSide& g, const SimRoot& sim) {
+FitComponents groupComponents(const GroupSide& g, const std::vector<SimRoot>& sims) {
   FitComponents c = g.trace;
   c.sim = Eigen::VectorXd::Zero(static_cast<int>(c.names.size()));
   for (std::size_t i = 0; i < g.seedlings.size(); ++i) {
     const TraceTarget& t = g.seedlings[i];
-    const std::vector<Observation> obs = observeBoth(t.traits, sim.traits, t.sigmaMm);
+    const std::vector<Observation> obs = observeBoth(t.traits, sims[i].traits, t.sigmaMm);
     for (std::size_t j = 0; j < c.names.size(); ++j) {
       if (!g.users[j][i]) continue;
       for (const Observation& o : obs)
@@ -38,6 +38,23 @@ FitComponents groupComponents(const GroupSide& g, const SimRoot& sim) {
     }
   }
   return c;
+}
+
+// a traced root's start angle [deg]: the direction from its base to its point at arc length overMm (the
+// scene's initial root, straight as sown), from downhill, positive towards +lateral as
+// root.initial_angle_deg; its last point on a trace shorter than that
+double sowingAngleDeg(const Eigen::Matrix3Xd& plateMm, double overMm) {
+  double s = 0;
+  int at = static_cast<int>(plateMm.cols()) - 1;
+  for (int i = 1; i < plateMm.cols(); ++i) {
+    s += (plateMm.col(i).head<2>() - plateMm.col(i - 1).head<2>()).norm();
+    if (s >= overMm) {
+      at = i;
+      break;
+    }
+  }
+  const Eigen::Vector2d c = plateMm.col(at).head<2>() - plateMm.col(0).head<2>();
+  return std::atan2(c.x(), c.y()) / units::deg;
 }
 
 namespace {
@@ -190,6 +207,8 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
     if (isPlateKey(key))
       throw SceneError("--free " + item + ": " + key + " is a plate's key ([plate], [population], [[seedling]], [laterals]); " +
                        "a fit by group runs the root of the base scene per group: free a key of the root (tropism.*, rod.*, growth.rate_per_h, ...)");
+    if (key == kSowingKey)
+      throw SceneError("--free " + item + ": " + key + " is each seedling's own: a fit by group sows each seedling's runs at its trace's start angle");
     if (key.rfind("plane.", 0) == 0)
       throw SceneError("--free " + item + ": " + key + " is the plate's tilt, the same for every group: set it in the scene");
   }
@@ -221,7 +240,7 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
       rootKeys.push_back(tf.roots[static_cast<std::size_t>(p.root)].key);
     }
   }
-  const std::vector<SheetRow> rows = readSampleSheet(o.groups, "group", plants);
+  const std::vector<SheetRow> rows = readSampleSheet(o.groups, "group", plants, kSheetSowingColumn);
   {
     std::vector<bool> named(plants.size(), false);
     for (const SheetRow& r : rows) named[static_cast<std::size_t>(r.plant)] = true;
@@ -252,16 +271,36 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
     f.trace = p.file;
     f.root = rootKeys[static_cast<std::size_t>(r.plant)];
     it->seedlings.push_back(loadTarget(f, base.model));
+    // its sowing angle: the sheet's, else its trace's start
+    double deg = sowingAngleDeg(it->seedlings.back().plateMm, base.model.initial.length / units::mm);
+    if (!r.optional.empty()) {
+      char* end = nullptr;
+      deg = std::strtod(r.optional.c_str(), &end);
+      if (end == r.optional.c_str() || *end != '\0' || !std::isfinite(deg) || std::abs(deg) > 90)
+        throw SceneError(o.groups + ":" + std::to_string(r.line) + ": " + kSheetSowingColumn + " " + r.optional +
+                         ": expected the plant's sowing angle in degrees from downhill, in [-90, 90] (or an empty cell: its trace's start)");
+    }
+    // to a tenth of a degree (a run per distinct angle)
+    deg = std::round(deg * 10.0) / 10.0;
+    it->sowingDeg.push_back(deg == 0.0 ? 0.0 : deg);
   }
   for (GroupSide& g : groups) {
     if (g.seedlings.size() < 2)
       throw SceneError(o.groups + ":" + std::to_string(firstLine[g.name]) + ": group " + g.name + " has one seedling (" + g.plants.front() +
                        "); a group's fit needs at least two: add the group's other plants or put this one in another group");
     groupTraceSide(g, o.groups);
+    // each seedling sown at its own angle: a run per distinct angle
+    for (const double deg : g.sowingDeg) {
+      const std::string text = numberText(deg);
+      auto it = std::find(g.angles.begin(), g.angles.end(), text);
+      if (it == g.angles.end()) it = g.angles.insert(g.angles.end(), text);
+      g.angleOf.push_back(static_cast<int>(it - g.angles.begin()));
+    }
     g.target = g.seedlings.front();
-    double mean = 0;
-    for (const TraceTarget& t : g.seedlings) mean += t.rootLengthMm / static_cast<double>(g.seedlings.size());
-    g.target.rootLengthMm = mean;
+    double longest = 0;
+    for (const TraceTarget& t : g.seedlings) longest = std::max(longest, t.rootLengthMm);
+    // the runs grow to the longest seedling's length; each seedling is compared at its own (comparedSnapshot)
+    g.target.rootLengthMm = longest;
     g.inputs = files;
     g.inputs.push_back(o.groups);
     g.settings = "--groups " + o.groups + " group " + g.name + " plants";
@@ -296,7 +335,12 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
     GroupFit gf;
     gf.name = g.name;
     gf.plants = g.plants;
+    gf.sowingDeg = g.sowingDeg;
     gf.report = runFitOn(go, &g, [&](const std::string& l) { log("[" + g.name + "] " + l); });
+    if (o.designOnly) {
+      rep.designs.push_back(gf.report.design);
+      continue;
+    }
     gf.outputs = g.trace;
     gf.scatter = g.scatter;
     const FitEvaluation& b = gf.report.evaluations[static_cast<std::size_t>(gf.report.best)];
@@ -326,12 +370,20 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
         title += (i ? ", " : " ") + literalLabel(keys[i].key) + " = " + numberText(std::round(gf.value[i] * 1e4) / 1e4);
         if (std::isfinite(gf.sigma[i])) title += " ± " + numberText(std::round(gf.sigma[i] * 1e4) / 1e4);
       }
-      saveGroupComparePanel(best.model, {comparedSnapshot(best.model, loadSnapshots(b.dir), g.target, false)}, traces, g.plants, title,
-                            "every seedling's trace over the answer's run; " + goodnessText(gf.report.goodness, "χ²"),
+      // each seedling's own run of the answer (its sowing angle's), as long as its trace
+      std::vector<Snapshot> sims;
+      for (std::size_t i = 0; i < g.seedlings.size(); ++i) {
+        const std::vector<Snapshot> snaps = loadSnapshots(b.dirs[static_cast<std::size_t>(g.angleOf[i])]);
+        sims.push_back(comparedSnapshot(best.model, snaps, g.seedlings[i], false));
+      }
+      saveGroupComparePanel(best.model, sims, traces, g.plants, title,
+                            "every seedling's trace over its own run of the answer (sown at its trace's start angle); " +
+                                goodnessText(gf.report.goodness, "χ²"),
                             (out / ("compare_" + g.name)).string());
     }
     rep.groups.push_back(gf);
   }
+  if (o.designOnly) return rep;
   rep.contrasts = groupContrasts(keys, rep.groups);
   // each key per group: its value and sigma, and each seedling's own answer as a dot
   {
@@ -363,7 +415,8 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
     for (const FreeKey& k : keys) names.push_back(k.key);
     js.strings("keys", names);
   }
-  js.str("method", "each group's mean observables against one run per evaluation of the group's values, measured as each seedling is; "
+  js.str("method", "each group's mean observables against the group's values run once per seedling's sowing angle (its trace's start "
+                   "angle), each seedling's run measured as that seedling is, at its own length; "
                    "covariance: the mean's, from the seedlings' scatter (its diagonal at least their tracing noise) / n");
   Json gj;
   for (const GroupFit& g : rep.groups) {
@@ -391,7 +444,7 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
     for (std::size_t p = 0; p < g.plants.size(); ++p) {
       Json values;
       for (std::size_t i = 0; i < keys.size(); ++i) values.num(keys[i].key, g.seedlingValue[p][i]);
-      own.push_back(Json().str("plant", g.plants[p]).object("values", values).num("chi2", g.seedlingChi2[p]));
+      own.push_back(Json().str("plant", g.plants[p]).num("sowing_angle_deg", g.sowingDeg[p]).object("values", values).num("chi2", g.seedlingChi2[p]));
     }
     one.strings("flat", flat).strings("notes", g.report.notes).array("observables", obs).array("seedlings_own", own);
     gj.object(g.name, one);
@@ -415,6 +468,10 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
 
 int groupFitCommand(const FitOptions& o) {
   const GroupFitReport r = runGroupFit(o, [&](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
+  if (o.designOnly) {
+    std::printf("%s\n", designOnlyText(r.designs).c_str());
+    return 0;
+  }
   for (const GroupFit& g : r.groups) {
     std::printf("%s (%zu seedlings):", g.name.c_str(), g.plants.size());
     for (std::size_t i = 0; i < r.keys.size(); ++i) {

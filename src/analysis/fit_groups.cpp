@@ -377,7 +377,7 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
         sims.push_back(comparedSnapshot(best.model, snaps, g.seedlings[i], false));
       }
       saveGroupComparePanel(best.model, sims, traces, g.plants, title,
-                            "every seedling's trace over its own run of the answer (sown at its trace's start angle); " +
+                            "every seedling's trace over its own run of the answer (sown at its own angle); " +
                                 goodnessText(gf.report.goodness, "χ²"),
                             (out / ("compare_" + g.name)).string());
     }

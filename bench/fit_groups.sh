@@ -6,12 +6,14 @@
 # jitter, whole pixels; seeded), then `rootsim fit --groups` with beta and the twist free. Prints the
 # fit's table, its wall and CPU seconds (user + sys of the child processes), and a line
 # "seed S twist_diff D sigma S p P beta_diff D sigma S p P" for a calibration over seeds.
-# Usage: bash bench/fit_groups.sh BUILD_DIR [SEED] [BUDGET] [JOBS]
+# Usage: bash bench/fit_groups.sh BUILD_DIR [SEED] [BUDGET] [JOBS] [trace|sheet|straight]
 set -euo pipefail
-build=${1:?usage: bench/fit_groups.sh BUILD_DIR [SEED] [BUDGET] [JOBS]}
+build=${1:?usage: bench/fit_groups.sh BUILD_DIR [SEED] [BUDGET] [JOBS] [trace|sheet|straight]}
 seed=${2:-1}
 budget=${3:-40}
 jobs=${4:-2}
+sowing=${5:-trace}  # trace: each seedling's runs sown at its trace's start angle; sheet: at its true angle (the sheet's
+                    # angle_deg); straight: every run at 0 (angle_deg 0)
 py=${PYTHON:-/usr/bin/python3}  # numpy: Debian python3-numpy
 here=$(cd "$(dirname "$0")/.." && pwd)
 exe=$(cd "$build" && pwd)/rootsim
@@ -44,7 +46,13 @@ printf '%s\n' "$base" > "$work/base.toml"
     i=$((i + 1))
   done
 } > "$work/plate.toml"
-printf 'plant,group\nw1,WT\nw2,WT\nw3,WT\nm1,mut\nm2,mut\nm3,mut\n' > "$work/sheet.csv"
+if [ "$sowing" = sheet ]; then
+  printf 'plant,group,angle_deg\nw1,WT,-3\nw2,WT,2\nw3,WT,4\nm1,mut,3\nm2,mut,-2\nm3,mut,-4\n' > "$work/sheet.csv"
+elif [ "$sowing" = straight ]; then
+  printf 'plant,group,angle_deg\nw1,WT,0\nw2,WT,0\nw3,WT,0\nm1,mut,0\nm2,mut,0\nm3,mut,0\n' > "$work/sheet.csv"
+else
+  printf 'plant,group\nw1,WT\nw2,WT\nw3,WT\nm1,mut\nm2,mut\nm3,mut\n' > "$work/sheet.csv"
+fi
 "$exe" run "$work/plate.toml" --out "$work/run" --quiet
 "$exe" export "$work/run" --rsml "$work/plate.rsml" --quiet
 "$py" "$here/examples/synthetic_trace.py" "$work/plate.rsml" "$work/traced.rsml" --plate --whole-px --noise-px 0.5 --seed "$seed"

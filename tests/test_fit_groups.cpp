@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
 #include <string>
 #include <vector>
@@ -96,7 +97,8 @@ const Plate& plate() {
     r.base = d / "base.toml";
     std::ofstream(r.base) << kBase;
     r.sheet = d / "sheet.csv";
-    std::ofstream(r.sheet) << "plant,group\nw1,WT\nw2,WT\nw3,WT\nm1,mut\nm2,mut\nm3,mut\n";
+    // the mutants' sowing angles given (the sheet's angle_deg), the wild type's left to their traces' starts
+    std::ofstream(r.sheet) << "plant,group,angle_deg\nw1,WT,\nw2,WT,\nw3,WT,\nm1,mut,3\nm2,mut,-2\nm3,mut,-4\n";
     return r;
   }();
   return p;
@@ -147,6 +149,12 @@ TEST_CASE("fit by group: bad input exits 2 naming the sheet's line or the flag, 
        "--free plate.width_mm=10:20: plate.width_mm is a plate's key"},
       {traced + " --groups " + (d / "good.csv").string() + scene + " --free angle_deg=-5:5", "angle_deg is a plate's key"},
       {traced + " --groups " + (d / "good.csv").string() + scene + " --free plane.alpha_deg=30:50", "the plate's tilt, the same for every group"},
+      {traced + " --groups " + (d / "good.csv").string() + scene + " --free root.initial_angle_deg=-5:5",
+       "root.initial_angle_deg is each seedling's own"},
+      {traced + sheet("angle.csv", "plant,group,angle_deg\nw1,WT,3\nw2,WT,north\nw3,WT,\nm1,mut,\nm2,mut,\nm3,mut,\n") + scene + free,
+       "angle.csv:3: angle_deg north: expected the plant's sowing angle in degrees"},
+      {traced + sheet("angle90.csv", "plant,group,angle_deg\nw1,WT,3\nw2,WT,95\nw3,WT,\nm1,mut,\nm2,mut,\nm3,mut,\n") + scene + free,
+       "angle90.csv:3: angle_deg 95: expected"},
       {traced + " --groups " + (d / "good.csv").string() + scene + free + " --objective shape", "--objective shape: a fit by group"},
       {traced + " --groups " + (d / "nothere.csv").string() + scene + free, "nothere.csv: cannot be read"},
       {traced + " --groups " + (d / "good.csv").string() + scene + free + " --budget 5", "--budget 5: too small"},
@@ -170,10 +178,30 @@ TEST_CASE("fit by group: two genotypes differing in the twist / the difference r
   const auto r = run(args);
   REQUIRE_MESSAGE(r.code == 0, r.out);
   INFO(r.out);
-  for (const char* f : {"fit.json", "groups/WT/fit.json", "groups/mut/fit.json", "groups/WT/evaluations.csv", "groups/mut/best.toml"})
+  for (const char* f : {"fit.json", "groups/WT/fit.json", "groups/mut/fit.json", "groups/WT/evaluations.csv", "groups/mut/best.toml",
+                        "keys.png", "keys.svg", "keys.pdf", "compare_WT.png", "compare_mut.png", "compare_mut.pdf"})
     CHECK_MESSAGE(fs::exists(d / "g" / f), f);
   const std::string js = slurp(d / "g" / "fit.json");
   INFO(js);
+  // each seedling's own answer (its best run of its group's): every mutant's twist above every wild type's;
+  // its runs sown at the sheet's angle, else at its trace's start (within the few degrees a scan's pixels
+  // and the bend of its growth zone allow)
+  const std::map<std::string, double> sown = {{"w1", -3}, {"w2", 2}, {"w3", 4}, {"m1", 3}, {"m2", -2}, {"m3", -4}};
+  double wtMax = -1, mutMin = 1;
+  for (const auto& [plant, angle] : sown) {
+    const auto at = js.find("\"plant\": \"" + plant + "\"");
+    REQUIRE_MESSAGE(at != std::string::npos, plant);
+    const double twistOwn = jsonNumber(js, "tropism.twist_r_tau", at);
+    (plant[0] == 'm' ? mutMin : wtMax) = plant[0] == 'm' ? std::min(mutMin, twistOwn) : std::max(wtMax, twistOwn);
+    const double deg = jsonNumber(js, "sowing_angle_deg", at);
+    if (plant[0] == 'm')
+      CHECK(deg == angle);
+    else
+      CHECK_MESSAGE(std::abs(deg - angle) < 6.0, plant << " " << deg);
+  }
+  CHECK(mutMin > wtMax);
+  // a run per sowing angle: the design's sweep has the mutants' three angles
+  CHECK(slurp(d / "g" / "groups" / "mut" / "design.toml").find("\"root.initial_angle_deg\" = [3, -2, -4]") != std::string::npos);
   // the contrasts: WT - mut, each key
   const auto twist = js.find("\"key\": \"tropism.twist_r_tau\"");
   const auto beta = js.find("\"key\": \"tropism.beta\"", js.find("\"contrasts\""));
@@ -209,4 +237,41 @@ TEST_CASE("fit by group: two genotypes differing in the twist / the difference r
   const auto again = run(args);
   REQUIRE_MESSAGE(again.code == 0, again.out);
   CHECK(slurp(d / "g" / "fit.json") == js);
+}
+
+TEST_CASE("fit by group: --design-only writes each group's sweep file, rootsim sweep runs it in two shards, the fit finds those runs") {
+  if (!built()) return;
+  const fs::path d = scratch("shards");
+  const fs::path out = d / "g";
+  const std::string args = "fit " + plate().traced.string() + " --px-per-mm 20 --groups " + plate().sheet.string() + " --scene " +
+                           plate().base.string() + " --free tropism.twist_r_tau=-0.05:0.1 --budget 17 -j 2 --quiet --out " + out.string();
+  const auto design = run(args + " --design-only");
+  REQUIRE_MESSAGE(design.code == 0, design.out);
+  CHECK(design.out.find("rootsim sweep " + (out / "groups" / "WT" / "design.toml").string() + " --out " +
+                        (out / "groups" / "WT" / "runs").string() + " [--shard K/N]") != std::string::npos);
+  CHECK(design.out.find("then this fit again without --design-only") != std::string::npos);
+  // nothing run, no answer
+  CHECK_FALSE(fs::exists(out / "fit.json"));
+  CHECK_FALSE(fs::exists(out / "groups" / "WT" / "runs"));
+  // the cluster's part: each group's design in two shards
+  for (const char* g : {"WT", "mut"})
+    for (const char* shard : {"1/2", "2/2"}) {
+      const auto s = run("sweep " + (out / "groups" / g / "design.toml").string() + " --out " + (out / "groups" / g / "runs").string() +
+                         " --shard " + shard + " -j 2 --quiet");
+      REQUIRE_MESSAGE(s.code == 0, g << " " << shard << ": " << s.out);
+    }
+  std::map<std::string, fs::file_time_type> made;
+  for (const char* g : {"WT", "mut"})
+    for (const auto& e : fs::directory_iterator(out / "groups" / g / "runs"))
+      if (fs::exists(e.path() / "scene.toml")) made[e.path().string()] = fs::last_write_time(e.path() / "scene.toml");
+  // the mutants' design: 3 sowing angles of each point of the twist's levels
+  CHECK(made.size() >= 6);
+  const auto fit = run(args);
+  REQUIRE_MESSAGE(fit.code == 0, fit.out);
+  CHECK(fs::exists(out / "fit.json"));
+  CHECK(fs::exists(out / "keys.png"));
+  // every run the shards made is the fit's: found complete, not run again
+  for (const auto& [dir, when] : made) CHECK_MESSAGE(fs::last_write_time(fs::path(dir) / "scene.toml") == when, dir);
+  const std::string csv = slurp(out / "groups" / "mut" / "evaluations.csv");
+  CHECK(csv.find(",design,") != std::string::npos);
 }

@@ -18,6 +18,23 @@ namespace rootsim {
 // title: the figure's title; caption: a line under it (distances, chi-square)
 void saveComparePanel(const Model& m, const Snapshot& sim, const Eigen::Matrix3Xd& traceMm, const std::string& title,
                       const std::string& caption, const std::string& pathWithoutExtension);
+// a group's traces (a plate's seedlings, traceNames a label each, in plate coordinates from each one's
+// base [mm]) over its simulated roots: one snapshot for all, or one per trace (the same order: each
+// seedling's own run, drawn dashed in its trace's colour in B); saveComparePanel is this with one of each
+void saveGroupComparePanel(const Model& m, const std::vector<Snapshot>& sims, const std::vector<Eigen::Matrix3Xd>& tracesMm,
+                           const std::vector<std::string>& traceNames, const std::string& title, const std::string& caption,
+                           const std::string& pathWithoutExtension);
+// a fit by group's answer for one free key: per group its value with a +-sigma bar (a flat key: the value
+// alone, marked "flat") and each seedling's own value as a dot beside it
+struct GroupKeyValue {
+  std::string group;
+  double value = 0, sigma = 0;     // sigma NaN: flat
+  std::vector<double> seedlings;   // each seedling's own value
+};
+// one panel per key (keys[i], its box lo[i]..hi[i], perKey[i] a value per group), written as PDF, SVG, PNG
+void saveGroupKeysPanel(const std::vector<std::string>& keys, const std::vector<double>& lo, const std::vector<double>& hi,
+                        const std::vector<std::vector<GroupKeyValue>>& perKey, const std::string& title,
+                        const std::string& dotsLabel, const std::string& pathWithoutExtension);
 // a plate's comparison: A the simulated plate (every root's snapshot, in plate coordinates from the
 // plate's origin [mm]), B the traced plate (every traced root, moved onto the plate by the pairing) in
 // the same window; names: a label per simulated root (same order) drawn at its seed, traceNames the same

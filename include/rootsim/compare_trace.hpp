@@ -33,8 +33,11 @@ struct SheetRow {
   int plant = -1;            // index into plants
   std::string value;         // its cell in `column`
   int line = 0;              // the sheet's line
+  std::string optional;      // its cell in the optional column ("" when the sheet has none, or the cell is empty)
 };
-std::vector<SheetRow> readSampleSheet(const std::string& sheet, const std::string& column, const std::vector<TracedPlant>& plants);
+// optionalColumn: a column the sheet may have (its cells may be empty)
+std::vector<SheetRow> readSampleSheet(const std::string& sheet, const std::string& column, const std::vector<TracedPlant>& plants,
+                                      const std::string& optionalColumn = "");
 
 // how to read the traced root (the flags compare and fit share)
 struct TraceFlags {

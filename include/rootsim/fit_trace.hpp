@@ -30,6 +30,8 @@ struct FitOptions {
   std::string out;                       // --out DIR
   bool force = false;
   bool quiet = false;
+  bool designOnly = false;               // --design-only: write each fit folder's start design as a sweep
+                                         // file and stop (its runs made by rootsim sweep, found on rerun)
 };
 
 struct FreeKey {
@@ -44,7 +46,8 @@ std::vector<FreeKey> parseFreeKeys(const std::string& text, const std::string& s
 struct FitEvaluation {
   std::vector<double> x;     // the free keys' values
   std::string phase;         // "design", "search", "stencil"
-  std::string dir;           // its run directory
+  std::string dir;           // its run directory (a group's: its first seedling's)
+  std::vector<std::string> dirs;  // every run directory of it (a group's: one per sowing angle)
   double objective = 0;      // chi-square of its outputs against the trace's (with the model's scatter
                              // added in the report; the trace's uncertainty alone while the fit runs)
   double chi2Trace = 0;      // chi-square of its outputs against the trace's uncertainty alone
@@ -56,6 +59,8 @@ struct FitEvaluation {
   double amplitudeMm = 0;    // its root's peak-to-peak amplitude [mm] (0 without waves)
   double straightness = 0;   // its root's chord / length
   long order = 0;            // when it was asked for: the design's point index, then each batch's in turn
+  std::vector<double> seedlingChi2;  // a fit by group: each seedling's own observables against its run
+                                     // (compareRoots' chi-square, its trace's uncertainty alone); else empty
 };
 inline constexpr double kFailedObjective = 1e12;
 // a time-lapse trace's dL/dt this far (relative) from a fixed tip speed is named beside the verdict
@@ -84,6 +89,7 @@ struct FitReport {
                                            // factor sigma's variance was widened by
   std::vector<std::string> notes;          // identifiability and bounds, in words
   std::string out;
+  std::string design;                      // --design-only: the start design's sweep file (nothing run)
 };
 
 // runs the fit and writes its folder (fit.json, evaluations.csv, best.toml, compare.*, and for two keys
@@ -97,11 +103,16 @@ int fitCommand(const FitOptions& o);
 struct GroupFit {
   std::string name;
   std::vector<std::string> plants;  // its seedlings, as the sheet names them
+  std::vector<double> sowingDeg;    // each seedling's start angle, its runs' root.initial_angle_deg
   FitReport report;                 // its fit (folder OUT/groups/NAME)
   std::vector<double> value, sigma; // per key: the answer's value, its sigma (NaN: flat or at a bound)
   FitComponents outputs;            // the group's mean observables and their covariance (sim empty)
   Eigen::MatrixXd scatter;          // the seedlings' sample covariance of those observables
   Eigen::VectorXd answerSim;        // the answer's run's outputs
+  // per seedling: its own answer among the group's runs, the run whose values its own observables fit
+  // best (seedlingChi2), and that chi-square; the keys' values per seedling (NaN: no run measured)
+  std::vector<std::vector<double>> seedlingValue;
+  std::vector<double> seedlingChi2;
 };
 // one key between two groups: difference A - B with its sigma and two-sided Wald p-value; flat (no
 // difference, no p-value) when either group does not determine the key
@@ -115,6 +126,7 @@ struct GroupFitReport {
   std::vector<FreeKey> keys;
   std::vector<GroupFit> groups;     // in the order the sheet first names them
   std::vector<GroupContrast> contrasts;  // every pair of groups (a before b in the sheet), every key
+  std::vector<std::string> designs;     // --design-only: each group's start design's sweep file (nothing run)
   std::string out;
 };
 // every key of every pair of groups (a named before b)

@@ -895,7 +895,7 @@ def fit(trace: Union[PathLike, Sequence[PathLike]], *, scene: PathLike, free: Un
         out: PathLike, root: Optional[str] = None, px_per_mm: Optional[float] = None,
         downhill: Union[str, float, None] = None, sigma_mm: Optional[float] = None, objective: Optional[str] = None,
         jobs: Optional[int] = None, budget: Optional[int] = None, groups: Optional[PathLike] = None,
-        force: bool = False, quiet: bool = True) -> Dict[str, Any]:
+        force: bool = False, design_only: bool = False, quiet: bool = True) -> Dict[str, Any]:
     """Fits free scene keys to a traced root, as ``rootsim fit TRACE --scene SCENE --free ... --out OUT``
     (docs/experiments.md; the same C++ code). ``free``: {"tropism.beta": (0.05, 0.5), ...} or the command
     line's "KEY=LO:HI,..." text. Every evaluation is a run directory in OUT/runs: a fit called again with
@@ -916,7 +916,11 @@ def fit(trace: Union[PathLike, Sequence[PathLike]], *, scene: PathLike, free: Un
     {"best": {KEY: {"value", "sigma"}}, "goodness", "flat", "notes", "observables", "plants", ...} with
     "values" and "sigmas" added as numpy arrays in the order of the free keys; "contrasts" is a list of
     {"key", "groups": [A, B], "difference" (A - B, or "flat"), "sigma", "p_value"} for every pair; "keys"
-    lists the free keys. Each group's own fit folder is OUT/groups/NAME."""
+    lists the free keys. Each group's own fit folder is OUT/groups/NAME.
+
+    ``design_only``: write the start design's sweep file (each group's: OUT/groups/NAME/design.toml) and
+    stop, as ``--design-only``; returns {"out", "designs": [paths]}. Run them with ``rootsim sweep DESIGN
+    --out DIR/runs --shard K/N`` (a cluster), then call fit again without it: it finds those runs."""
     more: List[PathLike] = []
     if not isinstance(trace, (str, bytes, os.PathLike)):
         trace, *more = list(trace)
@@ -930,6 +934,11 @@ def fit(trace: Union[PathLike, Sequence[PathLike]], *, scene: PathLike, free: Un
     if more:
         args["more"] = [os.fspath(m) for m in more]
     folder = _c.fit_trace(_options(args))
+    if design_only:
+        base = pathlib.Path(folder)
+        designs = [base / "groups" / d / "design.toml" for d in sorted(os.listdir(base / "groups"))
+                   if (base / "groups" / d / "design.toml").is_file()] if groups is not None else [base / "design.toml"]
+        return {"out": base, "designs": designs}
     with open(os.path.join(folder, "fit.json"), encoding="utf-8") as f:
         result = json.load(f)
     result["out"] = pathlib.Path(folder)

@@ -426,7 +426,8 @@ std::vector<TracedPlant> tracedPlants(const TraceFile& tf, const std::string& fi
   return plants;
 }
 
-std::vector<SheetRow> readSampleSheet(const std::string& sheet, const std::string& column, const std::vector<TracedPlant>& plants) {
+std::vector<SheetRow> readSampleSheet(const std::string& sheet, const std::string& column, const std::vector<TracedPlant>& plants,
+                                      const std::string& optionalColumn) {
   std::ifstream in(sheet);
   if (!in) throw SceneError("--groups " + sheet + ": cannot be read (not found?)");
   std::string line;
@@ -440,6 +441,8 @@ std::vector<SheetRow> readSampleSheet(const std::string& sheet, const std::strin
     return static_cast<std::size_t>(it - head.begin());
   };
   const std::size_t cp = col("plant"), cv = col(column);
+  const auto oi = optionalColumn.empty() ? head.end() : std::find(head.begin(), head.end(), optionalColumn);
+  const std::size_t co = oi == head.end() ? std::string::npos : static_cast<std::size_t>(oi - head.begin());
   std::vector<SheetRow> rows;
   std::vector<int> plantLine(plants.size(), 0);
   for (int n = 2; std::getline(in, line); ++n) {
@@ -467,7 +470,7 @@ std::vector<SheetRow> readSampleSheet(const std::string& sheet, const std::strin
     if (const int first = plantLine[static_cast<std::size_t>(p)])
       throw SceneError(at + ": plant " + pn + " named twice (first on line " + std::to_string(first) + ")");
     plantLine[static_cast<std::size_t>(p)] = n;
-    rows.push_back(SheetRow{p, cells[cv], n});
+    rows.push_back(SheetRow{p, cells[cv], n, co < cells.size() ? cells[co] : std::string()});
   }
   if (rows.empty()) throw SceneError(sheet + ": no rows; expected one " + expected + " row per line after the header");
   return rows;

@@ -6,6 +6,9 @@
 #include <map>
 
 #include "rootsim/analyze_traces.hpp"
+#include "rootsim/compare_panel.hpp"
+#include "rootsim/plot.hpp"
+#include "rootsim/run_snapshots.hpp"
 #include "rootsim/csv.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/json.hpp"
@@ -21,12 +24,12 @@ namespace fs = std::filesystem;
 
 namespace rootsim::app {
 
-FitComponents groupComponents(const GroupSide& g, const SimRoot& sim) {
+FitComponents groupComponents(const GroupSide& g, const std::vector<SimRoot>& sims) {
   FitComponents c = g.trace;
   c.sim = Eigen::VectorXd::Zero(static_cast<int>(c.names.size()));
   for (std::size_t i = 0; i < g.seedlings.size(); ++i) {
     const TraceTarget& t = g.seedlings[i];
-    const std::vector<Observation> obs = observeBoth(t.traits, sim.traits, t.sigmaMm);
+    const std::vector<Observation> obs = observeBoth(t.traits, sims[i].traits, t.sigmaMm);
     for (std::size_t j = 0; j < c.names.size(); ++j) {
       if (!g.users[j][i]) continue;
       for (const Observation& o : obs)
@@ -35,6 +38,23 @@ FitComponents groupComponents(const GroupSide& g, const SimRoot& sim) {
     }
   }
   return c;
+}
+
+// a traced root's start angle [deg]: the direction from its base to its point at arc length overMm (the
+// scene's initial root, straight as sown), from downhill, positive towards +lateral as
+// root.initial_angle_deg; its last point on a trace shorter than that
+double sowingAngleDeg(const Eigen::Matrix3Xd& plateMm, double overMm) {
+  double s = 0;
+  int at = static_cast<int>(plateMm.cols()) - 1;
+  for (int i = 1; i < plateMm.cols(); ++i) {
+    s += (plateMm.col(i).head<2>() - plateMm.col(i - 1).head<2>()).norm();
+    if (s >= overMm) {
+      at = i;
+      break;
+    }
+  }
+  const Eigen::Vector2d c = plateMm.col(at).head<2>() - plateMm.col(0).head<2>();
+  return std::atan2(c.x(), c.y()) / units::deg;
 }
 
 namespace {
@@ -187,6 +207,8 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
     if (isPlateKey(key))
       throw SceneError("--free " + item + ": " + key + " is a plate's key ([plate], [population], [[seedling]], [laterals]); " +
                        "a fit by group runs the root of the base scene per group: free a key of the root (tropism.*, rod.*, growth.rate_per_h, ...)");
+    if (key == kSowingKey)
+      throw SceneError("--free " + item + ": " + key + " is each seedling's own: a fit by group sows each seedling's runs at its trace's start angle");
     if (key.rfind("plane.", 0) == 0)
       throw SceneError("--free " + item + ": " + key + " is the plate's tilt, the same for every group: set it in the scene");
   }
@@ -218,7 +240,7 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
       rootKeys.push_back(tf.roots[static_cast<std::size_t>(p.root)].key);
     }
   }
-  const std::vector<SheetRow> rows = readSampleSheet(o.groups, "group", plants);
+  const std::vector<SheetRow> rows = readSampleSheet(o.groups, "group", plants, kSheetSowingColumn);
   {
     std::vector<bool> named(plants.size(), false);
     for (const SheetRow& r : rows) named[static_cast<std::size_t>(r.plant)] = true;
@@ -249,16 +271,36 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
     f.trace = p.file;
     f.root = rootKeys[static_cast<std::size_t>(r.plant)];
     it->seedlings.push_back(loadTarget(f, base.model));
+    // its sowing angle: the sheet's, else its trace's start
+    double deg = sowingAngleDeg(it->seedlings.back().plateMm, base.model.initial.length / units::mm);
+    if (!r.optional.empty()) {
+      char* end = nullptr;
+      deg = std::strtod(r.optional.c_str(), &end);
+      if (end == r.optional.c_str() || *end != '\0' || !std::isfinite(deg) || std::abs(deg) > 90)
+        throw SceneError(o.groups + ":" + std::to_string(r.line) + ": " + kSheetSowingColumn + " " + r.optional +
+                         ": expected the plant's sowing angle in degrees from downhill, in [-90, 90] (or an empty cell: its trace's start)");
+    }
+    // to a tenth of a degree (a run per distinct angle)
+    deg = std::round(deg * 10.0) / 10.0;
+    it->sowingDeg.push_back(deg == 0.0 ? 0.0 : deg);
   }
   for (GroupSide& g : groups) {
     if (g.seedlings.size() < 2)
       throw SceneError(o.groups + ":" + std::to_string(firstLine[g.name]) + ": group " + g.name + " has one seedling (" + g.plants.front() +
                        "); a group's fit needs at least two: add the group's other plants or put this one in another group");
     groupTraceSide(g, o.groups);
+    // each seedling sown at its own angle: a run per distinct angle
+    for (const double deg : g.sowingDeg) {
+      const std::string text = numberText(deg);
+      auto it = std::find(g.angles.begin(), g.angles.end(), text);
+      if (it == g.angles.end()) it = g.angles.insert(g.angles.end(), text);
+      g.angleOf.push_back(static_cast<int>(it - g.angles.begin()));
+    }
     g.target = g.seedlings.front();
-    double mean = 0;
-    for (const TraceTarget& t : g.seedlings) mean += t.rootLengthMm / static_cast<double>(g.seedlings.size());
-    g.target.rootLengthMm = mean;
+    double longest = 0;
+    for (const TraceTarget& t : g.seedlings) longest = std::max(longest, t.rootLengthMm);
+    // the runs grow to the longest seedling's length; each seedling is compared at its own (comparedSnapshot)
+    g.target.rootLengthMm = longest;
     g.inputs = files;
     g.inputs.push_back(o.groups);
     g.settings = "--groups " + o.groups + " group " + g.name + " plants";
@@ -293,16 +335,77 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
     GroupFit gf;
     gf.name = g.name;
     gf.plants = g.plants;
+    gf.sowingDeg = g.sowingDeg;
     gf.report = runFitOn(go, &g, [&](const std::string& l) { log("[" + g.name + "] " + l); });
+    if (o.designOnly) {
+      rep.designs.push_back(gf.report.design);
+      continue;
+    }
     gf.outputs = g.trace;
     gf.scatter = g.scatter;
     const FitEvaluation& b = gf.report.evaluations[static_cast<std::size_t>(gf.report.best)];
     gf.value = b.x;
     gf.sigma = gf.report.sigma;
     gf.answerSim = b.sim;
+    // each seedling's own answer among the group's runs: a single fit of it would cost a fit per seedling;
+    // its best run of the group's shows where its own observables point, within the box the group searched
+    for (std::size_t i = 0; i < g.seedlings.size(); ++i) {
+      int at = -1;
+      for (std::size_t e = 0; e < gf.report.evaluations.size(); ++e) {
+        const FitEvaluation& ev = gf.report.evaluations[e];
+        if (ev.error.empty() && i < ev.seedlingChi2.size() && std::isfinite(ev.seedlingChi2[i]) &&
+            (at < 0 || ev.seedlingChi2[i] < gf.report.evaluations[static_cast<std::size_t>(at)].seedlingChi2[i]))
+          at = static_cast<int>(e);
+      }
+      gf.seedlingValue.push_back(at < 0 ? std::vector<double>(keys.size(), kNaN) : gf.report.evaluations[static_cast<std::size_t>(at)].x);
+      gf.seedlingChi2.push_back(at < 0 ? kNaN : gf.report.evaluations[static_cast<std::size_t>(at)].seedlingChi2[i]);
+    }
+    // the group's compare picture: every traced seedling over the answer's run
+    {
+      const Scene best = loadScene((fs::path(go.out) / "best.toml").string());
+      std::vector<Eigen::Matrix3Xd> traces;
+      for (const TraceTarget& t : g.seedlings) traces.push_back(t.plateMm);
+      std::string title = "group " + literalLabel(g.name) + " (" + std::to_string(g.seedlings.size()) + " seedlings):";
+      for (std::size_t i = 0; i < keys.size(); ++i) {
+        title += (i ? ", " : " ") + literalLabel(keys[i].key) + " = " + numberText(std::round(gf.value[i] * 1e4) / 1e4);
+        if (std::isfinite(gf.sigma[i])) title += " ± " + numberText(std::round(gf.sigma[i] * 1e4) / 1e4);
+      }
+      // each seedling's own run of the answer (its sowing angle's), as long as its trace
+      std::vector<Snapshot> sims;
+      for (std::size_t i = 0; i < g.seedlings.size(); ++i) {
+        const std::vector<Snapshot> snaps = loadSnapshots(b.dirs[static_cast<std::size_t>(g.angleOf[i])]);
+        sims.push_back(comparedSnapshot(best.model, snaps, g.seedlings[i], false));
+      }
+      saveGroupComparePanel(best.model, sims, traces, g.plants, title,
+                            "every seedling's trace over its own run of the answer (sown at its own angle); " +
+                                goodnessText(gf.report.goodness, "χ²"),
+                            (out / ("compare_" + g.name)).string());
+    }
     rep.groups.push_back(gf);
   }
+  if (o.designOnly) return rep;
   rep.contrasts = groupContrasts(keys, rep.groups);
+  // each key per group: its value and sigma, and each seedling's own answer as a dot
+  {
+    std::vector<std::string> names;
+    std::vector<double> lo, hi;
+    std::vector<std::vector<GroupKeyValue>> perKey(keys.size());
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      names.push_back(keys[i].key);
+      lo.push_back(keys[i].lo);
+      hi.push_back(keys[i].hi);
+      for (const GroupFit& g : rep.groups) {
+        GroupKeyValue v;
+        v.group = g.name;
+        v.value = g.value[i];
+        v.sigma = g.sigma[i];
+        for (const std::vector<double>& sv : g.seedlingValue) v.seedlings.push_back(sv[i]);
+        perKey[i].push_back(v);
+      }
+    }
+    saveGroupKeysPanel(names, lo, hi, perKey, "the free keys per group: the group's fit and each seedling's own",
+                       "a seedling's best run of its group's", (out / "keys").string());
+  }
 
   // fit.json: each group's answer and goodness, and the contrasts
   Json js;
@@ -312,7 +415,8 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
     for (const FreeKey& k : keys) names.push_back(k.key);
     js.strings("keys", names);
   }
-  js.str("method", "each group's mean observables against one run per evaluation of the group's values, measured as each seedling is; "
+  js.str("method", "each group's mean observables against the group's values run once per seedling's sowing angle (its trace's start "
+                   "angle), each seedling's run measured as that seedling is, at its own length; "
                    "covariance: the mean's, from the seedlings' scatter (its diagonal at least their tracing noise) / n");
   Json gj;
   for (const GroupFit& g : rep.groups) {
@@ -336,7 +440,13 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
                         .num("scatter_sd", std::sqrt(g.scatter(jj, jj)))
                         .num("answer", g.answerSim.size() > jj ? g.answerSim(jj) : kNaN));
     }
-    one.strings("flat", flat).strings("notes", g.report.notes).array("observables", obs);
+    std::vector<Json> own;
+    for (std::size_t p = 0; p < g.plants.size(); ++p) {
+      Json values;
+      for (std::size_t i = 0; i < keys.size(); ++i) values.num(keys[i].key, g.seedlingValue[p][i]);
+      own.push_back(Json().str("plant", g.plants[p]).num("sowing_angle_deg", g.sowingDeg[p]).object("values", values).num("chi2", g.seedlingChi2[p]));
+    }
+    one.strings("flat", flat).strings("notes", g.report.notes).array("observables", obs).array("seedlings_own", own);
     gj.object(g.name, one);
   }
   js.object("groups", gj);
@@ -358,6 +468,10 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
 
 int groupFitCommand(const FitOptions& o) {
   const GroupFitReport r = runGroupFit(o, [&](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
+  if (o.designOnly) {
+    std::printf("%s\n", designOnlyText(r.designs).c_str());
+    return 0;
+  }
   for (const GroupFit& g : r.groups) {
     std::printf("%s (%zu seedlings):", g.name.c_str(), g.plants.size());
     for (std::size_t i = 0; i < r.keys.size(); ++i) {

@@ -19,8 +19,8 @@ namespace rootsim::app {
 
 // a group of a plate's seedlings fitted together (fit --groups, docs/experiments.md "A plate by group"):
 // the outputs are the observables two or more seedlings' traces use, the group's mean against the mean over
-// those seedlings of one run's values measured as each seedling is; their covariance the mean's, from the
-// seedlings' own scatter
+// those seedlings of their runs' values (each seedling's run sown at its own angle) measured as each
+// seedling is; their covariance the mean's, from the seedlings' own scatter
 struct GroupSide {
   std::string name;
   std::vector<std::string> plants;     // the sheet's names of its seedlings
@@ -32,18 +32,30 @@ struct GroupSide {
   double userCount(std::size_t output) const {
     return static_cast<double>(std::count(users[output].begin(), users[output].end(), true));
   }
+  // the sowing: each seedling's angle (the sheet's angle_deg, else its trace's start: its base's direction
+  // over the scene's initial root length; to 0.1 deg), the distinct ones as root.initial_angle_deg texts,
+  // and per seedling the index of its own; every evaluation is a run per distinct angle
+  std::vector<double> sowingDeg;
+  std::vector<std::string> angles;
+  std::vector<int> angleOf;
   Eigen::MatrixXd scatter;             // the seedlings' sample covariance
   std::vector<std::string> inputs;     // the RSML files and the sheet
   std::string settings;                // for base.toml's settings line: the sheet, the group and its plants
 };
-// the group's outputs of a run's root: the mean over seedlings of the run measured as each is (observeBoth)
-FitComponents groupComponents(const GroupSide& g, const SimRoot& sim);
+// the scene key a group's runs are sown by, and the sample sheet's optional column of each plant's angle
+inline constexpr const char* kSowingKey = "root.initial_angle_deg";
+inline constexpr const char* kSheetSowingColumn = "angle_deg";
+// the group's outputs of its runs' roots (sims: one per seedling, its own sowing's run): the mean over
+// seedlings of each one's run measured as that seedling is (observeBoth)
+FitComponents groupComponents(const GroupSide& g, const std::vector<SimRoot>& sims);
 // the size of a fit of n keys: the start design's levels per key and runs, the surface's terms, a trust
 // region's runs; SceneError when --budget cannot hold the design and one trust region
 struct FitSize {
   int levels = 0, design = 0, terms = 0, regionPoints = 0;
 };
 FitSize fitSize(const FitOptions& o, int n);
+// --design-only's line on stdout: each design's rootsim sweep command, and the fit again
+std::string designOnlyText(const std::vector<std::string>& designs);
 // runFit, or a group's fit when group is given (its outputs the group's: groupComponents)
 FitReport runFitOn(const FitOptions& o, const GroupSide* group, const std::function<void(const std::string&)>& log);
 

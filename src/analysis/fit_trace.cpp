@@ -173,24 +173,41 @@ class Fit {
     for (std::size_t i = 0; i < keys_.size(); ++i) ov.push_back(keys_[i].key + "=" + t[i]);
     return ov;
   }
-  Scene sceneAt(const std::vector<double>& x) const {
-    return parseScene(baseText_, (out_ / "base.toml").string(), overrides(texts(x)));
+  Scene sceneAt(const std::vector<double>& x, const std::vector<std::string>& more = {}) const {
+    std::vector<std::string> ov = overrides(texts(x));
+    ov.insert(ov.end(), more.begin(), more.end());
+    return parseScene(baseText_, (out_ / "base.toml").string(), ov);
   }
 
-  // the outputs of the run directory dir of values x (which ran, or was found complete)
-  FitEvaluation measure(const std::vector<double>& x, const std::string& phase, const fs::path& dir, const std::string& error) {
+  // the outputs of the run directory dir of values x (which ran, or was found complete); a group's: its
+  // runs dirs, one per sowing angle (GroupSide::angles), each seedling measured on its own angle's run
+  FitEvaluation measure(const std::vector<double>& x, const std::string& phase, const std::vector<fs::path>& dirs, const std::string& error) {
     FitEvaluation e;
     e.x = x;
     e.phase = phase;
-    e.dir = dir.string();
+    e.dir = dirs.front().string();
+    for (const fs::path& d : dirs) e.dirs.push_back(d.string());
     e.error = error;
     if (e.error.empty()) {
       try {
         const Scene sc = sceneAt(x);
-        const std::vector<Snapshot> snaps = loadSnapshots(dir);
-        const SimRoot sim = simRootOf(sc.model, comparedSnapshot(sc.model, snaps, target_, o_.objective == "timelapse"));
-        const Comparison c = compareRoots(target_, sim);
-        const FitComponents fc = group_ ? groupComponents(*group_, sim) : componentsOf(o_.objective, target_, shapeCov_, lapse_, sc.model, snaps, sim, c);
+        const std::vector<Snapshot> snaps = loadSnapshots(dirs.front());
+        SimRoot sim = simRootOf(sc.model, comparedSnapshot(sc.model, snaps, target_, o_.objective == "timelapse"));
+        FitComponents fc;
+        if (group_) {
+          std::vector<std::vector<Snapshot>> runs;
+          for (const fs::path& d : dirs) runs.push_back(d == dirs.front() ? snaps : loadSnapshots(d));
+          std::vector<SimRoot> sims;
+          for (std::size_t i = 0; i < group_->seedlings.size(); ++i) {
+            const std::vector<Snapshot>& own = runs[static_cast<std::size_t>(group_->angleOf[i])];
+            sims.push_back(simRootOf(sc.model, comparedSnapshot(sc.model, own, group_->seedlings[i], false)));
+            e.seedlingChi2.push_back(compareRoots(group_->seedlings[i], sims.back()).chi2);
+          }
+          fc = groupComponents(*group_, sims);
+          sim = sims.front();  // the first seedling's run: the distance, pattern and amplitude shown
+        }
+        const Comparison c = compareRoots(group_ ? group_->seedlings.front() : target_, sim);
+        if (!group_) fc = componentsOf(o_.objective, target_, shapeCov_, lapse_, sc.model, snaps, sim, c);
         {
           std::lock_guard lk(mu_);
           if (traceComp_.names.empty()) traceComp_ = fc;  // the trace's side: the same for every run
@@ -231,12 +248,23 @@ class Fit {
     }
     std::string name = "eval";
     for (std::size_t i = 0; i < keys_.size(); ++i) name += "_" + runNameSlug(keys_[i].key, t[i]);
-    const fs::path dir = runs() / name;
+    // a group's: a run per sowing angle of its seedlings, eval_<values>_root.initial_angle_deg_<angle>
+    std::vector<fs::path> dirs;
+    std::vector<std::string> extra;
+    if (group_)
+      for (const std::string& a : group_->angles) {
+        dirs.push_back(runs() / (name + "_" + runNameSlug(kSowingKey, a)));
+        extra.push_back(std::string(kSowingKey) + "=" + a);
+      }
+    else
+      dirs.push_back(runs() / name), extra.push_back("");
     std::string error;
-    const Scene sc = sceneAt(x);
-    const bool whole = fs::is_directory(dir) && whyNotOurs(dir, runFolder()).empty() && whyNotWhole(dir).empty() &&
-                       fileText(dir / "scene.toml") == sc.resolvedToml;
-    if (!whole) {
+    for (std::size_t r = 0; r < dirs.size() && error.empty(); ++r) {
+      const fs::path& dir = dirs[r];
+      const Scene sc = extra[r].empty() ? sceneAt(x) : sceneAt(x, {extra[r]});
+      const bool whole = fs::is_directory(dir) && whyNotOurs(dir, runFolder()).empty() && whyNotWhole(dir).empty() &&
+                         fileText(dir / "scene.toml") == sc.resolvedToml;
+      if (whole) continue;
       RunDirOptions ro;
       ro.force = true;   // a run of this fit's own folder that did not finish
       ro.resume = true;
@@ -250,7 +278,7 @@ class Fit {
         error = ex.what();
       }
     }
-    FitEvaluation e = measure(x, phase, dir, error);
+    FitEvaluation e = measure(x, phase, dirs, error);
     e.order = order;
     return record(e, key);
   }
@@ -273,10 +301,10 @@ class Fit {
     return e;
   }
 
-  void recordDesign(const std::vector<double>& x, const fs::path& dir, const std::string& error, long order) {
+  void recordDesign(const std::vector<double>& x, const std::vector<fs::path>& dirs, const std::string& error, long order) {
     std::string key;
     for (const std::string& s : texts(x)) key += s + ";";
-    FitEvaluation e = measure(x, "design", dir, error);
+    FitEvaluation e = measure(x, "design", dirs, error);
     e.order = order;
     record(e, key);
   }
@@ -589,13 +617,19 @@ std::string writeBaseAndDesign(const FitSetup& setup, const GroupSide* group) {
     }
     designText += "]\n";
   }
+  // a group's: each point run once per sowing angle of its seedlings
+  if (group) {
+    designText += "\"" + std::string(kSowingKey) + "\" = [";
+    for (std::size_t i = 0; i < group->angles.size(); ++i) designText += (i ? ", " : "") + group->angles[i];
+    designText += "]\n";
+  }
   writeFileAtomic(out / "design.toml", designText);
   recordWritten({out / "design.toml"});
   return baseText;
 }
 
 // 1. the start design, as a sweep: every point's run recorded in the fit
-void runStartDesign(const FitSetup& setup, Fit& fit, const std::function<void(const std::string&)>& log) {
+void runStartDesign(const FitSetup& setup, const GroupSide* group, Fit& fit, const std::function<void(const std::string&)>& log) {
   const FitOptions& o = setup.o;
   const fs::path& out = setup.out;
   const std::vector<FreeKey>& keys = setup.keys;
@@ -606,14 +640,45 @@ void runStartDesign(const FitSetup& setup, Fit& fit, const std::function<void(co
   so.quiet = true;
   so.force = true;  // its own runs: a point whose run failed is run again
   so.inputs = {out / "design.toml", out / "base.toml"};
+  // a group's design point is complete when each of its sowing angles' runs is: gathered here
+  struct Gathered {
+    std::vector<fs::path> dirs;
+    std::string error;
+    int have = 0;
+    long order = 0;
+  };
+  std::map<std::string, Gathered> gathered;
+  std::mutex gatherMu;
+  const std::size_t angles = group ? group->angles.size() : 1;
   so.onPoint = [&](const SweepPointDone& d) {
     // in the free keys' order (a sweep file's grid comes back in its keys' sorted order)
     std::vector<double> x;
+    std::string xText, angle;
     for (const FreeKey& fk : keys)
       for (const auto& [key, val] : d.point->grid)
-        if (key == fk.key) x.push_back(std::stod(val));
+        if (key == fk.key) x.push_back(std::stod(val)), xText += val + ";";
+    for (const auto& [key, val] : d.point->grid)
+      if (key == kSowingKey) angle = val;
     if (x.size() != keys.size()) throw RunError("fit: the design point " + d.dir + " lacks a free key");
-    fit.recordDesign(x, d.dir, d.error, d.point->index);
+    if (!group) {
+      fit.recordDesign(x, {d.dir}, d.error, d.point->index);
+      return;
+    }
+    const auto at = std::find_if(group->angles.begin(), group->angles.end(),
+                                 [&](const std::string& a) { return !angle.empty() && std::stod(a) == std::stod(angle); });
+    if (at == group->angles.end()) throw RunError("fit: the design point " + d.dir + " has no sowing angle of the group's");
+    Gathered done;
+    {
+      std::lock_guard lk(gatherMu);
+      Gathered& g = gathered[xText];
+      if (g.dirs.empty()) g.dirs.resize(angles), g.order = d.point->index;
+      g.dirs[static_cast<std::size_t>(at - group->angles.begin())] = d.dir;
+      g.order = std::min<long>(g.order, d.point->index);
+      if (g.error.empty()) g.error = d.error;
+      if (++g.have < static_cast<int>(angles)) return;
+      done = g;
+    }
+    fit.recordDesign(x, done.dirs, done.error, done.order);
   };
   runSweep(plan, so, [&](const std::string& line) {
     if (!o.quiet && line.find("FAILED") != std::string::npos) log(line);
@@ -914,8 +979,16 @@ std::vector<double> chooseFitAnswer(FitReport& rep, const FitSetup& setup, Fit& 
 FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::function<void(const std::string&)>& log) {
   const FitSetup setup = checkFit(given, group, log);
   const std::string baseText = writeBaseAndDesign(setup, group);
+  if (setup.o.designOnly) {
+    // its runs made elsewhere (rootsim sweep DESIGN --out DIR/runs --shard K/N), found complete on rerun
+    FitReport only;
+    only.keys = setup.keys;
+    only.out = setup.out.string();
+    only.design = (setup.out / "design.toml").string();
+    return only;
+  }
   Fit fit(setup.o, setup.keys, setup.out, baseText, setup.target, log, group);
-  runStartDesign(setup, fit, log);
+  runStartDesign(setup, group, fit, log);
   const TrustRegions tr = runTrustRegions(setup, fit, log);
   FitReport rep;
   rep.keys = setup.keys;
@@ -944,11 +1017,24 @@ FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::f
   return rep;
 }
 
+std::string designOnlyText(const std::vector<std::string>& designs) {
+  std::string t = "the start design, nothing run: run ";
+  for (std::size_t i = 0; i < designs.size(); ++i) {
+    const fs::path d = designs[i];
+    t += (i ? "; " : "") + std::string("rootsim sweep ") + d.string() + " --out " + (d.parent_path() / "runs").string() + " [--shard K/N]";
+  }
+  return t + "; then this fit again without --design-only: it finds those runs complete";
+}
+
 int fitCommand(const FitOptions& o) {
   if (!o.groups.empty()) return groupFitCommand(o);
   if (!o.more.empty())
     throw SceneError("fit: " + std::to_string(o.more.size() + 1) + " RSML files: several files are a plate fitted by group; give --groups SHEET.csv");
   const FitReport r = runFit(o, [&](const std::string& line) { std::fprintf(stderr, "%s\n", line.c_str()); });
+  if (o.designOnly) {
+    std::printf("%s\n", designOnlyText({r.design}).c_str());
+    return 0;
+  }
   const FitEvaluation& b = r.evaluations[static_cast<std::size_t>(r.best)];
   for (std::size_t i = 0; i < r.keys.size(); ++i) {
     if (std::isfinite(r.sigma[i]))

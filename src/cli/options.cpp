@@ -239,6 +239,7 @@ CommandSpec fitSpec() {
       .opt("--groups", FIELD(groups), "", "a traced plate by group: a sample sheet (plant,group) naming each plant's group; each group's keys are fitted to its seedlings together, and every key compared between groups")
       .opt("--out", FIELD(out), "", "the fit's folder (resumable: a killed fit continues where it stopped)").required()
       .opt("--force", FIELD(force), "", "start again in a fit folder of another scene or trace")
+      .opt("--design-only", FIELD(designOnly), "", "write the start design as a sweep file (each group's with --groups) and stop: run it with rootsim sweep DIR/design.toml --out DIR/runs --shard K/N (a cluster), then the fit again finds those runs")
       .opt("--quiet", FIELD(quiet), "", "no progress output");
   return t.done(nullptr, fitCommand);
 }

@@ -22,27 +22,43 @@ constexpr Rgb kTraceColor{0.05, 0.20, 0.55};  // the trace: a dark blue line ove
 
 void saveComparePanel(const Model& m, const Snapshot& sim, const Eigen::Matrix3Xd& traceMm, const std::string& title,
                       const std::string& caption, const std::string& path) {
+  saveGroupComparePanel(m, {sim}, {traceMm}, {"trace"}, title, caption, path);
+}
+
+void saveGroupComparePanel(const Model& m, const std::vector<Snapshot>& sims, const std::vector<Eigen::Matrix3Xd>& tracesMm,
+                           const std::vector<std::string>& traceNames, const std::string& title, const std::string& caption,
+                           const std::string& path) {
   const double alphaDeg = m.env.plane.alpha / units::deg;
-  Tube tube = fig::tubeOf(sim, alphaDeg);
+  std::vector<Tube> tubes;
+  for (const Snapshot& s : sims) tubes.push_back(fig::tubeOf(s, alphaDeg));
+  // one trace: the dark blue line; several: a colour each (the simulation's own colour, 1, left out), and
+  // one run per trace drawn in its trace's colour, dashed, beside them
+  const bool several = tracesMm.size() > 1;
+  const bool paired = several && sims.size() == tracesMm.size();
+  auto traceColor = [&](std::size_t i) { return several ? paletteColor(i == 0 ? 0 : static_cast<int>(i) + 1) : kTraceColor; };
   Figure f;
   f.cols = 2;
   f.width = 1200;
   f.title = title + (caption.empty() ? "" : ": " + caption);
 
-  // A: the trace over the simulated root, on the plate
+  // A: the traces over the simulated roots, on the plate
   Axes plate;
   plate.panelLabel = "A";
   plate.title = "on the plate";
   plate.xlabel = "lateral [mm]";
   plate.ylabel = "downhill [mm]";
-  Series tr;
-  for (int i = 0; i < traceMm.cols(); ++i) {
-    tr.x.push_back(traceMm(0, i));
-    tr.y.push_back(traceMm(1, i));
+  std::vector<Series> trs;
+  for (std::size_t k = 0; k < tracesMm.size(); ++k) {
+    Series tr;
+    for (int i = 0; i < tracesMm[k].cols(); ++i) {
+      tr.x.push_back(tracesMm[k](0, i));
+      tr.y.push_back(tracesMm[k](1, i));
+    }
+    tr.color = traceColor(k);
+    tr.width = several ? 1.2 : 1.4;
+    tr.label = k < traceNames.size() ? literalLabel(traceNames[k]) : std::string();
+    trs.push_back(tr);
   }
-  tr.color = kTraceColor;
-  tr.width = 1.4;
-  tr.label = "trace";
   // the window bounding both, with a margin of 1 mm
   double x0 = std::numeric_limits<double>::infinity(), x1 = -x0, y0 = x0, y1 = -x0;
   auto grow = [&](double x, double y) {
@@ -51,42 +67,117 @@ void saveComparePanel(const Model& m, const Snapshot& sim, const Eigen::Matrix3X
     y0 = std::min(y0, y);
     y1 = std::max(y1, y);
   };
-  for (std::size_t i = 0; i < tube.x.size(); ++i) grow(tube.x[i], tube.y[i]);
-  for (std::size_t i = 0; i < tr.x.size(); ++i) grow(tr.x[i], tr.y[i]);
+  for (const Tube& tube : tubes)
+    for (std::size_t i = 0; i < tube.x.size(); ++i) grow(tube.x[i], tube.y[i]);
+  for (const Series& tr : trs)
+    for (std::size_t i = 0; i < tr.x.size(); ++i) grow(tr.x[i], tr.y[i]);
   const PlateWindow win{x0 - 1.0, x1 + 1.0, y0 - 1.0, y1 + 1.0};
   f.axes.push_back(plate);
   fig::fitHeight(f, f.axes[0], std::clamp(fig::plateAspect(win), 0.6, 2.2), 500, 1100);
   Axes& ax = f.axes[0];
   fig::setPlateAxes(f, ax, win);
   ax.obstacles = fig::obstaclesOf(sceneInfoOf(m));
-  ax.tubes.push_back(tube);
-  ax.series.push_back(tr);
+  ax.tubes = tubes;
+  for (const Series& tr : trs) ax.series.push_back(tr);
   // the tube's legend entry: a line of its body colour
   Series simKey;
   simKey.color = Rgb{0.80, 0.62, 0.45};
-  simKey.label = "simulation";
+  simKey.label = paired ? "simulation (one per trace)" : "simulation";
   ax.series.push_back(simKey);
   ax.legendPos = "sw";
 
-  // B: lateral position along downhill, both roots
+  // B: lateral position along downhill, the roots of both
   Axes prof;
   prof.panelLabel = "B";
   prof.title = "lateral position along the plate";
   prof.xlabel = "downhill [mm]";
   prof.ylabel = "lateral [mm]";
-  Series ts = tr;
-  ts.x = tr.y;
-  ts.y = tr.x;
-  Series ss;
-  ss.x = tube.y;
-  ss.y = tube.x;
-  ss.color = paletteColor(1);
-  ss.width = 1.8;
-  ss.label = "simulation";
-  prof.series.push_back(ss);
-  prof.series.push_back(ts);
+  for (std::size_t k = 0; k < tubes.size(); ++k) {
+    Series ss;
+    ss.x = tubes[k].y;
+    ss.y = tubes[k].x;
+    ss.color = paired ? traceColor(k) : paletteColor(1);
+    ss.dashed = paired;
+    ss.width = paired ? 1.2 : 1.8;
+    ss.label = k == 0 ? (paired ? "simulation (dashed, its trace's colour)" : "simulation") : std::string();
+    prof.series.push_back(ss);
+  }
+  for (const Series& tr : trs) {
+    Series ts = tr;
+    ts.x = tr.y;
+    ts.y = tr.x;
+    prof.series.push_back(ts);
+  }
   prof.legendPos = "ne";
   f.axes.push_back(prof);
+  saveFigure(f, path);
+}
+
+void saveGroupKeysPanel(const std::vector<std::string>& keys, const std::vector<double>& lo, const std::vector<double>& hi,
+                        const std::vector<std::vector<GroupKeyValue>>& perKey, const std::string& title,
+                        const std::string& dotsLabel, const std::string& path) {
+  Figure f;
+  f.cols = static_cast<int>(keys.size());
+  f.width = 520 * f.cols;
+  f.height = 560;
+  f.title = title;
+  for (std::size_t k = 0; k < keys.size(); ++k) {
+    Axes ax;
+    ax.panelLabel = std::string(1, static_cast<char>('A' + k % 26));
+    ax.title = literalLabel(keys[k]);
+    const std::vector<GroupKeyValue>& gs = perKey[k];
+    // the groups along x at 0, 1, ...: named over their column (the axis has no text ticks)
+    std::string names;
+    for (std::size_t g = 0; g < gs.size(); ++g) names += (g ? ", " : "") + std::to_string(g) + " " + literalLabel(gs[g].group);
+    ax.xlabel = "group (" + names + ")";
+    ax.ylabel = literalLabel(keys[k]);
+    ax.autoX = ax.autoY = false;
+    ax.xmin = -0.6;
+    ax.xmax = static_cast<double>(gs.size()) - 0.4;
+    // the key's box, widened to any value outside it (a seedling's)
+    double y0 = lo[k], y1 = hi[k];
+    for (const GroupKeyValue& g : gs)
+      for (double v : g.seedlings)
+        if (std::isfinite(v)) y0 = std::min(y0, v), y1 = std::max(y1, v);
+    const double pad = 0.05 * (y1 - y0);
+    ax.ymin = y0 - pad;
+    ax.ymax = y1 + pad;
+    Series dots, best;
+    dots.kind = best.kind = Series::Kind::Markers;
+    dots.marker = 'o';
+    dots.color = paletteColor(0);
+    dots.width = 1.2;
+    dots.label = dotsLabel;
+    best.marker = 's';
+    best.color = paletteColor(1);
+    best.width = 2.2;
+    best.label = "the group's fit ± σ";
+    for (std::size_t g = 0; g < gs.size(); ++g) {
+      const double xg = static_cast<double>(g);
+      best.x.push_back(xg);
+      best.y.push_back(gs[g].value);
+      if (std::isfinite(gs[g].sigma)) {
+        Series bar;
+        bar.x = {xg, xg};
+        bar.y = {gs[g].value - gs[g].sigma, gs[g].value + gs[g].sigma};
+        bar.color = best.color;
+        bar.width = 2.0;
+        ax.series.push_back(bar);
+      } else {
+        ax.notes.push_back({{xg + 0.08, gs[g].value}, "flat"});
+      }
+      // the seedlings a little to the right of their group's value, spread so that equal values stay apart
+      const std::size_t n = gs[g].seedlings.size();
+      for (std::size_t i = 0; i < n; ++i) {
+        dots.x.push_back(xg + 0.18 + 0.16 * (n > 1 ? static_cast<double>(i) / static_cast<double>(n - 1) : 0.0));
+        dots.y.push_back(gs[g].seedlings[i]);
+      }
+    }
+    ax.series.push_back(best);
+    ax.series.push_back(dots);
+    ax.legendPos = "ne";
+    f.axes.push_back(ax);
+  }
   saveFigure(f, path);
 }
 

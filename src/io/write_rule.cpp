@@ -136,12 +136,16 @@ bool isCompareEntry(const fs::path&, const std::string& name) {
 }
 
 // what `fit` writes (docs/experiments.md): its files, the best fit's picture, the landscape, and runs/,
-// the sweep folder of its evaluations
+// the sweep folder of its evaluations; by group: groups/, keys.* and compare_NAME.*
 bool isFitEntry(const fs::path& dir, const std::string& name) {
   if (isLockFile(name)) return true;
   const std::string base = stripTemp(name);
   if (base == ".rootsim-fit" || base == "fit.json" || base == "evaluations.csv" || base == "base.toml" ||
-      base == "design.toml" || base == "best.toml" || isFigureFile(base, "compare") || isFigureFile(base, "landscape"))
+      base == "design.toml" || base == "best.toml" || isFigureFile(base, "compare") || isFigureFile(base, "landscape") ||
+      isFigureFile(base, "keys"))
+    return true;
+  // a fit by group's compare picture of each group: compare_NAME.*
+  if (base.rfind("compare_", 0) == 0 && base.find('.') != std::string::npos && isFigureFile(base, base.substr(0, base.rfind('.')).c_str()))
     return true;
   std::error_code ec;
   if (name == "groups") {

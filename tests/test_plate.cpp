@@ -295,3 +295,68 @@ TEST_CASE("plate: a growth step of two roots pressed together allocates nothing 
   CHECK(touchingChecked > 200);
   CHECK(jointChecked > 0);
 }
+
+TEST_CASE("plate: each lateral site's delay is drawn from its own stream - normal around delay_h, repeatable") {
+  LateralParams lp;
+  lp.delay = 10 * units::hour;
+  lp.seed = 4;
+  // no spread: the delay itself at every site
+  CHECK(siteDelay(lp, 0, 0) == lp.delay);
+  CHECK(siteDelay(lp, 3, 17) == lp.delay);
+  lp.delaySpread = 2 * units::hour;
+  // the same root and site draw the same delay; another site, root or seed another
+  CHECK(siteDelay(lp, 1, 5) == siteDelay(lp, 1, 5));
+  CHECK(siteDelay(lp, 1, 5) != siteDelay(lp, 1, 6));
+  CHECK(siteDelay(lp, 1, 5) != siteDelay(lp, 2, 5));
+  LateralParams other = lp;
+  other.seed = 5;
+  CHECK(siteDelay(lp, 1, 5) != siteDelay(other, 1, 5));
+  // 4000 sites: mean and standard deviation of a normal of sd 2 h around 10 h (its truncation at 0, 5 sd
+  // below, is beyond these draws); tolerances 4 standard errors: sd/sqrt(n) for the mean,
+  // sd/sqrt(2n) for the standard deviation
+  const int n = 4000;
+  double sum = 0, sum2 = 0;
+  for (int r = 0; r < 4; ++r)
+    for (int k = 0; k < n / 4; ++k) {
+      const double d = siteDelay(lp, r, k) / units::hour;
+      CHECK(d >= 0.0);
+      sum += d;
+      sum2 += d * d;
+    }
+  const double mean = sum / n, sd = std::sqrt((sum2 - n * mean * mean) / (n - 1));
+  INFO("mean " << mean << " h, sd " << sd << " h");
+  CHECK(std::abs(mean - 10.0) < 4 * 2.0 / std::sqrt(n));
+  CHECK(std::abs(sd - 2.0) < 4 * 2.0 / std::sqrt(2.0 * n));
+  // near delay 0 a negative draw is drawn again: every delay >= 0
+  lp.delay = 0.0;
+  for (int k = 0; k < 200; ++k) CHECK(siteDelay(lp, 0, k) >= 0.0);
+}
+
+TEST_CASE("plate: with a delay spread identical seedlings' laterals emerge at different times, without one at the same") {
+  const Model m = waving();
+  auto emergence = [&](double spreadH, std::vector<double>& a, std::vector<double>& b) {
+    PlateParams pp;
+    LateralParams& lp = pp.laterals;
+    lp.enabled = true;
+    lp.first = 1e-3;
+    lp.spacing = 0.4e-3;
+    lp.apicalUnbranched = 0.6e-3;
+    lp.delay = 1 * units::hour;
+    lp.delaySpread = spreadH * units::hour;
+    PlateSimulation plate(pp, {sow("a", 10, 5, m), sow("b", 40, 5, m)});
+    for (int k = 0; k < 200; ++k) plate.growthStep();
+    for (int r = 2; r < plate.size(); ++r)
+      (plate.seedling(r).parent == 0 ? a : b).push_back(plate.seedling(r).emergedH);
+  };
+  std::vector<double> a, b;
+  emergence(0.0, a, b);
+  REQUIRE(a.size() >= 3);
+  CHECK(a == b);  // the same sites at the same times
+  std::vector<double> c, d;
+  emergence(0.5, c, d);
+  REQUIRE(c.size() >= 2);
+  REQUIRE(d.size() >= 2);
+  INFO("a's laterals emerged at " << c[0] << ", " << c[1] << " h; b's at " << d[0] << ", " << d[1] << " h");
+  CHECK(c[0] != d[0]);
+  CHECK(c[1] != d[1]);
+}

@@ -3,6 +3,7 @@
 // repeat from the seed and are written into the resolved scene, a plate run's folders
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -188,7 +189,7 @@ TEST_CASE("plate scenes: [laterals] keys are checked naming file:line and the ke
   CHECK(errorOf(kHead + "\n[laterals]\nspacing_mm = -2\n" + seedling("a", 20, 5)).find("laterals.spacing_mm must be in (0, 1000]") !=
         std::string::npos);
   CHECK(errorOf(kHead + "\n[laterals]\nset_point_dg = 30\n" + seedling("a", 20, 5)).find(
-            "scenes/t.toml:19: unknown key laterals.set_point_dg (did you mean set_point_deg?)") == 0);
+            "scenes/t.toml:19: unknown key laterals.set_point_dg (did you mean laterals.set_point_deg?)") == 0);
   CHECK(errorOf(kHead + "\n[laterals]\nsides = \"left\"\n" + seedling("a", 20, 5)).find("laterals.sides must be one of") !=
         std::string::npos);
   CHECK(errorOf(kHead + "\n[laterals]\nmax_order = 0\n" + seedling("a", 20, 5)).find("laterals.max_order must be in [1, 4]") !=
@@ -265,7 +266,7 @@ TEST_CASE("plate scenes: laterals are checked when the plate is read - their spa
   // 0.01 mm did not finish)
   for (const char* spacing : {"1e-09", "0.01"})
     CHECK(errorOf(kHead + "\n[laterals]\nenabled = true\nspacing_mm = " + spacing + "\n" + seedling("a", 20, 5)) ==
-          "scenes/t.toml:18: laterals.spacing_mm " + std::string(spacing) +
+          "scenes/t.toml:20: laterals.spacing_mm " + std::string(spacing) +
               " mm is less than a lateral's diameter, 2 * laterals.radius_mm = 0.12 mm (two laterals on one side would overlap)");
   // the roots a plate can grow, counted before it starts: 2 seedlings growing to 301 mm with a lateral every
   // 0.12 mm up to order 2
@@ -301,4 +302,98 @@ TEST_CASE("root.initial_angle_deg: a one-root scene's start direction, which a s
   CHECK(plate.resolvedToml.find("\"root.initial_angle_deg\"") == std::string::npos);
   CHECK(plate.resolvedToml.find("angle_deg = 7.0") != std::string::npos);
   CHECK(parseScene(plate.resolvedToml, "scenes/t.toml").resolvedToml == plate.resolvedToml);
+}
+
+TEST_CASE("plate scenes: the plate's keys are the scene schema's - type, range, did you mean, file:line") {
+  // [plate]: a near miss names the key it meant; a value of the wrong type or out of range names the key
+  CHECK(errorOf(kHead + "widht_mm = 50\n" + seedling("a", 20, 5)) ==
+        "scenes/t.toml:17: unknown key plate.widht_mm (did you mean plate.width_mm?)");
+  CHECK(errorOf(kHead + "depth_mm = 3\n" + seedling("a", 20, 5)) ==
+        "scenes/t.toml:17: unknown key plate.depth_mm (plate keys: width_mm, length_mm)");
+  CHECK(errorOf("[plate]\nwidth_mm = \"wide\"\n" + seedling("a", 20, 5)) ==
+        "scenes/t.toml:2: plate.width_mm must be a number (got the string \"wide\")");
+  CHECK(errorOf("[plate]\nlength_mm = 1e4\n" + seedling("a", 20, 5)) ==
+        "scenes/t.toml:2: plate.length_mm must be in (0, 1000] (got 10000)");
+  // [population]: its seed is an integer >= 0; an unknown key is suggested among seed and spread
+  CHECK(errorOf(kHead + seedling("a", 20, 5) + "\n[population]\nseed = -1\n").find("scenes/t.toml:23: population.seed must be in [0, ") == 0);
+  CHECK(errorOf(kHead + seedling("a", 20, 5) + "\n[population]\nsed = 3\n") ==
+        "scenes/t.toml:23: unknown key population.sed (did you mean population.seed?)");
+  // a section name one edit away from a plate table is suggested
+  CHECK(errorOf(kHead + seedling("a", 20, 5) + "\n[latrals]\nenabled = true\n").find("unknown section [latrals] (did you mean [laterals]?)") !=
+        std::string::npos);
+  // a seedling's keys: type and range from the schema; a near miss suggested
+  CHECK(errorOf(kHead + seedling("a", 20, 5, "angle_deg = 200\n")) == "scenes/t.toml:21: seedling[1].angle_deg must be in [-180, 180] (got 200)");
+  CHECK(errorOf(kHead + seedling("a", 20, 5, "set_point_deg = 180\n")) == "scenes/t.toml:21: seedling[1].set_point_deg must be in [0, 180) (got 180)");
+  CHECK(errorOf(kHead + seedling("a", 20, 5, "angle_dg = 3\n")) == "scenes/t.toml:21: unknown key seedling[1].angle_dg (did you mean seedling[1].angle_deg?)");
+  CHECK(errorOf(kHead + "\n[[seedling]]\nname = \"a\"\nposition_mm = [20, 5, 1]\n") ==
+        "scenes/t.toml:20: seedling[1].position_mm must be an array of 2 numbers [lateral, downhill] (got an array of 3)");
+  CHECK(errorOf(kHead + "\n[[seedling]]\nname = 3\nposition_mm = [20, 5]\n") == "scenes/t.toml:19: seedling[1].name must be a string (got the integer 3)");
+  CHECK(errorOf(kHead + seedling("a", 20, 5, "genotype = \"a\\\"b\"\n")).find("seedling[1].genotype must be at most 64 printable characters") !=
+        std::string::npos);
+  // a [seedling.set] key outside the schema: file:line, the key, and the key it resembles (laterals.* too)
+  CHECK(errorOf(kHead + seedling("a", 20, 5, "[seedling.set]\n\"laterals.delay_hh\" = 3\n")) ==
+        "scenes/t.toml:22: unknown key seedling[1].set.laterals.delay_hh (did you mean laterals.delay_h?)");
+  CHECK(errorOf(kHead + seedling("a", 20, 5, "[seedling.set]\n\"plate.width_mm\" = 3\n")) == "scenes/t.toml:22: unknown key seedling[1].set.plate.width_mm");
+  CHECK(errorOf(kHead + seedling("a", 20, 5, "[seedling.set]\n\"laterals.seed\" = 3\n")).find(
+            "scenes/t.toml:22: seedling[1].set.laterals.seed is the plate's") == 0);
+  CHECK(errorOf(kHead + seedling("a", 20, 5, "[seedling.set.laterals]\nspacing_mm = -1\n")) ==
+        "scenes/t.toml:22: seedling[1].set.laterals.spacing_mm must be in (0, 1000] (got -1)");
+  // [population.spread]: a laterals key varies; a key outside the schema is refused with a suggestion
+  CHECK(errorOf(kHead + seedling("a", 20, 5) + "\n[population.spread]\n\"laterals.delai_h\" = { normal_sd = 1 }\n") ==
+        "scenes/t.toml:23: unknown key population.spread.laterals.delai_h (did you mean laterals.delay_h?)");
+  CHECK(errorOf(kHead + seedling("a", 20, 5) + "\n[population.spread]\n\"laterals.delay_h\" = { normal_sd = -1 }\n") ==
+        "scenes/t.toml:23: population.spread.laterals.delay_h.normal_sd must be > 0 (got -1)");
+}
+
+TEST_CASE("plate scenes: a [seedling.set] key outside the schema stops rootsim check and run with exit 2 and file:line:key") {
+  const fs::path d = test::scratchDir("plate_scene", "set_key");
+  const fs::path file = d / "plate.toml";
+  std::ofstream(file) << kHead << seedling("a", 20, 5, "[seedling.set]\n\"tropism.betta\" = 0.3\n");
+  for (const std::string& cmd : std::vector<std::string>{"check", "run --quiet --out " + (d / "run").string()}) {
+    const test::Result r = test::run(cmd + " " + file.string());
+    CHECK(r.code == 2);
+    CHECK(r.out == "rootsim: error: " + file.string() + ":22: unknown key seedling[1].set.tropism.betta (did you mean tropism.beta?)\n");
+  }
+  CHECK_FALSE(fs::exists(d / "run"));  // nothing written
+}
+
+TEST_CASE("plate scenes: a seedling's own lateral keys and their spread over the population") {
+  const std::string lat = "\n[laterals]\nenabled = true\ndelay_h = 2\n";
+  // one seedling delays its laterals: its own, the other keeps the plate's; the summary names it
+  const Scene sc = parseScene(kHead + lat + seedling("a", 15, 5) + seedling("b", 35, 5, "set = { \"laterals.delay_h\" = 5 }\n"), "scenes/t.toml");
+  REQUIRE(sc.plate.seedlings.size() == 2);
+  CHECK(sc.plate.params.laterals.delay == 2 * units::hour);
+  CHECK(lateralsOf(sc.plate.seedlings[0], sc.plate.params).delay == 2 * units::hour);
+  CHECK(lateralsOf(sc.plate.seedlings[1], sc.plate.params).delay == 5 * units::hour);
+  CHECK(sc.plate.seedlings[0].overrides.empty());
+  CHECK(sc.plate.seedlings[1].overrides == std::vector<std::string>{"laterals.delay_h=5.0"});
+  // the resolved scene holds it in the seedling's set and loads to the same laterals
+  CHECK(sc.resolvedToml.find("\"laterals.delay_h\" = 5.0\n") != std::string::npos);
+  const Scene again = parseScene(sc.resolvedToml, "scenes/t.toml");
+  CHECK(again.resolvedToml == sc.resolvedToml);
+  CHECK(lateralsOf(again.plate.seedlings[1], again.plate.params).delay == 5 * units::hour);
+  // a seedling's lateral keys meet the same relations as the plate's, naming the seedling
+  CHECK(errorOf(kHead + lat + seedling("a", 15, 5, "set = { \"laterals.spacing_mm\" = 0.1 }\n")) ==
+        "scenes/t.toml:25: laterals.spacing_mm 0.1 mm is less than a lateral's diameter, 2 * laterals.radius_mm = 0.12 mm (two "
+        "laterals on one side would overlap) (in seedling[1], a)");
+  // a spread of a lateral key: each seedling draws its own, repeatably, within the key's range
+  std::string text = kHead + lat + "\n[population]\nseed = 5\n[population.spread]\n\"laterals.delay_h\" = { normal_sd = 3 }\n";
+  for (int k = 0; k < 5; ++k) text += seedling("s" + std::to_string(k), 8 + 10 * k, 5);
+  const Scene p = parseScene(text, "scenes/p.toml"), q = parseScene(text, "scenes/p.toml");
+  CHECK(p.resolvedToml == q.resolvedToml);
+  std::vector<double> delays;
+  for (const Seedling& sd : p.plate.seedlings) {
+    delays.push_back(lateralsOf(sd, p.plate.params).delay);
+    CHECK(delays.back() >= 0.0);
+  }
+  std::sort(delays.begin(), delays.end());
+  CHECK(std::unique(delays.begin(), delays.end()) == delays.end());  // five draws, five delays
+  const Scene resolved = parseScene(p.resolvedToml, "scenes/p.toml");
+  for (size_t k = 0; k < 5; ++k)
+    CHECK(lateralsOf(resolved.plate.seedlings[k], resolved.plate.params).delay ==
+          lateralsOf(p.plate.seedlings[k], p.plate.params).delay);
+  // the per-site spread is a [laterals] key, a seedling's own too
+  const Scene sites = parseScene(kHead + lat + "delay_spread_h = 1.5\n" + seedling("a", 15, 5), "scenes/t.toml");
+  CHECK(lateralsOf(sites.plate.seedlings[0], sites.plate.params).delaySpread == 1.5 * units::hour);
+  CHECK(sites.resolvedToml.find("delay_spread_h = 1.5\n") != std::string::npos);
 }

@@ -71,6 +71,9 @@ std::vector<sd::Value> otherValues(const sd::KeySpec& k) {
     case sd::KeyType::Vector3:
       with([&](sd::Value& v) { v.vec = {def.vec[0] + 1.5e-6, def.vec[1] - 2.5e-6, def.vec[2] + 0.75e-6}; });
       break;
+    case sd::KeyType::Vector2:
+      with([&](sd::Value& v) { v.vec = {def.vec[0] + 1.5, def.vec[1] - 2.5, 0.0}; });
+      break;
     case sd::KeyType::Integer:
       for (double x : {2 * def.num, def.num + 1, def.num - 1}) with([&](sd::Value& v) { v.num = x; });
       break;

@@ -27,5 +27,7 @@ RodState makeInitialRod(const RodParams& p, const Plane& plane, const InitialSha
 
 // deterministic uniform number in [-1, 1) from a 64-bit state (splitmix64)
 double splitmixUniform(std::uint64_t& state);
+// a standard normal number from two uniforms of the stream (Box-Muller, the cosine branch)
+double splitmixNormal(std::uint64_t& state);
 
 }  // namespace rootsim

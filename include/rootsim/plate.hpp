@@ -3,30 +3,13 @@
 // Simulation in its own frame, its base at the frame's origin), and the contact between them. No I/O here.
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "rootsim/simulation.hpp"
 
 namespace rootsim {
-
-// one seedling: where it is sown, which way it points, and its root's model (the plate's keys, the
-// seedling's own overrides and the values drawn for it: docs/plate.md, Scenes)
-struct Seedling {
-  std::string name;
-  Eigen::Vector2d position = Eigen::Vector2d::Zero();  // the base's foot on the plate (lateral, downhill)
-                                                       // from the plate's origin, its uphill-left corner [m]
-  Model model;                                         // model.initial.angle: its initial direction
-  std::string genotype;                                // a label the plate summary groups by ("" none)
-  std::vector<std::string> overrides;                  // its keys that differ from the plate's, as
-                                                       // "section.key=value" (set or drawn), for the summary
-  // a lateral root's: its parent (index in the plate), order (0: a seedling), the parent's rest arc
-  // length at the junction [m], when it emerged [h]
-  int parent = -1;
-  int order = 0;
-  double siteS = 0.0;
-  double emergedH = 0.0;
-};
 
 // lateral roots (docs/plate.md, Lateral roots): where they emerge along a parent, and their own root
 struct LateralParams {
@@ -35,6 +18,8 @@ struct LateralParams {
   double spacing = 2e-3;           // between sites [m]
   double apicalUnbranched = 5e-3;  // a site emerges once the parent's tip is this far beyond it [m]
   double delay = 0.0;              // and this long after that [s]
+  double delaySpread = 0.0;        // each site's delay is delay plus a normal draw of this sd, drawn again
+                                   // while negative (siteDelay) [s]
   bool alternate = true;           // sides alternate (+lateral side first); false: drawn from seed
   std::uint64_t seed = 1;          // the sides' draws
   double insertion = 60.0 * units::deg;  // angle from the parent's tangent [rad]
@@ -47,14 +32,46 @@ struct LateralParams {
   int maxOrder = 1;                // laterals of laterals up to this order (1: laterals of the primary only)
 };
 
+// one seedling: where it is sown, which way it points, and its root's model (the plate's keys, the
+// seedling's own overrides and the values drawn for it: docs/plate.md, Scenes)
+struct Seedling {
+  std::string name;
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();  // the base's foot on the plate (lateral, downhill)
+                                                       // from the plate's origin, its uphill-left corner [m]
+  Model model;                                         // model.initial.angle: its initial direction
+  std::string genotype;                                // a label the plate summary groups by ("" none)
+  std::optional<LateralParams> laterals;               // its lateral roots' own parameters (a scene's: the
+                                                       // plate's [laterals], its set and draws); none: the
+                                                       // plate's. A lateral carries its parent's
+  std::vector<std::string> overrides;                  // its keys that differ from the plate's, as
+                                                       // "section.key=value" (set or drawn), for the summary
+  // a lateral root's: its parent (index in the plate), order (0: a seedling), the parent's rest arc
+  // length at the junction [m], when it emerged [h]
+  int parent = -1;
+  int order = 0;
+  double siteS = 0.0;
+  double emergedH = 0.0;
+};
+
 struct PlateParams {
   double width = 0.12;   // lateral extent of the plate from its origin [m] (a 120 mm square plate)
   double length = 0.12;  // downhill extent [m]
   // most rounds (a coupled Newton solve of the roots in contact and a sweep confirming it) within one
   // growth step before the step fails (docs/plate.md, Solving)
   int maxSweeps = 100;
-  LateralParams laterals;
+  std::uint64_t populationSeed = 1;  // the seed of the scene's [population] draws (the drawn values stand
+                                     // in each seedling's model and laterals)
+  LateralParams laterals;           // the plate-wide [laterals]; each seedling carries its own
 };
+
+// the delay of root `root`'s lateral site `site` (both indices from 0) [s]: lp.delay, plus, when
+// lp.delaySpread > 0, a normal draw of that sd, drawn again while the delay would be negative. Each site
+// draws from its own splitmix64 stream, seeded by lp.seed, the root and the site: no state, so a site
+// draws the same delay at every step, after a resume, and in every run of the same scene
+double siteDelay(const LateralParams& lp, int root, int site);
+
+// the lateral parameters a root grows its laterals by: its own, else the plate's
+const LateralParams& lateralsOf(const Seedling& sd, const PlateParams& plate);
 
 // a plate as a scene describes it: the plate and its seedlings (an empty list: a scene of one root alone)
 struct PlateSpec {

@@ -60,4 +60,9 @@ struct SceneValue {
 // every key of that scene: the sections' keys in the order of the resolved text, then each obstacle's
 std::vector<SceneValue> sceneValues(const Model& model);
 
+// the markdown table of the plate's keys of one table ("plate", "population", "seedling", "laterals"):
+// each key's default, range and meaning, as the scene schema declares them (docs/plate.md's generated
+// tables)
+std::string plateKeysMarkdown(const std::string& section);
+
 }  // namespace rootsim

@@ -10,6 +10,7 @@
 
 #include "options.hpp"
 #include "rootsim/csv.hpp"
+#include "rootsim/scene.hpp"
 
 namespace {
 
@@ -32,7 +33,11 @@ std::string shapeMarkdown() {
 const std::map<std::string, std::string>& tables() {
   static const std::map<std::string, std::string> t = {{"options", rootsim::cli::optionsMarkdown()},
                                                              {"timeseries", timeseriesMarkdown()},
-                                                             {"shape", shapeMarkdown()}};
+                                                             {"shape", shapeMarkdown()},
+                                                             {"plate_keys", rootsim::plateKeysMarkdown("plate")},
+                                                             {"population_keys", rootsim::plateKeysMarkdown("population")},
+                                                             {"seedling_keys", rootsim::plateKeysMarkdown("seedling")},
+                                                             {"laterals_keys", rootsim::plateKeysMarkdown("laterals")}};
   return t;
 }
 

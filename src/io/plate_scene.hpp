@@ -1,5 +1,6 @@
 #pragma once
-// internal: the plate tables of a scene (docs/plate.md, Scenes): [plate], [population], [[seedling]]
+// internal: a scene's plate (docs/plate.md, Scenes): [[seedling]] tables, [population.spread], and each
+// seedling's model and laterals from the plate's keys (plateSchema, read with the model's by scene.cpp)
 #include <string>
 #include <vector>
 
@@ -10,8 +11,8 @@
 
 namespace rootsim::detail {
 
-// true for the top-level tables plate scenes add
-bool isPlateTable(const std::string& section);
+// the plate's top-level tables whose keys plateSchema holds ([[seedling]] aside: an array of tables)
+bool isPlateSection(const std::string& section);
 
 struct PlateTables {
   PlateSpec spec;                  // no seedlings: the scene has none of the tables
@@ -19,17 +20,21 @@ struct PlateTables {
   std::vector<std::string> rootToml;  // each seedling's own: [plate] and that [[seedling]] alone
 };
 
-// reads and checks the plate tables against the plate-wide values (after --set) and the scene's
-// obstacles (plate coordinates); each seedling's model is base's keys, its [seedling.set] overrides and
-// the values [population] draws for it, with the obstacles in its own frame. Throws SceneError naming
-// file:line and the key.
-PlateTables parsePlateTables(const toml::table& root, const std::string& sourceName, const std::string& text,
-                             const Values& base, const std::string& name, const std::vector<Obstacle>& obstacles);
+// the plate of a scene: plate holds the values of [plate], [population] and [laterals] (plateSchema's
+// keys but the seedling's, defaults filled in, each with its origin), base the plate-wide model keys
+// (after --set); the [[seedling]] array and [population.spread] are read from root. Each seedling's model
+// and laterals are base's and plate's keys, its [seedling.set] overrides and the values [population]
+// draws for it, with the obstacles in its own frame. Throws SceneError naming file:line and the key.
+PlateTables readPlate(const toml::table& root, const std::string& sourceName, const std::string& text,
+                      const Values& base, const Values& plate, const std::string& name,
+                      const std::vector<Obstacle>& obstacles);
 
 // the resolved text of the plate's tables: [plate], [laterals], and a root's [[seedling]] table (its
-// place, angle, set-point and the keys of its model that differ from the plate-wide model base's)
+// place, angle, set-point and the keys of its model that differ from the plate-wide model base's; with
+// plateLaterals, also its lateral keys that differ from those: the whole plate's text, where [laterals]
+// precedes it)
 std::string plateTableToml(const PlateParams& pp);
 std::string lateralsToml(const LateralParams& lp);
-std::string seedlingToml(const Seedling& sd, const Model& base);
+std::string seedlingToml(const Seedling& sd, const Model& base, const LateralParams* plateLaterals = nullptr);
 
 }  // namespace rootsim::detail

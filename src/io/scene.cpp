@@ -101,12 +101,14 @@ std::string convert(const KeySpec& k, const toml::node& n, Value& out, const std
       if (!n.is_string()) return wrongType();
       out.str = *n.value<std::string>();
       return "";
-    case KeyType::Vector3: {
+    case KeyType::Vector3:
+    case KeyType::Vector2: {
+      const size_t size = k.type == KeyType::Vector3 ? 3 : 2;
       const toml::array* a = n.as_array();
-      if (!a || a->size() != 3) return wrongType();
-      for (size_t i = 0; i < 3; ++i) {
+      if (!a || a->size() != size) return wrongType();
+      for (size_t i = 0; i < size; ++i) {
         const toml::node& e = *a->get(i);
-        const std::string element = "element " + std::to_string(i + 1) + " of 3";
+        const std::string element = "element " + std::to_string(i + 1) + " of " + std::to_string(size);
         if (e.is_floating_point()) out.vec[i] = *e.value<double>();
         else if (e.is_integer()) out.vec[i] = static_cast<double>(*e.value<int64_t>());
         else return "must be " + std::string(typeName(k.type)) + ": " + element + " must be a number (got " + describeNode(e) + ")";
@@ -117,6 +119,16 @@ std::string convert(const KeySpec& k, const toml::node& n, Value& out, const std
     }
   }
   return "";
+}
+
+Value readValue(const KeySpec& k, const toml::node& n, const std::string& loc, const std::string& shown,
+                const std::string& src) {
+  Value v;
+  std::string why = convert(k, n, v, src);
+  if (why.empty()) why = checkValue(k, v);
+  if (!why.empty()) throw SceneError(loc + ": " + shown + " " + why);
+  v.origin = loc;
+  return v;
 }
 
 const KeySpec* findKey(const std::string& section, const std::string& key) {
@@ -146,10 +158,25 @@ std::string suggestKey(const std::string& section, const std::string& key) {
   return "";
 }
 
+// " (did you mean laterals.KEY?)" for a near miss among a plate section's keys, else the section's keys
+std::string suggestPlateKey(const std::string& section, const std::string& key) {
+  std::vector<std::string> keys;
+  for (const KeySpec& k : plateSchema())
+    if (k.section == section) keys.push_back(k.key);
+  if (section == "population") keys.push_back("spread");
+  const std::string near = closestName(key, keys);
+  if (!near.empty()) return " (did you mean " + section + "." + near + "?)";
+  std::string all;
+  for (const std::string& k : keys) all += (all.empty() ? "" : ", ") + k;
+  return " (" + section + " keys: " + all + ")";
+}
+
 std::string suggestSection(const std::string& section) {
   std::string best;
   int bestD = 1 << 30;
-  for (const auto& s : sections()) {
+  std::vector<std::string> all = sections();
+  for (const char* s : {"plate", "population", "laterals", "seedling", "obstacle"}) all.push_back(s);
+  for (const auto& s : all) {
     const int d = editDistance(section, s);
     if (d < bestD) { bestD = d; best = s; }
   }
@@ -163,10 +190,12 @@ std::string suggestSection(const std::string& section) {
 // what a later reader would refuse). loc names the [laterals] table.
 void checkPlateRoots(const Scene& sc, const std::string& loc) {
   const PlateSpec& p = sc.plate;
-  const LateralParams& lp = p.params.laterals;
   double roots = 0;
+  bool any = false;
   for (const Seedling& sd : p.seedlings) {
     const Model& m = sd.model;
+    const LateralParams& lp = lateralsOf(sd, p.params);
+    any |= lp.enabled;
     double perSeedling = 1;
     if (lp.enabled && m.growth.enabled) {
       // the longest a root can grow (growth in its zone only, as the schema's element cap reckons it)
@@ -184,16 +213,18 @@ void checkPlateRoots(const Scene& sc, const std::string& loc) {
     }
     roots += perSeedling;
   }
+  const LateralParams& lp = p.params.laterals;
   checkCount(loc + ": a plate of " + std::to_string(p.seedlings.size()) + " seedling(s) with laterals every " +
                  formatNumber(lp.spacing / units::mm, false) + " mm (laterals.spacing_mm) up to order " +
                  std::to_string(lp.maxOrder) + " (laterals.max_order)",
              roots, caps::kPlateRoots, "roots",
              "caps::kPlateRoots: every root is relaxed at every growth step; docs/outputs.md, Caps");
-  if (!lp.enabled) return;
+  if (!any) return;
   for (const Seedling& sd : p.seedlings) {
+    if (!lateralsOf(sd, p.params).enabled) continue;
     Seedling lat = sd;
     lat.name = sd.name + ".1";
-    lat.model = lateralModel(sd.model, lp);
+    lat.model = lateralModel(sd.model, lateralsOf(sd, p.params));
     const std::string file = "roots/" + lat.name + "/scene.toml";
     try {
       (void)parseScene(p.headToml + plateTableToml(p.params) + seedlingToml(lat, p.base), file);
@@ -405,8 +436,11 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
     throw SceneError(printable(sourceName) + ":" + std::to_string(e.source().begin.line) + ": TOML syntax error: " +
                      printable(std::string(e.description())));
   }
-  Values values;
+  // the model's keys and the plate's ([plate], [population], [laterals]), defaults filled in
+  Values values, plateValues;
   for (const auto& k : schema()) values[k.full()] = defaultValue(k);
+  for (const auto& k : plateSchema())
+    if (isPlateSection(k.section)) plateValues[k.full()] = defaultValue(k);
   std::vector<ParsedObstacle> obstacles;
   for (auto&& [skey, snode] : root) {
     const std::string section(skey.str());
@@ -414,8 +448,8 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
       obstacles = parseObstacles(sourceName, skey, snode);
       continue;
     }
-    if (isPlateTable(section)) continue;  // parsePlateTables, once the plate-wide values are known
-    bool known = false;
+    if (section == "seedling") continue;  // readPlate, once the plate-wide values are known
+    bool known = isPlateSection(section);
     for (const auto& s : sections()) known |= s == section;
     if (!known) {
       // a top-level key that belongs to a section ("beta = 0.2" without [tropism])
@@ -426,17 +460,15 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
     if (!t)
       throw SceneError(where(sourceName, skey.source()) + ": " + printable(section) + " must be a table ([" + printable(section) +
                        "]), got " + describeNode(snode));
+    const bool plate = isPlateSection(section);
     for (auto&& [kkey, knode] : *t) {
       const std::string key(kkey.str());
-      const KeySpec* k = findKey(section, key);
+      if (section == "population" && key == "spread") continue;  // readPlate: a table of other keys
+      const KeySpec* k = plate ? findPlateKey(section, key) : findKey(section, key);
       const std::string loc = where(sourceName, kkey.source());
-      if (!k) throw SceneError(loc + ": unknown key " + printable(section) + "." + printable(key) + suggestKey(section, key));
-      Value v;
-      std::string why = convert(*k, knode, v, text);
-      if (why.empty()) why = checkValue(*k, v);
-      if (!why.empty()) throw SceneError(loc + ": " + k->full() + " " + why);
-      v.origin = loc;
-      values[k->full()] = v;
+      if (!k) throw SceneError(loc + ": unknown key " + printable(section) + "." + printable(key) +
+                               (plate ? suggestPlateKey(section, key) : suggestKey(section, key)));
+      (plate ? plateValues : values)[k->full()] = readValue(*k, knode, loc, k->full(), text);
     }
   }
   for (const auto& ov : overrides) applyOverride(ov, values);
@@ -445,7 +477,7 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
   sc.model = buildModel(values, name);
   std::vector<Obstacle> obs;
   for (const ParsedObstacle& po : obstacles) obs.push_back(po.o);
-  PlateTables plate = parsePlateTables(root, sourceName, text, values, name, obs);
+  PlateTables plate = readPlate(root, sourceName, text, values, plateValues, name, obs);
   // a plate's obstacles are in plate coordinates, each seedling checks them against its own root
   if (plate.spec.seedlings.empty()) checkObstacleClearance(sc.model, obstacles);
   sc.model.env.obstacles = obs;

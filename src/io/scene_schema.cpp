@@ -1,5 +1,7 @@
 #include "scene_schema.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
 #include <sstream>
@@ -9,6 +11,7 @@
 #include "rootsim/errors.hpp"
 #include "rootsim/number_text.hpp"
 #include "rootsim/scene.hpp"
+#include "rootsim/units.hpp"
 
 namespace rootsim::detail {
 
@@ -19,6 +22,7 @@ const char* typeName(KeyType t) {
     case KeyType::Boolean: return "true or false";
     case KeyType::String: return "a string";
     case KeyType::Vector3: return "an array of 3 numbers";
+    case KeyType::Vector2: return "an array of 2 numbers [lateral, downhill]";
   }
   return "?";
 }
@@ -83,66 +87,97 @@ KeySpec make(const char* sec, const char* key, KeyType type, const char* doc) {
   return k;
 }
 
-// the keys by type: each names its field of the model (a function returning a reference to it, called
-// with a Model& to set and a const Model& to get); the default is the field of defaultModel()
-template <class Field>
+// a key's field, both ways, into the KeySpec's pair for its owner: a root's Model, the plate's
+// parameters, a root's lateral parameters or a seedling
+template <class Target, class Set, class Get>
+void bind(KeySpec& k, Set set, Get get) {
+  if constexpr (std::is_same_v<Target, Model>) k.set = set, k.get = get;
+  else if constexpr (std::is_same_v<Target, PlateParams>) k.setPlate = set, k.getPlate = get;
+  else if constexpr (std::is_same_v<Target, LateralParams>) k.setLaterals = set, k.getLaterals = get;
+  else {
+    static_assert(std::is_same_v<Target, Seedling>);
+    k.setSeedling = set, k.getSeedling = get;
+  }
+}
+
+// the keys by type: each names its field of its owner (a function returning a reference to it, called
+// with a Target& to set and a const Target& to get); the default is the field of the owner's default
+// (defaultModel(), PlateParams{}, LateralParams{}, Seedling{})
+template <class Target = Model, class Field>
 KeySpec real(const char* sec, const char* key, Field field, Unit u, double lo, bool loOpen, double hi, bool hiOpen,
              const char* doc) {
   KeySpec k = make(sec, key, KeyType::Real, doc);
   k.lo = lo; k.loOpen = loOpen; k.hi = hi; k.hiOpen = hiOpen;
-  k.set = [field, u](Model& m, const Value& v) { field(m) = toSi(v.num, u); };
-  k.get = [field, u](const Model& m) {
-    Value v;
-    v.num = fromSi(field(m), u);
-    return v;
-  };
+  bind<Target>(k, [field, u](Target& m, const Value& v) { field(m) = toSi(v.num, u); },
+               [field, u](const Target& m) {
+                 Value v;
+                 v.num = fromSi(field(m), u);
+                 return v;
+               });
   return k;
 }
-template <class Field>
+template <class Target = Model, class Field>
 KeySpec integer(const char* sec, const char* key, Field field, double lo, double hi, const char* doc) {
   KeySpec k = make(sec, key, KeyType::Integer, doc);
   k.lo = lo; k.hi = hi;
-  k.set = [field](Model& m, const Value& v) {
-    auto& f = field(m);
-    f = static_cast<std::remove_reference_t<decltype(f)>>(v.num);
-  };
-  k.get = [field](const Model& m) {
-    Value v;
-    v.type = KeyType::Integer;
-    v.num = static_cast<double>(field(m));
-    return v;
-  };
+  bind<Target>(k,
+               [field](Target& m, const Value& v) {
+                 auto& f = field(m);
+                 f = static_cast<std::remove_reference_t<decltype(f)>>(v.num);
+               },
+               [field](const Target& m) {
+                 Value v;
+                 v.type = KeyType::Integer;
+                 v.num = static_cast<double>(field(m));
+                 return v;
+               });
   return k;
 }
-template <class Field>
+template <class Target = Model, class Field>
 KeySpec boolean(const char* sec, const char* key, Field field, const char* doc) {
   KeySpec k = make(sec, key, KeyType::Boolean, doc);
-  k.set = [field](Model& m, const Value& v) { field(m) = v.b; };
-  k.get = [field](const Model& m) {
-    Value v;
-    v.type = KeyType::Boolean;
-    v.b = field(m);
-    return v;
-  };
+  bind<Target>(k, [field](Target& m, const Value& v) { field(m) = v.b; },
+               [field](const Target& m) {
+                 Value v;
+                 v.type = KeyType::Boolean;
+                 v.b = field(m);
+                 return v;
+               });
   return k;
 }
 // a string key naming one of an enum's values
-template <class Field, class E>
+template <class Target = Model, class Field, class E>
 KeySpec choice(const char* sec, const char* key, Field field, std::vector<std::pair<std::string, E>> names,
                const char* doc) {
   KeySpec k = make(sec, key, KeyType::String, doc);
   for (const auto& n : names) k.choices.push_back(n.first);
-  k.set = [field, names](Model& m, const Value& v) {
-    for (const auto& [text, e] : names)
-      if (text == v.str) field(m) = e;
-  };
-  k.get = [field, names](const Model& m) {
-    Value v;
-    v.type = KeyType::String;
-    for (const auto& [text, e] : names)
-      if (field(m) == e) v.str = text;
-    return v;
-  };
+  bind<Target>(k,
+               [field, names](Target& m, const Value& v) {
+                 for (const auto& [text, e] : names)
+                   if (text == v.str) field(m) = e;
+               },
+               [field, names](const Target& m) {
+                 Value v;
+                 v.type = KeyType::String;
+                 for (const auto& [text, e] : names)
+                   if (field(m) == e) v.str = text;
+                 return v;
+               });
+  return k;
+}
+// a free string key, checked by its rule
+template <class Target, class Field>
+KeySpec text(const char* sec, const char* key, Field field, std::function<std::string(const Value&)> rule,
+             const char* doc) {
+  KeySpec k = make(sec, key, KeyType::String, doc);
+  k.rule = std::move(rule);
+  bind<Target>(k, [field](Target& m, const Value& v) { field(m) = v.str; },
+               [field](const Target& m) {
+                 Value v;
+                 v.type = KeyType::String;
+                 v.str = field(m);
+                 return v;
+               });
   return k;
 }
 template <class Field>
@@ -156,6 +191,20 @@ KeySpec vec3(const char* sec, const char* key, Field field, const char* doc) {
     v.vec = {x.x(), x.y(), x.z()};
     return v;
   };
+  return k;
+}
+// a point of the plate [mm] (2 numbers: lateral, downhill) into a 2-vector [m]
+template <class Target, class Field>
+KeySpec point(const char* sec, const char* key, Field field, const char* doc) {
+  KeySpec k = make(sec, key, KeyType::Vector2, doc);
+  bind<Target>(k, [field](Target& m, const Value& v) { field(m) = Eigen::Vector2d(v.vec[0], v.vec[1]) * units::mm; },
+               [field](const Target& m) {
+                 Value v;
+                 v.type = KeyType::Vector2;
+                 const Eigen::Vector2d& x = field(m);
+                 v.vec = {fromSi(x.x(), kMm), fromSi(x.y(), kMm), 0.0};
+                 return v;
+               });
   return k;
 }
 // load.gravity: on is the standard acceleration straight down, off is none
@@ -174,7 +223,10 @@ KeySpec gravity(const char* doc) {
 std::vector<KeySpec> withDefaults(std::vector<KeySpec> keys) {
   const Model d = defaultModel();
   for (KeySpec& k : keys) {
-    const Value v = k.get(d);
+    const Value v = k.get ? k.get(d)
+                    : k.getPlate ? k.getPlate(PlateParams{})
+                    : k.getLaterals ? k.getLaterals(LateralParams{})
+                                    : k.getSeedling(Seedling{});
     k.defNum = v.num;
     k.defBool = v.b;
     k.defStr = v.str;
@@ -312,6 +364,88 @@ const std::vector<KeySpec>& schema() {
 }
 #undef FIELD
 
+namespace {
+// a seedling's name is a folder of the run directory
+std::string folderName(const Value& v) {
+  const std::string& s = v.str;
+  const bool ok = !s.empty() && s.size() <= 64 && s != "." && s != ".." && std::all_of(s.begin(), s.end(), [](char c) {
+                    return std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.';
+                  });
+  return ok ? "" : "must be 1-64 letters, digits, '_', '-' or '.' (got \"" + printable(s) + "\")";
+}
+// a genotype is a label in CSV and JSON: printable, no quotes or backslashes
+std::string label(const Value& v) {
+  const std::string& s = v.str;
+  const bool ok = s.size() <= 64 && std::all_of(s.begin(), s.end(), [](char c) { return c >= 32 && c < 127 && c != '"' && c != '\\'; });
+  return ok ? "" : "must be at most 64 printable characters without quotes or backslashes (got \"" + printable(s) + "\")";
+}
+}  // namespace
+
+// the plate's keys: [plate] and [population] (the plate's parameters), [[seedling]] (each seedling's
+// place and direction; its `set` and the spread of [population] are tables of other keys, read in
+// plate_scene.cpp), [laterals] (every root's lateral parameters, a seedling's own in its set). Ranges:
+// a plate up to 1 m; lateral lengths up to 1 m and delays up to 1000 h; the lateral's root keys as the
+// root's ([root], [growth], [tropism]).
+#define FIELD(path) [](auto& m) -> auto& { return m.path; }
+const std::vector<KeySpec>& plateSchema() {
+  static const std::vector<KeySpec> keys = withDefaults({
+      real<PlateParams>("plate", "width_mm", FIELD(width), kMm, 0, true, 1000, false,
+                        "lateral extent of the plate from its origin, its uphill-left corner [mm]"),
+      real<PlateParams>("plate", "length_mm", FIELD(length), kMm, 0, true, 1000, false, "downhill extent of the plate [mm]"),
+      integer<PlateParams>("population", "seed", FIELD(populationSeed), 0, 9.007199254740992e15,
+                           "the seed of the draws of [population.spread] (one stream, seedling by seedling)"),
+      text<Seedling>("seedling", "name", FIELD(name), folderName,
+                     "required, unique: the root's folder roots/NAME of the run (letters, digits, _ - .)"),
+      text<Seedling>("seedling", "genotype", FIELD(genotype), label, "a label plate.csv groups by (\"\": none)"),
+      point<Seedling>("seedling", "position_mm", FIELD(position),
+                      "required: its base's foot [lateral, downhill] from the plate's origin [mm]"),
+      real<Seedling>("seedling", "angle_deg", FIELD(model.initial.angle), kDeg, -180, false, 180, false,
+                     "initial direction from downhill in the plate, positive towards +lateral like theta [deg]"),
+      real<Seedling>("seedling", "set_point_deg", FIELD(model.tropism.setPoint), kDeg, 0, false, 180, true,
+                     "gravitropic set-point angle [deg] (0: the primary root's law)"),
+      boolean<LateralParams>("laterals", "enabled", FIELD(enabled), "grow lateral roots"),
+      real<LateralParams>("laterals", "first_mm", FIELD(first), kMm, 0, false, 1000, false,
+                          "the first site, from the parent's base along its rest arc length [mm]"),
+      real<LateralParams>("laterals", "spacing_mm", FIELD(spacing), kMm, 0, true, 1000, false, "between sites [mm]"),
+      real<LateralParams>("laterals", "apical_unbranched_mm", FIELD(apicalUnbranched), kMm, 0, false, 1000, false,
+                          "a site emerges once the parent's tip is this far beyond it [mm]"),
+      real<LateralParams>("laterals", "delay_h", FIELD(delay), kHour, 0, false, 1000, false,
+                          "and this long after that (the parent's tip advancing at rate_per_h * growth_zone_mm) [h]"),
+      real<LateralParams>("laterals", "delay_spread_h", FIELD(delaySpread), kHour, 0, false, 1000, false,
+                          "each site's delay is delay_h plus a normal draw of this sd, drawn again while negative, "
+                          "from the site's own stream (laterals.seed, the root, the site) [h]"),
+      choice<LateralParams>("laterals", "sides", FIELD(alternate),
+                            std::vector<std::pair<std::string, bool>>{{"alternate", true}, {"random", false}},
+                            "alternate (+lateral side of the parent's tangent first) or random (drawn from seed)"),
+      integer<LateralParams>("laterals", "seed", FIELD(seed), 0, 9.007199254740992e15,
+                             "the seed of the sides' draws and of each site's delay (delay_spread_h)"),
+      real<LateralParams>("laterals", "insertion_deg", FIELD(insertion), kDeg, 0, true, 180, false,
+                          "the lateral's initial angle from the parent's tangent [deg]"),
+      real<LateralParams>("laterals", "radius_mm", FIELD(radius), kMm, 0, true, 100, false, "the lateral's radius [mm]"),
+      real<LateralParams>("laterals", "rate_per_h", FIELD(rate), kPerHour, 0, true, 10, false,
+                          "its relative growth rate in the zone [1/h]"),
+      real<LateralParams>("laterals", "growth_zone_mm", FIELD(zoneLength), kMm, 0, true, 1000, false, "its growth zone [mm]"),
+      real<LateralParams>("laterals", "initial_length_mm", FIELD(initialLength), kMm, 0, true, 1000, false,
+                          "its length at emergence (at least two elements of root.element_length_mm) [mm]"),
+      real<LateralParams>("laterals", "beta", FIELD(beta), kOne, 0, false, 100, false, "its gravitropic gain beta"),
+      real<LateralParams>("laterals", "gamma", FIELD(gamma), kOne, 0, false, 100, false, "its proprioceptive gain gamma"),
+      real<LateralParams>("laterals", "twist_r_tau", FIELD(rTau), kOne, -10, false, 10, false, "its intrinsic twist R*tau"),
+      real<LateralParams>("laterals", "set_point_deg", FIELD(setPoint), kDeg, 0, false, 180, false,
+                          "its gravitropic set-point angle [deg]"),
+      integer<LateralParams>("laterals", "max_order", FIELD(maxOrder), 1, 4,
+                             "laterals of laterals up to this order (1: laterals of the primary only)"),
+  });
+  return keys;
+}
+#undef FIELD
+
+const KeySpec* findPlateKey(const std::string& section, const std::string& key) {
+  for (const KeySpec& k : plateSchema())
+    if (k.section == section && k.key == key) return &k;
+  return nullptr;
+}
+
+
 Value defaultValue(const KeySpec& k) {
   Value v;
   v.type = k.type;
@@ -353,10 +487,12 @@ std::string checkValue(const KeySpec& k, const Value& v) {
     case KeyType::Integer:
       return range(v.num);
     case KeyType::Vector3:
+    case KeyType::Vector2:
       for (double x : v.vec)
         if (!std::isfinite(x)) return "must have finite components";
       return "";
     case KeyType::String: {
+      if (k.rule) return k.rule(v);
       for (const auto& c : k.choices)
         if (c == v.str) return "";
       os << "must be one of";
@@ -467,6 +603,7 @@ std::string tomlText(const KeySpec& k, const Value& x) {
     case KeyType::Vector3:
       return "[" + formatNumber(x.vec[0], false) + ", " + formatNumber(x.vec[1], false) + ", " +
              formatNumber(x.vec[2], false) + "]";
+    case KeyType::Vector2: return "[" + formatNumber(x.vec[0], false) + ", " + formatNumber(x.vec[1], false) + "]";
   }
   return "";
 }
@@ -500,3 +637,22 @@ std::string resolvedToml(const Values& v, const std::string& name) {
 }
 
 }  // namespace rootsim::detail
+
+namespace rootsim {
+
+std::string plateKeysMarkdown(const std::string& section) {
+  std::string md = "| key | default | range | meaning |\n|---|---|---|---|\n";
+  for (const detail::KeySpec& k : detail::plateSchema()) {
+    if (k.section != section) continue;
+    const detail::Value d = detail::defaultValue(k);
+    std::string def = k.type == detail::KeyType::Vector2 ? "required" : detail::tomlText(k, d);
+    if (k.full() == "seedling.name") def = "required";
+    std::string range = detail::rangeText(k);
+    if (!k.choices.empty())
+      for (size_t i = 0; i < k.choices.size(); ++i) range += (i ? ", " : "") + ("`\"" + k.choices[i] + "\"`");
+    md += "| `" + k.key + "` | " + (def == "required" ? def : "`" + def + "`") + " | " + range + " | " + k.doc + " |\n";
+  }
+  return md;
+}
+
+}  // namespace rootsim

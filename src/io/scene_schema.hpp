@@ -7,10 +7,11 @@
 #include <vector>
 
 #include "rootsim/model.hpp"
+#include "rootsim/plate.hpp"
 
 namespace rootsim::detail {
 
-enum class KeyType { Real, Integer, Boolean, String, Vector3 };
+enum class KeyType { Real, Integer, Boolean, String, Vector3, Vector2 };
 const char* typeName(KeyType t);
 
 struct Value {
@@ -18,7 +19,7 @@ struct Value {
   double num = 0;
   bool b = false;
   std::string str;
-  std::array<double, 3> vec{0, 0, 0};
+  std::array<double, 3> vec{0, 0, 0};  // Vector2: the first two
   std::string origin;  // "file:line" or "--set" or "default"
 };
 
@@ -38,11 +39,27 @@ struct KeySpec {
   // into the same field, bitwise (scene_schema.cpp, fromSi), so model -> values -> model is exact
   std::function<void(Model&, const Value&)> set;
   std::function<Value(const Model&)> get;
+  // a plate key's field ([plate] and [population]: the plate's parameters; [laterals]: a root's lateral
+  // parameters; [[seedling]]: the seedling), both ways like set and get; one of the pairs is set
+  std::function<void(PlateParams&, const Value&)> setPlate;
+  std::function<Value(const PlateParams&)> getPlate;
+  std::function<void(LateralParams&, const Value&)> setLaterals;
+  std::function<Value(const LateralParams&)> getLaterals;
+  std::function<void(Seedling&, const Value&)> setSeedling;
+  std::function<Value(const Seedling&)> getSeedling;
+  // a rule of the key's own beyond its type and range (a name that is a folder): "" or why
+  std::function<std::string(const Value&)> rule;
   std::string full() const { return section + "." + key; }
 };
 
+// the keys of a root's model, by section (sections())
 const std::vector<KeySpec>& schema();
 const std::vector<std::string>& sections();
+// the plate's keys (docs/plate.md, Scenes): [plate], [population], [[seedling]] and [laterals], read and
+// checked as the model's are (scene.cpp readValue); a [laterals] key is also a seedling's own
+// ([seedling.set]) and varies in [population.spread]
+const std::vector<KeySpec>& plateSchema();
+const KeySpec* findPlateKey(const std::string& section, const std::string& key);
 
 using Values = std::map<std::string, Value>;  // by "section.key"
 

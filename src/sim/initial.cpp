@@ -1,6 +1,7 @@
 #include "rootsim/initial.hpp"
 
 #include <cmath>
+#include <numbers>
 
 namespace rootsim {
 
@@ -10,6 +11,12 @@ double splitmixUniform(std::uint64_t& state) {
   z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
   z ^= z >> 31;
   return static_cast<double>(z >> 11) * 0x1.0p-52 - 1.0;
+}
+
+double splitmixNormal(std::uint64_t& state) {
+  const double u1 = 0.5 * (1.0 - splitmixUniform(state));  // (0, 1]
+  const double u2 = 0.5 * (splitmixUniform(state) + 1.0);  // [0, 1)
+  return std::sqrt(-2.0 * std::log(u1)) * std::cos(2.0 * std::numbers::pi * u2);
 }
 
 RodState makeInitialRod(const RodParams& p, const Plane& plane, const InitialShape& shape) {

@@ -456,6 +456,21 @@ bool PlateSimulation::nearJunction(int r, int i, int o, int j) const {
   return near(r, i, o, j) || near(o, j, r, i);
 }
 
+double siteDelay(const LateralParams& lp, int root, int site) {
+  if (lp.delaySpread == 0.0) return lp.delay;
+  std::uint64_t state = lp.seed ^ (0x9e3779b97f4a7c15ULL * static_cast<std::uint64_t>(root + 1));
+  (void)splitmixUniform(state);  // mixes the root in before the site
+  state ^= 0xbf58476d1ce4e5b9ULL * static_cast<std::uint64_t>(site + 1);
+  for (;;) {
+    const double d = lp.delay + lp.delaySpread * splitmixNormal(state);
+    if (d >= 0.0) return d;
+  }
+}
+
+const LateralParams& lateralsOf(const Seedling& sd, const PlateParams& plate) {
+  return sd.laterals ? *sd.laterals : plate.laterals;
+}
+
 Model lateralModel(const Model& parent, const LateralParams& lp) {
   Model m = parent;
   m.rod.radius = lp.radius;
@@ -473,11 +488,11 @@ std::string lateralName(const std::string& parent, int site) { return parent + "
 
 void PlateSimulation::emergeLaterals() {
   emerged_.clear();
-  const LateralParams& lp = plate_.laterals;
-  if (!lp.enabled) return;
   const int existing = size();
   for (int r = 0; r < existing; ++r) {
-    if (seedling(r).order >= lp.maxOrder) continue;
+    // the root's own lateral parameters (its seedling's; a lateral's are its parent's)
+    const LateralParams& lp = lateralsOf(seedling(r), plate_);
+    if (!lp.enabled || seedling(r).order >= lp.maxOrder) continue;
     for (;;) {
       const Seedling& parent = seedling(r);
       const RodState& s = root(r).state();
@@ -487,7 +502,8 @@ void PlateSimulation::emergeLaterals() {
       // parent's tip advances by its zone's growth, rate * zone per second)
       const double beyond = s.restLength() - site - lp.apicalUnbranched;
       if (beyond < 0.0) break;
-      if (lp.delay > 0.0 && beyond < lp.delay * parent.model.growth.rate * parent.model.growth.zoneLength) break;
+      const double delay = siteDelay(lp, r, k);
+      if (delay > 0.0 && beyond < delay * parent.model.growth.rate * parent.model.growth.zoneLength) break;
       ++nextSite_[static_cast<size_t>(r)];
       // the parent's node at the site, and its direction in the plate there
       int i = 1;
@@ -512,9 +528,10 @@ void PlateSimulation::emergeLaterals() {
 }
 
 Seedling PlateSimulation::lateralSeedling(const LateralBirth& b) const {
-  const LateralParams& lp = plate_.laterals;
   const Seedling& parent = seedling(b.parent);
+  const LateralParams& lp = lateralsOf(parent, plate_);
   Seedling sd;
+  sd.laterals = lp;
   sd.name = lateralName(parent.name, b.site);
   sd.genotype = parent.genotype;
   sd.position = Eigen::Vector2d(b.lateral, b.downhill);

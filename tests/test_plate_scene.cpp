@@ -376,6 +376,11 @@ TEST_CASE("plate scenes: a seedling's own lateral keys and their spread over the
   CHECK(errorOf(kHead + lat + seedling("a", 15, 5, "set = { \"laterals.spacing_mm\" = 0.1 }\n")) ==
         "scenes/t.toml:25: laterals.spacing_mm 0.1 mm is less than a lateral's diameter, 2 * laterals.radius_mm = 0.12 mm (two "
         "laterals on one side would overlap) (in seedling[1], a)");
+  // laterals' relations bind only where laterals are asked for: a plate without [laterals] has coarse elements
+  const std::vector<std::string> coarse = {"root.element_length_mm=0.2", "growth.growth_zone_mm=2"};
+  CHECK(errorOf(kHead + seedling("a", 15, 5), coarse) == "(no error)");
+  CHECK(errorOf(kHead + seedling("a", 15, 5, "set = { \"laterals.enabled\" = true }\n"), coarse).find(
+            "laterals.initial_length_mm 0.3 mm is shorter than two elements") != std::string::npos);
   // a spread of a lateral key: each seedling draws its own, repeatably, within the key's range
   std::string text = kHead + lat + "\n[population]\nseed = 5\n[population.spread]\n\"laterals.delay_h\" = { normal_sd = 3 }\n";
   for (int k = 0; k < 5; ++k) text += seedling("s" + std::to_string(k), 8 + 10 * k, 5);

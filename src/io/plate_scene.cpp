@@ -191,7 +191,7 @@ PlateTables readPlate(const toml::table& root, const std::string& sourceName, co
   }
   Values plateWide = base;
   for (const auto& [key, v] : plate) plateWide[key] = v;
-  checkLaterals(plateWide, latLoc, "");
+  if (latNode) checkLaterals(plateWide, latLoc, "");
 
   std::map<std::string, Spread> spreads;
   if (popNode)
@@ -299,7 +299,8 @@ PlateTables readPlate(const toml::table& root, const std::string& sourceName, co
     } catch (const SceneError& e) {
       throw SceneError(std::string(e.what()) + suffix);
     }
-    checkLaterals(ps.values, latLoc, suffix);
+    // (a plate without [laterals] checks the laterals a seedling turns on for itself)
+    if (latNode || ps.values.at("laterals.enabled").b) checkLaterals(ps.values, latLoc, suffix);
     sd.laterals = LateralParams{};
     for (const KeySpec& k : plateSchema()) {
       if (k.setSeedling) k.setSeedling(sd, ps.values.at(k.full()));

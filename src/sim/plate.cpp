@@ -490,8 +490,9 @@ void PlateSimulation::emergeLaterals() {
   emerged_.clear();
   const int existing = size();
   for (int r = 0; r < existing; ++r) {
-    // the root's own lateral parameters (its seedling's; a lateral's are its parent's)
-    const LateralParams& lp = lateralsOf(seedling(r), plate_);
+    // the root's own lateral parameters (its seedling's; a lateral's are its parent's), a copy: a lateral
+    // emerging below grows seedlings_, which would leave a reference into it dangling
+    const LateralParams lp = lateralsOf(seedling(r), plate_);
     if (!lp.enabled || seedling(r).order >= lp.maxOrder) continue;
     for (;;) {
       const Seedling& parent = seedling(r);

@@ -9,14 +9,16 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <optional>
+#include <vector>
 
 #include "rootsim/errors.hpp"
 #include "rootsim/number_text.hpp"
-#include "rootsim/png_signature.hpp"
+#include "rootsim/png_encode.hpp"
 #include "rootsim/units.hpp"
 #include "rootsim/write_rule.hpp"
 
@@ -872,18 +874,27 @@ double plotAspect(const Figure& f, const Axes& a) {
 }
 
 namespace {
-cairo_status_t appendBytes(void* closure, const unsigned char* data, unsigned int length) {
-  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
-  return CAIRO_STATUS_SUCCESS;
-}
-// the PNG cairo writes with a pHYs chunk (pixels per metre) after its IHDR
-std::string withPhys(const std::string& png, double dpi) {
-  const auto ppm = static_cast<std::uint32_t>(std::lround(dpi / 0.0254));
-  std::string data;
-  png_detail::putBe32(data, ppm);
-  png_detail::putBe32(data, ppm);
-  data += '\x01';  // unit: metre
-  return withChunkAfterIhdr(png, "pHYs", data);
+// the PNG of a cairo RGB24 surface: its pixels (native-endian 32-bit words 0x00RRGGBB) as RGB rows, as
+// cairo's own PNG writer passes them to libpng (its settings, its white bKGD), with a pHYs chunk of dpi
+std::string figurePng(cairo_surface_t* s, double dpi, std::string* why) {
+  cairo_surface_flush(s);
+  const int w = cairo_image_surface_get_width(s), h = cairo_image_surface_get_height(s);
+  const int stride = cairo_image_surface_get_stride(s);
+  const unsigned char* src = cairo_image_surface_get_data(s);
+  std::vector<unsigned char> rgb(static_cast<size_t>(3) * w * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      std::uint32_t px = 0;
+      std::memcpy(&px, src + static_cast<size_t>(y) * stride + 4 * static_cast<size_t>(x), 4);
+      unsigned char* out = rgb.data() + 3 * (static_cast<size_t>(y) * w + x);
+      out[0] = static_cast<unsigned char>(px >> 16);
+      out[1] = static_cast<unsigned char>(px >> 8);
+      out[2] = static_cast<unsigned char>(px);
+    }
+  PngOptions o;
+  o.dpi = dpi;
+  o.whiteBackground = true;
+  return encodeSignedPng({rgb.data(), w, h, 3, 3 * static_cast<size_t>(w)}, o, why);
 }
 }  // namespace
 
@@ -963,12 +974,13 @@ void saveFigure(const Figure& fig, const std::string& base, const SaveOptions& s
     cairo_scale(cr, scale, scale);
     drawFigure(Pen{cr, lay.scriptMin}, f, lay);
     cairo_destroy(cr);
-    std::string bytes;
-    const cairo_status_t st = cairo_surface_write_to_png_stream(s, appendBytes, &bytes);
+    check(cairo_surface_status(s), "drawing " + pngTmp.string());
+    std::string why;
+    const std::string bytes = figurePng(s, so.dpi, &why);
     cairo_surface_destroy(s);
-    check(st, "encoding " + pngTmp.string());
+    if (bytes.empty()) throw RunError("encoding " + pngTmp.string() + ": libpng: " + why);
     std::ofstream o(pngTmp, std::ios::binary);
-    o << signPng(withPhys(bytes, so.dpi));
+    o << bytes;
     o.close();
     if (!o) throw RunError("cannot write " + pngTmp.string());
   }

@@ -568,24 +568,22 @@ void placeLegend(const Pen& p, const Axes& a, Cell& cell) {
   cell.legend = Box{0.5 * (g.L + g.R - widest), g.B + kBottom, widest, 18.0 * legendRows(e, width) + 8};
 }
 
-void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
+// the axes' frame: the white plot area, grid lines and ticks with their labels, the frame, the title,
+// the panel label and the axis labels
+void drawFrame(const Pen& p, const Axes& a, const Cell& cell, const Geo& g) {
   cairo_t* cr = p.cr;
-  const Geo g = geometryOf(a, cell);
   const double L = g.L, R = g.R, T = g.T, B = g.B;
-  const double x0 = g.x0, x1 = g.x1, y0 = g.y0, y1 = g.y1;
   const double pw = R - L, ph = B - T;
-  const bool logX = g.logX;
   auto X = [&](double x) { return g.X(x); };
   auto Y = [&](double y) { return g.Y(y); };
-  const double unit = g.unit();  // layout units per data unit along x
   const Box box = cell.box;
 
   // frame, grid, ticks
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_rectangle(cr, L, T, pw, ph);
   cairo_fill(cr);
-  const auto xt = a.frameOnly ? std::vector<double>{} : logX ? logTicks(x0, x1) : ticks(x0, x1, tickTarget(pw, 40, 2, 6));
-  const auto yt = a.frameOnly ? std::vector<double>{} : ticks(y0, y1, tickTarget(ph, 36, 3, 5));
+  const auto xt = a.frameOnly ? std::vector<double>{} : g.logX ? logTicks(g.x0, g.x1) : ticks(g.x0, g.x1, tickTarget(pw, 40, 2, 6));
+  const auto yt = a.frameOnly ? std::vector<double>{} : ticks(g.y0, g.y1, tickTarget(ph, 36, 3, 5));
   cairo_set_line_width(cr, 0.8);
   for (double v : xt) {
     if (a.grid) { cairo_set_source_rgb(cr, 0.9, 0.9, 0.9); cairo_move_to(cr, X(v), T); cairo_line_to(cr, X(v), B); cairo_stroke(cr); }
@@ -607,8 +605,19 @@ void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
   if (!a.panelLabel.empty()) text(p, box.x + 8, box.y + 6, a.panelLabel, 20, 0.0, 0.0, true);
   if (cell.xLabel) text(p, cell.rowLabel ? 0.5 * (cell.rowX0 + cell.rowX1) : 0.5 * (L + R), B + 26, a.xlabel, 13, 0.5, 0.0);
   text(p, box.x + 14, 0.5 * (T + B), a.ylabel, 13, 0.5, 0.5, false, -units::pi / 2);
+}
 
-  // data, clipped to the plot area
+// the axes' data, clipped to the plot area: fills, the plate's grid, obstacles, shapes, tubes, series
+// (lines and markers) and notes
+void drawData(const Pen& p, const Axes& a, const Geo& g) {
+  cairo_t* cr = p.cr;
+  const double L = g.L, R = g.R, T = g.T, B = g.B;
+  const double x0 = g.x0, x1 = g.x1, y0 = g.y0, y1 = g.y1;
+  const double pw = R - L, ph = B - T;
+  auto X = [&](double x) { return g.X(x); };
+  auto Y = [&](double y) { return g.Y(y); };
+  const double unit = g.unit();  // layout units per data unit along x
+
   cairo_save(cr);
   cairo_rectangle(cr, L, T, pw, ph);
   cairo_clip(cr);
@@ -682,8 +691,11 @@ void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
     text(p, nb.x + 0.5 * nb.w, nb.y + 0.5 * nb.h, s, 12, 0.5, 0.5);
   }
   cairo_restore(cr);
+}
 
-  // legend: at the place the layout chose (Cell::legend), inside the plot area or in rows under the axes
+// the legend: at the place the layout chose (Cell::legend), inside the plot area or in rows under the axes
+void drawLegend(const Pen& p, const Axes& a, const Cell& cell) {
+  cairo_t* cr = p.cr;
   if (cell.legend.w > 0) {
     const double lx = cell.legend.x, ly = cell.legend.y, bw = cell.legend.w, bh = cell.legend.h;
     cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
@@ -728,6 +740,13 @@ void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
       text(p, ex0 + kLegendSwatch, yy, fl.label, 12, 0.0, 0.5);
     }
   }
+}
+
+void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
+  const Geo g = geometryOf(a, cell);
+  drawFrame(p, a, cell, g);
+  drawData(p, a, g);
+  drawLegend(p, a, cell);
 }
 
 // a figure laid out: its size [layout units], the figure title's lines and each axes' cell

@@ -26,9 +26,13 @@ Model coarseModel() {
   m.initial.elementLength = 0.1 * units::mm;
   m.growth.stepTime = 0.1 * units::hour;
   m.growth.steps = 4;
-  m.output.vtk = false;
   completeModel(m);
   return m;
+}
+OutputParams noVtk() {
+  OutputParams o;
+  o.vtk = false;
+  return o;
 }
 }  // namespace
 
@@ -40,7 +44,7 @@ TEST_CASE("root outputs: a finished root writes shape, summary and result, and m
     const fs::path dir = d / (own ? "own" : "run");
     fs::create_directories(dir);
     Simulation sim(m);
-    RootOutputs root(dir, m, own, Vec3::Zero());
+    RootOutputs root(dir, m, noVtk(), own, Vec3::Zero());
     CHECK(root.dir() == dir);
     root.add(sim);
     root.start(sim.last());
@@ -72,7 +76,7 @@ TEST_CASE("root outputs: a resumed root keeps its checkpoint's watch and streams
   Simulation sim(m);
   PlateRootRun seen;
   {
-    RootOutputs root(d, m, false, Vec3::Zero());
+    RootOutputs root(d, m, noVtk(), false, Vec3::Zero());
     root.add(sim);
     root.start(sim.last());
     root.see(sim.growthStep());
@@ -87,7 +91,7 @@ TEST_CASE("root outputs: a resumed root keeps its checkpoint's watch and streams
   }
   for (const char* f : {"timeseries.csv.tmp", "trajectory.bin.tmp"}) fs::rename(d / (std::string(f) + ".killed"), d / f);
   std::ofstream(d / "shape.csv.tmp") << "half";
-  RootOutputs resumed(d, m, false, Vec3::Zero(), &seen);
+  RootOutputs resumed(d, m, noVtk(), false, Vec3::Zero(), &seen);
   CHECK_FALSE(fs::exists(d / "shape.csv.tmp"));
   CHECK(resumed.watch().maxSubsteps == seen.watch.maxSubsteps);
   CHECK(resumed.watch().prevTime == seen.watch.prevTime);

@@ -25,10 +25,14 @@ Model coarseModel() {
   Model m = defaultModel();
   m.initial.elementLength = 0.1 * units::mm;
   m.growth.stepTime = 0.1 * units::hour;
-  m.output.trajectoryFormat = TrajectoryFormat::Both;
-  m.output.vtk = false;
   completeModel(m);
   return m;
+}
+OutputParams bothTrajectories() {
+  OutputParams o;
+  o.trajectoryFormat = TrajectoryFormat::Both;
+  o.vtk = false;
+  return o;
 }
 }  // namespace
 
@@ -38,7 +42,7 @@ TEST_CASE("root streams: each add writes a time-series row and a snapshot that r
   Simulation sim(m);
   std::vector<Snapshot> seen;
   {
-    detail::RootStreams streams(d, m);
+    detail::RootStreams streams(d, m, bothTrajectories());
     streams.add(sim);
     seen.push_back(sim.snapshot());
     for (int k = 0; k < 3; ++k) {
@@ -69,7 +73,7 @@ TEST_CASE("root streams: a resumed root continues its files from the checkpoint'
   Simulation sim(m);
   WriterPositions atCheckpoint;
   {
-    detail::RootStreams streams(d, m);
+    detail::RootStreams streams(d, m, bothTrajectories());
     streams.add(sim);
     sim.growthStep();
     streams.add(sim);
@@ -85,7 +89,7 @@ TEST_CASE("root streams: a resumed root continues its files from the checkpoint'
   again.growthStep();
   again.growthStep();
   {
-    detail::RootStreams resumed(d, m, &atCheckpoint);
+    detail::RootStreams resumed(d, m, bothTrajectories(), &atCheckpoint);
     resumed.add(again);
     resumed.close();
   }

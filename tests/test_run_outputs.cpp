@@ -88,6 +88,7 @@ TEST_CASE("run outputs: a new run steps through every growth step, checkpoints b
   CHECK_FALSE(fs::exists(out.string() + ".partial"));
   CHECK(whyNotWhole(out) == "");
   CHECK(slurp(out / "plate_timeseries.csv") == "1\n2\n3\n4\n5\n");
+  CHECK_FALSE(fs::exists(out / "vtk"));  // the scene's output.vtk = false reaches the root's streams
   for (const char* f : {"scene.toml", "timeseries.csv", "trajectory.bin", "shape.csv", "summary.json", "result.csv"})
     CHECK_MESSAGE(fs::is_regular_file(out / f), f);
   CHECK_FALSE(fs::exists(out / kCheckpointFile));

@@ -23,10 +23,11 @@ const fs::path& cleaned(const fs::path& dir, bool resumed) {
 }
 }  // namespace
 
-RootOutputs::RootOutputs(fs::path dir, const Model& m, bool ownFolder, const Vec3& vtkOffset, const PlateRootRun* at)
+RootOutputs::RootOutputs(fs::path dir, const Model& m, const OutputParams& o, bool ownFolder, const Vec3& vtkOffset,
+                         const PlateRootRun* at)
     : dir_(std::move(dir)),
       ownFolder_(ownFolder),
-      streams_(cleaned(dir_, at != nullptr), m, at ? &at->writers : nullptr, vtkOffset),
+      streams_(cleaned(dir_, at != nullptr), m, o, at ? &at->writers : nullptr, vtkOffset),
       watch_(at ? at->watch : RunWatch{}) {}
 
 void RootOutputs::close() {

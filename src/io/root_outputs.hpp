@@ -9,6 +9,7 @@
 
 #include "rootsim/checkpoint.hpp"
 #include "rootsim/model.hpp"
+#include "rootsim/output_params.hpp"
 #include "rootsim/results.hpp"
 #include "rootsim/run_watch.hpp"
 #include "rootsim/simulation.hpp"
@@ -18,12 +19,12 @@ namespace rootsim::detail {
 
 class RootOutputs {
  public:
-  // a root's folder `dir` (existing; its scene.toml already written): its streams opened new, or (at: a
+  // a root's folder `dir` (existing; its scene.toml already written): its streams (as o asks) opened new, or (at: a
   // checkpoint's) continued where the checkpoint saw them with the watch it had, the leftovers of atomic
   // writes a kill interrupted removed first. ownFolder: a run directory of its own inside the run's (a
   // plate's roots/NAME), marked when it finishes; else it is the run directory, which RunDir marks.
   // vtkOffset as RootStreams'.
-  RootOutputs(std::filesystem::path dir, const Model& m, bool ownFolder, const Vec3& vtkOffset,
+  RootOutputs(std::filesystem::path dir, const Model& m, const OutputParams& o, bool ownFolder, const Vec3& vtkOffset,
               const PlateRootRun* at = nullptr);
 
   const std::filesystem::path& dir() const { return dir_; }

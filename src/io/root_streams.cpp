@@ -9,11 +9,12 @@ namespace fs = std::filesystem;
 
 namespace rootsim::detail {
 
-RootStreams::RootStreams(const fs::path& w, const Model& m, const WriterPositions* p, const Vec3& vtkOffset)
+RootStreams::RootStreams(const fs::path& w, const Model& m, const OutputParams& o, const WriterPositions* p,
+                         const Vec3& vtkOffset)
     : vtkOffset_(vtkOffset) {
-  const bool traj = m.output.trajectory;
-  const bool csv = traj && m.output.trajectoryFormat != TrajectoryFormat::Binary;
-  const bool bin = traj && m.output.trajectoryFormat != TrajectoryFormat::Csv;
+  const bool traj = o.trajectory;
+  const bool csv = traj && o.trajectoryFormat != TrajectoryFormat::Binary;
+  const bool bin = traj && o.trajectoryFormat != TrajectoryFormat::Csv;
   // a root that had written nothing when the checkpoint saw it (a plate's lateral that emerged after the
   // last output step: its writers had not handed even their headers to the system) starts its files anew
   if (p && p->timeseriesBytes == 0) p = nullptr;
@@ -21,12 +22,12 @@ RootStreams::RootStreams(const fs::path& w, const Model& m, const WriterPosition
     ts_ = std::make_unique<TimeseriesWriter>(w / "timeseries.csv", p->timeseriesBytes);
     if (csv) tr_ = std::make_unique<TrajectoryWriter>(w / "trajectory.csv", p->trajectoryBytes, p->trajectoryFrames);
     if (bin) tb_ = std::make_unique<TrajectoryBinaryWriter>(w / "trajectory.bin", p->trajectoryBinaryBytes, p->trajectoryFrames);
-    if (m.output.vtk) vtk_ = std::make_unique<VtkSeriesWriter>(w, sceneInfoOf(m), p->vtkEntries);
+    if (o.vtk) vtk_ = std::make_unique<VtkSeriesWriter>(w, sceneInfoOf(m), p->vtkEntries);
   } else {
     ts_ = std::make_unique<TimeseriesWriter>(w / "timeseries.csv");
     if (csv) tr_ = std::make_unique<TrajectoryWriter>(w / "trajectory.csv");
     if (bin) tb_ = std::make_unique<TrajectoryBinaryWriter>(w / "trajectory.bin");
-    if (m.output.vtk) vtk_ = std::make_unique<VtkSeriesWriter>(w, sceneInfoOf(m));
+    if (o.vtk) vtk_ = std::make_unique<VtkSeriesWriter>(w, sceneInfoOf(m));
   }
 }
 

@@ -7,6 +7,7 @@
 #include "rootsim/checkpoint.hpp"
 #include "rootsim/csv.hpp"
 #include "rootsim/model.hpp"
+#include "rootsim/output_params.hpp"
 #include "rootsim/simulation.hpp"
 #include "rootsim/trajectory.hpp"
 #include "rootsim/vtk.hpp"
@@ -19,7 +20,7 @@ class RootStreams {
  public:
   // vtkOffset: added to the ParaView snapshots' positions (a plate's roots write theirs in plate
   // coordinates, so that they open together); the trajectory stays in the root's own frame
-  RootStreams(const std::filesystem::path& dir, const Model& m, const WriterPositions* resume = nullptr,
+  RootStreams(const std::filesystem::path& dir, const Model& m, const OutputParams& o, const WriterPositions* resume = nullptr,
               const Vec3& vtkOffset = Vec3::Zero());
   // a time-series row and, when any is written, a snapshot
   void add(const Simulation& sim);

@@ -15,7 +15,7 @@ namespace rootsim::detail {
 
 RunOutputs::RunOutputs(const Scene& scene, const std::string& outDir, const RunDirOptions& o, std::string what,
                        const std::function<CheckpointSeen(const fs::path&)>& load)
-    : what_(std::move(what)), dir_(outDir, o, plan(scene, outDir, o, load)) {
+    : what_(std::move(what)), output_(scene.output), dir_(outDir, o, plan(scene, outDir, o, load)) {
   noteResume(o, dir_, partial_, seen_.step, scene.model.growth.steps);
   t0_ = now();
 }
@@ -56,7 +56,7 @@ fs::path RunOutputs::rootFolder(const std::string& name, const std::string& scen
 
 RootOutputs& RunOutputs::addRoot(const fs::path& dir, const Model& m, const Vec3& vtkOffset, const PlateRootRun* at) {
   const bool own = dir != dir_.work();
-  roots_.push_back(std::make_unique<RootOutputs>(dir, m, own, vtkOffset, at));
+  roots_.push_back(std::make_unique<RootOutputs>(dir, m, output_, own, vtkOffset, at));
   return *roots_.back();
 }
 

@@ -67,8 +67,8 @@ class RunOutputs {
   // a plate root's folder roots/NAME: created, marked first as every run directory is, its scene written;
   // throws RunError naming the folder
   std::filesystem::path rootFolder(const std::string& name, const std::string& sceneToml);
-  // a root's outputs in its folder (the run directory itself, or rootFolder's), opened new or (at: the
-  // checkpoint's) continued
+  // a root's outputs in its folder (the run directory itself, or rootFolder's), the files the scene's
+  // [output] asks for, opened new or (at: the checkpoint's) continued
   RootOutputs& addRoot(const std::filesystem::path& dir, const Model& m, const Vec3& vtkOffset = Vec3::Zero(),
                        const PlateRootRun* at = nullptr);
   RootOutputs& root(std::size_t r) { return *roots_[r]; }
@@ -94,6 +94,7 @@ class RunOutputs {
   void dropWriters();
 
   std::string what_;
+  OutputParams output_;  // the scene's: what every root writes
   CheckpointSeen seen_;
   PartialRun partial_ = PartialRun::Refuse;
   bool resumed_ = false;

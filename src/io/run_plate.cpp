@@ -89,7 +89,7 @@ double runPlateToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     const PlateCarry& pc = ck->plate;
     std::vector<std::string> names = seedlingNames;
     for (const LateralBirth& b : pc.laterals) names.push_back(lateralName(names[static_cast<size_t>(b.parent)], b.site));
-    for (size_t r = 0; r < names.size(); ++r) checkStreamLengths(w / "roots" / names[r], sc.model, ck->roots[r].writers);
+    for (size_t r = 0; r < names.size(); ++r) checkStreamLengths(w / "roots" / names[r], sc.output, ck->roots[r].writers);
     return CheckpointSeen{ck->step, ck->acc.wallBefore};
   });
   if (!run.resumed()) ck.reset();
@@ -157,8 +157,8 @@ double runPlateToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
       c.acc = {maxSweeps, minGap, run.wall(), series.size()};
       writePlateCheckpoint(run.checkpointFile(), c);
     };
-    const Model m0 = plate.seedling(0).model;  // a copy: the plate's roots grow as laterals emerge
-    run.growthSteps(steps, m0.output.checkpointEvery, RunSteps{
+    const OutputParams& output = sc.output;
+    run.growthSteps(steps, output.checkpointEvery, RunSteps{
         [&](int) {
           const PlateStepRecord& pr = plate.growthStep();
           maxSweeps = std::max(maxSweeps, pr.sweeps);
@@ -169,7 +169,7 @@ double runPlateToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
           for (int r = 0; r < plate.size(); ++r)
             if (std::find(plate.emerged().begin(), plate.emerged().end(), r) == plate.emerged().end())
               run.root(static_cast<size_t>(r)).see(plate.root(r).last());
-          if (k % m0.output.everySteps == 0 || k == steps) record();
+          if (k % output.everySteps == 0 || k == steps) record();
         },
         checkpoint,
         [&](int) {
@@ -193,7 +193,7 @@ double runPlateToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     }
     run.write("plate.csv", table);
     // plate.pvd: every root's ParaView series as the parts of one (their snapshots are in plate coordinates)
-    if (m0.output.vtk) run.write("plate.pvd", partsPvdText(parts));
+    if (output.vtk) run.write("plate.pvd", partsPvdText(parts));
 
     const int n = static_cast<int>(spec.seedlings.size());
     Json j;

@@ -62,12 +62,12 @@ void noteResume(const RunDirOptions& o, const RunDir& rd, PartialRun partial, in
     o.note("no usable checkpoint in " + rd.work().string() + ": starting " + rd.final().string() + " again");
 }
 
-void checkStreamLengths(const fs::path& dir, const Model& m, const WriterPositions& w) {
-  const bool traj = m.output.trajectory;
+void checkStreamLengths(const fs::path& dir, const OutputParams& o, const WriterPositions& w) {
+  const bool traj = o.trajectory;
   const std::pair<const char*, std::uint64_t> streams[] = {
       {"timeseries.csv", w.timeseriesBytes},
-      {"trajectory.csv", traj && m.output.trajectoryFormat != TrajectoryFormat::Binary ? w.trajectoryBytes : 0},
-      {"trajectory.bin", traj && m.output.trajectoryFormat != TrajectoryFormat::Csv ? w.trajectoryBinaryBytes : 0}};
+      {"trajectory.csv", traj && o.trajectoryFormat != TrajectoryFormat::Binary ? w.trajectoryBytes : 0},
+      {"trajectory.bin", traj && o.trajectoryFormat != TrajectoryFormat::Csv ? w.trajectoryBinaryBytes : 0}};
   for (const auto& [name, bytes] : streams) checkStreamLength(dir / name, bytes);
 }
 

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "rootsim/checkpoint.hpp"
-#include "rootsim/model.hpp"
+#include "rootsim/output_params.hpp"
 #include "rootsim/run_dir.hpp"
 #include "rootsim/scene.hpp"
 
@@ -24,7 +24,7 @@ PartialRun resumePlan(const Scene& sc, const std::string& outDir, bool force,
 void noteResume(const RunDirOptions& o, const RunDir& rd, PartialRun partial, int step, int steps);
 // the streams of a root's folder hold at least what its checkpoint saw (before anything is touched);
 // throws SceneError naming the file
-void checkStreamLengths(const std::filesystem::path& dir, const Model& m, const WriterPositions& w);
+void checkStreamLengths(const std::filesystem::path& dir, const OutputParams& o, const WriterPositions& w);
 void checkStreamLength(const std::filesystem::path& file, std::uint64_t bytes);
 // a checkpoint of this scene (its hash: sceneHash of the resolved scene); throws SceneError naming the file
 void checkSceneHash(const std::filesystem::path& file, std::uint64_t found, std::uint64_t expected);

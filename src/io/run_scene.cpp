@@ -25,7 +25,7 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     ck.reset();
     ck = readCheckpoint(file);
     checkSceneHash(file, ck->sceneHash, hash);
-    checkStreamLengths(file.parent_path(), m, ck->writers);
+    checkStreamLengths(file.parent_path(), sc.output, ck->writers);
     return CheckpointSeen{ck->step, ck->acc.wallBefore};
   });
   if (!run.resumed()) ck.reset();
@@ -55,13 +55,13 @@ double runSceneToDir(const Scene& sc, const std::string& outDir, const RunDirOpt
     };
     const int steps = m.growth.enabled ? m.growth.steps : 0;
     const StepRecord* r = nullptr;
-    run.growthSteps(steps, m.output.checkpointEvery, RunSteps{
+    run.growthSteps(steps, sc.output.checkpointEvery, RunSteps{
         [&](int) {
           r = &sim.growthStep();
           out.see(*r);
         },
         [&](int k) {
-          if (k % m.output.everySteps == 0 || k == steps) out.add(sim);
+          if (k % sc.output.everySteps == 0 || k == steps) out.add(sim);
         },
         checkpoint,
         [&](int) {

@@ -85,3 +85,15 @@ TEST_CASE("ParaView files are zlib-compressed binary that decodes to the snapsho
   }
   fs::remove_all(d);
 }
+
+TEST_CASE("a collection of parts lists each part's snapshots under its folder, numbered and named after it") {
+  const std::vector<PvdPart> parts = {{"A", "roots/A", {{0.0, "vtk/step_000000.vtp"}, {0.5, "vtk/step_000010.vtp"}}},
+                                      {"A.1", "roots/A.1", {{0.5, "vtk/step_000010.vtp"}}}};
+  CHECK(partsPvdText(parts) ==
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n"
+        "  <DataSet timestep=\"0.0\" part=\"0\" name=\"A\" file=\"roots/A/vtk/step_000000.vtp\"/>\n"
+        "  <DataSet timestep=\"0.5\" part=\"0\" name=\"A\" file=\"roots/A/vtk/step_000010.vtp\"/>\n"
+        "  <DataSet timestep=\"0.5\" part=\"1\" name=\"A.1\" file=\"roots/A.1/vtk/step_000010.vtp\"/>\n"
+        "</Collection>\n</VTKFile>\n");
+  CHECK(partsPvdText({}) == pvdText({}));
+}

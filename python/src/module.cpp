@@ -613,7 +613,7 @@ void registerScenes(py::module_& m) {
       .def_property_readonly("resolved_toml", [](const Scene& s) { return s.resolvedToml; })
       .def_property_readonly("grows", [](const Scene& s) { return s.model.growth.enabled; })
       .def_property_readonly("steps", [](const Scene& s) { return s.model.growth.enabled ? s.model.growth.steps : 0; })
-      .def_property_readonly("trajectory", [](const Scene& s) { return s.model.output.trajectory; })
+      .def_property_readonly("trajectory", [](const Scene& s) { return s.output.trajectory; })
       .def_property_readonly("is_plate", [](const Scene& s) { return s.isPlate(); });
   m.def("load_scene", &loadScene, py::arg("path"), py::arg("overrides"));
   m.def("parse_scene", &parseScene, py::arg("text"), py::arg("source_name"), py::arg("overrides"));

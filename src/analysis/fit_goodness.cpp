@@ -38,7 +38,7 @@ std::string mm(double v) { return significantText(v, 2); }
 }  // namespace
 
 std::vector<FixedKey> sceneFixedKeys(const Model& base, const std::vector<FreeKey>& free, const std::vector<std::string>& fileKeys) {
-  const std::vector<SceneValue> values = sceneValues(base);
+  const std::vector<SceneValue> values = sceneValues(base, OutputParams{});  // the shaping keys: the model's
   std::vector<FixedKey> fixed;
   for (const char* key : kShapingKeys) {
     if (std::any_of(free.begin(), free.end(), [&](const FreeKey& f) { return f.key == key; })) continue;

@@ -281,11 +281,11 @@ rsml::Document rsmlOf(const RunData& d, const Snapshot& s, int sequenceIndex) {
   doc.sceneProperties.push_back(numberProperty("time_h", s.timeH));
   doc.sceneProperties.push_back(numberProperty("step", s.step));
   doc.sceneProperties.push_back(textProperty("software_version", kVersion));
-  for (const SceneValue& v : sceneValues(m)) {
+  for (const SceneValue& v : sceneValues(m, d.scene.output)) {
     if (v.key.find('[') != std::string::npos) continue;  // obstacles: below, as obstacle_K.key
     doc.sceneProperties.push_back(textProperty(v.key, sceneText(v.text)));
   }
-  for (const SceneValue& v : sceneValues(m))
+  for (const SceneValue& v : sceneValues(m, d.scene.output))
     if (const auto open = v.key.find('['); open != std::string::npos) {
       std::string name = v.key;
       name.replace(open, 1, "_");
@@ -355,7 +355,7 @@ rsml::Document plateRsmlOf(const Scene& plate, const std::vector<PlateRoot>& roo
       doc.plants.clear();
       // the plate's keys (each plant's own are its overrides)
       doc.sceneProperties.erase(doc.sceneProperties.begin() + 3, doc.sceneProperties.end());
-      for (const SceneValue& v : sceneValues(plate.plate.base))
+      for (const SceneValue& v : sceneValues(plate.plate.base, plate.output))
         if (v.key.find('[') == std::string::npos) doc.sceneProperties.push_back(textProperty(v.key, sceneText(v.text)));
       doc.comment += " (a plate, plate coordinates from the plate's origin)";
     }

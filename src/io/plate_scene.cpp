@@ -491,7 +491,8 @@ std::string seedlingToml(const Seedling& sd, const Model& base) {
   os << "position_mm = " << mm2(sd.position) << "\nangle_deg = " << formatNumber(sd.model.initial.angle / units::deg, false) << "\n";
   if (sd.model.tropism.setPoint != 0.0) os << "set_point_deg = " << formatNumber(sd.model.tropism.setPoint / units::deg, false) << "\n";
   // its keys that differ from the plate's
-  const Values mine = valuesOf(sd.model, ""), plates = valuesOf(base, "");
+  // (a seedling's keys are its model's: what the run writes is the plate's)
+  const Values mine = valuesOf(SceneParams{sd.model, {}}, ""), plates = valuesOf(SceneParams{base, {}}, "");
   std::string set;
   for (const KeySpec& k : schema()) {
     if (!whyNotSeedlingKey(k).empty()) continue;

@@ -442,7 +442,9 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
   for (const auto& ov : overrides) applyOverride(ov, values);
   std::string name = std::filesystem::path(sourceName).stem().string();
   Scene sc;
-  sc.model = buildModel(values, name);
+  SceneParams params = buildParams(values, name);
+  sc.model = std::move(params.model);
+  sc.output = params.output;
   std::vector<Obstacle> obs;
   for (const ParsedObstacle& po : obstacles) obs.push_back(po.o);
   PlateTables plate = parsePlateTables(root, sourceName, text, values, name, obs);
@@ -496,14 +498,16 @@ std::string sceneNumberProblem(const std::string& key, double value) {
   return checkValue(*k, v);
 }
 
-Scene sceneOf(const Model& model) {
+Scene sceneOf(const Model& model, const OutputParams& output) {
   const std::string origin = "model " + printable(model.name);
-  const Values values = valuesOf(model, origin);
+  const Values values = valuesOf(SceneParams{model, output}, origin);
   for (const KeySpec& k : schema())
     if (const std::string why = checkValue(k, values.at(k.full())); !why.empty())
       throw SceneError(origin + ": " + k.full() + " " + why);
   Scene sc;
-  sc.model = buildModel(values, model.name);
+  SceneParams params = buildParams(values, model.name);
+  sc.model = std::move(params.model);
+  sc.output = params.output;
   std::vector<ParsedObstacle> obstacles;
   for (const Obstacle& o : model.env.obstacles) {
     ParsedObstacle po;
@@ -519,9 +523,9 @@ Scene sceneOf(const Model& model) {
   return sc;
 }
 
-std::vector<SceneValue> sceneValues(const Model& model) {
+std::vector<SceneValue> sceneValues(const Model& model, const OutputParams& output) {
   std::vector<SceneValue> out;
-  const Values values = valuesOf(model, "model " + printable(model.name));
+  const Values values = valuesOf(SceneParams{model, output}, "model " + printable(model.name));
   for (const auto& sec : sections())
     for (const KeySpec& k : schema())
       if (k.section == sec) out.push_back({k.full(), tomlText(k, values.at(k.full()))});

@@ -83,15 +83,16 @@ KeySpec make(const char* sec, const char* key, KeyType type, const char* doc) {
   return k;
 }
 
-// the keys by type: each names its field of the model (a function returning a reference to it, called
-// with a Model& to set and a const Model& to get); the default is the field of defaultModel()
+// the keys by type: each names its field of the model or the output (a function returning a reference to
+// it, called with a SceneParams& to set and a const SceneParams& to get); the default is the field of
+// defaultModel() or OutputParams{}
 template <class Field>
 KeySpec real(const char* sec, const char* key, Field field, Unit u, double lo, bool loOpen, double hi, bool hiOpen,
              const char* doc) {
   KeySpec k = make(sec, key, KeyType::Real, doc);
   k.lo = lo; k.loOpen = loOpen; k.hi = hi; k.hiOpen = hiOpen;
-  k.set = [field, u](Model& m, const Value& v) { field(m) = toSi(v.num, u); };
-  k.get = [field, u](const Model& m) {
+  k.set = [field, u](SceneParams& m, const Value& v) { field(m) = toSi(v.num, u); };
+  k.get = [field, u](const SceneParams& m) {
     Value v;
     v.num = fromSi(field(m), u);
     return v;
@@ -102,11 +103,11 @@ template <class Field>
 KeySpec integer(const char* sec, const char* key, Field field, double lo, double hi, const char* doc) {
   KeySpec k = make(sec, key, KeyType::Integer, doc);
   k.lo = lo; k.hi = hi;
-  k.set = [field](Model& m, const Value& v) {
+  k.set = [field](SceneParams& m, const Value& v) {
     auto& f = field(m);
     f = static_cast<std::remove_reference_t<decltype(f)>>(v.num);
   };
-  k.get = [field](const Model& m) {
+  k.get = [field](const SceneParams& m) {
     Value v;
     v.type = KeyType::Integer;
     v.num = static_cast<double>(field(m));
@@ -117,8 +118,8 @@ KeySpec integer(const char* sec, const char* key, Field field, double lo, double
 template <class Field>
 KeySpec boolean(const char* sec, const char* key, Field field, const char* doc) {
   KeySpec k = make(sec, key, KeyType::Boolean, doc);
-  k.set = [field](Model& m, const Value& v) { field(m) = v.b; };
-  k.get = [field](const Model& m) {
+  k.set = [field](SceneParams& m, const Value& v) { field(m) = v.b; };
+  k.get = [field](const SceneParams& m) {
     Value v;
     v.type = KeyType::Boolean;
     v.b = field(m);
@@ -132,11 +133,11 @@ KeySpec choice(const char* sec, const char* key, Field field, std::vector<std::p
                const char* doc) {
   KeySpec k = make(sec, key, KeyType::String, doc);
   for (const auto& n : names) k.choices.push_back(n.first);
-  k.set = [field, names](Model& m, const Value& v) {
+  k.set = [field, names](SceneParams& m, const Value& v) {
     for (const auto& [text, e] : names)
       if (text == v.str) field(m) = e;
   };
-  k.get = [field, names](const Model& m) {
+  k.get = [field, names](const SceneParams& m) {
     Value v;
     v.type = KeyType::String;
     for (const auto& [text, e] : names)
@@ -148,8 +149,8 @@ KeySpec choice(const char* sec, const char* key, Field field, std::vector<std::p
 template <class Field>
 KeySpec vec3(const char* sec, const char* key, Field field, const char* doc) {
   KeySpec k = make(sec, key, KeyType::Vector3, doc);
-  k.set = [field](Model& m, const Value& v) { field(m) = Vec3(v.vec[0], v.vec[1], v.vec[2]); };
-  k.get = [field](const Model& m) {
+  k.set = [field](SceneParams& m, const Value& v) { field(m) = Vec3(v.vec[0], v.vec[1], v.vec[2]); };
+  k.get = [field](const SceneParams& m) {
     Value v;
     v.type = KeyType::Vector3;
     const Vec3& x = field(m);
@@ -161,18 +162,18 @@ KeySpec vec3(const char* sec, const char* key, Field field, const char* doc) {
 // load.gravity: on is the standard acceleration straight down, off is none
 KeySpec gravity(const char* doc) {
   KeySpec k = make("load", "gravity", KeyType::Boolean, doc);
-  k.set = [](Model& m, const Value& v) { m.env.gravity = v.b ? Vec3(0, 0, -9.81) : Vec3::Zero(); };
-  k.get = [](const Model& m) {
+  k.set = [](SceneParams& m, const Value& v) { m.model.env.gravity = v.b ? Vec3(0, 0, -9.81) : Vec3::Zero(); };
+  k.get = [](const SceneParams& m) {
     Value v;
     v.type = KeyType::Boolean;
-    v.b = m.env.gravity.squaredNorm() > 0;
+    v.b = m.model.env.gravity.squaredNorm() > 0;
     return v;
   };
   return k;
 }
 // each key's default: its getter applied to defaultModel()
 std::vector<KeySpec> withDefaults(std::vector<KeySpec> keys) {
-  const Model d = defaultModel();
+  const SceneParams d{defaultModel(), OutputParams{}};
   for (KeySpec& k : keys) {
     const Value v = k.get(d);
     k.defNum = v.num;
@@ -191,16 +192,18 @@ const std::vector<std::string>& sections() {
   return s;
 }
 
-// every key, its field of the model, its unit, range and meaning; its default is read from
-// defaultModel() (the one source of defaults, include/rootsim/model.hpp) through its getter.
+// every key, its field of the model or the output, its unit, range and meaning; its default is read from
+// defaultModel() and OutputParams{} (the one source of defaults, model.hpp, output_params.hpp) through its getter.
 // Ranges (each key's doc in `rootsim check` and scene.toml ends with it). Upper bounds are physical
 // sanity, a generous factor beyond anything a root (or any plant organ) has: radius <= 100 mm, E <= 1e6
 // MPa (diamond), growth rate <= 10 /h, step <= 10 h, growth zone <= 1 m, gains <= 100 (the paper uses
 // < 2), |R tau| <= 10, springs <= 1e6 N/m. Beyond them a run diverges or exhausts the sub-step cap
 // after minutes instead of being refused up front. The number of elements is capped
-// separately (kMaxElements, buildModel).
-// FIELD(rod.radius): the field as a reference, for a Model& (set) and a const Model& (get)
-#define FIELD(path) [](auto& m) -> auto& { return m.path; }
+// separately (kMaxElements, buildParams).
+// FIELD(rod.radius): the model's field as a reference, for a SceneParams& (set) and a const SceneParams&
+// (get); OUTPUT(vtk): the output's
+#define FIELD(path) [](auto& p) -> auto& { return p.model.path; }
+#define OUTPUT(path) [](auto& p) -> auto& { return p.output.path; }
 const std::vector<KeySpec>& schema() {
   static const std::vector<KeySpec> keys = withDefaults({
       real("root", "radius_mm", FIELD(rod.radius), kMm, 0, true, 100, false, "root radius R [mm]"),
@@ -296,21 +299,22 @@ const std::vector<KeySpec>& schema() {
            "hysteresis of the lateral turning points in R (a lateral peak-to-peak below it counts as straight)"),
       real("analysis", "skew_min_waves", FIELD(analysis.skewMinWaves), kOne, 0, false, 1e4, false,
            "a waving root is called skewing only over at least this many full waves"),
-      integer("output", "every_steps", FIELD(output.everySteps), 1, 1e9, "snapshot and time-series row every N growth steps"),
-      boolean("output", "trajectory", FIELD(output.trajectory),
+      integer("output", "every_steps", OUTPUT(everySteps), 1, 1e9, "snapshot and time-series row every N growth steps"),
+      boolean("output", "trajectory", OUTPUT(trajectory),
               "write the trajectory (what `rootsim render` reads; format: output.trajectory_format)"),
-      choice("output", "trajectory_format", FIELD(output.trajectoryFormat),
+      choice("output", "trajectory_format", OUTPUT(trajectoryFormat),
              std::vector<std::pair<std::string, TrajectoryFormat>>{
                  {"binary", TrajectoryFormat::Binary}, {"csv", TrajectoryFormat::Csv}, {"both", TrajectoryFormat::Both}},
              "binary: trajectory.bin (raw doubles, docs/outputs.md); csv: trajectory.csv (text); both: the two"),
-      boolean("output", "vtk", FIELD(output.vtk), "write ParaView snapshots (vtk/*.vtp, zlib-compressed binary, + trajectory.pvd)"),
-      real("output", "checkpoint_every_s", FIELD(output.checkpointEvery), kOne, 0, false, 1e6, false,
+      boolean("output", "vtk", OUTPUT(vtk), "write ParaView snapshots (vtk/*.vtp, zlib-compressed binary, + trajectory.pvd)"),
+      real("output", "checkpoint_every_s", OUTPUT(checkpointEvery), kOne, 0, false, 1e6, false,
            "wall time between checkpoints of a growing run (DIR.partial/checkpoint.bin, for --resume) [s]; "
            "0: after every growth step"),
   });
   return keys;
 }
 #undef FIELD
+#undef OUTPUT
 
 Value defaultValue(const KeySpec& k) {
   Value v;
@@ -388,11 +392,14 @@ namespace {
 }
 }  // namespace
 
-Model buildModel(const Values& v, const std::string& name) {
+Model buildModel(const Values& v, const std::string& name) { return buildParams(v, name).model; }
+
+SceneParams buildParams(const Values& v, const std::string& name) {
   auto num = [&](const char* k) { return v.at(k).num; };
-  Model m = defaultModel();
+  SceneParams p{defaultModel(), OutputParams{}};
+  Model& m = p.model;
   m.name = name;
-  for (const KeySpec& k : schema()) k.set(m, v.at(k.full()));
+  for (const KeySpec& k : schema()) k.set(p, v.at(k.full()));
   completeModel(m);
 
   // relations between keys
@@ -455,7 +462,7 @@ Model buildModel(const Values& v, const std::string& name) {
   if (!m.env.plane.enabled && m.env.base == BaseCondition::Free && !m.growth.enabled &&
       (m.env.tipForce.norm() > 0 || m.env.gravity.norm() > 0))
     relationError(v, "load.base", "= \"free\" with a net load has no equilibrium; clamp the base");
-  return m;
+  return p;
 }
 
 std::string tomlText(const KeySpec& k, const Value& x) {
@@ -471,10 +478,10 @@ std::string tomlText(const KeySpec& k, const Value& x) {
   return "";
 }
 
-Values valuesOf(const Model& m, const std::string& origin) {
+Values valuesOf(const SceneParams& p, const std::string& origin) {
   Values values;
   for (const KeySpec& k : schema()) {
-    Value x = k.get(m);
+    Value x = k.get(p);
     x.origin = origin;
     values[k.full()] = x;
   }

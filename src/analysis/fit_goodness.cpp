@@ -149,6 +149,7 @@ void chooseAnswer(FitReport& rep, const TraceTarget& target, const FitComponents
   rep.best = answerIndex(objectives, rep.surfaceRun);
   const FitEvaluation& b = rep.evaluations[static_cast<std::size_t>(rep.best)];
   rep.goodness = goodnessOf(answerChi2(b), static_cast<int>(trace.trace.size()), static_cast<int>(rep.keys.size()));
+  rep.goodness.against = trace.covName;
   rep.fixed = sceneFixedKeys(base, rep.keys, fileKeys);
   rep.misfit = rep.goodness.verdict == "poor" ? misfitSentence(target, rep.evaluations, b, trace, modelSigma, rep.fixed) : std::string();
 }

@@ -117,6 +117,7 @@ void groupTraceSide(GroupSide& g, const std::string& sheet) {
     }
   g.trace.trace = mean;
   g.trace.cov = cov;
+  g.trace.covName = "the group mean's covariance (its seedlings' scatter / n, each variance at least their tracing noise / n)";
   g.trace.sigma = cov.diagonal().cwiseSqrt();
 }
 

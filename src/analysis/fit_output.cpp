@@ -33,7 +33,7 @@ Json goodnessJson(const Goodness& g) {
   Json j;
   j.num("chi2", g.chi2).integer("dof", g.dof).integer("outputs", g.outputs).integer("p_dof", g.pDof).num("p_value", g.pValue)
       .str("verdict", g.verdict)
-      .str("against", "the answer's own run against the trace's uncertainty alone (the model's scatter is in the keys' sigma, not here)");
+      .str("against", "the answer's own run against " + g.against + " (the model's scatter is in the keys' sigma, not here)");
   return j;
 }
 

@@ -1,11 +1,12 @@
-# A first build's cost is mostly the compiler parsing and instantiating the same headers (Eigen, the
-# standard library, doctest) in every file: a file of src/ takes seconds with -fsyntax-only. Two remedies,
-# each with an option (docs/performance.md, "First build"):
-#   ROOTSIM_PCH    precompiled headers: Eigen and the standard library, doctest in the test executables
+# Most of a first build is the compiler parsing and instantiating the same headers (Eigen, the standard
+# library, doctest) again in every file. Two remedies, each with an option (docs/performance.md, "First
+# build"):
+#   ROOTSIM_PCH    precompiled headers of Eigen, the standard library and doctest for the test executables
 #   ROOTSIM_UNITY  unity builds: a target's files compiled in batches of ROOTSIM_UNITY_BATCH, one
-#                  compiler run per batch. Files of a batch share one translation unit, so two of them
-#                  never declare the same internal (anonymous-namespace or static) name: each such name
-#                  is unique within its library or test executable.
+#                  compiler run per batch (the libraries and the Python module). Files of a batch
+#                  share one translation unit, so an internal (anonymous-namespace or static) name is
+#                  defined once in its library: two files needing one share a header; a using-directive
+#                  at namespace scope reaches the later files of its batch.
 # Both off (-DROOTSIM_PCH=OFF -DROOTSIM_UNITY=OFF) compile every file alone, as an editor's clangd does:
 # a file that lacks an #include shows up there.
 option(ROOTSIM_PCH "precompiled headers (Eigen, the standard library, doctest)" ON)
@@ -21,9 +22,9 @@ set(ROOTSIM_PCH_HEADERS
 
 # rootsim_compile_speed(<target> [TEST]): the target's precompiled header and unity batches. TEST (a
 # doctest executable): doctest in the precompiled header, and no unity batches (test files keep their own
-# helpers under the same names: run, slurp, scratch). A target compiled as one translation unit gets no
-# precompiled header: making it would cost more than it saves. Call it after the target's last
-# target_sources().
+# helpers under the same names: run, slurp, scratch). A target compiled in fewer than 5 translation units
+# gets no precompiled header: compiling the header costs about as much as parsing it in 4 files (so the
+# libraries, in unity batches, have none). Call it after the target's last target_sources().
 function(rootsim_compile_speed target)
   cmake_parse_arguments(PARSE_ARGV 1 ARG "TEST" "" "")
   get_target_property(sources ${target} SOURCES)
@@ -38,12 +39,17 @@ function(rootsim_compile_speed target)
   else()
     set(units ${n})
   endif()
-  if(ROOTSIM_PCH AND units GREATER 1)
+  if(ROOTSIM_PCH AND units GREATER_EQUAL 5)
     set(headers ${ROOTSIM_PCH_HEADERS})
     if(ARG_TEST)
       list(APPEND headers <doctest/doctest.h>)
     endif()
     target_precompile_headers(${target} PRIVATE ${headers})
+    # clang stamps a precompiled header with its inputs' times: without the stamp ccache can reuse it
+    # (ccache also needs sloppiness = pch_defines,time_macros; docs/performance.md, "First build")
+    if(CMAKE_CXX_COMPILER_ID MATCHES "Clang")
+      target_compile_options(${target} PRIVATE "SHELL:-Xclang -fno-pch-timestamp")
+    endif()
   endif()
   if(unity)
     set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_MODE BATCH

@@ -54,5 +54,11 @@ function(rootsim_compile_speed target)
   if(unity)
     set_target_properties(${target} PROPERTIES UNITY_BUILD ON UNITY_BUILD_MODE BATCH
                                                UNITY_BUILD_BATCH_SIZE ${ROOTSIM_UNITY_BATCH})
+    # gcc's -Wsubobject-linkage flags a header's class holding a type of a .cpp's anonymous namespace (a
+    # pimpl's Impl) unless that .cpp is the file being compiled, which in a batch it is not; each .cpp
+    # is still compiled once, into one object, so the types cannot differ between translation units
+    if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+      target_compile_options(${target} PRIVATE -Wno-subobject-linkage)
+    endif()
   endif()
 endfunction()

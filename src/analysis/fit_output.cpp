@@ -16,14 +16,13 @@
 #include "rootsim/trajectory.hpp"
 #include "rootsim/write_rule.hpp"
 #include "rootsim/run_snapshots.hpp"
+#include "analysis_numbers.hpp"
 
 namespace fs = std::filesystem;
 
 namespace rootsim::app {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string csvCell(double v) { return std::isfinite(v) ? numberText(v) : std::string(); }
 

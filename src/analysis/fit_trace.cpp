@@ -34,14 +34,13 @@
 #include "rootsim/write_rule.hpp"
 #include "fit_parts.hpp"
 #include "rootsim/run_snapshots.hpp"
+#include "analysis_numbers.hpp"
 
 namespace fs = std::filesystem;
 
 namespace rootsim::app {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double parseBound(const std::string& text, const std::string& item) {
   double v = 0;

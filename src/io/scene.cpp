@@ -42,7 +42,7 @@ std::string describeNode(const toml::node& n) {
 namespace {
 
 // the text of the number a node was parsed from (src: the text toml++ parsed), "" when not found
-std::string numberText(const std::string& src, const toml::source_position& p) {
+std::string sourceNumberText(const std::string& src, const toml::source_position& p) {
   std::size_t pos = 0;
   for (std::uint32_t l = 1; l < p.line; ++l) {
     pos = src.find('\n', pos);
@@ -61,7 +61,7 @@ std::string underflowed(const toml::node& n, const std::string& src) {
   if (!n.is_floating_point()) return "";
   const double d = *n.value<double>();
   if (!std::isfinite(d) || std::isnormal(d)) return "";
-  const std::string text = numberText(src, n.source().begin);
+  const std::string text = sourceNumberText(src, n.source().begin);
   if (d == 0 && text.substr(0, text.find_first_of("eE")).find_first_of("123456789") == std::string::npos) return "";
   return "(got " + (text.empty() ? formatNumber(d, false) : printable(text)) + ", which a double holds only as " +
          formatNumber(d, false) + ": non-zero magnitudes below 2.2250738585072014e-308 underflow)";

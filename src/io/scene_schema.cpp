@@ -28,18 +28,18 @@ constexpr double kInf = 1e300;
 
 // a key's unit: the model's SI value is the scene value times factor (or divided by it, per = true:
 // rates per hour), computed exactly as written here, in the one place both directions live
-struct Unit {
+struct KeyUnit {
   double factor = 1;
   bool per = false;
 };
-constexpr Unit kOne{};
-constexpr Unit kMm{units::mm};
-constexpr Unit kHour{units::hour};
-constexpr Unit kPerHour{units::hour, true};
-constexpr Unit kDeg{units::deg};
-constexpr Unit kMpa{units::mpa};
+constexpr KeyUnit kOne{};
+constexpr KeyUnit kMm{units::mm};
+constexpr KeyUnit kHour{units::hour};
+constexpr KeyUnit kPerHour{units::hour, true};
+constexpr KeyUnit kDeg{units::deg};
+constexpr KeyUnit kMpa{units::mpa};
 
-double toSi(double v, Unit u) { return u.per ? v / u.factor : v * u.factor; }
+double toSi(double v, KeyUnit u) { return u.per ? v / u.factor : v * u.factor; }
 
 std::size_t textLength(double x) {
   char buf[64];
@@ -50,7 +50,7 @@ std::size_t textLength(double x) {
 // toSi gives x back bitwise, with the shortest text (so 40 * deg reads back as 40, not
 // 40.00000000000001, and loading the text gives x again); the plain conversion when none does (x is
 // not the product of any double and the factor: a model that no scene file can hold exactly)
-double fromSi(double x, Unit u) {
+double fromSi(double x, KeyUnit u) {
   if (u.factor == 1.0) return x;
   const double q = u.per ? x * u.factor : x / u.factor;
   if (!std::isfinite(q)) return q;
@@ -87,7 +87,7 @@ KeySpec make(const char* sec, const char* key, KeyType type, const char* doc) {
 // it, called with a SceneParams& to set and a const SceneParams& to get); the default is the field of
 // defaultModel() or OutputParams{}
 template <class Field>
-KeySpec real(const char* sec, const char* key, Field field, Unit u, double lo, bool loOpen, double hi, bool hiOpen,
+KeySpec real(const char* sec, const char* key, Field field, KeyUnit u, double lo, bool loOpen, double hi, bool hiOpen,
              const char* doc) {
   KeySpec k = make(sec, key, KeyType::Real, doc);
   k.lo = lo; k.loOpen = loOpen; k.hi = hi; k.hiOpen = hiOpen;

@@ -47,9 +47,9 @@ namespace rootsim {
 
 namespace {
 
-constexpr int kRadius = 3;                // blocks whose forces a block's dofs change, each side
-constexpr int kColours = 2 * kRadius + 1;
-constexpr int kBand = 3 * kRadius + 2;    // dof half-bandwidth
+constexpr int kForceReach = 3;            // blocks whose forces a block's dofs change, each side
+constexpr int kColours = 2 * kForceReach + 1;
+constexpr int kBand = 3 * kForceReach + 2;  // dof half-bandwidth
 constexpr int kTwistRadius = 2;           // blocks whose forces the twist of an element changes, each side
 constexpr int kTwistColours = kTwistRadius + 1;  // in elements (a pass nudges every third element)
 constexpr int kMaxHalvings = 30;
@@ -96,7 +96,7 @@ struct Window {
   }
   // the first element whose strains the window's forces need (the one before the first free node, and
   // those whose twist rows a window block's nudge reaches)
-  int firstElement() const { return std::max(0, b0 / 2 - 1 - (m > 0 ? kRadius / 2 + 1 : 0)); }
+  int firstElement() const { return std::max(0, b0 / 2 - 1 - (m > 0 ? kForceReach / 2 + 1 : 0)); }
   // the first element whose outside (node) forces the window's rows need: the element before the first
   // free node (its plate contact acts on that node); the frozen nodes before it are never read
   int outsideFrom() const { return std::max(0, b0 / 2 - 1); }
@@ -295,7 +295,7 @@ struct NewtonSolver {
       const int start = w.b0 + ((colour - w.b0 % kColours) + kColours) % kColours;
       if (start > 2 * w.n) continue;
       for (int c = 0; c < 3; ++c)
-        pass(start, kColours, 2 * w.n, c, ForceSpan{w.firstElement(), -1, w.firstElement()}, kRadius);
+        pass(start, kColours, 2 * w.n, c, ForceSpan{w.firstElement(), -1, w.firstElement()}, kForceReach);
     }
     // the mature twists: element blocks 2e + 1 < b0, about d3 only. Turning
     // element e about its own axis changes its shear and the curvatures at its two ends only (its
@@ -388,7 +388,7 @@ struct NewtonSolver {
       nw.ldlt.reset(N, kBand);
       // the frozen twists couple to their neighbours only (a tridiagonal chain up to the window)
       for (int j = 0; j < N; ++j)
-        for (int i = j; i <= std::min(N - 1, j < w.m - kRadius ? j + 1 : j + kBand); ++i)
+        for (int i = j; i <= std::min(N - 1, j < w.m - kForceReach ? j + 1 : j + kBand); ++i)
           nw.ldlt.addLower(i, j, 0.5 * (nw.lu.at(i, j) + nw.lu.at(j, i)));
     }
   }

@@ -43,6 +43,8 @@ NOT_A_MIRROR = {
     "tests/render/test_stills.cpp": "`rootsim render`'s stills (EQUIVALENT)",
     "tests/test_outputs.cpp": "a run directory's files together (outputs.hpp): summary.json against the time series",
     "tests/test_number_text.cpp": "include/rootsim/number_text.hpp, header only (numbers as text for every library)",
+    "tests/test_png_encode.cpp": "include/rootsim/png_encode.hpp, header only (the PNG encoder of the renderer and the figures)",
+    "tests/test_high_water.cpp": "include/rootsim/high_water.hpp, header only (buffers that grow to their high-water mark and stay)",
     "tests/render/test_write_render.cpp": "the write rule (src/io/write_rule.cpp) where pictures are drawn",
 }
 

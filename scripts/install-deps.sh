@@ -11,6 +11,7 @@ pkgs=(cmake ninja-build g++ pkg-config
       nlohmann-json3-dev                # every JSON file rootsim writes (src/io/json.cpp), a GLB's JSON read back (write_rule.cpp)
       libosmesa6-dev libglm-dev libstb-dev libavcodec-dev libavformat-dev libswscale-dev libavutil-dev
       libcairo2-dev fonts-dejavu-core python3 zlib1g-dev
+      libpng-dev                        # every PNG rootsim writes (png_encode.hpp: pHYs, the signature tEXt) and reads
       python3-dev pybind11-dev python3-pybind11 python3-numpy   # the Python package (python/)
       python3-pytest python3-matplotlib                         # its tests; examples/*.py
       clang libclang-rt-dev             # sanitizer + libFuzzer build (.ci/run, scripts/fuzz.sh)

@@ -28,24 +28,6 @@ using rootsim::test::kScene;
 fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("csv", name); }
 bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
-// a small grown state of the default model (0.1 mm elements), its strains
-struct Grown {
-  Model m;
-  Simulation sim;
-  RodStrains k;
-  Grown() : m(coarseModel()), sim(m) {
-    for (int i = 0; i < 8; ++i) sim.growthStep();
-    k.resize(sim.state().elements());
-    computeStrains(m.rod, sim.state(), k);
-  }
-  static Model coarseModel() {
-    Model m = defaultModel();
-    m.initial.elementLength = 0.1 * units::mm;
-    m.growth.stepTime = 0.1 * units::hour;
-    completeModel(m);
-    return m;
-  }
-};
 }  // namespace
 
 TEST_CASE("csv: a record's cells - plain and quoted fields with commas and doubled quotes") {
@@ -148,7 +130,7 @@ TEST_CASE("timeseries.csv reads back as the very doubles of the run's step recor
 
 TEST_CASE("shape.csv reads back (readCsvColumns) as the very doubles of the state's arc length and positions") {
   const fs::path d = scratch("shape");
-  const Grown g;
+  const rootsim::test::GrownRoot g;
   const RodState& s = g.sim.state();
   { std::ofstream(d / "shape.csv", std::ios::binary) << shapeCsv(g.m, s, g.k); }
   const CsvColumns c = readCsvColumns(d / "shape.csv");

@@ -229,6 +229,12 @@ TEST_CASE("fit by group: two genotypes differing in the twist / the difference r
     CHECK(js.find("\"verdict\": \"consistent\"", at) != std::string::npos);
     CHECK(jsonNumber(js, "seedlings", at) == 3);
   }
+  // the goodness names the covariance its chi-square was computed against: the group mean's, with the
+  // seedlings' scatter, not a trace's uncertainty alone (on stdout, in fit.json and in each group's own)
+  CHECK(r.out.find("dof against the group mean's covariance (its seedlings' scatter / n") != std::string::npos);
+  CHECK(r.out.find("uncertainty alone") == std::string::npos);
+  CHECK(js.find("\"against\": \"the answer's own run against the group mean's covariance") != std::string::npos);
+  CHECK(slurp(d / "g" / "groups" / "WT" / "fit.json").find("against the group mean's covariance") != std::string::npos);
   // the table on stdout
   CHECK(r.out.find("WT - mut: tropism.beta ") != std::string::npos);
   CHECK(r.out.find("; tropism.twist_r_tau -0.0") != std::string::npos);

@@ -75,6 +75,14 @@ TEST_CASE("goodness: the verdict and its degrees of freedom") {
   CHECK(few.pDof == 1);
   CHECK(few.verdict == "poor");
   CHECK(goodnessText(few).find("for 1 outputs (no more than the free keys)") != std::string::npos);
+  // the covariance it was computed against, as its maker names it, in both forms of the text
+  Goodness group = goodnessOf(3.0, 3, 2);
+  group.against = "the group mean's covariance";
+  CHECK(goodnessText(group).find("chi2 3 for 1 dof against the group mean's covariance, p ") == 0);
+  Goodness groupFew = few;
+  groupFew.against = "the group mean's covariance";
+  CHECK(goodnessText(groupFew).find("(no more than the free keys) against the group mean's covariance, p ") != std::string::npos);
+  CHECK(goodnessText(groupFew).find("uncertainty alone") == std::string::npos);
   // a failed run: no p, not consistent
   CHECK(goodnessOf(std::nan(""), 3, 1).verdict == "poor");
 }

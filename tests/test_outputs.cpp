@@ -3,47 +3,22 @@
 // run directory have their own tests: test_csv.cpp, test_trajectory.cpp, test_vtk.cpp.
 #include <doctest/doctest.h>
 
-#include <sys/mount.h>
-#include <unistd.h>
-
-#include <atomic>
-#include <chrono>
-#include <cstdint>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <limits>
-#include <mutex>
-#include <regex>
-#include <set>
-#include <sstream>
 #include <string>
-#include <vector>
-#include <zlib.h>
 
-#include "rootsim/errors.hpp"
 #include "rootsim/outputs.hpp"
 #include "rootsim/run_scene.hpp"
 #include "rootsim/scene.hpp"
-#include "rootsim/snapshot.hpp"
-#include "rootsim/units.hpp"
 #include "test_support.hpp"
-#include "vtk_support.hpp"
 
 using namespace rootsim;
 namespace fs = std::filesystem;
 
 namespace {
-using rootsim::test::Result;
-using rootsim::test::run;
-using rootsim::test::slurp;
 using rootsim::test::kScene;
-using rootsim::test::kSets;
-using rootsim::test::as;
-using rootsim::test::vtkArray;
-using rootsim::test::vtkOffset;
+using rootsim::test::slurp;
 fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("outputs", name); }
-
 }  // namespace
 
 TEST_CASE("summary.json: the JSON writer's numbers read back exactly, NaN is null, strings are escaped, and a run's summary agrees with its time series") {

@@ -99,7 +99,7 @@ TEST_CASE("plate scenes: a seedling's override changes that seedling only, and t
   CHECK(sc.plate.seedlings[0].overrides.empty());
   CHECK(sc.plate.seedlings[1].overrides == std::vector<std::string>{"tropism.beta=0.3"});
   // everything else is the plate's: the models' resolved keys differ in that one key
-  const std::vector<SceneValue> a = sceneValues(wt), b = sceneValues(mu);
+  const std::vector<SceneValue> a = sceneValues(wt, sc.output), b = sceneValues(mu, sc.output);
   REQUIRE(a.size() == b.size());
   int differ = 0;
   for (size_t i = 0; i < a.size(); ++i)

@@ -1,100 +1,103 @@
-// What one growing root writes into its folder (src/io/root_outputs.cpp): its streams, a time-series row
-// and a snapshot per output step read back as the simulation's, and a resumed root's files continued
-// from the positions a checkpoint saw, what was written after them replaced.
+// One growing root's folder (src/io/root_outputs.cpp): what it writes when it finishes (its own folder
+// marked whole, or the run directory left to RunDir), and a root resumed with the watch and the stream
+// positions its checkpoint saw, the leftovers of interrupted atomic writes removed.
 #include <doctest/doctest.h>
 
 #include <filesystem>
-#include <limits>
-#include <vector>
+#include <fstream>
+#include <string>
 
 #include "root_outputs.hpp"
 #include "rootsim/csv.hpp"
 #include "rootsim/model.hpp"
+#include "rootsim/run_dir.hpp"
 #include "rootsim/simulation.hpp"
-#include "rootsim/trajectory.hpp"
 #include "rootsim/units.hpp"
 #include "test_support.hpp"
 
 using namespace rootsim;
 namespace fs = std::filesystem;
+using detail::RootOutputs;
+using rootsim::test::slurp;
 
 namespace {
-// a value written in mm and read back in m: two roundings of half an ulp each
-constexpr double kUnitRounding = 2.0 * std::numeric_limits<double>::epsilon();
 Model coarseModel() {
   Model m = defaultModel();
   m.initial.elementLength = 0.1 * units::mm;
   m.growth.stepTime = 0.1 * units::hour;
-  m.output.trajectoryFormat = TrajectoryFormat::Both;
-  m.output.vtk = false;
+  m.growth.steps = 4;
   completeModel(m);
   return m;
 }
+OutputParams noVtk() {
+  OutputParams o;
+  o.vtk = false;
+  return o;
+}
 }  // namespace
 
-TEST_CASE("root outputs: each add writes a time-series row and a snapshot that read back as the simulation's") {
-  const fs::path d = rootsim::test::scratchDir("root_outputs", "streams");
+TEST_CASE("root outputs: a finished root writes shape, summary and result, and marks its own folder whole") {
+  const fs::path d = rootsim::test::scratchDir("root_outputs", "finish");
   const Model m = coarseModel();
-  Simulation sim(m);
-  std::vector<Snapshot> seen;
-  {
-    detail::RootStreams streams(d, m);
-    streams.add(sim);
-    seen.push_back(sim.snapshot());
-    for (int k = 0; k < 3; ++k) {
-      sim.growthStep();
-      streams.add(sim);
-      seen.push_back(sim.snapshot());
+  for (const bool own : {true, false}) {
+    CAPTURE(own);
+    const fs::path dir = d / (own ? "own" : "run");
+    fs::create_directories(dir);
+    Simulation sim(m);
+    RootOutputs root(dir, m, noVtk(), own, Vec3::Zero());
+    CHECK(root.dir() == dir);
+    root.add(sim);
+    root.start(sim.last());
+    for (int k = 1; k <= m.growth.steps; ++k) {
+      root.see(sim.growthStep());
+      root.add(sim);
     }
-    streams.close();
+    root.close();
+    const RootOutputs::Final f = root.finish(m, sim, 1.5);
+    CHECK(slurp(dir / "shape.csv") == f.shape);
+    CHECK(slurp(dir / "summary.json") == f.summary);
+    CHECK(slurp(dir / "result.csv") == f.result);
+    CHECK(f.summary.find("\"steps\": 4") != std::string::npos);
+    CHECK(f.summary.find("\"wall_time_s\": 1.5") != std::string::npos);
+    CHECK(f.summary.find("\"max_substeps_per_step\": " + std::to_string(root.watch().maxSubsteps)) != std::string::npos);
+    CHECK(readCsvColumns(dir / "timeseries.csv").values[0] == std::vector<double>{0, 1, 2, 3, 4});
+    if (own) {
+      CHECK(whyNotWhole(dir) == "");
+    } else {
+      CHECK_FALSE(fs::exists(dir / kRunMarker));  // the run directory's marker is RunDir's
+    }
   }
-  const CsvColumns ts = readCsvColumns(d / "timeseries.csv");
-  REQUIRE(ts.names[0] == "step");
-  CHECK(ts.values[0] == std::vector<double>{0, 1, 2, 3});
-  const std::vector<Snapshot> bin = readTrajectory(d / "trajectory.bin");
-  REQUIRE(bin.size() == 4);
-  for (std::size_t k = 0; k < bin.size(); ++k) {
-    CHECK(bin[k].step == seen[k].step);
-    // trajectory.bin holds the positions in mm: one rounding there and one back
-    CHECK((bin[k].x - seen[k].x).cwiseAbs().maxCoeff() <= kUnitRounding * seen[k].x.cwiseAbs().maxCoeff());
-  }
-  CHECK(readTrajectory(d / "trajectory.csv").size() == 4);
-  CHECK_FALSE(fs::exists(d / "trajectory.pvd"));
   fs::remove_all(d);
 }
 
-TEST_CASE("root outputs: a resumed root continues its files from the checkpoint's positions, what followed replaced") {
+TEST_CASE("root outputs: a resumed root keeps its checkpoint's watch and streams, and drops other interrupted writes") {
   const fs::path d = rootsim::test::scratchDir("root_outputs", "resume");
   const Model m = coarseModel();
   Simulation sim(m);
-  WriterPositions atCheckpoint;
+  PlateRootRun seen;
   {
-    detail::RootStreams streams(d, m);
-    streams.add(sim);
-    sim.growthStep();
-    streams.add(sim);
-    atCheckpoint = streams.positions();
-    sim.growthStep();
-    streams.add(sim);  // written after the checkpoint: a resumed run writes it again
-    streams.close();
+    RootOutputs root(d, m, noVtk(), false, Vec3::Zero());
+    root.add(sim);
+    root.start(sim.last());
+    root.see(sim.growthStep());
+    root.add(sim);
+    seen = root.checkpointed();
+    CHECK(seen.writers.timeseriesBytes > 0);
+    root.see(sim.growthStep());
+    root.add(sim);  // after the checkpoint: written again when resumed
+    // killed here: the streams stay temporary files as they are (a writer destroyed unclosed removes its
+    // own), and an atomic write was cut short
+    for (const char* f : {"timeseries.csv.tmp", "trajectory.bin.tmp"}) fs::copy_file(d / f, d / (std::string(f) + ".killed"));
   }
-  CHECK(readTrajectory(d / "trajectory.bin").size() == 3);
-  CHECK(atCheckpoint.trajectoryFrames == 2);
-  Simulation again(m);
-  again.growthStep();
-  again.growthStep();
-  again.growthStep();
-  {
-    detail::RootStreams resumed(d, m, &atCheckpoint);
-    resumed.add(again);
-    resumed.close();
-  }
-  const CsvColumns ts = readCsvColumns(d / "timeseries.csv");
-  CHECK(ts.values[0] == std::vector<double>{0, 1, 3});
-  const std::vector<Snapshot> bin = readTrajectory(d / "trajectory.bin");
-  REQUIRE(bin.size() == 3);
-  CHECK(bin[2].step == 3);
-  CHECK((bin[2].x - again.snapshot().x).cwiseAbs().maxCoeff() <= kUnitRounding * again.snapshot().x.cwiseAbs().maxCoeff());
-  CHECK(readTrajectory(d / "trajectory.csv").size() == 3);
+  for (const char* f : {"timeseries.csv.tmp", "trajectory.bin.tmp"}) fs::rename(d / (std::string(f) + ".killed"), d / f);
+  std::ofstream(d / "shape.csv.tmp") << "half";
+  RootOutputs resumed(d, m, noVtk(), false, Vec3::Zero(), &seen);
+  CHECK_FALSE(fs::exists(d / "shape.csv.tmp"));
+  CHECK(resumed.watch().maxSubsteps == seen.watch.maxSubsteps);
+  CHECK(resumed.watch().prevTime == seen.watch.prevTime);
+  CHECK(resumed.checkpointed().writers.timeseriesBytes == seen.writers.timeseriesBytes);
+  resumed.add(sim);
+  resumed.close();
+  CHECK(readCsvColumns(d / "timeseries.csv").values[0] == std::vector<double>{0, 1, 2});
   fs::remove_all(d);
 }

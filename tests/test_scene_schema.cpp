@@ -1,5 +1,5 @@
 // the scene key schema (src/io/scene_schema.cpp): every key's setter and getter of the model, its range
-// and the relations buildModel checks; through it the scene of a model built in code (sceneOf,
+// and the relations buildParams checks; through it the scene of a model built in code (sceneOf,
 // src/io/scene.cpp): the getters read the model back into scene values, so model -> scene -> model is
 // exact and the text is the one a scene file with the same values resolves to (what `rootsim run`
 // writes as scene.toml)
@@ -85,10 +85,12 @@ std::vector<sd::Value> otherValues(const sd::KeySpec& k) {
   return out;
 }
 
-// two models: every key of the schema (valuesOf, bitwise), and what the schema does not map: the name,
-// the obstacles and the derived length scale. An empty result means the same model
-std::string differences(const Model& a, const Model& b) {
-  std::string out = differingKeys(sd::valuesOf(a, "a"), sd::valuesOf(b, "b"));
+// two models with their outputs: every key of the schema (valuesOf, bitwise), and what the schema does
+// not map: the name, the obstacles and the derived length scale. An empty result means the same model
+std::string differences(const sd::SceneParams& pa, const sd::SceneParams& pb) {
+  std::string out = differingKeys(sd::valuesOf(pa, "a"), sd::valuesOf(pb, "b"));
+  const Model& a = pa.model;
+  const Model& b = pb.model;
   if (a.name != b.name) out += "name ";
   if (a.env.obstacles.size() != b.env.obstacles.size()) out += "obstacles ";
   if (std::bit_cast<std::uint64_t>(a.solver.lengthScale) != std::bit_cast<std::uint64_t>(b.solver.lengthScale))
@@ -99,7 +101,7 @@ std::string differences(const Model& a, const Model& b) {
 // a model set in code and the --set overrides that say the same
 struct Variant {
   const char* what;
-  std::function<void(Model&)> set;
+  std::function<void(Model&, OutputParams&)> set;
   std::vector<std::string> sets;
 };
 
@@ -108,38 +110,38 @@ const std::vector<Variant>& variants() {
   using units::hour;
   using units::mm;
   static const std::vector<Variant> v = {
-      {"default", [](Model&) {}, {}},
+      {"default", [](Model&, OutputParams&) {}, {}},
       {"alpha 65, beta 0.2, gamma 0.05",
-       [](Model& m) {
+       [](Model& m, OutputParams&) {
          m.env.plane.alpha = 65 * deg;
          m.tropism.beta = 0.2;
          m.tropism.gamma = 0.05;
        },
        {"plane.alpha_deg=65", "tropism.beta=0.2", "tropism.gamma=0.05"}},
       // 7.5 * deg / deg is not 7.5: the getter still reads 7.5 (the figure's alpha = 7.5 runs)
-      {"alpha 7.5", [](Model& m) { m.env.plane.alpha = 7.5 * deg; }, {"plane.alpha_deg=7.5"}},
+      {"alpha 7.5", [](Model& m, OutputParams&) { m.env.plane.alpha = 7.5 * deg; }, {"plane.alpha_deg=7.5"}},
       {"twist and apical sensing",
-       [](Model& m) {
+       [](Model& m, OutputParams&) {
          m.env.plane.alpha = 37.5 * deg;
          m.tropism.rTau = -0.35;
          m.tropism.sensing = Sensing::Apical;
        },
        {"plane.alpha_deg=37.5", "tropism.twist_r_tau=-0.35", "tropism.sensing=apical"}},
       {"free organ, coarse quick run",
-       [](Model& m) {
+       [](Model& m, OutputParams& o) {
          m.env.plane.enabled = false;
          m.env.adhesion = false;
          m.env.plane.alpha = 40 * deg;
          m.initial.elementLength = 0.1 * mm;
          m.growth.stepTime = 0.1 * hour;
          m.growth.steps = 445;
-         m.output.vtk = false;
-         m.output.everySteps = 5;
+         o.vtk = false;
+         o.everySteps = 5;
        },
        {"plane.enabled=false", "adhesion.enabled=false", "plane.alpha_deg=40", "root.element_length_mm=0.1",
         "growth.step_h=0.1", "growth.steps=445", "output.vtk=false", "output.every_steps=5"}},
       {"self-contact off, dynamic solver with viscous damping",
-       [](Model& m) {
+       [](Model& m, OutputParams&) {
          m.env.selfContact.enabled = false;
          m.solver.kind = SolverKind::Dynamic;
          m.solver.damping = Damping::Viscous;
@@ -151,7 +153,7 @@ const std::vector<Variant>& variants() {
        {"self_contact.enabled=false", "solver.kind=dynamic", "solver.damping=viscous", "solver.damping_per_s=3e4",
         "solver.mass=physical", "solver.force_tol=3e-5", "solver.max_substeps=123456"}},
       {"friction, circumnutation, growth zone and rate, radius, window",
-       [](Model& m) {
+       [](Model& m, OutputParams&) {
          m.env.friction.enabled = true;
          m.env.friction.muStatic = 0.4;
          m.env.friction.muKinetic = 0.3;
@@ -171,7 +173,7 @@ const std::vector<Variant>& variants() {
         "growth.rate_per_h=0.35", "root.radius_mm=0.13", "root.youngs_modulus_mpa=7.3", "solver.window_mm=2.5",
         "solver.seed=42", "solver.perturbation=3e-6"}},
       {"mechanics only: loads, free base, gravity",
-       [](Model& m) {
+       [](Model& m, OutputParams&) {
          m.growth.enabled = false;
          m.env.plane.enabled = false;
          m.env.tipForce = Vec3(1e-6, 0, -2.5e-6);
@@ -185,12 +187,12 @@ const std::vector<Variant>& variants() {
   return v;
 }
 
-Model modelOf(const Variant& v) {
-  Model m = defaultModel();
-  m.name = "variant";
-  v.set(m);
-  completeModel(m);
-  return m;
+sd::SceneParams paramsOf(const Variant& v) {
+  sd::SceneParams p{defaultModel(), OutputParams{}};
+  p.model.name = "variant";
+  v.set(p.model, p.output);
+  completeModel(p.model);
+  return p;
 }
 
 }  // namespace
@@ -198,16 +200,16 @@ Model modelOf(const Variant& v) {
 TEST_CASE("sceneOf: model -> scene -> model is exact, and the text is the scene file's") {
   for (const Variant& v : variants()) {
     INFO(v.what);
-    const Model m = modelOf(v);
-    const Scene typed = sceneOf(m);
+    const sd::SceneParams m = paramsOf(v);
+    const Scene typed = sceneOf(m.model, m.output);
     // the scene holds the model given
-    CHECK(differences(typed.model, m) == "");
+    CHECK(differences({typed.model, typed.output}, m) == "");
     // its text loads back to the same model
     const Scene loaded = parseScene(typed.resolvedToml, "runs/variant.toml");
-    CHECK(differences(loaded.model, m) == "");
+    CHECK(differences({loaded.model, loaded.output}, m) == "");
     // and it is the text the same settings given as overrides resolve to
     const Scene fromSets = parseScene("", "scenes/variant.toml", v.sets);
-    CHECK(differences(fromSets.model, m) == "");
+    CHECK(differences({fromSets.model, fromSets.output}, m) == "");
     CHECK(typed.resolvedToml == fromSets.resolvedToml);
   }
 }
@@ -222,8 +224,8 @@ TEST_CASE("sceneOf: the text is the scene.toml `rootsim run` writes") {
   }
   for (const Variant& v : variants()) {
     INFO(v.what);
-    Model m = modelOf(v);
-    m.growth.steps = 0;  // the scene file is written before anything runs; no need to grow
+    sd::SceneParams m = paramsOf(v);
+    m.model.growth.steps = 0;  // the scene file is written before anything runs; no need to grow
     m.output.vtk = false;
     std::string args = "run " + (dir / "variant.toml").string() + " --out " + (dir / "run").string() + " --force --quiet";
     for (const std::string& s : v.sets) args += " --set '" + s + "'";
@@ -233,7 +235,7 @@ TEST_CASE("sceneOf: the text is the scene.toml `rootsim run` writes") {
     std::ifstream in(dir / "run" / "scene.toml");
     std::stringstream written;
     written << in.rdbuf();
-    CHECK(sceneOf(m).resolvedToml == written.str());
+    CHECK(sceneOf(m.model, m.output).resolvedToml == written.str());
   }
   fs::remove_all(dir);
 }
@@ -242,12 +244,12 @@ TEST_CASE("sceneOf: a model out of a key's range is refused, naming the key") {
   Model m = defaultModel();
   m.name = "bad";
   m.tropism.beta = -1;
-  CHECK_THROWS_WITH_AS(sceneOf(m), doctest::Contains("model bad: tropism.beta must be in [0, 100] (got -1)"),
+  CHECK_THROWS_WITH_AS(sceneOf(m, OutputParams{}), doctest::Contains("model bad: tropism.beta must be in [0, 100] (got -1)"),
                        SceneError);
   m = defaultModel();
   m.name = "bad";
   m.initial.elementLength = 0.6 * units::mm;  // more than half the initial length
-  CHECK_THROWS_WITH_AS(sceneOf(m), doctest::Contains("model bad: root.element_length_mm must be at most half"),
+  CHECK_THROWS_WITH_AS(sceneOf(m, OutputParams{}), doctest::Contains("model bad: root.element_length_mm must be at most half"),
                        SceneError);
 }
 
@@ -311,7 +313,7 @@ TEST_CASE("the element cap refuses scenes that would grow without bound naming k
         "(no error)");
 }
 
-// Relations between keys (buildModel) that the values chosen must satisfy: the tip loads and a free base
+// Relations between keys (buildParams) that the values chosen must satisfy: the tip loads and a free base
 // apply to mechanics-only scenes, so those keys are varied from growth.enabled = false (in both the
 // reference and the changed scene); friction.mu_kinetic may not exceed friction.mu_static, whose default
 // is 0, so it is varied from mu_static = 0.6 (in both). Every other key's first in-range candidate (twice
@@ -323,7 +325,7 @@ TEST_CASE("every scene key of the schema: a non-default value changes the model 
   sd::Values defaults;
   for (const sd::KeySpec& k : keys) defaults[k.full()] = sd::defaultValue(k);
   // the defaults are defaultModel()'s values
-  CHECK(differingKeys(sd::valuesOf(defaultModel(), "default"), defaults) == "");
+  CHECK(differingKeys(sd::valuesOf({defaultModel(), OutputParams{}}, "default"), defaults) == "");
   int checked = 0;
   for (const sd::KeySpec& k : keys) {
     const std::string key = k.full();
@@ -331,16 +333,16 @@ TEST_CASE("every scene key of the schema: a non-default value changes the model 
     sd::Values base = defaults;
     if (key == "load.tip_force_n" || key == "load.tip_torque_nm" || key == "load.base") base["growth.enabled"].b = false;
     if (key == "friction.mu_kinetic") base["friction.mu_static"].num = 0.6;  // the default mu_static is 0
-    const Model ref = sd::buildModel(base, "t");
+    const sd::SceneParams ref = sd::buildParams(base, "t");
     const sd::Values refValues = sd::valuesOf(ref, "model");
     REQUIRE(differingKeys(refValues, base) == "");
     bool tried = false;
     for (const sd::Value& v : otherValues(k)) {
       sd::Values changed = base;
       changed[key] = v;
-      Model m;
+      sd::SceneParams m;
       try {
-        m = sd::buildModel(changed, "t");
+        m = sd::buildParams(changed, "t");
       } catch (const SceneError& e) {
         MESSAGE(key << " = " << shown(v) << " breaks a relation: " << std::string(e.what()) << "; trying the next value");
         continue;
@@ -352,10 +354,10 @@ TEST_CASE("every scene key of the schema: a non-default value changes the model 
       CHECK(differingKeys(got, changed) == "");
       CHECK(differingKeys(got, refValues) == key + " (" + shown(got.at(key)) + " vs " + shown(refValues.at(key)) + ") ");
       // model -> scene text -> model: every key's value bitwise
-      const Scene typed = sceneOf(m);
+      const Scene typed = sceneOf(m.model, m.output);
       CHECK(typed.resolvedToml == sd::resolvedToml(got, "t"));
       const Scene loaded = parseScene(typed.resolvedToml, "runs/t.toml");
-      CHECK(differingKeys(sd::valuesOf(loaded.model, "loaded"), got) == "");
+      CHECK(differingKeys(sd::valuesOf({loaded.model, loaded.output}, "loaded"), got) == "");
       ++checked;
       break;
     }

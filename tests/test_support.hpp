@@ -2,7 +2,8 @@
 // Process and file helpers shared by the tests that run the rootsim binary or read run directories
 // (rootsim_io_tests, test_figure.cpp, and tests/render through run_rootsim.hpp and test_files.hpp): running the binary,
 // a skipped case, a fresh scratch folder, a file's bytes, a folder's files, two runs compared byte for
-// byte, a run killed by the test hook. The binary helpers need ROOTSIM_BINARY, the scene paths ROOTSIM_SOURCE_DIR (tests/CMakeLists.txt).
+// byte, a run killed by the test hook, a small grown root for the writers. The binary helpers need ROOTSIM_BINARY, the
+// scene paths ROOTSIM_SOURCE_DIR (tests/CMakeLists.txt).
 #include <doctest/doctest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -15,6 +16,11 @@
 #include <map>
 #include <sstream>
 #include <string>
+
+#include "rootsim/model.hpp"
+#include "rootsim/rod.hpp"
+#include "rootsim/simulation.hpp"
+#include "rootsim/units.hpp"
 
 namespace rootsim::test {
 
@@ -61,11 +67,44 @@ inline Result runKilled(const std::string& args, const std::string& hook) {
 // shipped scenes the tests run
 inline const std::string kScene = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2b_waving.toml";
 inline const std::string kCantilever = std::string(ROOTSIM_SOURCE_DIR) + "/scenes/cantilever_tip_load.toml";
+#ifdef ROOTSIM_BINARY
+// `rootsim run` of kScene into out with more arguments (--set ..., --quiet), required to succeed: out
+inline std::filesystem::path runScene(const std::filesystem::path& out, const std::string& args) {
+  const Result r = run("run " + kScene + " " + args + " --out " + out.string());
+  REQUIRE_MESSAGE(r.code == 0, r.out);
+  return out;
+}
+#endif
 #endif
 // the resume tests' settings: every output on (both trajectory formats, ParaView), checkpoints only
 // where the kill hook asks
 inline const std::string kSets = " --set growth.steps=120 --set output.every_steps=10 --set output.trajectory_format=both "
                                  "--set output.checkpoint_every_s=1e6 --quiet";
+
+// --- a small grown root ---
+
+// the default model with 0.1 mm elements and 0.1 h growth steps, completed: the writers' tests' model
+inline Model coarseModel() {
+  Model m = defaultModel();
+  m.initial.elementLength = 0.1 * units::mm;
+  m.growth.stepTime = 0.1 * units::hour;
+  completeModel(m);
+  return m;
+}
+
+// a root of coarseModel() grown for a few steps: its model, simulation and strains
+struct GrownRoot {
+  Model m;
+  Simulation sim;
+  RodStrains k;
+  explicit GrownRoot(int steps = 8) : m(coarseModel()), sim(m) { grow(steps); }
+  // steps more growth steps, the strains of the grown state
+  void grow(int steps) {
+    for (int i = 0; i < steps; ++i) sim.growthStep();
+    k.resize(sim.state().elements());
+    computeStrains(m.rod, sim.state(), k);
+  }
+};
 
 // --- skipped cases ---
 

@@ -3,32 +3,19 @@
 // truncated, corrupt or out-of-bounds file refused naming the file and the line or byte.
 #include <doctest/doctest.h>
 
-#include <sys/mount.h>
-#include <unistd.h>
-
-#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
-#include <mutex>
-#include <regex>
-#include <set>
-#include <sstream>
 #include <string>
 #include <vector>
-#include <zlib.h>
 
 #include "rootsim/errors.hpp"
 #include "rootsim/outputs.hpp"
-#include "rootsim/run_scene.hpp"
-#include "rootsim/scene.hpp"
 #include "rootsim/snapshot.hpp"
-#include "rootsim/units.hpp"
 #include "test_support.hpp"
-#include "vtk_support.hpp"
 
 using namespace rootsim;
 namespace fs = std::filesystem;
@@ -36,34 +23,9 @@ namespace fs = std::filesystem;
 namespace {
 using rootsim::test::Result;
 using rootsim::test::run;
+using rootsim::test::runScene;
 using rootsim::test::slurp;
-using rootsim::test::kScene;
-using rootsim::test::kSets;
-using rootsim::test::as;
-using rootsim::test::vtkArray;
-using rootsim::test::vtkOffset;
 fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("trajectory", name); }
-}  // namespace
-
-namespace {
-// a small grown state of the default model (0.1 mm elements), its strains
-struct Grown {
-  Model m;
-  Simulation sim;
-  RodStrains k;
-  Grown() : m(coarseModel()), sim(m) {
-    for (int i = 0; i < 8; ++i) sim.growthStep();
-    k.resize(sim.state().elements());
-    computeStrains(m.rod, sim.state(), k);
-  }
-  static Model coarseModel() {
-    Model m = defaultModel();
-    m.initial.elementLength = 0.1 * units::mm;
-    m.growth.stepTime = 0.1 * units::hour;
-    completeModel(m);
-    return m;
-  }
-};
 }  // namespace
 
 TEST_CASE("a trajectory with NaN or inf or a malformed cell is refused naming file and line") {
@@ -127,7 +89,7 @@ TEST_CASE("a trajectory with a huge coordinate or radius is refused naming file 
 TEST_CASE("a truncated or corrupt trajectory.bin is refused naming the file and the byte") {
   const fs::path d = scratch("badbin");
   const fs::path out = d / "r";
-  REQUIRE(run("run " + kScene + " --set growth.steps=20 --set output.vtk=false --quiet --out " + out.string()).code == 0);
+  runScene(out, "--set growth.steps=20 --set output.vtk=false --quiet");
   REQUIRE(fs::exists(out / "trajectory.bin"));
   CHECK(!fs::exists(out / "trajectory.csv"));
   // readTrajectory(run/trajectory.csv) reads the binary sibling (what callers written for the CSV do)
@@ -157,7 +119,7 @@ TEST_CASE("a truncated or corrupt trajectory.bin is refused naming the file and 
 TEST_CASE("a trajectory.bin with one huge finite coordinate is refused by render quickly (it grew past 4 GB)") {
   const fs::path d = scratch("hugebin");
   const fs::path out = d / "r";
-  REQUIRE(run("run " + kScene + " --set growth.steps=20 --set output.vtk=false --quiet --out " + out.string()).code == 0);
+  runScene(out, "--set growth.steps=20 --set output.vtk=false --quiet");
   std::string b = slurp(out / "trajectory.bin");
   const double huge = 1e7;  // mm
   std::memcpy(b.data() + 16 + 24 + 8, &huge, 8);  // y of node 0 of the first frame
@@ -176,13 +138,11 @@ TEST_CASE("a trajectory.bin with one huge finite coordinate is refused by render
 
 TEST_CASE("trajectory.csv and trajectory.bin written by their writers read back as the snapshots, and a continued file replaces what followed") {
   const fs::path d = scratch("trajrt");
-  Grown g;
+  rootsim::test::GrownRoot g;
   std::vector<Snapshot> snaps;
   snaps.push_back(makeSnapshot(g.m.rod, g.sim.state(), g.k, 8));
   snaps.back().timeH = 0.8;
-  for (int i = 0; i < 3; ++i) g.sim.growthStep();
-  g.k.resize(g.sim.state().elements());
-  computeStrains(g.m.rod, g.sim.state(), g.k);
+  g.grow(3);
   snaps.push_back(makeSnapshot(g.m.rod, g.sim.state(), g.k, 11));
   snaps.back().timeH = 1.1;
   REQUIRE(snaps[1].elements() > 0);

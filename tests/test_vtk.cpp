@@ -2,28 +2,12 @@
 // run's snapshots, trajectory.bin and trajectory.csv agreeing with them.
 #include <doctest/doctest.h>
 
-#include <sys/mount.h>
-#include <unistd.h>
-
-#include <atomic>
-#include <chrono>
 #include <cstdint>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <limits>
-#include <mutex>
-#include <regex>
-#include <set>
-#include <sstream>
 #include <string>
 #include <vector>
-#include <zlib.h>
 
-#include "rootsim/errors.hpp"
 #include "rootsim/outputs.hpp"
-#include "rootsim/run_scene.hpp"
-#include "rootsim/scene.hpp"
 #include "rootsim/snapshot.hpp"
 #include "rootsim/units.hpp"
 #include "test_support.hpp"
@@ -33,11 +17,9 @@ using namespace rootsim;
 namespace fs = std::filesystem;
 
 namespace {
-using rootsim::test::Result;
-using rootsim::test::run;
-using rootsim::test::slurp;
-using rootsim::test::kScene;
 using rootsim::test::kSets;
+using rootsim::test::runScene;
+using rootsim::test::slurp;
 using rootsim::test::as;
 using rootsim::test::vtkArray;
 using rootsim::test::vtkOffset;
@@ -47,7 +29,7 @@ fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("vt
 TEST_CASE("ParaView files are zlib-compressed binary that decodes to the snapshot and trajectory.bin reads as the CSV") {
   const fs::path d = scratch("formats");
   const fs::path out = d / "r";
-  REQUIRE(run("run " + kScene + kSets + " --out " + out.string()).code == 0);
+  runScene(out, kSets);
   const std::vector<rootsim::Snapshot> csv = rootsim::readTrajectory(out / "trajectory.csv");
   const std::vector<rootsim::Snapshot> bin = rootsim::readTrajectory(out / "trajectory.bin");
   REQUIRE(csv.size() == 13);
@@ -102,4 +84,16 @@ TEST_CASE("ParaView files are zlib-compressed binary that decodes to the snapsho
     }
   }
   fs::remove_all(d);
+}
+
+TEST_CASE("a collection of parts lists each part's snapshots under its folder, numbered and named after it") {
+  const std::vector<PvdPart> parts = {{"A", "roots/A", {{0.0, "vtk/step_000000.vtp"}, {0.5, "vtk/step_000010.vtp"}}},
+                                      {"A.1", "roots/A.1", {{0.5, "vtk/step_000010.vtp"}}}};
+  CHECK(partsPvdText(parts) ==
+        "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n"
+        "  <DataSet timestep=\"0.0\" part=\"0\" name=\"A\" file=\"roots/A/vtk/step_000000.vtp\"/>\n"
+        "  <DataSet timestep=\"0.5\" part=\"0\" name=\"A\" file=\"roots/A/vtk/step_000010.vtp\"/>\n"
+        "  <DataSet timestep=\"0.5\" part=\"1\" name=\"A.1\" file=\"roots/A.1/vtk/step_000010.vtp\"/>\n"
+        "</Collection>\n</VTKFile>\n");
+  CHECK(partsPvdText({}) == pvdText({}));
 }

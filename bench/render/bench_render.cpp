@@ -11,12 +11,14 @@
 #include <string>
 #include <vector>
 
+#include <stb_image_write.h>
 #include <unistd.h>
 
 #include "rootsim/compose.hpp"
 #include "rootsim/gl_renderer.hpp"
 #include "rootsim/movie.hpp"
 #include "rootsim/png.hpp"
+#include "rootsim/png_encode.hpp"
 #include "rootsim/render_scene.hpp"
 #include "rootsim/video_writer.hpp"
 
@@ -111,6 +113,38 @@ void BM_Png(benchmark::State& st) {
   std::filesystem::remove(path);
 }
 BENCHMARK(BM_Png)->Args({1920, 1080})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+// a frame's PNG in memory at the renderer's settings (zlib level 1, "sub" filter): arg 0 libpng
+// (encodeSignedPng, what writePng writes), arg 1 stb's writer at the same settings, the encoder libpng replaced
+void BM_PngEncoder(benchmark::State& st) {
+  const int w = 1920, h = 1080;
+  const Snapshot s = wavingRoot(0);
+  const View v = view(w, h);
+  GlRenderer r(w, h);
+  const Image img = r.render(buildRenderScene(s, info(), v, frameFor({s}, info(), v)));
+  std::size_t bytes = 0;
+  if (st.range(0) == 0) {
+    PngOptions o;
+    o.compressionLevel = 1;
+    o.filters = PNG_FILTER_SUB;
+    std::string why;
+    for (auto _ : st) bytes = encodeSignedPng({img.rgba.data(), w, h, 4, 4 * static_cast<std::size_t>(w)}, o, &why).size();
+  } else {
+    stbi_write_png_compression_level = 1;
+    stbi_write_force_png_filter = 1;
+    std::string out;
+    auto append = [](void* ctx, void* data, int size) {
+      static_cast<std::string*>(ctx)->append(static_cast<const char*>(data), static_cast<std::size_t>(size));
+    };
+    for (auto _ : st) {
+      out.clear();
+      stbi_write_png_to_func(append, &out, w, h, 4, img.rgba.data(), 4 * w);
+      bytes = out.size();
+    }
+  }
+  st.counters["bytes"] = static_cast<double>(bytes);
+}
+BENCHMARK(BM_PngEncoder)->ArgName("stb")->Arg(0)->Arg(1)->Unit(benchmark::kMillisecond)->UseRealTime();
 
 // swscale + x264 (crf 18, preset veryfast) per frame, on frames that change like a movie's
 void BM_Encode(benchmark::State& st) {

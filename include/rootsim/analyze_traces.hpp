@@ -8,11 +8,12 @@
 #include <Eigen/Core>
 
 #include "rootsim/traits.hpp"
+#include "rootsim/limits.hpp"
 
 namespace rootsim::app {
 
 struct AnalyzeOptions {
-  static constexpr double kUnset = -1e300;  // a number flag not given
+  static constexpr double kUnset = kUnsetFlag;  // a number flag not given (limits.hpp)
   std::vector<std::string> files;  // RSML files; several files of one plate at several times give rates
   double pxPerMm = kUnset;         // --px-per-mm: pixels per millimetre, for files whose unit is pixel
   std::string downhill = "+y";     // --downhill: +y, -y, or DEG (the angle of downhill from the file's +y

@@ -4,11 +4,12 @@
 #include <filesystem>
 #include <string>
 #include <vector>
+#include "rootsim/limits.hpp"
 
 namespace rootsim::app {
 
 struct ExportOptions {
-  static constexpr double kUnset = -1e300;  // a number flag not given
+  static constexpr double kUnset = kUnsetFlag;  // a number flag not given (limits.hpp)
   std::string runDir;
   // outputs: at least one
   std::string rsml;       // --rsml FILE: RSML 1.0 (docs/rsml.md)

@@ -28,10 +28,11 @@ struct Goodness {
                          // no more outputs than keys: its p is an upper bound, the keys' tuning left out)
   double pValue = 1;
   std::string verdict;   // "consistent" (p >= kPoorFitPValue) or "poor"
+  std::string against = "the trace's uncertainty alone";  // the covariance chi2 was computed against
 };
 Goodness goodnessOf(double chi2, int outputs, int freeKeys);
-// "chi2 817 for 14 dof against the trace's uncertainty alone, p < 1e-16: poor" (chi2Name: how to write
-// chi-square, "chi2" on a terminal, "χ²" in a picture)
+// "chi2 817 for 14 dof against the trace's uncertainty alone, p < 1e-16: poor" (g.against after
+// "against"; chi2Name: how to write chi-square, "chi2" on a terminal, "χ²" in a picture)
 std::string goodnessText(const Goodness& g, const std::string& chi2Name = "chi2");
 
 // a fit's answer: the index of the smallest objective among its evaluated runs (non-finite ones are

@@ -33,6 +33,11 @@ inline constexpr double kFigurePixels = 20000;
 inline constexpr double kSeriesFiles = 1e5;
 }  // namespace caps
 
+// a number flag not given: the value the options structs (AnalyzeOptions, RenderOptions, ExportOptions)
+// hold until the command line sets it
+inline constexpr double kUnsetFlag = -1e300;
+constexpr bool flagGiven(double v) { return v != kUnsetFlag; }
+
 // the range a number flag accepts, in its unit; open ends exclude the bound
 struct NumberRange {
   double lo = 0, hi = 0;

@@ -42,22 +42,6 @@ struct AnalysisParams {
                                    // (docs/model.md, Observables)
 };
 
-// how the trajectory is written (docs/outputs.md)
-enum class TrajectoryFormat {
-  Binary,  // trajectory.bin: raw little-endian doubles, about half the CSV (docs/outputs.md), read back exactly
-  Csv,     // trajectory.csv: one text row per node and snapshot
-  Both     // both files
-};
-
-struct OutputParams {
-  int everySteps = 10;             // snapshot and time-series row every this many growth steps
-  bool trajectory = true;          // write the trajectory (needed by `rootsim render`)
-  TrajectoryFormat trajectoryFormat = TrajectoryFormat::Binary;
-  bool vtk = true;                 // write ParaView .vtp snapshots and trajectory.pvd
-  double checkpointEvery = 60.0;   // a growing run writes DIR.partial/checkpoint.bin after the first growth
-                                   // step at least this much wall time after the last one [s] (0: every step)
-};
-
 struct Model {
   std::string name;                // scene name (file stem)
   RodParams rod;
@@ -67,12 +51,11 @@ struct Model {
   TropismParams tropism;
   SolverOptions solver;
   AnalysisParams analysis;
-  OutputParams output;
 };
 
 // The defaults: the paper's parameters (docs/model.md, Experiment and parameters) and rootsim's numerical
 // choices. They are written once, as the member initialisers of the parameter structs (this header, rod.hpp,
-// environment.hpp, relax.hpp, initial.hpp); defaultModel() is the way to read them, and the scene
+// environment.hpp, relax.hpp, initial.hpp; what a run writes: io's output_params.hpp); defaultModel() is the way to read them, and the scene
 // schema takes every key's default from it.
 Model defaultModel();
 

@@ -32,6 +32,11 @@ struct NewtonWorkspace {
   bool factorsValid = false;      // lu holds the LU factors of the last relaxation's last Jacobian, for
   int factorsDofs = 0;            //   this many unknowns from this first block: the next relaxation's
   int factorsFirstBlock = 0;      //   first (chord) iteration uses them (relax_newton.cpp)
+  // lu holds, unfactorised, this root's block of the last Jacobian of a plate's coupled solve, of
+  // coupledBlockDofs unknowns from block coupledBlockFirst (-1: it does not): the next relaxation's
+  // stability check reads it when the root is in equilibrium already (scratch: set and read within a
+  // growth step)
+  int coupledBlockDofs = -1, coupledBlockFirst = 0;
   // the frozen twists' stiffness, a tridiagonal chain (relax_newton.cpp): per element e < matureValid,
   // K(e-1, e), K(e, e), K(e+1, e) [N m / rad], differenced at an earlier state; the relaxations since
   // the whole chain was last differenced

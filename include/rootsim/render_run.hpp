@@ -7,11 +7,12 @@
 #include "rootsim/compare_trace.hpp"
 #include "rootsim/model.hpp"
 #include "rootsim/movie_look.hpp"
+#include "rootsim/limits.hpp"
 
 namespace rootsim::app {
 
 struct RenderOptions {
-  static constexpr double kUnset = -1e300;  // a number flag not given
+  static constexpr double kUnset = kUnsetFlag;  // a number flag not given (limits.hpp)
   std::string runDir;
   // outputs: with none of mp4, pngDir, finalPng, png given, RUN_DIR/movie.mp4 and RUN_DIR/final_top.png;
   // otherwise exactly the ones given

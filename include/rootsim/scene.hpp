@@ -6,6 +6,7 @@
 
 #include "rootsim/errors.hpp"
 #include "rootsim/model.hpp"
+#include "rootsim/output_params.hpp"
 #include "rootsim/plate.hpp"
 
 namespace rootsim {
@@ -18,6 +19,7 @@ struct Scene {
   // the root's model; for a plate ([[seedling]] tables, docs/plate.md) the plate-wide keys' model, or
   // the seedling's model when the plate has one seedling (a plate run's roots/NAME/scene.toml)
   Model model;
+  OutputParams output;       // what the run writes ([output]; a plate's for all its roots)
   PlateSpec plate;           // the seedlings (none: a scene of one root alone)
   std::string path;          // file it came from ("" for text)
   std::string resolvedToml;  // every key with its value, defaults filled in
@@ -46,7 +48,8 @@ std::string sceneKeyType(const std::string& key);
 // The scene's model is what that text loads to: the model's fields the schema maps (bitwise, when
 // each is a scene value times its unit, as every model built from scene values is), its obstacles, and
 // defaults for the rest. Throws SceneError naming the key ("model NAME: tropism.beta must be ...")
-Scene sceneOf(const Model& model);
+// output: what the run writes ([output])
+Scene sceneOf(const Model& model, const OutputParams& output);
 
 // the keys "section.key" a scene file's text sets itself (not those it leaves to their defaults), in the
 // file's order; SceneError as loadScene for a file that does not parse
@@ -57,8 +60,9 @@ struct SceneValue {
   std::string key;   // "section.key"; an obstacle's "obstacle[k].key" (k from 1, as in messages)
   std::string text;  // the value in TOML syntax: 0.2, true, "local", [0.0, 0.0, 0.0]
 };
-// every key of that scene: the sections' keys in the order of the resolved text, then each obstacle's
-std::vector<SceneValue> sceneValues(const Model& model);
+// every key of the scene of a model and what its run writes: the sections' keys in the order of the
+// resolved text, then each obstacle's
+std::vector<SceneValue> sceneValues(const Model& model, const OutputParams& output);
 
 // the markdown table of the plate's keys of one table ("plate", "population", "seedling", "laterals"):
 // each key's default, range and meaning, as the scene schema declares them (docs/plate.md's generated

@@ -14,7 +14,12 @@ inline constexpr const char* kOutputSignature = "rootsim-output";
 
 // the text written: "rootsim-output rootsim <version>"
 inline const char* outputSignatureText() {
-  static const std::string s = std::string(kOutputSignature) + " rootsim " + kVersion;
+  // appended in place: gcc 12's -Warray-bounds misreads the inlined `string + const char*` chain here
+  static const std::string s = [] {
+    std::string t(kOutputSignature);
+    t.append(" rootsim ").append(kVersion);
+    return t;
+  }();
   return s.c_str();
 }
 

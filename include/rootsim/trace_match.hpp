@@ -55,6 +55,7 @@ struct FitComponents {
   std::vector<std::string> names;
   Eigen::VectorXd trace, sigma, sim;  // sigma: the square root of cov's diagonal
   Eigen::MatrixXd cov;                // the trace's values' covariance
+  std::string covName = "the trace's uncertainty alone";  // what cov is, in the words of a goodness line
 };
 // the observables in the objective (Observation::used); a simulated root without the waves the trace
 // has counts its wavelength and amplitude as 0

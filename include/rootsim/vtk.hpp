@@ -28,6 +28,13 @@ std::string snapshotVtp(const Snapshot& s, const SceneInfo& info);
 std::string vtpFileName(const Snapshot& s);
 // a ParaView collection (.pvd) of (time_h, file) entries: the time slider steps through them in hours
 std::string pvdText(const std::vector<std::pair<double, std::string>>& entries);
+// several series as the parts of one collection (a plate's plate.pvd: a part per root, named after it),
+// each part's files (entries as pvdText's) under its folder
+struct PvdPart {
+  std::string name, folder;
+  std::vector<std::pair<double, std::string>> entries;
+};
+std::string partsPvdText(const std::vector<PvdPart>& parts);
 
 // plate.vtp's cells carry a cell-data array "part": which piece each cell is
 inline constexpr std::uint8_t kPlatePartPlate = 0;     // the plate's rectangle (one polygon)

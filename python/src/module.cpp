@@ -576,12 +576,8 @@ class SweepRunner {
   std::thread thread_;
 };
 
-}  // namespace
-
-PYBIND11_MODULE(_rootsim, m) {
-  m.doc() = "rootsim's C++ core (use the `rootsim` package, not this module)";
-  m.attr("__version__") = kVersion;
-
+// rootsim.SceneError and rootsim.RunError, and the C++ exceptions translated to them
+void registerErrors(py::module_& m) {
   gSceneError = PyErr_NewExceptionWithDoc(
       "rootsim.SceneError",
       "Bad input: a scene key or value, a sweep file, an output path, a render option. The message is the "
@@ -607,14 +603,17 @@ PYBIND11_MODULE(_rootsim, m) {
       PyErr_SetString(gRunError, e.what());
     }
   });
+}
 
+// scenes: loaded, parsed, their theory; a whole run
+void registerScenes(py::module_& m) {
   py::class_<Scene>(m, "_Scene")
       .def_property_readonly("name", [](const Scene& s) { return s.model.name; })
       .def_property_readonly("path", [](const Scene& s) { return s.path; })
       .def_property_readonly("resolved_toml", [](const Scene& s) { return s.resolvedToml; })
       .def_property_readonly("grows", [](const Scene& s) { return s.model.growth.enabled; })
       .def_property_readonly("steps", [](const Scene& s) { return s.model.growth.enabled ? s.model.growth.steps : 0; })
-      .def_property_readonly("trajectory", [](const Scene& s) { return s.model.output.trajectory; })
+      .def_property_readonly("trajectory", [](const Scene& s) { return s.output.trajectory; })
       .def_property_readonly("is_plate", [](const Scene& s) { return s.isPlate(); });
   m.def("load_scene", &loadScene, py::arg("path"), py::arg("overrides"));
   m.def("parse_scene", &parseScene, py::arg("text"), py::arg("source_name"), py::arg("overrides"));
@@ -624,6 +623,10 @@ PYBIND11_MODULE(_rootsim, m) {
   });
 
   m.def("run_scene", &runScene, py::arg("scene"), py::arg("options"), py::arg("progress"));
+}
+
+// the commands' option table, the state's fields; the commands check, modes and figure
+void registerCommands(py::module_& m) {
   m.def("command_table", &commandTable);
   m.def("state_fields", &stateFieldNames);
   m.def("check_scene", [](const py::dict& options) {
@@ -647,6 +650,10 @@ PYBIND11_MODULE(_rootsim, m) {
     }
     return o.out;
   }, py::arg("options"));
+}
+
+// the files rootsim writes, read back: CSV, trajectories, results; plate coordinates
+void registerFiles(py::module_& m) {
   m.def("normalise_out_dir", [](const std::string& s) { return normaliseOutDir(s).string(); });
   m.def("read_csv", &readCsv, py::arg("path"));
   m.def("read_trajectory", &readFrames, py::arg("path"), py::arg("scene"));
@@ -671,7 +678,10 @@ PYBIND11_MODULE(_rootsim, m) {
     for (const ResultColumn& c : resultColumns()) l.append(py::make_tuple(c.name, c.unit, c.growthOnly, c.text));
     return l;
   });
+}
 
+// a simulation stepped from Python, a plate, a sweep
+void registerSimulation(py::module_& m) {
   py::class_<PySimulation>(m, "_Simulation")
       .def(py::init<const Scene&>(), py::arg("scene"))
       .def("step", &PySimulation::step, py::arg("n"))
@@ -690,7 +700,10 @@ PYBIND11_MODULE(_rootsim, m) {
       .def("cancel", &SweepRunner::cancel)
       .def("summary", &SweepRunner::summary);
   m.def("parse_shard", &parseShard, py::arg("text"));
+}
 
+// render, montage and export (with the renderer built), have_render
+void registerRenderCommands(py::module_& m) {
 #ifdef ROOTSIM_HAVE_RENDER
   m.attr("have_render") = true;
   // rootsim.render's, montage's, export's, analyze's, compare's and fit's keywords (a dict, positionals
@@ -722,6 +735,10 @@ PYBIND11_MODULE(_rootsim, m) {
 #else
   m.attr("have_render") = false;
 #endif
+}
+
+// analyze, compare and fit
+void registerAnalysisCommands(py::module_& m) {
   m.def(
       "analyze_traces",
       // rootsim.analyze's keywords, as the command line's flags; the rows as dicts of analysis.csv's columns
@@ -794,4 +811,18 @@ PYBIND11_MODULE(_rootsim, m) {
         return out;
       },
       py::arg("options"));
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_rootsim, m) {
+  m.doc() = "rootsim's C++ core (use the `rootsim` package, not this module)";
+  m.attr("__version__") = kVersion;
+  registerErrors(m);
+  registerScenes(m);
+  registerCommands(m);
+  registerFiles(m);
+  registerSimulation(m);
+  registerRenderCommands(m);
+  registerAnalysisCommands(m);
 }

@@ -25,6 +25,7 @@
 #include "rootsim/traits.hpp"
 #include "rootsim/units.hpp"
 #include "rootsim/write_rule.hpp"
+#include "analysis_numbers.hpp"
 
 namespace fs = std::filesystem;
 
@@ -32,19 +33,12 @@ namespace rootsim::app {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kRunElementMm = 0.05;   // a run's element length (root.element_length_mm's default) [mm]
 constexpr double kDefaultRadiusMm = 0.1; // an Arabidopsis root's radius (root.radius_mm's default) [mm]
 constexpr double kInsertionSpanMm = 0.5; // the lateral's and the parent's directions are taken over this [mm]
 
-bool given(double v) { return v != AnalyzeOptions::kUnset; }
-
 // a pixel file's resolution: from a pixel 10 cm wide to one of 10 nm (beyond, a wrong unit)
 constexpr NumberRange kPxPerMm{0.01, 1e5, false, false, "px/mm"};
-// the step at which compare, fit and render --trace resample a trace for its distances [mm]
-// (compare_trace.cpp, kDistanceStepMm)
-constexpr double kDistanceStepMm = 0.05;
-
 
 double parseNumber(const std::string& text, const std::string& flag) {
   double v = 0;
@@ -137,10 +131,10 @@ std::string rootKey(const rsml::Plant& p, std::size_t pi, const rsml::Root& r, s
 }  // namespace
 
 void checkTraceFlags(const AnalyzeOptions& o) {
-  if (given(o.pxPerMm)) checkedNumber(o.flagPrefix + "px-per-mm", o.pxPerMm, kPxPerMm);
-  if (given(o.dsMm)) checkedNumber("--ds-mm", o.dsMm, {0, 10, false, false, "mm (0: the trace's own points)"});
-  if (given(o.excludeTipMm)) checkedNumber("--exclude-tip-mm", o.excludeTipMm, {0, 1000, false, false, "mm"});
-  if (given(o.radiusMm)) checkedNumber("--radius-mm", o.radiusMm, {0, 100, true, false, "mm"});
+  if (flagGiven(o.pxPerMm)) checkedNumber(o.flagPrefix + "px-per-mm", o.pxPerMm, kPxPerMm);
+  if (flagGiven(o.dsMm)) checkedNumber("--ds-mm", o.dsMm, {0, 10, false, false, "mm (0: the trace's own points)"});
+  if (flagGiven(o.excludeTipMm)) checkedNumber("--exclude-tip-mm", o.excludeTipMm, {0, 1000, false, false, "mm"});
+  if (flagGiven(o.radiusMm)) checkedNumber("--radius-mm", o.radiusMm, {0, 100, true, false, "mm"});
   parseDownhill(o.downhill, o.flagPrefix + "downhill");
 }
 
@@ -153,12 +147,12 @@ TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
   // units: the reader gives millimetres, or pixels for a pixel file
   double scale = 1.0;  // file units as read -> mm
   if (rsml::isPixelUnit(doc.meta.unit)) {
-    if (!given(o.pxPerMm))
+    if (!flagGiven(o.pxPerMm))
       throw SceneError(file + ":" + std::to_string(std::max(doc.meta.unitLine, 1)) + ": its unit is " + doc.meta.unit +
                        " with no physical scale (no resolution or size in the file); give " + o.flagPrefix + "px-per-mm R");
     scale = 1.0 / o.pxPerMm;
     tf.pixelMm = scale;
-  } else if (given(o.pxPerMm)) {
+  } else if (flagGiven(o.pxPerMm)) {
     throw SceneError(o.flagPrefix + "px-per-mm " + numberText(o.pxPerMm) + ": " + file + " is in " + doc.meta.unit +
                      ", not pixels (its scale is known)");
   } else {
@@ -172,12 +166,12 @@ TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
   for (const rsml::Plant& p : doc.plants) roots += p.roots.size();
   if (roots == 0) throw SceneError(file + ":1: no root in the file (no <plant> with a <root>)");
   tf.ours = doc.meta.software == "rootsim";
-  tf.dsMm = given(o.dsMm) ? o.dsMm : (tf.ours ? 0.0 : kRunElementMm);
-  const double zone = given(o.excludeTipMm) ? kNaN : sceneNumber(doc, file, "growth.growth_zone_mm", "--exclude-tip-mm");
-  tf.excludeTipMm = given(o.excludeTipMm) ? o.excludeTipMm : (std::isfinite(zone) ? zone : 0.0);
+  tf.dsMm = flagGiven(o.dsMm) ? o.dsMm : (tf.ours ? 0.0 : kRunElementMm);
+  const double zone = flagGiven(o.excludeTipMm) ? kNaN : sceneNumber(doc, file, "growth.growth_zone_mm", "--exclude-tip-mm");
+  tf.excludeTipMm = flagGiven(o.excludeTipMm) ? o.excludeTipMm : (std::isfinite(zone) ? zone : 0.0);
   tf.set = analysisOf(doc, file);
   tf.timeH = doc.hasTime ? doc.timeH : kNaN;
-  const double fileRadius = given(o.radiusMm) ? kNaN : sceneNumber(doc, file, "root.radius_mm", "--radius-mm");
+  const double fileRadius = flagGiven(o.radiusMm) ? kNaN : sceneNumber(doc, file, "root.radius_mm", "--radius-mm");
   if (doc.timeLapse()) {
     // a 2D+t file shows its roots at every observation; as one file, at the last
     tf.observationTimesH = doc.observationTimesH;
@@ -226,7 +220,7 @@ TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
       double length = 0;
       for (Eigen::Index k = 1; k < c.cols(); ++k) length += (c.col(k) - c.col(k - 1)).norm();
       const double step = tf.dsMm > 0 ? std::min(tf.dsMm, kDistanceStepMm) : kDistanceStepMm;
-      const bool byFlag = given(o.dsMm) && o.dsMm > 0 && o.dsMm < kDistanceStepMm;
+      const bool byFlag = flagGiven(o.dsMm) && o.dsMm > 0 && o.dsMm < kDistanceStepMm;
       checkCount((byFlag ? "--ds-mm " + numberText(o.dsMm) + ": " : std::string()) + file + ":" + std::to_string(r.line) + ": root " +
                      t.name + " (" + numberText(length) + " mm long, resampled every " + numberText(step) + " mm)",
                  length / step, caps::kTracePoints, "points",
@@ -235,7 +229,7 @@ TraceFile readTraceFile(const std::string& file, const AnalyzeOptions& o) {
       t.originMm = Eigen::Vector3d(ax.lx * ox * scale + ax.ly * oy * scale, ax.dx * ox * scale + ax.dy * oy * scale, 0.0);
       t.timeIndex = r.timeIndex;
       // the radius of the peaks' hysteresis
-      if (given(o.radiusMm)) {
+      if (flagGiven(o.radiusMm)) {
         t.radiusMm = o.radiusMm;
         t.radiusSource = "--radius-mm";
       } else if (std::isfinite(fileRadius) && r.order == 0) {

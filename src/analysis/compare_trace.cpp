@@ -25,6 +25,7 @@
 #include "rootsim/units.hpp"
 #include "rootsim/write_rule.hpp"
 #include "rootsim/run_snapshots.hpp"
+#include "analysis_numbers.hpp"
 
 namespace fs = std::filesystem;
 
@@ -32,15 +33,10 @@ namespace rootsim::app {
 
 namespace {
 
-constexpr double kDefaultSigmaMm = 0.05;   // one pixel of a 20 px/mm plate scan [mm]
-constexpr double kDistanceStepMm = 0.05;   // the shape distances' sampling step (a run's element) [mm]
-
-bool given(double v) { return v != TraceFlags::kUnset; }
-
 }  // namespace
 
 TraceUncertainty traceUncertainty(const RootTraits& traits, double pixelMm, bool exact, double flagMm, const std::string& flag) {
-  if (given(flagMm)) return {flagMm, flag};
+  if (flagGiven(flagMm)) return {flagMm, flag};
   // the trace's own scatter about its smoothed curve: what its tracer's jitter, snapping and whole-pixel
   // coordinates did to this root (a pixel overstates a 0.3 px tracer three times, understates a 2 px one);
   // never below the quantisation of whole-pixel coordinates, p / sqrt(12), which every pixel trace has
@@ -53,7 +49,7 @@ TraceUncertainty traceUncertainty(const RootTraits& traits, double pixelMm, bool
 }
 
 TraceTarget loadTarget(const TraceFlags& f, const Model& m) {
-  if (given(f.sigmaMm)) checkedNumber(f.flagPrefix + "sigma-mm", f.sigmaMm, {0, 10, true, false, "mm"});
+  if (flagGiven(f.sigmaMm)) checkedNumber(f.flagPrefix + "sigma-mm", f.sigmaMm, {0, 10, true, false, "mm"});
   AnalyzeOptions a;
   a.pxPerMm = f.pxPerMm;
   a.downhill = f.downhill;

@@ -38,7 +38,7 @@ std::string mm(double v) { return significantText(v, 2); }
 }  // namespace
 
 std::vector<FixedKey> sceneFixedKeys(const Model& base, const std::vector<FreeKey>& free, const std::vector<std::string>& fileKeys) {
-  const std::vector<SceneValue> values = sceneValues(base);
+  const std::vector<SceneValue> values = sceneValues(base, OutputParams{});  // the shaping keys: the model's
   std::vector<FixedKey> fixed;
   for (const char* key : kShapingKeys) {
     if (std::any_of(free.begin(), free.end(), [&](const FreeKey& f) { return f.key == key; })) continue;
@@ -149,6 +149,7 @@ void chooseAnswer(FitReport& rep, const TraceTarget& target, const FitComponents
   rep.best = answerIndex(objectives, rep.surfaceRun);
   const FitEvaluation& b = rep.evaluations[static_cast<std::size_t>(rep.best)];
   rep.goodness = goodnessOf(answerChi2(b), static_cast<int>(trace.trace.size()), static_cast<int>(rep.keys.size()));
+  rep.goodness.against = trace.covName;
   rep.fixed = sceneFixedKeys(base, rep.keys, fileKeys);
   rep.misfit = rep.goodness.verdict == "poor" ? misfitSentence(target, rep.evaluations, b, trace, modelSigma, rep.fixed) : std::string();
 }

@@ -19,6 +19,7 @@
 #include "rootsim/units.hpp"
 #include "rootsim/write_rule.hpp"
 #include "fit_parts.hpp"
+#include "analysis_numbers.hpp"
 
 namespace fs = std::filesystem;
 
@@ -58,8 +59,6 @@ double sowingAngleDeg(const Eigen::Matrix3Xd& plateMm, double overMm) {
 }
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 // the group's outputs: each observable two or more of its seedlings' traces use (a trace without a wave
 // train has no wavelength), the mean over those seedlings, and the mean's covariance S / n from their
@@ -117,6 +116,7 @@ void groupTraceSide(GroupSide& g, const std::string& sheet) {
     }
   g.trace.trace = mean;
   g.trace.cov = cov;
+  g.trace.covName = "the group mean's covariance (its seedlings' scatter / n, each variance at least their tracing noise / n)";
   g.trace.sigma = cov.diagonal().cwiseSqrt();
 }
 

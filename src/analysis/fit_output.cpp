@@ -16,14 +16,13 @@
 #include "rootsim/trajectory.hpp"
 #include "rootsim/write_rule.hpp"
 #include "rootsim/run_snapshots.hpp"
+#include "analysis_numbers.hpp"
 
 namespace fs = std::filesystem;
 
 namespace rootsim::app {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 std::string csvCell(double v) { return std::isfinite(v) ? numberText(v) : std::string(); }
 
@@ -33,7 +32,7 @@ Json goodnessJson(const Goodness& g) {
   Json j;
   j.num("chi2", g.chi2).integer("dof", g.dof).integer("outputs", g.outputs).integer("p_dof", g.pDof).num("p_value", g.pValue)
       .str("verdict", g.verdict)
-      .str("against", "the answer's own run against the trace's uncertainty alone (the model's scatter is in the keys' sigma, not here)");
+      .str("against", "the answer's own run against " + g.against + " (the model's scatter is in the keys' sigma, not here)");
   return j;
 }
 

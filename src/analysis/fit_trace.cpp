@@ -34,14 +34,13 @@
 #include "rootsim/write_rule.hpp"
 #include "fit_parts.hpp"
 #include "rootsim/run_snapshots.hpp"
+#include "analysis_numbers.hpp"
 
 namespace fs = std::filesystem;
 
 namespace rootsim::app {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 double parseBound(const std::string& text, const std::string& item) {
   double v = 0;
@@ -293,7 +292,8 @@ class Fit {
       for (std::size_t i = 0; i < keys_.size(); ++i) line += " " + keys_[i].key + "=" + numberText(e.x[i]);
       char b[200];
       if (e.error.empty())
-        std::snprintf(b, sizeof b, ": chi2 %.4g against the trace's uncertainty alone (distance %.3g mm)", e.objective, e.distanceMm);
+        std::snprintf(b, sizeof b, ": chi2 %.4g against %s (distance %.3g mm)", e.objective,
+                      (group_ ? group_->trace.covName : traceComp_.covName).c_str(), e.distanceMm);
       else
         std::snprintf(b, sizeof b, ": FAILED (%.120s)", e.error.c_str());
       log_(line + b);

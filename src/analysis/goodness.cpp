@@ -79,10 +79,10 @@ std::string goodnessText(const Goodness& g, const std::string& chi2Name) {
     std::snprintf(p, sizeof p, "p %.2g", g.pValue);
   char b[256];
   if (g.dof >= 1)
-    std::snprintf(b, sizeof b, " %.3g for %d dof against the trace's uncertainty alone, %s: %s", g.chi2, g.dof, p, g.verdict.c_str());
+    std::snprintf(b, sizeof b, " %.3g for %d dof against %s, %s: %s", g.chi2, g.dof, g.against.c_str(), p, g.verdict.c_str());
   else
-    std::snprintf(b, sizeof b, " %.3g for %d outputs (no more than the free keys) against the trace's uncertainty alone, %s at %d dof: %s",
-                  g.chi2, g.outputs, p, g.pDof, g.verdict.c_str());
+    std::snprintf(b, sizeof b, " %.3g for %d outputs (no more than the free keys) against %s, %s at %d dof: %s", g.chi2, g.outputs,
+                  g.against.c_str(), p, g.pDof, g.verdict.c_str());
   return chi2Name + b;
 }
 

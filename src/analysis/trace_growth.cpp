@@ -15,6 +15,7 @@
 #include "rootsim/errors.hpp"
 #include "rootsim/number_text.hpp"
 #include "rootsim/traits.hpp"
+#include "analysis_numbers.hpp"
 
 namespace fs = std::filesystem;
 
@@ -22,8 +23,6 @@ namespace rootsim::app {
 
 namespace {
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr double kDefaultSigmaMm = 0.05;   // a traced point's position noise without a pixel size [mm]
 constexpr double kTipSpanMm = 0.5;         // the tip angle's span: at least this [mm] ...
 constexpr double kTipSpanPixels = 10.0;    // ... and at least this many pixels
 

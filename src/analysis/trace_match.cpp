@@ -11,12 +11,11 @@
 #include <Eigen/Dense>
 
 #include "rootsim/units.hpp"
+#include "analysis_numbers.hpp"
 
 namespace rootsim {
 
 namespace {
-
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 }  // namespace
 

@@ -10,16 +10,15 @@
 #include <vector>
 
 #include "rootsim/units.hpp"
+#include "rootsim/trace_match.hpp"
 
 namespace rootsim {
 
 namespace {
 
-// the polyline without consecutive repeated points
-Eigen::Matrix3Xd distinctPoints(const Eigen::Matrix3Xd& p) {
-  std::vector<int> keep;
-  for (int i = 0; i < p.cols(); ++i)
-    if (keep.empty() || (p.col(i) - p.col(keep.back())).norm() > 0.0) keep.push_back(i);
+// the polyline without consecutive repeated points (their indices: trace_match.hpp's distinctPoints)
+Eigen::Matrix3Xd distinctPolyline(const Eigen::Matrix3Xd& p) {
+  const std::vector<int> keep = distinctPoints(p);
   Eigen::Matrix3Xd q(3, static_cast<Eigen::Index>(keep.size()));
   for (std::size_t k = 0; k < keep.size(); ++k) q.col(static_cast<Eigen::Index>(k)) = p.col(keep[k]);
   return q;
@@ -52,7 +51,7 @@ double polylineLength(const Eigen::Matrix3Xd& p) {
 
 Eigen::Matrix3Xd resampleByArcLength(const Eigen::Matrix3Xd& p, double ds) {
   if (!(ds > 0.0)) throw std::invalid_argument("resampleByArcLength: the step must be > 0");
-  const Eigen::Matrix3Xd q = distinctPoints(p);
+  const Eigen::Matrix3Xd q = distinctPolyline(p);
   if (q.cols() < 2) throw std::invalid_argument("resampleByArcLength: the polyline has no length");
   const std::vector<double> s = arcLengths(q);
   const double L = s.back();
@@ -245,7 +244,7 @@ RootTraits measure(const Eigen::Matrix3Xd& q, const Eigen::Matrix3Xd& curve, dou
 }  // namespace
 
 TraceNoise estimateTraceNoise(const Eigen::Matrix3Xd& p) {
-  const Eigen::Matrix3Xd q = distinctPoints(p);
+  const Eigen::Matrix3Xd q = distinctPolyline(p);
   TraceNoise out;
   const int n = static_cast<int>(q.cols());
   std::vector<double> gaps;
@@ -383,7 +382,7 @@ Eigen::Matrix3Xd loessCurve(const Eigen::Matrix3Xd& q, const std::vector<double>
 }  // namespace
 
 TraceSmoothing smoothTrace(const Eigen::Matrix3Xd& p, double ds) {
-  const Eigen::Matrix3Xd q = distinctPoints(p);
+  const Eigen::Matrix3Xd q = distinctPolyline(p);
   if (q.cols() < 2) throw std::invalid_argument("smoothTrace: the polyline has no length");
   const int n = static_cast<int>(q.cols());
   TraceSmoothing out;
@@ -423,7 +422,7 @@ double tracingLimitMm(double smoothedSigmaMm, double radiusMm) {
 
 RootTraits rootTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excludeTipMm, double radiusMm,
                       const AnalysisParams& set) {
-  const Eigen::Matrix3Xd q = distinctPoints(plateMm);
+  const Eigen::Matrix3Xd q = distinctPolyline(plateMm);
   if (q.cols() < 2) throw std::invalid_argument("rootTraits: a root needs at least two distinct points");
   // the shape analysis at a run's resolution
   RootTraits t = measure(q, dsMm > 0.0 ? resampleByArcLength(q, dsMm) : q, dsMm, excludeTipMm, radiusMm, set, 0.0);
@@ -454,7 +453,7 @@ void markBend(RootTraits& t, int excursions, double limitMm, const AnalysisParam
 
 RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excludeTipMm, double radiusMm,
                        const AnalysisParams& set) {
-  const Eigen::Matrix3Xd q = distinctPoints(plateMm);
+  const Eigen::Matrix3Xd q = distinctPolyline(plateMm);
   if (q.cols() < 2) throw std::invalid_argument("traceTraits: a root needs at least two distinct points");
   const TraceNoise noise = estimateTraceNoise(q);
   // the points outside the noise's clip (a tracer's snaps to an edge) are left out of the smoothing
@@ -517,7 +516,7 @@ RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excl
 }
 
 double insertionAngleDeg(const Eigen::Matrix3Xd& parentMm, const Eigen::Matrix3Xd& lateralMm, double spanMm) {
-  const Eigen::Matrix3Xd par = distinctPoints(parentMm), lat = distinctPoints(lateralMm);
+  const Eigen::Matrix3Xd par = distinctPolyline(parentMm), lat = distinctPolyline(lateralMm);
   if (par.cols() < 2 || lat.cols() < 2) return std::numeric_limits<double>::quiet_NaN();
   const std::vector<double> sp = arcLengths(par), sl = arcLengths(lat);
   // the lateral's direction over its first spanMm

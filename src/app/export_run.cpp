@@ -39,8 +39,6 @@ namespace rootsim::app {
 
 namespace {
 
-bool given(double v) { return v != ExportOptions::kUnset; }
-
 // what export reads of a run directory
 struct RunData {
   Scene scene;
@@ -88,8 +86,8 @@ struct Pick {
 };
 std::vector<Pick> pickSnapshots(const std::vector<Snapshot>& snaps, const ExportOptions& o) {
   const std::vector<double> t = snapshotTimes(snaps);
-  if (given(o.atH)) return {Pick{snapshotNear(t, o.atH), o.atH}};
-  if (!given(o.everyH)) return {Pick{static_cast<int>(snaps.size()) - 1, t.back()}};
+  if (flagGiven(o.atH)) return {Pick{snapshotNear(t, o.atH), o.atH}};
+  if (!flagGiven(o.everyH)) return {Pick{static_cast<int>(snaps.size()) - 1, t.back()}};
   const double span = t.back() - t.front();
   checkCount("--every-h " + significantText(o.everyH) + ": a series over the run's " + significantText(span) + " h", span / o.everyH + 1,
              caps::kSeriesFiles, "files", "caps::kSeriesFiles: one file each; docs/outputs.md, Caps");
@@ -281,11 +279,11 @@ rsml::Document rsmlOf(const RunData& d, const Snapshot& s, int sequenceIndex) {
   doc.sceneProperties.push_back(numberProperty("time_h", s.timeH));
   doc.sceneProperties.push_back(numberProperty("step", s.step));
   doc.sceneProperties.push_back(textProperty("software_version", kVersion));
-  for (const SceneValue& v : sceneValues(m)) {
+  for (const SceneValue& v : sceneValues(m, d.scene.output)) {
     if (v.key.find('[') != std::string::npos) continue;  // obstacles: below, as obstacle_K.key
     doc.sceneProperties.push_back(textProperty(v.key, sceneText(v.text)));
   }
-  for (const SceneValue& v : sceneValues(m))
+  for (const SceneValue& v : sceneValues(m, d.scene.output))
     if (const auto open = v.key.find('['); open != std::string::npos) {
       std::string name = v.key;
       name.replace(open, 1, "_");
@@ -355,7 +353,7 @@ rsml::Document plateRsmlOf(const Scene& plate, const std::vector<PlateRoot>& roo
       doc.plants.clear();
       // the plate's keys (each plant's own are its overrides)
       doc.sceneProperties.erase(doc.sceneProperties.begin() + 3, doc.sceneProperties.end());
-      for (const SceneValue& v : sceneValues(plate.plate.base))
+      for (const SceneValue& v : sceneValues(plate.plate.base, plate.output))
         if (v.key.find('[') == std::string::npos) doc.sceneProperties.push_back(textProperty(v.key, sceneText(v.text)));
       doc.comment += " (a plate, plate coordinates from the plate's origin)";
     }
@@ -394,10 +392,10 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
   const fs::path runDir(o.runDir);
   if (o.rsml.empty() && o.gltf.empty() && o.paraview.empty())
     throw SceneError("export: no output asked for; give --rsml FILE (or --gltf FILE.glb, --paraview DIR)");
-  if (given(o.atH) && given(o.everyH))
+  if (flagGiven(o.atH) && flagGiven(o.everyH))
     throw SceneError("--at-h " + significantText(o.atH) + ": give --at-h or --every-h, not both");
-  if (given(o.atH)) checkedNumber("--at-h", o.atH, kGrowthHours);
-  if (given(o.everyH)) checkedNumber("--every-h", o.everyH, {0, kGrowthHours.hi, true, false, "h"});
+  if (flagGiven(o.atH)) checkedNumber("--at-h", o.atH, kGrowthHours);
+  if (flagGiven(o.everyH)) checkedNumber("--every-h", o.everyH, {0, kGrowthHours.hi, true, false, "h"});
   if (const std::string why = whyUnfinished(runDir); !why.empty()) throw SceneError(o.runDir + ": " + why);
   if (!fs::is_directory(runDir)) throw SceneError(o.runDir + ": run directory not found");
   // a plate's run: every root (RSML: one plant per seedling; glTF and ParaView: one striped tube per root)
@@ -412,7 +410,7 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
   }
   const RunData data = plate ? roots.front() : readRun(runDir);
   const std::vector<Pick> picks = pickSnapshots(data.snaps, o);
-  const bool series = given(o.everyH);
+  const bool series = flagGiven(o.everyH);
 
   // the write rule: the run directory is read and receives nothing; each file is locked, then checked
   WriteRule rule;
@@ -500,7 +498,7 @@ int exportRunCommand(const ExportOptions& o, std::vector<fs::path>* written) {
   // the snapshots glTF and ParaView show: every one, or those --at-h / --every-h pick
   std::vector<int> shown;
   if (!gltfFile.empty() || paraview) {
-    if (given(o.atH) || series)
+    if (flagGiven(o.atH) || series)
       for (const Pick& p : picks) shown.push_back(p.index);
     else
       for (int k = 0; k < static_cast<int>(data.snaps.size()); ++k) shown.push_back(k);

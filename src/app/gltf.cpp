@@ -280,9 +280,33 @@ std::string frameName(int k, const Snapshot& s) {
 
 namespace {
 
-// the file of roots; prefixed: each snapshot's node named after its root ("NAME frame NNNN, ..."), as a
-// plate's are (a single root's are "frame NNNN, ...", under the group "root")
-std::string gltfOf(const std::vector<RootSeries>& roots, const SceneInfo& info, const GltfOptions& options, bool prefixed) {
+// the plate's extent [mm] (u0 .. u1, v0 .. v1): what the plate, its grid and the top camera cover
+struct PlateBox {
+  double u0 = std::numeric_limits<double>::infinity(), u1 = -std::numeric_limits<double>::infinity();
+  double v0 = std::numeric_limits<double>::infinity(), v1 = -std::numeric_limits<double>::infinity();
+};
+
+// the file being built: its tables, the scene root's children, each snapshot's node with the file's frame
+// it shows, and the plate's extent so far
+struct Build {
+  Doc doc;
+  std::vector<J> top;
+  std::vector<std::pair<int, int>> frameNodes;
+  PlateBox box;
+  // a node appended; its index
+  int node(J n) {
+    doc.nodes.push_back(std::move(n));
+    return static_cast<int>(doc.nodes.size()) - 1;
+  }
+  // a mesh appended and a node showing it under the scene root
+  void topMesh(const std::string& name, const std::vector<J>& prims) {
+    doc.meshes.push_back(obj({kv("name", quote(name)), kv("primitives", arr(prims))}));
+    top.push_back(num(node(obj({kv("name", quote(name)), kv("mesh", num(static_cast<int>(doc.meshes.size()) - 1))}))));
+  }
+};
+
+// the roots and the options checked; the file's number of frames
+int checkedFrames(const std::vector<RootSeries>& roots, const GltfOptions& options) {
   if (roots.empty()) throw RenderError("glTF: no roots to write");
   if (!(options.stripeHalfWidthDeg > 0.0 && options.stripeHalfWidthDeg < 90.0))
     throw RenderError("glTF: the stripe half width must be in (0, 90) degrees (got " +
@@ -294,200 +318,216 @@ std::string gltfOf(const std::vector<RootSeries>& roots, const SceneInfo& info, 
     for (const Snapshot& s : r.snaps) checkTubeSnapshot(s, "glTF");
     frames = std::max(frames, r.firstFrame + static_cast<int>(r.snaps.size()));
   }
-  const double h = options.stripeHalfWidthDeg * units::deg;
-  const PlateFrame pf = PlateFrame::tilted(info.alphaDeg * units::deg);
+  return frames;
+}
+
+// a root's int16 position grid, shared by all its snapshots: q / 32767 * half + centre (its group node)
+struct TubeGrid {
+  V3 centre;
+  double half = 0;
+  int maxRings = 0;  // the largest tube's rings
+};
+
+// the tube's reach over all snapshots (every surface point is within r of its ring's centre), its grid;
+// the plate's extent grown to hold it
+TubeGrid tubeGrid(const RootSeries& root, const PlateFrame& pf, PlateBox& box) {
   const double inf = std::numeric_limits<double>::infinity();
-  double u0 = inf, u1 = -inf, v0 = inf, v1 = -inf;  // plate [mm]
-
-  Doc doc;
-  const RenderScene::Material look;
-  const int matBody = doc.material("root body", look.body, false);
-  const int matPlus = doc.material("stripe +d1", look.plus, false);
-  const int matMinus = doc.material("stripe -d1", look.minus, false);
-  const std::array<int, 3> tubeMaterial{matBody, matPlus, matMinus};
-  std::vector<J> top;
-  std::vector<std::pair<int, int>> frameNodes;  // (node, the file's frame it shows)
-
-  for (const RootSeries& root : roots) {
-    // pass 1: the tube's reach (every surface point is within r of its ring's centre), the largest tube
-    V3 lo = V3::Constant(inf), hi = V3::Constant(-inf);  // glTF axes [m]
-    int maxRings = 0;
-    for (const Snapshot& s : root.snaps) {
-      const std::vector<TubeRing> rings = tubeRings(s, pf);
-      maxRings = std::max(maxRings, static_cast<int>(rings.size()));
-      for (const TubeRing& g : rings) {
-        const V3 c = toGltf(g.c), r = V3::Constant(g.r * units::mm);
-        lo = lo.cwiseMin(c - r), hi = hi.cwiseMax(c + r);
-        u0 = std::min(u0, g.c.x() - g.r), u1 = std::max(u1, g.c.x() + g.r);
-        v0 = std::min(v0, g.c.y() - g.r), v1 = std::max(v1, g.c.y() + g.r);
-      }
+  V3 lo = V3::Constant(inf), hi = V3::Constant(-inf);  // glTF axes [m]
+  TubeGrid g;
+  for (const Snapshot& s : root.snaps) {
+    const std::vector<TubeRing> rings = tubeRings(s, pf);
+    g.maxRings = std::max(g.maxRings, static_cast<int>(rings.size()));
+    for (const TubeRing& ring : rings) {
+      const V3 c = toGltf(ring.c), r = V3::Constant(ring.r * units::mm);
+      lo = lo.cwiseMin(c - r), hi = hi.cwiseMax(c + r);
+      box.u0 = std::min(box.u0, ring.c.x() - ring.r), box.u1 = std::max(box.u1, ring.c.x() + ring.r);
+      box.v0 = std::min(box.v0, ring.c.y() - ring.r), box.v1 = std::max(box.v1, ring.c.y() + ring.r);
     }
-    const std::size_t maxVertices = static_cast<std::size_t>(kSideStart + maxRings * kSides);
-    // int16 positions on one grid for every snapshot of the root: q / 32767 * half + centre (its group node)
-    const V3 centre = 0.5 * (lo + hi);
-    const double half = std::max(0.5 * (hi - lo).maxCoeff(), 1e-9);
-
-    // the index lists of the largest tube, one per material; every snapshot uses a prefix of each
-    const bool shortIndices = maxVertices < 65535;  // 65535 is the primitive restart value
-    const auto lists = tubeTriangles(maxRings);
-    std::array<int, 3> indexView{};
-    for (std::size_t m = 0; m < 3; ++m) {
-      Bin ib;
-      for (std::uint32_t i : lists[m]) shortIndices ? ib.u16(static_cast<std::uint16_t>(i)) : ib.u32(i);
-      ib.align4();
-      indexView[m] = doc.view(ib.bytes, kElementArrayBuffer);
-    }
-
-    // pass 2: one mesh and one node per snapshot
-    std::vector<J> children;
-    std::vector<V3> pos, nrm;
-    for (std::size_t k = 0; k < root.snaps.size(); ++k) {
-      const Snapshot& s = root.snaps[k];
-      const int f = root.firstFrame + static_cast<int>(k);
-      const std::vector<TubeRing> rings = tubeRings(s, pf);
-      tubeVertices(rings, h, pos, nrm);
-      Bin vb;
-      std::array<int, 3> qlo{32767, 32767, 32767}, qhi{-32767, -32767, -32767};
-      for (std::size_t i = 0; i < pos.size(); ++i) {
-        for (int c = 0; c < 3; ++c) {
-          const auto q = static_cast<int>(std::clamp(std::lround((pos[i][c] - centre[c]) / half * 32767.0), -32767L, 32767L));
-          vb.u16(static_cast<std::uint16_t>(static_cast<std::int16_t>(q)));
-          qlo[static_cast<std::size_t>(c)] = std::min(qlo[static_cast<std::size_t>(c)], q);
-          qhi[static_cast<std::size_t>(c)] = std::max(qhi[static_cast<std::size_t>(c)], q);
-        }
-        vb.u16(0);
-        const V3 n = nrm[i].normalized();
-        for (int c = 0; c < 3; ++c)
-          vb.u8(static_cast<std::uint8_t>(static_cast<std::int8_t>(std::clamp(std::lround(n[c] * 127.0), -127L, 127L))));
-        vb.u8(0);
-      }
-      const int v = doc.view(vb.bytes, kArrayBuffer, 12);
-      const Members minMax{kv("min", arr({num(qlo[0]), num(qlo[1]), num(qlo[2])})), kv("max", arr({num(qhi[0]), num(qhi[1]), num(qhi[2])}))};
-      const int pa = doc.accessor(v, 0, kShort, true, pos.size(), "VEC3", minMax);
-      const int na = doc.accessor(v, 8, kByte, true, pos.size(), "VEC3");
-      const auto counts = tubeIndexCounts(static_cast<int>(rings.size()));
-      std::vector<J> prims;
-      for (std::size_t m = 0; m < 3; ++m) {
-        const int ia = doc.accessor(indexView[m], 0, shortIndices ? kUnsignedShort : kUnsignedInt, false, counts[m], "SCALAR");
-        prims.push_back(obj({kv("attributes", obj({kv("POSITION", num(pa)), kv("NORMAL", num(na))})),
-                             kv("indices", num(ia)), kv("material", num(tubeMaterial[m]))}));
-      }
-      doc.meshes.push_back(obj({kv("name", quote(root.name + " " + frameName(f, s))), kv("primitives", arr(prims))}));
-      // a still, or the last snapshot, is shown by viewers that do not play the animation
-      const bool shown = f == frames - 1;
-      const std::string nodeName = prefixed ? root.name + " " + frameName(f, s) : frameName(f, s);
-      doc.nodes.push_back(obj({kv("name", quote(nodeName)), kv("mesh", num(static_cast<int>(doc.meshes.size()) - 1)),
-                               kv("scale", shown ? arr({num(1), num(1), num(1)}) : arr({num(0), num(0), num(0)})),
-                               kv("extras", obj({kv("step", num(s.step)), kv("time_h", num(s.timeH))}))}));
-      frameNodes.emplace_back(static_cast<int>(doc.nodes.size()) - 1, f);
-      children.push_back(num(static_cast<int>(doc.nodes.size()) - 1));
-    }
-    doc.nodes.push_back(obj({kv("name", quote(root.name)), kv("children", arr(children)),
-                             kv("translation", arr({num(centre.x()), num(centre.y()), num(centre.z())})),
-                             kv("scale", arr({num(half), num(half), num(half)}))}));
-    top.push_back(num(static_cast<int>(doc.nodes.size()) - 1));
   }
+  g.centre = 0.5 * (lo + hi);
+  g.half = std::max(0.5 * (hi - lo).maxCoeff(), 1e-9);
+  return g;
+}
+
+// a snapshot's tube vertices quantised on the grid (int16 positions, int8 normals, 12 bytes a vertex);
+// their accessors (position, normal)
+std::array<int, 2> tubeVertexAccessors(Doc& doc, const std::vector<V3>& pos, const std::vector<V3>& nrm, const TubeGrid& g) {
+  Bin vb;
+  std::array<int, 3> qlo{32767, 32767, 32767}, qhi{-32767, -32767, -32767};
+  for (std::size_t i = 0; i < pos.size(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      const auto q = static_cast<int>(std::clamp(std::lround((pos[i][c] - g.centre[c]) / g.half * 32767.0), -32767L, 32767L));
+      vb.u16(static_cast<std::uint16_t>(static_cast<std::int16_t>(q)));
+      qlo[static_cast<std::size_t>(c)] = std::min(qlo[static_cast<std::size_t>(c)], q);
+      qhi[static_cast<std::size_t>(c)] = std::max(qhi[static_cast<std::size_t>(c)], q);
+    }
+    vb.u16(0);
+    const V3 n = nrm[i].normalized();
+    for (int c = 0; c < 3; ++c)
+      vb.u8(static_cast<std::uint8_t>(static_cast<std::int8_t>(std::clamp(std::lround(n[c] * 127.0), -127L, 127L))));
+    vb.u8(0);
+  }
+  const int v = doc.view(vb.bytes, kArrayBuffer, 12);
+  const Members minMax{kv("min", arr({num(qlo[0]), num(qlo[1]), num(qlo[2])})), kv("max", arr({num(qhi[0]), num(qhi[1]), num(qhi[2])}))};
+  return {doc.accessor(v, 0, kShort, true, pos.size(), "VEC3", minMax), doc.accessor(v, 8, kByte, true, pos.size(), "VEC3")};
+}
+
+// one root: its index lists, one mesh and one node per snapshot under a group node carrying the grid's
+// dequantisation, the group under the scene root
+void addRoot(Build& b, const RootSeries& root, const PlateFrame& pf, double h, int frames, bool prefixed,
+             const std::array<int, 3>& tubeMaterial) {
+  Doc& doc = b.doc;
+  const TubeGrid g = tubeGrid(root, pf, b.box);
+  const std::size_t maxVertices = static_cast<std::size_t>(kSideStart + g.maxRings * kSides);
+
+  // the index lists of the largest tube, one per material; every snapshot uses a prefix of each
+  const bool shortIndices = maxVertices < 65535;  // 65535 is the primitive restart value
+  const auto lists = tubeTriangles(g.maxRings);
+  std::array<int, 3> indexView{};
+  for (std::size_t m = 0; m < 3; ++m) {
+    Bin ib;
+    for (std::uint32_t i : lists[m]) shortIndices ? ib.u16(static_cast<std::uint16_t>(i)) : ib.u32(i);
+    ib.align4();
+    indexView[m] = doc.view(ib.bytes, kElementArrayBuffer);
+  }
+
+  std::vector<J> children;
+  std::vector<V3> pos, nrm;
+  for (std::size_t k = 0; k < root.snaps.size(); ++k) {
+    const Snapshot& s = root.snaps[k];
+    const int f = root.firstFrame + static_cast<int>(k);
+    const std::vector<TubeRing> rings = tubeRings(s, pf);
+    tubeVertices(rings, h, pos, nrm);
+    const auto [pa, na] = tubeVertexAccessors(doc, pos, nrm, g);
+    const auto counts = tubeIndexCounts(static_cast<int>(rings.size()));
+    std::vector<J> prims;
+    for (std::size_t m = 0; m < 3; ++m) {
+      const int ia = doc.accessor(indexView[m], 0, shortIndices ? kUnsignedShort : kUnsignedInt, false, counts[m], "SCALAR");
+      prims.push_back(obj({kv("attributes", obj({kv("POSITION", num(pa)), kv("NORMAL", num(na))})),
+                           kv("indices", num(ia)), kv("material", num(tubeMaterial[m]))}));
+    }
+    doc.meshes.push_back(obj({kv("name", quote(root.name + " " + frameName(f, s))), kv("primitives", arr(prims))}));
+    // a still, or the last snapshot, is shown by viewers that do not play the animation
+    const bool shown = f == frames - 1;
+    const std::string nodeName = prefixed ? root.name + " " + frameName(f, s) : frameName(f, s);
+    const int n = b.node(obj({kv("name", quote(nodeName)), kv("mesh", num(static_cast<int>(doc.meshes.size()) - 1)),
+                              kv("scale", shown ? arr({num(1), num(1), num(1)}) : arr({num(0), num(0), num(0)})),
+                              kv("extras", obj({kv("step", num(s.step)), kv("time_h", num(s.timeH))}))}));
+    b.frameNodes.emplace_back(n, f);
+    children.push_back(num(n));
+  }
+  b.top.push_back(num(b.node(obj({kv("name", quote(root.name)), kv("children", arr(children)),
+                                  kv("translation", arr({num(g.centre.x()), num(g.centre.y()), num(g.centre.z())})),
+                                  kv("scale", arr({num(g.half), num(g.half), num(g.half)}))}))));
+}
+
+// the plate's extent grown to the options' plate rectangle and the obstacles, then a margin, whole mm
+void finishPlateBox(PlateBox& box, const SceneInfo& info, const GltfOptions& options) {
   if (options.plateRectMm) {
     const auto& r = *options.plateRectMm;
-    u0 = std::min(u0, r[0]), v0 = std::min(v0, r[1]), u1 = std::max(u1, r[2]), v1 = std::max(v1, r[3]);
+    box.u0 = std::min(box.u0, r[0]), box.v0 = std::min(box.v0, r[1]), box.u1 = std::max(box.u1, r[2]), box.v1 = std::max(box.v1, r[3]);
   }
-
-  // the plate, its grid (whole millimetres, darker every 10 mm) and the obstacles
-  const RenderScene::Plate plateLook;
   for (const SceneInfo::ObstacleShape& o : info.obstacles) {
-    u0 = std::min({u0, o.fromU - o.radiusMm, o.toU - o.radiusMm}), u1 = std::max({u1, o.fromU + o.radiusMm, o.toU + o.radiusMm});
-    v0 = std::min({v0, o.fromV - o.radiusMm, o.toV - o.radiusMm}), v1 = std::max({v1, o.fromV + o.radiusMm, o.toV + o.radiusMm});
+    box.u0 = std::min({box.u0, o.fromU - o.radiusMm, o.toU - o.radiusMm}), box.u1 = std::max({box.u1, o.fromU + o.radiusMm, o.toU + o.radiusMm});
+    box.v0 = std::min({box.v0, o.fromV - o.radiusMm, o.toV - o.radiusMm}), box.v1 = std::max({box.v1, o.fromV + o.radiusMm, o.toV + o.radiusMm});
   }
-  u0 = std::floor(u0 - kPlateMarginMm), u1 = std::ceil(u1 + kPlateMarginMm);
-  v0 = std::floor(v0 - kPlateMarginMm), v1 = std::ceil(v1 + kPlateMarginMm);
-  const V3 up(0, 1, 0);
-  auto P = [](double u, double v, double w) { return toGltf(V3(u, v, w)); };
-  if (info.plate) {
-    FloatMesh plate;
-    plate.quad(P(u0, v0, 0), P(u1, v0, 0), P(u1, v1, 0), P(u0, v1, 0), up);
-    const int mat = doc.material("plate", plateLook.colour, false);
-    doc.meshes.push_back(obj({kv("name", quote("plate")), kv("primitives", arr({floatPrimitive(doc, plate, mat)}))}));
-    doc.nodes.push_back(obj({kv("name", quote("plate")), kv("mesh", num(static_cast<int>(doc.meshes.size()) - 1))}));
-    top.push_back(num(static_cast<int>(doc.nodes.size()) - 1));
-    FloatMesh minor, major;
-    for (int u = static_cast<int>(u0); u <= static_cast<int>(u1); ++u) {
-      const bool isMajor = u % kMajorEvery == 0;
-      const double hw = 0.5 * (isMajor ? kGridMajorLineMm : kGridLineMm), w = isMajor ? kGridMajorLiftMm : kGridLiftMm;
-      (isMajor ? major : minor).quad(P(u - hw, v0, w), P(u + hw, v0, w), P(u + hw, v1, w), P(u - hw, v1, w), up);
-    }
-    for (int v = static_cast<int>(v0); v <= static_cast<int>(v1); ++v) {
-      const bool isMajor = v % kMajorEvery == 0;
-      const double hw = 0.5 * (isMajor ? kGridMajorLineMm : kGridLineMm);
-      const double w = (isMajor ? kGridMajorLiftMm : kGridLiftMm) + kGridCrossLiftMm;
-      (isMajor ? major : minor).quad(P(u0, v - hw, w), P(u1, v - hw, w), P(u1, v + hw, w), P(u0, v + hw, w), up);
-    }
-    std::vector<J> prims{floatPrimitive(doc, minor, doc.material("grid 1 mm", plateLook.line, false))};
-    if (!major.pos.empty()) prims.push_back(floatPrimitive(doc, major, doc.material("grid 10 mm", plateLook.major, false)));
-    doc.meshes.push_back(obj({kv("name", quote("grid")), kv("primitives", arr(prims))}));
-    doc.nodes.push_back(obj({kv("name", quote("grid")), kv("mesh", num(static_cast<int>(doc.meshes.size()) - 1))}));
-    top.push_back(num(static_cast<int>(doc.nodes.size()) - 1));
-  }
-  if (!info.obstacles.empty()) {
-    RenderScene scratch;
-    addObstacleMeshes(info, scratch);
-    FloatMesh m;
-    for (const TubeVertex& tv : scratch.vertices) {
-      m.pos.push_back(toGltf(V3(tv.pos[0], tv.pos[1], tv.pos[2])));
-      m.nrm.push_back(dirToGltf(V3(tv.normal[0], tv.normal[1], tv.normal[2])));
-    }
-    m.idx = scratch.indices;
-    const TubeVertex& first = scratch.vertices.front();
-    const int mat = doc.material("obstacle", {first.colour[0], first.colour[1], first.colour[2]}, true);
-    doc.meshes.push_back(obj({kv("name", quote("obstacles")), kv("primitives", arr({floatPrimitive(doc, m, mat)}))}));
-    doc.nodes.push_back(obj({kv("name", quote("obstacles")), kv("mesh", num(static_cast<int>(doc.meshes.size()) - 1))}));
-    top.push_back(num(static_cast<int>(doc.nodes.size()) - 1));
-  }
+  box.u0 = std::floor(box.u0 - kPlateMarginMm), box.u1 = std::ceil(box.u1 + kPlateMarginMm);
+  box.v0 = std::floor(box.v0 - kPlateMarginMm), box.v1 = std::ceil(box.v1 + kPlateMarginMm);
+}
 
-  // the top view: an orthographic camera above the plate's centre looking down -y, uphill (-z) up the
-  // picture: its node turned -90 degrees about x
-  const V3 plateCentre = P(0.5 * (u0 + u1), 0.5 * (v0 + v1), 0);
-  const double xmag = 0.5 * (u1 - u0) * units::mm, ymag = 0.5 * (v1 - v0) * units::mm;
+// a point of the plate (u, v, w) [mm] in the glTF frame
+V3 plateGltf(double u, double v, double w) { return toGltf(V3(u, v, w)); }
+
+// the plate and its grid (whole millimetres, darker every 10 mm) over the plate's extent
+void addPlate(Build& b) {
+  const RenderScene::Plate plateLook;
+  const PlateBox& x = b.box;
+  const V3 up(0, 1, 0);
+  FloatMesh plate;
+  plate.quad(plateGltf(x.u0, x.v0, 0), plateGltf(x.u1, x.v0, 0), plateGltf(x.u1, x.v1, 0), plateGltf(x.u0, x.v1, 0), up);
+  const int mat = b.doc.material("plate", plateLook.colour, false);
+  b.topMesh("plate", {floatPrimitive(b.doc, plate, mat)});
+  FloatMesh minor, major;
+  for (int u = static_cast<int>(x.u0); u <= static_cast<int>(x.u1); ++u) {
+    const bool isMajor = u % kMajorEvery == 0;
+    const double hw = 0.5 * (isMajor ? kGridMajorLineMm : kGridLineMm), w = isMajor ? kGridMajorLiftMm : kGridLiftMm;
+    (isMajor ? major : minor).quad(plateGltf(u - hw, x.v0, w), plateGltf(u + hw, x.v0, w), plateGltf(u + hw, x.v1, w), plateGltf(u - hw, x.v1, w), up);
+  }
+  for (int v = static_cast<int>(x.v0); v <= static_cast<int>(x.v1); ++v) {
+    const bool isMajor = v % kMajorEvery == 0;
+    const double hw = 0.5 * (isMajor ? kGridMajorLineMm : kGridLineMm);
+    const double w = (isMajor ? kGridMajorLiftMm : kGridLiftMm) + kGridCrossLiftMm;
+    (isMajor ? major : minor).quad(plateGltf(x.u0, v - hw, w), plateGltf(x.u1, v - hw, w), plateGltf(x.u1, v + hw, w), plateGltf(x.u0, v + hw, w), up);
+  }
+  std::vector<J> prims{floatPrimitive(b.doc, minor, b.doc.material("grid 1 mm", plateLook.line, false))};
+  if (!major.pos.empty()) prims.push_back(floatPrimitive(b.doc, major, b.doc.material("grid 10 mm", plateLook.major, false)));
+  b.topMesh("grid", prims);
+}
+
+// the obstacles: the renderer's meshes of them, in the glTF frame
+void addObstacles(Build& b, const SceneInfo& info) {
+  RenderScene scratch;
+  addObstacleMeshes(info, scratch);
+  FloatMesh m;
+  for (const TubeVertex& tv : scratch.vertices) {
+    m.pos.push_back(toGltf(V3(tv.pos[0], tv.pos[1], tv.pos[2])));
+    m.nrm.push_back(dirToGltf(V3(tv.normal[0], tv.normal[1], tv.normal[2])));
+  }
+  m.idx = scratch.indices;
+  const TubeVertex& first = scratch.vertices.front();
+  const int mat = b.doc.material("obstacle", {first.colour[0], first.colour[1], first.colour[2]}, true);
+  b.topMesh("obstacles", {floatPrimitive(b.doc, m, mat)});
+}
+
+// the top view: an orthographic camera above the plate's centre looking down -y, uphill (-z) up the
+// picture: its node turned -90 degrees about x. The camera's JSON
+J addTopCamera(Build& b) {
+  const PlateBox& x = b.box;
+  const V3 plateCentre = plateGltf(0.5 * (x.u0 + x.u1), 0.5 * (x.v0 + x.v1), 0);
+  const double xmag = 0.5 * (x.u1 - x.u0) * units::mm, ymag = 0.5 * (x.v1 - x.v0) * units::mm;
   const J camera =
       obj({kv("name", quote("top view")), kv("type", quote("orthographic")),
            kv("orthographic", obj({kv("xmag", num(xmag)), kv("ymag", num(ymag)), kv("znear", num(0.01 * kCameraHeightM)),
                                    kv("zfar", num(2.0 * kCameraHeightM))}))});
   const double s2 = std::sqrt(0.5);
-  doc.nodes.push_back(obj({kv("name", quote("top view")), kv("camera", num(0)),
-                           kv("rotation", arr({num(-s2), num(0), num(0), num(s2)})),
-                           kv("translation", arr({num(plateCentre.x()), num(kCameraHeightM), num(plateCentre.z())}))}));
-  top.push_back(num(static_cast<int>(doc.nodes.size()) - 1));
+  b.top.push_back(num(b.node(obj({kv("name", quote("top view")), kv("camera", num(0)),
+                                  kv("rotation", arr({num(-s2), num(0), num(0), num(s2)})),
+                                  kv("translation", arr({num(plateCentre.x()), num(kCameraHeightM), num(plateCentre.z())}))}))));
+  return camera;
+}
 
-  // the animation: snapshot k's node has scale 1 on [k, k + 1) / fps and 0 elsewhere (STEP); each
-  // sampler reads a slice of one time list and one value list [0, 1, 0]
-  // the animation: the node of the file's frame f has scale 1 on [f, f + 1) / fps and 0 elsewhere (STEP);
-  // each sampler reads a slice of one time list and one value list [0, 1, 0]
+// the animation: the node of the file's frame f has scale 1 on [f, f + 1) / fps and 0 elsewhere (STEP);
+// each sampler reads a slice of one time list and one value list [0, 1, 0]. None for a single frame
+Members animation(Build& b, int frames) {
   Members animations;
-  if (frames > 1) {
-    Bin times, values;
-    for (int f = 0; f < frames; ++f) times.f32(static_cast<float>(f / kGltfFramesPerSecond));
-    for (float v : {0.0f, 1.0f, 0.0f})
-      for (int k = 0; k < 3; ++k) values.f32(v);
-    const int tv = doc.view(times.bytes, 0), vv = doc.view(values.bytes, 0);
-    std::vector<J> samplers, channels;
-    for (const auto& [node, f] : frameNodes) {
-      const int first = std::max(0, f - 1), last = std::min(frames - 1, f + 1);
-      const auto t0 = static_cast<float>(first / kGltfFramesPerSecond), t1 = static_cast<float>(last / kGltfFramesPerSecond);
-      const int in = doc.accessor(tv, static_cast<std::size_t>(first) * 4, kFloat, false, static_cast<std::size_t>(last - first + 1),
-                                  "SCALAR", {kv("min", arr({num(t0)})), kv("max", arr({num(t1)}))});
-      // values from [0, 1, 0]: the first frame starts at its 1, the last ends at its 1
-      const std::size_t valueOffset = f == 0 ? 12 : 0;
-      const int out = doc.accessor(vv, valueOffset, kFloat, false, static_cast<std::size_t>(last - first + 1), "VEC3");
-      samplers.push_back(obj({kv("input", num(in)), kv("output", num(out)), kv("interpolation", quote("STEP"))}));
-      channels.push_back(obj({kv("sampler", num(static_cast<int>(samplers.size()) - 1)),
-                              kv("target", obj({kv("node", num(node)), kv("path", quote("scale"))}))}));
-    }
-    animations.push_back(kv("animations", arr({obj({kv("name", quote("growth")), kv("channels", arr(channels)),
-                                            kv("samplers", arr(samplers))})})));
+  if (frames <= 1) return animations;
+  Doc& doc = b.doc;
+  Bin times, values;
+  for (int f = 0; f < frames; ++f) times.f32(static_cast<float>(f / kGltfFramesPerSecond));
+  for (float v : {0.0f, 1.0f, 0.0f})
+    for (int k = 0; k < 3; ++k) values.f32(v);
+  const int tv = doc.view(times.bytes, 0), vv = doc.view(values.bytes, 0);
+  std::vector<J> samplers, channels;
+  for (const auto& [node, f] : b.frameNodes) {
+    const int first = std::max(0, f - 1), last = std::min(frames - 1, f + 1);
+    const auto t0 = static_cast<float>(first / kGltfFramesPerSecond), t1 = static_cast<float>(last / kGltfFramesPerSecond);
+    const int in = doc.accessor(tv, static_cast<std::size_t>(first) * 4, kFloat, false, static_cast<std::size_t>(last - first + 1),
+                                "SCALAR", {kv("min", arr({num(t0)})), kv("max", arr({num(t1)}))});
+    // values from [0, 1, 0]: the first frame starts at its 1, the last ends at its 1
+    const std::size_t valueOffset = f == 0 ? 12 : 0;
+    const int out = doc.accessor(vv, valueOffset, kFloat, false, static_cast<std::size_t>(last - first + 1), "VEC3");
+    samplers.push_back(obj({kv("input", num(in)), kv("output", num(out)), kv("interpolation", quote("STEP"))}));
+    channels.push_back(obj({kv("sampler", num(static_cast<int>(samplers.size()) - 1)),
+                            kv("target", obj({kv("node", num(node)), kv("path", quote("scale"))}))}));
   }
-  doc.nodes.push_back(obj({kv("name", quote("rootsim")), kv("children", arr(top))}));
-  const int sceneRoot = static_cast<int>(doc.nodes.size()) - 1;
-  doc.bin.align4();
+  animations.push_back(kv("animations", arr({obj({kv("name", quote("growth")), kv("channels", arr(channels)),
+                                          kv("samplers", arr(samplers))})})));
+  return animations;
+}
 
+// the GLB file: its JSON chunk (the document, signed) and its BIN chunk
+std::string glbFile(Doc& doc, const SceneInfo& info, const J& camera, const Members& animations, int sceneRoot) {
+  doc.bin.align4();
   Members members{
       // the generator is rootsim's signature; extras hold the BIN chunk's SHA-256, so that the write rule
       // (write_rule.hpp) replaces the file only while its geometry is as written
@@ -522,6 +562,27 @@ std::string gltfOf(const std::vector<RootSeries>& roots, const SceneInfo& info, 
   glb.u32(0x004E4942);  // "BIN\0"
   glb.bytes += doc.bin.bytes;
   return glb.bytes;
+}
+
+// the file of roots; prefixed: each snapshot's node named after its root ("NAME frame NNNN, ..."), as a
+// plate's are (a single root's are "frame NNNN, ...", under the group "root")
+std::string gltfOf(const std::vector<RootSeries>& roots, const SceneInfo& info, const GltfOptions& options, bool prefixed) {
+  const int frames = checkedFrames(roots, options);
+  const double h = options.stripeHalfWidthDeg * units::deg;
+  const PlateFrame pf = PlateFrame::tilted(info.alphaDeg * units::deg);
+  Build b;
+  const RenderScene::Material look;
+  const int matBody = b.doc.material("root body", look.body, false);
+  const int matPlus = b.doc.material("stripe +d1", look.plus, false);
+  const int matMinus = b.doc.material("stripe -d1", look.minus, false);
+  for (const RootSeries& root : roots) addRoot(b, root, pf, h, frames, prefixed, {matBody, matPlus, matMinus});
+  finishPlateBox(b.box, info, options);
+  if (info.plate) addPlate(b);
+  if (!info.obstacles.empty()) addObstacles(b, info);
+  const J camera = addTopCamera(b);
+  const Members animations = animation(b, frames);
+  const int sceneRoot = b.node(obj({kv("name", quote("rootsim")), kv("children", arr(b.top))}));
+  return glbFile(b.doc, info, camera, animations, sceneRoot);
 }
 
 }  // namespace

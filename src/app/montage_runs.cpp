@@ -94,7 +94,7 @@ MontageLabels montageLabels(const std::vector<Model>& models, const std::vector<
   std::set<std::string> all;
   for (const Model& m : models) {
     keys.emplace_back();
-    for (const SceneValue& v : sceneValues(m)) {
+    for (const SceneValue& v : sceneValues(m, OutputParams{})) {  // output.* keys are not labels (below)
       keys.back()[v.key] = v.text;
       all.insert(v.key);
     }

@@ -83,38 +83,36 @@ double fitPlateMm(const std::vector<Snapshot>& snaps, const SceneInfo& info, con
 // the plate view's right-hand share of the picture kept for the legend of the seedlings' values
 constexpr double kSeedLegendShare = 0.22;
 
-bool given(double v) { return v != RenderOptions::kUnset; }
-
 // the flags of a still and of a time window, checked before anything is read
 // (scan: --scan's picture, the last snapshot unless --at-h or --frame says)
 void checkTimeFlags(const RenderOptions& o, bool scan) {
-  const bool still = !o.png.empty() || given(o.atH) || o.frameGiven;
-  if (given(o.atH) && o.frameGiven) throw SceneError("--at-h " + significantText(o.atH) + ": give --at-h or --frame, not both");
+  const bool still = !o.png.empty() || flagGiven(o.atH) || o.frameGiven;
+  if (flagGiven(o.atH) && o.frameGiven) throw SceneError("--at-h " + significantText(o.atH) + ": give --at-h or --frame, not both");
   if (still) {
     if (o.png.empty())
-      throw SceneError(std::string(given(o.atH) ? "--at-h " + significantText(o.atH) : "--frame " + std::to_string(o.frame)) +
+      throw SceneError(std::string(flagGiven(o.atH) ? "--at-h " + significantText(o.atH) : "--frame " + std::to_string(o.frame)) +
                        ": writes a still; add --png FILE");
-    if (!scan && !given(o.atH) && !o.frameGiven) throw SceneError("--png " + o.png + ": a still; add --at-h H or --frame N");
+    if (!scan && !flagGiven(o.atH) && !o.frameGiven) throw SceneError("--png " + o.png + ": a still; add --at-h H or --frame N");
     if (!o.mp4.empty() || !o.pngDir.empty() || !o.finalPng.empty())
       throw SceneError("--png " + o.png + ": a still is one picture; not with --mp4, --png-dir or --final-png");
-    if (given(o.hoursPerSecond))
+    if (flagGiven(o.hoursPerSecond))
       throw SceneError("--hours-per-second " + significantText(o.hoursPerSecond) + ": paces a movie; a still (--png) has no speed");
     if (o.frameGiven && o.frame < 0) throw SceneError("--frame " + std::to_string(o.frame) + ": must be >= 0");
   }
-  if (given(o.atH)) checkedNumber("--at-h", o.atH, kGrowthHours);
-  if (given(o.fromH)) checkedNumber("--from-h", o.fromH, kGrowthHours);
-  if (given(o.toH)) checkedNumber("--to-h", o.toH, kGrowthHours);
-  if (given(o.fromH) && given(o.toH) && o.fromH > o.toH)
+  if (flagGiven(o.atH)) checkedNumber("--at-h", o.atH, kGrowthHours);
+  if (flagGiven(o.fromH)) checkedNumber("--from-h", o.fromH, kGrowthHours);
+  if (flagGiven(o.toH)) checkedNumber("--to-h", o.toH, kGrowthHours);
+  if (flagGiven(o.fromH) && flagGiven(o.toH) && o.fromH > o.toH)
     throw SceneError("--from-h " + significantText(o.fromH) + ": after --to-h " + significantText(o.toH));
-  if (given(o.hoursPerSecond)) checkedNumber("--hours-per-second", o.hoursPerSecond, {0, 1e6, true, false, "h/s"});
+  if (flagGiven(o.hoursPerSecond)) checkedNumber("--hours-per-second", o.hoursPerSecond, {0, 1e6, true, false, "h/s"});
 }
 
 // the snapshots the movie shows, one per frame (the window and the speed applied)
 std::vector<Snapshot> framesOf(const std::vector<Snapshot>& snaps, const RenderOptions& o, int fps) {
   std::vector<double> t;
   for (const Snapshot& s : snaps) t.push_back(s.timeH);
-  const double from = given(o.fromH) ? o.fromH : -1e300, to = given(o.toH) ? o.toH : 1e300;
-  const double hps = given(o.hoursPerSecond) ? o.hoursPerSecond : 0.0;
+  const double from = flagGiven(o.fromH) ? o.fromH : -1e300, to = flagGiven(o.toH) ? o.toH : 1e300;
+  const double hps = flagGiven(o.hoursPerSecond) ? o.hoursPerSecond : 0.0;
   // the frames, counted before they are made (each holds a copy of its snapshot)
   const double lo = std::max(from, t.front()), hi = std::min(to, t.back());
   const double frames = hps > 0 ? std::max(0.0, hi - lo) * fps / hps + 1 : static_cast<double>(t.size());
@@ -124,10 +122,10 @@ std::vector<Snapshot> framesOf(const std::vector<Snapshot>& snaps, const RenderO
   const std::vector<int> idx = movieFrames(t, from, to, hps, fps);
   if (idx.empty()) {
     std::string flags;
-    if (given(o.fromH)) flags += "--from-h " + significantText(o.fromH);
-    if (given(o.toH)) flags += std::string(flags.empty() ? "" : " ") + "--to-h " + significantText(o.toH);
-    throw SceneError(flags + ": no snapshot in [" + significantText(given(o.fromH) ? o.fromH : t.front()) + ", " +
-                     significantText(given(o.toH) ? o.toH : t.back()) + "] h (the run's snapshots: " + significantText(t.front()) + " .. " +
+    if (flagGiven(o.fromH)) flags += "--from-h " + significantText(o.fromH);
+    if (flagGiven(o.toH)) flags += std::string(flags.empty() ? "" : " ") + "--to-h " + significantText(o.toH);
+    throw SceneError(flags + ": no snapshot in [" + significantText(flagGiven(o.fromH) ? o.fromH : t.front()) + ", " +
+                     significantText(flagGiven(o.toH) ? o.toH : t.back()) + "] h (the run's snapshots: " + significantText(t.front()) + " .. " +
                      significantText(t.back()) + " h)");
   }
   std::vector<Snapshot> out;
@@ -138,7 +136,7 @@ std::vector<Snapshot> framesOf(const std::vector<Snapshot>& snaps, const RenderO
 
 // the frame of the movie a still shows (SceneError naming the flag and the range)
 int stillFrame(const std::vector<Snapshot>& frames, const RenderOptions& o) {
-  const bool window = given(o.fromH) || given(o.toH);
+  const bool window = flagGiven(o.fromH) || flagGiven(o.toH);
   if (o.frameGiven) {
     if (o.frame >= static_cast<int>(frames.size()))
       throw SceneError("--frame " + std::to_string(o.frame) + ": the movie has frames 0 .. " +
@@ -176,7 +174,7 @@ int renderRunCommand(const RenderOptions& o) {
   if (o.noOverlays) job.view.overlays = false;
   if (o.trace.trace.empty() && (!o.trace.root.empty() || o.trace.pxPerMm != TraceFlags::kUnset || o.trace.downhill != "+y"))
     throw SceneError("--trace-root, --trace-px-per-mm, --trace-downhill: describe the trace of --trace FILE; give --trace");
-  const bool scan = given(o.scanPxPerMm);
+  const bool scan = flagGiven(o.scanPxPerMm);
   if (scan) {
     checkedNumber("--scan", o.scanPxPerMm, {0, 200, true, false, "px/mm"});
     if (o.png.empty()) throw SceneError("--scan " + significantText(o.scanPxPerMm) + ": a picture; add --png FILE");
@@ -280,7 +278,7 @@ int renderRunCommand(const RenderOptions& o) {
   checkFieldAgainstPlate(look, fitPlateMm(snaps, info, job));
   // a plate's picture (--scan, --plate-view) without --at-h or --frame: its last snapshot
   const bool plateStill = plate && (scan || o.plateView);
-  const int still = o.png.empty() ? -1 : (plateStill && !given(o.atH) && !o.frameGiven ? static_cast<int>(snaps.size()) - 1 : stillFrame(snaps, o));
+  const int still = o.png.empty() ? -1 : (plateStill && !flagGiven(o.atH) && !o.frameGiven ? static_cast<int>(snaps.size()) - 1 : stillFrame(snaps, o));
   // the write rule, once the flags and the run are known good: the run directory is read and receives
   // only its own movie.mp4 and final_top.png
   WriteRule rule;

@@ -96,7 +96,7 @@ int runLoaded(const Scene& sc, const RunOptions& o, const std::function<void(con
   }
   if (o.movie) {
     // the movie shows every snapshot: counted before the run, not after it
-    const double snapshots = (sc.model.growth.enabled ? sc.model.growth.steps : 0) / std::max(1, sc.model.output.everySteps) + 1.0;
+    const double snapshots = (sc.model.growth.enabled ? sc.model.growth.steps : 0) / std::max(1, sc.output.everySteps) + 1.0;
     checkCount("--movie: " + sc.path + " (growth.steps / output.every_steps + 1 snapshots)", snapshots, caps::kMovieFrames,
                "frames", "caps::kMovieFrames: each frame holds a copy of its snapshot; raise output.every_steps");
   }
@@ -104,7 +104,7 @@ int runLoaded(const Scene& sc, const RunOptions& o, const std::function<void(con
                    !o.look.plot.empty() || o.look.shadows))
     throw SceneError("--camera, --inset, --field-mm, --color-by, --plot and --shadows shape the movie; add --movie");
 #endif
-  if (o.movie && !sc.model.output.trajectory)
+  if (o.movie && !sc.output.trajectory)
     throw SceneError("--movie needs the trajectory, but output.trajectory = false (" +
                      std::string(sc.path) + "); drop one of them");
   const int steps = sc.model.growth.enabled ? sc.model.growth.steps : 0;

@@ -115,31 +115,27 @@ static int usageError(CLI::App& app, const CLI::ParseError& e, int argc, char** 
   return fail(where + ": " + msg);
 }
 
-int main(int argc, char** argv) {
-  CLI::App app{"rootsim: growing Cosserat-rod roots on tilted plates (Cosserat mechanics, growth, movies)"};
-  app.fallthrough();
-  app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("rootsim ") + kVersion);
+namespace {
 
-  // every command from its table: its options struct, CLI11's subcommand bound to it
-  struct Registered {
-    const cli::CommandSpec* spec;
-    std::shared_ptr<void> opts;
-    CLI::App* app;
-  };
+// every command from its table: its options struct, CLI11's subcommand bound to it
+struct Registered {
+  const cli::CommandSpec* spec;
+  std::shared_ptr<void> opts;
+  CLI::App* app;
+};
+std::vector<Registered> registerCommands(CLI::App& app) {
   std::vector<Registered> registered;
   for (const cli::CommandSpec& spec : cli::commands()) {
     Registered r{&spec, spec.make(), app.add_subcommand(spec.name, spec.help)};
     addOptions(r.app, spec, r.opts.get());
     registered.push_back(std::move(r));
   }
+  return registered;
+}
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    return usageError(app, e, argc, argv);
-  }
-  // a path option given an empty value ("--out ''") is refused, never taken for its default
+// a path option given an empty value ("--out ''") is refused, never taken for its default: false after
+// saying so
+bool noEmptyValues(CLI::App& app) {
   for (CLI::App* sub : app.get_subcommands())
     for (const CLI::Option* opt : sub->get_options())
       if (opt->count() > 0 && opt->get_type_size() != 0)
@@ -147,13 +143,13 @@ int main(int argc, char** argv) {
           if (v.empty()) {
             std::fprintf(stderr, "rootsim: error: %s: empty value (give a path or value, or leave the option out)\n",
                          opt->get_name().c_str());
-            return 2;
+            return false;
           }
-  // the options whose presence matters (a --field-mm without a follow window to size is refused by
-  // app::parseLook, not ignored; run --movie without --camera: the inset look; render --frame 0)
-  for (const Registered& r : registered)
-    for (const cli::OptionSpec& s : r.spec->options)
-      cli::markGiven(s, r.opts.get(), r.app->get_option(s.flag.substr(s.flag.rfind(',') + 1))->count() > 0);
+  return true;
+}
+
+// the parsed command run, its exceptions turned into exit codes: bad input 2, a failed run 1
+int runParsed(CLI::App& app, const std::vector<Registered>& registered) {
   try {
     for (const Registered& r : registered)
       if (r.app->parsed()) return r.spec->run(r.opts.get());
@@ -181,4 +177,26 @@ int main(int argc, char** argv) {
     return 1;
   }
   return 2;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"rootsim: growing Cosserat-rod roots on tilted plates (Cosserat mechanics, growth, movies)"};
+  app.fallthrough();
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("rootsim ") + kVersion);
+  const std::vector<Registered> registered = registerCommands(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return usageError(app, e, argc, argv);
+  }
+  if (!noEmptyValues(app)) return 2;
+  // the options whose presence matters (a --field-mm without a follow window to size is refused by
+  // app::parseLook, not ignored; run --movie without --camera: the inset look; render --frame 0)
+  for (const Registered& r : registered)
+    for (const cli::OptionSpec& s : r.spec->options)
+      cli::markGiven(s, r.opts.get(), r.app->get_option(s.flag.substr(s.flag.rfind(',') + 1))->count() > 0);
+  return runParsed(app, registered);
 }

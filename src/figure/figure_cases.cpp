@@ -33,10 +33,15 @@ Model modelOf(const Ctx& c, const Case& k) {
   m.growth.stepTime = c.dt() * units::hour;
   // from the initial 1.1 mm at v_tip = 0.2 mm/h (the default growth zone and rate)
   m.growth.steps = static_cast<int>(std::lround((k.lengthMm - 1.1) / (0.2 * c.dt())));
-  m.output.vtk = false;
-  m.output.everySteps = std::max(1, static_cast<int>(std::lround(0.5 / c.dt())));  // every half hour
   completeModel(m);
   return m;
+}
+
+OutputParams outputOf(const Ctx& c) {
+  OutputParams o;
+  o.vtk = false;
+  o.everySteps = std::max(1, static_cast<int>(std::lround(0.5 / c.dt())));  // every half hour
+  return o;
 }
 
 SceneInfo infoOf(const Ctx& c, const Case& k) { return sceneInfoOf(modelOf(c, k)); }

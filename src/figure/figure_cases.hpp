@@ -9,6 +9,7 @@
 #include "rootsim/figure.hpp"
 #include "rootsim/model.hpp"
 #include "rootsim/number_text.hpp"
+#include "rootsim/output_params.hpp"
 #include "rootsim/snapshot.hpp"
 
 namespace rootsim::fig {
@@ -47,9 +48,10 @@ std::string dirOf(const Ctx& c, const Case& k);
 // figure runs were runs of an empty base.toml, and their outputs keep the name)
 inline constexpr const char* kFigureSceneName = "base";
 // the model a case runs with: the default model (docs/model.md, Experiment and parameters) with the case's
-// parameters, the context's element length and growth step, growth steps to reach the case's length, no VTK
-// output
+// parameters, the context's element length and growth step, growth steps to reach the case's length
 Model modelOf(const Ctx& c, const Case& k);
+// what a case's run writes: no VTK, a snapshot every half hour
+OutputParams outputOf(const Ctx& c);
 // what a picture of the case shows beside the root: its model's (sceneInfoOf, snapshot.hpp)
 SceneInfo infoOf(const Ctx& c, const Case& k);
 

@@ -44,7 +44,7 @@ void runCases(const Ctx& c, const std::vector<Case>& given) {
     bool dup = false;
     for (const auto& q : plan.points) dup |= q.dirName == p.dirName;
     if (dup) continue;
-    p.scene = sceneOf(modelOf(c, k));
+    p.scene = sceneOf(modelOf(c, k), outputOf(c));
     p.grows = p.scene->model.growth.enabled;
     plan.points.push_back(std::move(p));
   }

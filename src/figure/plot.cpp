@@ -9,14 +9,16 @@
 #include <cctype>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <optional>
+#include <vector>
 
 #include "rootsim/errors.hpp"
 #include "rootsim/number_text.hpp"
-#include "rootsim/png_signature.hpp"
+#include "rootsim/png_encode.hpp"
 #include "rootsim/units.hpp"
 #include "rootsim/write_rule.hpp"
 
@@ -566,24 +568,22 @@ void placeLegend(const Pen& p, const Axes& a, Cell& cell) {
   cell.legend = Box{0.5 * (g.L + g.R - widest), g.B + kBottom, widest, 18.0 * legendRows(e, width) + 8};
 }
 
-void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
+// the axes' frame: the white plot area, grid lines and ticks with their labels, the frame, the title,
+// the panel label and the axis labels
+void drawFrame(const Pen& p, const Axes& a, const Cell& cell, const Geo& g) {
   cairo_t* cr = p.cr;
-  const Geo g = geometryOf(a, cell);
   const double L = g.L, R = g.R, T = g.T, B = g.B;
-  const double x0 = g.x0, x1 = g.x1, y0 = g.y0, y1 = g.y1;
   const double pw = R - L, ph = B - T;
-  const bool logX = g.logX;
   auto X = [&](double x) { return g.X(x); };
   auto Y = [&](double y) { return g.Y(y); };
-  const double unit = g.unit();  // layout units per data unit along x
   const Box box = cell.box;
 
   // frame, grid, ticks
   cairo_set_source_rgb(cr, 1, 1, 1);
   cairo_rectangle(cr, L, T, pw, ph);
   cairo_fill(cr);
-  const auto xt = a.frameOnly ? std::vector<double>{} : logX ? logTicks(x0, x1) : ticks(x0, x1, tickTarget(pw, 40, 2, 6));
-  const auto yt = a.frameOnly ? std::vector<double>{} : ticks(y0, y1, tickTarget(ph, 36, 3, 5));
+  const auto xt = a.frameOnly ? std::vector<double>{} : g.logX ? logTicks(g.x0, g.x1) : ticks(g.x0, g.x1, tickTarget(pw, 40, 2, 6));
+  const auto yt = a.frameOnly ? std::vector<double>{} : ticks(g.y0, g.y1, tickTarget(ph, 36, 3, 5));
   cairo_set_line_width(cr, 0.8);
   for (double v : xt) {
     if (a.grid) { cairo_set_source_rgb(cr, 0.9, 0.9, 0.9); cairo_move_to(cr, X(v), T); cairo_line_to(cr, X(v), B); cairo_stroke(cr); }
@@ -605,8 +605,19 @@ void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
   if (!a.panelLabel.empty()) text(p, box.x + 8, box.y + 6, a.panelLabel, 20, 0.0, 0.0, true);
   if (cell.xLabel) text(p, cell.rowLabel ? 0.5 * (cell.rowX0 + cell.rowX1) : 0.5 * (L + R), B + 26, a.xlabel, 13, 0.5, 0.0);
   text(p, box.x + 14, 0.5 * (T + B), a.ylabel, 13, 0.5, 0.5, false, -units::pi / 2);
+}
 
-  // data, clipped to the plot area
+// the axes' data, clipped to the plot area: fills, the plate's grid, obstacles, shapes, tubes, series
+// (lines and markers) and notes
+void drawData(const Pen& p, const Axes& a, const Geo& g) {
+  cairo_t* cr = p.cr;
+  const double L = g.L, R = g.R, T = g.T, B = g.B;
+  const double x0 = g.x0, x1 = g.x1, y0 = g.y0, y1 = g.y1;
+  const double pw = R - L, ph = B - T;
+  auto X = [&](double x) { return g.X(x); };
+  auto Y = [&](double y) { return g.Y(y); };
+  const double unit = g.unit();  // layout units per data unit along x
+
   cairo_save(cr);
   cairo_rectangle(cr, L, T, pw, ph);
   cairo_clip(cr);
@@ -680,8 +691,11 @@ void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
     text(p, nb.x + 0.5 * nb.w, nb.y + 0.5 * nb.h, s, 12, 0.5, 0.5);
   }
   cairo_restore(cr);
+}
 
-  // legend: at the place the layout chose (Cell::legend), inside the plot area or in rows under the axes
+// the legend: at the place the layout chose (Cell::legend), inside the plot area or in rows under the axes
+void drawLegend(const Pen& p, const Axes& a, const Cell& cell) {
+  cairo_t* cr = p.cr;
   if (cell.legend.w > 0) {
     const double lx = cell.legend.x, ly = cell.legend.y, bw = cell.legend.w, bh = cell.legend.h;
     cairo_set_source_rgba(cr, 1, 1, 1, 0.85);
@@ -726,6 +740,13 @@ void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
       text(p, ex0 + kLegendSwatch, yy, fl.label, 12, 0.0, 0.5);
     }
   }
+}
+
+void drawAxes(const Pen& p, const Axes& a, const Cell& cell) {
+  const Geo g = geometryOf(a, cell);
+  drawFrame(p, a, cell, g);
+  drawData(p, a, g);
+  drawLegend(p, a, cell);
 }
 
 // a figure laid out: its size [layout units], the figure title's lines and each axes' cell
@@ -872,18 +893,27 @@ double plotAspect(const Figure& f, const Axes& a) {
 }
 
 namespace {
-cairo_status_t appendBytes(void* closure, const unsigned char* data, unsigned int length) {
-  static_cast<std::string*>(closure)->append(reinterpret_cast<const char*>(data), length);
-  return CAIRO_STATUS_SUCCESS;
-}
-// the PNG cairo writes with a pHYs chunk (pixels per metre) after its IHDR
-std::string withPhys(const std::string& png, double dpi) {
-  const auto ppm = static_cast<std::uint32_t>(std::lround(dpi / 0.0254));
-  std::string data;
-  png_detail::putBe32(data, ppm);
-  png_detail::putBe32(data, ppm);
-  data += '\x01';  // unit: metre
-  return withChunkAfterIhdr(png, "pHYs", data);
+// the PNG of a cairo RGB24 surface: its pixels (native-endian 32-bit words 0x00RRGGBB) as RGB rows, as
+// cairo's own PNG writer passes them to libpng (its settings, its white bKGD), with a pHYs chunk of dpi
+std::string figurePng(cairo_surface_t* s, double dpi, std::string* why) {
+  cairo_surface_flush(s);
+  const int w = cairo_image_surface_get_width(s), h = cairo_image_surface_get_height(s);
+  const int stride = cairo_image_surface_get_stride(s);
+  const unsigned char* src = cairo_image_surface_get_data(s);
+  std::vector<unsigned char> rgb(static_cast<size_t>(3) * w * h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      std::uint32_t px = 0;
+      std::memcpy(&px, src + static_cast<size_t>(y) * stride + 4 * static_cast<size_t>(x), 4);
+      unsigned char* out = rgb.data() + 3 * (static_cast<size_t>(y) * w + x);
+      out[0] = static_cast<unsigned char>(px >> 16);
+      out[1] = static_cast<unsigned char>(px >> 8);
+      out[2] = static_cast<unsigned char>(px);
+    }
+  PngOptions o;
+  o.dpi = dpi;
+  o.whiteBackground = true;
+  return encodeSignedPng({rgb.data(), w, h, 3, 3 * static_cast<size_t>(w)}, o, why);
 }
 }  // namespace
 
@@ -963,12 +993,13 @@ void saveFigure(const Figure& fig, const std::string& base, const SaveOptions& s
     cairo_scale(cr, scale, scale);
     drawFigure(Pen{cr, lay.scriptMin}, f, lay);
     cairo_destroy(cr);
-    std::string bytes;
-    const cairo_status_t st = cairo_surface_write_to_png_stream(s, appendBytes, &bytes);
+    check(cairo_surface_status(s), "drawing " + pngTmp.string());
+    std::string why;
+    const std::string bytes = figurePng(s, so.dpi, &why);
     cairo_surface_destroy(s);
-    check(st, "encoding " + pngTmp.string());
+    if (bytes.empty()) throw RunError("encoding " + pngTmp.string() + ": libpng: " + why);
     std::ofstream o(pngTmp, std::ios::binary);
-    o << signPng(withPhys(bytes, so.dpi));
+    o << bytes;
     o.close();
     if (!o) throw RunError("cannot write " + pngTmp.string());
   }

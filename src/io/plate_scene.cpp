@@ -390,7 +390,8 @@ std::string seedlingToml(const Seedling& sd, const Model& base, const LateralPar
     os += k.key + " = " + tomlText(k, v) + "\n";
   }
   // its keys that differ from the plate's
-  const Values mine = valuesOf(sd.model, ""), plates = valuesOf(base, "");
+  // (a seedling's keys are its model's: what the run writes is the plate's)
+  const Values mine = valuesOf(SceneParams{sd.model, {}}, ""), plates = valuesOf(SceneParams{base, {}}, "");
   std::string set;
   for (const KeySpec& k : schema()) {
     if (!whyNotSeedlingKey(k).empty()) continue;

@@ -1,94 +1,63 @@
 #pragma once
-// internal: what one growing root writes into its folder (docs/outputs.md; defined in root_outputs.cpp),
-// shared by a run of one root
-// (run_scene.cpp) and a plate's roots (run_plate.cpp)
-#include <chrono>
+// internal: one growing root's folder (docs/outputs.md): the files it streams, what its run watches, where
+// a checkpoint saw both, and the files it writes last. A run of one root has one, in its run directory; a
+// plate has one per root, in roots/NAME (RunOutputs opens them).
 #include <filesystem>
-#include <functional>
-#include <memory>
-#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rootsim/checkpoint.hpp"
-#include "rootsim/outputs.hpp"
+#include "rootsim/model.hpp"
+#include "rootsim/output_params.hpp"
 #include "rootsim/results.hpp"
-#include "rootsim/run_dir.hpp"
 #include "rootsim/run_watch.hpp"
-#include "rootsim/scene.hpp"
 #include "rootsim/simulation.hpp"
-#include "rootsim/trajectory.hpp"
-#include "rootsim/vtk.hpp"
+#include "root_streams.hpp"
 
 namespace rootsim::detail {
 
-// a monotonic clock [s], for a run's wall time
-inline double now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
-// the files a root streams while it grows: its time series, its trajectory (CSV and/or binary) and
-// its ParaView series, as output.* asks; opened new, or where a checkpoint saw them
-class RootStreams {
+class RootOutputs {
  public:
-  // vtkOffset: added to the ParaView snapshots' positions (a plate's roots write theirs in plate
-  // coordinates, so that they open together); the trajectory stays in the root's own frame
-  RootStreams(const std::filesystem::path& dir, const Model& m, const WriterPositions* resume = nullptr,
-              const Vec3& vtkOffset = Vec3::Zero());
-  // a time-series row and, when any is written, a snapshot
-  void add(const Simulation& sim);
-  WriterPositions positions() const;
+  // a root's folder `dir` (existing; its scene.toml already written): its streams (as o asks) opened new, or (at: a
+  // checkpoint's) continued where the checkpoint saw them with the watch it had, the leftovers of atomic
+  // writes a kill interrupted removed first. ownFolder: a run directory of its own inside the run's (a
+  // plate's roots/NAME), marked when it finishes; else it is the run directory, which RunDir marks.
+  // vtkOffset as RootStreams'.
+  RootOutputs(std::filesystem::path dir, const Model& m, const OutputParams& o, bool ownFolder, const Vec3& vtkOffset,
+              const PlateRootRun* at = nullptr);
+
+  const std::filesystem::path& dir() const { return dir_; }
+  // the first record of a new root (its watch starts there), then each growth step's
+  void start(const StepRecord& r) { watch_.start(r); }
+  void see(const StepRecord& r) { watch_.see(r); }
+  // a time-series row and a snapshot (an output step)
+  void add(const Simulation& sim) { streams_.add(sim); }
+  // what a checkpoint keeps of it: its watch and where its files stand
+  PlateRootRun checkpointed() const { return {watch_, streams_.positions()}; }
+  const RunWatch& watch() const { return watch_; }
+
+  // closes its streams at the end of the growth steps; vtkEntries() then lists its ParaView snapshots
   void close();
-  // closes what can be closed, so that the files are whole (a failed run keeps them); never throws
-  void closeQuietly();
+  // closes what can be closed on a failure, so that the files are whole; never throws
+  void closeQuietly() { streams_.closeQuietly(); }
+  const std::vector<std::pair<double, std::string>>& vtkEntries() const { return vtkEntries_; }
+
+  // what a finished root writes last: shape.csv, summary.json and result.csv (what sweep tables are made
+  // of), then its own folder's marker listing its files; returns their texts and the result. wallS: the
+  // run's wall time [s]
+  struct Final {
+    std::string shape, summary, result;
+    RunResult res;
+  };
+  Final finish(const Model& m, const Simulation& sim, double wallS) const;
 
  private:
-  std::unique_ptr<TimeseriesWriter> ts_;
-  std::unique_ptr<TrajectoryWriter> tr_;
-  std::unique_ptr<TrajectoryBinaryWriter> tb_;
-  std::unique_ptr<VtkSeriesWriter> vtk_;
-  Vec3 vtkOffset_;
+  std::filesystem::path dir_;
+  bool ownFolder_;
+  RootStreams streams_;
+  RunWatch watch_;
+  std::vector<std::pair<double, std::string>> vtkEntries_;
 };
-
-// what a finished root writes last: shape.csv, summary.json (plus `extra` members) and result.csv
-struct RootFinal {
-  std::string shape, summary, result;
-  RunResult res;
-};
-RootFinal finishRoot(const Model& m, const Simulation& sim, const RunWatch& watch, double wallS);
-
-// the growth steps of a run, one root's or a plate's, from `first` to `steps`: grow(k), then write(k)
-// (what step k writes) and, at the run's cadence (checkpointEvery seconds of wall time; the test binary's
-// seams: run_seams.hpp) but after the last step, checkpoint(k); a writer's RunError names the step
-// ("at growth step k of N"); then progress(k). On a failure (not RunInterrupted) closeQuietly() keeps the
-// streams whole before the error goes on.
-struct RunSteps {
-  std::function<void(int)> grow, write, checkpoint, progress;
-  std::function<void()> closeQuietly;
-};
-void runGrowthSteps(int first, int steps, double checkpointEvery, const RunSteps& f);
-
-// what to do with an interrupted run DIR.partial when resuming (run_scene.cpp): continue it from its
-// checkpoint (load(checkpoint file) read it: it throws SceneError when the checkpoint cannot be used),
-// discard it, or refuse. The same for a run of one root and a plate.
-PartialRun resumePlan(const Scene& sc, const std::string& outDir, bool force,
-                      const std::function<void(const std::filesystem::path&)>& load);
-// what a resumed run says it does (RunDirOptions::note)
-void noteResume(const RunDirOptions& o, const RunDir& rd, PartialRun partial, int step, int steps);
-// the streams of a root's folder hold at least what its checkpoint saw (before anything is touched);
-// throws SceneError naming the file
-void checkStreamLengths(const std::filesystem::path& dir, const Model& m, const WriterPositions& w);
-void checkStreamLength(const std::filesystem::path& file, std::uint64_t bytes);
-// a checkpoint of this scene (its hash: sceneHash of the resolved scene); throws SceneError naming the file
-void checkSceneHash(const std::filesystem::path& file, std::uint64_t found, std::uint64_t expected);
-// "FILE:LINE: KEY is A there, B in SCENE" for the first key where two resolved scenes differ (file: where
-// `written` was read)
-std::string sceneDifference(const std::string& file, const std::string& written, const std::string& current,
-                            const std::string& scenePath);
-// removes the leftovers of atomic writes a kill interrupted in dir and dir/vtk, but the streams being
-// continued (names: their final names)
-void removeStaleTemps(const std::filesystem::path& dir, const std::vector<std::string>& streams);
-// the streams a root continues (RootStreams)
-inline const std::vector<std::string> kRootStreams = {"timeseries.csv", "trajectory.csv", "trajectory.bin"};
 
 }  // namespace rootsim::detail

@@ -42,7 +42,7 @@ std::string describeNode(const toml::node& n) {
 namespace {
 
 // the text of the number a node was parsed from (src: the text toml++ parsed), "" when not found
-std::string numberText(const std::string& src, const toml::source_position& p) {
+std::string sourceNumberText(const std::string& src, const toml::source_position& p) {
   std::size_t pos = 0;
   for (std::uint32_t l = 1; l < p.line; ++l) {
     pos = src.find('\n', pos);
@@ -61,7 +61,7 @@ std::string underflowed(const toml::node& n, const std::string& src) {
   if (!n.is_floating_point()) return "";
   const double d = *n.value<double>();
   if (!std::isfinite(d) || std::isnormal(d)) return "";
-  const std::string text = numberText(src, n.source().begin);
+  const std::string text = sourceNumberText(src, n.source().begin);
   if (d == 0 && text.substr(0, text.find_first_of("eE")).find_first_of("123456789") == std::string::npos) return "";
   return "(got " + (text.empty() ? formatNumber(d, false) : printable(text)) + ", which a double holds only as " +
          formatNumber(d, false) + ": non-zero magnitudes below 2.2250738585072014e-308 underflow)";
@@ -474,7 +474,9 @@ Scene parseScene(const std::string& text, const std::string& sourceName,
   for (const auto& ov : overrides) applyOverride(ov, values);
   std::string name = std::filesystem::path(sourceName).stem().string();
   Scene sc;
-  sc.model = buildModel(values, name);
+  SceneParams params = buildParams(values, name);
+  sc.model = std::move(params.model);
+  sc.output = params.output;
   std::vector<Obstacle> obs;
   for (const ParsedObstacle& po : obstacles) obs.push_back(po.o);
   PlateTables plate = readPlate(root, sourceName, text, values, plateValues, name, obs);
@@ -528,14 +530,16 @@ std::string sceneNumberProblem(const std::string& key, double value) {
   return checkValue(*k, v);
 }
 
-Scene sceneOf(const Model& model) {
+Scene sceneOf(const Model& model, const OutputParams& output) {
   const std::string origin = "model " + printable(model.name);
-  const Values values = valuesOf(model, origin);
+  const Values values = valuesOf(SceneParams{model, output}, origin);
   for (const KeySpec& k : schema())
     if (const std::string why = checkValue(k, values.at(k.full())); !why.empty())
       throw SceneError(origin + ": " + k.full() + " " + why);
   Scene sc;
-  sc.model = buildModel(values, model.name);
+  SceneParams params = buildParams(values, model.name);
+  sc.model = std::move(params.model);
+  sc.output = params.output;
   std::vector<ParsedObstacle> obstacles;
   for (const Obstacle& o : model.env.obstacles) {
     ParsedObstacle po;
@@ -551,9 +555,9 @@ Scene sceneOf(const Model& model) {
   return sc;
 }
 
-std::vector<SceneValue> sceneValues(const Model& model) {
+std::vector<SceneValue> sceneValues(const Model& model, const OutputParams& output) {
   std::vector<SceneValue> out;
-  const Values values = valuesOf(model, "model " + printable(model.name));
+  const Values values = valuesOf(SceneParams{model, output}, "model " + printable(model.name));
   for (const auto& sec : sections())
     for (const KeySpec& k : schema())
       if (k.section == sec) out.push_back({k.full(), tomlText(k, values.at(k.full()))});

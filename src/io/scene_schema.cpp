@@ -32,18 +32,18 @@ constexpr double kInf = 1e300;
 
 // a key's unit: the model's SI value is the scene value times factor (or divided by it, per = true:
 // rates per hour), computed exactly as written here, in the one place both directions live
-struct Unit {
+struct KeyUnit {
   double factor = 1;
   bool per = false;
 };
-constexpr Unit kOne{};
-constexpr Unit kMm{units::mm};
-constexpr Unit kHour{units::hour};
-constexpr Unit kPerHour{units::hour, true};
-constexpr Unit kDeg{units::deg};
-constexpr Unit kMpa{units::mpa};
+constexpr KeyUnit kOne{};
+constexpr KeyUnit kMm{units::mm};
+constexpr KeyUnit kHour{units::hour};
+constexpr KeyUnit kPerHour{units::hour, true};
+constexpr KeyUnit kDeg{units::deg};
+constexpr KeyUnit kMpa{units::mpa};
 
-double toSi(double v, Unit u) { return u.per ? v / u.factor : v * u.factor; }
+double toSi(double v, KeyUnit u) { return u.per ? v / u.factor : v * u.factor; }
 
 std::size_t textLength(double x) {
   char buf[64];
@@ -54,7 +54,7 @@ std::size_t textLength(double x) {
 // toSi gives x back bitwise, with the shortest text (so 40 * deg reads back as 40, not
 // 40.00000000000001, and loading the text gives x again); the plain conversion when none does (x is
 // not the product of any double and the factor: a model that no scene file can hold exactly)
-double fromSi(double x, Unit u) {
+double fromSi(double x, KeyUnit u) {
   if (u.factor == 1.0) return x;
   const double q = u.per ? x * u.factor : x / u.factor;
   if (!std::isfinite(q)) return q;
@@ -91,7 +91,7 @@ KeySpec make(const char* sec, const char* key, KeyType type, const char* doc) {
 // parameters, a root's lateral parameters or a seedling
 template <class Target, class Set, class Get>
 void bind(KeySpec& k, Set set, Get get) {
-  if constexpr (std::is_same_v<Target, Model>) k.set = set, k.get = get;
+  if constexpr (std::is_same_v<Target, SceneParams>) k.set = set, k.get = get;
   else if constexpr (std::is_same_v<Target, PlateParams>) k.setPlate = set, k.getPlate = get;
   else if constexpr (std::is_same_v<Target, LateralParams>) k.setLaterals = set, k.getLaterals = get;
   else {
@@ -103,8 +103,8 @@ void bind(KeySpec& k, Set set, Get get) {
 // the keys by type: each names its field of its owner (a function returning a reference to it, called
 // with a Target& to set and a const Target& to get); the default is the field of the owner's default
 // (defaultModel(), PlateParams{}, LateralParams{}, Seedling{})
-template <class Target = Model, class Field>
-KeySpec real(const char* sec, const char* key, Field field, Unit u, double lo, bool loOpen, double hi, bool hiOpen,
+template <class Target = SceneParams, class Field>
+KeySpec real(const char* sec, const char* key, Field field, KeyUnit u, double lo, bool loOpen, double hi, bool hiOpen,
              const char* doc) {
   KeySpec k = make(sec, key, KeyType::Real, doc);
   k.lo = lo; k.loOpen = loOpen; k.hi = hi; k.hiOpen = hiOpen;
@@ -116,7 +116,7 @@ KeySpec real(const char* sec, const char* key, Field field, Unit u, double lo, b
                });
   return k;
 }
-template <class Target = Model, class Field>
+template <class Target = SceneParams, class Field>
 KeySpec integer(const char* sec, const char* key, Field field, double lo, double hi, const char* doc) {
   KeySpec k = make(sec, key, KeyType::Integer, doc);
   k.lo = lo; k.hi = hi;
@@ -133,7 +133,7 @@ KeySpec integer(const char* sec, const char* key, Field field, double lo, double
                });
   return k;
 }
-template <class Target = Model, class Field>
+template <class Target = SceneParams, class Field>
 KeySpec boolean(const char* sec, const char* key, Field field, const char* doc) {
   KeySpec k = make(sec, key, KeyType::Boolean, doc);
   bind<Target>(k, [field](Target& m, const Value& v) { field(m) = v.b; },
@@ -146,7 +146,7 @@ KeySpec boolean(const char* sec, const char* key, Field field, const char* doc) 
   return k;
 }
 // a string key naming one of an enum's values
-template <class Target = Model, class Field, class E>
+template <class Target = SceneParams, class Field, class E>
 KeySpec choice(const char* sec, const char* key, Field field, std::vector<std::pair<std::string, E>> names,
                const char* doc) {
   KeySpec k = make(sec, key, KeyType::String, doc);
@@ -183,8 +183,8 @@ KeySpec text(const char* sec, const char* key, Field field, std::function<std::s
 template <class Field>
 KeySpec vec3(const char* sec, const char* key, Field field, const char* doc) {
   KeySpec k = make(sec, key, KeyType::Vector3, doc);
-  k.set = [field](Model& m, const Value& v) { field(m) = Vec3(v.vec[0], v.vec[1], v.vec[2]); };
-  k.get = [field](const Model& m) {
+  k.set = [field](SceneParams& m, const Value& v) { field(m) = Vec3(v.vec[0], v.vec[1], v.vec[2]); };
+  k.get = [field](const SceneParams& m) {
     Value v;
     v.type = KeyType::Vector3;
     const Vec3& x = field(m);
@@ -210,18 +210,18 @@ KeySpec point(const char* sec, const char* key, Field field, const char* doc) {
 // load.gravity: on is the standard acceleration straight down, off is none
 KeySpec gravity(const char* doc) {
   KeySpec k = make("load", "gravity", KeyType::Boolean, doc);
-  k.set = [](Model& m, const Value& v) { m.env.gravity = v.b ? Vec3(0, 0, -9.81) : Vec3::Zero(); };
-  k.get = [](const Model& m) {
+  k.set = [](SceneParams& m, const Value& v) { m.model.env.gravity = v.b ? Vec3(0, 0, -9.81) : Vec3::Zero(); };
+  k.get = [](const SceneParams& m) {
     Value v;
     v.type = KeyType::Boolean;
-    v.b = m.env.gravity.squaredNorm() > 0;
+    v.b = m.model.env.gravity.squaredNorm() > 0;
     return v;
   };
   return k;
 }
 // each key's default: its getter applied to defaultModel()
 std::vector<KeySpec> withDefaults(std::vector<KeySpec> keys) {
-  const Model d = defaultModel();
+  const SceneParams d{defaultModel(), OutputParams{}};
   for (KeySpec& k : keys) {
     const Value v = k.get ? k.get(d)
                     : k.getPlate ? k.getPlate(PlateParams{})
@@ -243,16 +243,18 @@ const std::vector<std::string>& sections() {
   return s;
 }
 
-// every key, its field of the model, its unit, range and meaning; its default is read from
-// defaultModel() (the one source of defaults, include/rootsim/model.hpp) through its getter.
+// every key, its field of the model or the output, its unit, range and meaning; its default is read from
+// defaultModel() and OutputParams{} (the one source of defaults, model.hpp, output_params.hpp) through its getter.
 // Ranges (each key's doc in `rootsim check` and scene.toml ends with it). Upper bounds are physical
 // sanity, a generous factor beyond anything a root (or any plant organ) has: radius <= 100 mm, E <= 1e6
 // MPa (diamond), growth rate <= 10 /h, step <= 10 h, growth zone <= 1 m, gains <= 100 (the paper uses
 // < 2), |R tau| <= 10, springs <= 1e6 N/m. Beyond them a run diverges or exhausts the sub-step cap
 // after minutes instead of being refused up front. The number of elements is capped
-// separately (kMaxElements, buildModel).
-// FIELD(rod.radius): the field as a reference, for a Model& (set) and a const Model& (get)
-#define FIELD(path) [](auto& m) -> auto& { return m.path; }
+// separately (kMaxElements, buildParams).
+// FIELD(rod.radius): the model's field as a reference, for a SceneParams& (set) and a const SceneParams&
+// (get); OUTPUT(vtk): the output's
+#define FIELD(path) [](auto& p) -> auto& { return p.model.path; }
+#define OUTPUT(path) [](auto& p) -> auto& { return p.output.path; }
 const std::vector<KeySpec>& schema() {
   static const std::vector<KeySpec> keys = withDefaults({
       real("root", "radius_mm", FIELD(rod.radius), kMm, 0, true, 100, false, "root radius R [mm]"),
@@ -348,21 +350,22 @@ const std::vector<KeySpec>& schema() {
            "hysteresis of the lateral turning points in R (a lateral peak-to-peak below it counts as straight)"),
       real("analysis", "skew_min_waves", FIELD(analysis.skewMinWaves), kOne, 0, false, 1e4, false,
            "a waving root is called skewing only over at least this many full waves"),
-      integer("output", "every_steps", FIELD(output.everySteps), 1, 1e9, "snapshot and time-series row every N growth steps"),
-      boolean("output", "trajectory", FIELD(output.trajectory),
+      integer("output", "every_steps", OUTPUT(everySteps), 1, 1e9, "snapshot and time-series row every N growth steps"),
+      boolean("output", "trajectory", OUTPUT(trajectory),
               "write the trajectory (what `rootsim render` reads; format: output.trajectory_format)"),
-      choice("output", "trajectory_format", FIELD(output.trajectoryFormat),
+      choice("output", "trajectory_format", OUTPUT(trajectoryFormat),
              std::vector<std::pair<std::string, TrajectoryFormat>>{
                  {"binary", TrajectoryFormat::Binary}, {"csv", TrajectoryFormat::Csv}, {"both", TrajectoryFormat::Both}},
              "binary: trajectory.bin (raw doubles, docs/outputs.md); csv: trajectory.csv (text); both: the two"),
-      boolean("output", "vtk", FIELD(output.vtk), "write ParaView snapshots (vtk/*.vtp, zlib-compressed binary, + trajectory.pvd)"),
-      real("output", "checkpoint_every_s", FIELD(output.checkpointEvery), kOne, 0, false, 1e6, false,
+      boolean("output", "vtk", OUTPUT(vtk), "write ParaView snapshots (vtk/*.vtp, zlib-compressed binary, + trajectory.pvd)"),
+      real("output", "checkpoint_every_s", OUTPUT(checkpointEvery), kOne, 0, false, 1e6, false,
            "wall time between checkpoints of a growing run (DIR.partial/checkpoint.bin, for --resume) [s]; "
            "0: after every growth step"),
   });
   return keys;
 }
 #undef FIELD
+#undef OUTPUT
 
 namespace {
 // a seedling's name is a folder of the run directory
@@ -524,11 +527,14 @@ namespace {
 }
 }  // namespace
 
-Model buildModel(const Values& v, const std::string& name) {
+Model buildModel(const Values& v, const std::string& name) { return buildParams(v, name).model; }
+
+SceneParams buildParams(const Values& v, const std::string& name) {
   auto num = [&](const char* k) { return v.at(k).num; };
-  Model m = defaultModel();
+  SceneParams p{defaultModel(), OutputParams{}};
+  Model& m = p.model;
   m.name = name;
-  for (const KeySpec& k : schema()) k.set(m, v.at(k.full()));
+  for (const KeySpec& k : schema()) k.set(p, v.at(k.full()));
   completeModel(m);
 
   // relations between keys
@@ -591,7 +597,7 @@ Model buildModel(const Values& v, const std::string& name) {
   if (!m.env.plane.enabled && m.env.base == BaseCondition::Free && !m.growth.enabled &&
       (m.env.tipForce.norm() > 0 || m.env.gravity.norm() > 0))
     relationError(v, "load.base", "= \"free\" with a net load has no equilibrium; clamp the base");
-  return m;
+  return p;
 }
 
 std::string tomlText(const KeySpec& k, const Value& x) {
@@ -608,10 +614,10 @@ std::string tomlText(const KeySpec& k, const Value& x) {
   return "";
 }
 
-Values valuesOf(const Model& m, const std::string& origin) {
+Values valuesOf(const SceneParams& p, const std::string& origin) {
   Values values;
   for (const KeySpec& k : schema()) {
-    Value x = k.get(m);
+    Value x = k.get(p);
     x.origin = origin;
     values[k.full()] = x;
   }

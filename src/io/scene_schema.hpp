@@ -8,6 +8,7 @@
 
 #include "rootsim/model.hpp"
 #include "rootsim/plate.hpp"
+#include "rootsim/output_params.hpp"
 
 namespace rootsim::detail {
 
@@ -23,6 +24,12 @@ struct Value {
   std::string origin;  // "file:line" or "--set" or "default"
 };
 
+// what a scene's keys set: the physics' model, and what the run writes ([output])
+struct SceneParams {
+  Model model;
+  OutputParams output;
+};
+
 struct KeySpec {
   std::string section, key;
   KeyType type = KeyType::Real;
@@ -34,11 +41,11 @@ struct KeySpec {
   bool loOpen = false, hiOpen = false;   // exclusive bounds
   std::vector<std::string> choices;      // allowed strings
   std::string doc;                       // meaning and unit
-  // the key's field of the model, both ways (the one place that knows key <-> field and the unit):
-  // set writes a checked value into the model; get reads the field back as the value that set turns
-  // into the same field, bitwise (scene_schema.cpp, fromSi), so model -> values -> model is exact
-  std::function<void(Model&, const Value&)> set;
-  std::function<Value(const Model&)> get;
+  // the key's field of the model or the output, both ways (the one place that knows key <-> field and
+  // the unit): set writes a checked value into it; get reads the field back as the value that set turns
+  // into the same field, bitwise (scene_schema.cpp, fromSi), so params -> values -> params is exact
+  std::function<void(SceneParams&, const Value&)> set;
+  std::function<Value(const SceneParams&)> get;
   // a plate key's field ([plate] and [population]: the plate's parameters; [laterals]: a root's lateral
   // parameters; [[seedling]]: the seedling), both ways like set and get; one of the pairs is set
   std::function<void(PlateParams&, const Value&)> setPlate;
@@ -68,10 +75,13 @@ Value defaultValue(const KeySpec& k);
 std::string checkValue(const KeySpec& k, const Value& v);
 // the accepted range of a number key as text: "in (0, 100]", ">= 0"; "" when unbounded
 std::string rangeText(const KeySpec& k);
-// builds the model and checks relations between keys; throws SceneError with the origin of a key
+// builds the model and the output and checks relations between keys; throws SceneError with the origin
+// of a key
+SceneParams buildParams(const Values& v, const std::string& name);
+// its model alone
 Model buildModel(const Values& v, const std::string& name);
-// every key's value read from a model (each with the given origin, for error messages)
-Values valuesOf(const Model& m, const std::string& origin);
+// every key's value read from a model and an output (each with the given origin, for error messages)
+Values valuesOf(const SceneParams& p, const std::string& origin);
 // a value in TOML syntax
 std::string tomlText(const KeySpec& k, const Value& v);
 std::string resolvedToml(const Values& v, const std::string& name);

@@ -233,6 +233,16 @@ std::string pvdText(const std::vector<std::pair<double, std::string>>& entries) 
   return o.str();
 }
 
+std::string partsPvdText(const std::vector<PvdPart>& parts) {
+  std::string o = "<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n";
+  for (std::size_t r = 0; r < parts.size(); ++r)
+    for (const auto& [t, file] : parts[r].entries)
+      o += "  <DataSet timestep=\"" + shortestNumber(t) + "\" part=\"" + std::to_string(r) + "\" name=\"" + parts[r].name +
+           "\" file=\"" + parts[r].folder + "/" + file + "\"/>\n";
+  o += "</Collection>\n</VTKFile>\n";
+  return o;
+}
+
 std::array<double, 4> plateExtentMm(const SceneInfo& info, const std::vector<Snapshot>& snaps) {
   const PlateFrame plate = PlateFrame::tilted(info.alphaDeg * units::deg);
   double u0 = 0, u1 = 0, v0 = 0, v1 = 0;  // the seed's foot (the origin) is always on it

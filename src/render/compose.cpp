@@ -16,7 +16,6 @@ namespace rootsim {
 namespace {
 
 constexpr std::array<std::uint8_t, 4> kMark{0, 110, 230, 255};   // inset border and its region on the view
-constexpr std::array<std::uint8_t, 4> kInk{40, 40, 40, 255};
 constexpr std::array<std::uint8_t, 4> kGrid{225, 225, 228, 255};
 // one colour per series (Tableau 10: blue, red, green, purple, orange)
 constexpr std::array<std::array<std::uint8_t, 4>, 5> kSeriesColour{{{31, 119, 180, 255},
@@ -294,7 +293,7 @@ struct FrameComposer::Impl {
         const double vv = std::abs(v) < 1e-9 * ys ? 0.0 : v;
         const float y = std::round(static_cast<float>(toPixel(c, c.t0, vv).y()));
         rects.push_back({c.x0, y, c.x1 - c.x0, 1, kGrid});
-        rects.push_back({c.x0 - 5, y, 5, 1, kInk});
+        rects.push_back({c.x0 - 5, y, 5, 1, detail::kInk});
         texts.push_back({tickText(vv), c.x0 - 8, y - 0.55f * small, small, OverlayText::Anchor::TopRight});
       }
       // time ticks in hours; the unit on the last one
@@ -302,13 +301,13 @@ struct FrameComposer::Impl {
       const double tLast = std::floor(c.t1 / step + 1e-9) * step;
       for (double t = std::ceil(c.t0 / step - 1e-9) * step; t <= c.t1 + 1e-9 * step; t += step) {
         const float x = std::round(static_cast<float>(toPixel(c, t, c.lo).x()));
-        rects.push_back({x, c.y1, 1, 5, kInk});
+        rects.push_back({x, c.y1, 1, 5, detail::kInk});
         const bool last = std::abs(t - tLast) < 1e-6 * step;
         texts.push_back({tickText(t) + (last ? " h" : ""), x, c.y1 + 6 + small * 1.05f, small, OverlayText::Anchor::BottomCentre});
       }
       // axes
-      rects.push_back({c.x0, c.y0, 1, c.y1 - c.y0 + 1, kInk});
-      rects.push_back({c.x0, c.y1, c.x1 - c.x0, 1, kInk});
+      rects.push_back({c.x0, c.y0, 1, c.y1 - c.y0 + 1, detail::kInk});
+      rects.push_back({c.x0, c.y1, c.x1 - c.x0, 1, detail::kInk});
       // the curve up to now, ending exactly at the value now; a dot marks now
       OverlayLine curve;
       curve.widthPx = lw;
@@ -356,7 +355,7 @@ struct FrameComposer::Impl {
     }
     rects.push_back({bx, by, boxW, boxH, {255, 255, 255, 200}});
     const float barX = std::round(bx + boxW - m - 0.5f * (std::max(len, labelW) + len)), barY = std::round(by + boxH - m - barH);
-    rects.push_back({barX, barY, len, barH, kInk});
+    rects.push_back({barX, barY, len, barH, detail::kInk});
     texts.push_back({label, barX + 0.5f * len, barY - 0.3f * f, f, OverlayText::Anchor::BottomCentre});
     texts.push_back({magText, bx + m, by + 0.5f * (boxH - f), f, OverlayText::Anchor::TopLeft});
     lastMagnification = mag;

@@ -1,5 +1,7 @@
 #pragma once
 // overlay texts and rectangles drawn onto a finished picture on the CPU (stb_truetype)
+#include <array>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -9,6 +11,9 @@
 #include "rootsim/render_scene.hpp"
 
 namespace rootsim::detail {
+
+// the overlays' ink: scale bars, ticks, arrows and panel axes (render_scene.cpp, compose.cpp)
+inline constexpr std::array<std::uint8_t, 4> kInk{40, 40, 40, 255};
 
 // a TrueType font with a cache of rasterised glyphs; throws RenderError if the file is missing or
 // not a font

@@ -1,43 +1,23 @@
-// PNG files through stb (libstb ships the compiled implementation: no STB_*_IMPLEMENTATION here)
+// PNG files through libpng (png_encode.hpp writes them signed; libpng's simplified API reads them)
 #include "rootsim/png.hpp"
-#include "rootsim/png_signature.hpp"
+#include "rootsim/png_encode.hpp"
 
-#include <stb_image.h>
-#include <stb_image_write.h>
+#include <png.h>
 
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
-#include <mutex>
+#include <functional>
+#include <string>
 #include <system_error>
 #include <thread>
-#include <cstdint>
-#include <string>
 
 #include <unistd.h>
 
 namespace rootsim {
 
 namespace {
-
-// stb's PNG settings are globals: set them once. Level 1 with the "sub" filter writes a frame faster
-// than stb's defaults at a slightly larger file (docs/rendering.md, Pitfalls).
-void configureStb() {
-  static std::once_flag once;
-  std::call_once(once, [] {
-    stbi_write_png_compression_level = 1;
-    stbi_write_force_png_filter = 1;
-  });
-}
-
-// stb hands over the whole PNG in one call: kept, then written signed (png_signature.hpp)
-struct FileSink {
-  std::string bytes;
-};
-void writeToFile(void* ctx, void* data, int size) {
-  if (size > 0) static_cast<FileSink*>(ctx)->bytes.append(static_cast<const char*>(data), static_cast<std::size_t>(size));
-}
 
 // a temporary name beside path, unique per process and thread
 std::string tempName(const std::string& path) {
@@ -53,23 +33,23 @@ void writePng(const std::string& path, const Image& img) {
     throw RenderError("writePng " + path + ": image " + std::to_string(img.width) + "x" +
                       std::to_string(img.height) + " with " + std::to_string(img.rgba.size()) +
                       " bytes is not a valid RGBA picture");
-  configureStb();
+  // zlib level 1 with the "sub" filter: a frame written faster than at libpng's defaults, at a somewhat
+  // larger file (docs/rendering.md, Speed)
+  PngOptions o;
+  o.compressionLevel = 1;
+  o.filters = PNG_FILTER_SUB;
+  std::string why;
+  const std::string png = encodeSignedPng({img.rgba.data(), img.width, img.height, 4, 4 * static_cast<std::size_t>(img.width)}, o, &why);
+  if (png.empty()) throw RenderError("writePng " + path + ": libpng: " + why);
   const std::string tmp = tempName(path);
-  FileSink sink;
-  const int ok = stbi_write_png_to_func(writeToFile, &sink, img.width, img.height, 4, img.rgba.data(),
-                                        4 * img.width);
-  if (!ok) throw RenderError("writePng " + path + ": stbi_write_png_to_func failed");
-  const std::string signedPng = signPng(sink.bytes);
   std::FILE* f = std::fopen(tmp.c_str(), "wb");
   if (!f) throw RenderError("writePng " + path + ": cannot create " + tmp + ": " + std::strerror(errno));
-  const bool written = std::fwrite(signedPng.data(), 1, signedPng.size(), f) == signedPng.size();
+  const bool written = std::fwrite(png.data(), 1, png.size(), f) == png.size();
   const int err = written ? 0 : errno;
   const bool closed = std::fclose(f) == 0;
   if (!written || !closed) {
     std::remove(tmp.c_str());
-    throw RenderError("writePng " + path + ": " +
-                      (!ok ? std::string("stbi_write_png_to_func failed")
-                           : std::string("write error: ") + std::strerror(err ? err : EIO)));
+    throw RenderError("writePng " + path + ": write error: " + std::strerror(err ? err : EIO));
   }
   std::error_code ec;
   std::filesystem::rename(tmp, path, ec);
@@ -80,15 +60,17 @@ void writePng(const std::string& path, const Image& img) {
 }
 
 Image readPng(const std::string& path) {
-  int w = 0, h = 0, channels = 0;
-  unsigned char* data = stbi_load(path.c_str(), &w, &h, &channels, 4);
-  if (!data) {
-    const char* why = stbi_failure_reason();
-    throw RenderError("readPng " + path + ": " + (why ? why : "stbi_load failed"));
+  png_image im{};
+  im.version = PNG_IMAGE_VERSION;
+  if (!png_image_begin_read_from_file(&im, path.c_str()))
+    throw RenderError("readPng " + path + ": " + im.message);
+  im.format = PNG_FORMAT_RGBA;
+  Image img(static_cast<int>(im.width), static_cast<int>(im.height));
+  if (!png_image_finish_read(&im, nullptr, img.rgba.data(), 0, nullptr)) {
+    const std::string why = im.message;
+    png_image_free(&im);
+    throw RenderError("readPng " + path + ": " + why);
   }
-  Image img(w, h);
-  std::memcpy(img.rgba.data(), data, img.rgba.size());
-  stbi_image_free(data);
   return img;
 }
 

@@ -151,7 +151,6 @@ void addWhiskers(RenderScene& rs, const std::vector<Ring>& rings) {
 }
 
 
-constexpr std::array<std::uint8_t, 4> kInk{40, 40, 40, 255};
 
 std::array<std::uint8_t, 4> rgba8(const std::array<float, 3>& c) {
   auto b = [](float v) { return static_cast<std::uint8_t>(std::lround(255.0f * std::clamp(v, 0.0f, 1.0f))); };
@@ -193,21 +192,21 @@ void addColourBar(RenderScene& rs, const View& view, float font) {
     rs.rects.push_back({x, y0 + static_cast<float>(r), barW, 1.0f, rgba8(fieldColour(view.colourBy, v, view.colourRange))});
   }
   // frame around the bar
-  rs.rects.push_back({x - 1, y0 - 1, barW + 2, 1, kInk});
-  rs.rects.push_back({x - 1, y1, barW + 2, 1, kInk});
-  rs.rects.push_back({x - 1, y0 - 1, 1, y1 - y0 + 2, kInk});
-  rs.rects.push_back({x + barW, y0 - 1, 1, y1 - y0 + 2, kInk});
+  rs.rects.push_back({x - 1, y0 - 1, barW + 2, 1, detail::kInk});
+  rs.rects.push_back({x - 1, y1, barW + 2, 1, detail::kInk});
+  rs.rects.push_back({x - 1, y0 - 1, 1, y1 - y0 + 2, detail::kInk});
+  rs.rects.push_back({x + barW, y0 - 1, 1, y1 - y0 + 2, detail::kInk});
   const float small = box.small;
   for (int k = 0; k <= 2; ++k) {
     const double v = lo + (hi - lo) * k / 2.0;
     const float y = y1 - (y1 - y0) * static_cast<float>(k) / 2.0f;
-    rs.rects.push_back({x - 5, std::round(y), 5, 1, kInk});
+    rs.rects.push_back({x - 5, std::round(y), 5, 1, detail::kInk});
     rs.texts.push_back({tickText(v), x - 7, y - 0.5f * small, small, OverlayText::Anchor::TopRight});
   }
   if (colourFieldSigned(view.colourBy) && lo < 0 && hi > 0) {
     // 0 across the bar, and its label (the middle tick when the range is symmetric)
     const float y = std::round(y1 - (y1 - y0) * static_cast<float>(-lo / (hi - lo)));
-    rs.rects.push_back({x - 5, y, barW + 6, std::max(1.0f, std::round(font / 14.0f)), kInk});
+    rs.rects.push_back({x - 5, y, barW + 6, std::max(1.0f, std::round(font / 14.0f)), detail::kInk});
     if (std::abs(lo + hi) > 1e-9 * (hi - lo))
       rs.texts.push_back({"0", x - 7, y - 0.5f * small, small, OverlayText::Anchor::TopRight});
   }
@@ -221,10 +220,10 @@ void addArrow(RenderScene& rs, const Eigen::Vector2d& a, const Eigen::Vector2d& 
   const double head = 4.0 * width;
   const Eigen::Vector2d h1 = b - head * d + 0.6 * head * n, h2 = b - head * d - 0.6 * head * n;
   auto pt = [](const Eigen::Vector2d& p) { return std::array<float, 2>{static_cast<float>(p.x()), static_cast<float>(p.y())}; };
-  rs.lines.push_back({{pt(a), pt(b - 0.5 * width * d)}, width, kInk});
-  rs.lines.push_back({{pt(h1), pt(b), pt(h2)}, width, kInk});
+  rs.lines.push_back({{pt(a), pt(b - 0.5 * width * d)}, width, detail::kInk});
+  rs.lines.push_back({{pt(h1), pt(b), pt(h2)}, width, detail::kInk});
   // the head's inside: strokes from its tip across to its base
-  for (double f : {0.25, 0.5, 0.75}) rs.lines.push_back({{pt(b), pt(h1 + f * (h2 - h1))}, width, kInk});
+  for (double f : {0.25, 0.5, 0.75}) rs.lines.push_back({{pt(b), pt(h1 + f * (h2 - h1))}, width, detail::kInk});
 }
 
 // the colour of a traced root's line: the figures' trace colour (compare_panel.cpp)

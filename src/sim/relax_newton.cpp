@@ -47,9 +47,9 @@ namespace rootsim {
 
 namespace {
 
-constexpr int kRadius = 3;                // blocks whose forces a block's dofs change, each side
-constexpr int kColours = 2 * kRadius + 1;
-constexpr int kBand = 3 * kRadius + 2;    // dof half-bandwidth
+constexpr int kForceReach = 3;            // blocks whose forces a block's dofs change, each side
+constexpr int kColours = 2 * kForceReach + 1;
+constexpr int kBand = 3 * kForceReach + 2;  // dof half-bandwidth
 constexpr int kTwistRadius = 2;           // blocks whose forces the twist of an element changes, each side
 constexpr int kTwistColours = kTwistRadius + 1;  // in elements (a pass nudges every third element)
 constexpr int kMaxHalvings = 30;
@@ -96,7 +96,7 @@ struct Window {
   }
   // the first element whose strains the window's forces need (the one before the first free node, and
   // those whose twist rows a window block's nudge reaches)
-  int firstElement() const { return std::max(0, b0 / 2 - 1 - (m > 0 ? kRadius / 2 + 1 : 0)); }
+  int firstElement() const { return std::max(0, b0 / 2 - 1 - (m > 0 ? kForceReach / 2 + 1 : 0)); }
   // the first element whose outside (node) forces the window's rows need: the element before the first
   // free node (its plate contact acts on that node); the frozen nodes before it are never read
   int outsideFrom() const { return std::max(0, b0 / 2 - 1); }
@@ -295,7 +295,7 @@ struct NewtonSolver {
       const int start = w.b0 + ((colour - w.b0 % kColours) + kColours) % kColours;
       if (start > 2 * w.n) continue;
       for (int c = 0; c < 3; ++c)
-        pass(start, kColours, 2 * w.n, c, ForceSpan{w.firstElement(), -1, w.firstElement()}, kRadius);
+        pass(start, kColours, 2 * w.n, c, ForceSpan{w.firstElement(), -1, w.firstElement()}, kForceReach);
     }
     // the mature twists: element blocks 2e + 1 < b0, about d3 only. Turning
     // element e about its own axis changes its shear and the curvatures at its two ends only (its
@@ -374,7 +374,13 @@ struct NewtonSolver {
             nw.lu.addBlock(w.dof(rb, 0), w.dof(cb, 0), 1.0, Mat3(ns.K.block<3, 3>(3 * a, 3 * bn)));
           }
     }
-    if (!alone) return;
+    if (alone) assembleAlone(sym);
+  }
+
+  // the last jacobian()'s band and off-band entries (nw.lu unfactorised, nw.offBand) as this root's own
+  // matrix: the sparse one while offBand is not empty, and with sym the band of its symmetric part
+  void assembleAlone(bool sym) {
+    const int N = w.dofs();
     nw.sparseActive = !nw.offBand.empty();
     if (nw.sparseActive) {
       nw.sparse.assemble(nw.lu, nw.offBand);  // keeps its own copy: the symmetric part is taken from it
@@ -382,7 +388,7 @@ struct NewtonSolver {
       nw.ldlt.reset(N, kBand);
       // the frozen twists couple to their neighbours only (a tridiagonal chain up to the window)
       for (int j = 0; j < N; ++j)
-        for (int i = j; i <= std::min(N - 1, j < w.m - kRadius ? j + 1 : j + kBand); ++i)
+        for (int i = j; i <= std::min(N - 1, j < w.m - kForceReach ? j + 1 : j + kBand); ++i)
           nw.ldlt.addLower(i, j, 0.5 * (nw.lu.at(i, j) + nw.lu.at(j, i)));
     }
   }
@@ -503,6 +509,10 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
   ns.ftol = tol.force;
   ns.mtol = tol.couple;
   const int N = ns.w.dofs();
+  // nw.lu holds this root's block of the plate's coupled Jacobian of this growth step, for these unknowns
+  // (relaxNewtonCoupled: coupledBlockDofs); read once, by this relaxation only
+  const bool coupledBlock = opt.stabilityCheck && nw.coupledBlockDofs == N && nw.coupledBlockFirst == ns.w.b0;
+  nw.coupledBlockDofs = -1;
   RelaxResult res;
   nw.firstFreeNode = firstFreeNode;
   ++nw.matureAge;
@@ -638,7 +648,11 @@ RelaxResult relaxNewton(const RodParams& p, const Environment& env, const Solver
   res.converged = true;
   // stability from the factorisation of the converged state's stiffness
   if (opt.stabilityCheck) {
-    if (!fresh) {
+    if (!fresh && coupledBlock) {
+      // in equilibrium already after the plate's coupled solve: this root's block of its last Jacobian is
+      // the last fresh Jacobian of this step (its factors were the coupled system's: none kept here)
+      ns.assembleAlone(true);
+    } else if (!fresh) {
       // in equilibrium already, or after a chord step only: no Jacobian of this step yet (its factors
       // serve the next step's chord step)
       ns.jacobian(true, nw.matureAge < kMatureRefresh && res.iterations <= kMatureTrust);
@@ -802,6 +816,7 @@ struct Coupled {
 RelaxResult relaxNewtonCoupled(const std::vector<CoupledRoot>& roots, const std::function<void()>& refresh,
                                CoupledWorkspace& cw) {
   Coupled c(roots, refresh, cw);
+  for (const CoupledRoot& r : roots) r.nw->coupledBlockDofs = -1;  // none of this relaxation yet
   const SolverOptions& opt = *roots.front().opt;
   cw.start.resize(roots.size());
   for (size_t k = 0; k < roots.size(); ++k) cw.start[k] = *roots[k].s;
@@ -813,6 +828,7 @@ RelaxResult relaxNewtonCoupled(const std::vector<CoupledRoot>& roots, const std:
     for (size_t k = 0; k < roots.size(); ++k) {
       *roots[k].s = cw.start[k];
       roots[k].nw->matureAge = kMatureRefresh;
+      roots[k].nw->coupledBlockDofs = -1;  // of states the roots have left
     }
     refresh();
     res.stalled = true;
@@ -841,6 +857,10 @@ RelaxResult relaxNewtonCoupled(const std::vector<CoupledRoot>& roots, const std:
       std::copy(cw.r0.begin(), cw.r0.begin() + c.N, cw.delta.begin());
     } else {
       c.jacobian(res.iterations <= kMatureTrust);
+      for (NewtonSolver& s : c.ns) {
+        s.nw.coupledBlockDofs = s.w.dofs();
+        s.nw.coupledBlockFirst = s.w.b0;
+      }
       cw.sparse.assemble(cw.band, cw.offBand);
       if (!cw.sparse.factorizeLU()) return stall("singular stiffness at iteration %ld", res.iterations);
       std::copy(cw.r.begin(), cw.r.begin() + c.N, cw.delta.begin());

@@ -102,6 +102,7 @@ void Simulation::beginStep() {
   s_.time += dt;
   applyTwistProfile(m_, s_);
   open_ = Open{true, splitLongElements(m_, s_), 0, 0};
+  nw_.coupledBlockDofs = -1;  // a plate's coupled Jacobian of an earlier step is not this step's
 }
 
 const StepRecord& Simulation::finishStep() {

@@ -15,6 +15,37 @@ namespace {
 
 Model modelWith(const std::string& toml) { return parseScene(toml, "test.toml").model; }
 
+// a straight root of lengthMm on the 40-degree plate (radius radiusMm, 20 elements) whose nodes move
+// with their fraction t of the way from base to tip by t * lateralM metres along +u and t * downhillM
+// downhill (negative: uphill)
+Snapshot rootAt40(double lengthMm, double radiusMm, double lateralM = 0, double downhillM = 0) {
+  Snapshot s = rtest::straightRod(40, 20, lengthMm, radiusMm);
+  const double al = 40 * rtest::kDeg;
+  const Eigen::Vector3d lateral(1, 0, 0), downhill(0, -std::sin(al), -std::cos(al));
+  for (long i = 0; i < s.x.cols(); ++i) {
+    const double t = static_cast<double>(i) / static_cast<double>(s.x.cols() - 1);
+    s.x.col(i) += (lateralM * t) * lateral + (downhillM * t) * downhill;
+  }
+  return s;
+}
+
+// a montage run of one snapshot on the 40-degree plate, with its label
+MontageRun montageRun(const Snapshot& s, const std::string& label = "") {
+  MontageRun r;
+  r.info = rtest::info(40);
+  r.snaps = {s};
+  r.label = label;
+  return r;
+}
+
+// a view of w x h pixels
+View viewOf(int w, int h) {
+  View v;
+  v.width = w;
+  v.height = h;
+  return v;
+}
+
 }  // namespace
 
 TEST_CASE("montage labels: symbols and units for what differs, a caption for what is shared") {
@@ -42,24 +73,10 @@ TEST_CASE("montage labels: symbols and units for what differs, a caption for wha
 }
 
 TEST_CASE("montage: a label sits under its own root, not in the middle of the tile") {
-  const SceneInfo info = rtest::info(40);
-  MontageRun a, b;
-  a.info = b.info = info;
-  a.snaps = {rtest::straightRod(40, 20, 1.0, 0.1)};
+  const MontageRun a = montageRun(rootAt40(1.0, 0.1), "\xCE\xB1 = 0\xC2\xB0");
   // b: a root that leaves its base sideways, towards +u
-  Snapshot side = rtest::straightRod(40, 20, 2.0, 0.1);
-  const double al = 40 * rtest::kDeg;
-  const Eigen::Vector3d lateral(1, 0, 0), downhill(0, -std::sin(al), -std::cos(al));
-  for (long i = 0; i < side.x.cols(); ++i) {
-    const double t = static_cast<double>(i) / static_cast<double>(side.x.cols() - 1);
-    side.x.col(i) += (2.0e-3 * t) * lateral - (1.0e-3 * t) * downhill;
-  }
-  b.snaps = {side};
-  a.label = "\xCE\xB1 = 0\xC2\xB0";
-  b.label = "\xCE\xB1 = 40\xC2\xB0";
-  View v;
-  v.width = 1280;
-  v.height = 720;
+  const MontageRun b = montageRun(rootAt40(2.0, 0.1, 2.0e-3, -1.0e-3), "\xCE\xB1 = 40\xC2\xB0");
+  const View v = viewOf(1280, 720);
   const MontageLayout l = montageLayout({a, b}, v);
   CHECK(l.labelPx >= 14);
   View tile = v;
@@ -83,15 +100,8 @@ TEST_CASE("montage: a label sits under its own root, not in the middle of the ti
 
 TEST_CASE("montage: the last tile's scale bar and downhill text match the labels' size") {
   const SceneInfo info = rtest::info(40);
-  std::vector<MontageRun> runs(3);
-  for (MontageRun& r : runs) {
-    r.info = info;
-    r.snaps = {rtest::straightRod(40, 20, 1.0, 0.1)};
-    r.label = "\xCE\xB1 = 40\xC2\xB0";
-  }
-  View v;
-  v.width = 1280;
-  v.height = 720;
+  const std::vector<MontageRun> runs(3, montageRun(rootAt40(1.0, 0.1), "\xCE\xB1 = 40\xC2\xB0"));
+  const View v = viewOf(1280, 720);
   const MontageLayout l = montageLayout(runs, v);
   CHECK(l.labelPx == doctest::Approx(21));  // 720 / 34
   for (std::size_t i = 0; i < runs.size(); ++i) {
@@ -126,22 +136,10 @@ TEST_CASE("montage: the tiles are framed on the union footprint of all runs, in 
   // lies inside the tile above the label band, and their union's box fills the tile in its tighter
   // direction (a fixed 1 mm margin left a 1 mm root a third of the tile)
   const SceneInfo info = rtest::info(40);
-  MontageRun a, b;
-  a.info = b.info = info;
-  a.snaps = {rtest::straightRod(40, 20, 1.0, 0.05)};
-  Snapshot side = rtest::straightRod(40, 20, 1.2, 0.05);
-  const double al = 40 * rtest::kDeg;
-  const Eigen::Vector3d lateral(1, 0, 0), downhill(0, -std::sin(al), -std::cos(al));
-  for (long i = 0; i < side.x.cols(); ++i) {
-    const double t = static_cast<double>(i) / static_cast<double>(side.x.cols() - 1);
-    side.x.col(i) += (1.0e-3 * t) * lateral - (0.6e-3 * t) * downhill;
-  }
-  b.snaps = {side};
+  const MontageRun a = montageRun(rootAt40(1.0, 0.05)), b = montageRun(rootAt40(1.2, 0.05, 1.0e-3, -0.6e-3));
   for (View::Kind kind : {View::Kind::Top, View::Kind::Perspective}) {
     INFO((kind == View::Kind::Top ? "top" : "3-D") << " view");
-    View v;
-    v.width = 640;
-    v.height = 360;
+    View v = viewOf(640, 360);
     v.kind = kind;
     const std::vector<MontageRun> runs{a, b};
     const MontageLayout l = montageLayout(runs, v);
@@ -173,21 +171,9 @@ TEST_CASE("montage: the last tile's colour bar keeps clear of the run's label") 
   // a root going down and to the left, and a short one hanging down: the second tile's root stands at
   // its upper right, its label under it at the height of the colour bar's title at the right edge
   const SceneInfo info = rtest::info(40);
-  MontageRun a, b;
-  a.info = b.info = info;
-  Snapshot side = rtest::straightRod(40, 20, 3.0, 0.05);
-  const Eigen::Vector3d lateral(1, 0, 0);
-  for (long i = 0; i < side.x.cols(); ++i) {
-    const double t = static_cast<double>(i) / static_cast<double>(side.x.cols() - 1);
-    side.x.col(i) += (-1.5e-3 * t) * lateral;
-  }
-  a.snaps = {side};
-  b.snaps = {rtest::straightRod(40, 20, 0.6, 0.05)};
-  a.label = "\xCE\xB1 = 40\xC2\xB0";
-  b.label = "\xCE\xB1 = 80\xC2\xB0, \xCE\xB2 = 0.2";
-  View v;
-  v.width = 800;
-  v.height = 450;
+  const MontageRun a = montageRun(rootAt40(3.0, 0.05, -1.5e-3), "\xCE\xB1 = 40\xC2\xB0");
+  const MontageRun b = montageRun(rootAt40(0.6, 0.05), "\xCE\xB1 = 80\xC2\xB0, \xCE\xB2 = 0.2");
+  View v = viewOf(800, 450);
   v.colourBy = ColourField::Twist;
   v.colourRange = {-1.0, 1.0};
   const std::vector<MontageRun> runs{a, b};

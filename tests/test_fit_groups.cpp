@@ -188,7 +188,11 @@ TEST_CASE("fit by group: two genotypes differing in the twist / the difference r
   // and the bend of its growth zone allow)
   const std::map<std::string, double> sown = {{"w1", -3}, {"w2", 2}, {"w3", 4}, {"m1", 3}, {"m2", -2}, {"m3", -4}};
   double wtMax = -1, mutMin = 1;
-  for (const auto& [plant, angle] : sown) {
+  // (named, not a structured binding: doctest's assertion macros are lambdas, which clang does not let
+  // capture a binding)
+  for (const auto& sowing : sown) {
+    const std::string& plant = sowing.first;
+    const double angle = sowing.second;
     const auto at = js.find("\"plant\": \"" + plant + "\"");
     REQUIRE_MESSAGE(at != std::string::npos, plant);
     const double twistOwn = jsonNumber(js, "tropism.twist_r_tau", at);
@@ -277,7 +281,7 @@ TEST_CASE("fit by group: --design-only writes each group's sweep file, rootsim s
   CHECK(fs::exists(out / "fit.json"));
   CHECK(fs::exists(out / "keys.png"));
   // every run the shards made is the fit's: found complete, not run again
-  for (const auto& [dir, when] : made) CHECK_MESSAGE(fs::last_write_time(fs::path(dir) / "scene.toml") == when, dir);
+  for (const auto& m : made) CHECK_MESSAGE(fs::last_write_time(fs::path(m.first) / "scene.toml") == m.second, m.first);
   const std::string csv = slurp(out / "groups" / "mut" / "evaluations.csv");
   CHECK(csv.find(",design,") != std::string::npos);
 }

@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -710,5 +711,65 @@ TEST_CASE("one process, two threads on one output: the second thread is refused 
   // released: another thread takes it
   std::thread after([&] { CHECK_NOTHROW(rootsim::lockOutput(out, "--out")); });
   after.join();
+  fs::remove_all(d);
+}
+
+TEST_CASE("a folder rootsim creates appears with its marker or not at all - threads creating it at once all use it") {
+  const fs::path d = scratch("create_race");
+  for (int round = 0; round < 40; ++round) {
+    const fs::path out = d / ("S" + std::to_string(round));
+    std::atomic<bool> done{false};
+    std::atomic<int> seenWithout{0};
+    // an observer: whenever the folder exists, it is already recognisably rootsim's
+    std::thread watcher([&] {
+      std::error_code ec;
+      while (!done.load()) {
+        if (fs::exists(fs::symlink_status(out, ec)) && !fs::exists(fs::symlink_status(out / ".rootsim-sweep", ec)))
+          seenWithout.fetch_add(1);
+      }
+    });
+    std::vector<std::thread> creators;
+    std::atomic<int> failed{0};
+    for (int t = 0; t < 4; ++t)
+      creators.emplace_back([&] {
+        try {
+          rootsim::createOwnFolder(out, rootsim::sweepFolder());
+        } catch (const std::exception&) {
+          failed.fetch_add(1);
+        }
+      });
+    for (std::thread& c : creators) c.join();
+    done = true;
+    watcher.join();
+    CHECK(failed.load() == 0);
+    CHECK(seenWithout.load() == 0);
+    CHECK(rootsim::whyNotOurs(out, rootsim::sweepFolder()) == "");
+    // nothing left beside it: each creator's working folder was renamed into place or removed
+    std::vector<std::string> names;
+    for (const auto& e : fs::directory_iterator(d))
+      if (e.path().filename().string().rfind("S" + std::to_string(round) + ".", 0) == 0) names.push_back(e.path().filename().string());
+    CHECK(names.empty());
+  }
+  fs::remove_all(d);
+}
+
+TEST_CASE("the shards of a job array started at the same moment into a new folder all run") {
+  const fs::path d = scratch("shards_at_once");
+  const fs::path sw = makeSweep(d);
+  for (int round = 0; round < 3; ++round) {
+    const fs::path out = d / ("S" + std::to_string(round));
+    std::string cmd = "--version >/dev/null;";
+    for (int k = 1; k <= 4; ++k)
+      cmd += " { " + std::string(ROOTSIM_BINARY) + " sweep " + q(sw) + " --quiet --out " + q(out) + " --shard " +
+             std::to_string(k) + "/4 > " + q(d / ("log" + std::to_string(k))) + " 2>&1; " +
+             exitCodeTo(d / ("rc" + std::to_string(k))) + "; } &";
+    cmd += " wait";
+    REQUIRE(run(cmd).code == 0);
+    for (int k = 1; k <= 4; ++k) {
+      INFO(slurp(d / ("log" + std::to_string(k))));
+      CHECK(slurp(d / ("rc" + std::to_string(k))) == "0\n");
+    }
+    CHECK(rootsim::whyNotOurs(out, rootsim::sweepFolder()) == "");
+  }
   fs::remove_all(d);
 }

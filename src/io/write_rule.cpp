@@ -55,6 +55,22 @@ std::string stripTemp(const std::string& name) {
 
 bool isLockFile(const std::string& name) { return name.size() > 14 && name[0] == '.' && endsWith(name, ".rootsim-lock"); }
 
+// an entry another rootsim process changes while this one lists the folder: gone since the listing
+// (renamed into place, removed), or a folder rootsim is creating under its working name (holding nothing
+// but its marker, or nothing yet)
+bool transientEntry(const fs::path& p) {
+  std::error_code ec;
+  const fs::file_status st = fs::symlink_status(p, ec);
+  if (!fs::exists(st)) return true;
+  const std::string name = p.filename().string();
+  if (!fs::is_directory(st) || stripTemp(name) == name) return false;
+  for (const auto& e : fs::directory_iterator(p, ec)) {
+    const std::string n = e.path().filename().string();
+    if (n.rfind(".rootsim-", 0) != 0 || isLockFile(n)) return false;
+  }
+  return !ec;
+}
+
 // every name a run (and `run --movie`, `render`, `modes`) writes into its directory
 constexpr std::array<const char*, 17> kRunEntries = {
     "modes.csv",      "modes.vtp",      "trajectory.bin", ".rootsim-run",   "scene.toml",     "timeseries.csv",
@@ -76,7 +92,7 @@ bool isRunEntry(const fs::path& dir, const std::string& name) {
     const fs::path roots = dir / name;
     if (!fs::is_directory(fs::symlink_status(roots, ec))) return false;
     for (const auto& e : fs::directory_iterator(roots, ec))
-      if (!whyNotOurs(e.path(), runFolder()).empty()) return false;
+      if (!transientEntry(e.path()) && !whyNotOurs(e.path(), runFolder()).empty()) return false;
     return !ec;
   }
   return false;
@@ -154,6 +170,7 @@ bool isFitEntry(const fs::path& dir, const std::string& name) {
     for (const auto& e : fs::directory_iterator(dir / name, ec)) {
       const std::string g = e.path().filename().string();
       if (isLockFile(g)) continue;
+      if (transientEntry(e.path())) continue;
       if (e.is_symlink(ec) || !e.is_directory(ec) || !whyNotOurs(e.path(), fitFolder()).empty()) return false;
     }
     return !ec;
@@ -345,6 +362,7 @@ std::string whyNotAllRecorded(const fs::path& dir, const FolderSpec& spec, const
     const std::string name = p.filename().string();
     const std::string rel = fs::relative(p, dir, ec).generic_string();
     const fs::file_status st = fs::symlink_status(p, ec);
+    if (!fs::exists(st)) continue;  // renamed or removed by its writer since the listing
     if (rel == spec.marker || isLockFile(name) || stripTemp(name) != name) continue;
     // an unfinished file of a writer that was killed (movie.mp4.partial): a working name of rootsim's
     if (endsWith(name, ".partial") && sub == dir && fs::is_regular_file(st) && spec.owns(dir, name)) continue;
@@ -578,14 +596,17 @@ std::string whyNotOurs(const fs::path& dir, const FolderSpec& spec) {
            "); rootsim never replaces or writes into folders it did not write: choose another path";
   for (const auto& e : fs::directory_iterator(dir, ec)) {
     const std::string name = e.path().filename().string();
-    if (spec.owns(dir, name)) continue;
+    // the marker's own working name (writeMarker renames it into place) is the folder's, whatever its kind
+    if (spec.owns(dir, name) || stripTemp(name) == spec.marker || transientEntry(e.path())) continue;
     // a folder of rootsim's inside (a sweep's run, a plate's roots/NAME, a fit's runs/): its own reason
     for (const FolderSpec* inner : {&runFolder(), &sweepFolder()})
       if (e.is_directory(ec) && !e.is_symlink(ec) && fs::is_regular_file(fs::symlink_status(e.path() / inner->marker, ec)))
         if (std::string why = whyNotOurs(e.path(), *inner); !why.empty()) return why;
     if (name == "roots" && e.is_directory(ec))
-      for (const auto& r : fs::directory_iterator(e.path(), ec))
+      for (const auto& r : fs::directory_iterator(e.path(), ec)) {
+        if (transientEntry(r.path())) continue;
         if (std::string why = whyNotOurs(r.path(), runFolder()); !why.empty()) return why;
+      }
     return dir.string() + " holds " + name + ", which rootsim did not write; move it away or delete it";
   }
   if (ec) return "cannot list " + dir.string() + ": " + ec.message();
@@ -763,30 +784,75 @@ bool claimFolder(const fs::path& dir, const FolderSpec& spec, const WriteRule& r
   return true;
 }
 
-void createOwnFolder(const fs::path& dir, const FolderSpec& spec) {
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw SceneError("cannot create " + dir.string() + ": " + ec.message());
+namespace {
+// writes the folder's marker into `dir`: no permission is bad usage (exit 2); a full disk is a failed run
+// (exit 1). Writing it also probes that the folder is writable now rather than at the end of a long run
+void writeFirstMarker(const fs::path& dir, const FolderSpec& spec, const fs::path& named) {
   const fs::path marker = dir / spec.marker;
-  if (fs::is_regular_file(fs::symlink_status(marker, ec))) return;
-  // the marker first: from now on the folder is recognisably rootsim's. Writing it also probes that
-  // the folder is writable now rather than at the end of a long run: no permission is bad usage (exit
-  // 2); a full disk is a failed run (exit 1)
   const int fd = ::open(marker.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC | O_NOFOLLOW, 0644);
   if (fd < 0) {
     const int err = errno;
-    if (err == EEXIST) return;  // another process (a shard) made it a moment ago
     if (err == ENOSPC || err == EDQUOT || err == EIO)
-      throw RunError("cannot write into " + dir.string() + ": " + std::strerror(err));
-    throw SceneError("cannot write into " + dir.string() + ": " + std::strerror(err));
+      throw RunError("cannot write into " + named.string() + ": " + std::strerror(err));
+    throw SceneError("cannot write into " + named.string() + ": " + std::strerror(err));
   }
   const std::string text = std::string(spec.what) + " " + kVersion + "\n";
   const bool ok = ::write(fd, text.data(), text.size()) == static_cast<ssize_t>(text.size());
   const int err = errno;
   ::close(fd);
   if (!ok) {
+    std::error_code ec;
     fs::remove(marker, ec);
-    throw RunError("cannot write into " + dir.string() + ": " + std::strerror(err));
+    throw RunError("cannot write into " + named.string() + ": " + std::strerror(err));
+  }
+}
+}  // namespace
+
+void createOwnFolder(const fs::path& dir, const FolderSpec& spec) {
+  std::error_code ec;
+  if (fs::is_regular_file(fs::symlink_status(dir / spec.marker, ec))) return;
+  const fs::path full = absoluteNormal(dir);
+  fs::create_directories(full.parent_path(), ec);
+  if (ec) throw SceneError("cannot create " + full.parent_path().string() + ": " + ec.message());
+  // the folder appears with its marker or not at all: made under a working name with the marker inside,
+  // then renamed into place without replacing anything. Another process creating the same folder at the
+  // same moment (the shards of a job array) sees either no folder or rootsim's, never an empty one
+  std::ostringstream name;
+  name << full.filename().string() << ".tmp" << ::getpid() << "-"
+       << std::hash<std::thread::id>{}(std::this_thread::get_id()) % 100000;
+  const fs::path work = full.parent_path() / name.str();
+  fs::remove_all(work, ec);  // this process and thread's own leftover
+  if (::mkdir(work.c_str(), 0755) != 0) {
+    const int err = errno;
+    if (err == ENOSPC || err == EDQUOT || err == EIO) throw RunError("cannot create " + dir.string() + ": " + std::strerror(err));
+    throw SceneError("cannot create " + dir.string() + ": " + std::strerror(err));
+  }
+  try {
+    writeFirstMarker(work, spec, dir);
+  } catch (...) {
+    fs::remove_all(work, ec);
+    throw;
+  }
+  if (::renameat2(AT_FDCWD, work.c_str(), AT_FDCWD, full.c_str(), RENAME_NOREPLACE) == 0) return;
+  const int err = errno;
+  fs::remove_all(work, ec);
+  if (err == EEXIST || err == ENOTEMPTY) {
+    // made by another process a moment ago: used if it is rootsim's
+    if (fs::is_regular_file(fs::symlink_status(dir / spec.marker, ec))) return;
+    throw SceneError(dir.string() + " appeared while rootsim was creating it and is not a " + spec.what +
+                     " (no " + spec.marker + "); rootsim never writes into folders it did not write: choose another path");
+  }
+  if (err != EINVAL && err != ENOSYS)
+    throw RunError("cannot create " + dir.string() + ": " + std::strerror(err));
+  // a file system without an exclusive rename (some network file systems): made in place, marker first
+  if (::mkdir(full.c_str(), 0755) != 0 && errno != EEXIST)
+    throw SceneError("cannot create " + dir.string() + ": " + std::strerror(errno));
+  if (fs::is_regular_file(fs::symlink_status(dir / spec.marker, ec))) return;
+  try {
+    writeFirstMarker(full, spec, dir);
+  } catch (const SceneError&) {
+    if (fs::is_regular_file(fs::symlink_status(dir / spec.marker, ec))) return;  // another shard's, a moment ago
+    throw;
   }
 }
 

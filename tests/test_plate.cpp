@@ -208,6 +208,40 @@ TEST_CASE("plate: lateral roots emerge at the asked spacing and, on a vertical p
   CHECK(judged >= 2);
 }
 
+TEST_CASE("plate: laterals inserted from downhill start at the insertion angle whatever their waving parent's tangent") {
+  // the waving primary of plate_wildtype (alpha = 40): its tangent at the sites swings about downhill, so
+  // laterals inserted at 65 degrees from it start anywhere in 65 +- 50 degrees; from downhill, at +-65
+  const Model m = waving();
+  PlateParams pp;
+  LateralParams& lp = pp.laterals;
+  lp.enabled = true;
+  lp.first = 3e-3;
+  lp.spacing = 0.7e-3;
+  lp.apicalUnbranched = 2e-3;
+  lp.insertion = 65 * units::deg;
+  PlateParams fromDownhill = pp;
+  fromDownhill.laterals.fromParent = false;
+  PlateSimulation parent(pp, {sow("p", 20, 3, m)});
+  PlateSimulation downhill(fromDownhill, {sow("p", 20, 3, m)});
+  for (int k = 0; k < 1500; ++k) {
+    parent.growthStep();
+    downhill.growthStep();
+  }
+  REQUIRE(parent.size() >= 5);
+  REQUIRE(downhill.size() == parent.size());
+  double widest = 0.0;
+  for (int r = 1; r < parent.size(); ++r) {
+    const double side = r % 2 == 1 ? 1.0 : -1.0;
+    INFO(parent.seedling(r).name);
+    // the same sites (the primaries are the same until then), the same sides
+    CHECK(downhill.seedling(r).siteS == parent.seedling(r).siteS);
+    CHECK(downhill.seedling(r).model.initial.angle == doctest::Approx(side * 65 * units::deg).epsilon(1e-12));
+    widest = std::max(widest, std::abs(std::abs(parent.seedling(r).model.initial.angle) - 65 * units::deg));
+  }
+  // from the parent's tangent, the wave shows: some lateral starts at least 10 degrees off 65
+  CHECK(widest > 10 * units::deg);
+}
+
 TEST_CASE("plate: a plate restored from its carry continues bit for bit with roots in contact and laterals") {
   // the collision scene's roots with laterals drawn to random sides: at step 250 they press on each other
   // and six laterals have emerged; a plate rebuilt from carry() there and the original grow 40 more steps

@@ -194,6 +194,10 @@ TEST_CASE("plate scenes: [laterals] keys are checked naming file:line and the ke
         std::string::npos);
   CHECK(errorOf(kHead + "\n[laterals]\nmax_order = 0\n" + seedling("a", 20, 5)).find("laterals.max_order must be in [1, 4]") !=
         std::string::npos);
+  CHECK(errorOf(kHead + "\n[laterals]\ninsertion_from = \"gravity\"\n" + seedling("a", 20, 5))
+            .find("scenes/t.toml:19: laterals.insertion_from must be one of") == 0);
+  CHECK_FALSE(parseScene(kHead + "\n[laterals]\ninsertion_from = \"downhill\"\n" + seedling("a", 20, 5), "scenes/d.toml")
+                  .plate.params.laterals.fromParent);
   CHECK(errorOf(kHead + "\n[laterals]\ninitial_length_mm = 0.05\n" + seedling("a", 20, 5)).find("shorter than two elements") !=
         std::string::npos);
   CHECK(errorOf("[laterals]\nenabled = true\n").find("[laterals] without any [[seedling]]") != std::string::npos);

@@ -22,7 +22,9 @@ struct LateralParams {
                                    // while negative (siteDelay) [s]
   bool alternate = true;           // sides alternate (+lateral side first); false: drawn from seed
   std::uint64_t seed = 1;          // the sides' draws
-  double insertion = 60.0 * units::deg;  // angle from the parent's tangent [rad]
+  double insertion = 60.0 * units::deg;  // angle from the parent's tangent (or downhill) [rad]
+  bool fromParent = true;          // insertion measured from the parent's tangent at the site; false:
+                                   // from downhill in the plate (docs/plate.md, Laterals on a tilted plate)
   double radius = 0.06e-3;         // the lateral's R [m] (0.6 of the primary's)
   double rate = 0.1 / units::hour; // its relative growth rate in the zone [1/s] (half the primary's)
   double zoneLength = 0.6e-3;      // its growth zone [m]

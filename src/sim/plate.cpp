@@ -520,7 +520,7 @@ void PlateSimulation::emergeLaterals() {
       b.lateral = frame_.lateral.dot(p);
       b.downhill = frame_.downhill.dot(p);
       b.siteS = s.S[i];
-      b.angle = std::remainder(theta + side * lp.insertion, 2.0 * units::pi);
+      b.angle = std::remainder((lp.fromParent ? theta : 0.0) + side * lp.insertion, 2.0 * units::pi);
       b.time = s.time;
       addLateral(b, nullptr);
       emerged_.push_back(size() - 1);

@@ -22,11 +22,8 @@ int cells(const std::string& line) {
 }  // namespace
 
 TEST_CASE("result.csv: header and row have the same columns, and a written result reads back") {
-  Model m = defaultModel();
+  Model m = rootsim::test::coarseModel();
   m.name = "t";
-  m.initial.elementLength = 0.1 * units::mm;
-  m.growth.stepTime = 0.1 * units::hour;
-  completeModel(m);
   Simulation sim(m);
   for (int k = 0; k < 10; ++k) sim.growthStep();
   const ShapeAnalysis a = analyseShape(m, sim.state());

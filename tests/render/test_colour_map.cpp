@@ -119,9 +119,7 @@ TEST_CASE("signed fields: a symmetric range, and kappa1 and kappa2 are the bendi
 TEST_CASE("colour bar: the field's name and unit, 0 marked, the diverging map's colours") {
   const SceneInfo si = rtest::info(40);
   const Snapshot s = rtest::straightRod(40, 40, 2.0, 0.1, [](double sMm) { return 1.5 * sMm; });
-  View v;
-  v.width = 1280;
-  v.height = 720;
+  View v = rtest::viewOf(1280, 720);
   v.colourBy = ColourField::Twist;
   v.colourRange = {-2.0, 2.0};
   const Framing f = frameFor({s}, si, v);

@@ -203,9 +203,7 @@ TEST_CASE("curvature colour: a bent part is coloured toward the top of the map, 
   const Eigen::VectorXd k = nodeField(rod, info, ColourField::Curvature);
   CHECK(k[30] == doctest::Approx(0.0).epsilon(1e-6));
   CHECK(k[110] == doctest::Approx(1.0).epsilon(0.01));
-  View v;
-  v.width = 640;
-  v.height = 640;
+  View v = rtest::viewOf(640, 640);
   v.overlays = false;
   v.colourBy = ColourField::Curvature;
   v.colourRange = {0.0, 1.0};
@@ -381,9 +379,7 @@ TEST_CASE("shadows darken the plate beside a raised rod, on the side away from t
   const PlateFrame pf = PlateFrame::tilted(40 * units::deg);
   for (long i = 0; i < rod.x.cols(); ++i) rod.x.col(i) += 0.5 * units::mm * pf.normal;
   const SceneInfo info = rtest::info(40);
-  View v;
-  v.width = 640;
-  v.height = 360;
+  View v = rtest::viewOf(640, 360);
   v.overlays = false;
   const Framing f = frameFor({rod}, info, v);
   GlRenderer gl(v.width, v.height);
@@ -448,9 +444,7 @@ TEST_CASE("shadows: a strand lifted across another darkens the lower strand's to
     rod.d1.col(e) = pf.normal.cross(d3).normalized();
   }
   const SceneInfo info = rtest::info(40);
-  View v;
-  v.width = 640;
-  v.height = 640;
+  View v = rtest::viewOf(640, 640);
   v.overlays = false;
   const Framing f = frameFor({rod}, info, v);
   GlRenderer gl(v.width, v.height);

@@ -373,10 +373,12 @@ TEST_CASE("at --width-mm 85 and 180 the panel is that wide and its text is at le
   pa.series.back().y = {0, 1, 0.5};
   pa.series.back().label = "E_{b} (zone)";
   plot.axes.push_back(pa);
-  for (const auto& [name, fig] : {std::pair{"rows", journalPanel()}, std::pair{"plot", plot}})
+  for (const auto& panel : {std::pair{"rows", journalPanel()}, std::pair{"plot", plot}})
     for (double mm : {85.0, 180.0}) {
       INFO(name << " at " << mm << " mm");
       const fs::path base = fs::temp_directory_path() / ("rootsim_plot_journal_" + std::string(name));
+      const char* name = panel.first;
+      const rootsim::Figure& fig = panel.second;
       rootsim::SaveOptions so;
       so.widthMm = mm;
       rootsim::saveFigure(fig, base.string(), so);
@@ -385,8 +387,9 @@ TEST_CASE("at --width-mm 85 and 180 the panel is that wide and its text is at le
       const auto words = wordSizesPt(base.string() + ".pdf");
       CHECK(words.size() > 10);
       double smallest = 1e9;
-      for (const auto& [w, size] : words) {
-        INFO(w << " " << size << " pt");
+      for (const auto& word : words) {
+        const double size = word.second;
+        INFO(word.first << " " << size << " pt");
         CHECK(size >= 5.95);
         smallest = std::min(smallest, size);
       }
@@ -715,7 +718,8 @@ TEST_CASE("figure titles break between phrases and never inside a formula, at 85
     for (const auto& [y, text] : lines)
       if (text.find("β") != std::string::npos && text.find("0.1;") != std::string::npos) seen = true;
     CHECK(seen);
-    for (const auto& [y, text] : lines) {
+    for (const auto& line : lines) {
+      const std::string& text = line.second;
       INFO(text);
       CHECK(text.rfind("= ", 0) != 0);
       CHECK(text.find(" = \n") == std::string::npos);
@@ -740,10 +744,12 @@ TEST_CASE("at 85 and 180 mm no two words of a panel overlap (pdftotext -bbox)") 
     pa.series.push_back(s);
   }
   plot.axes.push_back(pa);
-  for (const auto& [name, fig] : {std::pair{"rows", journalPanel()}, std::pair{"plot", plot}})
+  for (const auto& panel : {std::pair{"rows", journalPanel()}, std::pair{"plot", plot}})
     for (double mm : {85.0, 180.0}) {
       INFO(name << " at " << mm << " mm");
       const fs::path base = fs::temp_directory_path() / ("rootsim_plot_overlap_" + std::string(name));
+      const char* name = panel.first;
+      const rootsim::Figure& fig = panel.second;
       rootsim::SaveOptions so;
       so.widthMm = mm;
       rootsim::saveFigure(fig, base.string(), so);
@@ -860,7 +866,8 @@ TEST_CASE("a row of root tiles at 85 mm shares one x label when equal labels wou
     }
     REQUIRE(!labels.empty());
     int count = 0;
-    for (auto& [y, row] : labels) {
+    for (auto& labelsAtY : labels) {
+      auto& row = labelsAtY.second;
       std::sort(row.begin(), row.end());
       count += static_cast<int>(row.size());
       for (size_t k = 1; k < row.size(); ++k) {
@@ -975,7 +982,9 @@ TEST_CASE("a legend lies where no curve or marker passes, else under the axes, a
     rootsim::saveFigure(f, base.string(), so);
     const std::string xml = capture("pdftotext -bbox '" + base.string() + ".pdf' - 2>&1");
     int found = 0;
-    for (const auto& [word, axes] : std::vector<std::pair<std::string, size_t>>{{"planar", 0}, {"gravity", 0}, {"bending", 1}, {"twisting", 1}, {"writhe", 2}}) {
+    for (const auto& wordAxes : std::vector<std::pair<std::string, size_t>>{{"planar", 0}, {"gravity", 0}, {"bending", 1}, {"twisting", 1}, {"writhe", 2}}) {
+      const std::string& word = wordAxes.first;
+      const size_t axes = wordAxes.second;
       const size_t p = xml.find(">" + word + "<");
       REQUIRE(p != std::string::npos);
       const size_t w = xml.rfind("<word ", p);

@@ -128,7 +128,8 @@ TEST_CASE("downhill arrow in the 3-D view follows the plate's slope, and the gri
 TEST_CASE("grid lines grow with the picture: at least 2 px wide at 3840x2160") {
   const SceneInfo si = rtest::info(40);
   const Snapshot s = rtest::straightRod(40, 10, 1.0, 0.1);
-  for (const auto& [w, h] : {std::pair{1280, 720}, std::pair{3840, 2160}}) {
+  for (const auto& size : {std::pair{1280, 720}, std::pair{3840, 2160}}) {
+    const int w = size.first, h = size.second;
     CAPTURE(w);
     View v = rtest::viewOf(w, h);
     v.overlays = false;

@@ -178,8 +178,10 @@ TEST_CASE("inset: the region marked on the fit view is what the inset shows") {
         }
       return std::make_pair(cnt > 0 ? Eigen::Vector2d(sum / cnt) : Eigen::Vector2d(-1, -1), cnt);
     };
-    const auto [cMark, nMark] = centroid(mx0, my0, mx1, my1);
-    const auto [cInset, nInset] = centroid(l.insetX, l.insetY, l.insetX + l.insetW, l.insetY + l.insetH);
+    const auto rootInMark = centroid(mx0, my0, mx1, my1);
+    const auto rootInInset = centroid(l.insetX, l.insetY, l.insetX + l.insetW, l.insetY + l.insetH);
+    const Eigen::Vector2d &cMark = rootInMark.first, &cInset = rootInInset.first;
+    const int nMark = rootInMark.second, nInset = rootInInset.second;
     INFO("frame " << k << ": mark " << cMark.transpose() << " (" << nMark << " px), inset " << cInset.transpose()
                   << " (" << nInset << " px)");
     REQUIRE(nMark > 50);

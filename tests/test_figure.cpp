@@ -23,6 +23,8 @@
 #include "rootsim/plot.hpp"
 #include "test_support.hpp"
 
+using rootsim::test::kRoundoff;
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -375,10 +377,10 @@ TEST_CASE("at --width-mm 85 and 180 the panel is that wide and its text is at le
   plot.axes.push_back(pa);
   for (const auto& panel : {std::pair{"rows", journalPanel()}, std::pair{"plot", plot}})
     for (double mm : {85.0, 180.0}) {
-      INFO(name << " at " << mm << " mm");
-      const fs::path base = fs::temp_directory_path() / ("rootsim_plot_journal_" + std::string(name));
       const char* name = panel.first;
       const rootsim::Figure& fig = panel.second;
+      INFO(name << " at " << mm << " mm");
+      const fs::path base = fs::temp_directory_path() / ("rootsim_plot_journal_" + std::string(name));
       rootsim::SaveOptions so;
       so.widthMm = mm;
       rootsim::saveFigure(fig, base.string(), so);
@@ -637,26 +639,26 @@ TEST_CASE("label layout: a sub- and a superscript in a row stack (kappa_f^0), ot
   CHECK(k.runs[1].level == -1);
   CHECK(k.runs[2].text == "0");
   CHECK(k.runs[2].level == 1);
-  CHECK(k.runs[1].x == doctest::Approx(base.width));     // the f after the κ
-  CHECK(k.runs[2].x == doctest::Approx(k.runs[1].x));    // the 0 above the f, not beside it
+  ROOTSIM_CHECK_CLOSE(k.runs[1].x, base.width, kRoundoff);     // the f after the κ
+  ROOTSIM_CHECK_CLOSE(k.runs[2].x, k.runs[1].x, kRoundoff);    // the 0 above the f, not beside it
   CHECK(k.runs[2].y < k.runs[1].y - 0.5 * 0.7 * 12);     // above by more than half the script's size
-  CHECK(k.runs[1].size == doctest::Approx(0.7 * 12));
-  CHECK(k.width == doctest::Approx(base.width + std::max(f.width, zero.width)));
+  ROOTSIM_CHECK_CLOSE(k.runs[1].size, 0.7 * 12, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(k.width, base.width + std::max(f.width, zero.width), kRoundoff);
   // the other order stacks too, with braces
   const auto k2 = layoutLabel("κ^{0}_{f} [1/mm]", 12);
   REQUIRE(k2.runs.size() == 4);
-  CHECK(k2.runs[2].x == doctest::Approx(k2.runs[1].x));
-  CHECK(k2.runs[3].x == doctest::Approx(base.width + std::max(f.width, zero.width)));
+  ROOTSIM_CHECK_CLOSE(k2.runs[2].x, k2.runs[1].x, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(k2.runs[3].x, base.width + std::max(f.width, zero.width), kRoundoff);
   // a lone superscript and a base run after it: side by side
   const auto t = layoutLabel("θ^{tip} [deg]", 12);
   REQUIRE(t.runs.size() == 3);
-  CHECK(t.runs[2].x == doctest::Approx(t.runs[1].x + layoutLabel("tip", 0.7 * 12).width));
+  ROOTSIM_CHECK_CLOSE(t.runs[2].x, t.runs[1].x + layoutLabel("tip", 0.7 * 12).width, kRoundoff);
   // a third script does not stack on a stacked pair: it follows it
   const auto three = layoutLabel("x_a^b_c", 12);
   REQUIRE(three.runs.size() == 4);
   CHECK(three.runs[3].x > three.runs[2].x);
   // scripts no smaller than the floor asked for (the physical layout's 6 pt)
-  CHECK(layoutLabel("L_{gz}", 7, false, 6).runs[1].size == doctest::Approx(6));
+  ROOTSIM_CHECK_CLOSE(layoutLabel("L_{gz}", 7, false, 6).runs[1].size, 6, kRoundoff);
 }
 
 TEST_CASE("same figure, same bytes: PDF (no CreationDate stamped), SVG and PNG saved a second later are identical") {
@@ -746,10 +748,10 @@ TEST_CASE("at 85 and 180 mm no two words of a panel overlap (pdftotext -bbox)") 
   plot.axes.push_back(pa);
   for (const auto& panel : {std::pair{"rows", journalPanel()}, std::pair{"plot", plot}})
     for (double mm : {85.0, 180.0}) {
-      INFO(name << " at " << mm << " mm");
-      const fs::path base = fs::temp_directory_path() / ("rootsim_plot_overlap_" + std::string(name));
       const char* name = panel.first;
       const rootsim::Figure& fig = panel.second;
+      INFO(name << " at " << mm << " mm");
+      const fs::path base = fs::temp_directory_path() / ("rootsim_plot_overlap_" + std::string(name));
       rootsim::SaveOptions so;
       so.widthMm = mm;
       rootsim::saveFigure(fig, base.string(), so);

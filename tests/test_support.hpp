@@ -22,6 +22,7 @@
 #include "rootsim/rod.hpp"
 #include "rootsim/simulation.hpp"
 #include "rootsim/units.hpp"
+#include "tolerance_support.hpp"
 
 namespace rootsim::test {
 
@@ -92,7 +93,6 @@ inline Model coarseModel() {
   completeModel(m);
   return m;
 }
-
 // the same run for the given number of growth steps
 inline Model coarseModel(int steps) {
   Model m = coarseModel();
@@ -107,6 +107,7 @@ inline OutputParams rootWriterOutputs(TrajectoryFormat trajectory = OutputParams
   o.vtk = false;
   return o;
 }
+
 // a root of coarseModel() grown for a few steps: its model, simulation and strains
 struct GrownRoot {
   Model m;

@@ -10,6 +10,9 @@
 #include "rootsim/compose.hpp"
 #include "rootsim/gl_renderer.hpp"
 #include "rootsim/render_scene.hpp"
+#include "../tolerance_support.hpp"
+
+using rootsim::test::kRoundoff;
 
 using namespace rootsim;
 
@@ -185,7 +188,7 @@ TEST_CASE("inset: its own scale bar and its magnification") {
   REQUIRE(l.inset);
   // magnification: the inset's px/mm over the view's
   const double expected = (l.insetW / plan.inset.back().widthMm) / (l.viewW / plan.view.front().widthMm);
-  CHECK(comp.lastInsetMagnification() == doctest::Approx(expected));
+  ROOTSIM_CHECK_CLOSE(comp.lastInsetMagnification(), expected, kRoundoff);
   CHECK(expected > 2);
   // ink in the inset's bottom right: its scale bar and, left of it, its "x6", on a light backing
   auto inkIn = [&](int x0, int y0, int x1, int y1) {

@@ -8,6 +8,9 @@
 #include "rootsim/montage.hpp"
 #include "rootsim/montage_runs.hpp"
 #include "rootsim/scene.hpp"
+#include "../tolerance_support.hpp"
+
+using rootsim::test::kRoundoff;
 
 using namespace rootsim;
 
@@ -95,7 +98,7 @@ TEST_CASE("montage: the last tile's scale bar and downhill text match the labels
   const std::vector<MontageRun> runs(3, montageRun(rootAt40(1.0, 0.1), "\xCE\xB1 = 40\xC2\xB0"));
   const View v = rtest::viewOf(1280, 720);
   const MontageLayout l = montageLayout(runs, v);
-  CHECK(l.labelPx == doctest::Approx(21));  // 720 / 34
+  ROOTSIM_CHECK_CLOSE(l.labelPx, 21, kRoundoff);  // 720 / 34
   for (std::size_t i = 0; i < runs.size(); ++i) {
     INFO("tile " << i);
     const View tv = montageTileView(l, v, i, runs.size());
@@ -110,11 +113,11 @@ TEST_CASE("montage: the last tile's scale bar and downhill text match the labels
       INFO(t.text << " at " << t.sizePx << " px");
       if (t.text.find(" mm") != std::string::npos) {
         scale = true;
-        CHECK(t.sizePx == doctest::Approx(l.labelPx));
+        ROOTSIM_CHECK_CLOSE(t.sizePx, l.labelPx, kRoundoff);
       }
       if (t.text == kDownhillLabel) {
         downhill = true;
-        CHECK(t.sizePx == doctest::Approx(std::round(0.8f * l.labelPx)));  // the single view's ratio
+        ROOTSIM_CHECK_CLOSE(t.sizePx, std::round(0.8f * l.labelPx), kRoundoff);  // the single view's ratio
       }
       CHECK(t.sizePx >= 0.8f * l.labelPx - 0.5f);
     }

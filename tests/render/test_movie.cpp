@@ -18,6 +18,10 @@
 #include "rootsim/movie.hpp"
 #include "rootsim/png.hpp"
 #include "rootsim/units.hpp"
+#include "../tolerance_support.hpp"
+
+using rootsim::test::kRoundoff;
+using rootsim::test::kFloatRoundoff;
 
 namespace fs = std::filesystem;
 using namespace rootsim;
@@ -88,7 +92,7 @@ TEST_CASE("follow camera: the tip region stays central in every frame, the tube 
   for (std::size_t k = 0; k < snaps.size(); ++k) {
     comp.compose(snaps[k], static_cast<int>(k), img);
     const Framing& f = plan.view[k];
-    CHECK(f.widthMm == doctest::Approx(2.0));
+    ROOTSIM_CHECK_CLOSE(f.widthMm, 2.0, kRoundoff);
     // the tip region (last 0.3 mm) on the picture: its pixels are root pixels, in the middle 60 %
     const Eigen::Vector2d c = tipRegionCentre(snaps[k], pf, 0.3);
     const Eigen::Vector2d px = topViewPixel(f, job.view, c.x(), c.y());
@@ -242,8 +246,8 @@ TEST_CASE("curvature colour: a bent part is coloured toward the top of the map, 
   CHECK(pink >= 2);
   CHECK(orange >= 2);
   // the colour map itself: the published end points, increasing lightness
-  CHECK(viridis(0.0)[0] == doctest::Approx(0x44 / 255.0));
-  CHECK(viridis(1.0)[1] == doctest::Approx(0xe7 / 255.0));
+  ROOTSIM_CHECK_CLOSE(viridis(0.0)[0], 0x44 / 255.0, kFloatRoundoff);
+  ROOTSIM_CHECK_CLOSE(viridis(1.0)[1], 0xe7 / 255.0, kFloatRoundoff);
   for (int i = 0; i < 10; ++i) {
     const auto a = viridis(0.1 * i), b = viridis(0.1 * (i + 1));
     CHECK(0.299 * b[0] + 0.587 * b[1] + 0.114 * b[2] > 0.299 * a[0] + 0.587 * a[1] + 0.114 * a[2]);

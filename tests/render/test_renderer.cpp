@@ -13,6 +13,9 @@
 #include "rootsim/paraview.hpp"
 #include "rootsim/png.hpp"
 #include "rootsim/render_scene.hpp"
+#include "../tolerance_support.hpp"
+
+using rootsim::test::kRoundoff;
 
 using namespace rootsim;
 using rtest::Paint;
@@ -166,7 +169,7 @@ TEST_CASE("the grid is 1 mm in the framing's pixels") {
   const Snapshot s = rtest::straightRod(40, 10, 1.0, 0.1);
   const Framing f = frameFor({s}, si, v);
   const RenderScene rs = buildRenderScene(s, si, v, f);
-  CHECK(rs.pxPerMm == doctest::Approx(800 / 7.5));
+  ROOTSIM_CHECK_CLOSE(rs.pxPerMm, 800 / 7.5, kRoundoff);
   const Image img = r.render(rs);
   const std::uint8_t* plate = img.at(5, 5);
   auto dark = [&](int x, int y) { return plate[1] - img.at(x, y)[1] > 8; };

@@ -19,6 +19,8 @@
 #include "rootsim/rsml.hpp"
 #include "test_support.hpp"
 
+using rootsim::test::kRoundoff;
+
 namespace fs = std::filesystem;
 using namespace rootsim;
 using rootsim::test::run;
@@ -136,10 +138,10 @@ TEST_CASE("analyze: a SmartRoot-style plate / orders, parents, lengths and inser
   CHECK(number(rows[0], "length_mm") == doctest::Approx(primary).epsilon(1e-12));
   CHECK(number(rows[0], "chord_mm") == doctest::Approx(400 * u).epsilon(1e-12));
   CHECK(number(rows[0], "tortuosity") == doctest::Approx(primary / (400 * u)).epsilon(1e-12));
-  CHECK(number(rows[0], "skew_base_tip_deg") == doctest::Approx(0.0));
+  ROOTSIM_CHECK_CLOSE(number(rows[0], "skew_base_tip_deg"), 0.0, kRoundoff);
   // the diameter function (in pixels: 4.0, 4.0, 3.5, 3.0, 2.5) sets the radius: half the median, in mm
   CHECK(rows[0].at("radius_source") == "diameter");
-  CHECK(number(rows[0], "radius_mm") == doctest::Approx(0.5 * 3.5 * u));
+  ROOTSIM_CHECK_CLOSE(number(rows[0], "radius_mm"), 0.5 * 3.5 * u, kRoundoff);
   CHECK(rows[1].at("root") == "r1.1");
   CHECK(rows[1].at("parent") == "r1");
   CHECK(number(rows[1], "order") == 1);
@@ -482,16 +484,16 @@ TEST_CASE("analyze: a RootSystemTracker 2D+t file / its scale with no flag / eve
   const auto rows = readRows(d / "an" / "analysis.csv");
   REQUIRE(rows.size() == 4);
   // 50 um pixels: the primary's 120 px are 6 mm; its diameter of 6 px gives R = 0.15 mm
-  CHECK(number(rows[0], "length_mm") == doctest::Approx(6.0));
+  ROOTSIM_CHECK_CLOSE(number(rows[0], "length_mm"), 6.0, kRoundoff);
   CHECK(number(rows[0], "time_h") == 18);
-  CHECK(number(rows[0], "radius_mm") == doctest::Approx(0.15));
+  ROOTSIM_CHECK_CLOSE(number(rows[0], "radius_mm"), 0.15, kRoundoff);
   CHECK(rows[0].at("radius_source") == "diameter");
   CHECK(rows[1].at("radius_source") == "default");  // its diameters are 0: not measured
   // growth over the last interval each root grew in: 2 mm in 6 h, 1 mm in 6 h; one observation: none
-  CHECK(number(rows[0], "growth_rate_mm_per_h") == doctest::Approx(2.0 / 6));
-  CHECK(number(rows[1], "growth_rate_mm_per_h") == doctest::Approx(1.0 / 6));
+  ROOTSIM_CHECK_CLOSE(number(rows[0], "growth_rate_mm_per_h"), 2.0 / 6, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(number(rows[1], "growth_rate_mm_per_h"), 1.0 / 6, kRoundoff);
   CHECK(std::isnan(number(rows[2], "growth_rate_mm_per_h")));
-  CHECK(number(rows[3], "growth_rate_mm_per_h") == doctest::Approx(1.0 / 6));
+  ROOTSIM_CHECK_CLOSE(number(rows[3], "growth_rate_mm_per_h"), 1.0 / 6, kRoundoff);
   // growth.csv: the root at observation k is the polyline up to coord_t = k
   const auto g = readRows(d / "an" / "growth.csv");
   const auto primary = rowsWhere(g, "root", "1.1");
@@ -499,36 +501,36 @@ TEST_CASE("analyze: a RootSystemTracker 2D+t file / its scale with no flag / eve
   const double len[] = {1, 2, 4, 6}, hours[] = {0, 6, 12, 18};
   for (std::size_t k = 0; k < 4; ++k) {
     CHECK(number(primary[k], "time_h") == hours[k]);
-    CHECK(number(primary[k], "length_mm") == doctest::Approx(len[k]));
-    CHECK(number(primary[k], "tip_downhill_mm") == doctest::Approx(len[k]));
+    ROOTSIM_CHECK_CLOSE(number(primary[k], "length_mm"), len[k], kRoundoff);
+    ROOTSIM_CHECK_CLOSE(number(primary[k], "tip_downhill_mm"), len[k], kRoundoff);
     CHECK(number(primary[k], "tip_lateral_mm") == doctest::Approx(0).epsilon(1e-12));
-    CHECK(number(primary[k], "theta_tip_deg") == doctest::Approx(0));
+    ROOTSIM_CHECK_CLOSE(number(primary[k], "theta_tip_deg"), 0, kRoundoff);
     CHECK(primary[k].at("track") == "rst_2dt.rsml:1/1.1");
   }
   // the laterals: towards +x (+lateral) is +90 deg, as the base-to-tip skew; a root not yet started has no row
   const auto l1 = rowsWhere(g, "root", "1.1.1");
   REQUIRE(l1.size() == 2);
   CHECK(number(l1[0], "time_h") == 12);
-  CHECK(number(l1[1], "length_mm") == doctest::Approx(2.0));
-  CHECK(number(l1[1], "theta_tip_deg") == doctest::Approx(90));
-  CHECK(number(rows[1], "skew_base_tip_deg") == doctest::Approx(90));
+  ROOTSIM_CHECK_CLOSE(number(l1[1], "length_mm"), 2.0, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(number(l1[1], "theta_tip_deg"), 90, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(number(rows[1], "skew_base_tip_deg"), 90, kRoundoff);
   const auto l2 = rowsWhere(g, "root", "1.1.2");
   REQUIRE(l2.size() == 1);
-  CHECK(number(l2[0], "theta_tip_deg") == doctest::Approx(-90));
-  CHECK(number(l2[0], "tip_lateral_mm") == doctest::Approx(-1));
+  ROOTSIM_CHECK_CLOSE(number(l2[0], "theta_tip_deg"), -90, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(number(l2[0], "tip_lateral_mm"), -1, kRoundoff);
   CHECK(rowsWhere(g, "root", "2.1").size() == 3);  // two points at coord_t 0 and 3: no length at 0 h
   // plants.csv: the seedling's lengths, laterals, branched zone (2 to 5 mm along the primary), extent
   const auto p = readRows(d / "an" / "plants.csv");
   REQUIRE(p.size() == 2);
-  CHECK(number(p[0], "primary_length_mm") == doctest::Approx(6));
-  CHECK(number(p[0], "total_length_mm") == doctest::Approx(9));
-  CHECK(number(p[0], "lateral_length_mm") == doctest::Approx(3));
+  ROOTSIM_CHECK_CLOSE(number(p[0], "primary_length_mm"), 6, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(number(p[0], "total_length_mm"), 9, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(number(p[0], "lateral_length_mm"), 3, kRoundoff);
   CHECK(number(p[0], "lateral_count") == 2);
-  CHECK(number(p[0], "branched_zone_mm") == doctest::Approx(3));
-  CHECK(number(p[0], "lateral_density_per_mm") == doctest::Approx(2.0 / 3));
-  CHECK(number(p[0], "laterals_per_primary_mm") == doctest::Approx(2.0 / 6));
-  CHECK(number(p[0], "depth_mm") == doctest::Approx(6));
-  CHECK(number(p[0], "width_mm") == doctest::Approx(3));
+  ROOTSIM_CHECK_CLOSE(number(p[0], "branched_zone_mm"), 3, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(number(p[0], "lateral_density_per_mm"), 2.0 / 3, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(number(p[0], "laterals_per_primary_mm"), 2.0 / 6, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(number(p[0], "depth_mm"), 6, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(number(p[0], "width_mm"), 3, kRoundoff);
   CHECK(std::isnan(number(p[1], "lateral_density_per_mm")));  // no lateral: no branched zone
   // its scale is the file's: --px-per-mm is refused; --times too (the file has its own times)
   const auto px = run("analyze " + in + " --px-per-mm 20 --out " + (d / "x").string());
@@ -551,14 +553,14 @@ TEST_CASE("analyze: a SmartRoot file in inches reads with no flag / a scale givi
   REQUIRE(rows.size() == 3);
   CHECK(rows[0].at("root") == "r1");  // uppercase ID
   CHECK(rows[2].at("parent") == "r2");
-  CHECK(number(rows[0], "length_mm") == doctest::Approx(10));  // 100 px at 254 dpi
-  CHECK(number(rows[0], "radius_mm") == doctest::Approx(0.1));
+  ROOTSIM_CHECK_CLOSE(number(rows[0], "length_mm"), 10, kRoundoff);  // 100 px at 254 dpi
+  ROOTSIM_CHECK_CLOSE(number(rows[0], "radius_mm"), 0.1, kRoundoff);
   // SmartRoot puts every root of an image in one plant: one plants.csv row per seedling (base root)
   const auto p = readRows(d / "an" / "plants.csv");
   REQUIRE(p.size() == 2);
   CHECK(p[1].at("root") == "r2");
   CHECK(number(p[1], "lateral_count") == 1);
-  CHECK(number(p[1], "total_length_mm") == doctest::Approx(7));
+  ROOTSIM_CHECK_CLOSE(number(p[1], "total_length_mm"), 7, kRoundoff);
   // the same file at 1 dpi: 2.5 m roots, written with a warning that names the scale to check
   std::string text = slurp(in);
   text.replace(text.find("<resolution>254.0</resolution>"), 30, "<resolution>1</resolution>");

@@ -35,6 +35,25 @@ using rootsim::test::kSets;
 using rootsim::test::runKilled;
 fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("checkpoint", name); }
 
+// the checkpoint a run would write of a's state and carry after its current growth step
+RunCheckpoint checkpointOf(const Simulation& a, std::uint64_t sceneHash) {
+  RunCheckpoint c;
+  c.sceneHash = sceneHash;
+  c.step = a.step();
+  c.state = a.state();
+  c.carry = a.carry();
+  return c;
+}
+
+// the checkpoint of the 90-degree plate's root after one growth step of 0.2 h: a small state for the
+// field checks
+RunCheckpoint oneStepCheckpoint(std::uint64_t sceneHash) {
+  const Scene sc = loadScene(std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2a_alpha90.toml", {"growth.step_h=0.2"});
+  Simulation a(sc.model);
+  a.growthStep();
+  return checkpointOf(a, sceneHash);
+}
+
 // FNV-1a 64, the checkpoint's checksum (include/rootsim/checkpoint.hpp)
 std::uint64_t fnv1a(const std::string& s, std::size_t from, std::size_t to) {
   std::uint64_t h = 14695981039346656037ull;
@@ -61,11 +80,7 @@ TEST_CASE("every field of every persistent struct survives a checkpoint round tr
   for (auto f : a.state().hasPlateStick) sticks = sticks || f != 0;
   REQUIRE(sticks);
 
-  RunCheckpoint c;
-  c.sceneHash = 42;
-  c.step = a.step();
-  c.state = a.state();
-  c.carry = ka;
+  RunCheckpoint c = checkpointOf(a, 42);
   c.acc.watch.snapFirst = 1.5;
   c.acc.watch.maxSubsteps = 7;
   c.acc.watch.minSelfDistance = 0.25;
@@ -99,14 +114,7 @@ TEST_CASE("every field of every persistent struct survives a checkpoint round tr
 }
 
 TEST_CASE("each field of the rod state's list reaches the checkpoint file and comes back from it") {
-  const Scene sc = loadScene(std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2a_alpha90.toml", {"growth.step_h=0.2"});
-  Simulation a(sc.model);
-  a.growthStep();
-  RunCheckpoint c;
-  c.sceneHash = 7;
-  c.step = a.step();
-  c.state = a.state();
-  c.carry = a.carry();
+  const RunCheckpoint c = oneStepCheckpoint(7);
   const fs::path dir = scratch("each_rod_field");
   fs::create_directories(dir);
   writeCheckpoint(dir / kCheckpointFile, c);
@@ -130,13 +138,7 @@ TEST_CASE("each field of the rod state's list reaches the checkpoint file and co
 }
 
 TEST_CASE("a checkpoint whose rod state arrays disagree on the element count is refused naming the field") {
-  const Scene sc = loadScene(std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2a_alpha90.toml", {"growth.step_h=0.2"});
-  Simulation a(sc.model);
-  a.growthStep();
-  RunCheckpoint c;
-  c.step = a.step();
-  c.state = a.state();
-  c.carry = a.carry();
+  RunCheckpoint c = oneStepCheckpoint(0);
   c.state.hasObstacleStick.push_back(0);
   const fs::path dir = scratch("element_count");
   fs::create_directories(dir);

@@ -24,6 +24,8 @@
 #include "rootsim/tolerance.hpp"
 #include "rootsim/units.hpp"
 
+using rootsim::test::kRoundoff;
+
 using namespace rootsim;
 
 namespace {
@@ -456,8 +458,8 @@ TEST_CASE("obstacles: forces push out along the in-plane normal, split by the se
     const double fn = k * 0.005e-3;
     CHECK((force.col(4) + 0.6 * fn * f.lateral).norm() < 1e-9 * fn);
     CHECK((force.col(5) + 0.4 * fn * f.lateral).norm() < 1e-9 * fn);
-    CHECK(force.norm() == doctest::Approx(std::sqrt(0.36 + 0.16) * fn));
-    CHECK(cw.obstacleN[4] == doctest::Approx(0.6 * fn));
+    ROOTSIM_CHECK_CLOSE(force.norm(), std::sqrt(0.36 + 0.16) * fn, kRoundoff);
+    ROOTSIM_CHECK_CLOSE(cw.obstacleN[4], 0.6 * fn, kRoundoff);
   }
 }
 

@@ -9,22 +9,24 @@
 #include "physics_support.hpp"
 #include "rootsim/contact.hpp"
 
+using rootsim::test::kRoundoff;
+
 using namespace rootsim;
 using namespace rootsim::test;
 
 TEST_CASE("segment closest points: crossing, parallel overlap and end cases") {
   double a = 0, b = 0;
   closestSegmentPoints(Vec3(-1, 0, 0), Vec3(1, 0, 0), Vec3(0.5, -1, 1), Vec3(0.5, 1, 1), a, b);
-  CHECK(a == doctest::Approx(0.75));
-  CHECK(b == doctest::Approx(0.5));
+  ROOTSIM_CHECK_CLOSE(a, 0.75, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(b, 0.5, kRoundoff);
   // parallel, overlapping over x in [0, 1]: the middle of the overlap
   closestSegmentPoints(Vec3(0, 0, 0), Vec3(2, 0, 0), Vec3(-1, 0, 1), Vec3(1, 0, 1), a, b);
-  CHECK(a == doctest::Approx(0.25));
-  CHECK(b == doctest::Approx(0.75));
+  ROOTSIM_CHECK_CLOSE(a, 0.25, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(b, 0.75, kRoundoff);
   // end to end
   closestSegmentPoints(Vec3(0, 0, 0), Vec3(1, 0, 0), Vec3(2, 1, 0), Vec3(3, 2, 0), a, b);
-  CHECK(a == doctest::Approx(1.0));
-  CHECK(b == doctest::Approx(0.0));
+  ROOTSIM_CHECK_CLOSE(a, 1.0, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(b, 0.0, kRoundoff);
 }
 
 TEST_CASE("self-contact list: the Verlet list holds the pairs within 2R + skin as brute force finds them, sorted, and serves until a node moves skin/2") {

@@ -7,6 +7,8 @@
 #include "rootsim/rotation.hpp"
 #include "rootsim/units.hpp"
 
+using rootsim::test::kRoundoff;
+
 using namespace rootsim;
 using rootsim::test::Cantilever;
 
@@ -21,7 +23,7 @@ TEST_CASE("plate frame: right-handed orthonormal, docs/model.md frame vectors, e
     // d1 = lateral, d2 = normal, d3 = downhill is right-handed (the initial directors)
     CHECK((f.lateral.cross(f.normal) - f.downhill).norm() < 1e-15);
     // gravity makes -sin(alpha) with the normal (docs/model.md, Frames and signs)
-    CHECK(Vec3(0, 0, -1).dot(f.normal) == doctest::Approx(-std::sin(a)));
+    ROOTSIM_CHECK_CLOSE(Vec3(0, 0, -1).dot(f.normal), -std::sin(a), kRoundoff);
   }
   // no round-off at the axis angles: cos(pi/2) would be 6e-17
   CHECK(PlateFrame::tilted(90 * units::deg).normal == Vec3(0, 0, 1));

@@ -20,6 +20,8 @@
 #include <nlohmann/json.hpp>
 #include "test_support.hpp"
 
+using rootsim::test::kRoundoff;
+
 namespace fs = std::filesystem;
 using namespace rootsim;
 using rootsim::test::run;
@@ -97,7 +99,7 @@ TEST_CASE("export --rsml: the final root in plate coordinates / its functions an
   // origin at the seed: node 0 on the plate's origin, one radius above it; the root grows downhill (+y)
   CHECK(std::fabs(root.x[0]) < 1e-12);
   CHECK(std::fabs(root.y[0]) < 1e-12);
-  CHECK(root.z[0] == doctest::Approx(0.1));
+  ROOTSIM_CHECK_CLOSE(root.z[0], 0.1, kRoundoff);
   CHECK(root.y.back() > 2.0);
 
   // diameter: 2 R / sqrt(stretch) at the nodes, as shape.csv's radius (of the mean stretch) to 1e-6
@@ -126,7 +128,7 @@ TEST_CASE("export --rsml: the final root in plate coordinates / its functions an
   // never increases toward the tip
   const rsml::Function* age = root.function("age");
   REQUIRE(age != nullptr);
-  CHECK(age->samples.front() == doctest::Approx(10.0));
+  ROOTSIM_CHECK_CLOSE(age->samples.front(), 10.0, kRoundoff);
   CHECK(age->samples.back() == 0);
   for (std::size_t i = 1; i < age->samples.size(); ++i) CHECK(age->samples[i] <= age->samples[i - 1] + 1e-12);
   CHECK(std::count(age->samples.begin(), age->samples.end(), 0.0) > 5);

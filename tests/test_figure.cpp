@@ -23,6 +23,8 @@
 #include "rootsim/plot.hpp"
 #include "test_support.hpp"
 
+using rootsim::test::kRoundoff;
+
 namespace fs = std::filesystem;
 
 namespace {
@@ -373,8 +375,10 @@ TEST_CASE("at --width-mm 85 and 180 the panel is that wide and its text is at le
   pa.series.back().y = {0, 1, 0.5};
   pa.series.back().label = "E_{b} (zone)";
   plot.axes.push_back(pa);
-  for (const auto& [name, fig] : {std::pair{"rows", journalPanel()}, std::pair{"plot", plot}})
+  for (const auto& panel : {std::pair{"rows", journalPanel()}, std::pair{"plot", plot}})
     for (double mm : {85.0, 180.0}) {
+      const char* name = panel.first;
+      const rootsim::Figure& fig = panel.second;
       INFO(name << " at " << mm << " mm");
       const fs::path base = fs::temp_directory_path() / ("rootsim_plot_journal_" + std::string(name));
       rootsim::SaveOptions so;
@@ -385,8 +389,9 @@ TEST_CASE("at --width-mm 85 and 180 the panel is that wide and its text is at le
       const auto words = wordSizesPt(base.string() + ".pdf");
       CHECK(words.size() > 10);
       double smallest = 1e9;
-      for (const auto& [w, size] : words) {
-        INFO(w << " " << size << " pt");
+      for (const auto& word : words) {
+        const double size = word.second;
+        INFO(word.first << " " << size << " pt");
         CHECK(size >= 5.95);
         smallest = std::min(smallest, size);
       }
@@ -634,26 +639,26 @@ TEST_CASE("label layout: a sub- and a superscript in a row stack (kappa_f^0), ot
   CHECK(k.runs[1].level == -1);
   CHECK(k.runs[2].text == "0");
   CHECK(k.runs[2].level == 1);
-  CHECK(k.runs[1].x == doctest::Approx(base.width));     // the f after the κ
-  CHECK(k.runs[2].x == doctest::Approx(k.runs[1].x));    // the 0 above the f, not beside it
+  ROOTSIM_CHECK_CLOSE(k.runs[1].x, base.width, kRoundoff);     // the f after the κ
+  ROOTSIM_CHECK_CLOSE(k.runs[2].x, k.runs[1].x, kRoundoff);    // the 0 above the f, not beside it
   CHECK(k.runs[2].y < k.runs[1].y - 0.5 * 0.7 * 12);     // above by more than half the script's size
-  CHECK(k.runs[1].size == doctest::Approx(0.7 * 12));
-  CHECK(k.width == doctest::Approx(base.width + std::max(f.width, zero.width)));
+  ROOTSIM_CHECK_CLOSE(k.runs[1].size, 0.7 * 12, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(k.width, base.width + std::max(f.width, zero.width), kRoundoff);
   // the other order stacks too, with braces
   const auto k2 = layoutLabel("κ^{0}_{f} [1/mm]", 12);
   REQUIRE(k2.runs.size() == 4);
-  CHECK(k2.runs[2].x == doctest::Approx(k2.runs[1].x));
-  CHECK(k2.runs[3].x == doctest::Approx(base.width + std::max(f.width, zero.width)));
+  ROOTSIM_CHECK_CLOSE(k2.runs[2].x, k2.runs[1].x, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(k2.runs[3].x, base.width + std::max(f.width, zero.width), kRoundoff);
   // a lone superscript and a base run after it: side by side
   const auto t = layoutLabel("θ^{tip} [deg]", 12);
   REQUIRE(t.runs.size() == 3);
-  CHECK(t.runs[2].x == doctest::Approx(t.runs[1].x + layoutLabel("tip", 0.7 * 12).width));
+  ROOTSIM_CHECK_CLOSE(t.runs[2].x, t.runs[1].x + layoutLabel("tip", 0.7 * 12).width, kRoundoff);
   // a third script does not stack on a stacked pair: it follows it
   const auto three = layoutLabel("x_a^b_c", 12);
   REQUIRE(three.runs.size() == 4);
   CHECK(three.runs[3].x > three.runs[2].x);
   // scripts no smaller than the floor asked for (the physical layout's 6 pt)
-  CHECK(layoutLabel("L_{gz}", 7, false, 6).runs[1].size == doctest::Approx(6));
+  ROOTSIM_CHECK_CLOSE(layoutLabel("L_{gz}", 7, false, 6).runs[1].size, 6, kRoundoff);
 }
 
 TEST_CASE("same figure, same bytes: PDF (no CreationDate stamped), SVG and PNG saved a second later are identical") {
@@ -715,7 +720,8 @@ TEST_CASE("figure titles break between phrases and never inside a formula, at 85
     for (const auto& [y, text] : lines)
       if (text.find("β") != std::string::npos && text.find("0.1;") != std::string::npos) seen = true;
     CHECK(seen);
-    for (const auto& [y, text] : lines) {
+    for (const auto& line : lines) {
+      const std::string& text = line.second;
       INFO(text);
       CHECK(text.rfind("= ", 0) != 0);
       CHECK(text.find(" = \n") == std::string::npos);
@@ -740,8 +746,10 @@ TEST_CASE("at 85 and 180 mm no two words of a panel overlap (pdftotext -bbox)") 
     pa.series.push_back(s);
   }
   plot.axes.push_back(pa);
-  for (const auto& [name, fig] : {std::pair{"rows", journalPanel()}, std::pair{"plot", plot}})
+  for (const auto& panel : {std::pair{"rows", journalPanel()}, std::pair{"plot", plot}})
     for (double mm : {85.0, 180.0}) {
+      const char* name = panel.first;
+      const rootsim::Figure& fig = panel.second;
       INFO(name << " at " << mm << " mm");
       const fs::path base = fs::temp_directory_path() / ("rootsim_plot_overlap_" + std::string(name));
       rootsim::SaveOptions so;
@@ -860,7 +868,8 @@ TEST_CASE("a row of root tiles at 85 mm shares one x label when equal labels wou
     }
     REQUIRE(!labels.empty());
     int count = 0;
-    for (auto& [y, row] : labels) {
+    for (auto& labelsAtY : labels) {
+      auto& row = labelsAtY.second;
       std::sort(row.begin(), row.end());
       count += static_cast<int>(row.size());
       for (size_t k = 1; k < row.size(); ++k) {
@@ -975,7 +984,9 @@ TEST_CASE("a legend lies where no curve or marker passes, else under the axes, a
     rootsim::saveFigure(f, base.string(), so);
     const std::string xml = capture("pdftotext -bbox '" + base.string() + ".pdf' - 2>&1");
     int found = 0;
-    for (const auto& [word, axes] : std::vector<std::pair<std::string, size_t>>{{"planar", 0}, {"gravity", 0}, {"bending", 1}, {"twisting", 1}, {"writhe", 2}}) {
+    for (const auto& wordAxes : std::vector<std::pair<std::string, size_t>>{{"planar", 0}, {"gravity", 0}, {"bending", 1}, {"twisting", 1}, {"writhe", 2}}) {
+      const std::string& word = wordAxes.first;
+      const size_t axes = wordAxes.second;
       const size_t p = xml.find(">" + word + "<");
       REQUIRE(p != std::string::npos);
       const size_t w = xml.rfind("<word ", p);

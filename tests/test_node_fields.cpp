@@ -8,6 +8,9 @@
 #include "rootsim/environment.hpp"
 #include "rootsim/node_fields.hpp"
 #include "rootsim/units.hpp"
+#include "tolerance_support.hpp"
+
+using rootsim::test::kRoundoff;
 
 using namespace rootsim;
 
@@ -90,13 +93,13 @@ TEST_CASE("material angle: from the in-plate direction n x t to d1 right-handed 
   // quarter turns of a root growing along the lateral axis: d1 in the plate to its right is 0, away
   // from the plate +90 deg, into it -90 deg; a tangent along the normal measures from the lateral axis
   const Eigen::Vector3d t = a.plate.lateral;
-  CHECK(materialAngle(t, a.plate.normal.cross(t), a.plate) == doctest::Approx(0.0));
-  CHECK(materialAngle(t, a.plate.normal, a.plate) == doctest::Approx(units::pi / 2));
-  CHECK(materialAngle(t, -a.plate.normal, a.plate) == doctest::Approx(-units::pi / 2));
-  CHECK(materialAngle(t, -a.plate.normal.cross(t), a.plate) == doctest::Approx(units::pi));
-  CHECK(materialAngle(a.plate.normal, a.plate.lateral, a.plate) == doctest::Approx(0.0));
+  ROOTSIM_CHECK_CLOSE(materialAngle(t, a.plate.normal.cross(t), a.plate), 0.0, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(materialAngle(t, a.plate.normal, a.plate), units::pi / 2, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(materialAngle(t, -a.plate.normal, a.plate), -units::pi / 2, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(materialAngle(t, -a.plate.normal.cross(t), a.plate), units::pi, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(materialAngle(a.plate.normal, a.plate.lateral, a.plate), 0.0, kRoundoff);
   // the initial root grows downhill with d1 along the lateral axis: 0
-  CHECK(materialAngle(a.plate.downhill, a.plate.lateral, a.plate) == doctest::Approx(0.0));
+  ROOTSIM_CHECK_CLOSE(materialAngle(a.plate.downhill, a.plate.lateral, a.plate), 0.0, kRoundoff);
 }
 
 TEST_CASE("bends: the arc's curvature 1/rho and the material frame's twist per length") {

@@ -17,6 +17,8 @@
 #include "scene_support.hpp"
 #include "test_support.hpp"
 
+using rootsim::test::kRoundoff;
+
 using namespace rootsim;
 using rootsim::test::errorOf;
 using rootsim::test::slurp;
@@ -221,8 +223,8 @@ TEST_CASE("plate runs: lateral roots get their folders, rows in plate.csv and pl
     CHECK(whyNotWhole(r).empty());
     const Scene own = loadScene((r / "scene.toml").string());
     REQUIRE(own.plate.seedlings.size() == 1);
-    CHECK(own.model.rod.radius == doctest::Approx(0.06e-3));
-    CHECK(own.model.tropism.setPoint == doctest::Approx(60 * units::deg));
+    ROOTSIM_CHECK_CLOSE(own.model.rod.radius, 0.06e-3, kRoundoff);
+    ROOTSIM_CHECK_CLOSE(own.model.tropism.setPoint, 60 * units::deg, kRoundoff);
   }
   CHECK_FALSE(fs::exists(dir / "run" / "roots" / "wt.3"));
   const std::string table = slurp(dir / "run" / "plate.csv");
@@ -295,7 +297,7 @@ TEST_CASE("plate scenes: laterals are checked when the plate is read - their spa
 TEST_CASE("root.initial_angle_deg: a one-root scene's start direction, which a seedling's set refuses") {
   // a one-root scene sows its root at the angle, positive towards +lateral like theta
   const Scene one = parseScene("[root]\ninitial_angle_deg = 30\n", "scenes/one.toml");
-  CHECK(one.model.initial.angle == doctest::Approx(30 * units::deg));
+  ROOTSIM_CHECK_CLOSE(one.model.initial.angle, 30 * units::deg, kRoundoff);
   CHECK(parseScene("", "scenes/one.toml").model.initial.angle == 0.0);
   CHECK(errorOf("[root]\ninitial_angle_deg = 200\n").find("root.initial_angle_deg") != std::string::npos);
   // a plate sows each seedling at its own angle_deg: a seedling's set may not give the one-root key

@@ -12,39 +12,24 @@
 #include "rootsim/model.hpp"
 #include "rootsim/run_dir.hpp"
 #include "rootsim/simulation.hpp"
-#include "rootsim/units.hpp"
 #include "test_support.hpp"
 
 using namespace rootsim;
 namespace fs = std::filesystem;
+using rootsim::test::coarseModel;
+using rootsim::test::rootWriterOutputs;
 using detail::RootOutputs;
 using rootsim::test::slurp;
 
-namespace {
-Model coarseModel() {
-  Model m = defaultModel();
-  m.initial.elementLength = 0.1 * units::mm;
-  m.growth.stepTime = 0.1 * units::hour;
-  m.growth.steps = 4;
-  completeModel(m);
-  return m;
-}
-OutputParams noVtk() {
-  OutputParams o;
-  o.vtk = false;
-  return o;
-}
-}  // namespace
-
 TEST_CASE("root outputs: a finished root writes shape, summary and result, and marks its own folder whole") {
   const fs::path d = rootsim::test::scratchDir("root_outputs", "finish");
-  const Model m = coarseModel();
+  const Model m = coarseModel(4);
   for (const bool own : {true, false}) {
     CAPTURE(own);
     const fs::path dir = d / (own ? "own" : "run");
     fs::create_directories(dir);
     Simulation sim(m);
-    RootOutputs root(dir, m, noVtk(), own, Vec3::Zero());
+    RootOutputs root(dir, m, rootWriterOutputs(), own, Vec3::Zero());
     CHECK(root.dir() == dir);
     root.add(sim);
     root.start(sim.last());
@@ -72,11 +57,11 @@ TEST_CASE("root outputs: a finished root writes shape, summary and result, and m
 
 TEST_CASE("root outputs: a resumed root keeps its checkpoint's watch and streams, and drops other interrupted writes") {
   const fs::path d = rootsim::test::scratchDir("root_outputs", "resume");
-  const Model m = coarseModel();
+  const Model m = coarseModel(4);
   Simulation sim(m);
   PlateRootRun seen;
   {
-    RootOutputs root(d, m, noVtk(), false, Vec3::Zero());
+    RootOutputs root(d, m, rootWriterOutputs(), false, Vec3::Zero());
     root.add(sim);
     root.start(sim.last());
     root.see(sim.growthStep());
@@ -91,7 +76,7 @@ TEST_CASE("root outputs: a resumed root keeps its checkpoint's watch and streams
   }
   for (const char* f : {"timeseries.csv.tmp", "trajectory.bin.tmp"}) fs::rename(d / (std::string(f) + ".killed"), d / f);
   std::ofstream(d / "shape.csv.tmp") << "half";
-  RootOutputs resumed(d, m, noVtk(), false, Vec3::Zero(), &seen);
+  RootOutputs resumed(d, m, rootWriterOutputs(), false, Vec3::Zero(), &seen);
   CHECK_FALSE(fs::exists(d / "shape.csv.tmp"));
   CHECK(resumed.watch().maxSubsteps == seen.watch.maxSubsteps);
   CHECK(resumed.watch().prevTime == seen.watch.prevTime);

@@ -12,28 +12,16 @@
 #include "rootsim/model.hpp"
 #include "rootsim/simulation.hpp"
 #include "rootsim/trajectory.hpp"
-#include "rootsim/units.hpp"
 #include "test_support.hpp"
 
 using namespace rootsim;
 namespace fs = std::filesystem;
+using rootsim::test::coarseModel;
+using rootsim::test::rootWriterOutputs;
 
 namespace {
 // a value written in mm and read back in m: two roundings of half an ulp each
 constexpr double kUnitRounding = 2.0 * std::numeric_limits<double>::epsilon();
-Model coarseModel() {
-  Model m = defaultModel();
-  m.initial.elementLength = 0.1 * units::mm;
-  m.growth.stepTime = 0.1 * units::hour;
-  completeModel(m);
-  return m;
-}
-OutputParams bothTrajectories() {
-  OutputParams o;
-  o.trajectoryFormat = TrajectoryFormat::Both;
-  o.vtk = false;
-  return o;
-}
 }  // namespace
 
 TEST_CASE("root streams: each add writes a time-series row and a snapshot that read back as the simulation's") {
@@ -42,7 +30,7 @@ TEST_CASE("root streams: each add writes a time-series row and a snapshot that r
   Simulation sim(m);
   std::vector<Snapshot> seen;
   {
-    detail::RootStreams streams(d, m, bothTrajectories());
+    detail::RootStreams streams(d, m, rootWriterOutputs(TrajectoryFormat::Both));
     streams.add(sim);
     seen.push_back(sim.snapshot());
     for (int k = 0; k < 3; ++k) {
@@ -73,7 +61,7 @@ TEST_CASE("root streams: a resumed root continues its files from the checkpoint'
   Simulation sim(m);
   WriterPositions atCheckpoint;
   {
-    detail::RootStreams streams(d, m, bothTrajectories());
+    detail::RootStreams streams(d, m, rootWriterOutputs(TrajectoryFormat::Both));
     streams.add(sim);
     sim.growthStep();
     streams.add(sim);
@@ -89,7 +77,7 @@ TEST_CASE("root streams: a resumed root continues its files from the checkpoint'
   again.growthStep();
   again.growthStep();
   {
-    detail::RootStreams resumed(d, m, bothTrajectories(), &atCheckpoint);
+    detail::RootStreams resumed(d, m, rootWriterOutputs(TrajectoryFormat::Both), &atCheckpoint);
     resumed.add(again);
     resumed.close();
   }

@@ -11,6 +11,9 @@
 
 #include "rootsim/errors.hpp"
 #include "rootsim/rsml.hpp"
+#include "tolerance_support.hpp"
+
+using rootsim::test::kRoundoff;
 
 namespace fs = std::filesystem;
 using namespace rootsim;
@@ -58,9 +61,9 @@ TEST_CASE("RSML reader: a SmartRoot-style file in pixels / unit cm at 100 px/cm 
   const rsml::Root& r = p.roots[0];
   CHECK(r.line == 25);
   REQUIRE(r.points() == 5);
-  CHECK(r.x[0] == doctest::Approx(50.0));   // 500 px = 5 cm
-  CHECK(r.y[4] == doctest::Approx(50.0));
-  CHECK(r.y[0] == doctest::Approx(10.0));
+  ROOTSIM_CHECK_CLOSE(r.x[0], 50.0, kRoundoff);   // 500 px = 5 cm
+  ROOTSIM_CHECK_CLOSE(r.y[4], 50.0, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(r.y[0], 10.0, kRoundoff);
   CHECK(r.z[2] == 0.0);
   // properties as element text
   REQUIRE(r.property("lateral-count") != nullptr);
@@ -68,12 +71,12 @@ TEST_CASE("RSML reader: a SmartRoot-style file in pixels / unit cm at 100 px/cm 
   CHECK(r.property("rulerAtOrigin")->text == "0.0");
   // the diameter function in pixels, to mm
   REQUIRE(r.diameterMm.size() == 5);
-  CHECK(r.diameterMm[0] == doctest::Approx(0.4));
-  CHECK(r.diameterMm[4] == doctest::Approx(0.25));
+  ROOTSIM_CHECK_CLOSE(r.diameterMm[0], 0.4, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(r.diameterMm[4], 0.25, kRoundoff);
   CHECK(r.function("diameter")->samples[2] == 3.5);   // the samples as written
   CHECK(p.roots[1].diameterMm.size() == 3);
   CHECK(p.roots[2].diameterMm.empty());
-  CHECK(p.roots[2].x[1] == doctest::Approx(57.0));
+  ROOTSIM_CHECK_CLOSE(p.roots[2].x[1], 57.0, kRoundoff);
 }
 
 TEST_CASE("RSML reader: an openalea-style file in micrometres / two plants / child-element points / radius") {
@@ -90,15 +93,15 @@ TEST_CASE("RSML reader: an openalea-style file in micrometres / two plants / chi
   CHECK(d.plants[0].properties.at(0).text == "Col-0");
   const rsml::Root& r = d.plants[0].roots[0];
   CHECK(r.hasZ);
-  CHECK(r.x[1] == doctest::Approx(0.01));
-  CHECK(r.y[2] == doctest::Approx(2.5));
-  CHECK(r.z[2] == doctest::Approx(-0.1505));
+  ROOTSIM_CHECK_CLOSE(r.x[1], 0.01, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(r.y[2], 2.5, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(r.z[2], -0.1505, kRoundoff);
   CHECK(r.property("length")->number == 2500.5);
   // radius 50 um: diameter 0.1 mm
   REQUIRE(r.diameterMm.size() == 3);
-  CHECK(r.diameterMm[0] == doctest::Approx(0.1));
-  CHECK(r.diameterMm[2] == doctest::Approx(0.08));
-  CHECK(d.plants[1].roots[0].x[0] == doctest::Approx(5.0));
+  ROOTSIM_CHECK_CLOSE(r.diameterMm[0], 0.1, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(r.diameterMm[2], 0.08, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(d.plants[1].roots[0].x[0], 5.0, kRoundoff);
 }
 
 TEST_CASE("RSML reader: RootSystemTracker's 2D+t dialect / pixel(um) with <size> / coord_t, coord_th / per-point diameter") {
@@ -118,18 +121,18 @@ TEST_CASE("RSML reader: RootSystemTracker's 2D+t dialect / pixel(um) with <size>
   CHECK(p.roots[1].parent == 0);
   CHECK(p.roots[0].timeIndex == std::vector<double>{0, 0, 1, 1.5, 2, 2.5, 3});
   CHECK(p.roots[0].timeH == std::vector<double>{0, 0, 6, 9, 12, 15, 18});
-  CHECK(p.roots[0].y[6] == doctest::Approx(11.0));  // 220 px x 0.05 mm
+  ROOTSIM_CHECK_CLOSE(p.roots[0].y[6], 11.0, kRoundoff);  // 220 px x 0.05 mm
   // the diameter in pixels, per point: 6 px = 0.3 mm; vx and vy kept as functions
   REQUIRE(p.roots[0].diameterMm.size() == 7);
-  CHECK(p.roots[0].diameterMm[0] == doctest::Approx(0.3));
+  ROOTSIM_CHECK_CLOSE(p.roots[0].diameterMm[0], 0.3, kRoundoff);
   REQUIRE(p.roots[0].function("vy") != nullptr);
-  CHECK(p.roots[0].function("vy")->samples[6] == doctest::Approx(3.3));
+  ROOTSIM_CHECK_CLOSE(p.roots[0].function("vy")->samples[6], 3.3, kRoundoff);
 }
 
 TEST_CASE("RSML reader: SmartRoot's habits / uppercase ID / unit inch with the scan's dpi / one plant without an id") {
   const rsml::Document d = rsml::readRsml(kData / "smartroot_inch.rsml");
-  CHECK(d.mmPerUnit == doctest::Approx(0.1));  // 25.4 mm / 254 dpi
-  CHECK(d.pixelMm == doctest::Approx(0.1));
+  ROOTSIM_CHECK_CLOSE(d.mmPerUnit, 0.1, kRoundoff);  // 25.4 mm / 254 dpi
+  ROOTSIM_CHECK_CLOSE(d.pixelMm, 0.1, kRoundoff);
   CHECK_FALSE(d.timeLapse());
   REQUIRE(d.plants.size() == 1);
   CHECK(d.plants[0].id.empty());
@@ -137,8 +140,8 @@ TEST_CASE("RSML reader: SmartRoot's habits / uppercase ID / unit inch with the s
   CHECK(d.plants[0].roots[0].id == "r1");
   CHECK(d.plants[0].roots[2].id == "r2.1");
   CHECK(d.plants[0].roots[2].parent == 1);
-  CHECK(d.plants[0].roots[0].y[2] == doctest::Approx(10.0));
-  CHECK(d.plants[0].roots[0].diameterMm[0] == doctest::Approx(0.2));  // <sample>2.0</sample> px
+  ROOTSIM_CHECK_CLOSE(d.plants[0].roots[0].y[2], 10.0, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(d.plants[0].roots[0].diameterMm[0], 0.2, kRoundoff);  // <sample>2.0</sample> px
   CHECK(d.plants[0].roots[0].property("length")->number == 1.0);
 }
 
@@ -198,8 +201,8 @@ TEST_CASE("RSML units: the names and spellings / the resolution in pixels per un
   for (const char* m : {"m", "meter", "metre"}) CHECK(rsml::mmPerUnit(m, 1) == 1000);
   for (const char* um : {"um", "\xc2\xb5m", "micrometer", "micrometre", "micron"})
     CHECK(rsml::mmPerUnit(um, 1) == doctest::Approx(1e-3).epsilon(1e-15));
-  CHECK(rsml::mmPerUnit("inch", 300) == doctest::Approx(25.4 / 300));  // a 300 dpi scan
-  CHECK(rsml::mmPerUnit("cm", 118.11) == doctest::Approx(10 / 118.11));
+  ROOTSIM_CHECK_CLOSE(rsml::mmPerUnit("inch", 300), 25.4 / 300, kRoundoff);  // a 300 dpi scan
+  ROOTSIM_CHECK_CLOSE(rsml::mmPerUnit("cm", 118.11), 10 / 118.11, kRoundoff);
   for (const char* px : {"pixel", "px", "Pixels"}) CHECK(rsml::mmPerUnit(px, 1) == 1);
   CHECK(rsml::mmPerUnit("furlong", 1) == 0);
   CHECK(rsml::mmPerUnit("", 1) == 0);

@@ -34,6 +34,17 @@ const auto kNoCheckpoint = [](const fs::path&) -> CheckpointSeen {
   FAIL("a new run reads no checkpoint");
   return {};
 };
+// a new run of smallScene() in a fresh scratch folder: the folder, the scene, where the run goes, its
+// outputs (constructed, so the run directory is claimed)
+struct NewRun {
+  fs::path d;
+  Scene sc = smallScene();
+  fs::path out;
+  RunOutputs run;
+  NewRun(const std::string& name, const std::string& what)
+      : d(rootsim::test::scratchDir("run_outputs", name)), out(d / "out"),
+        run(sc, out.string(), RunDirOptions{}, what, kNoCheckpoint) {}
+};
 // counts what the step loop calls
 struct Calls {
   std::vector<int> grown, written, checkpointed, progressed;
@@ -50,18 +61,17 @@ struct Calls {
 }  // namespace
 
 TEST_CASE("run outputs: a new run steps through every growth step, checkpoints before the last, and commits whole") {
-  const fs::path d = rootsim::test::scratchDir("run_outputs", "whole");
-  const Scene sc = smallScene();
-  const fs::path out = d / "out";
-  RunOutputs run(sc, out.string(), RunDirOptions{}, "the run of test", kNoCheckpoint);
+  NewRun fresh("whole", "the run of test");
+  const fs::path& out = fresh.out;
+  RunOutputs& run = fresh.run;
   CHECK_FALSE(run.resumed());
   CHECK(run.firstStep() == 1);
   CHECK(run.work() == fs::path(out.string() + ".partial"));
   Calls calls;
   const double wall = run.runMarkingFailure([&] {
-    run.write("scene.toml", sc.resolvedToml);
-    Simulation sim(sc.model);
-    detail::RootOutputs& root = run.addRoot(run.work(), sc.model);
+    run.write("scene.toml", fresh.sc.resolvedToml);
+    Simulation sim(fresh.sc.model);
+    detail::RootOutputs& root = run.addRoot(run.work(), fresh.sc.model);
     root.add(sim);
     root.start(sim.last());
     AtomicFile& series = run.addStream("plate_timeseries.csv");
@@ -76,7 +86,7 @@ TEST_CASE("run outputs: a new run steps through every growth step, checkpoints b
     }));
     const double w = run.endSteps();
     CHECK_FALSE(fs::exists(run.checkpointFile()));
-    root.finish(sc.model, sim, w);
+    root.finish(fresh.sc.model, sim, w);
     run.commit();
     return w;
   });
@@ -92,14 +102,13 @@ TEST_CASE("run outputs: a new run steps through every growth step, checkpoints b
   for (const char* f : {"scene.toml", "timeseries.csv", "trajectory.bin", "shape.csv", "summary.json", "result.csv"})
     CHECK_MESSAGE(fs::is_regular_file(out / f), f);
   CHECK_FALSE(fs::exists(out / kCheckpointFile));
-  fs::remove_all(d);
+  fs::remove_all(fresh.d);
 }
 
 TEST_CASE("run outputs: a plate root's folder that cannot be made in a step names the step, its streams kept whole, the run marked failed") {
-  const fs::path d = rootsim::test::scratchDir("run_outputs", "failed");
-  const Scene sc = smallScene();
-  const fs::path out = d / "out";
-  RunOutputs run(sc, out.string(), RunDirOptions{}, "the plate run of test", kNoCheckpoint);
+  NewRun fresh("failed", "the plate run of test");
+  const fs::path& out = fresh.out;
+  RunOutputs& run = fresh.run;
   Calls calls;
   std::string error;
   try {
@@ -107,8 +116,8 @@ TEST_CASE("run outputs: a plate root's folder that cannot be made in a step name
       const fs::path a = run.rootFolder("a", "# a's scene\n");
       CHECK(fs::is_regular_file(a / kRunMarker));
       CHECK(slurp(a / "scene.toml") == "# a's scene\n");
-      Simulation sim(sc.model);
-      detail::RootOutputs& root = run.addRoot(a, sc.model);
+      Simulation sim(fresh.sc.model);
+      detail::RootOutputs& root = run.addRoot(a, fresh.sc.model);
       root.add(sim);
       AtomicFile& series = run.addStream("plate_timeseries.csv");
       series.stream() << "0\n";
@@ -136,14 +145,13 @@ TEST_CASE("run outputs: a plate root's folder that cannot be made in a step name
   CHECK(slurp(inc / "plate_timeseries.csv") == "0\n");
   CHECK(fs::is_regular_file(inc / "roots" / "a" / "timeseries.csv"));
   CHECK_FALSE(fs::exists(inc / "roots" / "a" / "timeseries.csv.tmp"));
-  fs::remove_all(d);
+  fs::remove_all(fresh.d);
 }
 
 TEST_CASE("run outputs: a stop on purpose leaves DIR.partial as a kill does, not a failed run") {
-  const fs::path d = rootsim::test::scratchDir("run_outputs", "stop");
-  const Scene sc = smallScene();
-  const fs::path out = d / "out";
-  RunOutputs run(sc, out.string(), RunDirOptions{}, "the run of test", kNoCheckpoint);
+  NewRun fresh("stop", "the run of test");
+  const fs::path& out = fresh.out;
+  RunOutputs& run = fresh.run;
   Calls calls;
   RunSteps f = calls.steps();
   f.progress = [&](int k) {
@@ -151,7 +159,7 @@ TEST_CASE("run outputs: a stop on purpose leaves DIR.partial as a kill does, not
     if (k == 3) throw RunInterrupted("stopped");
   };
   CHECK_THROWS_AS(run.runMarkingFailure([&] {
-    run.write("scene.toml", sc.resolvedToml);
+    run.write("scene.toml", fresh.sc.resolvedToml);
     run.growthSteps(kSteps, 1e9, f);
     return 0.0;
   }), RunInterrupted);
@@ -162,7 +170,7 @@ TEST_CASE("run outputs: a stop on purpose leaves DIR.partial as a kill does, not
   CHECK_FALSE(fs::exists(partial / "ERROR.txt"));
   CHECK_FALSE(fs::exists(out.string() + ".incomplete"));
   CHECK_FALSE(fs::exists(out));
-  fs::remove_all(d);
+  fs::remove_all(fresh.d);
 }
 
 TEST_CASE("run outputs: a resumed run continues after its checkpoint, its streams cut back, with the wall time before it") {

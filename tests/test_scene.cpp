@@ -12,6 +12,8 @@
 #include "scene_support.hpp"
 #include "test_support.hpp"
 
+using rootsim::test::kRoundoff;
+
 using namespace rootsim;
 namespace fs = std::filesystem;
 
@@ -24,15 +26,15 @@ fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("sc
 
 TEST_CASE("defaults are the paper's values (docs/model.md, Experiment and parameters)") {
   const Scene s = parseScene("", "scenes/empty.toml");
-  CHECK(s.model.rod.radius == doctest::Approx(1e-4));
-  CHECK(s.model.initial.length == doctest::Approx(1.1e-3));
-  CHECK(s.model.rod.youngs == doctest::Approx(50e6));
-  CHECK(s.model.growth.rate == doctest::Approx(0.2 / 3600));
-  CHECK(s.model.growth.zoneLength == doctest::Approx(1e-3));
-  CHECK(s.model.tropism.beta == doctest::Approx(0.1));
-  CHECK(s.model.env.plane.k == doctest::Approx(1000));  // deliberate deviation, see scene_schema.cpp
-  CHECK(s.model.env.plane.c == doctest::Approx(0.01));
-  CHECK(s.model.env.kAdhesion == doctest::Approx(1000));
+  ROOTSIM_CHECK_CLOSE(s.model.rod.radius, 1e-4, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(s.model.initial.length, 1.1e-3, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(s.model.rod.youngs, 50e6, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(s.model.growth.rate, 0.2 / 3600, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(s.model.growth.zoneLength, 1e-3, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(s.model.tropism.beta, 0.1, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(s.model.env.plane.k, 1000, kRoundoff);  // deliberate deviation, see scene_schema.cpp
+  ROOTSIM_CHECK_CLOSE(s.model.env.plane.c, 0.01, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(s.model.env.kAdhesion, 1000, kRoundoff);
   CHECK(s.model.name == "empty");
 }
 
@@ -41,7 +43,7 @@ TEST_CASE("the resolved scene round-trips to the same model") {
   const Scene b = parseScene(a.resolvedToml, "a.toml");
   CHECK(b.resolvedToml == a.resolvedToml);
   CHECK(b.model.tropism.sensing == Sensing::Apical);
-  CHECK(b.model.env.plane.alpha == doctest::Approx(12.5 * std::numbers::pi / 180));
+  ROOTSIM_CHECK_CLOSE(b.model.env.plane.alpha, 12.5 * std::numbers::pi / 180, kRoundoff);
 }
 
 TEST_CASE("scene errors name file, line and key") {
@@ -63,9 +65,9 @@ TEST_CASE("scene errors name file, line and key") {
 
 TEST_CASE("--set overrides, and their errors name the flag") {
   const Scene s = parseScene("", "t.toml", {"tropism.beta=0.5", "tropism.sensing=apical", "load.tip_force_n=[0,0,1]", "growth.enabled=false"});
-  CHECK(s.model.tropism.beta == doctest::Approx(0.5));
+  ROOTSIM_CHECK_CLOSE(s.model.tropism.beta, 0.5, kRoundoff);
   CHECK(s.model.tropism.sensing == Sensing::Apical);
-  CHECK(s.model.env.tipForce.z() == doctest::Approx(1.0));
+  ROOTSIM_CHECK_CLOSE(s.model.env.tipForce.z(), 1.0, kRoundoff);
   CHECK(errorOf("", {"tropism.bta=0.5"}).find("--set tropism.bta=0.5: unknown key tropism.bta (did you mean tropism.beta?)") != std::string::npos);
   CHECK(errorOf("", {"tropism.beta=abc"}).find("--set tropism.beta=abc: tropism.beta must be a number (got \"abc\")") != std::string::npos);
   CHECK(errorOf("", {"tropism.beta=-1"}).find("--set tropism.beta=-1: tropism.beta must be in [0, 100] (got -1)") != std::string::npos);
@@ -96,15 +98,15 @@ TEST_CASE("contact keys: defaults, and obstacles that round-trip through the res
   REQUIRE(a.model.env.obstacles.size() == 2);
   const Obstacle& peg = a.model.env.obstacles[0];
   CHECK(peg.shape == Obstacle::Shape::Peg);
-  CHECK(peg.from.x() == doctest::Approx(1e-4));
-  CHECK(peg.from.y() == doctest::Approx(3e-3));
+  ROOTSIM_CHECK_CLOSE(peg.from.x(), 1e-4, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(peg.from.y(), 3e-3, kRoundoff);
   CHECK(peg.to == peg.from);
-  CHECK(peg.radius == doctest::Approx(5e-4));
+  ROOTSIM_CHECK_CLOSE(peg.radius, 5e-4, kRoundoff);
   const Obstacle& wall = a.model.env.obstacles[1];
   CHECK(wall.shape == Obstacle::Shape::Wall);
-  CHECK(wall.to.y() == doctest::Approx(3.2e-3));
-  CHECK(wall.radius == doctest::Approx(1e-4));  // half the thickness
-  CHECK(a.model.env.friction.axialRatio == doctest::Approx(0.5));
+  ROOTSIM_CHECK_CLOSE(wall.to.y(), 3.2e-3, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(wall.radius, 1e-4, kRoundoff);  // half the thickness
+  ROOTSIM_CHECK_CLOSE(a.model.env.friction.axialRatio, 0.5, kRoundoff);
   const Scene b = parseScene(a.resolvedToml, "o.toml");
   CHECK(b.resolvedToml == a.resolvedToml);
   CHECK(b.model.env.obstacles.size() == 2);

@@ -18,9 +18,11 @@
 #include <string>
 
 #include "rootsim/model.hpp"
+#include "rootsim/output_params.hpp"
 #include "rootsim/rod.hpp"
 #include "rootsim/simulation.hpp"
 #include "rootsim/units.hpp"
+#include "tolerance_support.hpp"
 
 namespace rootsim::test {
 
@@ -90,6 +92,20 @@ inline Model coarseModel() {
   m.growth.stepTime = 0.1 * units::hour;
   completeModel(m);
   return m;
+}
+// the same run for the given number of growth steps
+inline Model coarseModel(int steps) {
+  Model m = coarseModel();
+  m.growth.steps = steps;
+  return m;
+}
+
+// what a root's writers are asked for in their tests: the trajectory in the given format, no ParaView files
+inline OutputParams rootWriterOutputs(TrajectoryFormat trajectory = OutputParams{}.trajectoryFormat) {
+  OutputParams o;
+  o.trajectoryFormat = trajectory;
+  o.vtk = false;
+  return o;
 }
 
 // a root of coarseModel() grown for a few steps: its model, simulation and strains

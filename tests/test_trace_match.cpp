@@ -13,6 +13,9 @@
 #include "rootsim/trace_match.hpp"
 #include "rootsim/units.hpp"
 #include "tracer_model.hpp"
+#include "tolerance_support.hpp"
+
+using rootsim::test::kRoundoff;
 
 using namespace rootsim;
 
@@ -76,23 +79,23 @@ TEST_CASE("trace match: the observables' uncertainties and chi-square") {
   REQUIRE(usedCount(obs) == 3);
   // the skew over 4 waves of 2.5 mm: sqrt(2) sp / 10 mm
   CHECK(obs[0].name == "skew_deg");
-  CHECK(obs[0].sigma == doctest::Approx(std::sqrt(2.0) * sp / 10.0 * 180 / std::numbers::pi));
-  CHECK(obs[0].residual() == doctest::Approx(0.5 / obs[0].sigma));
+  ROOTSIM_CHECK_CLOSE(obs[0].sigma, std::sqrt(2.0) * sp / 10.0 * 180 / std::numbers::pi, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(obs[0].residual(), 0.5 / obs[0].sigma, kRoundoff);
   // lambda: 2 sqrt(2 sp / kappa) / (peaks - 2)
-  CHECK(obs[1].sigma == doctest::Approx(2 * std::sqrt(2 * sp / 1.5) / 7));
+  ROOTSIM_CHECK_CLOSE(obs[1].sigma, 2 * std::sqrt(2 * sp / 1.5) / 7, kRoundoff);
   // A: sqrt(2) sp / sqrt(peaks - 1)
-  CHECK(obs[2].sigma == doctest::Approx(std::sqrt(2.0) * sp / std::sqrt(8.0)));
+  ROOTSIM_CHECK_CLOSE(obs[2].sigma, std::sqrt(2.0) * sp / std::sqrt(8.0), kRoundoff);
   const double chi2 = std::pow(obs[0].residual(), 2) + std::pow(obs[1].residual(), 2);
-  CHECK(chiSquare(obs) == doctest::Approx(chi2));
+  ROOTSIM_CHECK_CLOSE(chiSquare(obs), chi2, kRoundoff);
   // without whole waves in the trace: the base-to-tip skew, over the chord; lambda and A not used
   t.shape.peaks = 1;
   const std::vector<Observation> few = observeBoth(t, s, sp);
   CHECK(usedCount(few) == 1);
   CHECK(few[0].trace == 3);
-  CHECK(few[0].sigma == doctest::Approx(std::sqrt(2.0) * sp / 18.0 * 180 / std::numbers::pi));
+  ROOTSIM_CHECK_CLOSE(few[0].sigma, std::sqrt(2.0) * sp / 18.0 * 180 / std::numbers::pi, kRoundoff);
   const FitComponents c = observableComponents(few);
   REQUIRE(c.trace.size() == 1);
-  CHECK(c.cov(0, 0) == doctest::Approx(few[0].sigma * few[0].sigma));
+  ROOTSIM_CHECK_CLOSE(c.cov(0, 0), few[0].sigma * few[0].sigma, kRoundoff);
 }
 
 TEST_CASE("trace match: the shape's points carry their own error and the seed's") {
@@ -102,9 +105,9 @@ TEST_CASE("trace match: the shape's points carry their own error and the seed's"
   const FitComponents c = shapeComponents(a, a, cov, 8);
   REQUIRE(c.trace.size() == 16);
   CHECK((c.trace - c.sim).norm() < 1e-12);
-  CHECK(c.trace(0) == doctest::Approx(0.0));        // lateral at 1/8
-  CHECK(c.trace(1) == doctest::Approx(1.0));        // downhill at 1/8 of 8 mm
-  CHECK(c.trace(15) == doctest::Approx(8.0));
+  ROOTSIM_CHECK_CLOSE(c.trace(0), 0.0, kRoundoff);        // lateral at 1/8
+  ROOTSIM_CHECK_CLOSE(c.trace(1), 1.0, kRoundoff);        // downhill at 1/8 of 8 mm
+  ROOTSIM_CHECK_CLOSE(c.trace(15), 8.0, kRoundoff);
   CHECK(c.names[2] == "lateral_at_25_pct");
   CHECK_THROWS(shapeComponents(a, a, Eigen::MatrixXd::Identity(4, 4), 8));
   CHECK_THROWS(shapeTraceCovariance(a, 0.0, 8));
@@ -215,7 +218,7 @@ TEST_CASE("response surface: a quadratic is recovered, known noise is measured, 
   CHECK((fu.covariance - expected).norm() < 1e-9 * expected.norm());
   CHECK(fu.chi2 < 1e-20);
   CHECK(fu.flat.empty());
-  CHECK(fu.sigma[0] == doctest::Approx(std::sqrt(expected(0, 0))));
+  ROOTSIM_CHECK_CLOSE(fu.sigma[0], std::sqrt(expected(0, 0)), kRoundoff);
 }
 
 TEST_CASE("response surface: a direction the outputs do not see is flat, and has no uncertainty") {

@@ -20,6 +20,8 @@
 #include "rootsim/traits.hpp"
 #include "rootsim/units.hpp"
 
+using rootsim::test::kRoundoff;
+
 using namespace rootsim;
 using rootsim::test::relError;
 using rootsim::test::report;
@@ -67,7 +69,7 @@ TEST_CASE("length and chord and tortuosity of a half circle - a straight root ha
   const Eigen::Matrix3Xd line = plateCurve(7, [](double p, double& u, double& w) { u = 0; w = 10 * p; });
   const RootTraits s = rootTraits(line, 0.05, 0.0, 0.1, AnalysisParams{});
   CHECK(s.tortuosity == doctest::Approx(1.0).epsilon(1e-14));
-  CHECK(s.skewDeg == doctest::Approx(0.0));
+  ROOTSIM_CHECK_CLOSE(s.skewDeg, 0.0, kRoundoff);
   CHECK(s.shape.pattern == "straight");
   CHECK_THROWS(rootTraits(Eigen::Matrix3Xd::Zero(3, 2), 0.05, 0.0, 0.1, AnalysisParams{}));
 }
@@ -85,7 +87,7 @@ TEST_CASE("the skew angle has the sign of the runs' theta on a tilted plate") {
   trace.col(0) = f.coords(Vec3::Zero()) / units::mm;
   trace.col(1) = f.coords(5 * units::mm * dir) / units::mm;
   const RootTraits t = rootTraits(trace, 0.0, 0.0, 0.1, AnalysisParams{});
-  CHECK(std::abs(theta) == doctest::Approx(a));
+  ROOTSIM_CHECK_CLOSE(std::abs(theta), a, kRoundoff);
   CHECK(t.skewDeg == doctest::Approx(theta / units::deg).epsilon(1e-12));
 }
 

@@ -12,8 +12,8 @@
 #include <vector>
 
 #include <stb_image_write.h>
-#include <unistd.h>
 
+#include "render_test_util.hpp"
 #include "rootsim/compose.hpp"
 #include "rootsim/gl_renderer.hpp"
 #include "rootsim/movie.hpp"
@@ -56,13 +56,6 @@ Snapshot wavingRoot(int k) {
   return s;
 }
 
-View view(int w, int h) {
-  View v;
-  v.width = w;
-  v.height = h;
-  return v;
-}
-
 SceneInfo info() {
   SceneInfo si;
   si.alphaDeg = 40;
@@ -71,15 +64,9 @@ SceneInfo info() {
   return si;
 }
 
-std::filesystem::path scratch() {
-  const auto d = std::filesystem::temp_directory_path() / ("rootsim_bench_render_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(d);
-  return d;
-}
-
 void BM_BuildScene(benchmark::State& st) {
   const Snapshot s = wavingRoot(0);
-  const View v = view(1920, 1080);
+  const View v = rtest::viewOf(1920, 1080);
   const Framing f = frameFor({s}, info(), v);
   for (auto _ : st) benchmark::DoNotOptimize(buildRenderScene(s, info(), v, f));
 }
@@ -90,7 +77,7 @@ BENCHMARK(BM_BuildScene)->Unit(benchmark::kMillisecond);
 void BM_DrawReadback(benchmark::State& st) {
   const int w = static_cast<int>(st.range(0)), h = static_cast<int>(st.range(1));
   const Snapshot s = wavingRoot(0);
-  View v = view(w, h);
+  View v = rtest::viewOf(w, h);
   v.transparent = st.range(2) == 0;
   const RenderScene rs = buildRenderScene(s, info(), v, frameFor({s}, info(), v));
   GlRenderer r(w, h);
@@ -104,10 +91,10 @@ BENCHMARK(BM_DrawReadback)->Args({1280, 720, 1})->Args({1920, 1080, 1})->Args({1
 void BM_Png(benchmark::State& st) {
   const int w = static_cast<int>(st.range(0)), h = static_cast<int>(st.range(1));
   const Snapshot s = wavingRoot(0);
-  const View v = view(w, h);
+  const View v = rtest::viewOf(w, h);
   GlRenderer r(w, h);
   const Image img = r.render(buildRenderScene(s, info(), v, frameFor({s}, info(), v)));
-  const std::string path = (scratch() / "bench.png").string();
+  const std::string path = (rtest::scratch("bench") / "bench.png").string();
   for (auto _ : st) writePng(path, img);
   st.counters["bytes"] = static_cast<double>(std::filesystem::file_size(path));
   std::filesystem::remove(path);
@@ -119,7 +106,7 @@ BENCHMARK(BM_Png)->Args({1920, 1080})->Unit(benchmark::kMillisecond)->UseRealTim
 void BM_PngEncoder(benchmark::State& st) {
   const int w = 1920, h = 1080;
   const Snapshot s = wavingRoot(0);
-  const View v = view(w, h);
+  const View v = rtest::viewOf(w, h);
   GlRenderer r(w, h);
   const Image img = r.render(buildRenderScene(s, info(), v, frameFor({s}, info(), v)));
   std::size_t bytes = 0;
@@ -149,14 +136,14 @@ BENCHMARK(BM_PngEncoder)->ArgName("stb")->Arg(0)->Arg(1)->Unit(benchmark::kMilli
 // swscale + x264 (crf 18, preset veryfast) per frame, on frames that change like a movie's
 void BM_Encode(benchmark::State& st) {
   const int w = static_cast<int>(st.range(0)), h = static_cast<int>(st.range(1));
-  const View v = view(w, h);
+  const View v = rtest::viewOf(w, h);
   std::vector<Snapshot> snaps;
   for (int k = 0; k < 8; ++k) snaps.push_back(wavingRoot(k));
   const Framing f = frameFor(snaps, info(), v);
   GlRenderer r(w, h);
   std::vector<Image> frames;
   for (const Snapshot& s : snaps) frames.push_back(r.render(buildRenderScene(s, info(), v, f)));
-  const std::string path = (scratch() / "bench.mp4").string();
+  const std::string path = (rtest::scratch("bench") / "bench.mp4").string();
   VideoWriter out(path, w, h);
   std::size_t i = 0;
   for (auto _ : st) out.add(frames[i++ % frames.size()]);
@@ -192,7 +179,7 @@ void BM_Compose(benchmark::State& st) {
   std::vector<Snapshot> snaps;
   for (int k = 0; k < 8; ++k) snaps.push_back(wavingRoot(k));
   MovieJob job;
-  job.view = view(w, h);
+  job.view = rtest::viewOf(w, h);
   if (look == 1 || look == 3 || look == 4) {
     job.camera = CameraMode::Follow;
     job.fieldMm = 2.0;
@@ -232,8 +219,8 @@ void BM_Movie(benchmark::State& st) {
   std::vector<Snapshot> snaps;
   for (int k = 0; k < frames; ++k) snaps.push_back(wavingRoot(k));
   MovieJob job;
-  job.view = view(w, h);
-  job.mp4 = (scratch() / "movie.mp4").string();
+  job.view = rtest::viewOf(w, h);
+  job.mp4 = (rtest::scratch("bench") / "movie.mp4").string();
   if (look == 1 || look == 3) {
     job.camera = CameraMode::Follow;
     job.fieldMm = 2.0;

@@ -46,6 +46,14 @@ inline rootsim::Snapshot straightRod(double alphaDeg, int n, double lengthMm, do
   return s;
 }
 
+// a view of w x h pixels, everything else as View's defaults
+inline rootsim::View viewOf(int w, int h) {
+  rootsim::View v;
+  v.width = w;
+  v.height = h;
+  return v;
+}
+
 inline rootsim::SceneInfo info(double alphaDeg) {
   rootsim::SceneInfo si;
   si.alphaDeg = alphaDeg;

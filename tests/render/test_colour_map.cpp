@@ -10,6 +10,10 @@
 #include "rootsim/colour_map.hpp"
 #include "rootsim/gl_renderer.hpp"
 #include "rootsim/render_scene.hpp"
+#include "../tolerance_support.hpp"
+
+using rootsim::test::kRoundoff;
+using rootsim::test::kFloatRoundoff;
 
 using namespace rootsim;
 
@@ -26,12 +30,12 @@ double lightness(const std::array<float, 3>& c) {
 
 TEST_CASE("the diverging map: neutral at 0, blue below, red above, lightness mirrored") {
   const auto mid = coolWarm(0.5);
-  CHECK(mid[0] == doctest::Approx(221 / 255.0));
-  CHECK(mid[1] == doctest::Approx(221 / 255.0));
-  CHECK(mid[2] == doctest::Approx(221 / 255.0));
+  ROOTSIM_CHECK_CLOSE(mid[0], 221 / 255.0, kFloatRoundoff);
+  ROOTSIM_CHECK_CLOSE(mid[1], 221 / 255.0, kFloatRoundoff);
+  ROOTSIM_CHECK_CLOSE(mid[2], 221 / 255.0, kFloatRoundoff);
   // Moreland's published end points
-  CHECK(coolWarm(0.0)[2] == doctest::Approx(192 / 255.0));
-  CHECK(coolWarm(1.0)[0] == doctest::Approx(180 / 255.0));
+  ROOTSIM_CHECK_CLOSE(coolWarm(0.0)[2], 192 / 255.0, kFloatRoundoff);
+  ROOTSIM_CHECK_CLOSE(coolWarm(1.0)[0], 180 / 255.0, kFloatRoundoff);
   for (int i = 1; i <= 16; ++i) {
     const double d = i / 32.0;
     CAPTURE(d);
@@ -105,7 +109,7 @@ TEST_CASE("signed fields: a symmetric range, and kappa1 and kappa2 are the bendi
   const SceneInfo si = rtest::info(40);
   const Snapshot s = rtest::straightRod(40, 40, 2.0, 0.1, [](double sMm) { return 1.5 * sMm; });
   const auto r = fieldRange({s}, si, ColourField::Twist);
-  CHECK(r[0] == doctest::Approx(-r[1]));
+  ROOTSIM_CHECK_CLOSE(r[0], -r[1], kRoundoff);
   CHECK(r[1] == doctest::Approx(1.5).epsilon(0.02));
   const Eigen::VectorXd tw = nodeField(s, si, ColourField::Twist);
   CHECK(tw[20] == doctest::Approx(1.5).epsilon(0.01));
@@ -113,15 +117,13 @@ TEST_CASE("signed fields: a symmetric range, and kappa1 and kappa2 are the bendi
   CHECK(nodeField(s, si, ColourField::Kappa1).cwiseAbs().maxCoeff() < 1e-6);
   CHECK(nodeField(s, si, ColourField::Kappa2).cwiseAbs().maxCoeff() < 1e-6);
   const auto rk = fieldRange({s}, si, ColourField::Kappa1);
-  CHECK(rk[0] == doctest::Approx(-rk[1]));
+  ROOTSIM_CHECK_CLOSE(rk[0], -rk[1], kRoundoff);
 }
 
 TEST_CASE("colour bar: the field's name and unit, 0 marked, the diverging map's colours") {
   const SceneInfo si = rtest::info(40);
   const Snapshot s = rtest::straightRod(40, 40, 2.0, 0.1, [](double sMm) { return 1.5 * sMm; });
-  View v;
-  v.width = 1280;
-  v.height = 720;
+  View v = rtest::viewOf(1280, 720);
   v.colourBy = ColourField::Twist;
   v.colourRange = {-2.0, 2.0};
   const Framing f = frameFor({s}, si, v);

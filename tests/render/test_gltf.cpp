@@ -20,6 +20,8 @@
 #include "rootsim/signature.hpp"
 #include "rootsim/write_rule.hpp"
 
+using rootsim::test::kFloatRoundoff;
+
 using namespace rootsim;
 namespace fs = std::filesystem;
 using rootsim::test::Result;
@@ -461,9 +463,9 @@ TEST_CASE("glTF: a plate's roots are one group and one striped tube per snapshot
   // the plate covers the plate's rectangle: u from -1 mm (less its margin) to 40 mm, v from -30 mm to 0
   const J& plateMesh = js["meshes"][static_cast<std::size_t>((*nodeNamed(g, "plate"))["mesh"].i())];
   const J& pa = js["accessors"][static_cast<std::size_t>(plateMesh["primitives"][0]["attributes"]["POSITION"].i())];
-  CHECK(pa["min"][0].n == doctest::Approx(-2e-3));
-  CHECK(pa["max"][0].n == doctest::Approx(41e-3));
-  CHECK(pa["max"][2].n == doctest::Approx(31e-3));  // glTF z = -v
+  ROOTSIM_CHECK_CLOSE(pa["min"][0].n, -2e-3, kFloatRoundoff);
+  ROOTSIM_CHECK_CLOSE(pa["max"][0].n, 41e-3, kFloatRoundoff);
+  ROOTSIM_CHECK_CLOSE(pa["max"][2].n, 31e-3, kFloatRoundoff);  // glTF z = -v
   // a root without snapshots or starting before the file is refused
   CHECK_THROWS_AS(gltfPlateBinary(std::vector<RootSeries>{{"a", {}, 0}}, rtest::info(40.0)), RenderError);
   CHECK_THROWS_AS(gltfPlateBinary(std::vector<RootSeries>{{"a", {arcRoot(4, 1.0, 0.0)}, -1}}, rtest::info(40.0)), RenderError);

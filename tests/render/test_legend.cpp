@@ -10,6 +10,9 @@
 #include "rootsim/compose.hpp"
 #include "rootsim/gl_renderer.hpp"
 #include "rootsim/render_scene.hpp"
+#include "../tolerance_support.hpp"
+
+using rootsim::test::kRoundoff;
 
 using namespace rootsim;
 
@@ -28,9 +31,7 @@ int darkness(const std::uint8_t* p) { return 255 - (299 * p[0] + 587 * p[1] + 11
 TEST_CASE("legend: a pink swatch by +d1 and an orange one by -d1, bottom left, clear of the root") {
   const SceneInfo si = rtest::info(40);
   const Snapshot s = rtest::straightRod(40, 20, 2.0, 0.1);
-  View v;
-  v.width = 1280;
-  v.height = 720;
+  View v = rtest::viewOf(1280, 720);
   const Framing f = frameFor({s}, si, v);
   const RenderScene rs = buildRenderScene(s, si, v, f);
   const OverlayText* plus = findText(rs, kLegendPlus);
@@ -73,9 +74,7 @@ TEST_CASE("legend: a pink swatch by +d1 and an orange one by -d1, bottom left, c
 TEST_CASE("downhill arrow: in the top view it points down the picture") {
   const SceneInfo si = rtest::info(40);
   const Snapshot s = rtest::straightRod(40, 20, 2.0, 0.1);
-  View v;
-  v.width = 1280;
-  v.height = 720;
+  View v = rtest::viewOf(1280, 720);
   v.showScaleBar = false;  // only the arrow's ink in the bottom right corner
   const Framing f = frameFor({s}, si, v);
   const RenderScene rs = buildRenderScene(s, si, v, f);
@@ -110,9 +109,7 @@ TEST_CASE("downhill arrow: in the top view it points down the picture") {
 TEST_CASE("downhill arrow in the 3-D view follows the plate's slope, and the grid's pitch is stated") {
   const SceneInfo si = rtest::info(40);
   const Snapshot s = rtest::straightRod(40, 20, 2.0, 0.1);
-  View v;
-  v.width = 1280;
-  v.height = 720;
+  View v = rtest::viewOf(1280, 720);
   v.kind = View::Kind::Perspective;
   const Framing f = frameFor({s}, si, v);
   const RenderScene rs = buildRenderScene(s, si, v, f);
@@ -134,11 +131,10 @@ TEST_CASE("downhill arrow in the 3-D view follows the plate's slope, and the gri
 TEST_CASE("grid lines grow with the picture: at least 2 px wide at 3840x2160") {
   const SceneInfo si = rtest::info(40);
   const Snapshot s = rtest::straightRod(40, 10, 1.0, 0.1);
-  for (const auto& [w, h] : {std::pair{1280, 720}, std::pair{3840, 2160}}) {
+  for (const auto& size : {std::pair{1280, 720}, std::pair{3840, 2160}}) {
+    const int w = size.first, h = size.second;
     CAPTURE(w);
-    View v;
-    v.width = w;
-    v.height = h;
+    View v = rtest::viewOf(w, h);
     v.overlays = false;
     v.centreMm = std::array<double, 2>{0.3, -2.0};
     v.widthMm = 20.0;  // 192 px/mm at 4K: the 1 mm grid
@@ -192,7 +188,7 @@ TEST_CASE("inset: its own scale bar and its magnification") {
   REQUIRE(l.inset);
   // magnification: the inset's px/mm over the view's
   const double expected = (l.insetW / plan.inset.back().widthMm) / (l.viewW / plan.view.front().widthMm);
-  CHECK(comp.lastInsetMagnification() == doctest::Approx(expected));
+  ROOTSIM_CHECK_CLOSE(comp.lastInsetMagnification(), expected, kRoundoff);
   CHECK(expected > 2);
   // ink in the inset's bottom right: its scale bar and, left of it, its "x6", on a light backing
   auto inkIn = [&](int x0, int y0, int x1, int y1) {

@@ -8,6 +8,9 @@
 #include "rootsim/montage.hpp"
 #include "rootsim/montage_runs.hpp"
 #include "rootsim/scene.hpp"
+#include "../tolerance_support.hpp"
+
+using rootsim::test::kRoundoff;
 
 using namespace rootsim;
 
@@ -36,14 +39,6 @@ MontageRun montageRun(const Snapshot& s, const std::string& label = "") {
   r.snaps = {s};
   r.label = label;
   return r;
-}
-
-// a view of w x h pixels
-View viewOf(int w, int h) {
-  View v;
-  v.width = w;
-  v.height = h;
-  return v;
 }
 
 }  // namespace
@@ -76,7 +71,7 @@ TEST_CASE("montage: a label sits under its own root, not in the middle of the ti
   const MontageRun a = montageRun(rootAt40(1.0, 0.1), "\xCE\xB1 = 0\xC2\xB0");
   // b: a root that leaves its base sideways, towards +u
   const MontageRun b = montageRun(rootAt40(2.0, 0.1, 2.0e-3, -1.0e-3), "\xCE\xB1 = 40\xC2\xB0");
-  const View v = viewOf(1280, 720);
+  const View v = rtest::viewOf(1280, 720);
   const MontageLayout l = montageLayout({a, b}, v);
   CHECK(l.labelPx >= 14);
   View tile = v;
@@ -101,9 +96,9 @@ TEST_CASE("montage: a label sits under its own root, not in the middle of the ti
 TEST_CASE("montage: the last tile's scale bar and downhill text match the labels' size") {
   const SceneInfo info = rtest::info(40);
   const std::vector<MontageRun> runs(3, montageRun(rootAt40(1.0, 0.1), "\xCE\xB1 = 40\xC2\xB0"));
-  const View v = viewOf(1280, 720);
+  const View v = rtest::viewOf(1280, 720);
   const MontageLayout l = montageLayout(runs, v);
-  CHECK(l.labelPx == doctest::Approx(21));  // 720 / 34
+  ROOTSIM_CHECK_CLOSE(l.labelPx, 21, kRoundoff);  // 720 / 34
   for (std::size_t i = 0; i < runs.size(); ++i) {
     INFO("tile " << i);
     const View tv = montageTileView(l, v, i, runs.size());
@@ -118,11 +113,11 @@ TEST_CASE("montage: the last tile's scale bar and downhill text match the labels
       INFO(t.text << " at " << t.sizePx << " px");
       if (t.text.find(" mm") != std::string::npos) {
         scale = true;
-        CHECK(t.sizePx == doctest::Approx(l.labelPx));
+        ROOTSIM_CHECK_CLOSE(t.sizePx, l.labelPx, kRoundoff);
       }
       if (t.text == kDownhillLabel) {
         downhill = true;
-        CHECK(t.sizePx == doctest::Approx(std::round(0.8f * l.labelPx)));  // the single view's ratio
+        ROOTSIM_CHECK_CLOSE(t.sizePx, std::round(0.8f * l.labelPx), kRoundoff);  // the single view's ratio
       }
       CHECK(t.sizePx >= 0.8f * l.labelPx - 0.5f);
     }
@@ -139,7 +134,7 @@ TEST_CASE("montage: the tiles are framed on the union footprint of all runs, in 
   const MontageRun a = montageRun(rootAt40(1.0, 0.05)), b = montageRun(rootAt40(1.2, 0.05, 1.0e-3, -0.6e-3));
   for (View::Kind kind : {View::Kind::Top, View::Kind::Perspective}) {
     INFO((kind == View::Kind::Top ? "top" : "3-D") << " view");
-    View v = viewOf(640, 360);
+    View v = rtest::viewOf(640, 360);
     v.kind = kind;
     const std::vector<MontageRun> runs{a, b};
     const MontageLayout l = montageLayout(runs, v);
@@ -173,7 +168,7 @@ TEST_CASE("montage: the last tile's colour bar keeps clear of the run's label") 
   const SceneInfo info = rtest::info(40);
   const MontageRun a = montageRun(rootAt40(3.0, 0.05, -1.5e-3), "\xCE\xB1 = 40\xC2\xB0");
   const MontageRun b = montageRun(rootAt40(0.6, 0.05), "\xCE\xB1 = 80\xC2\xB0, \xCE\xB2 = 0.2");
-  View v = viewOf(800, 450);
+  View v = rtest::viewOf(800, 450);
   v.colourBy = ColourField::Twist;
   v.colourRange = {-1.0, 1.0};
   const std::vector<MontageRun> runs{a, b};

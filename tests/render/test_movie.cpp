@@ -18,6 +18,10 @@
 #include "rootsim/movie.hpp"
 #include "rootsim/png.hpp"
 #include "rootsim/units.hpp"
+#include "../tolerance_support.hpp"
+
+using rootsim::test::kRoundoff;
+using rootsim::test::kFloatRoundoff;
 
 namespace fs = std::filesystem;
 using namespace rootsim;
@@ -88,7 +92,7 @@ TEST_CASE("follow camera: the tip region stays central in every frame, the tube 
   for (std::size_t k = 0; k < snaps.size(); ++k) {
     comp.compose(snaps[k], static_cast<int>(k), img);
     const Framing& f = plan.view[k];
-    CHECK(f.widthMm == doctest::Approx(2.0));
+    ROOTSIM_CHECK_CLOSE(f.widthMm, 2.0, kRoundoff);
     // the tip region (last 0.3 mm) on the picture: its pixels are root pixels, in the middle 60 %
     const Eigen::Vector2d c = tipRegionCentre(snaps[k], pf, 0.3);
     const Eigen::Vector2d px = topViewPixel(f, job.view, c.x(), c.y());
@@ -178,8 +182,10 @@ TEST_CASE("inset: the region marked on the fit view is what the inset shows") {
         }
       return std::make_pair(cnt > 0 ? Eigen::Vector2d(sum / cnt) : Eigen::Vector2d(-1, -1), cnt);
     };
-    const auto [cMark, nMark] = centroid(mx0, my0, mx1, my1);
-    const auto [cInset, nInset] = centroid(l.insetX, l.insetY, l.insetX + l.insetW, l.insetY + l.insetH);
+    const auto rootInMark = centroid(mx0, my0, mx1, my1);
+    const auto rootInInset = centroid(l.insetX, l.insetY, l.insetX + l.insetW, l.insetY + l.insetH);
+    const Eigen::Vector2d &cMark = rootInMark.first, &cInset = rootInInset.first;
+    const int nMark = rootInMark.second, nInset = rootInInset.second;
     INFO("frame " << k << ": mark " << cMark.transpose() << " (" << nMark << " px), inset " << cInset.transpose()
                   << " (" << nInset << " px)");
     REQUIRE(nMark > 50);
@@ -203,9 +209,7 @@ TEST_CASE("curvature colour: a bent part is coloured toward the top of the map, 
   const Eigen::VectorXd k = nodeField(rod, info, ColourField::Curvature);
   CHECK(k[30] == doctest::Approx(0.0).epsilon(1e-6));
   CHECK(k[110] == doctest::Approx(1.0).epsilon(0.01));
-  View v;
-  v.width = 640;
-  v.height = 640;
+  View v = rtest::viewOf(640, 640);
   v.overlays = false;
   v.colourBy = ColourField::Curvature;
   v.colourRange = {0.0, 1.0};
@@ -242,8 +246,8 @@ TEST_CASE("curvature colour: a bent part is coloured toward the top of the map, 
   CHECK(pink >= 2);
   CHECK(orange >= 2);
   // the colour map itself: the published end points, increasing lightness
-  CHECK(viridis(0.0)[0] == doctest::Approx(0x44 / 255.0));
-  CHECK(viridis(1.0)[1] == doctest::Approx(0xe7 / 255.0));
+  ROOTSIM_CHECK_CLOSE(viridis(0.0)[0], 0x44 / 255.0, kFloatRoundoff);
+  ROOTSIM_CHECK_CLOSE(viridis(1.0)[1], 0xe7 / 255.0, kFloatRoundoff);
   for (int i = 0; i < 10; ++i) {
     const auto a = viridis(0.1 * i), b = viridis(0.1 * (i + 1));
     CHECK(0.299 * b[0] + 0.587 * b[1] + 0.114 * b[2] > 0.299 * a[0] + 0.587 * a[1] + 0.114 * a[2]);
@@ -381,9 +385,7 @@ TEST_CASE("shadows darken the plate beside a raised rod, on the side away from t
   const PlateFrame pf = PlateFrame::tilted(40 * units::deg);
   for (long i = 0; i < rod.x.cols(); ++i) rod.x.col(i) += 0.5 * units::mm * pf.normal;
   const SceneInfo info = rtest::info(40);
-  View v;
-  v.width = 640;
-  v.height = 360;
+  View v = rtest::viewOf(640, 360);
   v.overlays = false;
   const Framing f = frameFor({rod}, info, v);
   GlRenderer gl(v.width, v.height);
@@ -448,9 +450,7 @@ TEST_CASE("shadows: a strand lifted across another darkens the lower strand's to
     rod.d1.col(e) = pf.normal.cross(d3).normalized();
   }
   const SceneInfo info = rtest::info(40);
-  View v;
-  v.width = 640;
-  v.height = 640;
+  View v = rtest::viewOf(640, 640);
   v.overlays = false;
   const Framing f = frameFor({rod}, info, v);
   GlRenderer gl(v.width, v.height);

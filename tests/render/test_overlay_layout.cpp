@@ -12,6 +12,9 @@
 #include "rootsim/gl_renderer.hpp"
 #include "rootsim/overlay_layout.hpp"
 #include "rootsim/render_scene.hpp"
+#include "../tolerance_support.hpp"
+
+using rootsim::test::kRoundoff;
 
 using namespace rootsim;
 
@@ -123,31 +126,27 @@ TEST_CASE("overlay layout: no overlay changes a root pixel in the fit view, the 
   };
   std::vector<Case> cases;
   {
-    View v;
-    v.width = 480, v.height = 270;
+    View v = rtest::viewOf(480, 270);
     v.colourBy = ColourField::Twist;
     v.colourRange = {-1.0, 1.0};
     cases.push_back({"fit, twist colours", waving(), v, std::nullopt});
   }
   {
     // follow: a 2 mm window on the root's middle, the tube crossing the whole picture and its corners
-    View v;
-    v.width = 480, v.height = 270;
+    View v = rtest::viewOf(480, 270);
     Framing f;
     f.centreU = 0.0, f.centreV = -6.0, f.widthMm = 2.0, f.heightMm = 2.0 * 270 / 480, f.topW = 0.2;
     cases.push_back({"follow", rootAlong(60, 100, 0.1, [](double t) { return Eigen::Vector3d(-1.5 + 3.0 * t, -5.0 - 2.0 * t, 0.1); }), v, f});
   }
   {
-    View v;
-    v.width = 480, v.height = 270;
+    View v = rtest::viewOf(480, 270);
     v.kind = View::Kind::Perspective;
     v.colourBy = ColourField::Twist;
     v.colourRange = {-1.0, 1.0};
     cases.push_back({"3-D coil, twist colours", coil(), v, std::nullopt});
   }
   {
-    View v;
-    v.width = 320, v.height = 320;
+    View v = rtest::viewOf(320, 320);
     v.whiskers = true;
     cases.push_back({"coil, top, whiskers", coil(), v, std::nullopt});
   }
@@ -156,8 +155,7 @@ TEST_CASE("overlay layout: no overlay changes a root pixel in the fit view, the 
     std::vector<Snapshot> roots;
     for (int k = 0; k < 3; ++k)
       roots.push_back(rootAlong(60, 40, 0.1, [k](double t) { return Eigen::Vector3d(-6.0 + 6.0 * k + 0.5 * std::sin(9 * t), -9.0 * t, 0.1); }));
-    View v;
-    v.width = 400, v.height = 300;
+    View v = rtest::viewOf(400, 300);
     v.plateRectMm = std::array<double, 4>{-8.0, -9.0, 8.0, 0.5};  // the tips reach the outline
     cases.push_back({"plate of three roots", mergeRoots(roots), v, std::nullopt});
   }
@@ -176,8 +174,7 @@ TEST_CASE("overlay layout: overlays move off the root where there is free space,
   // the root crosses the top left corner, where the time would go, and the top right (the parameters)
   // (the picture's top edge is at v = -3.875 mm; the tube, 0.2 mm wide, runs along it)
   const Snapshot s = rootAlong(60, 100, 0.1, [](double t) { return Eigen::Vector3d(-2.6 + 5.2 * t, -3.93, 0.1); });
-  View v;
-  v.width = 640, v.height = 360;
+  View v = rtest::viewOf(640, 360);
   Framing f;
   f.centreU = 0.0, f.centreV = -5.0, f.widthMm = 4.0, f.heightMm = 4.0 * 360 / 640, f.topW = 0.2;
   const RenderScene rs = buildRenderScene(s, si, v, f);
@@ -187,14 +184,13 @@ TEST_CASE("overlay layout: overlays move off the root where there is free space,
   for (const OverlayText& t : rs.texts) {
     if (t.text.rfind("t = ", 0) == 0) {
       timeMoved = t.x != 0.7f * font || t.y != 0.7f * font;
-      CHECK(t.sizePx == doctest::Approx(font));  // moved, not shrunk
+      ROOTSIM_CHECK_CLOSE(t.sizePx, font, kRoundoff);  // moved, not shrunk
     }
   }
   CHECK(timeMoved);
   CHECK(textsOnRoot(rs, v.fontPath) == 0);
   // and in a fit view nothing moves: the framing keeps the margins free
-  View fit;
-  fit.width = 640, fit.height = 360;
+  View fit = rtest::viewOf(640, 360);
   const Snapshot w = waving();
   const RenderScene plain = buildRenderScene(w, si, fit, frameFor({w}, si, fit));
   for (const OverlayText& t : plain.texts)
@@ -206,8 +202,7 @@ TEST_CASE("overlay layout: the footprint covers every pixel the tube draws, in t
   const SceneInfo si = rtest::info(80);
   for (const bool persp : {false, true}) {
     CAPTURE(persp);
-    View v;
-    v.width = 400, v.height = 300;
+    View v = rtest::viewOf(400, 300);
     if (persp) v.kind = View::Kind::Perspective;
     const Snapshot s = coil();
     const Framing f = frameFor({s}, si, v);

@@ -13,6 +13,9 @@
 #include "rootsim/paraview.hpp"
 #include "rootsim/png.hpp"
 #include "rootsim/render_scene.hpp"
+#include "../tolerance_support.hpp"
+
+using rootsim::test::kRoundoff;
 
 using namespace rootsim;
 using rtest::Paint;
@@ -21,9 +24,7 @@ namespace {
 
 // 2.4 mm across 640 px: 266.7 px/mm, the 0.1 mm radius is 26.7 px
 View closeUp(bool transparent = true) {
-  View v;
-  v.width = 640;
-  v.height = 360;
+  View v = rtest::viewOf(640, 360);
   v.overlays = false;
   v.transparent = transparent;
   v.centreMm = std::array<double, 2>{0.0, -0.5};
@@ -161,16 +162,14 @@ TEST_CASE("a rod twisted once: the pink stripe crosses the top once, then the or
 TEST_CASE("the grid is 1 mm in the framing's pixels") {
   GlRenderer r(800, 600);
   const SceneInfo si = rtest::info(40);
-  View v;
-  v.width = 800;
-  v.height = 600;
+  View v = rtest::viewOf(800, 600);
   v.overlays = false;
   v.centreMm = std::array<double, 2>{0.3, -2.0};
   v.widthMm = 7.5;  // 106.7 px/mm
   const Snapshot s = rtest::straightRod(40, 10, 1.0, 0.1);
   const Framing f = frameFor({s}, si, v);
   const RenderScene rs = buildRenderScene(s, si, v, f);
-  CHECK(rs.pxPerMm == doctest::Approx(800 / 7.5));
+  ROOTSIM_CHECK_CLOSE(rs.pxPerMm, 800 / 7.5, kRoundoff);
   const Image img = r.render(rs);
   const std::uint8_t* plate = img.at(5, 5);
   auto dark = [&](int x, int y) { return plate[1] - img.at(x, y)[1] > 8; };
@@ -209,9 +208,7 @@ TEST_CASE("overlays: time, parameters and a scale bar, each can be turned off") 
   GlRenderer r(640, 360);
   const SceneInfo si = rtest::info(40);
   const Snapshot s = rtest::straightRod(40, 10, 1.0, 0.1);
-  View v;
-  v.width = 640;
-  v.height = 360;
+  View v = rtest::viewOf(640, 360);
   v.showLegend = false;  // the legend and the downhill arrow: test_legend.cpp
   v.showDownhill = false;
   const Framing f = frameFor({s}, si, v);
@@ -260,9 +257,7 @@ TEST_CASE("overlays: time, parameters and a scale bar, each can be turned off") 
 TEST_CASE("golden image: a twisted rod with whiskers and overlays, within tolerance") {
   GlRenderer r(320, 180);
   const SceneInfo si = rtest::info(40);
-  View v;
-  v.width = 320;
-  v.height = 180;
+  View v = rtest::viewOf(320, 180);
   v.whiskers = true;
   const Snapshot s = rtest::straightRod(40, 40, 2.0, 0.1, [](double sMm) { return std::numbers::pi * sMm; });
   const Image img = draw(r, s, si, v);
@@ -294,9 +289,7 @@ TEST_CASE("golden image: a twisted rod with whiskers and overlays, within tolera
 TEST_CASE("same scene, same pixels") {
   const SceneInfo si = rtest::info(40);
   const Snapshot s = rtest::straightRod(40, 30, 1.5, 0.1, [](double sMm) { return 3.0 * sMm; });
-  View v;
-  v.width = 400;
-  v.height = 300;
+  View v = rtest::viewOf(400, 300);
   v.whiskers = true;
   GlRenderer a(400, 300);
   const Image one = draw(a, s, si, v), two = draw(a, s, si, v);
@@ -317,9 +310,7 @@ TEST_CASE("transparent background: alpha 0 off the root, 255 on it") {
 
 TEST_CASE("3-D preset: the root is in the picture, the plate around it") {
   GlRenderer r(640, 360);
-  View v;
-  v.width = 640;
-  v.height = 360;
+  View v = rtest::viewOf(640, 360);
   v.kind = View::Kind::Perspective;
   v.overlays = false;
   const SceneInfo si = rtest::info(40);
@@ -344,9 +335,7 @@ TEST_CASE("3-D preset: the root is in the picture, the plate around it") {
 TEST_CASE("3-D preset: the fit view fills the picture with the root's projection") {
   // the oblique camera shows the top view's box smaller: the fit window is fitted to the nodes'
   // projection, so a coil-sized root fills the part of the picture the top view keeps for it
-  View v;
-  v.width = 640;
-  v.height = 360;
+  View v = rtest::viewOf(640, 360);
   v.kind = View::Kind::Perspective;
   const SceneInfo si = rtest::info(40);
   Snapshot s = rtest::straightRod(40, 30, 2.0, 0.1);
@@ -383,9 +372,7 @@ TEST_CASE("errors name the problem") {
   bad.d1.resize(3, 3);
   CHECK_THROWS_WITH_AS(buildRenderScene(bad, si, View{}, Framing{}), doctest::Contains("inconsistent shapes"),
                        RenderError);
-  View missingFont;
-  missingFont.width = 64;
-  missingFont.height = 64;
+  View missingFont = rtest::viewOf(64, 64);
   missingFont.fontPath = "/nonexistent/font.ttf";
   GlRenderer r(64, 64);
   CHECK_THROWS_WITH_AS(r.render(buildRenderScene(s, si, missingFont, frameFor({s}, si, missingFont))),
@@ -397,9 +384,7 @@ TEST_CASE("errors name the problem") {
 TEST_CASE("shaders from disk (development option) draw what the built-in copies draw") {
   const SceneInfo si = rtest::info(40);
   const Snapshot s = rtest::straightRod(40, 20, 1.0, 0.1, [](double sMm) { return 2.0 * sMm; });
-  View v;
-  v.width = 320;
-  v.height = 180;
+  View v = rtest::viewOf(320, 180);
   GlRenderer builtIn(320, 180);
   RendererOptions disk;
   disk.shaderDir = std::string(ROOTSIM_SOURCE_DIR) + "/shaders";
@@ -427,9 +412,7 @@ TEST_CASE("the ParaView script's stripes (paraview.hpp) are the renderer's: half
 TEST_CASE("overlays: a plate view names each seedling above its seed and gives each one's beta and R tau in a legend") {
   const SceneInfo si = rtest::info(40);
   const Snapshot s = rtest::straightRod(40, 10, 1.0, 0.1);
-  View v;
-  v.width = 640;
-  v.height = 360;
+  View v = rtest::viewOf(640, 360);
   v.showLegend = false;
   v.showDownhill = false;
   v.seedLabels = {{"wt1", "wild type", 0.2, 0.3, "wt1   b1"}, {"tw1", "", 0.8, 0.3, "tw1   b2"}};

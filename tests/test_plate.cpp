@@ -2,6 +2,7 @@
 // that meet push each other and never pass through, the contact between roots is action and reaction
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <vector>
@@ -9,6 +10,7 @@
 #include "rootsim/analysis.hpp"
 #include "rootsim/contact.hpp"
 #include "rootsim/plate.hpp"
+#include "rootsim/tolerance.hpp"
 #include "rootsim/units.hpp"
 #include "physics_support.hpp"
 
@@ -120,6 +122,39 @@ TEST_CASE("plate: two roots grown into each other push each other and never pass
   INFO("net force " << net.transpose() << " N, net moment " << moment.transpose() << " N m, largest node force " << largest);
   CHECK(net.norm() <= 1e-12 * largest);
   CHECK(moment.norm() <= 1e-12 * largest * 0.1);  // positions ~ 0.03 m from the plate's origin
+}
+
+TEST_CASE("plate: where the coupled Newton crawls, a short joint relaxation hands the roots back to it") {
+  // the collision scene's roots pressed together: on the steps where the coupled Newton stalls, the roots
+  // relax together explicitly for PlateSimulation::kJointBudget sub-steps and the coupled Newton takes
+  // over again; every step still ends with each root within its own equilibrium tolerance
+  const Model m = waving();
+  Model across = m;
+  across.tropism.beta = 0.02;
+  PlateSimulation plate(PlateParams{}, {sow("down", 20, 5, m), sow("across", 23, 7, across, -90)});
+  int met = -1, joint = 0, handedBack = 0;
+  double worst = 0;  // largest residual force over its tolerance, of every root after a joint relaxation
+  for (int k = 0; k < 300; ++k) {
+    const PlateStepRecord& r = plate.growthStep();
+    if (met < 0 && r.touchingPairs > 0) met = k;
+    if (met < 0) continue;
+    const long substeps = plate.root(0).last().substeps;
+    if (substeps == 0) continue;
+    ++joint;
+    handedBack += substeps <= PlateSimulation::kJointBudget;
+    for (int q = 0; q < plate.size(); ++q) {
+      const Model& mq = q == 0 ? m : across;
+      const double tol = equilibriumTolerance(mq.rod, mq.env, mq.solver, plate.root(q).state()).force;
+      worst = std::max(worst, plate.root(q).last().residualForce / tol);
+    }
+  }
+  INFO("the roots met at step " << met << "; " << joint << " steps with a joint relaxation, " << handedBack
+                                 << " of them handed back after " << PlateSimulation::kJointBudget
+                                 << " sub-steps; largest residual over tolerance " << worst);
+  REQUIRE(met > 0);
+  REQUIRE(joint > 0);
+  CHECK(handedBack > 0);
+  CHECK(worst <= 1.0);
 }
 
 TEST_CASE("plate: the coupled Jacobian of two roots in contact is the central difference of their residual") {

@@ -164,6 +164,12 @@ Model lateralModel(const Model& parent, const LateralParams& lp);
 
 class PlateSimulation {
  public:
+  // where the coupled Newton stalls, the first kJointHandBacks stalls of a step relax the roots in
+  // contact together explicitly for kJointBudget sub-steps (four times more at each further one) and
+  // hand them back to the coupled Newton; later stalls relax them explicitly to equilibrium
+  static constexpr long kJointBudget = 32;
+  static constexpr int kJointHandBacks = 4;
+
   // builds every seedling's initial root and relaxes it (seeing the roots built before it)
   PlateSimulation(const PlateParams& plate, std::vector<Seedling> seedlings);
   // continues a plate of the same params and seedlings exactly where carry() of it left (a checkpoint):
@@ -213,8 +219,9 @@ class PlateSimulation {
   // a growth step of two roots or more: every root grows and relaxes, the roots within reach of another
   // together (docs/plate.md, Solving); returns the sweeps it took
   int settleStep();
-  // the roots within reach of another relax together, explicitly, one sub-step each in turn
-  void relaxJointly();
+  // the roots within reach of another relax together, explicitly, one sub-step each in turn, until all
+  // are in equilibrium or, budget > 0, for at most budget sub-steps
+  void relaxJointly(long budget);
   PlateStepRecord observe(int sweeps) const;
   // the lateral roots whose sites the last growth step opened (docs/plate.md, Lateral roots)
   void emergeLaterals();

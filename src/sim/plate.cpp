@@ -29,6 +29,11 @@ constexpr double kPlateSkin = 1.0;
 // relaxation between its lists' rebuilds
 constexpr int kJointRelaxations = 3;
 constexpr long kJointRelist = 256;
+// Before those, the first stalls of a step hand the roots back to the coupled Newton after a short
+// explicit relaxation (PlateSimulation::kJointBudget, kJointHandBacks): where the coupled Newton crawls
+// from where growth left the roots, a few sub-steps move them into its reach and it converges from there
+// to the same tolerance (docs/plate.md, Solving); a snap runs through the longer ones, and the full joint
+// relaxations after them
 
 long long cellKey(long long cx, long long cy) { return (cx + (1LL << 30)) * (1LL << 31) + (cy + (1LL << 30)); }
 
@@ -307,7 +312,7 @@ std::vector<int> PlateSimulation::coupledRoots() const {
   return r;
 }
 
-void PlateSimulation::relaxJointly() {
+void PlateSimulation::relaxJointly(long budget) {
   indexElements();
   std::vector<int>& cluster = jointRoots_;
   cluster.clear();
@@ -317,7 +322,7 @@ void PlateSimulation::relaxJointly() {
   }
   for (int r : cluster) roots_[static_cast<size_t>(r)]->beginJoint();
   try {
-    for (long sub = 1;; ++sub) {
+    for (long sub = 1; budget <= 0 || sub <= budget; ++sub) {
       bool all = true;
       for (int r : cluster) {
         refreshCapsules(r);
@@ -392,6 +397,7 @@ int PlateSimulation::settleStep() {
   }
   bool open = !cluster_.empty();  // the cluster's roots have begun their step and not finished it
   int sweeps = 1;
+  int handBacks = 0;  // short joint relaxations of this step (kJointHandBacks)
   for (int joint = 0;;) {
     double change = 0;
     if (!cluster_.empty()) {
@@ -403,8 +409,13 @@ int PlateSimulation::settleStep() {
              << " joint relaxations; " << coupled_.stallReason.data() << ")";
           throw RelaxError(os.str());
         }
-        relaxJointly();
-        ++joint;
+        if (handBacks < kJointHandBacks) {
+          relaxJointly(kJointBudget << (2 * handBacks));
+          ++handBacks;
+        } else {
+          relaxJointly(0);
+          ++joint;
+        }
         continue;
       }
       if (open) {

@@ -54,10 +54,24 @@ struct SparseStiffness::Impl {
   std::vector<std::pair<int, int>> merged;      // scratch of mergePlaces (swapped with structural)
   int structuralSize = -1;
 
-  Impl() { klu_defaults(&common); }
+  Impl() {
+    klu_defaults(&common);
+    common.scale = kFullScale;
+  }
   ~Impl() { freeKlu(); }
   Impl(const Impl&) = delete;
   Impl& operator=(const Impl&) = delete;
+  // A's values refactorised on the pivot sequence of the last full factorisation, without row scaling:
+  // the scaling serves the full factorisation's choice of pivots (klu_factor scales, KLU's default); with
+  // the pivots fixed it changes only the rounding and is one more pass over the matrix (KLU then solves
+  // unscaled too: klu_refactor drops the factors' scale factors)
+  bool refactor() {
+    common.scale = -1;
+    const bool ok = klu_refactor(ap.data(), ai.data(), ax.data(), symbolic, numeric, &common) != 0;
+    common.scale = kFullScale;
+    return ok;
+  }
+  static constexpr int kFullScale = 2;  // KLU's default row scaling (by each row's largest entry)
   void freeKlu() {
     if (numeric) klu_free_numeric(&numeric, &common);
     if (symbolic) klu_free_symbolic(&symbolic, &common);
@@ -280,8 +294,7 @@ bool SparseStiffness::restore(const SparseMemory& mem) {
   // and the refactorisation that followed, with those pivots (it succeeded in the checkpointed run)
   if (mem.lastValues.size() != mem.pivotValues.size()) return false;
   std::copy(mem.lastValues.begin(), mem.lastValues.end(), m.ax.data());
-  if (!klu_refactor(m.ap.data(), m.ai.data(), m.ax.data(), m.symbolic, m.numeric, &m.common))
-    return false;
+  if (!m.refactor()) return false;
   m.lastValues = mem.lastValues;
   m.lastFull = false;
   return true;
@@ -312,7 +325,7 @@ bool SparseStiffness::factorizeLU() {
     // near its threshold of 1e-8: its smallest value over 9 819 checks in 13 full-resolution coils was
     // 0.018, and it cost 4 % of their CPU. A poor pivot sequence would only make Newton steps inexact, which the
     // line search and the equilibrium criterion, on the exact residual, catch.)
-    if (klu_refactor(ap, ai, ax, m.symbolic, m.numeric, &m.common) && klu_rcond(m.symbolic, m.numeric, &m.common) &&
+    if (m.refactor() && klu_rcond(m.symbolic, m.numeric, &m.common) &&
         m.common.rcond > 1e-12) {
       m.luReady = true;
       assignHighWater(m.lastValues, ax, ax + m.nnz());

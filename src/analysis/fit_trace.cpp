@@ -774,8 +774,8 @@ TrustRegions runTrustRegions(const FitSetup& setup, Fit& fit, const std::functio
   const int n = static_cast<int>(keys.size());
   const int k = setup.size.levels, terms = setup.size.terms, regionPoints = setup.size.regionPoints;
   // a group's covariance from the residuals at the start design's best run (chosen against the
-  // seedlings' own scatter): the residuals' scatter barely moves with the run (an offset common to the
-  // seedlings is not scatter), and it is estimated again at each region's minimum
+  // seedlings' own scatter; an offset common to the seedlings is not scatter), estimated again at each
+  // region's minimum and last at the answer's point (covarianceAtAnswer)
   if (fit.byGroup()) fit.useCovarianceOf(fit.bestSoFar());
   Eigen::VectorXd centre;
   {

@@ -7,7 +7,8 @@ Clopper-Pearson 95 % interval of that rate) and the mean and SD of z = differenc
 sigma is calibrated). For the twist on a plate whose mutants differ: how often the difference is within
 20 % of the truth, how often p < 0.01, and the z of (difference - truth) / sigma. A seed whose key is flat
 (a group does not determine it) is counted apart: it makes no call.
-Usage: calibration_table.py LOG --truth-twist T   (T: the mutants' twist; the difference WT - mut is -T)
+With --rows, first a row per seed (the differences, sigmas and p-values, the verdicts and answer scales).
+Usage: calibration_table.py LOG --truth-twist T [--rows]   (T: the mutants' twist; WT - mut is -T)
 """
 import argparse
 import math
@@ -52,6 +53,7 @@ def main():
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("log")
     ap.add_argument("--truth-twist", type=float, required=True)
+    ap.add_argument("--rows", action="store_true", help="a row per seed first")
     a = ap.parse_args()
     rows = []
     for line in open(a.log):
@@ -62,7 +64,18 @@ def main():
         for key, at in (("twist", f.index("twist_diff")), ("beta", f.index("beta_diff"))):
             r[key] = None if f[at + 1] in ("flat", "fixed") else tuple(float(x) for x in f[at + 1 : at + 4])
         r["verdicts"] = f[f.index("verdicts") + 1 : f.index("verdicts") + 3]
+        r["chi2"] = f[f.index("chi2") + 1 : f.index("chi2") + 3]
+        r["scale"] = f[f.index("answer_scale") + 1 : f.index("answer_scale") + 3]
         rows.append(r)
+    rows.sort(key=lambda r: r["seed"])
+    if a.rows:
+        def cells(v):
+            return "flat | | " if v is None else f"{v[0]:+.4f} | {v[1]:.4f} | {v[2]:.2g}"
+        print("| seed | Rτ: WT − mut | σ | p | β: WT − mut | σ | p | χ² WT, mut | answer_scale WT, mut |")
+        print("|---|---|---|---|---|---|---|---|---|")
+        for r in rows:
+            print(f"| {r['seed']} | {cells(r['twist'])} | {cells(r['beta'])} | {', '.join(r['chi2'])} | {', '.join(r['scale'])} |")
+        print()
     truth = -a.truth_twist
     print(f"{len(rows)} seeds ({min(r['seed'] for r in rows)}–{max(r['seed'] for r in rows)}); "
           f"a group's fit poor on {sum('poor' in r['verdicts'] for r in rows)}")

@@ -8,7 +8,10 @@
 # twist alone (KEYS 1, beta fixed at its truth). Prints the fit's table, its wall and CPU seconds (user +
 # sys of the child processes), its runs, and a line "seed S twist_diff D sigma P beta_diff D sigma P
 # verdicts V V chi2 C/DOF C/DOF answer_scale A A" for a calibration over seeds (bench/calibrate_groups.sh).
-# Usage: bash bench/fit_groups.sh BUILD_DIR [SEED] [BUDGET] [JOBS] [trace|sheet|straight] [N] [LENGTH] [MUT_TWIST] [KEYS]
+# PLATE fixed (the default): every seed the same plate (its sowing angles below), only the tracing's noise
+# drawn from SEED; drawn: each seedling's sowing angle drawn from SEED too (uniform in [-4, 4] deg, to
+# 0.1 deg), so that seeds are plates of the same genotypes, as repeated experiments are.
+# Usage: bash bench/fit_groups.sh BUILD_DIR [SEED] [BUDGET] [JOBS] [trace|sheet|straight] [N] [LENGTH] [MUT_TWIST] [KEYS] [PLATE]
 set -euo pipefail
 build=${1:?usage: bench/fit_groups.sh BUILD_DIR [SEED] [BUDGET] [JOBS] [trace|sheet|straight] [N] [LENGTH] [MUT_TWIST] [KEYS]}
 seed=${2:-1}
@@ -20,7 +23,9 @@ per=${6:-3}         # seedlings per group, 2 to 6
 length=${7:-15}     # mm, an integer: grown length + 0.1 (steps of 0.02 mm of growth)
 twist=${8:-0.05}    # the mutants' tropism.twist_r_tau (the wild type's is 0)
 nkeys=${9:-2}
+plate=${10:-fixed}
 case $per in [2-6]) ;; *) echo "bench/fit_groups.sh: N $per: expected 2 to 6 seedlings per group" >&2; exit 2 ;; esac
+case $plate in fixed | drawn) ;; *) echo "bench/fit_groups.sh: PLATE $plate: expected fixed or drawn" >&2; exit 2 ;; esac
 case $nkeys in 1) free=tropism.twist_r_tau=-0.05:0.1 ;; 2) free=tropism.beta=0.1:0.3,tropism.twist_r_tau=-0.05:0.1 ;;
   *) echo "bench/fit_groups.sh: KEYS $nkeys: expected 1 (the twist) or 2 (beta and the twist)" >&2; exit 2 ;; esac
 py=${PYTHON:-/usr/bin/python3}  # numpy: Debian python3-numpy
@@ -48,6 +53,11 @@ printf '%s\n' "$base" > "$work/base.toml"
 # each group's sowing angles [deg] (the first three the 3-seedling plate's)
 wt_angles=(-3 2 4 -1 1 -4)
 mut_angles=(3 -2 -4 1 -1 4)
+if [ "$plate" = drawn ]; then
+  read -r -a drawn <<< "$("$py" -c "import random, sys; r = random.Random(int(sys.argv[1])); print(' '.join(f'{r.uniform(-4, 4):.1f}' for _ in range(12)))" "$seed")"
+  wt_angles=("${drawn[@]:0:6}")
+  mut_angles=("${drawn[@]:6:6}")
+fi
 names=() angles=() groups=()
 for ((i = 0; i < per; i++)); do names+=("w$((i + 1))"); angles+=("${wt_angles[i]}"); groups+=(WT); done
 for ((i = 0; i < per; i++)); do names+=("m$((i + 1))"); angles+=("${mut_angles[i]}"); groups+=(mut); done

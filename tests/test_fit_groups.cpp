@@ -8,6 +8,8 @@
 #include <fstream>
 #include <map>
 #include <random>
+#include <sstream>
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -235,10 +237,25 @@ TEST_CASE("fit by group: two genotypes differing in the twist / the difference r
   }
   // the goodness names the covariance its chi-square was computed against: the group mean's, with the
   // seedlings' scatter, not a trace's uncertainty alone (on stdout, in fit.json and in each group's own)
-  CHECK(r.out.find("dof against the group mean's covariance (its seedlings' scatter / n") != std::string::npos);
+  CHECK(r.out.find("dof against the group mean's covariance at the answer (its seedlings' residuals against their own runs: their scatter / n") !=
+        std::string::npos);
   CHECK(r.out.find("uncertainty alone") == std::string::npos);
   CHECK(js.find("\"against\": \"the answer's own run against the group mean's covariance") != std::string::npos);
   CHECK(slurp(d / "g" / "groups" / "WT" / "fit.json").find("against the group mean's covariance") != std::string::npos);
+  // the keys' picture: the groups on a categorical axis, named at their columns, no numeric ticks between them
+  {
+    const auto keysText = test::runBinary("pdftotext", "'" + (d / "g" / "keys.pdf").string() + "' -");
+    REQUIRE_MESSAGE(keysText.code == 0, keysText.out);
+    std::vector<std::string> lines;
+    std::istringstream in(keysText.out);
+    for (std::string l; std::getline(in, l);) lines.push_back(l);
+    const auto has = [&lines](const std::string& l) { return std::find(lines.begin(), lines.end(), l) != lines.end(); };
+    CHECK_MESSAGE(has("WT"), keysText.out);
+    CHECK_MESSAGE(has("mut"), keysText.out);
+    // the old numeric axis's ticks (the groups at 0 and 1 on -0.5 .. 1.5) and its key in the label
+    for (const char* t : {"-0.5", "\u22120.5", "1.5"}) CHECK_MESSAGE(!has(t), t << ": " << keysText.out);
+    CHECK(keysText.out.find("group (0") == std::string::npos);
+  }
   // the table on stdout
   CHECK(r.out.find("WT - mut: tropism.beta ") != std::string::npos);
   CHECK(r.out.find("; tropism.twist_r_tau -0.0") != std::string::npos);

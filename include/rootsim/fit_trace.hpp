@@ -61,6 +61,8 @@ struct FitEvaluation {
   long order = 0;            // when it was asked for: the design's point index, then each batch's in turn
   std::vector<double> seedlingChi2;  // a fit by group: each seedling's own observables against its run
                                      // (compareRoots' chi-square, its trace's uncertainty alone); else empty
+  Eigen::MatrixXd groupCov;  // a fit by group: the covariance of the group's mean from its seedlings'
+                             // residuals against this run's (groupComponents); else empty
 };
 inline constexpr double kFailedObjective = 1e12;
 // a time-lapse trace's dL/dt this far (relative) from a fixed tip speed is named beside the verdict
@@ -88,6 +90,8 @@ struct FitReport {
   double answerScale = 1;                  // the answer's chi2 / dof beyond the surface's scale (>= 1): the
                                            // factor sigma's variance was widened by
   std::vector<std::string> notes;          // identifiability and bounds, in words
+  FitComponents trace;                     // the trace's side of the outputs, with the covariance the
+                                           // answer was judged against (a group's: at the answer)
   std::string out;
   std::string design;                      // --design-only: the start design's sweep file (nothing run)
 };

@@ -78,6 +78,9 @@ struct Axes {
   bool equalAspect = false;     // for shapes on the plate
   bool yDown = false;           // y grows downwards (plate views: downhill is down)
   bool logX = false;            // logarithmic x axis (ticks at 1, 2, 5 per decade); x must be > 0
+  // a categorical x axis: each category's name under a tick at its position, no numeric ticks and no
+  // vertical grid (groups side by side); empty: a numeric axis
+  std::vector<std::pair<double, std::string>> xCategories;
   bool grid = true;
   std::vector<Series> series;
   std::vector<Shape2D> shapes;

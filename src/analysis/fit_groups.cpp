@@ -25,19 +25,62 @@ namespace fs = std::filesystem;
 
 namespace rootsim::app {
 
+// the covariance of a group's mean of values measured per seedling (v: seedlings x outputs, an output's
+// entries read on the seedlings that measure it): S / n from their sample covariance S about their mean,
+// each variance at least g.floor (the mean of the seedlings' own tracing variances / n: a few seedlings
+// that happen to agree do not claim more than their traces can). Two outputs measured on different
+// seedlings, or on fewer seedlings than it takes to estimate their covariance (n - 1 below the outputs
+// measured on them), have none between them. scatter: S itself
+Eigen::MatrixXd groupMeanCovariance(const GroupSide& g, const Eigen::MatrixXd& v, Eigen::MatrixXd* scatter) {
+  const int m = static_cast<int>(g.users.size());
+  Eigen::VectorXd mean = Eigen::VectorXd::Zero(m);
+  for (int j = 0; j < m; ++j)
+    for (int i = 0; i < v.rows(); ++i)
+      if (g.users[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)]) mean(j) += v(i, j) / g.userCount(static_cast<std::size_t>(j));
+  Eigen::MatrixXd s = Eigen::MatrixXd::Zero(m, m), cov = Eigen::MatrixXd::Zero(m, m);
+  for (int j = 0; j < m; ++j)
+    for (int k = 0; k < m; ++k) {
+      const auto& uj = g.users[static_cast<std::size_t>(j)];
+      if (uj != g.users[static_cast<std::size_t>(k)]) continue;
+      const double nj = g.userCount(static_cast<std::size_t>(j));
+      const auto block = std::count(g.users.begin(), g.users.end(), uj);
+      if (j != k && nj - 1 < static_cast<double>(block)) continue;
+      double sjk = 0;
+      for (int i = 0; i < v.rows(); ++i)
+        if (uj[static_cast<std::size_t>(i)]) sjk += (v(i, j) - mean(j)) * (v(i, k) - mean(k)) / (nj - 1);
+      s(j, k) = sjk;
+      cov(j, k) = j == k ? std::max(sjk / nj, g.floor(j)) : sjk / nj;
+    }
+  if (scatter) *scatter = s;
+  return cov;
+}
+
+// the group's outputs of a run: the mean over seedlings of each one's run measured as that seedling is,
+// and the covariance of the group's mean about it from each seedling's residual (its trace's observables
+// less those of its own run): the part of the seedlings' spread the runs reproduce (each sown at its own
+// angle) is not counted again as noise
 FitComponents groupComponents(const GroupSide& g, const std::vector<SimRoot>& sims) {
   FitComponents c = g.trace;
-  c.sim = Eigen::VectorXd::Zero(static_cast<int>(c.names.size()));
+  const int m = static_cast<int>(c.names.size());
+  c.sim = Eigen::VectorXd::Zero(m);
+  Eigen::MatrixXd residual = Eigen::MatrixXd::Zero(static_cast<int>(g.seedlings.size()), m);
   for (std::size_t i = 0; i < g.seedlings.size(); ++i) {
     const TraceTarget& t = g.seedlings[i];
     const std::vector<Observation> obs = observeBoth(t.traits, sims[i].traits, t.sigmaMm);
     for (std::size_t j = 0; j < c.names.size(); ++j) {
       if (!g.users[j][i]) continue;
       for (const Observation& o : obs)
-        // a run without the waves the trace has: its missing value counts as 0 (observableComponents)
-        if (o.name == c.names[j]) c.sim(static_cast<int>(j)) += (std::isfinite(o.sim) ? o.sim : 0.0) / g.userCount(j);
+        if (o.name == c.names[j]) {
+          // a run without the waves the trace has: its missing value counts as 0 (observableComponents)
+          const double sim = std::isfinite(o.sim) ? o.sim : 0.0;
+          c.sim(static_cast<int>(j)) += sim / g.userCount(j);
+          residual(static_cast<int>(i), static_cast<int>(j)) = o.trace - sim;
+        }
     }
   }
+  c.cov = groupMeanCovariance(g, residual, nullptr);
+  c.sigma = c.cov.diagonal().cwiseSqrt();
+  c.covName = kGroupResidualCovName;
   return c;
 }
 
@@ -61,10 +104,9 @@ double sowingAngleDeg(const Eigen::Matrix3Xd& plateMm, double overMm) {
 namespace {
 
 // the group's outputs: each observable two or more of its seedlings' traces use (a trace without a wave
-// train has no wavelength), the mean over those seedlings, and the mean's covariance S / n from their
-// sample covariance S, its diagonal at least the mean of their own tracing variances (a few seedlings that
-// happen to agree do not claim more than their traces can). Two outputs measured on different seedlings,
-// or on fewer seedlings than it takes to estimate their covariance (n - 1 < outputs): no covariance between them
+// train has no wavelength), the mean over those seedlings, the floor of the mean's variances (their
+// tracing variances' mean / n), and the covariance the fit starts from: the mean's from the seedlings'
+// observables themselves (groupMeanCovariance), replaced by their residuals' once runs are made
 void groupTraceSide(GroupSide& g, const std::string& sheet) {
   const std::size_t n = g.seedlings.size();
   std::vector<std::vector<Observation>> own;
@@ -88,36 +130,22 @@ void groupTraceSide(GroupSide& g, const std::string& sheet) {
   if (g.trace.names.empty())
     throw SceneError(sheet + ": group " + g.name + ": no observable is measured on two of its seedlings' traces (skew, wavelength, amplitude)");
   const int m = static_cast<int>(g.trace.names.size());
-  Eigen::VectorXd mean = Eigen::VectorXd::Zero(m), tracing = Eigen::VectorXd::Zero(m);
-  for (int j = 0; j < m; ++j)
+  Eigen::VectorXd mean = Eigen::VectorXd::Zero(m);
+  Eigen::MatrixXd v = Eigen::MatrixXd::Zero(static_cast<int>(n), m);
+  g.floor = Eigen::VectorXd::Zero(m);
+  for (int j = 0; j < m; ++j) {
+    const double nj = g.userCount(static_cast<std::size_t>(j));
     for (std::size_t i = 0; i < n; ++i)
       if (const Observation* o = g.users[static_cast<std::size_t>(j)][i] ? find(i, g.trace.names[static_cast<std::size_t>(j)]) : nullptr) {
-        mean(j) += o->trace / g.userCount(static_cast<std::size_t>(j));
-        tracing(j) += o->sigma * o->sigma / g.userCount(static_cast<std::size_t>(j));
+        v(static_cast<int>(i), j) = o->trace;
+        mean(j) += o->trace / nj;
+        g.floor(j) += o->sigma * o->sigma / nj / nj;
       }
-  g.scatter = Eigen::MatrixXd::Zero(m, m);
-  Eigen::MatrixXd cov = Eigen::MatrixXd::Zero(m, m);
-  for (int j = 0; j < m; ++j)
-    for (int k = 0; k < m; ++k) {
-      const auto& uj = g.users[static_cast<std::size_t>(j)];
-      if (uj != g.users[static_cast<std::size_t>(k)]) continue;
-      const double nj = g.userCount(static_cast<std::size_t>(j));
-      // the outputs measured on the same seedlings: their sample covariance is singular unless it has more
-      // seedlings than outputs (n - 1 >= m); without, their variances alone
-      const auto block = std::count(g.users.begin(), g.users.end(), uj);
-      if (j != k && nj - 1 < static_cast<double>(block)) continue;
-      double sjk = 0;
-      for (std::size_t i = 0; i < n; ++i)
-        if (uj[i])
-          sjk += (find(i, g.trace.names[static_cast<std::size_t>(j)])->trace - mean(j)) *
-                 (find(i, g.trace.names[static_cast<std::size_t>(k)])->trace - mean(k)) / (nj - 1);
-      g.scatter(j, k) = sjk;
-      cov(j, k) = (j == k ? std::max(sjk, tracing(j)) : sjk) / nj;
-    }
+  }
   g.trace.trace = mean;
-  g.trace.cov = cov;
-  g.trace.covName = "the group mean's covariance (its seedlings' scatter / n, each variance at least their tracing noise / n)";
-  g.trace.sigma = cov.diagonal().cwiseSqrt();
+  g.trace.cov = groupMeanCovariance(g, v, &g.scatter);
+  g.trace.covName = "the group mean's covariance from its seedlings' observables (their scatter / n, each variance at least their tracing noise / n)";
+  g.trace.sigma = g.trace.cov.diagonal().cwiseSqrt();
 }
 
 bool isPlateKey(const std::string& key) {
@@ -341,7 +369,7 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
       rep.designs.push_back(gf.report.design);
       continue;
     }
-    gf.outputs = g.trace;
+    gf.outputs = gf.report.trace;  // the mean, and its covariance at the answer
     gf.scatter = g.scatter;
     const FitEvaluation& b = gf.report.evaluations[static_cast<std::size_t>(gf.report.best)];
     gf.value = b.x;
@@ -417,7 +445,8 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
   }
   js.str("method", "each group's mean observables against the group's values run once per seedling's sowing angle (its trace's start "
                    "angle), each seedling's run measured as that seedling is, at its own length; "
-                   "covariance: the mean's, from the seedlings' scatter (its diagonal at least their tracing noise) / n");
+                   "covariance: the mean's at the answer, from the scatter of each seedling's residual against its own run "
+                   "(its diagonal at least their tracing noise) / n");
   Json gj;
   for (const GroupFit& g : rep.groups) {
     Json one;

@@ -20,14 +20,18 @@ namespace rootsim::app {
 // a group of a plate's seedlings fitted together (fit --groups, docs/experiments.md "A plate by group"):
 // the outputs are the observables two or more seedlings' traces use, the group's mean against the mean over
 // those seedlings of their runs' values (each seedling's run sown at its own angle) measured as each
-// seedling is; their covariance the mean's, from the seedlings' own scatter
+// seedling is; their covariance the mean's, from the scatter of each seedling's residual against its own
+// run at the fit's answer (groupComponents), at least the seedlings' tracing noise
 struct GroupSide {
   std::string name;
   std::vector<std::string> plants;     // the sheet's names of its seedlings
   std::vector<TraceTarget> seedlings;  // each seedling's primary root
   TraceTarget target;                  // the first seedling's, grown to the group's mean root length: the
                                        // length every run grows to, and the root of the compare picture
-  FitComponents trace;                 // names, the mean (trace), the mean's covariance (cov) and sigma
+  FitComponents trace;                 // names, the mean (trace), and the covariance the fit starts from
+                                       // (cov: the mean's, from the seedlings' observables) and its sigma
+  Eigen::VectorXd floor;               // per output: the least variance of the mean, the mean of its
+                                       // seedlings' tracing variances / n
   std::vector<std::vector<bool>> users;  // per output, per seedling: its trace measures it
   double userCount(std::size_t output) const {
     return static_cast<double>(std::count(users[output].begin(), users[output].end(), true));
@@ -45,8 +49,17 @@ struct GroupSide {
 // the scene key a group's runs are sown by, and the sample sheet's optional column of each plant's angle
 inline constexpr const char* kSowingKey = "root.initial_angle_deg";
 inline constexpr const char* kSheetSowingColumn = "angle_deg";
+// the covariance of a group's mean of values measured per seedling (v: seedlings x outputs): S / n from
+// their sample covariance S, each variance at least g.floor, none between outputs measured on different
+// seedlings or on too few to estimate it (n - 1 below the outputs measured on them); scatter: S
+Eigen::MatrixXd groupMeanCovariance(const GroupSide& g, const Eigen::MatrixXd& v, Eigen::MatrixXd* scatter);
+// what the group's covariance of a run is, in the words of a goodness line
+inline constexpr const char* kGroupResidualCovName =
+    "the group mean's covariance at the answer (its seedlings' residuals against their own runs: their scatter / n, "
+    "each variance at least their tracing noise / n)";
 // the group's outputs of its runs' roots (sims: one per seedling, its own sowing's run): the mean over
-// seedlings of each one's run measured as that seedling is (observeBoth)
+// seedlings of each one's run measured as that seedling is (observeBoth), and as cov the covariance of
+// the group's mean from the seedlings' residuals (trace less own run; groupMeanCovariance)
 FitComponents groupComponents(const GroupSide& g, const std::vector<SimRoot>& sims);
 // the size of a fit of n keys: the start design's levels per key and runs, the surface's terms, a trust
 // region's runs; SceneError when --budget cannot hold the design and one trust region

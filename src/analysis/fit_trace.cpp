@@ -143,11 +143,39 @@ class Fit {
     // the trace's side of the shape: its covariance once, from its points' noise
     if (o_.objective == "shape") shapeCov_ = shapeTraceCovariance(target_.plateMm, target_.sigmaMm, kShapeSamples);
     if (o_.objective == "timelapse") lapse_ = timeLapseObjective(target_);
+    // a group's side: its mean and the covariance it starts from (useCovarianceOf replaces it)
+    if (group_) traceComp_ = group_->trace;
   }
 
   const std::vector<FreeKey>& keys() const { return keys_; }
   fs::path runs() const { return out_ / "runs"; }
   const FitComponents& traceComponents() const { return traceComp_; }
+  bool byGroup() const { return group_ != nullptr; }
+
+  // a fit by group: the group mean's covariance from the seedlings' residuals against the runs of e
+  // (FitEvaluation::groupCov), and every evaluation's chi-square against it. Called between batches of
+  // runs, at the fit's current best estimate, so the answer's uncertainty and goodness take the
+  // covariance at the answer
+  void useCovarianceOf(const FitEvaluation& e) {
+    if (!group_ || !e.error.empty() || e.groupCov.size() == 0) return;
+    std::lock_guard lk(mu_);
+    traceComp_.cov = e.groupCov;
+    traceComp_.sigma = e.groupCov.diagonal().cwiseSqrt();
+    traceComp_.covName = kGroupResidualCovName;
+    for (FitEvaluation& v : evals_)
+      if (v.error.empty()) v.objective = v.chi2Trace = chi2Of(traceComp_, v.sim);
+  }
+  // the evaluation of smallest objective so far (none: an empty one with an error)
+  FitEvaluation bestSoFar() {
+    std::lock_guard lk(mu_);
+    const FitEvaluation* best = nullptr;
+    for (const FitEvaluation& e : evals_)
+      if (e.error.empty() && (!best || e.objective < best->objective || (e.objective == best->objective && e.order < best->order))) best = &e;
+    if (best) return *best;
+    FitEvaluation none;
+    none.error = "no run";
+    return none;
+  }
 
   std::vector<double> xOf(const Eigen::VectorXd& u) const {
     std::vector<double> x(keys_.size());
@@ -203,6 +231,7 @@ class Fit {
             e.seedlingChi2.push_back(compareRoots(group_->seedlings[i], sims.back()).chi2);
           }
           fc = groupComponents(*group_, sims);
+          e.groupCov = fc.cov;
           sim = sims.front();  // the first seedling's run: the distance, pattern and amplitude shown
         }
         const Comparison c = compareRoots(group_ ? group_->seedlings.front() : target_, sim);
@@ -210,11 +239,12 @@ class Fit {
         {
           std::lock_guard lk(mu_);
           if (traceComp_.names.empty()) traceComp_ = fc;  // the trace's side: the same for every run
+          // a group's against the fit's current covariance (it follows the answer: useCovarianceOf)
+          e.objective = e.chi2Trace = group_ ? chi2Of(traceComp_, fc.sim) : chi2Of(fc, fc.sim);
         }
         e.sim = fc.sim;
         e.chi2 = c.chi2;
         e.distanceMm = c.distanceMm;
-        e.objective = e.chi2Trace = chi2Of(fc, fc.sim);
         e.pattern = sim.traits.shape.pattern;
         e.amplitudeMm = sim.traits.shape.amplitude / units::mm;
         e.straightness = sim.traits.chordMm / sim.traits.lengthMm;
@@ -293,7 +323,7 @@ class Fit {
       char b[200];
       if (e.error.empty())
         std::snprintf(b, sizeof b, ": chi2 %.4g against %s (distance %.3g mm)", e.objective,
-                      (group_ ? group_->trace.covName : traceComp_.covName).c_str(), e.distanceMm);
+                      traceComp_.covName.c_str(), e.distanceMm);
       else
         std::snprintf(b, sizeof b, ": FAILED (%.120s)", e.error.c_str());
       log_(line + b);
@@ -729,6 +759,7 @@ struct TrustRegions {
   FitUncertainty unc;
   std::vector<Eigen::VectorXd> atSmallest;
   std::vector<FitUncertainty> smallestUnc;
+  std::vector<ResponseSurface> smallestSurfaces;  // and their surfaces
   Eigen::VectorXd ustar;
   int regions = 0;
 };
@@ -742,6 +773,10 @@ TrustRegions runTrustRegions(const FitSetup& setup, Fit& fit, const std::functio
   const std::vector<FreeKey>& keys = setup.keys;
   const int n = static_cast<int>(keys.size());
   const int k = setup.size.levels, terms = setup.size.terms, regionPoints = setup.size.regionPoints;
+  // a group's covariance from the residuals at the start design's best run (chosen against the
+  // seedlings' own scatter; an offset common to the seedlings is not scatter), estimated again at each
+  // region's minimum and last at the answer's point (covarianceAtAnswer)
+  if (fit.byGroup()) fit.useCovarianceOf(fit.bestSoFar());
   Eigen::VectorXd centre;
   {
     double bestF = std::numeric_limits<double>::infinity();
@@ -757,6 +792,7 @@ TrustRegions runTrustRegions(const FitSetup& setup, Fit& fit, const std::functio
   FitUncertainty unc;
   std::vector<Eigen::VectorXd> atSmallest;   // the minima of the regions at the smallest box
   std::vector<FitUncertainty> smallestUnc;   // and their uncertainties
+  std::vector<ResponseSurface> smallestSurfaces;
   Eigen::VectorXd ustar = centre;
   bool haveSurface = false;
   int regions = 0;
@@ -787,7 +823,7 @@ TrustRegions runTrustRegions(const FitSetup& setup, Fit& fit, const std::functio
     haveSurface = true;
     ustar = next;
     if (!o.quiet) log(regionLine(regions + 1, rho, us.size(), keys, fit.xOf(next), unc, surface));
-    if (fit.count() < o.budget - 1) fit.evaluate(fit.xOf(next), "minimum " + std::to_string(regions + 1), fit.nextOrder(1));
+    if (fit.count() < o.budget - 1) fit.useCovarianceOf(fit.evaluate(fit.xOf(next), "minimum " + std::to_string(regions + 1), fit.nextOrder(1)));
     bool onEdge = false;
     for (int d = 0; d < n; ++d)
       onEdge = onEdge || (next(d) - lo(d) < 0.05 * rho && lo(d) > 0) || (hi(d) - next(d) < 0.05 * rho && hi(d) < 1);
@@ -796,6 +832,7 @@ TrustRegions runTrustRegions(const FitSetup& setup, Fit& fit, const std::functio
     if (smallest && !onEdge) {
       atSmallest.push_back(next);
       smallestUnc.push_back(unc);
+      smallestSurfaces.push_back(surface);
     }
     if (fit.count() >= o.budget - 1) break;
     if (onEdge) continue;
@@ -809,7 +846,26 @@ TrustRegions runTrustRegions(const FitSetup& setup, Fit& fit, const std::functio
     if (static_cast<int>(atSmallest.size()) >= kFinalRegions) break;
   }
   if (!haveSurface) throw RunError("fit: the budget ran out before a surface could be fitted (raise --budget)");
-  return TrustRegions{rho, surface, unc, atSmallest, smallestUnc, ustar, regions};
+  return TrustRegions{rho, surface, unc, atSmallest, smallestUnc, smallestSurfaces, ustar, regions};
+}
+
+// the answer's point (scaled): the mean of the minima at the smallest box, rounded to 1e-6 of the box
+// (the last minimum without any)
+Eigen::VectorXd answerPoint(const TrustRegions& tr) {
+  if (tr.atSmallest.empty()) return tr.ustar;
+  Eigen::VectorXd u = Eigen::VectorXd::Zero(tr.ustar.size());
+  for (const Eigen::VectorXd& m : tr.atSmallest) u += m / static_cast<double>(tr.atSmallest.size());
+  return (u * 1e6).array().round().matrix() / 1e6;
+}
+
+// a fit by group: the covariance at the answer's point (its run made now, as the answer would make it),
+// and the regions' uncertainties again against it
+void covarianceAtAnswer(Fit& fit, TrustRegions& tr) {
+  if (!fit.byGroup()) return;
+  fit.useCovarianceOf(fit.evaluate(fit.xOf(answerPoint(tr)), "minimum", fit.nextOrder(1)));
+  const FitComponents& tc = fit.traceComponents();
+  for (std::size_t r = 0; r < tr.atSmallest.size(); ++r) tr.smallestUnc[r] = uncertaintyAt(tr.smallestSurfaces[r], tr.atSmallest[r], tc.trace, tc.cov);
+  tr.unc = uncertaintyAt(tr.surface, tr.ustar, tc.trace, tc.cov);
 }
 
 // the answer's values (scaled) and their uncertainty: per key the scaled sigma, the bootstrap's part
@@ -839,11 +895,9 @@ AnswerUncertainty answerUncertainty(const FitSetup& setup, Fit& fit, const Trust
   if (atSmallest.empty()) {
     for (int i = 0; i < n; ++i) sigmaU[static_cast<std::size_t>(i)] = unc.sigma[static_cast<std::size_t>(i)];
   } else {
-    ustar = Eigen::VectorXd::Zero(n);
-    for (const Eigen::VectorXd& m : atSmallest) ustar += m / static_cast<double>(atSmallest.size());
+    ustar = answerPoint(tr);
     surfaceScale = 0;
     for (const FitUncertainty& u : smallestUnc) surfaceScale += u.scale / static_cast<double>(smallestUnc.size());
-    ustar = (ustar * 1e6).array().round().matrix() / 1e6;
     const Eigen::VectorXd lo = (ustar.array() - rho).max(0.0).matrix(), hi = (ustar.array() + rho).min(1.0).matrix();
     std::vector<Eigen::VectorXd> us, ys;
     for (const FitEvaluation& e : fit.evaluations()) {
@@ -989,7 +1043,8 @@ FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::f
   }
   Fit fit(setup.o, setup.keys, setup.out, baseText, setup.target, log, group);
   runStartDesign(setup, group, fit, log);
-  const TrustRegions tr = runTrustRegions(setup, fit, log);
+  TrustRegions tr = runTrustRegions(setup, fit, log);
+  covarianceAtAnswer(fit, tr);
   FitReport rep;
   rep.keys = setup.keys;
   rep.out = setup.out.string();
@@ -1013,6 +1068,7 @@ FitReport runFitOn(const FitOptions& given, const GroupSide* group, const std::f
   f.surfaceX = bx;
   f.bootSigma = au.bootSigma;
   f.trace = fit.traceComponents();
+  rep.trace = f.trace;
   writeFitOutputs(f, rep, fit.sceneAt(rep.evaluations[static_cast<std::size_t>(rep.best)].x));
   return rep;
 }

@@ -126,10 +126,9 @@ void saveGroupKeysPanel(const std::vector<std::string>& keys, const std::vector<
     ax.panelLabel = std::string(1, static_cast<char>('A' + k % 26));
     ax.title = literalLabel(keys[k]);
     const std::vector<GroupKeyValue>& gs = perKey[k];
-    // the groups along x at 0, 1, ...: named over their column (the axis has no text ticks)
-    std::string names;
-    for (std::size_t g = 0; g < gs.size(); ++g) names += (g ? ", " : "") + std::to_string(g) + " " + literalLabel(gs[g].group);
-    ax.xlabel = "group (" + names + ")";
+    // the groups along a categorical x axis, each named under its column
+    for (std::size_t g = 0; g < gs.size(); ++g) ax.xCategories.emplace_back(static_cast<double>(g), literalLabel(gs[g].group));
+    ax.xlabel = "group";
     ax.ylabel = literalLabel(keys[k]);
     ax.autoX = ax.autoY = false;
     ax.xmin = -0.6;

@@ -585,11 +585,21 @@ void drawFrame(const Pen& p, const Axes& a, const Cell& cell, const Geo& g) {
   const auto xt = a.frameOnly ? std::vector<double>{} : g.logX ? logTicks(g.x0, g.x1) : ticks(g.x0, g.x1, tickTarget(pw, 40, 2, 6));
   const auto yt = a.frameOnly ? std::vector<double>{} : ticks(g.y0, g.y1, tickTarget(ph, 36, 3, 5));
   cairo_set_line_width(cr, 0.8);
-  for (double v : xt) {
-    if (a.grid) { cairo_set_source_rgb(cr, 0.9, 0.9, 0.9); cairo_move_to(cr, X(v), T); cairo_line_to(cr, X(v), B); cairo_stroke(cr); }
+  if (a.xCategories.empty()) {
+    for (double v : xt) {
+      if (a.grid) { cairo_set_source_rgb(cr, 0.9, 0.9, 0.9); cairo_move_to(cr, X(v), T); cairo_line_to(cr, X(v), B); cairo_stroke(cr); }
+      cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
+      cairo_move_to(cr, X(v), B); cairo_line_to(cr, X(v), B + 5); cairo_stroke(cr);
+      text(p, X(v), B + 8, significantText(v), 12, 0.5, 0.0);
+    }
+  } else {
+    // categories: a tick and the name at each one's position
     cairo_set_source_rgb(cr, 0.15, 0.15, 0.15);
-    cairo_move_to(cr, X(v), B); cairo_line_to(cr, X(v), B + 5); cairo_stroke(cr);
-    text(p, X(v), B + 8, significantText(v), 12, 0.5, 0.0);
+    for (const auto& c : a.xCategories) {
+      if (c.first < std::min(g.x0, g.x1) || c.first > std::max(g.x0, g.x1)) continue;
+      cairo_move_to(cr, X(c.first), B); cairo_line_to(cr, X(c.first), B + 5); cairo_stroke(cr);
+      text(p, X(c.first), B + 8, c.second, 12, 0.5, 0.0);
+    }
   }
   for (double v : yt) {
     if (a.grid) { cairo_set_source_rgb(cr, 0.9, 0.9, 0.9); cairo_move_to(cr, L, Y(v)); cairo_line_to(cr, R, Y(v)); cairo_stroke(cr); }

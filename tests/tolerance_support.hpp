@@ -17,8 +17,8 @@
 //                   trip, a few operations): a thousand ulps, 2.2e-13
 //   kFloatRoundoff  a value stored in single precision (a colour map's channel, a glTF float32
 //                   accessor): four of its ulps, 4.8e-7
-#include <doctest/doctest.h>
-
+// The checks expand to doctest's INFO and CHECK where they are used: a test file includes doctest itself
+// (a benchmark that shares physics_support.hpp must not, or it links doctest's test registry).
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>

@@ -756,7 +756,7 @@ TEST_CASE("a folder rootsim creates appears with its marker or not at all - thre
 TEST_CASE("the shards of a job array started at the same moment into a new folder all run") {
   const fs::path d = scratch("shards_at_once");
   const fs::path sw = makeSweep(d);
-  for (int round = 0; round < 3; ++round) {
+  for (int round = 0; round < 6; ++round) {
     const fs::path out = d / ("S" + std::to_string(round));
     std::string cmd = "--version >/dev/null;";
     for (int k = 1; k <= 4; ++k)

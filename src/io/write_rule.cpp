@@ -171,7 +171,8 @@ bool isFitEntry(const fs::path& dir, const std::string& name) {
       const std::string g = e.path().filename().string();
       if (isLockFile(g)) continue;
       if (transientEntry(e.path())) continue;
-      if (e.is_symlink(ec) || !e.is_directory(ec) || !whyNotOurs(e.path(), fitFolder()).empty()) return false;
+      std::error_code entry;  // an entry's own query: the listing's error stays the listing's
+      if (e.is_symlink(entry) || !e.is_directory(entry) || !whyNotOurs(e.path(), fitFolder()).empty()) return false;
     }
     return !ec;
   }
@@ -360,9 +361,12 @@ std::string whyNotAllRecorded(const fs::path& dir, const FolderSpec& spec, const
   for (const auto& e : fs::directory_iterator(sub, ec)) {
     const fs::path p = e.path();
     const std::string name = p.filename().string();
-    const std::string rel = fs::relative(p, dir, ec).generic_string();
-    const fs::file_status st = fs::symlink_status(p, ec);
-    if (!fs::exists(st)) continue;  // renamed or removed by its writer since the listing
+    // an entry's own queries: an entry that vanished since the listing (renamed or removed by its
+    // writer) is skipped, and its error is not the listing's
+    std::error_code entry;
+    const std::string rel = fs::relative(p, dir, entry).generic_string();
+    const fs::file_status st = fs::symlink_status(p, entry);
+    if (!fs::exists(st)) continue;
     if (rel == spec.marker || isLockFile(name) || stripTemp(name) != name) continue;
     // an unfinished file of a writer that was killed (movie.mp4.partial): a working name of rootsim's
     if (endsWith(name, ".partial") && sub == dir && fs::is_regular_file(st) && spec.owns(dir, name)) continue;
@@ -599,11 +603,13 @@ std::string whyNotOurs(const fs::path& dir, const FolderSpec& spec) {
     // the marker's own working name (writeMarker renames it into place) is the folder's, whatever its kind
     if (spec.owns(dir, name) || stripTemp(name) == spec.marker || transientEntry(e.path())) continue;
     // a folder of rootsim's inside (a sweep's run, a plate's roots/NAME, a fit's runs/): its own reason
+    std::error_code entry;  // an entry's own queries: the listing's error stays the listing's
     for (const FolderSpec* inner : {&runFolder(), &sweepFolder()})
-      if (e.is_directory(ec) && !e.is_symlink(ec) && fs::is_regular_file(fs::symlink_status(e.path() / inner->marker, ec)))
+      if (e.is_directory(entry) && !e.is_symlink(entry) &&
+          fs::is_regular_file(fs::symlink_status(e.path() / inner->marker, entry)))
         if (std::string why = whyNotOurs(e.path(), *inner); !why.empty()) return why;
-    if (name == "roots" && e.is_directory(ec))
-      for (const auto& r : fs::directory_iterator(e.path(), ec)) {
+    if (name == "roots" && e.is_directory(entry))
+      for (const auto& r : fs::directory_iterator(e.path(), entry)) {
         if (transientEntry(r.path())) continue;
         if (std::string why = whyNotOurs(r.path(), runFolder()); !why.empty()) return why;
       }
@@ -623,12 +629,14 @@ std::string recordOf(const fs::path& dir, const char* marker, bool nested) {
   for (auto it = fs::recursive_directory_iterator(dir, ec); !ec && it != fs::recursive_directory_iterator(); it.increment(ec)) {
     const fs::path p = it->path();
     const std::string name = p.filename().string();
-    if (it->is_directory(ec) && !it->is_symlink(ec)) {
+    // an entry's own queries: one that vanished since the listing is skipped, not the end of the listing
+    std::error_code entry;
+    if (it->is_directory(entry) && !it->is_symlink(entry)) {
       if (!nested && hasOwnMarker(p)) it.disable_recursion_pending();
       continue;
     }
-    if (!it->is_regular_file(ec) || it->is_symlink(ec)) continue;
-    const std::string rel = fs::relative(p, dir, ec).generic_string();
+    if (!it->is_regular_file(entry) || it->is_symlink(entry)) continue;
+    const std::string rel = fs::relative(p, dir, entry).generic_string();
     if (rel == marker || isLockFile(name) || stripTemp(name) != name) continue;
     rels.push_back(rel);
   }
@@ -673,7 +681,8 @@ void recordWritten(const std::vector<fs::path>& files) {
     const fs::path dir = absoluteNormal(f).parent_path();
     for (const auto& e : fs::directory_iterator(dir, ec)) {
       const std::string n = e.path().filename().string();
-      if (n.rfind(".rootsim-", 0) != 0 || isLockFile(n) || stripTemp(n) != n || !e.is_regular_file(ec)) continue;
+      std::error_code entry;
+      if (n.rfind(".rootsim-", 0) != 0 || isLockFile(n) || stripTemp(n) != n || !e.is_regular_file(entry)) continue;
       // the folder's kind is the marker's own head line: kept as it is
       const std::string marker = n;
       const FolderSpec named{marker.c_str(), "rootsim folder", nullptr};

@@ -33,6 +33,19 @@ Model waving() {
   return m;
 }
 
+// a plate whose primaries grow laterals: sites from first at spacing, each opening once the tip is
+// apical beyond it, at insertion from the parent's tangent [mm, deg]
+PlateParams lateralPlate(double firstMm, double spacingMm, double apicalMm, double insertionDeg) {
+  PlateParams pp;
+  LateralParams& lp = pp.laterals;
+  lp.enabled = true;
+  lp.first = firstMm * units::mm;
+  lp.spacing = spacingMm * units::mm;
+  lp.apicalUnbranched = apicalMm * units::mm;
+  lp.insertion = insertionDeg * units::deg;
+  return pp;
+}
+
 Seedling sow(const std::string& name, double lateralMm, double downhillMm, const Model& m, double angleDeg = 0) {
   Seedling s;
   s.name = name;
@@ -206,13 +219,8 @@ TEST_CASE("plate: lateral roots emerge at the asked spacing and, on a vertical p
   Model m = waving();
   m.env.plane.alpha = 0.0;
   completeModel(m);
-  PlateParams pp;
+  PlateParams pp = lateralPlate(3, 2, 4, 85);
   LateralParams& lp = pp.laterals;
-  lp.enabled = true;
-  lp.first = 3e-3;
-  lp.spacing = 2e-3;
-  lp.apicalUnbranched = 4e-3;
-  lp.insertion = 85 * units::deg;
   lp.setPoint = 50 * units::deg;
   PlateSimulation plate(pp, {sow("p", 20, 3, m)});
   for (int k = 0; k < 2600; ++k) plate.growthStep();
@@ -249,13 +257,7 @@ TEST_CASE("plate: laterals inserted from downhill start at the insertion angle w
   // the waving primary of plate_wildtype (alpha = 40): its tangent at the sites swings about downhill, so
   // laterals inserted at 65 degrees from it start anywhere in 65 +- 50 degrees; from downhill, at +-65
   const Model m = waving();
-  PlateParams pp;
-  LateralParams& lp = pp.laterals;
-  lp.enabled = true;
-  lp.first = 3e-3;
-  lp.spacing = 0.7e-3;
-  lp.apicalUnbranched = 2e-3;
-  lp.insertion = 65 * units::deg;
+  const PlateParams pp = lateralPlate(3, 0.7, 2, 65);
   PlateParams fromDownhill = pp;
   fromDownhill.laterals.fromParent = false;
   PlateSimulation parent(pp, {sow("p", 20, 3, m)});

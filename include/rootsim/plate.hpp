@@ -83,6 +83,11 @@ struct PlateSpec {
   std::string headToml;    // the resolved text of the plate-wide keys and obstacles (a root's scene starts so)
 };
 
+// a root alone as a plate of one seedling: the model as it is, at the plate's origin, no name (its errors
+// keep their own text) and no laterals. Its growth steps are the root's own (Simulation), bit for bit: a scene
+// of one root runs so (runSceneToDir)
+PlateSpec plateOfOne(const Model& m);
+
 // one row of the plate's time series
 struct PlateStepRecord {
   int step = 0;

@@ -99,7 +99,7 @@ TEST_CASE("plate: N identical seedlings far apart grow N copies of the single ro
   }
 }
 
-TEST_CASE("plate: a root alone as a plate of one steps bit for bit as its own Simulation") {
+TEST_CASE("plate: a root alone as a plate of one steps bit for bit as its own Simulation, its tropism changed half-way too") {
   // what `rootsim run` of a scene of one root steps (plateOfOne): the same bits in every record and node
   const Model m = waving();
   const int steps = 400;  // 20 h: past the first snap
@@ -134,6 +134,19 @@ TEST_CASE("plate: a root alone as a plate of one steps bit for bit as its own Si
   CHECK(differ == 0);
   CHECK(single.totalIterations() == plate.root(0).totalIterations());
   CHECK(analyseShape(m, plate.root(0).state()).peaks >= 1);
+  // gravity's effect changed half-way (Python's Simulation.set): the root's and its seedling's, the same bits
+  TropismParams t = m.tropism;
+  t.beta *= 2.0;
+  single.setTropism(t);
+  plate.setTropism(0, t);
+  CHECK(plate.seedling(0).model.tropism.beta == t.beta);
+  for (int k = 0; k < 40; ++k) {
+    single.growthStep();
+    plate.growthStep();
+    if (!same(single.state().x, plate.root(0).state().x) || !sameRecord(single.last(), plate.root(0).last())) ++differ;
+  }
+  CHECK(differ == 0);
+  CHECK(std::memcmp(&single.last().thetaTip, &plate.root(0).last().thetaTip, sizeof(double)) == 0);
 }
 
 TEST_CASE("plate: two roots grown into each other push each other and never pass through") {

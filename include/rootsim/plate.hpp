@@ -192,6 +192,9 @@ class PlateSimulation {
 
   int size() const { return static_cast<int>(roots_.size()); }
   const Simulation& root(int r) const { return *roots_[static_cast<size_t>(r)]; }
+  // changes root r's tropism parameters between growth steps (Simulation::setTropism; its seedling's model
+  // says so too): an experiment that changes gravity's effect half-way. The caller validates them
+  void setTropism(int r, const TropismParams& t);
   const Seedling& seedling(int r) const { return seedlings_[static_cast<size_t>(r)]; }
   const PlateParams& params() const { return plate_; }
   const PlateStepRecord& last() const { return last_; }

@@ -102,6 +102,11 @@ PlateCarry PlateSimulation::carry() const {
 
 Vec3 PlateSimulation::offset(int r) const { return offset_[static_cast<size_t>(r)]; }
 
+void PlateSimulation::setTropism(int r, const TropismParams& t) {
+  roots_[static_cast<size_t>(r)]->setTropism(t);
+  seedlings_[static_cast<size_t>(r)].model.tropism = t;
+}
+
 void PlateSimulation::indexElements() {
   // which roots come within reach of another at all: their boxes in the plate, each widened by its reach
   // (1 + skin) R, overlap (O(nodes) and O(roots^2) box tests; roots apart skip the grid entirely)

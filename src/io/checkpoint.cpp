@@ -302,8 +302,8 @@ std::string lastRowFirstField(const std::string& t) {
   return t.substr(from, t.find(',', from) == std::string::npos ? std::string::npos : t.find(',', from) - from);
 }
 
-// one root's part of a checkpoint (what its folder dir holds: the run directory's top for a scene of one root), written after
-// growth step `step` (the run's; a plate's lateral has grown fewer of its own)
+// one root's part of a checkpoint (what its folder dir holds: the run directory's top for a scene of one
+// root), written after growth step `step` (the run's; a plate's lateral has grown fewer of its own)
 void checkRanges(const RodState& state, const SimulationCarry& carry, const RunWatch& watch, const WriterPositions& w,
                  int step, long elements, const fs::path& path, const fs::path& dir, const std::string& who) {
   auto refuse = [&](const fs::path& p, const std::string& field, const std::string& why) {
@@ -509,7 +509,8 @@ RunCheckpoint readCheckpoint(const fs::path& path, RunLayout layout, const std::
   const RunAccumulators& a = c.acc;
   if (!(std::isfinite(a.wallBefore) && a.wallBefore >= 0))
     refuseField(path, "earlier wall time", "out of range (finite, >= 0 s)");
-  if (a.maxSweeps < 1 || !(std::isnan(a.minGap) || a.minGap >= 0) || (layout == RunLayout::OneRoot && a.seriesBytes != 0))
+  if (a.maxSweeps < 1 || !(std::isnan(a.minGap) || a.minGap >= 0) ||
+      (layout == RunLayout::OneRoot && a.seriesBytes != 0))
     in.bad("the plate's accumulators are out of range");
   // each root's part against its folder: the run directory itself for a scene of one root
   const fs::path dir = path.parent_path();

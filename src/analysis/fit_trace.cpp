@@ -219,7 +219,7 @@ class Fit {
       try {
         const Scene sc = sceneAt(x);
         const std::vector<Snapshot> snaps = loadSnapshots(dirs.front());
-        SimRoot sim = simRootOf(sc.model, comparedSnapshot(sc.model, snaps, target_, o_.objective == "timelapse"));
+        SimRoot sim = simRootOf(sc.model, comparedSnapshot(sc.model, snaps, target_, o_.objective == "timelapse"), target_);
         FitComponents fc;
         if (group_) {
           std::vector<std::vector<Snapshot>> runs;
@@ -227,7 +227,7 @@ class Fit {
           std::vector<SimRoot> sims;
           for (std::size_t i = 0; i < group_->seedlings.size(); ++i) {
             const std::vector<Snapshot>& own = runs[static_cast<std::size_t>(group_->angleOf[i])];
-            sims.push_back(simRootOf(sc.model, comparedSnapshot(sc.model, own, group_->seedlings[i], false)));
+            sims.push_back(simRootOf(sc.model, comparedSnapshot(sc.model, own, group_->seedlings[i], false), group_->seedlings[i]));
             e.seedlingChi2.push_back(compareRoots(group_->seedlings[i], sims.back()).chi2);
           }
           fc = groupComponents(*group_, sims);
@@ -1004,7 +1004,7 @@ std::vector<double> chooseFitAnswer(FitReport& rep, const FitSetup& setup, Fit& 
   chooseAnswer(rep, target, tc, surface.noiseVar().cwiseSqrt(), bm, sceneFileKeys(o.scene), [&](const FitEvaluation& e) {
     if (o.objective != "shape") return e.chi2Trace;
     const Model em = fit.sceneAt(e.x).model;
-    const SimRoot sim = simRootOf(em, comparedSnapshot(em, loadSnapshots(e.dir), target, lapse));
+    const SimRoot sim = simRootOf(em, comparedSnapshot(em, loadSnapshots(e.dir), target, lapse), target);
     return chiSquareOf(e.sim, tc.trace, shapeNoiseCovariance(tracedLike(sim.plateMm, target.plateMm), target.sigmaMm, kShapeSamples));
   });
   // the answer's run against the trace's uncertainty alone fits worse than that uncertainty allows (chi2 /

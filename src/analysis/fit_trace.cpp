@@ -156,12 +156,36 @@ class Fit {
   // (FitEvaluation::groupCov), and every evaluation's chi-square against it. Called between batches of
   // runs, at the fit's current best estimate, so the answer's uncertainty and goodness take the
   // covariance at the answer
-  void useCovarianceOf(const FitEvaluation& e) {
+  //
+  // With a box (scaled [lo, hi], the trust region the runs around e lie in): each seedling's residual is
+  // against a surface of its own run's outputs over the box's runs, taken at e (groupSurfaceCovariance),
+  // so the runs' jumps between neighbouring values, which the model's covariance holds, are not counted
+  // again; without one (the start design's best: no surface yet), or with too few runs in the box for a
+  // surface, against e's own runs
+  void useCovarianceOf(const FitEvaluation& e, const Eigen::VectorXd* lo = nullptr, const Eigen::VectorXd* hi = nullptr) {
     if (!group_ || !e.error.empty() || e.groupCov.size() == 0) return;
     std::lock_guard lk(mu_);
-    traceComp_.cov = e.groupCov;
-    traceComp_.sigma = e.groupCov.diagonal().cwiseSqrt();
-    traceComp_.covName = kGroupResidualCovName;
+    Eigen::MatrixXd cov = e.groupCov;
+    const char* name = kGroupResidualCovName;
+    if (lo && hi) {
+      std::vector<Eigen::VectorXd> us;
+      std::vector<Eigen::MatrixXd> sims;
+      for (const FitEvaluation& v : evals_) {
+        if (!v.error.empty() || v.seedlingSim.size() == 0) continue;
+        const Eigen::VectorXd u = uOf(v.x);
+        if (((u.array() >= lo->array() - 1e-12) && (u.array() <= hi->array() + 1e-12)).all()) {
+          us.push_back(u);
+          sims.push_back(v.seedlingSim);
+        }
+      }
+      if (static_cast<int>(us.size()) > quadraticTerms(static_cast<int>(keys_.size()))) {
+        cov = groupSurfaceCovariance(*group_, e.seedlingTrace, us, sims, uOf(e.x), 0.5 * (*hi - *lo).maxCoeff());
+        name = kGroupSurfaceCovName;
+      }
+    }
+    traceComp_.cov = cov;
+    traceComp_.sigma = cov.diagonal().cwiseSqrt();
+    traceComp_.covName = name;
     for (FitEvaluation& v : evals_)
       if (v.error.empty()) v.objective = v.chi2Trace = chi2Of(traceComp_, v.sim);
   }
@@ -232,6 +256,7 @@ class Fit {
           }
           fc = groupComponents(*group_, sims);
           e.groupCov = fc.cov;
+          seedlingOutputs(*group_, sims, e.seedlingTrace, e.seedlingSim);
           sim = sims.front();  // the first seedling's run: the distance, pattern and amplitude shown
         }
         const Comparison c = compareRoots(group_ ? group_->seedlings.front() : target_, sim);
@@ -823,7 +848,8 @@ TrustRegions runTrustRegions(const FitSetup& setup, Fit& fit, const std::functio
     haveSurface = true;
     ustar = next;
     if (!o.quiet) log(regionLine(regions + 1, rho, us.size(), keys, fit.xOf(next), unc, surface));
-    if (fit.count() < o.budget - 1) fit.useCovarianceOf(fit.evaluate(fit.xOf(next), "minimum " + std::to_string(regions + 1), fit.nextOrder(1)));
+    if (fit.count() < o.budget - 1)
+      fit.useCovarianceOf(fit.evaluate(fit.xOf(next), "minimum " + std::to_string(regions + 1), fit.nextOrder(1)), &lo, &hi);
     bool onEdge = false;
     for (int d = 0; d < n; ++d)
       onEdge = onEdge || (next(d) - lo(d) < 0.05 * rho && lo(d) > 0) || (hi(d) - next(d) < 0.05 * rho && hi(d) < 1);
@@ -862,7 +888,10 @@ Eigen::VectorXd answerPoint(const TrustRegions& tr) {
 // and the regions' uncertainties again against it
 void covarianceAtAnswer(Fit& fit, TrustRegions& tr) {
   if (!fit.byGroup()) return;
-  fit.useCovarianceOf(fit.evaluate(fit.xOf(answerPoint(tr)), "minimum", fit.nextOrder(1)));
+  // the box of the answer's uncertainty (answerUncertainty's): its runs the seedlings' surfaces
+  const Eigen::VectorXd u = answerPoint(tr);
+  const Eigen::VectorXd lo = (u.array() - tr.rho).max(0.0).matrix(), hi = (u.array() + tr.rho).min(1.0).matrix();
+  fit.useCovarianceOf(fit.evaluate(fit.xOf(u), "minimum", fit.nextOrder(1)), &lo, &hi);
   const FitComponents& tc = fit.traceComponents();
   for (std::size_t r = 0; r < tr.atSmallest.size(); ++r) tr.smallestUnc[r] = uncertaintyAt(tr.smallestSurfaces[r], tr.atSmallest[r], tc.trace, tc.cov);
   tr.unc = uncertaintyAt(tr.surface, tr.ustar, tc.trace, tc.cov);

@@ -626,7 +626,7 @@ int comparePlate(const CompareOptions& o, const fs::path& run, const fs::path& o
     }
     Json e;
     e.str("seedling", p.seedling).str("plant", p.plant).str("root", p.target.rootKey).num("time_h", p.sim.timeH).integer("step", p.sim.step);
-    e.str("snapshot", p.why).num("sigma_mm", p.target.sigmaMm).str("sigma_source", p.target.sigmaSource);
+    e.str("snapshot", p.why).num("sigma_mm", p.target.sigmaMm).str("sigma_source", p.target.sigmaSource).num("smoothing_mm", p.target.traits.smoothingMm);
     e.num("distance_mm", p.c.distanceMm).num("frechet_mm", p.c.frechetMm).num("chi2", p.c.chi2).integer("observables_used", p.c.used);
     e.object("observables", observablesJson(p.c));
     items.push_back(e);
@@ -717,6 +717,7 @@ int compareCommand(const CompareOptions& o, std::string* outDir) {
       .str("snapshot", why)
       .num("sigma_mm", target.sigmaMm)
       .str("sigma_source", target.sigmaSource)
+      .num("smoothing_mm", target.traits.smoothingMm)
       .num("trace_ds_mm", target.dsMm)
       .num("distance_mm", c.distanceMm)
       .str("distance", "root-mean-square distance between the roots' points at equal arc length from the seed, over the shorter root")

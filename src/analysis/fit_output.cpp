@@ -108,6 +108,7 @@ void writeFitOutputs(const FitOutcome& f, const FitReport& rep, const Scene& bes
       .num("root_length_mm", target.rootLengthMm)
       .num("sigma_mm", target.sigmaMm)
       .str("sigma_source", target.sigmaSource)
+      .num("smoothing_mm", target.traits.smoothingMm)
       .str("objective", o.objective)
       .str("method", "start design: a " + std::to_string(k) + "^" + std::to_string(n) +
                          " grid of cell centres (a sweep: design.toml); then trust regions: " + std::to_string(f.regionPoints) +

@@ -168,9 +168,15 @@ class Fit {
     Eigen::MatrixXd cov = e.groupCov;
     const char* name = kGroupResidualCovName;
     if (lo && hi) {
+      // in the order they were asked for (as evaluations()): the runs finish in any order, the same fit
+      // writes the same bytes
+      std::vector<const FitEvaluation*> asked;
+      for (const FitEvaluation& v : evals_) asked.push_back(&v);
+      std::stable_sort(asked.begin(), asked.end(), [](const FitEvaluation* a, const FitEvaluation* b) { return a->order < b->order; });
       std::vector<Eigen::VectorXd> us;
       std::vector<Eigen::MatrixXd> sims;
-      for (const FitEvaluation& v : evals_) {
+      for (const FitEvaluation* p : asked) {
+        const FitEvaluation& v = *p;
         if (!v.error.empty() || v.seedlingSim.size() == 0) continue;
         const Eigen::VectorXd u = uOf(v.x);
         if (((u.array() >= lo->array() - 1e-12) && (u.array() <= hi->array() + 1e-12)).all()) {

@@ -45,6 +45,7 @@ NOT_A_MIRROR = {
     "tests/test_number_text.cpp": "include/rootsim/number_text.hpp, header only (numbers as text for every library)",
     "tests/test_png_encode.cpp": "include/rootsim/png_encode.hpp, header only (the PNG encoder of the renderer and the figures)",
     "tests/test_high_water.cpp": "include/rootsim/high_water.hpp, header only (buffers that grow to their high-water mark and stay)",
+    "tests/test_group_covariance.cpp": "the group mean's covariance of src/analysis/fit_groups.cpp (internal fit_parts.hpp), without running the binary",
     "tests/render/test_write_render.cpp": "the write rule (src/io/write_rule.cpp) where pictures are drawn",
 }
 

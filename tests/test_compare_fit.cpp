@@ -210,6 +210,7 @@ TEST_CASE("compare: a run against its own export / distance 0, every residual 0,
   CHECK(jsonNumber(js, "frechet_mm") < 1e-9);
   CHECK(jsonNumber(js, "chi2") < 1e-12);
   CHECK(jsonNumber(js, "observables_used") >= 2);  // it waves: the skew, lambda and A
+  CHECK(jsonNumber(js, "smoothing_mm") == 0.0);    // an export is measured as it is, and its run alike
   CHECK(js.find("\"snapshot\": \"the snapshot as long as the trace on the plate (the nearest)\"") != std::string::npos);
   // the table on stdout and in compare.csv
   CHECK(r.out.find("wavelength_mm") != std::string::npos);
@@ -453,6 +454,8 @@ TEST_CASE("fit: a tracer-degraded trace of a run fitted with beta free is consis
   // the trace's uncertainty is its estimated noise (0.5 px of 0.05 mm, with the 0.1 px rounding), not a pixel
   CHECK(jsonString(js, "sigma_source") == "noise_mm");
   CHECK(jsonNumber(js, "sigma_mm") == doctest::Approx(0.025).epsilon(0.25));
+  // the trace's smoothing, at which its runs were measured too
+  CHECK(jsonNumber(js, "smoothing_mm") > 0.2);
   // the runs grow to the root's length, not to the noisy trace's (longer by the noise's zigzag): the run's own
   const double runMm = lengthOf(exportedPoints(quick().rsml));
   CHECK(jsonNumber(js, "trace_length_mm") - runMm > 0.05);

@@ -36,7 +36,7 @@ TEST_CASE("a run is compared as the plate shows it: its height dropped and its s
   const double rise = 0.2, onPlate = std::sqrt(1.0 - rise * rise);
   std::vector<Snapshot> snaps;
   for (int k = 0; k <= 20; ++k) snaps.push_back(risingRoot(m, 10.0 + 0.1 * k, rise, k));
-  const SimRoot s = simRootOf(m, snaps[10]);
+  const SimRoot s = simRootOf(m, snaps[10], TraceTarget{});
   CHECK(s.plateMm.row(2).cwiseAbs().maxCoeff() == 0.0);
   CHECK(s.traits.lengthMm == doctest::Approx(11.0 * onPlate).epsilon(1e-12));
   CHECK(s.plateMm(1, s.plateMm.cols() - 1) == doctest::Approx(11.0 * onPlate).epsilon(1e-12));

@@ -237,8 +237,8 @@ TEST_CASE("fit by group: two genotypes differing in the twist / the difference r
   }
   // the goodness names the covariance its chi-square was computed against: the group mean's, with the
   // seedlings' scatter, not a trace's uncertainty alone (on stdout, in fit.json and in each group's own)
-  CHECK(r.out.find("dof against the group mean's covariance at the answer (its seedlings' residuals against their own runs: their scatter / n") !=
-        std::string::npos);
+  CHECK(r.out.find("dof against the group mean's covariance at the answer (its seedlings' residuals against a surface of their own runs' "
+                   "outputs: their scatter / n") != std::string::npos);
   CHECK(r.out.find("uncertainty alone") == std::string::npos);
   CHECK(js.find("\"against\": \"the answer's own run against the group mean's covariance") != std::string::npos);
   CHECK(slurp(d / "g" / "groups" / "WT" / "fit.json").find("against the group mean's covariance") != std::string::npos);

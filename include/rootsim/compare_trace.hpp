@@ -89,8 +89,10 @@ struct SimRoot {
   int step = 0;
 };
 // (the run as a scan of the plate sees it, as the trace was seen: its height off the plate dropped, so its
-// length, distances and shape samples are the plate's, the trace's)
-SimRoot simRootOf(const Model& m, const Snapshot& s);
+// length, distances and shape samples are the plate's, the trace's; its observables measured as the trace
+// `as` was, rootTraitsAs: smoothed at the trace's smoothing_mm and resampled at its step, so a trace's
+// smoothing biases a run alike and the two differ by what differs in the roots)
+SimRoot simRootOf(const Model& m, const Snapshot& s, const TraceTarget& as);
 // the snapshot a trace of one time is compared with: the one whose root's length on the plate is nearest
 // lengthMm (the trace's root length, rootLengthMm), the earlier of two as near
 int snapshotOfLength(const Model& m, const std::vector<Snapshot>& snaps, double lengthMm);

@@ -63,6 +63,9 @@ struct FitEvaluation {
                                      // (compareRoots' chi-square, its trace's uncertainty alone); else empty
   Eigen::MatrixXd groupCov;  // a fit by group: the covariance of the group's mean from its seedlings'
                              // residuals against this run's (groupComponents); else empty
+  Eigen::MatrixXd seedlingSim, seedlingTrace;  // a fit by group: each seedling's outputs of its own run,
+                             // and its trace's (seedlings x outputs, 0 where a seedling does not use an
+                             // output); else empty
 };
 inline constexpr double kFailedObjective = 1e12;
 // a time-lapse trace's dL/dt this far (relative) from a fixed tip speed is named beside the verdict

@@ -120,6 +120,16 @@ RootTraits rootTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double exclu
 RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excludeTipMm, double radiusMm,
                        const AnalysisParams& set);
 
+// a run's root measured as the trace `as` was (its traits: the rule every comparison of a run with a
+// trace follows, docs/experiments.md "Fit"): the nodes smoothed by smoothTrace's LOESS at the trace's own
+// half-width as.smoothingMm (one pass against the nodes' arc length: a run has no noise to choose a width
+// from or to run ahead of its arc length), evaluated every as.dsMm (as.dsMm <= 0: at the nodes), then the
+// shape analysis of rootTraits (the hysteresis of R alone: a run has no tracing limit). A smoothing that
+// flattens a traced wave's peaks flattens the run's alike. as.smoothingMm 0 (a trace measured as it is):
+// rootTraits at as.dsMm. Throws std::invalid_argument for fewer than two distinct points.
+RootTraits rootTraitsAs(const Eigen::Matrix3Xd& plateMm, const RootTraits& as, double excludeTipMm, double radiusMm,
+                        const AnalysisParams& set);
+
 // the insertion angle of a lateral on its parent [deg], in [0, 180]: the angle between the lateral's
 // direction over its first spanMm of arc length (base to the point there) and the parent's tangent at the
 // parent point nearest the lateral's base, taken over spanMm of the parent on either side (towards the

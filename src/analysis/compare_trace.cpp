@@ -109,13 +109,14 @@ int snapshotOfLength(const Model& m, const std::vector<Snapshot>& snaps, double 
   return best;
 }
 
-SimRoot simRootOf(const Model& m, const Snapshot& s) {
+SimRoot simRootOf(const Model& m, const Snapshot& s, const TraceTarget& as) {
   SimRoot r;
   r.timeH = s.timeH;
   r.step = s.step;
   r.plateMm = plateView(m, s);
-  // the run's nodes as they are, its growth zone left out: what summary.json measures (analyseShape)
-  r.traits = rootTraits(r.plateMm, 0.0, m.growth.zoneLength / units::mm, m.rod.radius / units::mm, m.analysis);
+  // the run's nodes, its growth zone left out, smoothed and resampled as the trace was (an exact trace,
+  // measured as it is: what summary.json measures, analyseShape)
+  r.traits = rootTraitsAs(r.plateMm, as.traits, m.growth.zoneLength / units::mm, m.rod.radius / units::mm, m.analysis);
   return r;
 }
 
@@ -159,7 +160,7 @@ std::vector<TimeLapseRow> compareTimeLapse(const TraceTarget& t, const Model& m,
   // the run recorded as a 2D+t trace records a root (its old parts do not move): its root at the last
   // observation time up to the length it had at each earlier one; a growth zone that bends after the tip
   // passed is seen where it ended, on both sides alike
-  const Eigen::Matrix3Xd last = simRootOf(m, snaps[static_cast<std::size_t>(near(traced.back().timeH))]).plateMm;
+  const Eigen::Matrix3Xd last = simRootOf(m, snaps[static_cast<std::size_t>(near(traced.back().timeH))], t).plateMm;
   std::vector<double> arc(static_cast<std::size_t>(last.cols()), 0.0);
   for (Eigen::Index i = 1; i < last.cols(); ++i)
     arc[static_cast<std::size_t>(i)] = arc[static_cast<std::size_t>(i - 1)] + (last.col(i) - last.col(i - 1)).norm();
@@ -171,7 +172,7 @@ std::vector<TimeLapseRow> compareTimeLapse(const TraceTarget& t, const Model& m,
   for (const TraceAtTime& tr : traced) {
     const double at = tr.timeH;
     const Eigen::Matrix3Xd trace = polylineAtTime(t.plateMm, t.timesH, at);
-    const SimRoot sim = simRootOf(m, snaps[static_cast<std::size_t>(near(at))]);
+    const SimRoot sim = simRootOf(m, snaps[static_cast<std::size_t>(near(at))], t);
     const Eigen::Matrix3Xd run = polylineAtTime(last, arc, std::min(polylineLength(sim.plateMm), arc.back()));
     Eigen::Matrix3Xd onPlate = run;
     onPlate.row(2).setZero();
@@ -195,7 +196,7 @@ std::vector<TimeLapseRow> compareTimeLapse(const TraceTarget& t, const Model& m,
   rows.back().traceWave = strongestWave(traceLast, t.excludeTipMm, lo, hi);
   // (the run sampled as the trace is, as many points along it: a wave's least-squares amplitude depends on
   // where its samples fall)
-  const Eigen::Matrix3Xd runLast = polylineAtTime(last, arc, std::min(polylineLength(simRootOf(m, snaps[static_cast<std::size_t>(near(traced.back().timeH))]).plateMm), arc.back()));
+  const Eigen::Matrix3Xd runLast = polylineAtTime(last, arc, std::min(polylineLength(simRootOf(m, snaps[static_cast<std::size_t>(near(traced.back().timeH))], t).plateMm), arc.back()));
   rows.back().runWave = strongestWave(tracedLike(runLast, traceLast), t.excludeTipMm, lo, hi);
   return rows;
 }
@@ -568,7 +569,7 @@ int comparePlate(const CompareOptions& o, const fs::path& run, const fs::path& o
     p.target = loadTarget(f, m);
     const std::vector<Snapshot> snaps = loadSnapshots(root.dir);
     const int pick = pickSnapshot(m, snaps, p.target, o.atH, p.why);
-    p.sim = simRootOf(m, snaps[static_cast<std::size_t>(pick)]);
+    p.sim = simRootOf(m, snaps[static_cast<std::size_t>(pick)], p.target);
     p.c = compareRoots(p.target, p.sim);
     done.push_back(std::move(p));
   }
@@ -625,7 +626,7 @@ int comparePlate(const CompareOptions& o, const fs::path& run, const fs::path& o
     }
     Json e;
     e.str("seedling", p.seedling).str("plant", p.plant).str("root", p.target.rootKey).num("time_h", p.sim.timeH).integer("step", p.sim.step);
-    e.str("snapshot", p.why).num("sigma_mm", p.target.sigmaMm).str("sigma_source", p.target.sigmaSource);
+    e.str("snapshot", p.why).num("sigma_mm", p.target.sigmaMm).str("sigma_source", p.target.sigmaSource).num("smoothing_mm", p.target.traits.smoothingMm);
     e.num("distance_mm", p.c.distanceMm).num("frechet_mm", p.c.frechetMm).num("chi2", p.c.chi2).integer("observables_used", p.c.used);
     e.object("observables", observablesJson(p.c));
     items.push_back(e);
@@ -702,7 +703,7 @@ int compareCommand(const CompareOptions& o, std::string* outDir) {
   std::string why;
   const int pick = pickSnapshot(m, snaps, target, o.atH, why);
   const Snapshot& snap = snaps[static_cast<std::size_t>(pick)];
-  const SimRoot sim = simRootOf(m, snap);
+  const SimRoot sim = simRootOf(m, snap, target);
   const Comparison c = compareRoots(target, sim);
 
   StagedFolder folder(out, compareFolder(), rule, "--out");
@@ -716,6 +717,7 @@ int compareCommand(const CompareOptions& o, std::string* outDir) {
       .str("snapshot", why)
       .num("sigma_mm", target.sigmaMm)
       .str("sigma_source", target.sigmaSource)
+      .num("smoothing_mm", target.traits.smoothingMm)
       .num("trace_ds_mm", target.dsMm)
       .num("distance_mm", c.distanceMm)
       .str("distance", "root-mean-square distance between the roots' points at equal arc length from the seed, over the shorter root")

@@ -59,26 +59,50 @@ Eigen::MatrixXd groupMeanCovariance(const GroupSide& g, const Eigen::MatrixXd& v
 // and the covariance of the group's mean about it from each seedling's residual (its trace's observables
 // less those of its own run): the part of the seedlings' spread the runs reproduce (each sown at its own
 // angle) is not counted again as noise
-FitComponents groupComponents(const GroupSide& g, const std::vector<SimRoot>& sims) {
-  FitComponents c = g.trace;
-  const int m = static_cast<int>(c.names.size());
-  c.sim = Eigen::VectorXd::Zero(m);
-  Eigen::MatrixXd residual = Eigen::MatrixXd::Zero(static_cast<int>(g.seedlings.size()), m);
+void seedlingOutputs(const GroupSide& g, const std::vector<SimRoot>& sims, Eigen::MatrixXd& trace, Eigen::MatrixXd& sim) {
+  const int m = static_cast<int>(g.trace.names.size()), n = static_cast<int>(g.seedlings.size());
+  trace = sim = Eigen::MatrixXd::Zero(n, m);
   for (std::size_t i = 0; i < g.seedlings.size(); ++i) {
     const TraceTarget& t = g.seedlings[i];
     const std::vector<Observation> obs = observeBoth(t.traits, sims[i].traits, t.sigmaMm);
-    for (std::size_t j = 0; j < c.names.size(); ++j) {
+    for (std::size_t j = 0; j < g.trace.names.size(); ++j) {
       if (!g.users[j][i]) continue;
       for (const Observation& o : obs)
-        if (o.name == c.names[j]) {
+        if (o.name == g.trace.names[j]) {
           // a run without the waves the trace has: its missing value counts as 0 (observableComponents)
-          const double sim = std::isfinite(o.sim) ? o.sim : 0.0;
-          c.sim(static_cast<int>(j)) += sim / g.userCount(j);
-          residual(static_cast<int>(i), static_cast<int>(j)) = o.trace - sim;
+          sim(static_cast<int>(i), static_cast<int>(j)) = std::isfinite(o.sim) ? o.sim : 0.0;
+          trace(static_cast<int>(i), static_cast<int>(j)) = o.trace;
         }
     }
   }
-  c.cov = groupMeanCovariance(g, residual, nullptr);
+}
+
+Eigen::MatrixXd groupSurfaceCovariance(const GroupSide& g, const Eigen::MatrixXd& trace, const std::vector<Eigen::VectorXd>& us,
+                                       const std::vector<Eigen::MatrixXd>& sims, const Eigen::VectorXd& u, double scale) {
+  // one surface per seedling's output: fitResponseSurface fits every output on its own, so the seedlings'
+  // outputs side by side (column-major) are that many surfaces over the same runs
+  std::vector<Eigen::VectorXd> ys;
+  for (const Eigen::MatrixXd& s : sims) ys.push_back(Eigen::Map<const Eigen::VectorXd>(s.data(), s.size()));
+  const ResponseSurface rs = fitResponseSurface(us, ys, u, scale);
+  const Eigen::VectorXd at = rs.value(u);
+  const Eigen::MatrixXd smooth = Eigen::Map<const Eigen::MatrixXd>(at.data(), trace.rows(), trace.cols());
+  Eigen::MatrixXd residual = trace - smooth;
+  for (int j = 0; j < trace.cols(); ++j)
+    for (int i = 0; i < trace.rows(); ++i)
+      if (!g.users[static_cast<std::size_t>(j)][static_cast<std::size_t>(i)]) residual(i, j) = 0.0;
+  return groupMeanCovariance(g, residual, nullptr);
+}
+
+FitComponents groupComponents(const GroupSide& g, const std::vector<SimRoot>& sims) {
+  FitComponents c = g.trace;
+  const int m = static_cast<int>(c.names.size());
+  Eigen::MatrixXd trace, sim;
+  seedlingOutputs(g, sims, trace, sim);
+  c.sim = Eigen::VectorXd::Zero(m);
+  for (std::size_t j = 0; j < c.names.size(); ++j)
+    for (std::size_t i = 0; i < g.seedlings.size(); ++i)
+      if (g.users[j][i]) c.sim(static_cast<int>(j)) += sim(static_cast<int>(i), static_cast<int>(j)) / g.userCount(j);
+  c.cov = groupMeanCovariance(g, trace - sim, nullptr);
   c.sigma = c.cov.diagonal().cwiseSqrt();
   c.covName = kGroupResidualCovName;
   return c;

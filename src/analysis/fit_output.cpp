@@ -45,7 +45,7 @@ void writeFitOutputs(const FitOutcome& f, const FitReport& rep, const Scene& bes
   const FitEvaluation& b = rep.evaluations[static_cast<std::size_t>(rep.best)];
   auto width = [&](int i) { return keys[static_cast<std::size_t>(i)].hi - keys[static_cast<std::size_t>(i)].lo; };
   const std::vector<Snapshot> bestSnaps = loadSnapshots(b.dir);
-  const SimRoot bestSim = simRootOf(bestScene.model, comparedSnapshot(bestScene.model, bestSnaps, target, o.objective == "timelapse"));
+  const SimRoot bestSim = simRootOf(bestScene.model, comparedSnapshot(bestScene.model, bestSnaps, target, o.objective == "timelapse"), target);
   const Comparison bc = compareRoots(target, bestSim);
   const std::string why = rep.best == rep.surfaceRun ? "the surface's minimum" : "the fit's best run, better by the objective than the surface's minimum's";
   writeFileAtomic(out / "best.toml", "# rootsim fit: " + why + " (" + b.dir + ")\n" + bestScene.resolvedToml);
@@ -108,6 +108,7 @@ void writeFitOutputs(const FitOutcome& f, const FitReport& rep, const Scene& bes
       .num("root_length_mm", target.rootLengthMm)
       .num("sigma_mm", target.sigmaMm)
       .str("sigma_source", target.sigmaSource)
+      .num("smoothing_mm", target.traits.smoothingMm)
       .str("objective", o.objective)
       .str("method", "start design: a " + std::to_string(k) + "^" + std::to_string(n) +
                          " grid of cell centres (a sweep: design.toml); then trust regions: " + std::to_string(f.regionPoints) +

@@ -57,6 +57,21 @@ Eigen::MatrixXd groupMeanCovariance(const GroupSide& g, const Eigen::MatrixXd& v
 inline constexpr const char* kGroupResidualCovName =
     "the group mean's covariance at the answer (its seedlings' residuals against their own runs: their scatter / n, "
     "each variance at least their tracing noise / n)";
+// the same from the seedlings' residuals against a smooth surface of their own runs' outputs over the runs
+// around the answer (groupSurfaceCovariance): the runs' jumps between neighbouring values stay in the
+// model's covariance alone
+inline constexpr const char* kGroupSurfaceCovName =
+    "the group mean's covariance at the answer (its seedlings' residuals against a surface of their own runs' outputs: "
+    "their scatter / n, each variance at least their tracing noise / n)";
+// each seedling's outputs (seedlings x outputs, 0 where it does not use an output): its trace's, and its own
+// run's measured as that seedling is (a run without the waves the trace has: 0, as observableComponents)
+void seedlingOutputs(const GroupSide& g, const std::vector<SimRoot>& sims, Eigen::MatrixXd& trace, Eigen::MatrixXd& sim);
+// the covariance of the group's mean from its seedlings' residuals against their own runs' outputs smoothed
+// over the runs: one quadratic surface per seedling's output fitted to the runs at points us (scaled keys;
+// seedlingSim of each), taken at u, each residual its trace less that (groupMeanCovariance). Throws
+// std::invalid_argument when the runs are too few for a surface (fitResponseSurface)
+Eigen::MatrixXd groupSurfaceCovariance(const GroupSide& g, const Eigen::MatrixXd& trace, const std::vector<Eigen::VectorXd>& us,
+                                       const std::vector<Eigen::MatrixXd>& sims, const Eigen::VectorXd& u, double scale);
 // the group's outputs of its runs' roots (sims: one per seedling, its own sowing's run): the mean over
 // seedlings of each one's run measured as that seedling is (observeBoth), and as cov the covariance of
 // the group's mean from the seedlings' residuals (trace less own run; groupMeanCovariance)

@@ -156,12 +156,42 @@ class Fit {
   // (FitEvaluation::groupCov), and every evaluation's chi-square against it. Called between batches of
   // runs, at the fit's current best estimate, so the answer's uncertainty and goodness take the
   // covariance at the answer
-  void useCovarianceOf(const FitEvaluation& e) {
+  //
+  // With a box (scaled [lo, hi], the trust region the runs around e lie in): each seedling's residual is
+  // against a surface of its own run's outputs over the box's runs, taken at e (groupSurfaceCovariance),
+  // so the runs' jumps between neighbouring values, which the model's covariance holds, are not counted
+  // again; without one (the start design's best: no surface yet), or with too few runs in the box for a
+  // surface, against e's own runs
+  void useCovarianceOf(const FitEvaluation& e, const Eigen::VectorXd* lo = nullptr, const Eigen::VectorXd* hi = nullptr) {
     if (!group_ || !e.error.empty() || e.groupCov.size() == 0) return;
     std::lock_guard lk(mu_);
-    traceComp_.cov = e.groupCov;
-    traceComp_.sigma = e.groupCov.diagonal().cwiseSqrt();
-    traceComp_.covName = kGroupResidualCovName;
+    Eigen::MatrixXd cov = e.groupCov;
+    const char* name = kGroupResidualCovName;
+    if (lo && hi) {
+      // in the order they were asked for (as evaluations()): the runs finish in any order, the same fit
+      // writes the same bytes
+      std::vector<const FitEvaluation*> asked;
+      for (const FitEvaluation& v : evals_) asked.push_back(&v);
+      std::stable_sort(asked.begin(), asked.end(), [](const FitEvaluation* a, const FitEvaluation* b) { return a->order < b->order; });
+      std::vector<Eigen::VectorXd> us;
+      std::vector<Eigen::MatrixXd> sims;
+      for (const FitEvaluation* p : asked) {
+        const FitEvaluation& v = *p;
+        if (!v.error.empty() || v.seedlingSim.size() == 0) continue;
+        const Eigen::VectorXd u = uOf(v.x);
+        if (((u.array() >= lo->array() - 1e-12) && (u.array() <= hi->array() + 1e-12)).all()) {
+          us.push_back(u);
+          sims.push_back(v.seedlingSim);
+        }
+      }
+      if (static_cast<int>(us.size()) > quadraticTerms(static_cast<int>(keys_.size()))) {
+        cov = groupSurfaceCovariance(*group_, e.seedlingTrace, us, sims, uOf(e.x), 0.5 * (*hi - *lo).maxCoeff());
+        name = kGroupSurfaceCovName;
+      }
+    }
+    traceComp_.cov = cov;
+    traceComp_.sigma = cov.diagonal().cwiseSqrt();
+    traceComp_.covName = name;
     for (FitEvaluation& v : evals_)
       if (v.error.empty()) v.objective = v.chi2Trace = chi2Of(traceComp_, v.sim);
   }
@@ -219,7 +249,7 @@ class Fit {
       try {
         const Scene sc = sceneAt(x);
         const std::vector<Snapshot> snaps = loadSnapshots(dirs.front());
-        SimRoot sim = simRootOf(sc.model, comparedSnapshot(sc.model, snaps, target_, o_.objective == "timelapse"));
+        SimRoot sim = simRootOf(sc.model, comparedSnapshot(sc.model, snaps, target_, o_.objective == "timelapse"), target_);
         FitComponents fc;
         if (group_) {
           std::vector<std::vector<Snapshot>> runs;
@@ -227,11 +257,12 @@ class Fit {
           std::vector<SimRoot> sims;
           for (std::size_t i = 0; i < group_->seedlings.size(); ++i) {
             const std::vector<Snapshot>& own = runs[static_cast<std::size_t>(group_->angleOf[i])];
-            sims.push_back(simRootOf(sc.model, comparedSnapshot(sc.model, own, group_->seedlings[i], false)));
+            sims.push_back(simRootOf(sc.model, comparedSnapshot(sc.model, own, group_->seedlings[i], false), group_->seedlings[i]));
             e.seedlingChi2.push_back(compareRoots(group_->seedlings[i], sims.back()).chi2);
           }
           fc = groupComponents(*group_, sims);
           e.groupCov = fc.cov;
+          seedlingOutputs(*group_, sims, e.seedlingTrace, e.seedlingSim);
           sim = sims.front();  // the first seedling's run: the distance, pattern and amplitude shown
         }
         const Comparison c = compareRoots(group_ ? group_->seedlings.front() : target_, sim);
@@ -823,7 +854,8 @@ TrustRegions runTrustRegions(const FitSetup& setup, Fit& fit, const std::functio
     haveSurface = true;
     ustar = next;
     if (!o.quiet) log(regionLine(regions + 1, rho, us.size(), keys, fit.xOf(next), unc, surface));
-    if (fit.count() < o.budget - 1) fit.useCovarianceOf(fit.evaluate(fit.xOf(next), "minimum " + std::to_string(regions + 1), fit.nextOrder(1)));
+    if (fit.count() < o.budget - 1)
+      fit.useCovarianceOf(fit.evaluate(fit.xOf(next), "minimum " + std::to_string(regions + 1), fit.nextOrder(1)), &lo, &hi);
     bool onEdge = false;
     for (int d = 0; d < n; ++d)
       onEdge = onEdge || (next(d) - lo(d) < 0.05 * rho && lo(d) > 0) || (hi(d) - next(d) < 0.05 * rho && hi(d) < 1);
@@ -862,7 +894,10 @@ Eigen::VectorXd answerPoint(const TrustRegions& tr) {
 // and the regions' uncertainties again against it
 void covarianceAtAnswer(Fit& fit, TrustRegions& tr) {
   if (!fit.byGroup()) return;
-  fit.useCovarianceOf(fit.evaluate(fit.xOf(answerPoint(tr)), "minimum", fit.nextOrder(1)));
+  // the box of the answer's uncertainty (answerUncertainty's): its runs the seedlings' surfaces
+  const Eigen::VectorXd u = answerPoint(tr);
+  const Eigen::VectorXd lo = (u.array() - tr.rho).max(0.0).matrix(), hi = (u.array() + tr.rho).min(1.0).matrix();
+  fit.useCovarianceOf(fit.evaluate(fit.xOf(u), "minimum", fit.nextOrder(1)), &lo, &hi);
   const FitComponents& tc = fit.traceComponents();
   for (std::size_t r = 0; r < tr.atSmallest.size(); ++r) tr.smallestUnc[r] = uncertaintyAt(tr.smallestSurfaces[r], tr.atSmallest[r], tc.trace, tc.cov);
   tr.unc = uncertaintyAt(tr.surface, tr.ustar, tc.trace, tc.cov);
@@ -1004,7 +1039,7 @@ std::vector<double> chooseFitAnswer(FitReport& rep, const FitSetup& setup, Fit& 
   chooseAnswer(rep, target, tc, surface.noiseVar().cwiseSqrt(), bm, sceneFileKeys(o.scene), [&](const FitEvaluation& e) {
     if (o.objective != "shape") return e.chi2Trace;
     const Model em = fit.sceneAt(e.x).model;
-    const SimRoot sim = simRootOf(em, comparedSnapshot(em, loadSnapshots(e.dir), target, lapse));
+    const SimRoot sim = simRootOf(em, comparedSnapshot(em, loadSnapshots(e.dir), target, lapse), target);
     return chiSquareOf(e.sim, tc.trace, shapeNoiseCovariance(tracedLike(sim.plateMm, target.plateMm), target.sigmaMm, kShapeSamples));
   });
   // the answer's run against the trace's uncertainty alone fits worse than that uncertainty allows (chi2 /

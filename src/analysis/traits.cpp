@@ -430,6 +430,31 @@ RootTraits rootTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double exclu
   return t;
 }
 
+RootTraits rootTraitsAs(const Eigen::Matrix3Xd& plateMm, const RootTraits& as, double excludeTipMm, double radiusMm,
+                        const AnalysisParams& set) {
+  if (!(as.smoothingMm > 0.0)) return rootTraits(plateMm, as.dsMm, excludeTipMm, radiusMm, set);
+  const Eigen::Matrix3Xd q = distinctPolyline(plateMm);
+  if (q.cols() < 2) throw std::invalid_argument("rootTraitsAs: a root needs at least two distinct points");
+  // the trace's two passes at its width: the second against the arc length of the first pass's curve,
+  // which a flattened wave shortens (a window as many of its millimetres spans more of the root)
+  const double b = as.smoothingMm;
+  const std::vector<double> s1 = arcLengths(q);
+  std::vector<double> s = arcLengths(loessCurve(q, s1, b, s1, nullptr));
+  for (std::size_t i = 1; i < s.size(); ++i) s[i] = std::max(s[i], s[i - 1] + 1e-12 * (1.0 + s.back()));
+  std::vector<double> at;
+  if (as.dsMm > 0.0) {
+    const double L = s.back();
+    const int m = std::max(1, static_cast<int>(std::lround(L / as.dsMm)));
+    for (int i = 0; i <= m; ++i) at.push_back(i == m ? L : L * i / m);
+  } else {
+    at = s;
+  }
+  RootTraits t = measure(q, loessCurve(q, s, b, at, nullptr), as.dsMm, excludeTipMm, radiusMm, set, 0.0);
+  t.noiseMm = estimateTraceNoise(q).sigma;
+  t.smoothingMm = as.smoothingMm;
+  return t;
+}
+
 namespace {
 
 // a root that is not waving, coiling or skewing but turned once (docs/experiments.md, "One bend"): at most

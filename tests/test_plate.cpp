@@ -294,6 +294,33 @@ TEST_CASE("plate: on a vertical plate a lateral's tip follows its set-point angl
   }
 }
 
+TEST_CASE("plate: a plate restored from its carry mid-drift continues bit for bit") {
+  // the age a drifting set point reads is the run's time less the emergence time, both carried: a plate
+  // rebuilt 20 h into its lateral's drift grows the same bits as the one that ran through
+  Model m = waving();
+  m.env.plane.alpha = 0.0;
+  completeModel(m);
+  PlateParams pp = lateralPlate(0.3, 1000, 0.5, 70);
+  pp.laterals.delay = 2 * units::hour;
+  pp.laterals.setPoint = 70 * units::deg;
+  pp.laterals.setPointFinal = 30 * units::deg;
+  pp.laterals.setPointDriftTime = 48 * units::hour;
+  const std::vector<Seedling> seedlings{sow("p", 20, 3, m)};
+  PlateSimulation plate(pp, seedlings);
+  for (int k = 0; k < 440; ++k) plate.growthStep();
+  REQUIRE(plate.size() == 2);
+  CHECK(plate.seedling(1).emergedH > 0.0);  // its age is not the run's time
+  PlateSimulation resumed(pp, seedlings, plate.carry());
+  for (int k = 0; k < 200; ++k) {
+    plate.growthStep();
+    resumed.growthStep();
+  }
+  for (int r = 0; r < 2; ++r) {
+    CHECK((plate.root(r).state().x - resumed.root(r).state().x).cwiseAbs().maxCoeff() == 0.0);
+    CHECK((plate.root(r).state().kappa0 - resumed.root(r).state().kappa0).cwiseAbs().maxCoeff() == 0.0);
+  }
+}
+
 TEST_CASE("plate: laterals inserted from downhill start at the insertion angle whatever their waving parent's tangent") {
   // the waving primary of plate_wildtype (alpha = 40): its tangent at the sites swings about downhill, so
   // laterals inserted at 65 degrees from it start anywhere in 65 +- 50 degrees; from downhill, at +-65

@@ -1,10 +1,11 @@
-// checkpoints (src/io/checkpoint.cpp): every field through a round trip (a root's and a plate's), corrupt,
-// truncated and forged files refused.
+// checkpoints (src/io/checkpoint.cpp): every field through a round trip (a root's, a plate of one, and a
+// plate's), corrupt, truncated, forged and older files refused.
 // The field lists (include/rootsim/fields.hpp) through a checkpoint: a simulation of a coil in self-
 // contact on a plate with friction, stepped, carried, written, read back into a fresh Simulation; every
 // field of every persistent struct (the rod state with its friction stick points, the progress, the
 // Newton solver's memory, the contact list, the run's accumulators and writer positions) compared by
-// name through the same lists, before and after one more growth step of both.
+// name through the same lists, before and after one more growth step of both. A scene of one root runs as
+// a plate of one seedling (plateOfOne), and checkpoints so.
 #include <doctest/doctest.h>
 
 #include <algorithm>
@@ -35,21 +36,26 @@ using rootsim::test::kSets;
 using rootsim::test::runKilled;
 fs::path scratch(const std::string& name) { return rootsim::test::scratchDir("checkpoint", name); }
 
-// the checkpoint a run would write of a's state and carry after its current growth step
-RunCheckpoint checkpointOf(const Simulation& a, std::uint64_t sceneHash) {
+// a root alone as a run steps it: a plate of one seedling
+PlateSimulation plateOfOneRoot(const Model& m) { return PlateSimulation(PlateParams{}, plateOfOne(m).seedlings); }
+
+// the checkpoint a run of one root would write of a after its current growth step
+RunCheckpoint checkpointOf(const PlateSimulation& a, std::uint64_t sceneHash) {
   RunCheckpoint c;
   c.sceneHash = sceneHash;
   c.step = a.step();
-  c.state = a.state();
-  c.carry = a.carry();
+  c.layout = RunLayout::OneRoot;
+  c.plate = a.carry();
+  c.roots.resize(1);
   return c;
 }
+const std::vector<std::string> kOneRoot = {""};  // a root alone: one seedling, no name
 
 // the checkpoint of the 90-degree plate's root after one growth step of 0.2 h: a small state for the
 // field checks
 RunCheckpoint oneStepCheckpoint(std::uint64_t sceneHash) {
   const Scene sc = loadScene(std::string(ROOTSIM_SOURCE_DIR) + "/scenes/fig2a_alpha90.toml", {"growth.step_h=0.2"});
-  Simulation a(sc.model);
+  PlateSimulation a = plateOfOneRoot(sc.model);
   a.growthStep();
   return checkpointOf(a, sceneHash);
 }
@@ -68,45 +74,51 @@ TEST_CASE("every field of every persistent struct survives a checkpoint round tr
   const Scene sc = loadScene(src + "fig2a_alpha90.toml",
                              {"tropism.beta=1", "growth.step_h=0.2", "friction.enabled=true", "friction.mu_static=0.3",
                               "friction.mu_kinetic=0.2"});
-  Simulation a(sc.model);
+  PlateSimulation a = plateOfOneRoot(sc.model);
   for (int i = 0; i < 36; ++i) a.growthStep();
   // the scene exercises what the lists carry
-  REQUIRE(a.last().selfContacts > 0);
-  const SimulationCarry ka = a.carry();
+  REQUIRE(a.root(0).last().selfContacts > 0);
+  const SimulationCarry ka = a.root(0).carry();
   REQUIRE(get<&NewtonWorkspace::sparseActive>(ka.newton));
   REQUIRE(get<&NewtonWorkspace::sparse>(ka.newton).n > 0);
   REQUIRE(!get<&ContactWorkspace::pairs>(ka.contact).empty());
   bool sticks = false;
-  for (auto f : a.state().hasPlateStick) sticks = sticks || f != 0;
+  for (auto f : a.root(0).state().hasPlateStick) sticks = sticks || f != 0;
   REQUIRE(sticks);
 
   RunCheckpoint c = checkpointOf(a, 42);
-  c.acc.watch.snapFirst = 1.5;
-  c.acc.watch.maxSubsteps = 7;
-  c.acc.watch.minSelfDistance = 0.25;
-  c.writers.timeseriesBytes = 123;
-  c.writers.vtkEntries = {{0.5, "vtk/step_000010.vtp"}};
+  c.roots[0].watch.snapFirst = 1.5;
+  c.roots[0].watch.maxSubsteps = 7;
+  c.roots[0].watch.minSelfDistance = 0.25;
+  c.roots[0].writers.timeseriesBytes = 123;
+  c.roots[0].writers.vtkEntries = {{0.5, "vtk/step_000010.vtp"}};
+  c.acc.wallBefore = 2.5;
   const fs::path dir = rootsim::test::scratchDir("checkpoint", "round_trip");
   fs::create_directories(dir);
   writeCheckpoint(dir / kCheckpointFile, c);
-  const RunCheckpoint r = readCheckpoint(dir / kCheckpointFile);
+  const RunCheckpoint r = readCheckpoint(dir / kCheckpointFile, RunLayout::OneRoot, kOneRoot);
   // the file holds every field
   std::string d = checkpointDifference(c, r);
   CHECK_MESSAGE(d.empty(), "differs after the checkpoint: ", d);
 
-  // a fresh Simulation from it carries the same again
-  Simulation b(sc.model, r.state, r.carry);
-  d = stateDifference(a.state(), b.state());
+  // a fresh plate of one from it carries the same again, and its root is the simulation a Simulation of
+  // that state and carry is
+  PlateSimulation b(PlateParams{}, plateOfOne(sc.model).seedlings, r.plate);
+  Simulation alone(sc.model, r.plate.roots[0].state, r.plate.roots[0].carry);
+  d = stateDifference(a.root(0).state(), b.root(0).state());
   CHECK_MESSAGE(d.empty(), "differs in the resumed state: ", d);
-  d = carryDifference(ka, b.carry());
+  d = carryDifference(ka, b.root(0).carry());
   CHECK_MESSAGE(d.empty(), "differs in the resumed simulation's carry: ", d);
 
-  // and both go on bit for bit: a field that a list left out shows here, in what it changes
+  // and all go on bit for bit: a field that a list left out shows here, in what it changes
   for (int i = 0; i < 4; ++i) {
     a.growthStep();
     b.growthStep();
-    d = stateDifference(a.state(), b.state());
-    if (d.empty()) d = carryDifference(a.carry(), b.carry());
+    alone.growthStep();
+    d = stateDifference(a.root(0).state(), b.root(0).state());
+    if (d.empty()) d = carryDifference(a.root(0).carry(), b.root(0).carry());
+    if (d.empty()) d = stateDifference(a.root(0).state(), alone.state());
+    if (d.empty()) d = carryDifference(a.root(0).carry(), alone.carry());
     CAPTURE(i);
     CHECK_MESSAGE(d.empty(), "differs after resuming and growing: ", d);
   }
@@ -126,12 +138,12 @@ TEST_CASE("each field of the rod state's list reaches the checkpoint file and co
     // this field alone changed: the file changes, and reads back as the changed state, differing from
     // the first in this field
     RunCheckpoint changed = c;
-    rootsim::test::perturbField<I>(changed.state, 0.5);
+    rootsim::test::perturbField<I>(changed.plate.roots[0].state, 0.5);
     writeCheckpoint(dir / kCheckpointFile, changed);
     CHECK(slurp(dir / kCheckpointFile) != before);
-    const RunCheckpoint r = readCheckpoint(dir / kCheckpointFile);
-    CHECK(stateDifference(r.state, changed.state).empty());
-    CHECK(stateDifference(r.state, c.state) == "state." + name);
+    const RunCheckpoint r = readCheckpoint(dir / kCheckpointFile, RunLayout::OneRoot, kOneRoot);
+    CHECK(stateDifference(r.plate.roots[0].state, changed.plate.roots[0].state).empty());
+    CHECK(stateDifference(r.plate.roots[0].state, c.plate.roots[0].state) == "state." + name);
     CHECK(checkpointDifference(r, changed).empty());
   });
   fs::remove_all(dir);
@@ -139,12 +151,12 @@ TEST_CASE("each field of the rod state's list reaches the checkpoint file and co
 
 TEST_CASE("a checkpoint whose rod state arrays disagree on the element count is refused naming the field") {
   RunCheckpoint c = oneStepCheckpoint(0);
-  c.state.hasObstacleStick.push_back(0);
+  c.plate.roots[0].state.hasObstacleStick.push_back(0);
   const fs::path dir = scratch("element_count");
   fs::create_directories(dir);
   writeCheckpoint(dir / kCheckpointFile, c);
   try {
-    readCheckpoint(dir / kCheckpointFile);
+    readCheckpoint(dir / kCheckpointFile, RunLayout::OneRoot, kOneRoot);
     FAIL("read a checkpoint whose arrays disagree");
   } catch (const SceneError& e) {
     const std::string what = e.what();
@@ -235,6 +247,33 @@ TEST_CASE("a forged checkpoint with a recomputed checksum and an impossible fram
   fs::remove_all(d);
 }
 
+TEST_CASE("an older rootsim's checkpoint is refused saying so (exit 2) and --force starts the run again") {
+  // a single root's checkpoint of the version before a root ran as a plate of one had its own payload:
+  // never misread as the plate's
+  const fs::path d = scratch("older");
+  const std::string args = "run " + kScene + kSets + " --out ";
+  REQUIRE(run(args + (d / "a").string()).code == 0);
+  CHECK(runKilled(args + (d / "b").string(), "40:45").code == 137);
+  const fs::path ck = d / "b.partial" / "checkpoint.bin";
+  std::string b = slurp(ck);
+  REQUIRE(b.size() > 100);
+  const std::uint32_t older = kCheckpointVersion - 1;
+  std::memcpy(b.data() + 8, &older, 4);  // the header's version, after the magic
+  { std::ofstream(ck, std::ios::binary) << b; }
+  const Result r = run(args + (d / "b").string() + " --resume");
+  INFO(r.out);
+  CHECK(r.code == 2);
+  CHECK(r.out.find("rootsim: error: " + ck.string() + ": checkpoint from an older rootsim (version " +
+                   std::to_string(older)) != std::string::npos);
+  CHECK(r.out.find("rerun with --force to discard it and start again") != std::string::npos);
+  CHECK(fs::exists(ck));
+  CHECK(!fs::exists(d / "b"));
+  const Result forced = run(args + (d / "b").string() + " --resume --force");
+  REQUIRE_MESSAGE(forced.code == 0, forced.out);
+  checkSameRun(d / "a", d / "b");
+  fs::remove_all(d);
+}
+
 TEST_CASE("every field of a plate's checkpoint survives a round trip and a plate's and a root's checkpoints refuse each other") {
   // two seedlings whose laterals (sides drawn from a seed) touch the other's from step ~130: at step 140
   // the carry holds laterals, pending sites, the sides' draws and the coupled system's memory
@@ -247,7 +286,7 @@ TEST_CASE("every field of a plate's checkpoint survives a round trip and a plate
   std::vector<std::string> names;
   for (const Seedling& sd : sc.plate.seedlings) names.push_back(sd.name);
   auto checkpointOf = [&](const PlateSimulation& p) {
-    PlateCheckpoint c;
+    RunCheckpoint c;
     c.sceneHash = 42;
     c.step = p.step();
     c.plate = p.carry();
@@ -256,46 +295,41 @@ TEST_CASE("every field of a plate's checkpoint survives a round trip and a plate
     c.acc = {2, 0.97, 1.5, 0};
     return c;
   };
-  const PlateCheckpoint c = checkpointOf(a);
+  const RunCheckpoint c = checkpointOf(a);
   REQUIRE(c.plate.laterals.size() >= 8);
   REQUIRE(get<&CoupledWorkspace::sparse>(c.plate.coupled).n > 0);
   const fs::path dir = scratch("plate_round_trip");
-  writePlateCheckpoint(dir / kCheckpointFile, c);
-  const PlateCheckpoint r = readPlateCheckpoint(dir / kCheckpointFile, names);
-  std::string d = plateCheckpointDifference(c, r);
+  writeCheckpoint(dir / kCheckpointFile, c);
+  const RunCheckpoint r = readCheckpoint(dir / kCheckpointFile, RunLayout::Plate, names);
+  std::string d = checkpointDifference(c, r);
   CHECK_MESSAGE(d.empty(), "differs after the checkpoint: ", d);
   // a plate rebuilt from it carries the same again, and both go on bit for bit
   PlateSimulation b(sc.plate.params, sc.plate.seedlings, r.plate);
-  d = plateCheckpointDifference(c, checkpointOf(b));
+  d = checkpointDifference(c, checkpointOf(b));
   CHECK_MESSAGE(d.empty(), "differs in the resumed plate's carry: ", d);
   for (int i = 0; i < 10; ++i) {
     a.growthStep();
     b.growthStep();
   }
-  d = plateCheckpointDifference(checkpointOf(a), checkpointOf(b));
+  d = checkpointDifference(checkpointOf(a), checkpointOf(b));
   CHECK_MESSAGE(d.empty(), "differs after resuming and growing: ", d);
   // a plate's checkpoint is no root's, and a root's no plate's
   try {
-    readCheckpoint(dir / kCheckpointFile);
+    readCheckpoint(dir / kCheckpointFile, RunLayout::OneRoot, kOneRoot);
     FAIL("a plate's checkpoint read as a root's");
   } catch (const SceneError& e) {
     CHECK(std::string(e.what()).find("corrupt checkpoint (a plate's checkpoint, this scene is one root") != std::string::npos);
   }
-  RunCheckpoint one;
-  one.sceneHash = 42;
-  one.step = a.root(0).step();
-  one.state = a.root(0).state();
-  one.carry = a.root(0).carry();
-  writeCheckpoint(dir / "root.bin", one);
+  writeCheckpoint(dir / "root.bin", ::checkpointOf(plateOfOneRoot(sc.plate.seedlings[0].model), 42));
   try {
-    readPlateCheckpoint(dir / "root.bin", names);
+    readCheckpoint(dir / "root.bin", RunLayout::Plate, names);
     FAIL("a root's checkpoint read as a plate's");
   } catch (const SceneError& e) {
     CHECK(std::string(e.what()).find("corrupt checkpoint (one root's checkpoint, this scene is a plate") != std::string::npos);
   }
   // a checkpoint of other seedlings: refused naming what does not fit
   try {
-    readPlateCheckpoint(dir / kCheckpointFile, {"a"});
+    readCheckpoint(dir / kCheckpointFile, RunLayout::Plate, {"a"});
     FAIL("a plate's checkpoint read for other seedlings");
   } catch (const SceneError& e) {
     CHECK(std::string(e.what()).find(" roots for 1 seedlings and ") != std::string::npos);

@@ -100,6 +100,56 @@ TEST_CASE("plate: N identical seedlings far apart grow N copies of the single ro
   }
 }
 
+TEST_CASE("plate: a root alone as a plate of one steps bit for bit as its own Simulation, tropism changed too") {
+  // what `rootsim run` of a scene of one root steps (plateOfOne): the same bits in every record and node
+  const Model m = waving();
+  const int steps = 400;  // 20 h: past the first snap
+  Simulation single(m);
+  const PlateSpec one = plateOfOne(m);
+  REQUIRE(one.seedlings.size() == 1);
+  CHECK(one.seedlings[0].name.empty());
+  PlateSimulation plate(one.params, one.seedlings);
+  REQUIRE(plate.size() == 1);
+  CHECK(plate.offset(0).norm() == 0.0);
+  auto same = [](const Eigen::Matrix3Xd& a, const Eigen::Matrix3Xd& b) {
+    return a.cols() == b.cols() && std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<size_t>(a.size())) == 0;
+  };
+  auto sameRecord = [](const StepRecord& a, const StepRecord& b) {
+    return a.step == b.step && a.elements == b.elements && a.substeps == b.substeps && a.iterations == b.iterations &&
+           a.splits == b.splits && a.unstable == b.unstable &&
+           std::memcmp(&a.thetaTip, &b.thetaTip, sizeof(double)) == 0 &&
+           std::memcmp(&a.residualForce, &b.residualForce, sizeof(double)) == 0 &&
+           std::memcmp(&a.lowestEigenvalue, &b.lowestEigenvalue, sizeof(double)) == 0 && a.tip == b.tip;
+  };
+  CHECK(same(single.state().x, plate.root(0).state().x));
+  int differ = 0;
+  for (int k = 0; k < steps; ++k) {
+    single.growthStep();
+    const PlateStepRecord& pr = plate.growthStep();
+    CHECK(pr.sweeps == 1);
+    CHECK(plate.emerged().empty());
+    const RodState& s = plate.root(0).state();
+    if (!same(single.state().x, s.x) || !same(single.state().kappa0, s.kappa0) || !sameRecord(single.last(), plate.root(0).last()))
+      ++differ;
+  }
+  CHECK(differ == 0);
+  CHECK(single.totalIterations() == plate.root(0).totalIterations());
+  CHECK(analyseShape(m, plate.root(0).state()).peaks >= 1);
+  // gravity's effect changed half-way (Python's Simulation.set): the root's and its seedling's, the same bits
+  TropismParams t = m.tropism;
+  t.beta *= 2.0;
+  single.setTropism(t);
+  plate.setTropism(0, t);
+  CHECK(plate.seedling(0).model.tropism.beta == t.beta);
+  for (int k = 0; k < 40; ++k) {
+    single.growthStep();
+    plate.growthStep();
+    if (!same(single.state().x, plate.root(0).state().x) || !sameRecord(single.last(), plate.root(0).last())) ++differ;
+  }
+  CHECK(differ == 0);
+  CHECK(std::memcmp(&single.last().thetaTip, &plate.root(0).last().thetaTip, sizeof(double)) == 0);
+}
+
 TEST_CASE("plate: two roots grown into each other push each other and never pass through") {
   // one root grows downhill; the other, sown 3 mm to its right pointing across the plate with a weak
   // gravitropism (beta = 0.02), grows into it (the shipped scene plate_collision.toml)

@@ -87,6 +87,11 @@ struct PlateSpec {
   std::string headToml;    // the resolved text of the plate-wide keys and obstacles (a root's scene starts so)
 };
 
+// a root alone as a plate of one seedling: the model as it is, at the plate's origin, no name (its errors
+// keep their own text) and no laterals. Its growth steps are the root's own (Simulation), bit for bit: a scene
+// of one root runs so (runSceneToDir)
+PlateSpec plateOfOne(const Model& m);
+
 // one row of the plate's time series
 struct PlateStepRecord {
   int step = 0;
@@ -191,6 +196,9 @@ class PlateSimulation {
 
   int size() const { return static_cast<int>(roots_.size()); }
   const Simulation& root(int r) const { return *roots_[static_cast<size_t>(r)]; }
+  // changes root r's tropism parameters between growth steps (Simulation::setTropism; its seedling's model
+  // says so too): an experiment that changes gravity's effect half-way. The caller validates them
+  void setTropism(int r, const TropismParams& t);
   const Seedling& seedling(int r) const { return seedlings_[static_cast<size_t>(r)]; }
   const PlateParams& params() const { return plate_; }
   const PlateStepRecord& last() const { return last_; }

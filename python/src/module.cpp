@@ -29,6 +29,7 @@
 #include "rootsim/environment.hpp"
 #include "rootsim/errors.hpp"
 #include "rootsim/outputs.hpp"
+#include "rootsim/plate.hpp"
 #include "rootsim/relax.hpp"
 #include "rootsim/results.hpp"
 #include "rootsim/rod_fields.hpp"
@@ -353,8 +354,9 @@ std::string runScene(const Scene& sc, const py::dict& options, py::object progre
 
 // ---- stepping ----
 
-// One C++ Simulation per Python object, used by one thread at a time (CallMutex: calls from several
-// threads are serialised, a call from inside its own step() raises RuntimeError).
+// One root per Python object, stepped as `rootsim run` steps it: a plate of one seedling (plateOfOne), used
+// by one thread at a time (CallMutex: calls from several threads are serialised, a call from inside its own
+// step() raises RuntimeError).
 class PySimulation {
  public:
   explicit PySimulation(const Scene& sc) : scene_(sc) {
@@ -366,7 +368,8 @@ class PySimulation {
                        (scene_.plate.params.laterals.enabled ? " with laterals" : "") +
                        "; a _Simulation steps one root: step the plate with rootsim.Plate (docs/python.md)");
     py::gil_scoped_release nogil;
-    sim_.emplace(scene_.model);
+    const PlateSpec one = plateOfOne(scene_.model);
+    plate_.emplace(one.params, one.seedlings);
   }
   // n growth steps; between steps the GIL is taken to poll Ctrl-C (KeyboardInterrupt after a whole step).
   // Refused (nothing run) beyond growth.steps: the scene's validation bounds the root's element count
@@ -376,20 +379,20 @@ class PySimulation {
     if (n < 1) throw py::value_error("step(n): n must be a positive integer (got " + std::to_string(n) + ")");
     const GrowthParams& g = scene_.model.growth;
     if (!g.enabled) throw SceneError(scene_.model.name + ": growth.enabled = false: nothing to step");
-    const long long left = static_cast<long long>(g.steps) - sim_->step();
+    const long long left = static_cast<long long>(g.steps) - sim().step();
     if (n > left)
       throw py::value_error("step(" + std::to_string(n) + "): only " + std::to_string(std::max(left, 0LL)) +
                             " growth steps left of growth.steps = " + std::to_string(g.steps) + " (at step " +
-                            std::to_string(sim_->step()) + "; build a Simulation with a larger growth.steps)");
+                            std::to_string(sim().step()) + "; build a Simulation with a larger growth.steps)");
     for (long long k = 0; k < n; ++k) {
       checkElementCap(n, k);
       {
         py::gil_scoped_release nogil;
-        sim_->growthStep();
+        plate_->growthStep();
       }
       if (PyErr_CheckSignals() != 0) throw py::error_already_set();
     }
-    return recordDict(sim_->last());
+    return recordDict(sim().last());
   }
   // tropism.* keys between steps, validated by the scene schema (the same messages as --set)
   void set(const std::string& key, const std::string& value) {
@@ -405,39 +408,40 @@ class PySimulation {
       overrides_.pop_back();
       throw;
     }
-    sim_->setTropism(changed.model.tropism);
+    plate_->setTropism(0, changed.model.tropism);
   }
   // the state as copies (stateDict)
   py::dict state() {
     Lock lock = acquire();
-    return stateDict(*sim_, scene_.model.env.plane.frame());
+    return stateDict(sim(), scene_.model.env.plane.frame());
   }
   py::dict record() {
     Lock lock = acquire();
-    return recordDict(sim_->last());
+    return recordDict(sim().last());
   }
   py::dict snapshot() {
     Lock lock = acquire();
-    return snapshotDict(sim_->snapshot(), scene_.model.env.plane.frame());
+    return snapshotDict(sim().snapshot(), scene_.model.env.plane.frame());
   }
   int stepCount() {
     Lock lock = acquire();
-    return sim_->step();
+    return sim().step();
   }
   // growth steps left before growth.steps (0 for a mechanics-only scene)
   int stepsLeft() {
     Lock lock = acquire();
-    return scene_.model.growth.enabled ? std::max(scene_.model.growth.steps - sim_->step(), 0) : 0;
+    return scene_.model.growth.enabled ? std::max(scene_.model.growth.steps - sim().step(), 0) : 0;
   }
   const Scene& scene() const { return scene_; }  // constant after construction: no lock
 
  private:
   using Lock = CallMutex::Lock;
   Lock acquire() { return mu_.acquire("Simulation"); }
+  const Simulation& sim() const { return plate_->root(0); }
   // before growth step k (0-based) of step(n): an element splits at most once per step, and only when
   // its rest length, grown by at most the factor 1 + rate * dt, passes growth.split_factor * h
   void checkElementCap(long long n, long long k) const {
-    const RodState& s = sim_->state();
+    const RodState& s = sim().state();
     const GrowthParams& g = scene_.model.growth;
     const double limit = g.splitFactor * scene_.model.initial.elementLength, grow = 1.0 + g.rate * g.stepTime;
     long long could = 0;
@@ -445,7 +449,7 @@ class PySimulation {
       if (s.l0[i] * grow > limit) ++could;
     if (static_cast<double>(s.elements() + could) > kMaxElements)
       throw std::runtime_error("step(" + std::to_string(n) + "): stopped after " + std::to_string(k) +
-                               " of them, at growth step " + std::to_string(sim_->step()) + ": the rod has " +
+                               " of them, at growth step " + std::to_string(sim().step()) + ": the rod has " +
                                std::to_string(s.elements()) + " elements and the next step could split " +
                                std::to_string(could) + " more, past the cap of " +
                                std::to_string(static_cast<long long>(kMaxElements)) + " elements");
@@ -453,7 +457,7 @@ class PySimulation {
 
   Scene scene_;
   std::vector<std::string> overrides_;
-  std::optional<Simulation> sim_;
+  std::optional<PlateSimulation> plate_;
   CallMutex mu_;
 };
 

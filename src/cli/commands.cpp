@@ -10,7 +10,6 @@
 #include <iterator>
 #include <iostream>
 #include <numbers>
-#include <optional>
 #include <tuple>
 
 #include "rootsim/errors.hpp"
@@ -227,26 +226,20 @@ int modesCommand(const ModesOptions& o) {
   rule.inputs = {WriteInput{dir, {"modes.csv", "modes.vtp"}}};
   claimFile(dir / "modes.csv", rule, "modes", OutputFormat::InFolder);
   claimFile(dir / "modes.vtp", rule, "modes", OutputFormat::InFolder);
-  // the final state is not stored; the run is repeated from its resolved scene (same scene, same bytes)
-  std::optional<Simulation> single;
-  std::optional<PlateSimulation> plate;
+  // the final state is not stored; the run is repeated from its resolved scene (same scene, same bytes) as
+  // `run` grew it: a plate, a root alone being a plate of one
   const Scene sc = loadScene(((plateDir.empty() ? dir : plateDir) / "scene.toml").string());
+  const PlateSpec spec = plateDir.empty() ? plateOfOne(singleRootModel(sc, "modes: " + o.runDir)) : sc.plate;
+  PlateSimulation plate(spec.params, spec.seedlings);
   const int steps = sc.model.growth.enabled ? sc.model.growth.steps : 0;
-  if (plateDir.empty())
-    single.emplace(singleRootModel(sc, "modes: " + o.runDir));
-  else
-    plate.emplace(sc.plate.params, sc.plate.seedlings);
   Progress pr(steps, o.quiet || steps == 0, "modes: repeating " + sc.model.name);
   for (int k = 1; k <= steps; ++k) {
-    if (single)
-      single->growthStep();
-    else
-      plate->growthStep();
+    plate.growthStep();
     pr.update(k, "");
   }
-  const Simulation* sim = single ? &*single : nullptr;
-  for (int r = 0; plate && r < plate->size(); ++r)
-    if (plate->seedling(r).name == rootName) sim = &plate->root(r);
+  const Simulation* sim = plateDir.empty() ? &plate.root(0) : nullptr;
+  for (int r = 0; !plateDir.empty() && r < plate.size(); ++r)
+    if (plate.seedling(r).name == rootName) sim = &plate.root(r);
   if (!sim)
     throw SceneError(o.runDir + ": repeating the plate from scene.toml grows no root " + rootName +
                      " (written by another rootsim version?)");

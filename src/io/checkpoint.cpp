@@ -302,11 +302,10 @@ std::string lastRowFirstField(const std::string& t) {
   return t.substr(from, t.find(',', from) == std::string::npos ? std::string::npos : t.find(',', from) - from);
 }
 
-// one root's part of a checkpoint (a run's, or a plate's root: what its folder dir holds), written after
-// growth step `step` (the run's; a plate's lateral has grown fewer of its own)
-void checkRanges(const RodState& state, const SimulationCarry& carry, const RunWatch& watch, double wallBefore,
-                 const WriterPositions& w, int step, long elements, const fs::path& path, const fs::path& dir,
-                 const std::string& who) {
+// one root's part of a checkpoint (what its folder dir holds: the run directory's top for a scene of one
+// root), written after growth step `step` (the run's; a plate's lateral has grown fewer of its own)
+void checkRanges(const RodState& state, const SimulationCarry& carry, const RunWatch& watch, const WriterPositions& w,
+                 int step, long elements, const fs::path& path, const fs::path& dir, const std::string& who) {
   auto refuse = [&](const fs::path& p, const std::string& field, const std::string& why) {
     refuseField(p, who + field, why);
   };
@@ -315,10 +314,6 @@ void checkRanges(const RodState& state, const SimulationCarry& carry, const RunW
   const Memory<NewtonWorkspace>& nw = carry.newton;
   const Memory<ContactWorkspace>& cw = carry.contact;
   const SparseMemory& sparse = get<&NewtonWorkspace::sparse>(nw);
-  struct {
-    const RunWatch& watch;
-    double wallBefore;
-  } a{watch, wallBefore};
   // a checkpoint is written after a growth step (1, 2, ...): every output step so far left at most one
   // snapshot (and time-series row), the initial state's included
   if (step < 1) refuse(path, "growth step", num(step) + " out of range (>= 1)");
@@ -329,8 +324,8 @@ void checkRanges(const RodState& state, const SimulationCarry& carry, const RunW
                                 {"total iterations", k.totalIterations},
                                 {"slip events", k.slipEvents},
                                 {"contact list builds", get<&ContactWorkspace::builds>(cw)},
-                                {"max substeps", a.watch.maxSubsteps},
-                                {"max self-contacts", a.watch.maxSelfContacts},
+                                {"max substeps", watch.maxSubsteps},
+                                {"max self-contacts", watch.maxSelfContacts},
                                 {"Newton negative eigenvalues", get<&NewtonWorkspace::negative>(nw)},
                                 {"Newton factors dofs", get<&NewtonWorkspace::factorsDofs>(nw)},
                                 {"Newton factors first block", get<&NewtonWorkspace::factorsFirstBlock>(nw)},
@@ -345,8 +340,6 @@ void checkRanges(const RodState& state, const SimulationCarry& carry, const RunW
     refuse(path, "sparse pattern size", num(sparse.n) + " out of range (>= -1)");
   if (get<&ContactWorkspace::builtElements>(cw) < -1)  // -1: no contact list built
     refuse(path, "contact list elements", num(get<&ContactWorkspace::builtElements>(cw)) + " out of range (>= -1)");
-  if (!(std::isfinite(a.wallBefore) && a.wallBefore >= 0))
-    refuse(path, "earlier wall time", "out of range (finite, >= 0 s)");
   if (w.trajectoryFrames < 0 || w.trajectoryFrames > maxFrames)
     refuse(path, "trajectory frame count", num(w.trajectoryFrames) + " out of range (0 .. " + num(maxFrames) +
                                                ": at most one per growth step up to " + num(step) + ", and the initial one)");
@@ -388,14 +381,12 @@ std::uint64_t sceneHash(const std::string& resolvedToml) { return fnv1a(resolved
 
 namespace {
 
-enum class Kind : std::uint32_t { Root = 0, Plate = 1 };
-
 // the header, the payload and its checksum, written atomically
-void writeFramed(const fs::path& path, Kind kind, std::uint64_t hash, int step, const std::string& payload) {
+void writeFramed(const fs::path& path, RunLayout layout, std::uint64_t hash, int step, const std::string& payload) {
   Out h;
   h.raw(kMagic, sizeof kMagic);
   h.pod(kCheckpointVersion);
-  h.pod(static_cast<std::uint32_t>(kind));
+  h.pod(static_cast<std::uint32_t>(layout));
   h.pod(hash);
   h.pod(static_cast<std::int32_t>(step));
   h.pod(std::uint32_t{0});
@@ -412,19 +403,25 @@ std::string readBytes(const fs::path& path) {
 }
 
 // checks the header and the checksum; leaves `in` at the payload, its end before the checksum
-void readHeader(In& in, Kind kind, std::uint64_t& hash, int& step) {
+void readHeader(In& in, RunLayout layout, std::uint64_t& hash, int& step) {
   const std::string& b = in.b;
   if (b.size() < kHeaderBytes + 8 || std::memcmp(b.data(), kMagic, sizeof kMagic) != 0)
     in.bad("not a rootsim checkpoint, or truncated");
   in.pos = sizeof kMagic;
   const auto version = in.pod<std::uint32_t>();
+  // an older rootsim's checkpoint is not misread: its payload was laid out otherwise (a single root's
+  // had its own before a root ran as a plate of one)
+  if (version < kCheckpointVersion)
+    throw SceneError(in.file + ": checkpoint from an older rootsim (version " + std::to_string(version) +
+                     ", this rootsim reads version " + std::to_string(kCheckpointVersion) +
+                     "): rerun with --force to discard it and start again");
   if (version != kCheckpointVersion)
     in.bad("version " + std::to_string(version) + ", this rootsim reads version " + std::to_string(kCheckpointVersion));
   const auto k = in.pod<std::uint32_t>();
-  if (k != static_cast<std::uint32_t>(kind))
-    in.bad(k == static_cast<std::uint32_t>(Kind::Plate)   ? "a plate's checkpoint, this scene is one root"
-           : k == static_cast<std::uint32_t>(Kind::Root) ? "one root's checkpoint, this scene is a plate"
-                                                         : "kind " + std::to_string(k) + " unknown");
+  if (k != static_cast<std::uint32_t>(layout))
+    in.bad(k == static_cast<std::uint32_t>(RunLayout::Plate)     ? "a plate's checkpoint, this scene is one root"
+           : k == static_cast<std::uint32_t>(RunLayout::OneRoot) ? "one root's checkpoint, this scene is a plate"
+                                                                 : "kind " + std::to_string(k) + " unknown");
   hash = in.pod<std::uint64_t>();
   step = in.pod<std::int32_t>();
   in.pod<std::uint32_t>();
@@ -468,44 +465,21 @@ long checkRoot(const In& in, const RodState& s, const SimulationCarry& k, int st
 void writeCheckpoint(const fs::path& path, const RunCheckpoint& c) {
   static_assert(std::is_trivially_copyable_v<ZoneObservables>);
   Out o;
-  put(o, c.state);
-  put(o, c.carry);
   put(o, c.acc);
-  put(o, c.writers);
-  writeFramed(path, Kind::Root, c.sceneHash, c.step, o.b);
-}
-
-RunCheckpoint readCheckpoint(const fs::path& path) {
-  RunCheckpoint c;
-  const std::string b = readBytes(path);
-  In in{b, 0, b.size(), path.string()};
-  readHeader(in, Kind::Root, c.sceneHash, c.step);
-  get(in, c.state);
-  get(in, c.carry);
-  const long n = checkRoot(in, c.state, c.carry, c.step);
-  get(in, c.acc);
-  get(in, c.writers);
-  if (in.pos != in.end) in.bad("trailing bytes");
-  checkRanges(c.state, c.carry, c.acc.watch, c.acc.wallBefore, c.writers, c.step, n, path, path.parent_path(), "");
-  return c;
-}
-
-void writePlateCheckpoint(const fs::path& path, const PlateCheckpoint& c) {
-  Out o;
   put(o, c.plate);
   put(o, c.roots);
-  put(o, c.acc);
-  writeFramed(path, Kind::Plate, c.sceneHash, c.step, o.b);
+  writeFramed(path, c.layout, c.sceneHash, c.step, o.b);
 }
 
-PlateCheckpoint readPlateCheckpoint(const fs::path& path, const std::vector<std::string>& seedlingNames) {
-  PlateCheckpoint c;
+RunCheckpoint readCheckpoint(const fs::path& path, RunLayout layout, const std::vector<std::string>& seedlingNames) {
+  RunCheckpoint c;
+  c.layout = layout;
   const std::string b = readBytes(path);
   In in{b, 0, b.size(), path.string()};
-  readHeader(in, Kind::Plate, c.sceneHash, c.step);
+  readHeader(in, layout, c.sceneHash, c.step);
+  get(in, c.acc);
   get(in, c.plate);
   get(in, c.roots);
-  get(in, c.acc);
   const PlateCarry& p = c.plate;
   const std::size_t roots = p.roots.size();
   // every root's state and carry checked as a single root's (a lateral counts its steps from its emergence)
@@ -519,6 +493,7 @@ PlateCheckpoint readPlateCheckpoint(const fs::path& path, const std::vector<std:
   if (roots != seedlings + p.laterals.size() || p.nextSite.size() != roots || c.roots.size() != roots)
     in.bad(std::to_string(roots) + " roots for " + std::to_string(seedlings) + " seedlings and " +
            std::to_string(p.laterals.size()) + " laterals");
+  if (layout == RunLayout::OneRoot && roots != 1) in.bad(std::to_string(roots) + " roots for a scene of one root");
   std::vector<std::string> names = seedlingNames;
   for (std::size_t i = 0; i < p.laterals.size(); ++i) {
     const LateralBirth& lb = p.laterals[i];
@@ -531,13 +506,19 @@ PlateCheckpoint readPlateCheckpoint(const fs::path& path, const std::vector<std:
     if (v < 0) in.bad("a root's next lateral site is negative");
   const auto& sparse = get<&CoupledWorkspace::sparse>(p.coupled);
   if (sparse.n < -1 || sparse.kl < 0 || sparse.ku < 0) in.bad("the coupled system's sparse pattern is out of range");
-  const PlateRunAccumulators& a = c.acc;
-  if (a.maxSweeps < 1 || !(std::isfinite(a.wallBefore) && a.wallBefore >= 0) || !(std::isnan(a.minGap) || a.minGap >= 0))
+  const RunAccumulators& a = c.acc;
+  if (!(std::isfinite(a.wallBefore) && a.wallBefore >= 0))
+    refuseField(path, "earlier wall time", "out of range (finite, >= 0 s)");
+  if (a.maxSweeps < 1 || !(std::isnan(a.minGap) || a.minGap >= 0) ||
+      (layout == RunLayout::OneRoot && a.seriesBytes != 0))
     in.bad("the plate's accumulators are out of range");
+  // each root's part against its folder: the run directory itself for a scene of one root
   const fs::path dir = path.parent_path();
-  for (std::size_t r = 0; r < roots; ++r)
-    checkRanges(p.roots[r].state, p.roots[r].carry, c.roots[r].watch, 0.0, c.roots[r].writers, c.step, elements[r], path,
-                dir / "roots" / names[r], "root " + names[r] + ": ");
+  for (std::size_t r = 0; r < roots; ++r) {
+    const bool top = layout == RunLayout::OneRoot;
+    checkRanges(p.roots[r].state, p.roots[r].carry, c.roots[r].watch, c.roots[r].writers, c.step, elements[r], path,
+                top ? dir : dir / "roots" / names[r], top ? "" : "root " + names[r] + ": ");
+  }
   return c;
 }
 
@@ -548,21 +529,13 @@ namespace rootsim {
 std::string checkpointDifference(const RunCheckpoint& a, const RunCheckpoint& b) {
   if (a.sceneHash != b.sceneHash) return "sceneHash";
   if (a.step != b.step) return "step";
-  std::string d = difference(a.state, b.state, "state");
-  if (d.empty()) d = difference(a.carry, b.carry, "carry");
-  if (d.empty()) d = difference(a.acc, b.acc, "acc");
-  if (d.empty()) d = difference(a.writers, b.writers, "writers");
+  if (a.layout != b.layout) return "layout";
+  std::string d = difference(a.acc, b.acc, "acc");
+  if (d.empty()) d = difference(a.plate, b.plate, "plate");
+  if (d.empty()) d = difference(a.roots, b.roots, "roots");
   return d;
 }
 std::string carryDifference(const SimulationCarry& a, const SimulationCarry& b) { return difference(a, b, "carry"); }
 std::string stateDifference(const RodState& a, const RodState& b) { return difference(a, b, "state"); }
-std::string plateCheckpointDifference(const PlateCheckpoint& a, const PlateCheckpoint& b) {
-  if (a.sceneHash != b.sceneHash) return "sceneHash";
-  if (a.step != b.step) return "step";
-  std::string d = difference(a.plate, b.plate, "plate");
-  if (d.empty()) d = difference(a.roots, b.roots, "roots");
-  if (d.empty()) d = difference(a.acc, b.acc, "acc");
-  return d;
-}
 
 }  // namespace rootsim

@@ -1,6 +1,6 @@
 #pragma once
 // internal: a run's outputs from start to end, the same for a run of one root and a plate
-// (run_scene.cpp, run_plate.cpp): the run directory claimed, locked and marked (RunDir), continued from
+// (run_scene.cpp): the run directory claimed, locked and marked (RunDir), continued from
 // its checkpoint with --resume, each root's folder with its streams and watch (RootOutputs), the run's own
 // streams, the growth steps with their checkpoint cadence, and the end: committed whole, or marked as a
 // failed run (DIR.incomplete with ERROR.txt) saying why

@@ -37,8 +37,9 @@ constexpr long kJointRelist = 256;
 
 long long cellKey(long long cx, long long cy) { return (cx + (1LL << 30)) * (1LL << 31) + (cy + (1LL << 30)); }
 
+// a root's error naming its seedling; a scene of one root alone (a plate of one, no name) keeps its own text
 RelaxError namedError(const std::string& root, const std::exception& e) {
-  return RelaxError("seedling " + root + ": " + e.what());
+  return RelaxError(root.empty() ? std::string(e.what()) : "seedling " + root + ": " + e.what());
 }
 
 }  // namespace
@@ -100,6 +101,11 @@ PlateCarry PlateSimulation::carry() const {
 }
 
 Vec3 PlateSimulation::offset(int r) const { return offset_[static_cast<size_t>(r)]; }
+
+void PlateSimulation::setTropism(int r, const TropismParams& t) {
+  roots_[static_cast<size_t>(r)]->setTropism(t);
+  seedlings_[static_cast<size_t>(r)].model.tropism = t;
+}
 
 void PlateSimulation::indexElements() {
   // which roots come within reach of another at all: their boxes in the plate, each widened by its reach
@@ -496,6 +502,15 @@ Model lateralModel(const Model& parent, const LateralParams& lp) {
   m.tropism.setPointDriftTime = lp.setPointDriftTime;
   m.initial.length = lp.initialLength;
   return m;
+}
+
+PlateSpec plateOfOne(const Model& m) {
+  PlateSpec spec;
+  Seedling sd;
+  sd.model = m;
+  spec.seedlings.push_back(std::move(sd));
+  spec.base = m;
+  return spec;
 }
 
 std::string lateralName(const std::string& parent, int site) { return parent + "." + std::to_string(site + 1); }

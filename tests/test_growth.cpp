@@ -308,3 +308,60 @@ TEST_CASE("proprioception alone drives kappa0 toward zero") {
   CHECK(maxZone == doctest::Approx(std::hypot(200.0, 100.0) * std::exp(-0.2 * 1.0 * 3.0)).epsilon(0.1));
 }
 
+
+TEST_CASE("set-point drift: phi_s(age) follows its law exactly at emergence, at the drift time and long after") {
+  TropismParams tp;
+  tp.setPoint = 70 * deg;
+  tp.setPointFinal = 30 * deg;
+  tp.setPointDriftTime = 48 * 3600.0;
+  const double T = tp.setPointDriftTime;
+  // linear: 70 at 0, the midpoint at T/2, 30 at T and held after; a negative age (before emergence) is 0
+  tp.setPointDrift = SetPointDrift::Linear;
+  CHECK(setPointAt(tp, 0.0) == tp.setPoint);
+  CHECK(setPointAt(tp, -5.0) == tp.setPoint);
+  ROOTSIM_CHECK_CLOSE(setPointAt(tp, 0.5 * T), 50 * deg, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(setPointAt(tp, 0.25 * T), 60 * deg, kRoundoff);
+  CHECK(setPointAt(tp, T) == 30 * deg);
+  CHECK(setPointAt(tp, 10 * T) == 30 * deg);
+  // exponential: 70 at 0, 30 + 40/e at T, 30 + 40/e^3 at 3T, 30 exactly once the exponential underflows
+  tp.setPointDrift = SetPointDrift::Exponential;
+  CHECK(setPointAt(tp, 0.0) == tp.setPoint);
+  ROOTSIM_CHECK_CLOSE(setPointAt(tp, T), (30 + 40 / std::numbers::e) * deg, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(setPointAt(tp, 3 * T), (30 + 40 * std::exp(-3.0)) * deg, kRoundoff);
+  CHECK(setPointAt(tp, 1000 * T) == 30 * deg);
+  // drifting up works the same way
+  tp.setPointFinal = 90 * deg;
+  ROOTSIM_CHECK_CLOSE(setPointAt(tp, T), (90 - 20 / std::numbers::e) * deg, kRoundoff);
+  // no drift (no final angle, or final = initial): the constant bit for bit at every age, whatever the
+  // law and time
+  for (SetPointDrift law : {SetPointDrift::Linear, SetPointDrift::Exponential}) {
+    tp.setPointDrift = law;
+    tp.setPointFinal = tp.setPoint;
+    for (double age : {0.0, 0.3 * T, T, 50 * T}) CHECK(setPointAt(tp, age) == tp.setPoint);
+    tp.setPointFinal.reset();
+    for (double age : {0.0, 0.3 * T, T, 50 * T}) CHECK(setPointAt(tp, age) == tp.setPoint);
+  }
+}
+
+TEST_CASE("set-point drift: without drift the law and its time change no bit of a growing organ") {
+  // a free horizontal organ (plane off) turning to a set point of 40 deg: no final angle, and a final angle
+  // equal to it under another law and time, grow the same bits; a final angle of 0 grows others
+  Model m = coarse(90, 0.2, 20);
+  m.env.plane.enabled = false;
+  m.tropism.setPoint = 40 * deg;
+  completeModel(m);
+  Model same = m, drifting = m;
+  same.tropism.setPointFinal = 40 * deg;
+  same.tropism.setPointDrift = SetPointDrift::Linear;
+  same.tropism.setPointDriftTime = 1.0;
+  drifting.tropism.setPointFinal = 0.0;
+  Simulation a(m), b(same), c(drifting);
+  for (int i = 0; i < m.growth.steps; ++i) {
+    a.growthStep();
+    b.growthStep();
+    c.growthStep();
+  }
+  CHECK((a.state().x - b.state().x).cwiseAbs().maxCoeff() == 0.0);
+  CHECK((a.state().kappa0 - b.state().kappa0).cwiseAbs().maxCoeff() == 0.0);
+  CHECK((a.state().kappa0 - c.state().kappa0).cwiseAbs().maxCoeff() > 0.0);
+}

@@ -9,6 +9,7 @@
 
 #include "rootsim/analysis.hpp"
 #include "rootsim/contact.hpp"
+#include "rootsim/growth.hpp"
 #include "rootsim/plate.hpp"
 #include "rootsim/tolerance.hpp"
 #include "rootsim/units.hpp"
@@ -301,6 +302,73 @@ TEST_CASE("plate: lateral roots emerge at the asked spacing and, on a vertical p
     CHECK(theta * plate.seedling(r).model.initial.angle > 0.0);
   }
   CHECK(judged >= 2);
+}
+
+TEST_CASE("plate: on a vertical plate a lateral's tip follows its set-point angle drifting with the lateral's age") {
+  // one lateral, emerging 22.5 h into the run (a 24 h delay), inserted at 70 degrees from its vertical
+  // parent, its set-point angle drifting from 70 to 30 degrees over 48 h: its tip angle is the law's at
+  // its age (not at the run's time: that differs by 2-3 degrees in the last 40 h of the exponential)
+  Model m = waving();
+  m.env.plane.alpha = 0.0;
+  completeModel(m);
+  PlateParams pp = lateralPlate(0.3, 1000, 0.5, 70);
+  LateralParams& lp = pp.laterals;
+  lp.delay = 24 * units::hour;
+  lp.setPoint = 70 * units::deg;
+  lp.setPointFinal = 30 * units::deg;
+  lp.setPointDriftTime = 48 * units::hour;
+  for (const SetPointDrift law : {SetPointDrift::Linear, SetPointDrift::Exponential}) {
+    lp.setPointDrift = law;
+    const bool linear = law == SetPointDrift::Linear;
+    PlateSimulation plate(pp, {sow("p", 20, 3, m)});
+    double during = 0.0, after = 0.0, lastAge = 0.0;  // largest |tip angle - law| [deg]
+    for (int k = 0; k < 2800; ++k) {
+      plate.growthStep();
+      if (plate.size() < 2) continue;
+      REQUIRE(plate.size() == 2);
+      const double age = plate.root(1).state().time - plate.seedling(1).emergedH * units::hour;
+      const double theta = plate.root(1).last().thetaTip;
+      const double off = std::abs(theta - setPointAt(plate.seedling(1).model.tropism, age)) / units::deg;
+      // linear: the tip lags the ramp by up to 4.4 degrees, then rings about 30 once it is reached;
+      // exponential: from one time constant on it is on the law within 0.6 degrees
+      if (age <= lp.setPointDriftTime) during = std::max(during, linear ? off : 0.0);
+      if (age >= (linear ? 1.5 : 1.0) * lp.setPointDriftTime) after = std::max(after, off);
+      lastAge = age;
+    }
+    INFO((linear ? "linear" : "exponential") << ": off the law by " << during << " deg during the drift, " << after
+                                             << " deg after it; age at the end " << lastAge / units::hour << " h");
+    REQUIRE(plate.seedling(1).emergedH == doctest::Approx(22.5).epsilon(0.01));
+    CHECK(lastAge > 2.0 * lp.setPointDriftTime);
+    CHECK(during <= 5.0);
+    CHECK(after <= (linear ? 2.0 : 1.0));
+  }
+}
+
+TEST_CASE("plate: a plate restored from its carry mid-drift continues bit for bit") {
+  // the age a drifting set point reads is the run's time less the emergence time, both carried: a plate
+  // rebuilt 20 h into its lateral's drift grows the same bits as the one that ran through
+  Model m = waving();
+  m.env.plane.alpha = 0.0;
+  completeModel(m);
+  PlateParams pp = lateralPlate(0.3, 1000, 0.5, 70);
+  pp.laterals.delay = 2 * units::hour;
+  pp.laterals.setPoint = 70 * units::deg;
+  pp.laterals.setPointFinal = 30 * units::deg;
+  pp.laterals.setPointDriftTime = 48 * units::hour;
+  const std::vector<Seedling> seedlings{sow("p", 20, 3, m)};
+  PlateSimulation plate(pp, seedlings);
+  for (int k = 0; k < 440; ++k) plate.growthStep();
+  REQUIRE(plate.size() == 2);
+  CHECK(plate.seedling(1).emergedH > 0.0);  // its age is not the run's time
+  PlateSimulation resumed(pp, seedlings, plate.carry());
+  for (int k = 0; k < 200; ++k) {
+    plate.growthStep();
+    resumed.growthStep();
+  }
+  for (int r = 0; r < 2; ++r) {
+    CHECK((plate.root(r).state().x - resumed.root(r).state().x).cwiseAbs().maxCoeff() == 0.0);
+    CHECK((plate.root(r).state().kappa0 - resumed.root(r).state().kappa0).cwiseAbs().maxCoeff() == 0.0);
+  }
 }
 
 TEST_CASE("plate: laterals inserted from downhill start at the insertion angle whatever their waving parent's tangent") {

@@ -76,7 +76,8 @@ TEST_CASE("plate scenes: bad seedlings are refused naming file:line and the key"
             "scenes/t.toml:22: seedling[1].set.tropism.beta must be") == 0);
   // unknown seedling key, missing name or position, a name taken twice, a name that is no folder
   CHECK(errorOf(kHead + seedling("a", 20, 5, "angle = 3\n")) ==
-        "scenes/t.toml:21: unknown key seedling[1].angle (seedling keys: name, genotype, position_mm, angle_deg, set_point_deg, set)");
+        "scenes/t.toml:21: unknown key seedling[1].angle (seedling keys: name, genotype, position_mm, angle_deg, set_point_deg, "
+        "set_point_final_deg, set_point_drift, set_point_drift_h, set)");
   CHECK(errorOf(kHead + "\n[[seedling]]\nposition_mm = [20, 5]\n").find("seedling[1].name is missing") != std::string::npos);
   CHECK(errorOf(kHead + "\n[[seedling]]\nname = \"a\"\n").find("seedling[1].position_mm is missing") != std::string::npos);
   CHECK(errorOf(kHead + seedling("a", 20, 5) + seedling("a", 40, 5)).find("\"a\" is taken by seedling[1]") != std::string::npos);
@@ -207,6 +208,67 @@ TEST_CASE("plate scenes: [laterals] keys are checked naming file:line and the ke
   const Scene sc = parseScene(kHead + "\n[laterals]\nenabled = true\nset_point_deg = 45\n" + seedling("a", 20, 5), "scenes/l.toml");
   CHECK(sc.plate.params.laterals.enabled);
   CHECK(parseScene(sc.resolvedToml, "scenes/l.toml").resolvedToml == sc.resolvedToml);
+}
+
+TEST_CASE("plate scenes: the set-point drift keys, their defaults and their checks") {
+  const std::string lat = "\n[laterals]\nenabled = true\n";
+  // a final angle left out is the set-point angle, wherever that is set: no drift
+  const Scene plain = parseScene(kHead + lat + "set_point_deg = 45\n" + seedling("a", 20, 5) +
+                                     seedling("b", 40, 5, "set = { \"laterals.set_point_deg\" = 70 }\nset_point_deg = 20\n"),
+                                 "scenes/p.toml");
+  CHECK(plain.plate.params.laterals.setPointFinal == plain.plate.params.laterals.setPoint);
+  ROOTSIM_CHECK_CLOSE(plain.plate.params.laterals.setPointFinal.value(), 45 * units::deg, kRoundoff);
+  const Seedling& b = plain.plate.seedlings[1];
+  CHECK(b.laterals->setPointFinal == b.laterals->setPoint);
+  ROOTSIM_CHECK_CLOSE(b.laterals->setPointFinal.value(), 70 * units::deg, kRoundoff);
+  CHECK(b.model.tropism.setPointFinal == b.model.tropism.setPoint);
+  ROOTSIM_CHECK_CLOSE(b.model.tropism.setPointFinal.value(), 20 * units::deg, kRoundoff);
+  CHECK(plain.plate.seedlings[0].model.tropism.setPointFinal == 0.0);
+  CHECK(parseScene(plain.resolvedToml, "scenes/p.toml").resolvedToml == plain.resolvedToml);
+  // a drift given: its final angle, law and time, plate-wide, a seedling's own and a seedling's laterals'
+  const Scene drift = parseScene(kHead + lat + "set_point_deg = 70\nset_point_final_deg = 30\nset_point_drift = \"linear\"\n" +
+                                     "set_point_drift_h = 48\n" + seedling("a", 20, 5) +
+                                     seedling("b", 40, 5, "set_point_final_deg = 10\nset_point_drift_h = 6\n"
+                                                          "set = { \"laterals.set_point_drift\" = \"exponential\" }\n"),
+                                 "scenes/d.toml");
+  const LateralParams& lp = drift.plate.params.laterals;
+  ROOTSIM_CHECK_CLOSE(lp.setPoint, 70 * units::deg, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(lp.setPointFinal.value(), 30 * units::deg, kRoundoff);
+  CHECK(lp.setPointDrift == SetPointDrift::Linear);
+  ROOTSIM_CHECK_CLOSE(lp.setPointDriftTime, 48 * units::hour, kRoundoff);
+  const Seedling& db = drift.plate.seedlings[1];
+  CHECK(db.laterals->setPointDrift == SetPointDrift::Exponential);
+  ROOTSIM_CHECK_CLOSE(db.laterals->setPointFinal.value(), 30 * units::deg, kRoundoff);
+  CHECK(db.model.tropism.setPoint == 0.0);
+  ROOTSIM_CHECK_CLOSE(db.model.tropism.setPointFinal.value(), 10 * units::deg, kRoundoff);
+  ROOTSIM_CHECK_CLOSE(db.model.tropism.setPointDriftTime, 6 * units::hour, kRoundoff);
+  CHECK(parseScene(drift.resolvedToml, "scenes/d.toml").resolvedToml == drift.resolvedToml);
+  // a drawn set-point angle carries a final angle left out along (no drift), each seedling its own draw
+  const Scene drawn = parseScene(kHead + lat + seedling("a", 20, 5) + seedling("b", 40, 5) +
+                                     "\n[population]\nspread = { \"laterals.set_point_deg\" = { normal_sd = 10 } }\n",
+                                 "scenes/s.toml");
+  for (const Seedling& sd : drawn.plate.seedlings) {
+    CHECK(sd.laterals->setPoint != 60 * units::deg);
+    CHECK(sd.laterals->setPointFinal == sd.laterals->setPoint);
+  }
+  CHECK(parseScene(drawn.resolvedToml, "scenes/s.toml").resolvedToml == drawn.resolvedToml);
+  // bad values: file:line, the key, what was expected
+  CHECK(errorOf(kHead + "\n[laterals]\nset_point_drift_h = -1\n" + seedling("a", 20, 5)) ==
+        "scenes/t.toml:19: laterals.set_point_drift_h must be in (0, 10000] (got -1)");
+  CHECK(errorOf(kHead + "\n[laterals]\nset_point_drift = \"cubic\"\n" + seedling("a", 20, 5)) ==
+        "scenes/t.toml:19: laterals.set_point_drift must be one of \"linear\", \"exponential\" (got \"cubic\")");
+  CHECK(errorOf(kHead + "\n[laterals]\nset_point_final_deg = 200\n" + seedling("a", 20, 5)) ==
+        "scenes/t.toml:19: laterals.set_point_final_deg must be in [0, 180] (got 200)");
+  CHECK(errorOf(kHead + "\n[laterals]\nset_point_finl_deg = 20\n" + seedling("a", 20, 5)).find(
+            "scenes/t.toml:19: unknown key laterals.set_point_finl_deg (did you mean laterals.set_point_final_deg?)") == 0);
+  CHECK(errorOf(kHead + seedling("a", 20, 5, "set_point_drift_h = 0\n")) ==
+        "scenes/t.toml:21: seedling[1].set_point_drift_h must be in (0, 10000] (got 0)");
+  CHECK(errorOf(kHead + seedling("a", 20, 5, "set_point_final_deg = 180\n")) ==
+        "scenes/t.toml:21: seedling[1].set_point_final_deg must be in [0, 180) (got 180)");
+  CHECK(errorOf(kHead + seedling("a", 20, 5, "set_point_drift = \"log\"\n")) ==
+        "scenes/t.toml:21: seedling[1].set_point_drift must be one of \"linear\", \"exponential\" (got \"log\")");
+  CHECK(errorOf(kHead + seedling("a", 20, 5, "set = { \"laterals.set_point_drift_h\" = -3 }\n")).find(
+            "scenes/t.toml:21: seedling[1].set.laterals.set_point_drift_h must be in (0, 10000] (got -3)") == 0);
 }
 
 TEST_CASE("plate runs: lateral roots get their folders, rows in plate.csv and plants' roots in the plate's RSML") {

@@ -1,6 +1,7 @@
 #pragma once
 // The constant description of a simulation, built from a scene (docs/model.md, Experiment and
 // parameters). SI units inside.
+#include <optional>
 #include <string>
 
 #include "rootsim/initial.hpp"
@@ -10,6 +11,11 @@
 namespace rootsim {
 
 enum class Sensing { Local, Apical };
+
+// how the gravitropic set-point angle goes from its initial to its final value with the organ's age
+// (docs/plate.md, Set-point drift): linearly, reaching it at the drift time; or exponentially, the drift
+// time its time constant
+enum class SetPointDrift { Linear, Exponential };
 
 struct GrowthParams {
   bool enabled = true;
@@ -29,8 +35,14 @@ struct TropismParams {
   double cnPeriod = 1.0 * units::hour;  // circumnutation period [s]
   // gravitropic set-point angle phi_s (docs/plate.md, Lateral roots): the organ grows towards
   // g_s = cos(phi_s) g + sin(phi_s) h, h the horizontal direction of its apex's tangent; 0: towards g
-  // (the primary root's law). A lateral root's; a plate seedling's set_point_deg, not a scene key
-  double setPoint = 0.0;           // [rad]
+  // (the primary root's law). A lateral root's; a plate seedling's set_point_deg, not a scene key.
+  // phi_s drifts with the organ's age from setPoint towards setPointFinal (setPointAt, growth.hpp);
+  // none, or equal to setPoint: no drift
+  double setPoint = 0.0;                   // [rad]
+  std::optional<double> setPointFinal;     // [rad]
+  SetPointDrift setPointDrift = SetPointDrift::Exponential;
+  double setPointDriftTime = 24.0 * units::hour;  // linear: time to reach setPointFinal; exponential:
+                                                  // the time constant [s] (> 0)
 };
 
 struct AnalysisParams {

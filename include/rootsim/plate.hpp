@@ -30,7 +30,11 @@ struct LateralParams {
   double zoneLength = 0.6e-3;      // its growth zone [m]
   double initialLength = 0.3e-3;   // its length at emergence [m]
   double beta = 0.1, gamma = 0.1, rTau = 0.0;
-  double setPoint = 60.0 * units::deg;  // its gravitropic set-point angle [rad]
+  double setPoint = 60.0 * units::deg;  // its gravitropic set-point angle at emergence [rad]
+  std::optional<double> setPointFinal;   // the angle it drifts to with its age (TropismParams; none, or
+                                         // equal to setPoint: no drift) [rad]
+  SetPointDrift setPointDrift = SetPointDrift::Exponential;
+  double setPointDriftTime = 24.0 * units::hour;  // [s]
   int maxOrder = 1;                // laterals of laterals up to this order (1: laterals of the primary only)
 };
 

@@ -68,5 +68,7 @@ std::vector<SceneValue> sceneValues(const Model& model, const OutputParams& outp
 // each key's default, range and meaning, as the scene schema declares them (docs/plate.md's generated
 // tables)
 std::string plateKeysMarkdown(const std::string& section);
+// the keys of one of the plate's tables, as the scene schema declares them ("seedling": name, genotype, ...)
+std::vector<std::string> plateKeys(const std::string& section);
 
 }  // namespace rootsim

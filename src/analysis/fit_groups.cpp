@@ -176,9 +176,8 @@ bool isPlateKey(const std::string& key) {
   const std::string section = key.substr(0, key.find('.'));
   for (const char* s : {"plate", "population", "seedling", "laterals"})
     if (section == s) return true;
-  for (const char* s : {"name", "genotype", "position_mm", "angle_deg", "set_point_deg"})
-    if (key == s) return true;
-  return false;
+  const std::vector<std::string> seedlingKeys = plateKeys("seedling");  // a seedling's own, by its bare name
+  return std::find(seedlingKeys.begin(), seedlingKeys.end(), key) != seedlingKeys.end();
 }
 
 bool goodGroupName(const std::string& s) {

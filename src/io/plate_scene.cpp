@@ -185,12 +185,13 @@ PlateTables readPlate(const toml::table& root, const std::string& sourceName, co
 
   // the plate's parameters and its laterals, as read
   PlateParams& pp = out.spec.params;
-  for (const KeySpec& k : plateSchema()) {
-    if (k.setPlate) k.setPlate(pp, plate.at(k.full()));
-    if (k.setLaterals) k.setLaterals(pp.laterals, plate.at(k.full()));
-  }
   Values plateWide = base;
   for (const auto& [key, v] : plate) plateWide[key] = v;
+  resolveFollowingDefaults(plateWide);
+  for (const KeySpec& k : plateSchema()) {
+    if (k.setPlate) k.setPlate(pp, plateWide.at(k.full()));
+    if (k.setLaterals) k.setLaterals(pp.laterals, plateWide.at(k.full()));
+  }
   if (latNode) checkLaterals(plateWide, latLoc, "");
 
   std::map<std::string, Spread> spreads;
@@ -246,6 +247,7 @@ PlateTables readPlate(const toml::table& root, const std::string& sourceName, co
       }
       ps.values[ks->full()] = readValue(*ks, n, loc, ps.where + "." + key, text);
     }
+    resolveFollowingDefaults(ps.values);  // before the draws: a spread key's centre is its value
     const std::string seedName = ps.values.at("seedling.name").str;
     if (ps.values.at("seedling.name").origin == "default")
       throw SceneError(ps.loc + ": " + ps.where + ".name is missing (each seedling is named)");
@@ -283,6 +285,7 @@ PlateTables readPlate(const toml::table& root, const std::string& sourceName, co
       ps.values[s.full] = v;
       if (ks.section != "seedling") ps.set.insert(s.full);
     }
+    resolveFollowingDefaults(ps.values);
     seeds.push_back(std::move(ps));
   }
 
@@ -385,8 +388,11 @@ std::string seedlingToml(const Seedling& sd, const Model& base, const LateralPar
   for (const KeySpec& k : plateSchema()) {
     if (k.section != "seedling") continue;
     const Value v = k.getSeedling(sd);
-    // the optional keys at their default are left out
-    if ((k.key == "genotype" || k.key == "set_point_deg") && tomlText(k, v) == tomlText(k, defaultValue(k))) continue;
+    // the optional keys at their default are left out (a following key's default: its leader's value)
+    const bool optional = k.key == "genotype" || k.key.rfind("set_point_", 0) == 0;
+    const KeySpec* leader = k.defaultFollows.empty() ? nullptr : findPlateKey(k.section, k.defaultFollows);
+    const std::string def = leader ? tomlText(*leader, leader->getSeedling(sd)) : tomlText(k, defaultValue(k));
+    if (optional && tomlText(k, v) == def) continue;
     os += k.key + " = " + tomlText(k, v) + "\n";
   }
   // its keys that differ from the plate's

@@ -207,6 +207,22 @@ KeySpec point(const char* sec, const char* key, Field field, const char* doc) {
                });
   return k;
 }
+// a number key whose default is another key's value of its section (KeySpec::defaultFollows): its field
+// is optional, none reading as the leader's field
+template <class Target, class Field, class Leader>
+KeySpec following(const char* sec, const char* key, Field field, const char* leaderKey, Leader leader, KeyUnit u,
+                  double lo, bool loOpen, double hi, bool hiOpen, const char* doc) {
+  KeySpec k = make(sec, key, KeyType::Real, doc);
+  k.lo = lo; k.loOpen = loOpen; k.hi = hi; k.hiOpen = hiOpen;
+  k.defaultFollows = leaderKey;
+  bind<Target>(k, [field, u](Target& m, const Value& v) { field(m) = toSi(v.num, u); },
+               [field, leader, u](const Target& m) {
+                 Value v;
+                 v.num = fromSi(field(m).value_or(leader(m)), u);
+                 return v;
+               });
+  return k;
+}
 // load.gravity: on is the standard acceleration straight down, off is none
 KeySpec gravity(const char* doc) {
   KeySpec k = make("load", "gravity", KeyType::Boolean, doc);
@@ -390,6 +406,11 @@ std::string label(const Value& v) {
 // a plate up to 1 m; lateral lengths up to 1 m and delays up to 1000 h; the lateral's root keys as the
 // root's ([root], [growth], [tropism]).
 #define FIELD(path) [](auto& m) -> auto& { return m.path; }
+namespace {
+std::vector<std::pair<std::string, SetPointDrift>> driftLaws() {
+  return {{"linear", SetPointDrift::Linear}, {"exponential", SetPointDrift::Exponential}};
+}
+}  // namespace
 const std::vector<KeySpec>& plateSchema() {
   static const std::vector<KeySpec> keys = withDefaults({
       real<PlateParams>("plate", "width_mm", FIELD(width), kMm, 0, true, 1000, false,
@@ -405,7 +426,16 @@ const std::vector<KeySpec>& plateSchema() {
       real<Seedling>("seedling", "angle_deg", FIELD(model.initial.angle), kDeg, -180, false, 180, false,
                      "initial direction from downhill in the plate, positive towards +lateral like theta [deg]"),
       real<Seedling>("seedling", "set_point_deg", FIELD(model.tropism.setPoint), kDeg, 0, false, 180, true,
-                     "gravitropic set-point angle [deg] (0: the primary root's law)"),
+                     "gravitropic set-point angle [deg] (0: the primary root's law); at the start of the run, "
+                     "when it drifts"),
+      following<Seedling>("seedling", "set_point_final_deg", FIELD(model.tropism.setPointFinal), "set_point_deg",
+                          FIELD(model.tropism.setPoint), kDeg, 0, false, 180, true,
+                          "the set-point angle it drifts to with its age (the run's time) [deg]"),
+      choice<Seedling>("seedling", "set_point_drift", FIELD(model.tropism.setPointDrift), driftLaws(),
+                       "how the set-point angle drifts: linearly, reaching set_point_final_deg at set_point_drift_h, "
+                       "or exponentially, set_point_drift_h the time constant"),
+      real<Seedling>("seedling", "set_point_drift_h", FIELD(model.tropism.setPointDriftTime), kHour, 0, true, 1e4, false,
+                     "the drift's time: linear, to reach set_point_final_deg; exponential, its time constant [h]"),
       boolean<LateralParams>("laterals", "enabled", FIELD(enabled), "grow lateral roots"),
       real<LateralParams>("laterals", "first_mm", FIELD(first), kMm, 0, false, 1000, false,
                           "the first site, from the parent's base along its rest arc length [mm]"),
@@ -437,7 +467,15 @@ const std::vector<KeySpec>& plateSchema() {
       real<LateralParams>("laterals", "gamma", FIELD(gamma), kOne, 0, false, 100, false, "its proprioceptive gain gamma"),
       real<LateralParams>("laterals", "twist_r_tau", FIELD(rTau), kOne, -10, false, 10, false, "its intrinsic twist R*tau"),
       real<LateralParams>("laterals", "set_point_deg", FIELD(setPoint), kDeg, 0, false, 180, false,
-                          "its gravitropic set-point angle [deg]"),
+                          "its gravitropic set-point angle [deg]; at its emergence, when it drifts"),
+      following<LateralParams>("laterals", "set_point_final_deg", FIELD(setPointFinal), "set_point_deg", FIELD(setPoint), kDeg,
+                               0, false, 180, false,
+                               "the set-point angle it drifts to with its age (the time since it emerged) [deg]"),
+      choice<LateralParams>("laterals", "set_point_drift", FIELD(setPointDrift), driftLaws(),
+                            "how the set-point angle drifts: linearly, reaching set_point_final_deg at "
+                            "set_point_drift_h, or exponentially, set_point_drift_h the time constant"),
+      real<LateralParams>("laterals", "set_point_drift_h", FIELD(setPointDriftTime), kHour, 0, true, 1e4, false,
+                          "the drift's time: linear, to reach set_point_final_deg; exponential, its time constant [h]"),
       integer<LateralParams>("laterals", "max_order", FIELD(maxOrder), 1, 4,
                              "laterals of laterals up to this order (1: laterals of the primary only)"),
   });
@@ -461,6 +499,16 @@ Value defaultValue(const KeySpec& k) {
   v.vec = k.defVec;
   v.origin = "default";
   return v;
+}
+
+void resolveFollowingDefaults(Values& v) {
+  for (const KeySpec& k : plateSchema()) {
+    if (k.defaultFollows.empty()) continue;
+    const auto mine = v.find(k.full());
+    if (mine == v.end() || mine->second.origin != "default") continue;
+    const Value& leader = v.at(k.section + "." + k.defaultFollows);
+    mine->second.num = leader.num;
+  }
 }
 
 std::string formatNumber(double x, bool integer) {
@@ -656,12 +704,21 @@ std::string plateKeysMarkdown(const std::string& section) {
     const detail::Value d = detail::defaultValue(k);
     std::string def = k.type == detail::KeyType::Vector2 ? "required" : detail::tomlText(k, d);
     if (k.full() == "seedling.name") def = "required";
+    if (!k.defaultFollows.empty()) def = "as `" + k.defaultFollows + "`";
     std::string range = detail::rangeText(k);
     if (!k.choices.empty())
       for (size_t i = 0; i < k.choices.size(); ++i) range += (i ? ", " : "") + ("`\"" + k.choices[i] + "\"`");
-    md += "| `" + k.key + "` | " + (def == "required" ? def : "`" + def + "`") + " | " + range + " | " + k.doc + " |\n";
+    const bool plain = def == "required" || !k.defaultFollows.empty();
+    md += "| `" + k.key + "` | " + (plain ? def : "`" + def + "`") + " | " + range + " | " + k.doc + " |\n";
   }
   return md;
+}
+
+std::vector<std::string> plateKeys(const std::string& section) {
+  std::vector<std::string> keys;
+  for (const detail::KeySpec& k : detail::plateSchema())
+    if (k.section == section) keys.push_back(k.key);
+  return keys;
 }
 
 }  // namespace rootsim

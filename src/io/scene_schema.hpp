@@ -56,6 +56,9 @@ struct KeySpec {
   std::function<Value(const Seedling&)> getSeedling;
   // a rule of the key's own beyond its type and range (a name that is a folder): "" or why
   std::function<std::string(const Value&)> rule;
+  // the key of its section whose value it takes when a scene leaves it out ("set_point_deg": a final
+  // set-point angle that is not given is the initial one, no drift); "" for a fixed default
+  std::string defaultFollows;
   std::string full() const { return section + "." + key; }
 };
 
@@ -71,6 +74,10 @@ const KeySpec* findPlateKey(const std::string& section, const std::string& key);
 using Values = std::map<std::string, Value>;  // by "section.key"
 
 Value defaultValue(const KeySpec& k);
+// every plate key left at its default (origin "default") whose default follows another key
+// (KeySpec::defaultFollows) takes that key's value, origin kept: a scene's values once its tables, sets
+// and draws are read (again after each, so a key set later is followed)
+void resolveFollowingDefaults(Values& v);
 // checks range / choices; returns "" or the reason ("must be > 0 (got -1)")
 std::string checkValue(const KeySpec& k, const Value& v);
 // the accepted range of a number key as text: "in (0, 100]", ">= 0"; "" when unbounded

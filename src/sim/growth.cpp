@@ -30,6 +30,14 @@ Mat3 voronoiFrame(const RodState& s, int j) {
 }
 }  // namespace
 
+double setPointAt(const TropismParams& tp, double age) {
+  if (!tp.setPointFinal || *tp.setPointFinal == tp.setPoint) return tp.setPoint;  // no drift: the constant, bit for bit
+  const double last = *tp.setPointFinal;
+  const double a = std::max(age, 0.0) / tp.setPointDriftTime;
+  if (tp.setPointDrift == SetPointDrift::Linear) return a >= 1.0 ? last : tp.setPoint + (last - tp.setPoint) * a;
+  return last + (tp.setPoint - last) * std::exp(-a);
+}
+
 double growthZoneStart(const Model& m, const RodState& s) {
   return std::max(0.0, s.restLength() - m.growth.zoneLength);
 }
@@ -79,14 +87,15 @@ void updateIntrinsicCurvature(const Model& m, RodState& s, const RodStrains& k, 
   const double rate = m.growth.rate;  // eps_g in the zone
   const TropismParams& tp = m.tropism;
   Vec3 g(0.0, 0.0, -1.0);
-  if (tp.setPoint != 0.0) {
+  const double phiS = setPointAt(tp, s.time - m.initial.startTime);
+  if (phiS != 0.0) {
     // the set-point direction g_s = cos(phi_s) g + sin(phi_s) h, h the horizontal direction of the
     // apex's tangent; an apex along g takes the side the organ started towards (its initial angle's)
     const Vec3 t = s.Q[static_cast<size_t>(n - 1)].row(2).transpose();
     Vec3 h = t - t.dot(g) * g;
     const double hn = h.norm();
     h = hn > 1e-9 ? Vec3(h / hn) : Vec3((m.initial.angle < 0.0 ? -1.0 : 1.0) * m.env.plane.lateral());
-    g = std::cos(tp.setPoint) * g + std::sin(tp.setPoint) * h;
+    g = std::cos(phiS) * g + std::sin(phiS) * h;
   }
   // apical sensing: gravity's components in the apex frame, reused as components in the local frame
   const Vec3 gApex = s.Q[static_cast<size_t>(n - 1)] * g;

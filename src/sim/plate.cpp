@@ -497,6 +497,9 @@ Model lateralModel(const Model& parent, const LateralParams& lp) {
   m.tropism.gamma = lp.gamma;
   m.tropism.rTau = lp.rTau;
   m.tropism.setPoint = lp.setPoint;
+  m.tropism.setPointFinal = lp.setPointFinal;
+  m.tropism.setPointDrift = lp.setPointDrift;
+  m.tropism.setPointDriftTime = lp.setPointDriftTime;
   m.initial.length = lp.initialLength;
   return m;
 }

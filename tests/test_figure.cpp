@@ -232,7 +232,7 @@ TEST_CASE("a plot draws a line where its data are") {
   s.width = 3;
   a.series.push_back(s);
   f.axes.push_back(a);
-  const fs::path base = fs::temp_directory_path() / "rootsim_plot_test";
+  const fs::path base = rootsim::test::scratchDir("plot", "test") / "figure";
   rootsim::SaveOptions so;
   so.dpi = 96;  // one pixel a layout unit
   rootsim::saveFigure(f, base.string(), so);
@@ -289,7 +289,7 @@ TEST_CASE("the PNG carries its resolution: pHYs = dpi / 0.0254 pixels per metre"
   a.series.back().x = {0, 1};
   a.series.back().y = {0, 1};
   f.axes.push_back(a);
-  const fs::path base = fs::temp_directory_path() / "rootsim_plot_dpi";
+  const fs::path base = rootsim::test::scratchDir("plot", "dpi") / "figure";
   rootsim::SaveOptions so;
   so.dpi = 600;
   so.widthMm = 85;
@@ -380,7 +380,7 @@ TEST_CASE("at --width-mm 85 and 180 the panel is that wide and its text is at le
       const char* name = panel.first;
       const rootsim::Figure& fig = panel.second;
       INFO(name << " at " << mm << " mm");
-      const fs::path base = fs::temp_directory_path() / ("rootsim_plot_journal_" + std::string(name));
+      const fs::path base = rootsim::test::scratchDir("plot", "journal_" + std::string(name)) / "figure";
       rootsim::SaveOptions so;
       so.widthMm = mm;
       rootsim::saveFigure(fig, base.string(), so);
@@ -403,7 +403,7 @@ TEST_CASE("at --width-mm 85 and 180 the panel is that wide and its text is at le
       CHECK(h == std::lround(w * page[1] / page[0]));
     }
   // without --width-mm the same panel at 85 mm would be scaled as a whole: its text far below 6 pt
-  const fs::path base = fs::temp_directory_path() / "rootsim_plot_journal_scaled";
+  const fs::path base = rootsim::test::scratchDir("plot", "journal_scaled") / "figure";
   rootsim::saveFigure(journalPanel(), base.string(), rootsim::SaveOptions{});
   double smallest = 1e9;
   for (const auto& [w, size] : wordSizesPt(base.string() + ".pdf")) smallest = std::min(smallest, size);
@@ -494,7 +494,7 @@ TEST_CASE("the vector root's stripes sit where the raster renderer draws them") 
   }
   a.tubes.push_back(tb);
   f.axes.push_back(a);
-  const fs::path base = fs::temp_directory_path() / "rootsim_plot_tube";
+  const fs::path base = rootsim::test::scratchDir("plot", "tube") / "figure";
   rootsim::SaveOptions so;
   so.dpi = 96;
   rootsim::saveFigure(f, base.string(), so);
@@ -538,7 +538,7 @@ TEST_CASE("root views draw the plate's obstacles (a peg, a wall with round ends)
   wall.r = 0.08;
   a.obstacles = {peg, wall};
   f.axes.push_back(a);
-  const fs::path base = fs::temp_directory_path() / "rootsim_plot_obstacles";
+  const fs::path base = rootsim::test::scratchDir("plot", "obstacles") / "figure";
   rootsim::SaveOptions so;
   so.dpi = 96;  // one pixel a layout unit
   rootsim::saveFigure(f, base.string(), so);
@@ -603,7 +603,7 @@ TEST_CASE("a straight tube's PNG has no seams across it where its pieces meet") 
   }
   a.tubes.push_back(tb);
   f.axes.push_back(a);
-  const fs::path base = fs::temp_directory_path() / "rootsim_plot_seams";
+  const fs::path base = rootsim::test::scratchDir("plot", "seams") / "figure";
   rootsim::SaveOptions so;
   so.dpi = 96;
   rootsim::saveFigure(f, base.string(), so);
@@ -663,7 +663,7 @@ TEST_CASE("label layout: a sub- and a superscript in a row stack (kappa_f^0), ot
 
 TEST_CASE("same figure, same bytes: PDF (no CreationDate stamped), SVG and PNG saved a second later are identical") {
   const rootsim::Figure f = journalPanel();
-  const fs::path a = fs::temp_directory_path() / "rootsim_plot_same_a", b = fs::temp_directory_path() / "rootsim_plot_same_b";
+  const fs::path a = rootsim::test::scratchDir("plot", "same_a") / "figure", b = rootsim::test::scratchDir("plot", "same_b") / "figure";
   rootsim::saveFigure(f, a.string());
   std::this_thread::sleep_for(std::chrono::milliseconds(1100));  // the PDF date's resolution is a second
   rootsim::saveFigure(f, b.string());
@@ -705,7 +705,7 @@ TEST_CASE("figure titles break between phrases and never inside a formula, at 85
   // in the PDF: the title's lines at 85 mm; the line that holds β also holds γ and 0.1
   for (double mm : {85.0, 180.0}) {
     INFO(mm << " mm");
-    const fs::path base = fs::temp_directory_path() / "rootsim_plot_title_break";
+    const fs::path base = rootsim::test::scratchDir("plot", "title_break") / "figure";
     rootsim::SaveOptions so;
     so.widthMm = mm;
     rootsim::saveFigure(journalPanel(), base.string(), so);
@@ -751,7 +751,7 @@ TEST_CASE("at 85 and 180 mm no two words of a panel overlap (pdftotext -bbox)") 
       const char* name = panel.first;
       const rootsim::Figure& fig = panel.second;
       INFO(name << " at " << mm << " mm");
-      const fs::path base = fs::temp_directory_path() / ("rootsim_plot_overlap_" + std::string(name));
+      const fs::path base = rootsim::test::scratchDir("plot", "overlap_" + std::string(name)) / "figure";
       rootsim::SaveOptions so;
       so.widthMm = mm;
       rootsim::saveFigure(fig, base.string(), so);
@@ -805,7 +805,7 @@ TEST_CASE("a legend leaves the corner its curve runs through") {
   a.series.push_back(s);
   a.legendPos = "ne";
   f.axes.push_back(a);
-  const fs::path base = fs::temp_directory_path() / "rootsim_plot_legend_off";
+  const fs::path base = rootsim::test::scratchDir("plot", "legend_off") / "figure";
   rootsim::saveFigure(f, base.string(), rootsim::SaveOptions{});
   const std::string xml = capture("pdftotext -bbox '" + base.string() + ".pdf' - 2>&1");
   const auto page = pageSizePt(base.string() + ".pdf");
@@ -829,7 +829,7 @@ TEST_CASE("a note placed on the frame's edge is drawn inside the frame, clear of
   a.xmin = -1, a.xmax = 1, a.ymin = 0, a.ymax = 1;
   a.notes.push_back({{0.0, 0.0}, "coiling"});
   f.axes.push_back(a);
-  const fs::path base = fs::temp_directory_path() / "rootsim_plot_note_inside";
+  const fs::path base = rootsim::test::scratchDir("plot", "note_inside") / "figure";
   rootsim::saveFigure(f, base.string(), rootsim::SaveOptions{});
   const std::string xml = capture("pdftotext -bbox '" + base.string() + ".pdf' - 2>&1");
   std::array<double, 2> note{-1, -1};
@@ -851,7 +851,7 @@ TEST_CASE("a note placed on the frame's edge is drawn inside the frame, clear of
 TEST_CASE("a row of root tiles at 85 mm shares one x label when equal labels would crowd each other") {
   for (double mm : {85.0, 180.0}) {
     INFO(mm << " mm");
-    const fs::path base = fs::temp_directory_path() / "rootsim_plot_row_xlabel";
+    const fs::path base = rootsim::test::scratchDir("plot", "row_xlabel") / "figure";
     rootsim::SaveOptions so;
     so.widthMm = mm;
     rootsim::saveFigure(journalPanel(), base.string(), so);
@@ -980,7 +980,7 @@ TEST_CASE("a legend lies where no curve or marker passes, else under the axes, a
       CHECK(lay[1].legendInside);
     }
     // the drawing puts the legend where the layout says: its labels' words (pdftotext -bbox) inside the box
-    const fs::path base = fs::temp_directory_path() / "rootsim_plot_dense_legend";
+    const fs::path base = rootsim::test::scratchDir("plot", "dense_legend") / "figure";
     rootsim::saveFigure(f, base.string(), so);
     const std::string xml = capture("pdftotext -bbox '" + base.string() + ".pdf' - 2>&1");
     int found = 0;

@@ -38,7 +38,7 @@ TEST_CASE("result.csv: header and row have the same columns, and a written resul
   CHECK(head == resultHeader(true));
   CHECK(cells(head) == cells(row));
   CHECK(cells(head) == static_cast<int>(resultColumns().size()));
-  const fs::path p = fs::temp_directory_path() / ("rootsim_result_" + std::to_string(::getpid()) + ".csv");
+  const fs::path p = rootsim::test::scratchDir("result", "round_trip") / "result.csv";
   { std::ofstream(p) << csv; }
   const RunResult b = readResult(p);
   CHECK(b.grows);

@@ -15,6 +15,8 @@
 #include <string>
 #include <vector>
 
+#include "scratch_support.hpp"
+
 #include "rootsim/scene.hpp"
 #include "rootsim/units.hpp"
 #include "scene_schema.hpp"
@@ -216,9 +218,7 @@ TEST_CASE("sceneOf: model -> scene -> model is exact, and the text is the scene 
 
 TEST_CASE("sceneOf: the text is the scene.toml `rootsim run` writes") {
   namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / "rootsim_test_scene_of";
-  fs::remove_all(dir);
-  fs::create_directories(dir);
+  const fs::path dir = rootsim::test::scratchDir("test", "scene_of");
   {
     std::ofstream(dir / "variant.toml") << "";
   }

@@ -22,6 +22,7 @@
 #include "rootsim/rod.hpp"
 #include "rootsim/simulation.hpp"
 #include "rootsim/units.hpp"
+#include "scratch_support.hpp"
 #include "tolerance_support.hpp"
 
 namespace rootsim::test {
@@ -132,15 +133,6 @@ inline void skipCase(const std::string& why) {
 }
 
 // --- files ---
-
-// an empty folder rootsim_<prefix>_<name>_<pid> in the temporary folder (emptied if it was there)
-inline std::filesystem::path scratchDir(const std::string& prefix, const std::string& name) {
-  const std::filesystem::path d =
-      std::filesystem::temp_directory_path() / ("rootsim_" + prefix + "_" + name + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(d);
-  std::filesystem::create_directories(d);
-  return d;
-}
 
 // the bytes of a file ("" when it cannot be read)
 inline std::string slurp(const std::filesystem::path& p) {

@@ -12,6 +12,7 @@
 
 #include <unistd.h>
 
+#include "../scratch_support.hpp"
 #include "rootsim/image.hpp"
 #include "rootsim/render_scene.hpp"
 #include "rootsim/snapshot.hpp"
@@ -82,14 +83,8 @@ inline Paint paint(const std::uint8_t* p) {
 }
 inline const char* name(Paint p) { return p == Paint::Plus ? "pink" : p == Paint::Minus ? "orange" : "body"; }
 
-// a fresh scratch folder per test (ctest runs test cases in parallel processes)
-inline std::filesystem::path scratch(const std::string& testName) {
-  const auto d = std::filesystem::temp_directory_path() /
-                 ("rootsim_render_" + testName + "_" + std::to_string(::getpid()));
-  std::filesystem::remove_all(d);
-  std::filesystem::create_directories(d);
-  return d;
-}
+// a fresh scratch folder per test (ctest runs test cases in parallel processes), removed when the process ends
+inline std::filesystem::path scratch(const std::string& testName) { return rootsim::test::scratchDir("render", testName); }
 
 // FNV-1a of the pixels: printed when a determinism check fails
 inline std::uint64_t hash(const rootsim::Image& img) {

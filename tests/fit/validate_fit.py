@@ -48,6 +48,9 @@ def main():
                     help="the traced points' uncertainty the fit is told (default: the fit's, one pixel)")
     ap.add_argument("--check", action="store_true")
     ap.add_argument("--fresh", action="store_true", help="start with an empty WORKDIR (removes what an earlier call left)")
+    ap.add_argument("--drop-runs", action="store_true",
+                    help="once the check has passed, remove the fit's run folders (about 17 MB each, gigabytes in all); "
+                         "its fit.json, tables and pictures stay")
     a = ap.parse_args()
     if a.fresh and os.path.isdir(a.work):
         shutil.rmtree(a.work)
@@ -95,6 +98,8 @@ def main():
         print("note:", n["note"])
     if a.check and not ok:
         sys.exit(f"validation failed: an estimate is off by more than {100 * a.tolerance:g} % or {a.coverage:g} sigma")
+    if a.drop_runs:
+        shutil.rmtree(os.path.join(out, "runs"))
 
 
 if __name__ == "__main__":

@@ -466,10 +466,12 @@ GroupFitReport runGroupFit(const FitOptions& o, const std::function<void(const s
     for (const FreeKey& k : keys) names.push_back(k.key);
     js.strings("keys", names);
   }
-  js.str("method", "each group's mean observables against the group's values run once per seedling's sowing angle (its trace's start "
-                   "angle), each seedling's run measured as that seedling is, at its own length; "
-                   "covariance: the mean's at the answer, from the scatter of each seedling's residual against its own run "
-                   "(its diagonal at least their tracing noise) / n");
+  js.str("method", "each group's mean observables against the group's values run once per seedling's sowing angle (the sheet's "
+                   "angle_deg, else its trace's start angle), each seedling's run measured as that seedling is, at its own length; "
+                   "covariance: the mean's at the answer, from the scatter of each seedling's residual against a quadratic surface "
+                   "of its own runs' outputs over the trust region's runs, or against its own run before a trust region or "
+                   "with too few runs in it for a surface (each group's goodness says which), its diagonal at least their "
+                   "tracing noise, / n");
   Json gj;
   for (const GroupFit& g : rep.groups) {
     Json one;

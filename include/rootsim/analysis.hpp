@@ -65,6 +65,8 @@ struct ShapeAnalysis {
 // angle is biased by its incomplete wave, so a skew is not judged); otherwise skewing if |skew| exceeds
 // analysis.skew_threshold_deg; otherwise waving (2 or more peaks) or straight.
 ShapeAnalysis analyseShape(const Model& m, const RodState& s);
+// that pattern rule applied to a's peaks, waves, skew and tangent angles: sets a.skewJudged and a.pattern
+void judgePattern(ShapeAnalysis& a, const AnalysisParams& set);
 // the last node of the mature part: nodes whose rest arc length S lies below the growth zone's start
 // (all of them, n, when the run does not grow)
 int matureLastNode(const Model& m, const RodState& s);

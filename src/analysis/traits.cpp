@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <cstdio>
 #include <limits>
 #include <numbers>
@@ -133,9 +134,49 @@ const PlateFrame& plateFrame() {
 }
 
 // the runs' shape analysis of the curve's mature part (columns 0 .. last) with a hysteresis of at least
-// swingMm
+// swingMm, its waves taken about the root's own axis: its direction over whole waves (the skew's), else its
+// mature part's chord. A root skewing by theta drifts sideways by tan theta lambda / 2 over each half-wave,
+// so across downhill its swings alternate larger and smaller by that much, and the smaller ones of a traced
+// skewing root fall to its tracing limit and are lost (docs/experiments.md, "Why a skewing root's trace
+// lost peaks"); about its axis every swing is the wave's own. Lambda is then read along the axis and A
+// across it; the skew, the tangent angles and the pattern stay the plate's. A root whose axis is downhill
+// (no skew) is measured exactly as analyseCentreline measures it
 ShapeAnalysis shapeOf(const Eigen::Matrix3Xd& curve, int last, double radiusMm, const AnalysisParams& set, double swingMm) {
-  return analyseCentreline(plateMmToLab(curve, plateFrame()), last, platePlane(), set, radiusMm * units::mm, swingMm * units::mm);
+  const ShapeAnalysis plain =
+      analyseCentreline(plateMmToLab(curve, plateFrame()), last, platePlane(), set, radiusMm * units::mm, swingMm * units::mm);
+  if (last < 3) return plain;
+  // the axis: first peak to the last on its side (the skew over whole waves), else the mature part's chord
+  Eigen::Vector3d d = curve.col(last) - curve.col(0);
+  if (plain.peakNodes.size() >= 3) {
+    const std::size_t n = plain.peakNodes.size(), same = n - 1 - ((n - 1) % 2);
+    d = curve.col(plain.peakNodes[same]) - curve.col(plain.peakNodes[0]);
+  }
+  const double phi = std::atan2(d.x(), d.y());
+  if (phi == 0.0 || !std::isfinite(phi)) return plain;
+  const double c = std::cos(phi), sn = std::sin(phi);
+  Eigen::Matrix3Xd along = curve;
+  for (int i = 0; i < curve.cols(); ++i) {
+    along(0, i) = c * curve(0, i) - sn * curve(1, i);
+    along(1, i) = sn * curve(0, i) + c * curve(1, i);
+  }
+  ShapeAnalysis a =
+      analyseCentreline(plateMmToLab(along, plateFrame()), last, platePlane(), set, radiusMm * units::mm, swingMm * units::mm);
+  // the waves about the axis; the skew (over the axis frame's whole waves), the tangent angles and the
+  // pattern in the plate's frame, by analyseCentreline's rule
+  a.thetaMin = plain.thetaMin;
+  a.thetaMax = plain.thetaMax;
+  a.maxKappa = plain.maxKappa;
+  const std::size_t np = a.peakNodes.size();
+  if (np >= 3) {
+    const std::size_t lastSame = np - 1 - ((np - 1) % 2);
+    const Eigen::Vector3d span = curve.col(a.peakNodes[lastSame]) - curve.col(a.peakNodes[0]);
+    a.skew = planarAngle(platePlane(), plateMmToLab(span, plateFrame()).col(0));
+  } else {
+    const Eigen::Matrix3Xd lab = plateMmToLab(curve, plateFrame());
+    a.skew = planarAngle(platePlane(), lab.col(last) - lab.col(0));
+  }
+  judgePattern(a, set);
+  return a;
 }
 
 // a wave train (docs/experiments.md, "Noise"): a tilted plate's wave repeats, so its peaks are called a

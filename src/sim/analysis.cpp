@@ -211,15 +211,19 @@ ShapeAnalysis analyseCentreline(const Eigen::Matrix3Xd& x, int last, const Plane
     for (size_t k = 2; k < np; ++k) sum += std::abs(W(k) - W(k - 2));
     a.wavelength = sum / static_cast<double>(np - 2);
   }
-  // pattern (docs/model.md, Observables): a skew is judged only without waves or over enough whole waves
-  const bool wavy = np >= 2;
+  judgePattern(a, set);
+  return a;
+}
+
+void judgePattern(ShapeAnalysis& a, const AnalysisParams& set) {
+  // a skew is judged only without waves or over enough whole waves
+  const bool wavy = a.peaks >= 2;
   a.skewJudged = !wavy || a.waves >= set.skewMinWaves;
   const double turn = a.thetaMax - a.thetaMin;
   if (turn > set.coilTurnDeg * units::deg) a.pattern = "coiling";
   else if (a.skewJudged && std::abs(a.skew) > set.skewThresholdDeg * units::deg) a.pattern = "skewing";
   else if (wavy) a.pattern = "waving";
   else a.pattern = "straight";
-  return a;
 }
 
 }  // namespace rootsim

@@ -141,7 +141,9 @@ const PlateFrame& plateFrame() {
 // lost peaks"); about its axis every swing is the wave's own. Lambda is then read along the axis and A
 // across it; the skew, the tangent angles and the pattern stay the plate's. A root whose axis is downhill
 // (no skew) is measured exactly as analyseCentreline measures it
-ShapeAnalysis shapeOf(const Eigen::Matrix3Xd& curve, int last, double radiusMm, const AnalysisParams& set, double swingMm) {
+ShapeAnalysis shapeOf(const Eigen::Matrix3Xd& curve, int last, double radiusMm, const AnalysisParams& set, double swingMm,
+                      double* axisRad = nullptr) {
+  if (axisRad) *axisRad = 0.0;
   const ShapeAnalysis plain =
       analyseCentreline(plateMmToLab(curve, plateFrame()), last, platePlane(), set, radiusMm * units::mm, swingMm * units::mm);
   if (last < 3) return plain;
@@ -153,6 +155,7 @@ ShapeAnalysis shapeOf(const Eigen::Matrix3Xd& curve, int last, double radiusMm, 
   }
   const double phi = std::atan2(d.x(), d.y());
   if (phi == 0.0 || !std::isfinite(phi)) return plain;
+  if (axisRad) *axisRad = phi;
   const double c = std::cos(phi), sn = std::sin(phi);
   Eigen::Matrix3Xd along = curve;
   for (int i = 0; i < curve.cols(); ++i) {
@@ -555,12 +558,14 @@ RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excl
   {
     // what the curve does under the limit: its excursions above the white noise alone
     const double noiseSwing = std::isfinite(noise.sigma) ? kNoisePeakK * noise.sigma : 0.0;
-    const ShapeAnalysis under = shapeOf(sm.points, t.matureLast, radiusMm, set, noiseSwing);
+    double axis = 0.0;  // the excursions' axis: their sizes across it
+    const ShapeAnalysis under = shapeOf(sm.points, t.matureLast, radiusMm, set, noiseSwing, &axis);
+    const auto across = [&](int i) { return std::cos(axis) * sm.points(0, i) - std::sin(axis) * sm.points(1, i); };
     char b[320];
     if (under.peaks >= 2) {
       double top = 0.0;
       for (std::size_t k = 1; k < under.peakNodes.size(); ++k)
-        top = std::max(top, std::abs(sm.points(0, under.peakNodes[k]) - sm.points(0, under.peakNodes[k - 1])));
+        top = std::max(top, std::abs(across(under.peakNodes[k]) - across(under.peakNodes[k - 1])));
       char why[96];
       if (std::isfinite(noise.sigma))
         std::snprintf(why, sizeof why, "one root diameter %.3g mm + %g sqrt(2) sigma_s %.2g mm", 2.0 * kPlacementDiameters * radiusMm, kNoisePeakK,

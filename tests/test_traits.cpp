@@ -170,6 +170,17 @@ double corrLengthOf(unsigned long long seed) {
   return 0.5 + 1.5 * r.uniform();
 }
 
+// the validation plate's scan (bench/fit_groups.sh's tracing): 20 px/mm, a point every 4 px, whole pixels,
+// 0.5 px of jitter, and no drift across the root's width, whose correlated error the wave's sigma does not hold
+TracerModel plateScan(unsigned long long seed) {
+  TracerModel tr;
+  tr.pxPerMm = 20;
+  tr.jitterPx = 0.5;
+  tr.seed = seed;
+  tr.radiusMm = 0.0;
+  return tr;
+}
+
 RootTraits traceAndMeasure(const Eigen::Matrix3Xd& truth, double pxPerMm, double jitterPx, unsigned long long seed) {
   TracerModel tr;
   tr.pxPerMm = pxPerMm;
@@ -235,14 +246,7 @@ TEST_CASE("a run measured as its trace was reads the trace's amplitude: the smoo
   double biasAs = 0.0, biasPlain = 0.0, chi2 = 0.0;
   int n = 0;
   for (unsigned long long seed = 1; seed <= 8; ++seed) {
-    TracerModel tr;
-    tr.pxPerMm = 20;
-    tr.jitterPx = 0.5;
-    tr.seed = seed;
-    // the scan's own noise (bench/fit_groups.sh's tracing): no drift across the root's width, whose
-    // correlated error the amplitude's sigma does not hold
-    tr.radiusMm = 0.0;
-    const RootTraits t = traceTraits(traceLikeTracer(truth, tr), 0.05, 0.0, 0.1, set);
+    const RootTraits t = traceTraits(traceLikeTracer(truth, plateScan(seed)), 0.05, 0.0, 0.1, set);
     CAPTURE(t.wavesNote);
     CAPTURE(t.noiseMm);
     REQUIRE(t.shape.peaks >= 3);
@@ -300,12 +304,7 @@ TEST_CASE("a skewing root's waves are measured about its own axis: its trace los
   CHECK(relError(exact.shape.amplitude / units::mm, 2.0 * half) < 0.02);
   int lostAcrossDownhill = 0;
   for (unsigned long long seed = 1; seed <= 8; ++seed) {
-    TracerModel tr;
-    tr.pxPerMm = 20;
-    tr.jitterPx = 0.5;
-    tr.seed = seed;
-    tr.radiusMm = 0.0;
-    const RootTraits t = traceTraits(traceLikeTracer(truth, tr), 0.05, 0.0, 0.1, set);
+    const RootTraits t = traceTraits(traceLikeTracer(truth, plateScan(seed)), 0.05, 0.0, 0.1, set);
     CAPTURE(seed);
     CAPTURE(t.wavesNote);
     CAPTURE(t.noiseThresholdMm);

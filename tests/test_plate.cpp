@@ -34,6 +34,15 @@ Model waving() {
   return m;
 }
 
+// the waving root on a vertical plate (alpha = 0): a primary grows straight down, a lateral turns to its
+// set-point angle from gravity
+Model verticalWaving() {
+  Model m = waving();
+  m.env.plane.alpha = 0.0;
+  completeModel(m);
+  return m;
+}
+
 // a plate whose primaries grow laterals: sites from first at spacing, each opening once the tip is
 // apical beyond it, at insertion from the parent's tangent [mm, deg]
 PlateParams lateralPlate(double firstMm, double spacingMm, double apicalMm, double insertionDeg) {
@@ -267,9 +276,7 @@ TEST_CASE("plate: the coupled Jacobian of two roots in contact is the central di
 TEST_CASE("plate: lateral roots emerge at the asked spacing and, on a vertical plate, settle at their set-point angle") {
   // a vertical plate (alpha = 0): the primary grows straight down; its laterals start at 85 degrees from
   // it, alternating sides, and turn to their gravitropic set-point angle of 50 degrees from gravity
-  Model m = waving();
-  m.env.plane.alpha = 0.0;
-  completeModel(m);
+  const Model m = verticalWaving();
   PlateParams pp = lateralPlate(3, 2, 4, 85);
   LateralParams& lp = pp.laterals;
   lp.setPoint = 50 * units::deg;
@@ -308,9 +315,7 @@ TEST_CASE("plate: on a vertical plate a lateral's tip follows its set-point angl
   // one lateral, emerging 22.5 h into the run (a 24 h delay), inserted at 70 degrees from its vertical
   // parent, its set-point angle drifting from 70 to 30 degrees over 48 h: its tip angle is the law's at
   // its age (not at the run's time: that differs by 2-3 degrees in the last 40 h of the exponential)
-  Model m = waving();
-  m.env.plane.alpha = 0.0;
-  completeModel(m);
+  const Model m = verticalWaving();
   PlateParams pp = lateralPlate(0.3, 1000, 0.5, 70);
   LateralParams& lp = pp.laterals;
   lp.delay = 24 * units::hour;
@@ -347,9 +352,7 @@ TEST_CASE("plate: on a vertical plate a lateral's tip follows its set-point angl
 TEST_CASE("plate: a plate restored from its carry mid-drift continues bit for bit") {
   // the age a drifting set point reads is the run's time less the emergence time, both carried: a plate
   // rebuilt 20 h into its lateral's drift grows the same bits as the one that ran through
-  Model m = waving();
-  m.env.plane.alpha = 0.0;
-  completeModel(m);
+  const Model m = verticalWaving();
   PlateParams pp = lateralPlate(0.3, 1000, 0.5, 70);
   pp.laterals.delay = 2 * units::hour;
   pp.laterals.setPoint = 70 * units::deg;

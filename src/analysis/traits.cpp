@@ -2,12 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <cstdio>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "rootsim/units.hpp"
@@ -133,6 +133,15 @@ const PlateFrame& plateFrame() {
   return frame;
 }
 
+// the first peak and the last on its side: the ends of the whole waves between peaks (at least 3)
+std::pair<int, int> wholeWaveEnds(const std::vector<int>& peaks) {
+  const std::size_t n = peaks.size();
+  return {peaks[0], peaks[n - 1 - ((n - 1) % 2)]};
+}
+
+// column i's position across an axis phi from downhill (plate coordinates [mm], phi toward +lateral)
+double acrossAxis(const Eigen::Matrix3Xd& c, int i, double phi) { return std::cos(phi) * c(0, i) - std::sin(phi) * c(1, i); }
+
 // the runs' shape analysis of the curve's mature part (columns 0 .. last) with a hysteresis of at least
 // swingMm, its waves taken about the root's own axis: its direction over whole waves (the skew's), else its
 // mature part's chord. A root skewing by theta drifts sideways by tan theta lambda / 2 over each half-wave,
@@ -150,8 +159,8 @@ ShapeAnalysis shapeOf(const Eigen::Matrix3Xd& curve, int last, double radiusMm, 
   // the axis: first peak to the last on its side (the skew over whole waves), else the mature part's chord
   Eigen::Vector3d d = curve.col(last) - curve.col(0);
   if (plain.peakNodes.size() >= 3) {
-    const std::size_t n = plain.peakNodes.size(), same = n - 1 - ((n - 1) % 2);
-    d = curve.col(plain.peakNodes[same]) - curve.col(plain.peakNodes[0]);
+    const auto [first, lastSame] = wholeWaveEnds(plain.peakNodes);
+    d = curve.col(lastSame) - curve.col(first);
   }
   const double phi = std::atan2(d.x(), d.y());
   if (phi == 0.0 || !std::isfinite(phi)) return plain;
@@ -159,7 +168,7 @@ ShapeAnalysis shapeOf(const Eigen::Matrix3Xd& curve, int last, double radiusMm, 
   const double c = std::cos(phi), sn = std::sin(phi);
   Eigen::Matrix3Xd along = curve;
   for (int i = 0; i < curve.cols(); ++i) {
-    along(0, i) = c * curve(0, i) - sn * curve(1, i);
+    along(0, i) = acrossAxis(curve, i, phi);
     along(1, i) = sn * curve(0, i) + c * curve(1, i);
   }
   ShapeAnalysis a =
@@ -169,10 +178,9 @@ ShapeAnalysis shapeOf(const Eigen::Matrix3Xd& curve, int last, double radiusMm, 
   a.thetaMin = plain.thetaMin;
   a.thetaMax = plain.thetaMax;
   a.maxKappa = plain.maxKappa;
-  const std::size_t np = a.peakNodes.size();
-  if (np >= 3) {
-    const std::size_t lastSame = np - 1 - ((np - 1) % 2);
-    const Eigen::Vector3d span = curve.col(a.peakNodes[lastSame]) - curve.col(a.peakNodes[0]);
+  if (a.peakNodes.size() >= 3) {
+    const auto [first, lastSame] = wholeWaveEnds(a.peakNodes);
+    const Eigen::Vector3d span = curve.col(lastSame) - curve.col(first);
     a.skew = planarAngle(platePlane(), plateMmToLab(span, plateFrame()).col(0));
   } else {
     const Eigen::Matrix3Xd lab = plateMmToLab(curve, plateFrame());
@@ -560,12 +568,11 @@ RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excl
     const double noiseSwing = std::isfinite(noise.sigma) ? kNoisePeakK * noise.sigma : 0.0;
     double axis = 0.0;  // the excursions' axis: their sizes across it
     const ShapeAnalysis under = shapeOf(sm.points, t.matureLast, radiusMm, set, noiseSwing, &axis);
-    const auto across = [&](int i) { return std::cos(axis) * sm.points(0, i) - std::sin(axis) * sm.points(1, i); };
     char b[320];
     if (under.peaks >= 2) {
       double top = 0.0;
       for (std::size_t k = 1; k < under.peakNodes.size(); ++k)
-        top = std::max(top, std::abs(across(under.peakNodes[k]) - across(under.peakNodes[k - 1])));
+        top = std::max(top, std::abs(acrossAxis(sm.points, under.peakNodes[k], axis) - acrossAxis(sm.points, under.peakNodes[k - 1], axis)));
       char why[96];
       if (std::isfinite(noise.sigma))
         std::snprintf(why, sizeof why, "one root diameter %.3g mm + %g sqrt(2) sigma_s %.2g mm", 2.0 * kPlacementDiameters * radiusMm, kNoisePeakK,

@@ -74,10 +74,14 @@ int matureLastNode(const Model& m, const RodState& s);
 // lab frame): columns of x [m], the mature part being columns 0 .. last; set: the thresholds, radius: the
 // root's radius R [m]; noiseSwing: a traced root's noise threshold k * sigma [m] (0 for a run). The
 // hysteresis is the larger of set.waveMinAmplitude * R and noiseSwing, so a peak counts only when the
-// excursion to its opposite neighbour exceeds both. analyseShape is
-// analyseCentreline(s.x, matureLastNode(m, s), m.env.plane, m.analysis, m.rod.radius).
-// Throws std::invalid_argument for fewer than two points.
+// excursion to its opposite neighbour exceeds both. endSwing [m]: what the open side of the train's two
+// end peaks needs, the departure from the first node before the first peak and the return after the last
+// peak within the mature part (the larger of it and the hysteresis; 0: the hysteresis): a run compared
+// with a trace takes the trace's noise threshold there, so that a start or an end of its wave train the
+// trace's threshold cannot see is not a peak of the run either, while its inner swings keep the run's own
+// hysteresis. analyseShape is analyseCentreline(s.x, matureLastNode(m, s), m.env.plane, m.analysis,
+// m.rod.radius). Throws std::invalid_argument for fewer than two points.
 ShapeAnalysis analyseCentreline(const Eigen::Matrix3Xd& x, int last, const Plane& pl, const AnalysisParams& set,
-                                double radius, double noiseSwing = 0.0);
+                                double radius, double noiseSwing = 0.0, double endSwing = 0.0);
 
 }  // namespace rootsim

@@ -151,10 +151,10 @@ double acrossAxis(const Eigen::Matrix3Xd& c, int i, double phi) { return std::co
 // across it; the skew, the tangent angles and the pattern stay the plate's. A root whose axis is downhill
 // (no skew) is measured exactly as analyseCentreline measures it
 ShapeAnalysis shapeOf(const Eigen::Matrix3Xd& curve, int last, double radiusMm, const AnalysisParams& set, double swingMm,
-                      double* axisRad = nullptr) {
+                      double* axisRad = nullptr, double endSwingMm = 0.0) {
   if (axisRad) *axisRad = 0.0;
-  const ShapeAnalysis plain =
-      analyseCentreline(plateMmToLab(curve, plateFrame()), last, platePlane(), set, radiusMm * units::mm, swingMm * units::mm);
+  const ShapeAnalysis plain = analyseCentreline(plateMmToLab(curve, plateFrame()), last, platePlane(), set, radiusMm * units::mm,
+                                                swingMm * units::mm, endSwingMm * units::mm);
   if (last < 3) return plain;
   // the axis: first peak to the last on its side (the skew over whole waves), else the mature part's chord
   Eigen::Vector3d d = curve.col(last) - curve.col(0);
@@ -172,7 +172,7 @@ ShapeAnalysis shapeOf(const Eigen::Matrix3Xd& curve, int last, double radiusMm, 
     along(1, i) = sn * curve(0, i) + c * curve(1, i);
   }
   ShapeAnalysis a =
-      analyseCentreline(plateMmToLab(along, plateFrame()), last, platePlane(), set, radiusMm * units::mm, swingMm * units::mm);
+      analyseCentreline(plateMmToLab(along, plateFrame()), last, platePlane(), set, radiusMm * units::mm, swingMm * units::mm, endSwingMm * units::mm);
   // the waves about the axis; the skew (over the axis frame's whole waves), the tangent angles and the
   // pattern in the plate's frame, by analyseCentreline's rule
   a.thetaMin = plain.thetaMin;
@@ -249,7 +249,7 @@ void bendOf(const Eigen::Matrix3Xd& curve, int last, RootTraits& t) {
 // the measurement shared by runs and traces: the raw trace q (distinct points) for length, chord,
 // tortuosity and base-to-tip skew; the curve for the shape analysis and the field's traits
 RootTraits measure(const Eigen::Matrix3Xd& q, const Eigen::Matrix3Xd& curve, double dsMm, double excludeTipMm,
-                   double radiusMm, const AnalysisParams& set, double noiseThresholdMm) {
+                   double radiusMm, const AnalysisParams& set, double noiseThresholdMm, double endThresholdMm = 0.0) {
   RootTraits t;
   t.lengthMm = polylineLength(q);
   const Eigen::Vector3d chord = q.col(q.cols() - 1) - q.col(0);
@@ -270,7 +270,7 @@ RootTraits measure(const Eigen::Matrix3Xd& q, const Eigen::Matrix3Xd& curve, dou
   while (last + 1 < static_cast<int>(s.size()) && s[static_cast<std::size_t>(last + 1)] <= matureMm + 1e-12 * t.curveLengthMm) ++last;
   t.matureLast = last;
   t.noiseThresholdMm = noiseThresholdMm;
-  t.shape = shapeOf(curve, last, radiusMm, set, noiseThresholdMm);
+  t.shape = shapeOf(curve, last, radiusMm, set, noiseThresholdMm, nullptr, endThresholdMm);
   // the field's traits (Grabov et al. 2005): the tip's displacement over the curve's length
   const Eigen::Vector3d d = curve.col(curve.cols() - 1) - curve.col(0);
   if (t.curveLengthMm > 0.0) {
@@ -484,9 +484,15 @@ RootTraits rootTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double exclu
 
 RootTraits rootTraitsAs(const Eigen::Matrix3Xd& plateMm, const RootTraits& as, double excludeTipMm, double radiusMm,
                         const AnalysisParams& set) {
-  if (!(as.smoothingMm > 0.0)) return rootTraits(plateMm, as.dsMm, excludeTipMm, radiusMm, set);
   const Eigen::Matrix3Xd q = distinctPolyline(plateMm);
   if (q.cols() < 2) throw std::invalid_argument("rootTraitsAs: a root needs at least two distinct points");
+  // the ends of the wave train at the trace's tracing limit, its inner swings at the run's own hysteresis
+  if (!(as.smoothingMm > 0.0)) {
+    RootTraits t = measure(q, as.dsMm > 0.0 ? resampleByArcLength(q, as.dsMm) : q, as.dsMm, excludeTipMm, radiusMm, set, 0.0,
+                           as.noiseThresholdMm);
+    t.noiseMm = estimateTraceNoise(q).sigma;
+    return t;
+  }
   // the trace's two passes at its width: the second against the arc length of the first pass's curve,
   // which a flattened wave shortens (a window as many of its millimetres spans more of the root)
   const double b = as.smoothingMm;
@@ -501,7 +507,7 @@ RootTraits rootTraitsAs(const Eigen::Matrix3Xd& plateMm, const RootTraits& as, d
   } else {
     at = s;
   }
-  RootTraits t = measure(q, loessCurve(q, s, b, at, nullptr), as.dsMm, excludeTipMm, radiusMm, set, 0.0);
+  RootTraits t = measure(q, loessCurve(q, s, b, at, nullptr), as.dsMm, excludeTipMm, radiusMm, set, 0.0, as.noiseThresholdMm);
   t.noiseMm = estimateTraceNoise(q).sigma;
   t.smoothingMm = as.smoothingMm;
   return t;

@@ -134,7 +134,7 @@ ShapeAnalysis analyseShape(const Model& m, const RodState& s) {
 }
 
 ShapeAnalysis analyseCentreline(const Eigen::Matrix3Xd& x, int last, const Plane& pl, const AnalysisParams& set,
-                                double radius, double noiseSwing) {
+                                double radius, double noiseSwing, double endSwing) {
   ShapeAnalysis a;
   const Vec3 down = pl.downhill(), lat = pl.lateral();
   const int n = static_cast<int>(x.cols()) - 1;
@@ -184,6 +184,21 @@ ShapeAnalysis analyseCentreline(const Eigen::Matrix3Xd& x, int last, const Plane
         dir = -dir;
         cand = i;
       }
+    }
+  }
+  // the train's ends: its first peak needs a departure from the first node of endSwing, its last a return
+  // within the mature part of endSwing (the peaks a larger hysteresis would not find at the ends)
+  const double endMin = std::max(minSwing, endSwing);
+  if (endMin > minSwing) {
+    auto U = [&](int i) { return u[static_cast<size_t>(i)]; };
+    while (!ext.empty() && !(std::abs(U(ext.front()) - U(0)) > endMin)) ext.erase(ext.begin());
+    while (!ext.empty()) {
+      const int k = ext.back();
+      const double side = U(k) >= (ext.size() >= 2 ? U(ext[ext.size() - 2]) : U(0)) ? 1.0 : -1.0;
+      double back = 0.0;
+      for (int i = k + 1; i < static_cast<int>(u.size()); ++i) back = std::max(back, side * (U(k) - U(i)));
+      if (back > endMin) break;
+      ext.pop_back();
     }
   }
   const size_t np = ext.size();

@@ -164,6 +164,46 @@ TEST_CASE("a loop coils, a straight line is straight, a tilted line skews, rippl
   }
 }
 
+TEST_CASE("a larger end swing leaves out a first or last swing below it, and the inner swings keep the hysteresis") {
+  // u = a sin(2 pi w / lam + 7 pi / 6) + a / 2: from 0 the root departs by a / 2 to a shallow trough, then
+  // swings 2a between crests and troughs; it ends 0.1476 lam past its last crest, having come back by
+  // a (1 - cos(0.927)) = 0.4 a. With a = 0.25 mm and the hysteresis 0.5 R = 0.05 mm both partial swings
+  // (0.125 mm and 0.1 mm) make peaks; an end swing of 0.2 mm leaves them out
+  const Model m = plateModel();
+  const double lam = 2e-3, a = 0.25e-3, end = 4.8143 * lam;
+  const RodState s = onPlate(m, 2000, [&](double p, double& u, double& w) {
+    w = p * end;
+    u = a * std::sin(2 * pi * w / lam + 7 * pi / 6) + 0.5 * a;
+  });
+  const int last = static_cast<int>(s.x.cols()) - 1;
+  const Plane& pl = m.env.plane;
+  const ShapeAnalysis plain = analyseCentreline(s.x, last, pl, m.analysis, m.rod.radius);
+  const ShapeAnalysis ends = analyseCentreline(s.x, last, pl, m.analysis, m.rod.radius, 0.0, 0.2e-3);
+  const ShapeAnalysis raised = analyseCentreline(s.x, last, pl, m.analysis, m.rod.radius, 0.2e-3);
+  INFO("peaks " << plain.peaks << " / " << ends.peaks << " / " << raised.peaks);
+  // troughs at w = lam (k + 1/6), crests at lam (k - 1/3): the shallow trough at lam / 6 first, the crest at
+  // 4.667 lam last, 10 peaks in all
+  REQUIRE(plain.peaks == 10);
+  auto wOf = [&](int node) { return s.x.col(node).dot(pl.downhill()); };
+  CHECK(wOf(plain.peakNodes.front()) == doctest::Approx(lam / 6).epsilon(0.01));
+  CHECK(wOf(plain.peakNodes.back()) == doctest::Approx(lam * (5 - 1.0 / 3)).epsilon(0.01));
+  // the end swing drops exactly the two end peaks; the others are the same nodes
+  REQUIRE(ends.peaks == 8);
+  CHECK(ends.peakNodes == std::vector<int>(plain.peakNodes.begin() + 1, plain.peakNodes.end() - 1));
+  CHECK(ends.hysteresis == plain.hysteresis);
+  // the inner swings (2a) are clear of 0.2 mm: the raised hysteresis finds the same peaks and values
+  CHECK(raised.peakNodes == ends.peakNodes);
+  CHECK(ends.wavelength == raised.wavelength);
+  CHECK(ends.amplitude == raised.amplitude);
+  CHECK(ends.skew == raised.skew);
+  CHECK(ends.amplitude == doctest::Approx(2 * a).epsilon(1e-3));
+  ROOTSIM_CHECK_CLOSE(ends.waves, plain.waves - 1.0, kRoundoff);
+  // an end swing below the hysteresis changes nothing
+  const ShapeAnalysis below = analyseCentreline(s.x, last, pl, m.analysis, m.rod.radius, 0.0, 0.01e-3);
+  CHECK(below.peakNodes == plain.peakNodes);
+  CHECK(below.amplitude == plain.amplitude);
+}
+
 TEST_CASE("a planar curve has zero writhe") {
   Eigen::Matrix3Xd p(3, 60);
   for (int i = 0; i < 60; ++i) p.col(i) = Vec3(std::cos(0.2 * i) * (1 + 0.01 * i), std::sin(0.2 * i), 0.0);

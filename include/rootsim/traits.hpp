@@ -124,9 +124,13 @@ RootTraits traceTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excl
 // trace follows, docs/experiments.md "Fit"): the nodes smoothed by smoothTrace's LOESS at the trace's own
 // half-width as.smoothingMm (one pass against the nodes' arc length: a run has no noise to choose a width
 // from or to run ahead of its arc length), evaluated every as.dsMm (as.dsMm <= 0: at the nodes), then the
-// shape analysis of rootTraits (the hysteresis of R alone: a run has no tracing limit). A smoothing that
-// flattens a traced wave's peaks flattens the run's alike. as.smoothingMm 0 (a trace measured as it is):
-// rootTraits at as.dsMm. Throws std::invalid_argument for fewer than two distinct points.
+// shape analysis of rootTraits: the peaks' hysteresis of R (a run has no tracing noise to hide its inner
+// swings), except at the two ends of the wave train, which take the trace's tracing limit
+// as.noiseThresholdMm (analyseCentreline's endSwing): a first peak the root leaves its base towards by
+// less than the limit, or a last one it comes back from by less, is no peak of the run, as it is none of
+// the trace. A smoothing that flattens a traced wave's peaks flattens the run's alike. as.smoothingMm 0 (a
+// trace measured as it is): rootTraits at as.dsMm with those ends. Throws std::invalid_argument for fewer
+// than two distinct points.
 RootTraits rootTraitsAs(const Eigen::Matrix3Xd& plateMm, const RootTraits& as, double excludeTipMm, double radiusMm,
                         const AnalysisParams& set);
 

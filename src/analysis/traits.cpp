@@ -472,14 +472,24 @@ double tracingLimitMm(double smoothedSigmaMm, double radiusMm) {
   return kPlacementDiameters * 2.0 * radiusMm + (std::isfinite(smoothedSigmaMm) ? kNoisePeakK * std::sqrt(2.0) * smoothedSigmaMm : 0.0);
 }
 
+namespace {
+
+// a run's nodes q (distinct points) measured as they are, at a run's resolution dsMm, the ends of its
+// wave train at endThresholdMm (0: its hysteresis)
+RootTraits measureAsIs(const Eigen::Matrix3Xd& q, double dsMm, double excludeTipMm, double radiusMm, const AnalysisParams& set,
+                       double endThresholdMm) {
+  RootTraits t = measure(q, dsMm > 0.0 ? resampleByArcLength(q, dsMm) : q, dsMm, excludeTipMm, radiusMm, set, 0.0, endThresholdMm);
+  t.noiseMm = estimateTraceNoise(q).sigma;
+  return t;
+}
+
+}  // namespace
+
 RootTraits rootTraits(const Eigen::Matrix3Xd& plateMm, double dsMm, double excludeTipMm, double radiusMm,
                       const AnalysisParams& set) {
   const Eigen::Matrix3Xd q = distinctPolyline(plateMm);
   if (q.cols() < 2) throw std::invalid_argument("rootTraits: a root needs at least two distinct points");
-  // the shape analysis at a run's resolution
-  RootTraits t = measure(q, dsMm > 0.0 ? resampleByArcLength(q, dsMm) : q, dsMm, excludeTipMm, radiusMm, set, 0.0);
-  t.noiseMm = estimateTraceNoise(q).sigma;
-  return t;
+  return measureAsIs(q, dsMm, excludeTipMm, radiusMm, set, 0.0);
 }
 
 RootTraits rootTraitsAs(const Eigen::Matrix3Xd& plateMm, const RootTraits& as, double excludeTipMm, double radiusMm,
@@ -487,12 +497,7 @@ RootTraits rootTraitsAs(const Eigen::Matrix3Xd& plateMm, const RootTraits& as, d
   const Eigen::Matrix3Xd q = distinctPolyline(plateMm);
   if (q.cols() < 2) throw std::invalid_argument("rootTraitsAs: a root needs at least two distinct points");
   // the ends of the wave train at the trace's tracing limit, its inner swings at the run's own hysteresis
-  if (!(as.smoothingMm > 0.0)) {
-    RootTraits t = measure(q, as.dsMm > 0.0 ? resampleByArcLength(q, as.dsMm) : q, as.dsMm, excludeTipMm, radiusMm, set, 0.0,
-                           as.noiseThresholdMm);
-    t.noiseMm = estimateTraceNoise(q).sigma;
-    return t;
-  }
+  if (!(as.smoothingMm > 0.0)) return measureAsIs(q, as.dsMm, excludeTipMm, radiusMm, set, as.noiseThresholdMm);
   // the trace's two passes at its width: the second against the arc length of the first pass's curve,
   // which a flattened wave shortens (a window as many of its millimetres spans more of the root)
   const double b = as.smoothingMm;

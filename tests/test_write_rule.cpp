@@ -587,7 +587,8 @@ struct SlowRun {
                             " --set growth.steps=400 --set solver.kind=dynamic --quiet --out " + q(d / name) + " > " +
                             q(d / "slow.log") + " 2>&1; " + exitCodeTo(d / "slow.rc");
     REQUIRE(std::system(("(" + cmd + ") &").c_str()) == 0);
-    for (int i = 0; i < 500 && !fs::exists(d / (name + ".partial") / "scene.toml"); ++i) ::usleep(10000);
+    // up to 30 s for the run to start and name itself in its lock (a loaded machine starts it slowly)
+    for (int i = 0; i < 3000 && (!fs::exists(d / (name + ".partial") / "scene.toml") || pid() == "?"); ++i) ::usleep(10000);
     REQUIRE(fs::exists(d / (name + ".partial")));
   }
   bool running() const { return !fs::exists(d / "slow.rc"); }

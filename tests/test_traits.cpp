@@ -286,18 +286,38 @@ TEST_CASE("a run measured as its trace was reads the trace's amplitude: the smoo
   CHECK(biasPlain > 0.04);  // what a run measured as it is reads: the bias this rule removes
 }
 
+namespace {
+// a wave train kRootMm long of half excursion half [mm] (negative: towards -lateral first) and wavelength
+// lambda [mm] along an axis tiltDeg from downhill, its excursion growing as 1 - exp(-a / growMm) from the
+// base (growMm 0: whole from the start)
+Eigen::Matrix3Xd skewingTrain(double lambda, double half, double tiltDeg, double growMm) {
+  const double tilt = tiltDeg * pi / 180.0;
+  return plateCurve(4000, [&](double p, double& u, double& w) {
+    const double a = kRootMm * p, grown = growMm > 0.0 ? 1.0 - std::exp(-a / growMm) : 1.0;
+    const double across = half * grown * std::sin(2.0 * pi * a / lambda);
+    u = a * std::sin(tilt) + across * std::cos(tilt);
+    w = a * std::cos(tilt) - across * std::sin(tilt);
+  });
+}
+
+// a skewing root traced as the plate's scans are (plateScan(seed)), measured; it must read "skewing"
+RootTraits tracedSkewing(const Eigen::Matrix3Xd& truth, unsigned long long seed, const AnalysisParams& set) {
+  const RootTraits t = traceTraits(traceLikeTracer(truth, plateScan(seed)), 0.05, 0.0, 0.1, set);
+  CAPTURE(t.wavesNote);
+  CAPTURE(t.noiseThresholdMm);
+  REQUIRE(t.shape.pattern == "skewing");
+  return t;
+}
+}  // namespace
+
 TEST_CASE("a skewing root's waves are measured about its own axis: its trace loses no peak to the skew's drift") {
   // a wave train 0.64 mm peak to peak, lambda 2.33 mm, along an axis 16 deg from downhill, traced as a scan is
   // (20 px/mm, a point every 4 px, whole pixels, 0.5 px of jitter). Across downhill its half-waves' swings
   // alternate 0.62 +- 0.33 mm: the smaller ones lie at the tracing limit (about 0.27 mm), and measured there
   // some traces lose them and read a longer wavelength. About the root's axis every swing is 0.64 mm: every
   // trace reads the root's wavelength and its peaks
-  const double lambda = 2.33, half = 0.32, tilt = 16.0 * pi / 180.0;
-  const Eigen::Matrix3Xd truth = plateCurve(4000, [&](double p, double& u, double& w) {
-    const double a = kRootMm * p, across = half * std::sin(2.0 * pi * a / lambda);
-    u = a * std::sin(tilt) + across * std::cos(tilt);
-    w = a * std::cos(tilt) - across * std::sin(tilt);
-  });
+  const double lambda = 2.33, half = 0.32;
+  const Eigen::Matrix3Xd truth = skewingTrain(lambda, half, 16.0, 0.0);
   const AnalysisParams set;
   const RootTraits exact = rootTraits(truth, 0.05, 0.0, 0.1, set);
   REQUIRE(exact.shape.pattern == "skewing");
@@ -305,11 +325,8 @@ TEST_CASE("a skewing root's waves are measured about its own axis: its trace los
   CHECK(relError(exact.shape.amplitude / units::mm, 2.0 * half) < 0.02);
   int lostAcrossDownhill = 0;
   for (unsigned long long seed = 1; seed <= 8; ++seed) {
-    const RootTraits t = traceTraits(traceLikeTracer(truth, plateScan(seed)), 0.05, 0.0, 0.1, set);
     CAPTURE(seed);
-    CAPTURE(t.wavesNote);
-    CAPTURE(t.noiseThresholdMm);
-    REQUIRE(t.shape.pattern == "skewing");
+    const RootTraits t = tracedSkewing(truth, seed, set);
     CHECK(relError(t.shape.wavelength / units::mm, lambda) < 0.05);
     CHECK(std::abs(t.shape.peaks - exact.shape.peaks) <= 1);
     CHECK(t.shape.skew / units::deg == doctest::Approx(16.0).epsilon(0.05));
@@ -333,23 +350,15 @@ TEST_CASE("a run measured as its trace starts its wave train where the trace doe
   // axis, so the skew over whole waves from it (first peak to the last on its side) reads about 0.4 deg
   // less than from the first full crest. Measured as its trace was (rootTraitsAs), the root's train starts and
   // ends at the trace's limit and reads the trace's skew within its sigma
-  const double lambda = 2.33, half = 0.3, tilt = 7.0 * pi / 180.0, grow = 1.0;
-  const Eigen::Matrix3Xd truth = plateCurve(4000, [&](double p, double& u, double& w) {
-    const double a = kRootMm * p, across = -half * (1.0 - std::exp(-a / grow)) * std::sin(2.0 * pi * a / lambda);
-    u = a * std::sin(tilt) + across * std::cos(tilt);
-    w = a * std::cos(tilt) - across * std::sin(tilt);
-  });
+  const Eigen::Matrix3Xd truth = skewingTrain(2.33, -0.3, 7.0, 1.0);
   const AnalysisParams set;
   const RootTraits exact = rootTraits(truth, 0.05, 0.0, 0.1, set);
   REQUIRE(exact.shape.pattern == "skewing");
   double chi2 = 0.0, zPlain = 0.0;
   int n = 0;
   for (unsigned long long seed = 1; seed <= 8; ++seed) {
-    const RootTraits t = traceTraits(traceLikeTracer(truth, plateScan(seed)), 0.05, 0.0, 0.1, set);
     CAPTURE(seed);
-    CAPTURE(t.wavesNote);
-    CAPTURE(t.noiseThresholdMm);
-    REQUIRE(t.shape.pattern == "skewing");
+    const RootTraits t = tracedSkewing(truth, seed, set);
     const RootTraits as = rootTraitsAs(truth, t, 0.0, 0.1, set);
     CAPTURE(exact.shape.peaks);
     CAPTURE(t.shape.peaks);

@@ -7,6 +7,7 @@
 #include <sys/file.h>
 #include <sys/mount.h>
 #include <sys/stat.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -22,6 +23,7 @@
 #include <thread>
 
 #include "rootsim/errors.hpp"
+#include "rootsim/sweep.hpp"
 #include "rootsim/write_rule.hpp"
 #include "test_support.hpp"
 
@@ -772,5 +774,46 @@ TEST_CASE("the shards of a job array started at the same moment into a new folde
     }
     CHECK(rootsim::whyNotOurs(out, rootsim::sweepFolder()) == "");
   }
+  fs::remove_all(d);
+}
+
+TEST_CASE("a shard writing its table is never seen half-way by another shard checking the folder it joins") {
+  const fs::path d = scratch("table_race");
+  const fs::path sw = makeSweep(d);
+  const fs::path out = d / "S";
+  REQUIRE(run("sweep " + q(sw) + " --quiet --out " + q(out)).code == 0);
+  REQUIRE(rootsim::whyNotOurs(out, rootsim::sweepFolder()) == "");
+  // two tables of other content: of both points, and of the first alone
+  const rootsim::SweepPlan both = rootsim::loadSweep(sw.string());
+  rootsim::SweepPlan first = both;
+  first.points.resize(1);
+  // another process: a shard finishing again and again, as writeSweepTable writes (its own working name,
+  // then renamed into place and recorded)
+  const pid_t child = ::fork();
+  REQUIRE(child >= 0);
+  if (child == 0) {
+    int code = 0;
+    try {
+      for (int i = 0; i < 300; ++i) rootsim::writeSweepTable(i % 2 ? first : both, out.string());
+    } catch (...) {
+      code = 3;
+    }
+    ::_exit(code);
+  }
+  // this process: another shard starting, checking the folder it joins
+  int checks = 0;
+  std::string firstWhy;
+  int status = 0;
+  while (::waitpid(child, &status, WNOHANG) == 0) {
+    const std::string why = rootsim::whyNotOurs(out, rootsim::sweepFolder());
+    if (!why.empty() && firstWhy.empty()) firstWhy = why;
+    ++checks;
+  }
+  INFO("checks while the other shard wrote: " << checks);
+  CHECK(WIFEXITED(status));
+  CHECK(WEXITSTATUS(status) == 0);
+  CHECK(checks > 0);
+  CHECK(firstWhy == "");
+  CHECK(rootsim::whyNotOurs(out, rootsim::sweepFolder()) == "");
   fs::remove_all(d);
 }

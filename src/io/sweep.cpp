@@ -218,10 +218,12 @@ void writeSweepTable(const SweepPlan& plan, const std::string& out) {
   }
   if (header.empty()) return;
   // shards of a job array finish at the same time and each writes the table: every process through a
-  // temporary name of its own (host and pid: shards may share a network file system), then one rename
+  // working name of its own, in rootsim's temporary form (table.csv.tmp<pid>-<host's number>: shards may
+  // share a network file system, so the pid alone is not the process's), then renamed into place
   char host[256] = "host";
   ::gethostname(host, sizeof host - 1);
-  const fs::path mine = fs::path(out) / ("table.csv." + std::string(host) + "." + std::to_string(::getpid()));
+  const fs::path mine = fs::path(out) / ("table.csv.tmp" + std::to_string(::getpid()) + "-" +
+                                         std::to_string(std::hash<std::string>{}(host) % 1000000000u));
   writeFileAtomic(mine, header + "\n" + body);
   // renamed and recorded under the folder's record lock: the marker holds the table that is there
   recordFiles(fs::path(out), sweepFolder(), {"table.csv"}, [&] {

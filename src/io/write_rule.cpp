@@ -17,6 +17,7 @@
 #include <mutex>
 #include <sstream>
 #include <thread>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 #include <tinyxml2.h>
@@ -44,13 +45,14 @@ constexpr std::array<const char*, 5> kWorkingSuffixes = {".partial", ".incomplet
 constexpr std::size_t kNameMax = 255;
 constexpr std::size_t kDerivedExtra = 14;  // "." + ".rootsim-lock"
 
-// leftovers of an atomic write a kill interrupted: "<name>.tmp", "<name>.tmp<pid>-<thread>"
+// leftovers of an atomic write a kill interrupted: "<name>.tmp", "<name>.tmp<pid>-<thread>", and of one
+// written atomically under a working name of its own ("table.csv.tmp<pid>-<host>.tmp"): every such suffix
 std::string stripTemp(const std::string& name) {
   const auto t = name.rfind(".tmp");
   if (t == std::string::npos || t == 0) return name;
   for (std::size_t i = t + 4; i < name.size(); ++i)
     if (!std::isdigit(static_cast<unsigned char>(name[i])) && name[i] != '-') return name;
-  return name.substr(0, t);
+  return stripTemp(name.substr(0, t));
 }
 
 bool isLockFile(const std::string& name) { return name.size() > 14 && name[0] == '.' && endsWith(name, ".rootsim-lock"); }
@@ -100,9 +102,8 @@ bool isRunEntry(const fs::path& dir, const std::string& name) {
 
 // a run directory inside a sweep folder: DIR, DIR.partial, DIR.incomplete, DIR.replaced of a run
 bool isSweepEntry(const fs::path& dir, const std::string& name) {
-  if (name == ".rootsim-sweep" || name == "table.csv" || isLockFile(name)) return true;
-  // table.csv.<host>.<pid>: a shard's table being renamed into place
-  if (name.rfind("table.csv.", 0) == 0) return true;
+  // table.csv.tmp<pid>-<host's number>: a shard's table being renamed into place
+  if (name == ".rootsim-sweep" || stripTemp(name) == "table.csv" || isLockFile(name)) return true;
   std::error_code ec;
   const fs::path p = dir / name;
   if (!fs::is_directory(fs::symlink_status(p, ec))) return false;
@@ -314,22 +315,37 @@ bool hasOwnMarker(const fs::path& dir) {
   return false;
 }
 
-// the process's and the folder's lock around a read-modify-write of a marker (shards share folders)
+// the process's and the folder's lock around a read-modify-write of a marker, and around a check of a
+// folder's files against it (shards share folders). A thread that holds a folder's lock already (a check
+// reaching a folder it is recording) shares it: flock conflicts between two descriptors of one process
 struct RecordLock {
   int fd = -1;
-  std::unique_lock<std::mutex> g;
+  fs::path key;
+  std::unique_lock<std::recursive_mutex> g;
   explicit RecordLock(const fs::path& dir) : g(mutex()) {
+    fs::path k = absoluteNormal(dir);
+    std::vector<fs::path>& held = heldHere();
+    if (std::find(held.begin(), held.end(), k) != held.end()) return;
     fd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
     if (fd >= 0) ::flock(fd, LOCK_EX);
+    key = std::move(k);
+    held.push_back(key);
   }
   ~RecordLock() {
+    if (key.empty()) return;
     if (fd >= 0) ::close(fd);
+    std::vector<fs::path>& held = heldHere();
+    held.erase(std::find(held.begin(), held.end(), key));
   }
   RecordLock(const RecordLock&) = delete;
   RecordLock& operator=(const RecordLock&) = delete;
-  static std::mutex& mutex() {
-    static std::mutex m;
+  static std::recursive_mutex& mutex() {
+    static std::recursive_mutex m;
     return m;
+  }
+  static std::vector<fs::path>& heldHere() {
+    thread_local std::vector<fs::path> held;
+    return held;
   }
 };
 
@@ -618,6 +634,9 @@ std::string whyNotOurs(const fs::path& dir, const FolderSpec& spec) {
   if (ec) return "cannot list " + dir.string() + ": " + ec.message();
   // a finished folder: every file as its marker records it
   if (beingWritten(dir)) return "";
+  // read under the folder's record lock: a file another process renames into place and records (a
+  // shard's table.csv) is seen with its record, never renamed and not yet recorded
+  const RecordLock lock(dir);
   std::map<std::string, Recorded> rec;
   readRecord(dir / spec.marker, &rec);
   return whyNotAllRecorded(dir, spec, rec, dir);
@@ -693,6 +712,7 @@ void recordWritten(const std::vector<fs::path>& files) {
 }
 
 std::string whyNotRecorded(const fs::path& dir, const char* marker, const std::string& rel) {
+  const RecordLock lock(dir);
   std::map<std::string, Recorded> rec;
   readRecord(dir / marker, &rec);
   const auto it = rec.find(rel);

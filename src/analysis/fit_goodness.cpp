@@ -63,6 +63,10 @@ std::string fixedKeysText(const std::vector<FixedKey>& fixed) {
   return s;
 }
 
+// a miss within this many times the runs' scatter, a scatter of more than this many times the trace's
+// uncertainty: the runs' own scatter explains the miss (misfitSentence)
+constexpr double kScatterMiss = 3.0;
+
 std::string misfitSentence(const TraceTarget& target, const std::vector<FitEvaluation>& evaluations, const FitEvaluation& answer,
                            const FitComponents& trace, const Eigen::VectorXd& modelSigma, const std::vector<FixedKey>& fixed) {
   // what the runs did: how many wave, their amplitudes, their most common pattern
@@ -118,13 +122,25 @@ std::string misfitSentence(const TraceTarget& target, const std::vector<FitEvalu
       }
     }
     if (worst >= 0) {
-      char b[200];
+      char b[400];
       // beside it, how far runs near the answer scatter there: a model whose runs scatter by more than the
       // trace's uncertainty cannot reproduce it to that uncertainty, whatever its keys
+      const double scatter = worst < modelSigma.size() ? modelSigma(worst) : std::numeric_limits<double>::quiet_NaN();
       std::snprintf(b, sizeof b, "the answer's run misses %s by %.3g sigma (trace %.4g, run %.4g; the runs near the answer scatter by %.2g there)",
-                    trace.names[static_cast<std::size_t>(worst)].c_str(), z, trace.trace(worst), answer.sim(worst),
-                    worst < modelSigma.size() ? modelSigma(worst) : std::numeric_limits<double>::quiet_NaN());
+                    trace.names[static_cast<std::size_t>(worst)].c_str(), z, trace.trace(worst), answer.sim(worst), scatter);
       what = b;
+      const double miss = std::abs(answer.sim(worst) - trace.trace(worst));
+      if (std::isfinite(scatter) && scatter > kScatterMiss * trace.sigma(worst) && miss <= kScatterMiss * scatter) {
+        // a miss the runs' own scatter explains, itself far above the trace's uncertainty: the runs' shape
+        // moves with the free keys more finely than any run the fit makes can follow, and nothing points
+        // at a fixed key
+        std::snprintf(b, sizeof b,
+                      ", a miss within %.0f times that scatter, which is %.3g times the trace's uncertainty: near the answer the "
+                      "root's shape changes with the free keys more finely than the fit resolves, so no run reproduces the trace "
+                      "to its uncertainty",
+                      kScatterMiss, scatter / trace.sigma(worst));
+        return "the model with these free keys and this scene does not reproduce the trace: " + what + b;
+      }
       // a wavelength: the tip speed sets how far the root grows per swing
       if (trace.names[static_cast<std::size_t>(worst)].find("wavelength") != std::string::npos) suggest = "growth.rate_per_h";
     }

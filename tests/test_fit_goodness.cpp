@@ -4,12 +4,14 @@
 // the fit resolves.
 #include <doctest/doctest.h>
 
+#include <limits>
 #include <string>
 #include <vector>
 
 #include <Eigen/Dense>
 
 #include "fit_parts.hpp"
+#include "tolerance_support.hpp"
 
 using namespace rootsim;
 using namespace rootsim::app;
@@ -82,4 +84,27 @@ TEST_CASE("a poor fit's sentence: a miss the runs' own scatter explains names no
     CHECK(s.find("more finely") == std::string::npos);
     CHECK(s.find("; check plane.alpha_deg") != std::string::npos);
   }
+}
+
+TEST_CASE("the covariance a fit reports has the reported sigmas on its diagonal and the surface's correlation") {
+  // a surface covariance in the scaled box: variances 4e-4 and 1e-4, correlation 0.6
+  Eigen::Matrix2d surface;
+  surface << 4e-4, 0.6 * 2e-2 * 1e-2, 0.6 * 2e-2 * 1e-2, 1e-4;
+  // the reported sigmas (the surface's widened by the minima's spread, the bootstrap and the answer's scale,
+  // in the keys' units)
+  const std::vector<double> sigma{0.09, 0.05};
+  const Eigen::MatrixXd c = reportedCovariance(surface, sigma);
+  REQUIRE(c.rows() == 2);
+  REQUIRE(c.cols() == 2);
+  ROOTSIM_CHECK_CLOSE(c(0, 0), 0.09 * 0.09, test::kRoundoff);
+  ROOTSIM_CHECK_CLOSE(c(1, 1), 0.05 * 0.05, test::kRoundoff);
+  ROOTSIM_CHECK_CLOSE(c(0, 1), 0.6 * 0.09 * 0.05, test::kRoundoff);
+  CHECK(c(1, 0) == c(0, 1));
+  // nothing to report: no surface covariance, one of another size, a sigma that is not finite
+  CHECK(reportedCovariance(Eigen::MatrixXd(), sigma).size() == 0);
+  CHECK(reportedCovariance(Eigen::MatrixXd::Identity(3, 3), sigma).size() == 0);
+  CHECK(reportedCovariance(surface, {0.09, std::numeric_limits<double>::quiet_NaN()}).size() == 0);
+  Eigen::Matrix2d singular = surface;
+  singular(1, 1) = 0;
+  CHECK(reportedCovariance(singular, sigma).size() == 0);
 }

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "rootsim/model.hpp"
+#include "rootsim/plot.hpp"
 #include "rootsim/snapshot.hpp"
 
 namespace rootsim {
@@ -45,11 +46,16 @@ void savePlateComparePanel(const Model& m, const std::vector<Snapshot>& sims, co
 
 // a fit's objective over two free parameters: every run coloured by its chi-square above the lowest (the
 // start design's grid as cells), the fit, and the 1-sigma ellipse of the covariance when there is one
-// (cov null: none); beside it (zoomX, zoomY > 0) the same around the fit, +- zoomX and +- zoomY
+// (cov null: none); beside it (zoomX, zoomY > 0) the same around the fit, +- zoomX and +- zoomY, the
+// window shifted and cut to lie inside the box (no second panel when it would be the whole box)
 struct LandscapePoint {
   double x = 0, y = 0, chi2 = 0;
   bool design = false;  // a cell of the start design's grid (else an optimiser's or the stencil's point)
 };
+Figure landscapeFigure(const std::vector<LandscapePoint>& pts, const std::string& xKey, const std::string& yKey,
+                       double xLo, double xHi, double yLo, double yHi, int gridLevels, double bestX, double bestY,
+                       const Eigen::Matrix2d* cov, double zoomX, double zoomY, const std::string& title);
+// the same saved as path + .pdf, .svg and .png
 void saveLandscapePanel(const std::vector<LandscapePoint>& pts, const std::string& xKey, const std::string& yKey,
                         double xLo, double xHi, double yLo, double yHi, int gridLevels, double bestX, double bestY,
                         const Eigen::Matrix2d* cov, double zoomX, double zoomY, const std::string& title,

@@ -90,6 +90,8 @@ struct FitReport {
                                            // than kGrowthMismatch: the sentence saying so
   std::vector<FixedKey> fixed;             // the fixed keys that shape the answer, the tilt and growth first
   std::vector<double> sigma;               // per key (NaN: flat or at a bound)
+  Eigen::MatrixXd covariance;              // per pair of keys, in their units: the surface's correlation
+                                           // with sigma on its diagonal (empty: no surface covariance)
   double answerScale = 1;                  // the answer's chi2 / dof beyond the surface's scale (>= 1): the
                                            // factor sigma's variance was widened by
   std::vector<std::string> notes;          // identifiability and bounds, in words

@@ -156,6 +156,22 @@ std::string misfitSentence(const TraceTarget& target, const std::vector<FitEvalu
   return "the model with these free keys and this scene does not reproduce the trace: " + what + check;
 }
 
+Eigen::MatrixXd reportedCovariance(const Eigen::MatrixXd& surfaceCov, const std::vector<double>& sigma) {
+  const Eigen::Index n = static_cast<Eigen::Index>(sigma.size());
+  if (n == 0 || surfaceCov.rows() != n || surfaceCov.cols() != n) return {};
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double s = sigma[static_cast<std::size_t>(i)], v = surfaceCov(i, i);
+    if (!(std::isfinite(s) && s > 0 && std::isfinite(v) && v > 0)) return {};
+  }
+  // each pair once, mirrored: exactly symmetric
+  Eigen::MatrixXd c(n, n);
+  for (Eigen::Index r = 0; r < n; ++r)
+    for (Eigen::Index k = r; k < n; ++k)
+      c(r, k) = c(k, r) = surfaceCov(r, k) / std::sqrt(surfaceCov(r, r) * surfaceCov(k, k)) *
+                          (sigma[static_cast<std::size_t>(r)] * sigma[static_cast<std::size_t>(k)]);
+  return c;
+}
+
 void chooseAnswer(FitReport& rep, const TraceTarget& target, const FitComponents& trace, const Eigen::VectorXd& modelSigma,
                   const Model& base, const std::vector<std::string>& fileKeys,
                   const std::function<double(const FitEvaluation&)>& answerChi2) {

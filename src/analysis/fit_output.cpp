@@ -65,11 +65,9 @@ void writeFitOutputs(const FitOutcome& f, const FitReport& rep, const Scene& bes
     std::vector<LandscapePoint> pts;
     for (const FitEvaluation& e : rep.evaluations)
       if (e.error.empty()) pts.push_back(LandscapePoint{e.x[0], e.x[1], e.objective, e.phase == "design"});
-    Eigen::Matrix2d cov;
-    const bool haveCov = f.unc.covariance.rows() == 2;
-    if (haveCov)
-      for (int r = 0; r < 2; ++r)
-        for (int c = 0; c < 2; ++c) cov(r, c) = f.unc.covariance(r, c) * width(r) * width(c);
+    // the ellipse of the covariance reported, sigma on its diagonal
+    const bool haveCov = rep.covariance.rows() == 2;
+    const Eigen::Matrix2d cov = haveCov ? Eigen::Matrix2d(rep.covariance) : Eigen::Matrix2d::Zero();
     // the zoom: the smallest trust region, or 4 sigma when that is wider
     const double zx = std::max(kSmallestBox / k * width(0), 4.0 * (std::isfinite(rep.sigma[0]) ? rep.sigma[0] : 0.0));
     const double zy = std::max(kSmallestBox / k * width(1), 4.0 * (std::isfinite(rep.sigma[1]) ? rep.sigma[1] : 0.0));
@@ -121,7 +119,8 @@ void writeFitOutputs(const FitOutcome& f, const FitReport& rep, const Scene& bes
                           "of the runs' scatter about the surface, scaled by max(1, chi2 / dof), mean over the last trust "
                           "regions; plus the surface's own estimation error: the larger of its minima's spread over those "
                           "regions and a bootstrap of 200 resamples of the runs around the answer; all times answer_scale, the "
-                          "answer's chi2 / dof against the trace's uncertainty beyond the surface's scale, at least 1")
+                          "answer's chi2 / dof against the trace's uncertainty beyond the surface's scale, at least 1; covariance: "
+                          "the surface's correlation between the keys with these sigmas on its diagonal")
       .integer("trust_regions", f.regions)
       .num("last_box_half_width", f.rho)
       .integer("evaluations", static_cast<long long>(rep.evaluations.size()))
@@ -157,11 +156,11 @@ void writeFitOutputs(const FitOutcome& f, const FitReport& rep, const Scene& bes
       .str("best_run", fs::path(b.dir).filename().string())
       .num("best_run_objective", b.objective)
       .num("best_run_distance_mm", b.distanceMm);
-  if (unc.covariance.size() > 0) {
+  if (rep.covariance.rows() == n) {
     Json cj;
     for (int r = 0; r < n; ++r) {
       Json row;
-      for (int c = 0; c < n; ++c) row.num(keys[static_cast<std::size_t>(c)].key, unc.covariance(r, c) * width(r) * width(c));
+      for (int c = 0; c < n; ++c) row.num(keys[static_cast<std::size_t>(c)].key, rep.covariance(r, c));
       cj.object(keys[static_cast<std::size_t>(r)].key, row);
     }
     j.object("covariance", cj);

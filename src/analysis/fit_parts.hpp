@@ -115,6 +115,12 @@ std::string fixedKeysText(const std::vector<FixedKey>& fixed);
 std::string misfitSentence(const TraceTarget& target, const std::vector<FitEvaluation>& evaluations, const FitEvaluation& answer,
                            const FitComponents& trace, const Eigen::VectorXd& modelSigma, const std::vector<FixedKey>& fixed);
 
+// the keys' covariance a fit reports (fit.json, the landscape's 1-sigma ellipse): the correlation between
+// the keys of the surface's covariance (any scale: the scaled box's), with the reported sigmas on its
+// diagonal, so that covariance and sigma say one uncertainty; empty when the surface had no covariance
+// of this size, or a sigma or a variance is not finite and positive
+Eigen::MatrixXd reportedCovariance(const Eigen::MatrixXd& surfaceCov, const std::vector<double>& sigma);
+
 // the answer among the evaluations: rep.best (answerIndex over the objectives, rep.surfaceRun preferred on
 // a tie), its goodness against the trace's uncertainty alone (answerChi2: the answer's chi-square against
 // the trace as a trace of its run would scatter), the fixed keys, and for a poor fit the sentence

@@ -1050,6 +1050,7 @@ std::vector<double> chooseFitAnswer(FitReport& rep, const FitSetup& setup, Fit& 
     rep.answerScale = std::max(1.0, rep.goodness.chi2 / rep.goodness.dof / std::max(1.0, surfaceScale));
     for (double& s : rep.sigma) s *= std::sqrt(rep.answerScale);
   }
+  rep.covariance = reportedCovariance(unc.covariance, rep.sigma);
   if (lapse) growthAgainstTrace(rep, lapseTrace, bm);
   const FitEvaluation& best = rep.evaluations[static_cast<std::size_t>(rep.best)];
   if (rep.surfaceRun >= 0 && rep.best != rep.surfaceRun) {

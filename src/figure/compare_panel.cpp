@@ -2,6 +2,7 @@
 #include "rootsim/compare_panel.hpp"
 
 #include <algorithm>
+#include <utility>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -232,10 +233,9 @@ void savePlateComparePanel(const Model& m, const std::vector<Snapshot>& sims, co
   saveFigure(f, path);
 }
 
-void saveLandscapePanel(const std::vector<LandscapePoint>& pts, const std::string& xKey, const std::string& yKey,
-                        double xLo, double xHi, double yLo, double yHi, int gridLevels, double bestX, double bestY,
-                        const Eigen::Matrix2d* cov, double zoomX, double zoomY, const std::string& title,
-                        const std::string& path) {
+Figure landscapeFigure(const std::vector<LandscapePoint>& pts, const std::string& xKey, const std::string& yKey,
+                       double xLo, double xHi, double yLo, double yHi, int gridLevels, double bestX, double bestY,
+                       const Eigen::Matrix2d* cov, double zoomX, double zoomY, const std::string& title) {
   double best = std::numeric_limits<double>::infinity();
   for (const LandscapePoint& p : pts) best = std::min(best, p.chi2);
   // classes of chi2 - chi2_min: 1, 2, 5 and 10 sigma of one parameter
@@ -327,16 +327,32 @@ void saveLandscapePanel(const std::vector<LandscapePoint>& pts, const std::strin
   Figure f;
   f.title = title;
   f.axes.push_back(panel(true, xLo, xHi, yLo, yHi));
-  if (zoomX > 0 && zoomY > 0) {
+  // the zoom lies inside the box: no wider than it, shifted into it; none when it would be the whole box
+  auto window = [](double centre, double half, double lo, double hi) {
+    half = std::min(half, 0.5 * (hi - lo));
+    const double a = std::clamp(centre - half, lo, hi - 2.0 * half);
+    return std::pair<double, double>{a, a + 2.0 * half};
+  };
+  const auto [zx0, zx1] = window(bestX, zoomX, xLo, xHi);
+  const auto [zy0, zy1] = window(bestY, zoomY, yLo, yHi);
+  const bool wholeBox = zx1 - zx0 >= (xHi - xLo) * (1 - 1e-9) && zy1 - zy0 >= (yHi - yLo) * (1 - 1e-9);
+  if (zoomX > 0 && zoomY > 0 && !wholeBox) {
     f.cols = 2;
     f.width = 1500;
     f.height = 750;
-    f.axes.push_back(panel(false, bestX - zoomX, bestX + zoomX, bestY - zoomY, bestY + zoomY));
+    f.axes.push_back(panel(false, zx0, zx1, zy0, zy1));
   } else {
     f.width = 900;
     f.height = 800;
   }
-  saveFigure(f, path);
+  return f;
+}
+
+void saveLandscapePanel(const std::vector<LandscapePoint>& pts, const std::string& xKey, const std::string& yKey,
+                        double xLo, double xHi, double yLo, double yHi, int gridLevels, double bestX, double bestY,
+                        const Eigen::Matrix2d* cov, double zoomX, double zoomY, const std::string& title,
+                        const std::string& path) {
+  saveFigure(landscapeFigure(pts, xKey, yKey, xLo, xHi, yLo, yHi, gridLevels, bestX, bestY, cov, zoomX, zoomY, title), path);
 }
 
 }  // namespace rootsim

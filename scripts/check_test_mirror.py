@@ -18,7 +18,6 @@ EQUIVALENT = {
     "src/cli/main.cpp": ("tests/test_cli.cpp", "the command line, run as the binary"),
     "src/cli/commands.cpp": ("tests/test_cli.cpp", "each command, run as the binary"),
     "src/analysis/fit_trace.cpp": ("tests/test_compare_fit.cpp", "`rootsim fit` run as the binary"),
-    "src/analysis/fit_goodness.cpp": ("tests/test_compare_fit.cpp", "fit.json's goodness of `rootsim fit`"),
     "src/analysis/fit_output.cpp": ("tests/test_compare_fit.cpp", "the files `rootsim fit` writes"),
     "src/render/gl_renderer.cpp": ("tests/render/test_renderer.cpp", "pixels where the physics puts them"),
     "src/render/render_scene.cpp": ("tests/render/test_renderer.cpp", "the scene the renderer draws"),

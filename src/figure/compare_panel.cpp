@@ -2,10 +2,10 @@
 #include "rootsim/compare_panel.hpp"
 
 #include <algorithm>
-#include <utility>
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <utility>
 
 #include <Eigen/Eigenvalues>
 
